@@ -1,0 +1,39 @@
+/// Counter-based hashing for deterministic jitter: a sample's random numbers are a function
+/// of (pixel, sample index, seed, dimension), never of a shared generator's state.
+#pragma once
+#include <cstdint>
+
+namespace aalab {
+
+/// 64-bit mixer (SplitMix64 finaliser).
+inline uint64_t MixBits(uint64_t v) {
+  v ^= v >> 30;
+  v *= 0xbf58476d1ce4e5b9ULL;
+  v ^= v >> 27;
+  v *= 0x94d049bb133111ebULL;
+  v ^= v >> 31;
+  return v;
+}
+
+/// Hash of a tuple of integers, order-sensitive.
+inline uint64_t HashTuple(uint64_t a, uint64_t b, uint64_t c, uint64_t d, uint64_t e = 0) {
+  uint64_t h = MixBits(a + 0x9e3779b97f4a7c15ULL);
+  h = MixBits(h ^ (b + 0x632be59bd9b4e019ULL));
+  h = MixBits(h ^ (c + 0x85157af5a2a6b5f1ULL));
+  h = MixBits(h ^ (d + 0xd6e8feb86659fd93ULL));
+  h = MixBits(h ^ (e + 0xa0761d6478bd642fULL));
+  return h;
+}
+
+/// A float in [0, 1) from the top 24 bits of a hash (exactly representable).
+inline float HashToUnitFloat(uint64_t h) {
+  return static_cast<float>(h >> 40) * (1.0f / 16777216.0f);
+}
+
+/// Jitter value in [0, 1) for pixel (x, y), sample index s, seed, dimension dim.
+inline float SampleJitter(int x, int y, int s, uint64_t seed, int dim) {
+  return HashToUnitFloat(HashTuple(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
+                                   static_cast<uint32_t>(s), seed, static_cast<uint32_t>(dim)));
+}
+
+}  // namespace aalab

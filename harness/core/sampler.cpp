@@ -1,0 +1,84 @@
+#include "harness/core/sampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aalab {
+
+BilinearSampler::BilinearSampler(const Image8& img) : img_(img) {
+  AALAB_CHECK(img.Channels() == 4, "BilinearSampler needs an RGBA8 frame");
+  AALAB_CHECK(!img.Empty(), "BilinearSampler needs a non-empty frame");
+}
+
+Float4 BilinearSampler::Fetch(int x, int y) const {
+  x = std::clamp(x, 0, img_.Width() - 1);
+  y = std::clamp(y, 0, img_.Height() - 1);
+  const uint8_t* p = img_.Pixel(x, y);
+  return Float4{p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f, p[3] / 255.0f};
+}
+
+Float4 BilinearSampler::Texel(int x, int y) {
+  ++taps_;
+  return Fetch(x, y);
+}
+
+Float4 BilinearSampler::SampleNormalized(float s, float t) {
+  const float u = s * static_cast<float>(img_.Width());
+  const float v = t * static_cast<float>(img_.Height());
+  return Sample(u, v);
+}
+
+Float4 BilinearSampler::Sample(float u, float v) {
+  ++taps_;
+  const float x = u - 0.5f;
+  const float y = v - 0.5f;
+  const float x0f = std::floor(x);
+  const float y0f = std::floor(y);
+  const float fx = x - x0f;
+  const float fy = y - y0f;
+  const int x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(img_.Width())));
+  const int y0 = static_cast<int>(std::clamp(y0f, -1.0f, static_cast<float>(img_.Height())));
+  const Float4 a = Fetch(x0, y0);
+  const Float4 b = Fetch(x0 + 1, y0);
+  const Float4 c = Fetch(x0, y0 + 1);
+  const Float4 d = Fetch(x0 + 1, y0 + 1);
+  const float wa = (1.0f - fx) * (1.0f - fy);
+  const float wb = fx * (1.0f - fy);
+  const float wc = (1.0f - fx) * fy;
+  const float wd = fx * fy;
+  Float4 r;
+  r.r = a.r * wa + b.r * wb + c.r * wc + d.r * wd;
+  r.g = a.g * wa + b.g * wb + c.g * wc + d.g * wd;
+  r.b = a.b * wa + b.b * wb + c.b * wc + d.b * wd;
+  r.a = a.a * wa + b.a * wb + c.a * wc + d.a * wd;
+  return r;
+}
+
+Float4 SampleBilinear(const ImageF& img, float u, float v) {
+  AALAB_CHECK(!img.Empty(), "SampleBilinear needs a non-empty image");
+  const int nc = img.Channels();
+  const float x = u - 0.5f;
+  const float y = v - 0.5f;
+  const float x0f = std::floor(x);
+  const float y0f = std::floor(y);
+  const float fx = x - x0f;
+  const float fy = y - y0f;
+  const int w = img.Width();
+  const int h = img.Height();
+  const int x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(w)));
+  const int y0 = static_cast<int>(std::clamp(y0f, -1.0f, static_cast<float>(h)));
+  const int xa = std::clamp(x0, 0, w - 1), xb = std::clamp(x0 + 1, 0, w - 1);
+  const int ya = std::clamp(y0, 0, h - 1), yb = std::clamp(y0 + 1, 0, h - 1);
+  const float wa = (1.0f - fx) * (1.0f - fy);
+  const float wb = fx * (1.0f - fy);
+  const float wc = (1.0f - fx) * fy;
+  const float wd = fx * fy;
+  float out[4] = {0, 0, 0, 0};
+  for (int c = 0; c < nc && c < 4; ++c) {
+    out[c] = img.At(xa, ya, c) * wa + img.At(xb, ya, c) * wb + img.At(xa, yb, c) * wc +
+             img.At(xb, yb, c) * wd;
+  }
+  return Float4{out[0], out[1], out[2], out[3]};
+}
+
+}  // namespace aalab

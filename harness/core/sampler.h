@@ -1,0 +1,48 @@
+/// One emulation of GPU bilinear texture filtering, shared by every post filter.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "harness/core/image.h"
+
+namespace aalab {
+
+/// Four float channels, as a shader's float4.
+struct Float4 {
+  float r = 0, g = 0, b = 0, a = 0;
+};
+
+/// Reads an 8-bit RGBA frame as a UNORM texture (k / 255) with bilinear filtering:
+/// texel centres at +0.5, clamp-to-edge addressing, float32 weights.
+///
+/// Deviation from GPUs (documented): hardware quantises the bilinear fraction to 8 bits of
+/// sub-texel precision; this sampler uses the exact float32 fraction. Weights are
+/// (1-fx)(1-fy), fx(1-fy), (1-fx)fy, fx·fy and the four products are summed in that order.
+/// Every call counts one tap in the sampler's counter (fetches, not texels).
+class BilinearSampler {
+ public:
+  explicit BilinearSampler(const Image8& img);
+  /// Sample at texture-space pixel coordinates (u, v) in pixels: the centre of texel (x, y)
+  /// is (x + 0.5, y + 0.5).
+  Float4 Sample(float u, float v);
+  /// Sample at normalised texture coordinates (s, t) in [0, 1] as a shader passes them:
+  /// u = s·W and v = t·H in float32, then as Sample(u, v).
+  Float4 SampleNormalized(float s, float t);
+  /// Exact read of texel (x, y) with clamp-to-edge: what a bilinear fetch at the texel
+  /// centre returns (like texelFetch / FxaaTexTop / FxaaTexOff with integer offsets).
+  Float4 Texel(int x, int y);
+  /// Number of Sample/Texel calls so far.
+  uint64_t Taps() const { return taps_; }
+  int Width() const { return img_.Width(); }
+  int Height() const { return img_.Height(); }
+
+ private:
+  Float4 Fetch(int x, int y) const;
+  const Image8& img_;
+  uint64_t taps_ = 0;
+};
+
+/// The same filtering for a float RGB(A) image (used by rescaling); no tap counter.
+Float4 SampleBilinear(const ImageF& img, float u, float v);
+
+}  // namespace aalab

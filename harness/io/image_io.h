@@ -1,0 +1,38 @@
+/// Image files through OpenImageIO. Writes are atomic: a temporary file beside the target is
+/// renamed into place, so a failed write never leaves a half-written result.
+#pragma once
+#include <string>
+
+#include "harness/core/image.h"
+
+namespace aalab {
+
+/// An image read from disk.
+struct LoadedImage {
+  ImageF pixels;          ///< values as stored, converted to float (8-bit k → k/255)
+  int file_channels = 0;  ///< channels in the file (1, 2, 3 or 4)
+  bool is_float = false;  ///< the file stores half/float data (EXR, float TIFF): scene-linear
+  std::string format;     ///< OpenImageIO format name ("png", "openexr", ...)
+};
+
+/// Reads an image. Throws UserError naming the path for: missing or unreadable file,
+/// truncated data, zero size, more than `max_pixels` pixels, unsupported channel count
+/// (allowed 1–4; grey is expanded to RGB, the alpha of 2/4-channel images is kept as
+/// channel 3), and NaN/Inf pixels (rejected; the message gives the first bad pixel).
+LoadedImage ReadImage(const std::string& path, size_t max_pixels = 1ull << 28);
+
+/// Reads an 8-bit display image as RGBA8 (alpha 255 when the file has none). Float files are
+/// refused with a message pointing at the float path.
+Image8 ReadImage8(const std::string& path);
+
+/// Writes an RGBA8 frame as RGB (PNG/JPEG/TIFF by extension); alpha is dropped unless
+/// `keep_alpha`. Throws UserError when the path is not writable or the extension unknown.
+void WriteImage8(const std::string& path, const Image8& img, bool keep_alpha = false);
+
+/// Writes a float image (EXR as half-free float32; PNG etc. quantised to 8 bits).
+void WriteImageF(const std::string& path, const ImageF& img);
+
+/// Writes text atomically (temporary file + rename). Throws UserError on failure.
+void WriteTextFile(const std::string& path, const std::string& text);
+
+}  // namespace aalab

@@ -1,0 +1,56 @@
+/// Metrics: pure functions of a method image and the reference (sRGB-encoded values in
+/// [0, 1], RGB; DESIGN.md "Metrics"). Sums in double, in a fixed order.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/core/image.h"
+
+namespace aalab {
+
+/// Inputs shared by all metrics. `image` and `reference` are sRGB-encoded float RGB of the
+/// same size; `edge_mask` (optional, same size, 1 channel, 0 or 1) marks geometric edges.
+struct MetricInput {
+  const ImageF* image = nullptr;
+  const ImageF* reference = nullptr;
+  const ImageF* edge_mask = nullptr;
+  const ImageF* none_image = nullptr;  ///< the `none` frame, for relative metrics (optional)
+};
+
+/// One named value. `value` empty means "not defined" (JSON null), with `null_reason`.
+struct MetricValue {
+  std::string name;
+  std::optional<double> value;
+  std::string null_reason;
+};
+
+/// One registry row: a metric family computes one or more named values.
+struct MetricEntry {
+  std::string name;
+  std::string help;
+  std::vector<std::string> outputs;  ///< names of the values it produces
+  std::vector<MetricValue> (*compute)(const MetricInput& in);
+};
+
+/// Every metric, in listing order.
+const std::vector<MetricEntry>& MetricRegistry();
+
+/// Mean over pixels of the RGB-mean squared error between two same-size images (double sums,
+/// row-major order). `mask` (optional): only pixels where mask > 0.5 (or <= 0.5 when
+/// `invert`). Returns the MSE and the pixel count used.
+struct MseResult {
+  double mse = 0.0;
+  size_t pixels = 0;
+};
+MseResult MeanSquaredError(const ImageF& a, const ImageF& b, const ImageF* mask = nullptr,
+                           bool invert = false);
+
+/// PSNR in dB for peak 1.0 from an MSE: 10·log10(1 / mse); empty when mse == 0 (identical).
+std::optional<double> PsnrFromMse(double mse);
+
+/// Checks two images have the same size and channel count; throws UserError naming both
+/// sizes otherwise (never resample silently). `what` names the pair in the message.
+void RequireSameShape(const ImageF& a, const ImageF& b, const std::string& what);
+
+}  // namespace aalab

@@ -1,0 +1,67 @@
+#include "harness/core/color.h"
+
+#include <gtest/gtest.h>
+
+#include "harness/core/error.h"
+
+namespace aalab {
+namespace {
+
+TEST(Color, SrgbEncodeKnownValues) {
+  // IEC 61966-2-1: linear segment below 0.0031308, 1.055 x^(1/2.4) − 0.055 above.
+  EXPECT_FLOAT_EQ(SrgbEncode(0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(SrgbEncode(1.0f), 1.0f);
+  EXPECT_FLOAT_EQ(SrgbEncode(0.001f), 0.01292f);
+  // 0.5 linear → 0.735357 encoded (1.055·0.5^(1/2.4) − 0.055, computed by hand).
+  EXPECT_NEAR(SrgbEncode(0.5f), 0.735357f, 1e-5);
+  // 0.2140 linear is the value whose encoding is ~0.5 (display mid-grey code 128).
+  EXPECT_NEAR(SrgbEncode(0.214041f), 0.5f, 1e-5);
+}
+
+TEST(Color, SrgbRoundTrip) {
+  for (int i = 0; i <= 100; ++i) {
+    const float v = static_cast<float>(i) / 100.0f;
+    EXPECT_NEAR(SrgbDecode(SrgbEncode(v)), v, 2e-6f) << v;
+  }
+}
+
+TEST(Color, ClampAndNan) {
+  EXPECT_EQ(SrgbEncode(-1.0f), 0.0f);
+  EXPECT_EQ(SrgbEncode(7.0f), 1.0f);
+  EXPECT_EQ(SrgbEncode(std::numeric_limits<float>::quiet_NaN()), 0.0f);
+  EXPECT_EQ(QuantizeUnorm8(std::numeric_limits<float>::quiet_NaN()), 0);
+}
+
+TEST(Color, Quantize) {
+  EXPECT_EQ(QuantizeUnorm8(0.0f), 0);
+  EXPECT_EQ(QuantizeUnorm8(1.0f), 255);
+  EXPECT_EQ(QuantizeUnorm8(0.5f), 128);  // 127.5 rounds half away from zero
+  EXPECT_EQ(QuantizeUnorm8(100.0f / 255.0f), 100);
+}
+
+TEST(Color, Tonemaps) {
+  EXPECT_FLOAT_EQ(ApplyTonemap(Tonemap::kReinhard, 1.0f), 0.5f);
+  EXPECT_FLOAT_EQ(ApplyTonemap(Tonemap::kReinhard, 3.0f), 0.75f);
+  EXPECT_FLOAT_EQ(ApplyTonemap(Tonemap::kNone, 3.0f), 3.0f);
+  EXPECT_FLOAT_EQ(ApplyTonemap(Tonemap::kAces, 0.0f), 0.0f);
+  // ACES fit saturates near 1 for large input (limit 2.51/2.43 = 1.033 before clamp).
+  EXPECT_NEAR(ApplyTonemap(Tonemap::kAces, 1e6f), 2.51f / 2.43f, 1e-4);
+  Display d{2.0f, Tonemap::kNone};
+  auto out = DisplayLinear(d, {0.25f, 1.0f, -1.0f});
+  EXPECT_FLOAT_EQ(out[0], 0.5f);
+  EXPECT_FLOAT_EQ(out[1], 1.0f);
+  EXPECT_FLOAT_EQ(out[2], 0.0f);
+}
+
+TEST(Color, ParseTonemapErrors) {
+  EXPECT_EQ(ParseTonemap("aces"), Tonemap::kAces);
+  try {
+    ParseTonemap("filmic");
+    FAIL();
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("none, reinhard, aces"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace aalab
