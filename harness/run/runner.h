@@ -1,0 +1,45 @@
+/// The run plan (scene × method matrix) and its execution: renders, post filters, timing,
+/// metrics, images and the report.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "reports/result.h"
+
+namespace aalab {
+
+/// Everything `aalab run` needs. Validated by ValidateSettings before any work starts.
+struct RunSettings {
+  std::string suite = "default";
+  std::vector<std::string> scenes;   ///< overrides the suite when non-empty (names or paths)
+  std::vector<std::string> methods;  ///< empty: the default method list
+  int width = 960, height = 540;
+  int ref_spp = 256;
+  uint64_t seed = 1;
+  int threads = 0;  ///< 0: all hardware threads
+  int repeat = 3;   ///< timed repeats after one warm-up
+  std::string out_dir = "out";
+  bool debug_views = false;
+  bool quiet = false;  ///< no progress on stderr
+};
+
+/// The methods `aalab run` uses when --methods is not given.
+std::vector<std::string> DefaultMethods();
+
+/// Parses "WxH" (1..16384 each, at most 64 Mpx); UserError otherwise.
+void ParseSize(const std::string& text, int* width, int* height);
+
+/// Runs the matrix and writes DIR/report.json, DIR/images/... Output goes to a temporary
+/// folder that replaces DIR only when everything succeeded: a failed run leaves no partial
+/// report. Returns the report.
+Report RunSuite(const RunSettings& settings);
+
+/// Facts for the report's context block (tool version, git commit, build type, library
+/// versions, machine, threads).
+std::vector<std::pair<std::string, std::string>> ContextFacts();
+
+/// FNV-1a 64-bit hash of bytes, as 16 hex digits.
+std::string HashBytes(const void* data, size_t size);
+
+}  // namespace aalab

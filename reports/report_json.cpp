@@ -1,0 +1,227 @@
+#include "reports/report_json.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "harness/core/error.h"
+
+namespace aalab {
+
+void Timing::Summarize() {
+  if (samples_ms.empty()) {
+    median_ms = min_ms = max_ms = 0;
+    return;
+  }
+  std::vector<double> s = samples_ms;
+  std::sort(s.begin(), s.end());
+  min_ms = s.front();
+  max_ms = s.back();
+  const size_t n = s.size();
+  median_ms = n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+}
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json Num(double v) {
+  AALAB_CHECK(std::isfinite(v), "non-finite number headed for JSON");
+  return v;
+}
+
+Json Opt(const std::optional<double>& v) { return v ? Num(*v) : Json(nullptr); }
+
+Json TimingJson(const Timing& t) {
+  Json j;
+  j["median_ms"] = Num(t.median_ms);
+  j["min_ms"] = Num(t.min_ms);
+  j["max_ms"] = Num(t.max_ms);
+  Json s = Json::array();
+  for (double v : t.samples_ms) s.push_back(Num(v));
+  j["samples_ms"] = s;
+  return j;
+}
+
+Timing TimingFrom(const nlohmann::json& j) {
+  Timing t;
+  t.median_ms = j.at("median_ms").get<double>();
+  t.min_ms = j.at("min_ms").get<double>();
+  t.max_ms = j.at("max_ms").get<double>();
+  for (const auto& v : j.at("samples_ms")) t.samples_ms.push_back(v.get<double>());
+  return t;
+}
+
+std::optional<double> OptFrom(const nlohmann::json& j) {
+  if (j.is_null()) return std::nullopt;
+  return j.get<double>();
+}
+
+}  // namespace
+
+nlohmann::ordered_json ReportToJson(const Report& r) {
+  Json doc;
+  doc["schema_version"] = kSchemaVersion;
+  Json ctx = Json::object();
+  for (const auto& [k, v] : r.context) ctx[k] = v;
+  doc["context"] = ctx;
+  Json settings = Json::object();
+  for (const auto& [k, v] : r.settings) settings[k] = v;
+  doc["settings"] = settings;
+  Json scenes = Json::array();
+  for (const auto& s : r.scenes) {
+    Json j;
+    j["name"] = s.name;
+    j["description"] = s.description;
+    j["source"] = s.source;
+    j["effects"] = s.effects;
+    j["width"] = s.width;
+    j["height"] = s.height;
+    j["reference"] = {{"spp", s.ref_spp},
+                      {"time_ms", Num(s.reference_ms)},
+                      {"halves_psnr_db", Opt(s.ref_halves_psnr_db)},
+                      {"noise_floor_psnr_db", Opt(s.ref_floor_psnr_db)},
+                      {"primary_rays_per_px", Num(s.ref_primary_rays_per_px)},
+                      {"shadow_rays_per_px", Num(s.ref_shadow_rays_per_px)},
+                      {"texture_lookups_per_px", Num(s.ref_texture_lookups_per_px)}};
+    j["bvh_build_ms"] = Num(s.bvh_build_ms);
+    j["edge_pixel_fraction"] = Num(s.edge_pixel_fraction);
+    Json im = Json::object();
+    for (const auto& [k, v] : s.images) im[k] = v;
+    j["images"] = im;
+    scenes.push_back(j);
+  }
+  doc["scenes"] = scenes;
+  Json rows = Json::array();
+  for (const auto& row : r.rows) {
+    Json j;
+    j["scene"] = row.scene;
+    j["method"] = row.method;
+    j["spec"] = row.spec;
+    Json params = Json::object();
+    for (const auto& [k, v] : row.params) params[k] = v;
+    j["params"] = params;
+    j["render_size"] = {row.render_width, row.render_height};
+    j["samples_per_pixel"] = row.samples_per_pixel;
+    Json metrics = Json::object();
+    Json reasons = Json::object();
+    for (const auto& m : row.metrics) {
+      metrics[m.name] = Opt(m.value);
+      if (!m.value) reasons[m.name] = m.null_reason;
+    }
+    j["metrics"] = metrics;
+    j["null_reasons"] = reasons;
+    j["timing"] = {{"render", TimingJson(row.render)},
+                   {"post", TimingJson(row.post)},
+                   {"resample", TimingJson(row.resample)},
+                   {"total", TimingJson(row.total)},
+                   {"render_shared_with_none", row.render_shared}};
+    j["cost"] = {{"primary_rays_per_px", Num(row.primary_rays_per_px)},
+                 {"shadow_rays_per_px", Num(row.shadow_rays_per_px)},
+                 {"texture_lookups_per_px", Num(row.texture_lookups_per_px)},
+                 {"taps_per_px", Num(row.taps_per_px)}};
+    j["output_hash"] = row.output_hash;
+    Json im = Json::object();
+    for (const auto& [k, v] : row.images) im[k] = v;
+    j["images"] = im;
+    rows.push_back(j);
+  }
+  doc["rows"] = rows;
+  return doc;
+}
+
+Report ReportFromJson(const nlohmann::json& doc, const std::string& origin) {
+  Report r;
+  try {
+    r.schema_version = doc.at("schema_version").get<int>();
+    if (r.schema_version != kSchemaVersion) {
+      throw UserError(origin + ": schema_version " + std::to_string(r.schema_version) +
+                      " is not supported (this aalab reads " + std::to_string(kSchemaVersion) + ")");
+    }
+    for (auto it = doc.at("context").begin(); it != doc.at("context").end(); ++it) {
+      r.context[it.key()] = it.value().get<std::string>();
+    }
+    for (auto it = doc.at("settings").begin(); it != doc.at("settings").end(); ++it) {
+      r.settings.emplace_back(it.key(), it.value().get<std::string>());
+    }
+    for (const auto& j : doc.at("scenes")) {
+      SceneResult s;
+      s.name = j.at("name").get<std::string>();
+      s.description = j.at("description").get<std::string>();
+      s.source = j.at("source").get<std::string>();
+      s.effects = j.at("effects").get<std::vector<std::string>>();
+      s.width = j.at("width").get<int>();
+      s.height = j.at("height").get<int>();
+      const auto& ref = j.at("reference");
+      s.ref_spp = ref.at("spp").get<int>();
+      s.reference_ms = ref.at("time_ms").get<double>();
+      s.ref_halves_psnr_db = OptFrom(ref.at("halves_psnr_db"));
+      s.ref_floor_psnr_db = OptFrom(ref.at("noise_floor_psnr_db"));
+      s.ref_primary_rays_per_px = ref.at("primary_rays_per_px").get<double>();
+      s.ref_shadow_rays_per_px = ref.at("shadow_rays_per_px").get<double>();
+      s.ref_texture_lookups_per_px = ref.at("texture_lookups_per_px").get<double>();
+      s.bvh_build_ms = j.at("bvh_build_ms").get<double>();
+      s.edge_pixel_fraction = j.at("edge_pixel_fraction").get<double>();
+      for (auto it = j.at("images").begin(); it != j.at("images").end(); ++it) {
+        s.images[it.key()] = it.value().get<std::string>();
+      }
+      r.scenes.push_back(s);
+    }
+    for (const auto& j : doc.at("rows")) {
+      ResultRow row;
+      row.scene = j.at("scene").get<std::string>();
+      row.method = j.at("method").get<std::string>();
+      row.spec = j.at("spec").get<std::string>();
+      for (auto it = j.at("params").begin(); it != j.at("params").end(); ++it) {
+        row.params.emplace_back(it.key(), it.value().get<std::string>());
+      }
+      row.render_width = j.at("render_size").at(0).get<int>();
+      row.render_height = j.at("render_size").at(1).get<int>();
+      row.samples_per_pixel = j.at("samples_per_pixel").get<int>();
+      const auto& reasons = j.at("null_reasons");
+      for (auto it = j.at("metrics").begin(); it != j.at("metrics").end(); ++it) {
+        MetricResult m;
+        m.name = it.key();
+        m.value = OptFrom(it.value());
+        if (!m.value && reasons.contains(m.name)) m.null_reason = reasons.at(m.name).get<std::string>();
+        row.metrics.push_back(m);
+      }
+      const auto& t = j.at("timing");
+      row.render = TimingFrom(t.at("render"));
+      row.post = TimingFrom(t.at("post"));
+      row.resample = TimingFrom(t.at("resample"));
+      row.total = TimingFrom(t.at("total"));
+      row.render_shared = t.at("render_shared_with_none").get<bool>();
+      const auto& c = j.at("cost");
+      row.primary_rays_per_px = c.at("primary_rays_per_px").get<double>();
+      row.shadow_rays_per_px = c.at("shadow_rays_per_px").get<double>();
+      row.texture_lookups_per_px = c.at("texture_lookups_per_px").get<double>();
+      row.taps_per_px = c.at("taps_per_px").get<double>();
+      row.output_hash = j.at("output_hash").get<std::string>();
+      for (auto it = j.at("images").begin(); it != j.at("images").end(); ++it) {
+        row.images[it.key()] = it.value().get<std::string>();
+      }
+      r.rows.push_back(row);
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw UserError(origin + ": not an aalab report (" + std::string(e.what()) + ")");
+  }
+  return r;
+}
+
+Report ReadReportFile(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw UserError("report '" + path + "' cannot be read");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(ss.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw UserError("report '" + path + "' is not valid JSON: " + e.what());
+  }
+  return ReportFromJson(doc, "report '" + path + "'");
+}
+
+}  // namespace aalab

@@ -1,0 +1,111 @@
+#include "scenes/json_fields.h"
+
+#include "harness/core/error.h"
+#include "harness/core/params.h"
+
+namespace aalab {
+
+std::string JsonField::Shown() const {
+  std::string s = value_.dump();
+  if (s.size() > 60) s = s.substr(0, 57) + "...";
+  return s;
+}
+
+void JsonField::Fail(const std::string& message) const {
+  throw UserError(origin_ + ": " + (path_.empty() ? "/" : path_) + ": " + message);
+}
+
+void JsonField::RequireObject(const std::set<std::string>& allowed) const {
+  if (!value_.is_object()) Fail("expected an object, got " + Shown());
+  for (auto it = value_.begin(); it != value_.end(); ++it) {
+    if (!allowed.count(it.key())) {
+      std::vector<std::string> names(allowed.begin(), allowed.end());
+      Fail("unknown field '" + it.key() + "' (allowed: " + JoinNames(names) + ")");
+    }
+  }
+}
+
+JsonField JsonField::Child(const std::string& key) const {
+  if (!value_.is_object()) Fail("expected an object, got " + Shown());
+  if (!value_.contains(key)) Fail("missing required field '" + key + "'");
+  return JsonField(value_.at(key), origin_, path_ + "/" + key);
+}
+
+JsonField JsonField::At(size_t index) const {
+  return JsonField(value_.at(index), origin_, path_ + "/" + std::to_string(index));
+}
+
+size_t JsonField::ArraySize() const {
+  if (!value_.is_array()) Fail("expected an array, got " + Shown());
+  return value_.size();
+}
+
+std::string JsonField::String() const {
+  if (!value_.is_string()) Fail("expected a string, got " + Shown());
+  return value_.get<std::string>();
+}
+
+std::string JsonField::Choice(const std::vector<std::string>& choices) const {
+  const std::string s = String();
+  for (const auto& c : choices) {
+    if (c == s) return s;
+  }
+  Fail("'" + s + "' is not allowed (allowed: " + JoinNames(choices) + ")");
+}
+
+double JsonField::Number(double min, double max, bool open_min) const {
+  if (!value_.is_number()) Fail("expected a number, got " + Shown());
+  const double v = value_.get<double>();
+  if (!std::isfinite(v)) Fail("expected a finite number, got " + Shown());
+  if (v < min || v > max || (open_min && v <= min)) {
+    Fail(Shown() + " is out of range (allowed: " + (open_min ? "> " : ">= ") + FormatNumber(min) +
+         " and <= " + FormatNumber(max) + ")");
+  }
+  return v;
+}
+
+int JsonField::Integer(int min, int max) const {
+  if (!value_.is_number_integer()) Fail("expected an integer, got " + Shown());
+  const auto v = value_.get<long long>();
+  if (v < min || v > max) {
+    Fail(Shown() + " is out of range (allowed: " + std::to_string(min) + ".." + std::to_string(max) + ")");
+  }
+  return static_cast<int>(v);
+}
+
+bool JsonField::Bool() const {
+  if (!value_.is_boolean()) Fail("expected true or false, got " + Shown());
+  return value_.get<bool>();
+}
+
+glm::vec3 JsonField::Vec3(double min, double max) const {
+  if (!value_.is_array() || value_.size() != 3) Fail("expected an array of 3 numbers, got " + Shown());
+  glm::vec3 v;
+  for (int i = 0; i < 3; ++i) v[i] = static_cast<float>(At(i).Number(min, max));
+  return v;
+}
+
+glm::vec2 JsonField::Vec2(double min, double max) const {
+  if (!value_.is_array() || value_.size() != 2) Fail("expected an array of 2 numbers, got " + Shown());
+  glm::vec2 v;
+  for (int i = 0; i < 2; ++i) v[i] = static_cast<float>(At(i).Number(min, max));
+  return v;
+}
+
+double JsonField::NumberOr(const std::string& key, double def, double min, double max, bool open_min) const {
+  return Has(key) ? Child(key).Number(min, max, open_min) : def;
+}
+
+glm::vec3 JsonField::Vec3Or(const std::string& key, glm::vec3 def, double min, double max) const {
+  return Has(key) ? Child(key).Vec3(min, max) : def;
+}
+
+bool JsonField::BoolOr(const std::string& key, bool def) const {
+  return Has(key) ? Child(key).Bool() : def;
+}
+
+std::string JsonField::StringOr(const std::string& key, const std::string& def) const {
+  return Has(key) ? Child(key).String() : def;
+}
+
+}  // namespace aalab

@@ -1,0 +1,40 @@
+/// Frame rendering on top of the tracer: 1x and supersampled method frames (8-bit, the back
+/// buffer) and the float reference with its noise floor and geometric edge mask.
+#pragma once
+#include <cstdint>
+
+#include "harness/core/image.h"
+#include "harness/core/render_spec.h"
+#include "scenes/tracer.h"
+
+namespace aalab {
+
+/// Renders a method frame of width × height with the render spec's sample pattern: each
+/// sample goes through the scene's display transform, samples are box-averaged in linear
+/// light, sRGB-encoded and quantised to RGBA8 (alpha 255). `spec.scale` is ignored here (the
+/// caller picks the size). Jitter is a hash of (pixel, sample index, seed): bit-identical at
+/// any thread count.
+Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
+                   TraceCounters* counters);
+
+/// The supersampled ground truth.
+struct Reference {
+  ImageF image;      ///< sRGB-encoded RGB float (not quantised), all n×n samples
+  ImageF half_a;     ///< the same from the strata with (i + j) even
+  ImageF half_b;     ///< ... and (i + j) odd: independent of half_a
+  ImageF edge_mask;  ///< 1 where the pixel's samples see more than one surface, a shadow
+                     ///< boundary or an alpha cut-out; dilated by 1 px; else 0 (1 channel)
+  ImageF edge_mask_raw;  ///< the same before dilation
+  int grid = 0;      ///< n: n×n samples per pixel
+};
+
+/// Renders the reference: grid × grid stratified jittered samples per pixel (grid even, ≥ 2),
+/// per-sample display transform, box resolve in linear light, sRGB encode, float.
+Reference RenderReference(const Tracer& tracer, int width, int height, int grid, uint64_t seed,
+                          TraceCounters* counters);
+
+/// Validates a reference sample count: a perfect square n² with n even and 2 ≤ n ≤ 64
+/// (4, 16, 64, 144, 256, ..., 4096). Returns n; throws UserError listing valid values.
+int ReferenceGridForSpp(int spp);
+
+}  // namespace aalab

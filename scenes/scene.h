@@ -1,0 +1,123 @@
+/// Scene model: camera, display, materials, lights, objects and the declared effects.
+/// Scene files are JSON (scenes/README.md documents every field); ParseScene validates them.
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "harness/core/color.h"
+
+namespace aalab {
+
+/// Shading effects a scene may call for. The tracer simulates only the declared ones.
+enum class Effect { kUnlit, kLambert, kShadows, kSpecular, kTextures, kAlphaTest };
+constexpr int kEffectCount = 6;
+/// "unlit", "lambert", "shadows", "specular", "textures", "alpha_test".
+const char* EffectName(Effect e);
+
+/// Procedural texture patterns, evaluated at a surface's (u, v) with no filtering (point
+/// sampled: the aliasing source the AA methods face).
+enum class TexturePattern { kChecker, kStripes, kNoise };
+
+/// A procedural texture: a scalar pattern value t in [0, 1] mixes color_a (t = 0) and
+/// color_b (t = 1); alpha tests compare t against the material's cutoff.
+struct Texture {
+  TexturePattern pattern = TexturePattern::kChecker;
+  float scale = 1.0f;        ///< pattern cells per uv unit
+  float angle_deg = 0.0f;    ///< stripes: direction of the stripes' normal in the uv plane
+  float duty = 0.5f;         ///< stripes: fraction of each period with t = 1
+  uint32_t seed = 0;         ///< noise: hash seed
+  glm::vec3 color_a{0.0f};
+  glm::vec3 color_b{1.0f};
+};
+
+/// Evaluates the texture's pattern value t ∈ [0, 1] at uv (pure).
+float EvaluatePattern(const Texture& tex, glm::vec2 uv);
+
+enum class Shading { kUnlit, kLambert };
+
+struct Material {
+  std::string name;
+  Shading shading = Shading::kUnlit;
+  glm::vec3 color{1.0f};                 ///< base colour (scene-linear; may exceed 1 for emitters)
+  std::optional<Texture> texture;        ///< replaces `color` when present (needs `textures`)
+  glm::vec3 specular{0.0f};              ///< Blinn-Phong specular colour (needs `specular`)
+  float shininess = 0.0f;                ///< Blinn-Phong exponent
+  std::optional<Texture> alpha;          ///< cut-out pattern (needs `alpha_test`)
+  float alpha_cutoff = 0.5f;             ///< surface is kept where pattern t >= cutoff
+};
+
+enum class LightType { kDirectional, kPoint };
+
+struct Light {
+  LightType type = LightType::kDirectional;
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< directional: the direction light travels
+  glm::vec3 position{0.0f};                ///< point: position
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;                  ///< directional: irradiance; point: intensity (/d²)
+  bool shadows = false;                    ///< casts shadows (needs `shadows`)
+};
+
+enum class CameraType { kPerspective, kOrthographic };
+
+struct Camera {
+  CameraType type = CameraType::kPerspective;
+  glm::vec3 position{0.0f, 0.0f, 5.0f};
+  glm::vec3 look_at{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_y_deg = 45.0f;  ///< perspective: vertical field of view
+  float height = 2.0f;      ///< orthographic: world-space height of the view
+};
+
+/// Geometry after parsing, in world space (transforms already applied).
+enum class ShapeKind { kTriangles, kSphere, kDisk, kCapsule, kCylinder };
+
+struct Shape {
+  ShapeKind kind = ShapeKind::kTriangles;
+  std::string source;  ///< the scene-file shape name ("box", "mesh", ...) for messages
+  int material = 0;    ///< index into Scene::materials
+  // kTriangles
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  ///< per vertex (empty: flat shading)
+  std::vector<glm::vec2> uvs;      ///< per vertex
+  std::vector<glm::uvec3> triangles;
+  // kSphere / kDisk: centre + radius (+ normal for the disk, + frame for uv)
+  glm::vec3 center{0.0f};
+  float radius = 0.0f;
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
+  glm::vec3 tangent{1.0f, 0.0f, 0.0f};
+  // kCapsule / kCylinder: segment from p0 to p1 with `radius`
+  glm::vec3 p0{0.0f}, p1{0.0f};
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::string path;  ///< the file it came from ("" for built in code)
+  std::array<bool, kEffectCount> effects{};
+  Camera camera;
+  Display display;
+  glm::vec3 background{0.0f};
+  glm::vec3 ambient{0.0f};  ///< added to lambert lighting
+  std::vector<Material> materials;
+  std::vector<Light> lights;
+  std::vector<Shape> shapes;
+
+  bool Has(Effect e) const { return effects[static_cast<int>(e)]; }
+  /// Names of the declared effects, in enum order.
+  std::vector<std::string> EffectNames() const;
+};
+
+/// Parses and validates a scene file. Every error is a UserError naming the file, the JSON
+/// path (e.g. /objects/3/radius), the bad value and what is allowed. Mesh paths are relative
+/// to the scene file's folder.
+Scene LoadSceneFile(const std::string& path);
+
+/// Parses scene JSON text; `origin` names it in messages and `base_dir` resolves mesh paths.
+Scene ParseScene(const std::string& json_text, const std::string& origin,
+                 const std::string& base_dir);
+
+}  // namespace aalab

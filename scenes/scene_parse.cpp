@@ -1,0 +1,365 @@
+// Scene files: JSON → Scene, with validation. Every field is documented in scenes/README.md.
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "harness/core/error.h"
+#include "harness/core/params.h"
+#include "scenes/json_fields.h"
+#include "scenes/scene.h"
+#include "scenes/shapes.h"
+
+namespace aalab {
+namespace fs = std::filesystem;
+
+const char* EffectName(Effect e) {
+  switch (e) {
+    case Effect::kUnlit: return "unlit";
+    case Effect::kLambert: return "lambert";
+    case Effect::kShadows: return "shadows";
+    case Effect::kSpecular: return "specular";
+    case Effect::kTextures: return "textures";
+    case Effect::kAlphaTest: return "alpha_test";
+  }
+  return "?";
+}
+
+std::vector<std::string> Scene::EffectNames() const {
+  std::vector<std::string> out;
+  for (int i = 0; i < kEffectCount; ++i) {
+    if (effects[i]) out.push_back(EffectName(static_cast<Effect>(i)));
+  }
+  return out;
+}
+
+namespace {
+
+constexpr double kMaxCoord = 1e8;  // beyond this float32 positions lose all sub-unit precision
+
+Texture ParseTexture(const JsonField& f) {
+  f.RequireObject({"pattern", "scale", "angle", "duty", "seed", "color_a", "color_b"});
+  Texture t;
+  const std::string p = f.Child("pattern").Choice({"checker", "stripes", "noise"});
+  t.pattern = p == "checker" ? TexturePattern::kChecker
+              : p == "stripes" ? TexturePattern::kStripes
+                               : TexturePattern::kNoise;
+  t.scale = static_cast<float>(f.NumberOr("scale", 1.0, 0.0, 1e6, true));
+  t.angle_deg = static_cast<float>(f.NumberOr("angle", 0.0, -360.0, 360.0));
+  t.duty = static_cast<float>(f.NumberOr("duty", 0.5, 0.0, 1.0));
+  t.seed = f.Has("seed") ? static_cast<uint32_t>(f.Child("seed").Integer(0, 1 << 30)) : 0u;
+  t.color_a = f.Vec3Or("color_a", glm::vec3(0.0f), 0.0, 1e7);
+  t.color_b = f.Vec3Or("color_b", glm::vec3(1.0f), 0.0, 1e7);
+  return t;
+}
+
+Material ParseMaterial(const JsonField& f, const std::string& name) {
+  f.RequireObject({"shading", "color", "texture", "specular", "shininess", "alpha", "alpha_cutoff"});
+  Material m;
+  m.name = name;
+  m.shading = f.Child("shading").Choice({"unlit", "lambert"}) == "unlit" ? Shading::kUnlit : Shading::kLambert;
+  m.color = f.Vec3Or("color", glm::vec3(1.0f), 0.0, 1e7);
+  if (f.Has("texture")) m.texture = ParseTexture(f.Child("texture"));
+  if (f.Has("specular")) {
+    m.specular = f.Child("specular").Vec3(0.0, 1e7);
+    m.shininess = static_cast<float>(f.Child("shininess").Number(1.0, 1e6));
+    if (m.shading != Shading::kLambert) f.Child("specular").Fail("specular needs shading 'lambert' (it is lit by the scene's lights)");
+  } else if (f.Has("shininess")) {
+    f.Child("shininess").Fail("shininess without 'specular'");
+  }
+  if (f.Has("alpha")) m.alpha = ParseTexture(f.Child("alpha"));
+  m.alpha_cutoff = static_cast<float>(f.NumberOr("alpha_cutoff", 0.5, 0.0, 1.0));
+  if (f.Has("alpha_cutoff") && !m.alpha) f.Child("alpha_cutoff").Fail("alpha_cutoff without 'alpha'");
+  return m;
+}
+
+Light ParseLight(const JsonField& f) {
+  f.RequireObject({"type", "direction", "position", "color", "intensity", "shadows"});
+  Light l;
+  const std::string type = f.Child("type").Choice({"directional", "point"});
+  if (type == "directional") {
+    l.type = LightType::kDirectional;
+    l.direction = f.Child("direction").Vec3();
+    if (glm::length(l.direction) == 0.0f) f.Child("direction").Fail("direction must not be zero");
+    l.direction = glm::normalize(l.direction);
+    if (f.Has("position")) f.Child("position").Fail("a directional light has no position");
+  } else {
+    l.type = LightType::kPoint;
+    l.position = f.Child("position").Vec3(-kMaxCoord, kMaxCoord);
+    if (f.Has("direction")) f.Child("direction").Fail("a point light has no direction");
+  }
+  l.color = f.Vec3Or("color", glm::vec3(1.0f), 0.0, 1e7);
+  l.intensity = static_cast<float>(f.NumberOr("intensity", 1.0, 0.0, 1e12));
+  l.shadows = f.BoolOr("shadows", false);
+  return l;
+}
+
+Camera ParseCamera(const JsonField& f) {
+  f.RequireObject({"type", "position", "look_at", "up", "fov_y", "height"});
+  Camera c;
+  const std::string type = f.Child("type").Choice({"perspective", "orthographic"});
+  c.type = type == "perspective" ? CameraType::kPerspective : CameraType::kOrthographic;
+  c.position = f.Child("position").Vec3(-kMaxCoord, kMaxCoord);
+  c.look_at = f.Child("look_at").Vec3(-kMaxCoord, kMaxCoord);
+  c.up = f.Vec3Or("up", glm::vec3(0, 1, 0));
+  const glm::vec3 fwd = c.look_at - c.position;
+  if (glm::length(fwd) == 0.0f) f.Child("look_at").Fail("look_at equals position");
+  if (glm::length(glm::cross(fwd, c.up)) <= 1e-6f * glm::length(fwd) * glm::length(c.up)) {
+    f.Has("up") ? f.Child("up").Fail("up is zero or parallel to the view direction")
+                : f.Fail("the default up (0,1,0) is parallel to the view direction; give 'up'");
+  }
+  if (c.type == CameraType::kPerspective) {
+    c.fov_y_deg = static_cast<float>(f.Child("fov_y").Number(0.0, 179.0, true));
+    if (f.Has("height")) f.Child("height").Fail("'height' is for orthographic cameras (perspective uses fov_y)");
+  } else {
+    c.height = static_cast<float>(f.Child("height").Number(0.0, 1e9, true));
+    if (f.Has("fov_y")) f.Child("fov_y").Fail("'fov_y' is for perspective cameras (orthographic uses height)");
+  }
+  return c;
+}
+
+glm::mat4 ParseTransform(const JsonField& f) {
+  f.RequireObject({"translate", "rotate", "scale"});
+  const glm::vec3 t = f.Vec3Or("translate", glm::vec3(0.0f), -kMaxCoord, kMaxCoord);
+  const glm::vec3 r = f.Vec3Or("rotate", glm::vec3(0.0f), -3600.0, 3600.0);
+  glm::vec3 s(1.0f);
+  if (f.Has("scale")) {
+    const JsonField sf = f.Child("scale");
+    if (sf.Value().is_number()) {
+      s = glm::vec3(static_cast<float>(sf.Number(0.0, 1e9, true)));
+    } else {
+      s = sf.Vec3(0.0, 1e9);
+      if (s.x <= 0 || s.y <= 0 || s.z <= 0) sf.Fail("scale components must be > 0");
+    }
+  }
+  return MakeTransform(t, r, s);
+}
+
+Shape ParseShape(const JsonField& f, const std::string& base_dir) {
+  const std::string kind = f.Child("shape").Choice(
+      {"quad", "plane", "polygon", "box", "disk", "sphere", "capsule", "cylinder", "mesh", "triangles"});
+  const std::set<std::string> common = {"shape", "material", "transform", "name"};
+  auto allow = [&](std::set<std::string> extra) {
+    extra.insert(common.begin(), common.end());
+    f.RequireObject(extra);
+  };
+  if (kind == "quad" || kind == "plane") {
+    allow({"size"});
+    const glm::vec2 size = f.Child("size").Vec2(0.0, 1e9);
+    if (size.x <= 0 || size.y <= 0) f.Child("size").Fail("size components must be > 0");
+    return kind == "quad" ? MakeQuad(size) : MakePlane(size);
+  }
+  if (kind == "polygon") {
+    allow({"points"});
+    const JsonField pts = f.Child("points");
+    const size_t n = pts.ArraySize();
+    if (n < 3 || n > 4096) pts.Fail("a polygon needs 3 to 4096 points, got " + std::to_string(n));
+    std::vector<glm::vec3> points;
+    for (size_t i = 0; i < n; ++i) points.push_back(pts.At(i).Vec3(-kMaxCoord, kMaxCoord));
+    // Convex and planar: every consecutive cross product points the same way as the first
+    // non-zero one (fan triangulation is only correct for convex polygons).
+    glm::vec3 ref(0.0f);
+    for (size_t i = 0; i < n; ++i) {
+      const glm::vec3 c = glm::cross(points[(i + 1) % n] - points[i], points[(i + 2) % n] - points[(i + 1) % n]);
+      if (glm::length(c) == 0.0f) continue;
+      if (glm::length(ref) == 0.0f) {
+        ref = c;
+      } else if (glm::dot(glm::normalize(c), glm::normalize(ref)) < 0.999f) {
+        pts.Fail("polygon is not convex and planar (fan triangulation needs a convex planar polygon; use 'triangles' or a mesh)");
+      }
+    }
+    if (glm::length(ref) == 0.0f) pts.Fail("polygon has zero area (all points collinear)");
+    return MakePolygon(points);
+  }
+  if (kind == "box") {
+    allow({"size"});
+    const glm::vec3 size = f.Child("size").Vec3(0.0, 1e9);
+    if (size.x <= 0 || size.y <= 0 || size.z <= 0) f.Child("size").Fail("size components must be > 0");
+    return MakeBox(size);
+  }
+  if (kind == "disk" || kind == "sphere") {
+    allow({"radius"});
+    const float r = static_cast<float>(f.Child("radius").Number(0.0, 1e9, true));
+    return kind == "disk" ? MakeDisk(r) : MakeSphere(r);
+  }
+  if (kind == "capsule" || kind == "cylinder") {
+    allow({"from", "to", "radius"});
+    const glm::vec3 a = f.Child("from").Vec3(-kMaxCoord, kMaxCoord);
+    const glm::vec3 b = f.Child("to").Vec3(-kMaxCoord, kMaxCoord);
+    if (glm::length(b - a) == 0.0f) f.Child("to").Fail("'to' equals 'from' (zero-length " + kind + ")");
+    const float r = static_cast<float>(f.Child("radius").Number(0.0, 1e9, true));
+    return MakeSegment(kind == "capsule" ? ShapeKind::kCapsule : ShapeKind::kCylinder, a, b, r);
+  }
+  if (kind == "mesh") {
+    allow({"file"});
+    const JsonField file = f.Child("file");
+    const fs::path p = fs::path(base_dir) / file.String();
+    if (!fs::is_regular_file(p)) file.Fail("mesh file '" + p.string() + "' not found");
+    try {
+      return LoadObjMesh(p.string());
+    } catch (const UserError& e) {
+      file.Fail(e.what());
+    }
+  }
+  // triangles
+  allow({"vertices", "indices"});
+  const JsonField vf = f.Child("vertices");
+  const JsonField inf = f.Child("indices");
+  std::vector<glm::vec3> verts;
+  for (size_t i = 0; i < vf.ArraySize(); ++i) verts.push_back(vf.At(i).Vec3(-kMaxCoord, kMaxCoord));
+  if (verts.empty()) vf.Fail("no vertices");
+  std::vector<glm::uvec3> tris;
+  for (size_t i = 0; i < inf.ArraySize(); ++i) {
+    const JsonField t = inf.At(i);
+    if (t.ArraySize() != 3) t.Fail("a triangle needs 3 indices");
+    glm::uvec3 tri;
+    for (int k = 0; k < 3; ++k) tri[k] = static_cast<unsigned>(t.At(k).Integer(0, static_cast<int>(verts.size()) - 1));
+    tris.push_back(tri);
+  }
+  if (tris.empty()) inf.Fail("no triangles");
+  return MakeTriangles(verts, tris);
+}
+
+void RequireEffect(const Scene& s, Effect e, const JsonField& where, const std::string& why) {
+  if (!s.Has(e)) {
+    where.Fail(why + " needs effect '" + EffectName(e) + "', which the scene does not declare in 'effects' " +
+               "(declared: " + JoinNames(s.EffectNames()) + ")");
+  }
+}
+
+}  // namespace
+
+Scene ParseScene(const std::string& text, const std::string& origin, const std::string& base_dir) {
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw UserError(origin + ": not valid JSON: " + e.what());
+  }
+  const JsonField root(doc, origin, "");
+  root.RequireObject({"name", "description", "effects", "camera", "display", "background", "ambient",
+                      "materials", "lights", "objects"});
+  Scene s;
+  s.name = root.Child("name").String();
+  for (char c : s.name) {
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-')) {
+      root.Child("name").Fail("scene names are lowercase-kebab ('" + s.name + "')");
+    }
+  }
+  if (s.name.empty()) root.Child("name").Fail("empty name");
+  s.description = root.StringOr("description", "");
+
+  const JsonField effects = root.Child("effects");
+  std::vector<std::string> all;
+  for (int i = 0; i < kEffectCount; ++i) all.push_back(EffectName(static_cast<Effect>(i)));
+  if (effects.ArraySize() == 0) effects.Fail("declare at least one effect (allowed: " + JoinNames(all) + ")");
+  for (size_t i = 0; i < effects.ArraySize(); ++i) {
+    const std::string e = effects.At(i).Choice(all);
+    for (int k = 0; k < kEffectCount; ++k) {
+      if (all[k] == e) {
+        if (s.effects[k]) effects.At(i).Fail("effect '" + e + "' declared twice");
+        s.effects[k] = true;
+      }
+    }
+  }
+
+  s.camera = ParseCamera(root.Child("camera"));
+  if (root.Has("display")) {
+    const JsonField d = root.Child("display");
+    d.RequireObject({"exposure", "tonemap"});
+    s.display.exposure = static_cast<float>(d.NumberOr("exposure", 1.0, 0.0, 1e9, true));
+    if (d.Has("tonemap")) s.display.tonemap = ParseTonemap(d.Child("tonemap").Choice({"none", "reinhard", "aces"}));
+  }
+  s.background = root.Vec3Or("background", glm::vec3(0.0f), 0.0, 1e7);
+  s.ambient = root.Vec3Or("ambient", glm::vec3(0.0f), 0.0, 1e7);
+
+  const JsonField mats = root.Child("materials");
+  if (!mats.Value().is_object() || mats.Value().empty()) mats.Fail("expected an object of named materials");
+  std::map<std::string, int> mat_index;
+  for (auto it = mats.Value().begin(); it != mats.Value().end(); ++it) {
+    mat_index[it.key()] = static_cast<int>(s.materials.size());
+    s.materials.push_back(ParseMaterial(mats.Child(it.key()), it.key()));
+  }
+
+  if (root.Has("lights")) {
+    const JsonField lights = root.Child("lights");
+    for (size_t i = 0; i < lights.ArraySize(); ++i) s.lights.push_back(ParseLight(lights.At(i)));
+  }
+
+  const JsonField objs = root.Child("objects");
+  if (objs.ArraySize() == 0) objs.Fail("a scene needs at least one object");
+  std::vector<bool> mat_used(s.materials.size(), false);
+  for (size_t i = 0; i < objs.ArraySize(); ++i) {
+    const JsonField o = objs.At(i);
+    Shape shape = ParseShape(o, base_dir);
+    const JsonField mf = o.Child("material");
+    const std::string mname = mf.String();
+    auto it = mat_index.find(mname);
+    if (it == mat_index.end()) {
+      std::vector<std::string> names;
+      for (const auto& kv : mat_index) names.push_back(kv.first);
+      mf.Fail("unknown material '" + mname + "' (defined: " + JoinNames(names) + ")");
+    }
+    shape.material = it->second;
+    mat_used[it->second] = true;
+    if (o.Has("transform") && !TransformShape(shape, ParseTransform(o.Child("transform")))) {
+      o.Child("transform").Fail("a " + shape.source + " needs a uniform scale (it stays an exact analytic shape)");
+    }
+    s.shapes.push_back(std::move(shape));
+  }
+
+  // Effects: content needs its effects declared, and every declared effect must be used —
+  // a scene simulates exactly what it calls for.
+  std::array<bool, kEffectCount> used{};
+  for (size_t m = 0; m < s.materials.size(); ++m) {
+    const Material& mat = s.materials[m];
+    const JsonField mf = mats.Child(mat.name);
+    if (!mat_used[m]) mf.Fail("material '" + mat.name + "' is not used by any object");
+    const Effect shade = mat.shading == Shading::kUnlit ? Effect::kUnlit : Effect::kLambert;
+    RequireEffect(s, shade, mf.Child("shading"), "shading '" + std::string(EffectName(shade)) + "'");
+    used[static_cast<int>(shade)] = true;
+    if (mat.texture) {
+      RequireEffect(s, Effect::kTextures, mf.Child("texture"), "a texture");
+      used[static_cast<int>(Effect::kTextures)] = true;
+    }
+    if (mat.specular != glm::vec3(0.0f)) {
+      RequireEffect(s, Effect::kSpecular, mf.Child("specular"), "a specular highlight");
+      used[static_cast<int>(Effect::kSpecular)] = true;
+    }
+    if (mat.alpha) {
+      RequireEffect(s, Effect::kAlphaTest, mf.Child("alpha"), "an alpha cut-out");
+      used[static_cast<int>(Effect::kAlphaTest)] = true;
+    }
+  }
+  bool lit = used[static_cast<int>(Effect::kLambert)];
+  for (size_t i = 0; i < s.lights.size(); ++i) {
+    if (s.lights[i].shadows) {
+      RequireEffect(s, Effect::kShadows, root.Child("lights").At(i).Child("shadows"), "a shadow-casting light");
+      used[static_cast<int>(Effect::kShadows)] = true;
+    }
+  }
+  if (lit && s.lights.empty() && s.ambient == glm::vec3(0.0f)) {
+    root.Fail("lambert materials need lights or an ambient term (the scene would be black)");
+  }
+  if (!lit && !s.lights.empty()) root.Child("lights").Fail("lights without any lambert material light nothing");
+  for (int e = 0; e < kEffectCount; ++e) {
+    if (s.effects[e] && !used[e]) {
+      effects.Fail("effect '" + std::string(EffectName(static_cast<Effect>(e))) +
+                   "' is declared but nothing in the scene uses it (declare exactly the effects the content needs)");
+    }
+  }
+  return s;
+}
+
+Scene LoadSceneFile(const std::string& path) {
+  if (!fs::exists(path)) throw UserError("scene file '" + path + "' does not exist");
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw UserError("scene file '" + path + "' cannot be read");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  Scene s = ParseScene(ss.str(), "scene '" + path + "'", fs::path(path).parent_path().string());
+  s.path = path;
+  return s;
+}
+
+}  // namespace aalab

@@ -1,0 +1,478 @@
+// Embree tracer: BVH build, 16-wide packet traversal, alpha-test continuation, shadow rays,
+// and shading composed from the scene's declared effects only.
+//
+// Rays are traced in packets of 16 (rtcIntersect16 / rtcOccluded16). Alpha cut-outs are
+// handled by continuing the ray past a rejected hit (a new packet round), not by an Embree
+// filter callback: the set of alpha lookups is then a function of the ray alone (never of the
+// BVH's traversal order), so counters and images are identical at any thread count.
+#include "scenes/tracer.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "harness/core/error.h"
+
+namespace aalab {
+
+namespace {
+
+constexpr int kPacket = 16;
+constexpr int kMaxAlphaLayers = 256;  // continuation rounds through cut-outs before giving up
+
+void DeviceError(void* user, RTCError code, const char* str) {
+  auto* msg = static_cast<std::string*>(user);
+  *msg = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (str ? str : "");
+}
+
+struct Hit {
+  float t = std::numeric_limits<float>::infinity();
+  int shape = -1;
+  unsigned prim = 0;
+  float u = 0, v = 0;
+  glm::vec3 ng{0.0f};
+};
+
+}  // namespace
+
+float EvaluatePattern(const Texture& tex, glm::vec2 uv) {
+  switch (tex.pattern) {
+    case TexturePattern::kChecker: {
+      const float a = std::floor(uv.x * tex.scale) + std::floor(uv.y * tex.scale);
+      return std::fmod(std::fabs(a), 2.0f) >= 1.0f ? 1.0f : 0.0f;
+    }
+    case TexturePattern::kStripes: {
+      const float ang = glm::radians(tex.angle_deg);
+      const float d = (uv.x * std::cos(ang) + uv.y * std::sin(ang)) * tex.scale;
+      return (d - std::floor(d)) < tex.duty ? 1.0f : 0.0f;
+    }
+    case TexturePattern::kNoise: {
+      const auto cx = static_cast<int64_t>(std::floor(uv.x * tex.scale));
+      const auto cy = static_cast<int64_t>(std::floor(uv.y * tex.scale));
+      uint64_t h = static_cast<uint64_t>(cx) * 0x9e3779b97f4a7c15ULL ^
+                   (static_cast<uint64_t>(cy) + 0x632be59bd9b4e019ULL) * 0xbf58476d1ce4e5b9ULL ^
+                   (static_cast<uint64_t>(tex.seed) << 32);
+      h ^= h >> 31;
+      h *= 0x94d049bb133111ebULL;
+      h ^= h >> 29;
+      return static_cast<float>(h >> 40) * (1.0f / 16777216.0f);
+    }
+  }
+  return 0.0f;
+}
+
+struct Tracer::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::string error;
+  bool any_alpha = false;
+  // camera basis
+  glm::vec3 origin{0.0f}, forward{0.0f}, right{0.0f}, up{0.0f};
+
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()) {
+  Impl& im = *impl_;
+  im.device = rtcNewDevice("verbose=0");
+  if (!im.device) throw InternalError("cannot create the Embree device");
+  rtcSetDeviceErrorFunction(im.device, DeviceError, &im.error);
+  im.scene = rtcNewScene(im.device);
+  rtcSetSceneFlags(im.scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(im.scene, RTC_BUILD_QUALITY_HIGH);
+  for (size_t i = 0; i < scene.shapes.size(); ++i) {
+    const Shape& s = scene.shapes[i];
+    if (scene.materials[s.material].alpha) im.any_alpha = true;
+    RTCGeometry g = nullptr;
+    switch (s.kind) {
+      case ShapeKind::kTriangles: {
+        g = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                              3 * sizeof(float), s.positions.size()));
+        for (size_t k = 0; k < s.positions.size(); ++k) {
+          v[3 * k] = s.positions[k].x;
+          v[3 * k + 1] = s.positions[k].y;
+          v[3 * k + 2] = s.positions[k].z;
+        }
+        auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                   3 * sizeof(unsigned), s.triangles.size()));
+        for (size_t k = 0; k < s.triangles.size(); ++k) {
+          idx[3 * k] = s.triangles[k].x;
+          idx[3 * k + 1] = s.triangles[k].y;
+          idx[3 * k + 2] = s.triangles[k].z;
+        }
+        break;
+      }
+      case ShapeKind::kSphere:
+      case ShapeKind::kDisk: {
+        g = rtcNewGeometry(im.device, s.kind == ShapeKind::kSphere ? RTC_GEOMETRY_TYPE_SPHERE_POINT
+                                                                 : RTC_GEOMETRY_TYPE_ORIENTED_DISC_POINT);
+        auto* v = static_cast<float*>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+        v[0] = s.center.x;
+        v[1] = s.center.y;
+        v[2] = s.center.z;
+        v[3] = s.radius;
+        if (s.kind == ShapeKind::kDisk) {
+          auto* n = static_cast<float*>(
+              rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 1));
+          n[0] = s.normal.x;
+          n[1] = s.normal.y;
+          n[2] = s.normal.z;
+        }
+        break;
+      }
+      case ShapeKind::kCapsule:
+      case ShapeKind::kCylinder: {
+        g = rtcNewGeometry(im.device, s.kind == ShapeKind::kCapsule ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE
+                                                                  : RTC_GEOMETRY_TYPE_CONE_LINEAR_CURVE);
+        auto* v = static_cast<float*>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 2));
+        v[0] = s.p0.x;
+        v[1] = s.p0.y;
+        v[2] = s.p0.z;
+        v[3] = s.radius;
+        v[4] = s.p1.x;
+        v[5] = s.p1.y;
+        v[6] = s.p1.z;
+        v[7] = s.radius;
+        auto* idx = static_cast<unsigned*>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), 1));
+        idx[0] = 0;
+        auto* flags = static_cast<unsigned char*>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_FLAGS, 0, RTC_FORMAT_UCHAR, 1, 1));
+        flags[0] = 0;  // a single segment: no neighbours, so both ends are capped
+        break;
+      }
+    }
+    rtcCommitGeometry(g);
+    const unsigned id = rtcAttachGeometry(im.scene, g);
+    AALAB_CHECK(id == i, "Embree geometry ids must equal shape indices");
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(im.scene);
+  if (!im.error.empty()) throw InternalError("building the BVH failed: " + im.error);
+
+  const Camera& c = scene.camera;
+  im.origin = c.position;
+  im.forward = glm::normalize(c.look_at - c.position);
+  im.right = glm::normalize(glm::cross(im.forward, c.up));
+  im.up = glm::cross(im.right, im.forward);
+}
+
+Tracer::~Tracer() = default;
+
+namespace {
+
+/// Closest hits for n rays, in 16-wide packets. Rays with tnear >= tfar are skipped.
+void IntersectRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear,
+                   const float* tfar, int n, Hit* hits, bool coherent) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  for (int base = 0; base < n; base += kPacket) {
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[kPacket];
+    for (int k = 0; k < kPacket; ++k) {
+      const int i = base + k;
+      const bool on = i < n && tnear[i] < tfar[i];
+      valid[k] = on ? -1 : 0;
+      const int j = on ? i : base;
+      rh.ray.org_x[k] = org[j].x;
+      rh.ray.org_y[k] = org[j].y;
+      rh.ray.org_z[k] = org[j].z;
+      rh.ray.dir_x[k] = dir[j].x;
+      rh.ray.dir_y[k] = dir[j].y;
+      rh.ray.dir_z[k] = dir[j].z;
+      rh.ray.tnear[k] = on ? tnear[j] : 0.0f;
+      rh.ray.tfar[k] = on ? tfar[j] : 0.0f;
+      rh.ray.time[k] = 0.0f;
+      rh.ray.mask[k] = 0xFFFFFFFFu;
+      rh.ray.id[k] = static_cast<unsigned>(k);
+      rh.ray.flags[k] = 0;
+      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, scene, &ctx, &rh);
+    for (int k = 0; k < kPacket && base + k < n; ++k) {
+      Hit& h = hits[base + k];
+      if (!valid[k] || rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
+        h = Hit{};
+        continue;
+      }
+      h.t = rh.ray.tfar[k];
+      h.shape = static_cast<int>(rh.hit.geomID[k]);
+      h.prim = rh.hit.primID[k];
+      h.u = rh.hit.u[k];
+      h.v = rh.hit.v[k];
+      h.ng = {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]};
+    }
+  }
+}
+
+/// Surface attributes at a hit.
+struct Surface {
+  glm::vec3 p{0.0f};
+  glm::vec3 n{0.0f};   // shading normal, facing the ray
+  glm::vec3 ng{0.0f};  // geometric normal, facing the ray
+  glm::vec2 uv{0.0f};
+};
+
+Surface SurfaceAt(const Scene& scene, const Hit& h, glm::vec3 org, glm::vec3 dir) {
+  const Shape& s = scene.shapes[h.shape];
+  Surface out;
+  out.p = org + dir * h.t;
+  glm::vec3 ng = h.ng;
+  glm::vec3 n = ng;
+  switch (s.kind) {
+    case ShapeKind::kTriangles: {
+      const glm::uvec3 tri = s.triangles[h.prim];
+      const float w = 1.0f - h.u - h.v;
+      out.uv = s.uvs[tri.x] * w + s.uvs[tri.y] * h.u + s.uvs[tri.z] * h.v;
+      if (!s.normals.empty()) n = s.normals[tri.x] * w + s.normals[tri.y] * h.u + s.normals[tri.z] * h.v;
+      break;
+    }
+    case ShapeKind::kSphere: {
+      const glm::vec3 d = out.p - s.center;
+      const float len = glm::length(d);
+      const glm::vec3 q = len > 0.0f ? d / len : glm::vec3(0, 1, 0);
+      out.uv = {std::atan2(q.z, q.x) * 0.15915494f + 0.5f, std::acos(std::clamp(q.y, -1.0f, 1.0f)) * 0.31830989f};
+      out.uv *= 2.0f * 3.14159265f * s.radius;  // uv in world units along the surface
+      break;
+    }
+    case ShapeKind::kDisk: {
+      const glm::vec3 d = out.p - s.center;
+      const glm::vec3 b = glm::cross(s.normal, s.tangent);
+      out.uv = {glm::dot(d, s.tangent), glm::dot(d, b)};
+      break;
+    }
+    case ShapeKind::kCapsule:
+    case ShapeKind::kCylinder: {
+      const glm::vec3 axis = s.p1 - s.p0;
+      out.uv = {h.u * glm::length(axis), 0.0f};
+      break;
+    }
+  }
+  auto safe_normalize = [](glm::vec3 v, glm::vec3 fallback) {
+    const float len = glm::length(v);
+    return (len > 0.0f && std::isfinite(len)) ? v / len : fallback;
+  };
+  ng = safe_normalize(ng, -dir);
+  n = safe_normalize(n, ng);
+  if (glm::dot(ng, dir) > 0.0f) ng = -ng;
+  if (glm::dot(n, dir) > 0.0f) n = -n;
+  out.ng = ng;
+  out.n = n;
+  return out;
+}
+
+/// Offset for secondary rays: relative to the magnitude of the position (float spacing).
+float RayEpsilon(glm::vec3 p) {
+  const float m = std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
+  return 1e-4f + m * 1e-6f;
+}
+
+}  // namespace
+
+void Tracer::Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out,
+                   TraceCounters* counters) const {
+  const Impl& im = *impl_;
+  const Scene& sc = scene_;
+  const float inf = std::numeric_limits<float>::infinity();
+  TraceCounters local;
+  local.samples = static_cast<uint64_t>(count);
+
+  // 1. Camera rays.
+  std::vector<glm::vec3> org(count), dir(count);
+  std::vector<float> tnear(count, 0.0f), tfar(count, inf);
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const Camera& cam = sc.camera;
+  const float half_h = cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f)
+                                                            : cam.height * 0.5f;
+  for (int i = 0; i < count; ++i) {
+    const float nx = 2.0f * pos[i].x / static_cast<float>(width) - 1.0f;
+    const float ny = 1.0f - 2.0f * pos[i].y / static_cast<float>(height);
+    const glm::vec3 offset = im.right * (nx * half_h * aspect) + im.up * (ny * half_h);
+    if (cam.type == CameraType::kPerspective) {
+      org[i] = im.origin;
+      dir[i] = glm::normalize(im.forward + offset);
+    } else {
+      org[i] = im.origin + offset;
+      dir[i] = im.forward;
+    }
+  }
+
+  // 2. Closest hits, continuing through alpha cut-outs (only with `alpha_test`).
+  std::vector<Hit> hits(count);
+  std::vector<int> active(count);
+  for (int i = 0; i < count; ++i) active[i] = i;
+  const bool alpha = sc.Has(Effect::kAlphaTest) && im.any_alpha;
+  for (int layer = 0; !active.empty(); ++layer) {
+    const int n = static_cast<int>(active.size());
+    std::vector<glm::vec3> o(n), d(n);
+    std::vector<float> tn(n), tf(n);
+    for (int k = 0; k < n; ++k) {
+      o[k] = org[active[k]];
+      d[k] = dir[active[k]];
+      tn[k] = tnear[active[k]];
+      tf[k] = tfar[active[k]];
+    }
+    std::vector<Hit> h(n);
+    IntersectRays(im.scene, o.data(), d.data(), tn.data(), tf.data(), n, h.data(), layer == 0);
+    local.primary_rays += static_cast<uint64_t>(n);
+    std::vector<int> next;
+    for (int k = 0; k < n; ++k) {
+      const int i = active[k];
+      hits[i] = h[k];
+      if (!alpha || h[k].shape < 0) continue;
+      const Material& m = sc.materials[sc.shapes[h[k].shape].material];
+      if (!m.alpha) continue;
+      const Surface srf = SurfaceAt(sc, h[k], org[i], dir[i]);
+      ++local.texture_lookups;
+      if (EvaluatePattern(*m.alpha, srf.uv) >= m.alpha_cutoff) continue;
+      // Rejected: continue just past this hit.
+      hits[i] = Hit{};
+      tnear[i] = h[k].t + std::max(h[k].t * 2e-6f, 1e-6f);
+      if (layer + 1 < kMaxAlphaLayers) next.push_back(i);
+    }
+    active.swap(next);
+  }
+
+  // 3. Surfaces and shadow rays (only with `shadows`, only for shadow-casting lights).
+  std::vector<Surface> surf(count);
+  for (int i = 0; i < count; ++i) {
+    if (hits[i].shape >= 0) surf[i] = SurfaceAt(sc, hits[i], org[i], dir[i]);
+  }
+  const bool lambert = sc.Has(Effect::kLambert);
+  const bool shadows = sc.Has(Effect::kShadows);
+  const bool specular = sc.Has(Effect::kSpecular);
+  const bool textures = sc.Has(Effect::kTextures);
+  std::vector<uint32_t> blocked(count, 0);
+  if (shadows) {
+    std::vector<int> who_sample, who_light;
+    std::vector<glm::vec3> so, sd;
+    std::vector<float> stn, stf;
+    for (int i = 0; i < count; ++i) {
+      if (hits[i].shape < 0) continue;
+      if (sc.materials[sc.shapes[hits[i].shape].material].shading != Shading::kLambert) continue;
+      for (size_t l = 0; l < sc.lights.size() && l < 32; ++l) {
+        const Light& light = sc.lights[l];
+        if (!light.shadows) continue;
+        glm::vec3 L;
+        float dist;
+        if (light.type == LightType::kDirectional) {
+          L = -light.direction;
+          dist = inf;
+        } else {
+          L = light.position - surf[i].p;
+          dist = glm::length(L);
+          if (!(dist > 0.0f)) continue;
+          L /= dist;
+        }
+        if (glm::dot(surf[i].ng, L) <= 0.0f && glm::dot(surf[i].n, L) <= 0.0f) continue;
+        const float eps = RayEpsilon(surf[i].p);
+        const glm::vec3 side = glm::dot(surf[i].ng, L) > 0.0f ? surf[i].ng : -surf[i].ng;
+        so.push_back(surf[i].p + side * eps);
+        sd.push_back(L);
+        stn.push_back(0.0f);
+        stf.push_back(light.type == LightType::kDirectional ? inf : dist * (1.0f - 1e-5f));
+        who_sample.push_back(i);
+        who_light.push_back(static_cast<int>(l));
+      }
+    }
+    // Any hit that survives the alpha test blocks the light.
+    std::vector<int> act(so.size());
+    for (size_t k = 0; k < so.size(); ++k) act[k] = static_cast<int>(k);
+    for (int layer = 0; !act.empty() && layer < kMaxAlphaLayers; ++layer) {
+      const int n = static_cast<int>(act.size());
+      std::vector<glm::vec3> o(n), d(n);
+      std::vector<float> tn(n), tf(n);
+      for (int k = 0; k < n; ++k) {
+        o[k] = so[act[k]];
+        d[k] = sd[act[k]];
+        tn[k] = stn[act[k]];
+        tf[k] = stf[act[k]];
+      }
+      std::vector<Hit> h(n);
+      IntersectRays(im.scene, o.data(), d.data(), tn.data(), tf.data(), n, h.data(), false);
+      local.shadow_rays += static_cast<uint64_t>(n);
+      std::vector<int> next;
+      for (int k = 0; k < n; ++k) {
+        const int r = act[k];
+        if (h[k].shape < 0) continue;
+        const Material& m = sc.materials[sc.shapes[h[k].shape].material];
+        if (alpha && m.alpha) {
+          const Surface srf = SurfaceAt(sc, h[k], o[k], d[k]);
+          ++local.texture_lookups;
+          if (EvaluatePattern(*m.alpha, srf.uv) < m.alpha_cutoff) {
+            stn[r] = h[k].t + std::max(h[k].t * 2e-6f, 1e-6f);
+            next.push_back(r);
+            continue;
+          }
+        }
+        blocked[who_sample[r]] |= 1u << who_light[r];
+      }
+      act.swap(next);
+    }
+  }
+
+  // 4. Shading.
+  for (int i = 0; i < count; ++i) {
+    SampleResult& r = out[i];
+    r.surface = hits[i].shape;
+    r.shadowed = blocked[i];
+    glm::vec3 c = sc.background;
+    if (hits[i].shape >= 0) {
+      const Material& m = sc.materials[sc.shapes[hits[i].shape].material];
+      glm::vec3 base = m.color;
+      if (textures && m.texture) {
+        ++local.texture_lookups;
+        const float t = EvaluatePattern(*m.texture, surf[i].uv);
+        base = m.texture->color_a + (m.texture->color_b - m.texture->color_a) * t;
+      }
+      if (m.shading == Shading::kUnlit || !lambert) {
+        c = base;
+      } else {
+        c = sc.ambient * base;
+        for (size_t l = 0; l < sc.lights.size(); ++l) {
+          const Light& light = sc.lights[l];
+          glm::vec3 L;
+          float falloff = 1.0f;
+          if (light.type == LightType::kDirectional) {
+            L = -light.direction;
+          } else {
+            L = light.position - surf[i].p;
+            const float d2 = glm::dot(L, L);
+            if (!(d2 > 0.0f)) continue;
+            L /= std::sqrt(d2);
+            falloff = 1.0f / d2;
+          }
+          const float ndotl = glm::dot(surf[i].n, L);
+          if (ndotl <= 0.0f) continue;
+          if (l < 32 && (blocked[i] >> l) & 1u) continue;
+          const glm::vec3 e = light.color * (light.intensity * falloff);
+          c += base * e * ndotl;
+          if (specular && m.specular != glm::vec3(0.0f)) {
+            const glm::vec3 hv = glm::normalize(L - dir[i]);
+            const float nh = std::max(0.0f, glm::dot(surf[i].n, hv));
+            c += m.specular * e * std::pow(nh, m.shininess);
+          }
+        }
+      }
+    }
+    r.rgb[0] = c.x;
+    r.rgb[1] = c.y;
+    r.rgb[2] = c.z;
+  }
+  if (counters) *counters += local;
+}
+
+}  // namespace aalab
