@@ -44,7 +44,7 @@ Json TimingJson(const Timing& t) {
   return j;
 }
 
-Timing TimingFrom(const nlohmann::json& j) {
+Timing TimingFrom(const nlohmann::ordered_json& j) {
   Timing t;
   t.median_ms = j.at("median_ms").get<double>();
   t.min_ms = j.at("min_ms").get<double>();
@@ -53,7 +53,7 @@ Timing TimingFrom(const nlohmann::json& j) {
   return t;
 }
 
-std::optional<double> OptFrom(const nlohmann::json& j) {
+std::optional<double> OptFrom(const nlohmann::ordered_json& j) {
   if (j.is_null()) return std::nullopt;
   return j.get<double>();
 }
@@ -131,7 +131,7 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
   return doc;
 }
 
-Report ReportFromJson(const nlohmann::json& doc, const std::string& origin) {
+Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& origin) {
   Report r;
   try {
     r.schema_version = doc.at("schema_version").get<int>();
@@ -215,9 +215,9 @@ Report ReadReportFile(const std::string& path) {
   if (!f) throw UserError("report '" + path + "' cannot be read");
   std::stringstream ss;
   ss << f.rdbuf();
-  nlohmann::json doc;
+  nlohmann::ordered_json doc;
   try {
-    doc = nlohmann::json::parse(ss.str());
+    doc = nlohmann::ordered_json::parse(ss.str());
   } catch (const nlohmann::json::parse_error& e) {
     throw UserError("report '" + path + "' is not valid JSON: " + e.what());
   }

@@ -17,7 +17,7 @@ nlohmann::ordered_json ReportToJson(const Report& report);
 
 /// Parses a report written by ReportToJson. Throws UserError naming the file and field for
 /// malformed input or an unsupported schema_version.
-Report ReportFromJson(const nlohmann::json& doc, const std::string& origin);
+Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& origin);
 
 /// Reads and parses a report file (UserError on failure).
 Report ReadReportFile(const std::string& path);

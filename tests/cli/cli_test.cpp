@@ -1,0 +1,130 @@
+// End-to-end tests of the aalab executable: exit codes, messages, and what is (not) written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+namespace fs = std::filesystem;
+
+struct CmdResult {
+  int code = -1;
+  std::string output;  // stdout + stderr
+};
+
+CmdResult Aalab(const std::string& args) {
+  const std::string cmd = std::string(AALAB_BINARY_DIR) + "/aalab " + args + " 2>&1";
+  CmdResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path TempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("aalab-cli-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+void ExpectFails(const std::string& args, const std::vector<std::string>& parts) {
+  const CmdResult r = Aalab(args);
+  EXPECT_NE(r.code, 0) << args << "\n" << r.output;
+  for (const auto& p : parts) EXPECT_NE(r.output.find(p), std::string::npos) << args << "\noutput: " << r.output << "\nmissing: " << p;
+}
+
+TEST(Cli, VersionAndHelp) {
+  EXPECT_EQ(Aalab("--version").code, 0);
+  for (const char* sub : {"list", "render", "run", "apply"}) {
+    const CmdResult r = Aalab(std::string(sub) + " --help");
+    EXPECT_EQ(r.code, 0) << sub;
+    EXPECT_NE(r.output.find("Usage"), std::string::npos) << sub;
+  }
+}
+
+TEST(Cli, ListsNameEverything) {
+  CmdResult r = Aalab("list methods");
+  EXPECT_EQ(r.code, 0);
+  for (const char* m : {"none", "ssaa-4x4", "ssaa-jitter", "spp=8 [1..1024]"}) EXPECT_NE(r.output.find(m), std::string::npos) << m;
+  r = Aalab("list scenes");
+  EXPECT_EQ(r.code, 0);
+  for (const char* s : {"wedges", "mesh", "suites:", "quick"}) EXPECT_NE(r.output.find(s), std::string::npos) << s;
+  EXPECT_EQ(Aalab("list metrics").code, 0);
+  ExpectFails("list colours", {"unknown list 'colours'", "scenes, methods, metrics"});
+}
+
+TEST(Cli, UnknownNamesListValidChoices) {
+  const fs::path out = TempDir("bad");
+  ExpectFails("run --scenes wedgez --out " + (out / "r").string(), {"unknown scene 'wedgez'", "wedges"});
+  ExpectFails("run --scenes wedges --methods fxaa9 --out " + (out / "r").string(), {"unknown method 'fxaa9'", "ssaa-4x4"});
+  ExpectFails("run --scenes wedges --methods ssaa-jitter:sp=2 --out " + (out / "r").string(),
+              {"unknown parameter 'sp'", "spp=8 [1..1024]"});
+  ExpectFails("run --scenes wedges --methods ssaa-jitter:spp=0 --out " + (out / "r").string(), {"out of range"});
+  ExpectFails("run --suite nope --out " + (out / "r").string(), {"unknown suite 'nope'", "default", "quick"});
+  ExpectFails("run --size 12 --out " + (out / "r").string(), {"--size '12'", "WxH"});
+  ExpectFails("run --size 0x10 --out " + (out / "r").string(), {"--size '0x10'"});
+  ExpectFails("run --ref-spp 10 --out " + (out / "r").string(), {"reference spp 10", "4, 16, 64, 256"});
+  ExpectFails("run --repeat 0 --out " + (out / "r").string(), {"--repeat 0"});
+  // Nothing was written by any failed run.
+  EXPECT_FALSE(fs::exists(out / "r"));
+  EXPECT_FALSE(fs::exists(out / "r.partial"));
+}
+
+TEST(Cli, BadSceneFileNamesFileAndField) {
+  const fs::path dir = TempDir("scene");
+  std::ofstream(dir / "bad.json") << R"({"name": "bad", "effects": ["unlit"], "camera": {"type": "orthographic",
+      "position": [0,0,1], "look_at": [0,0,0], "height": -2}, "materials": {"w": {"shading": "unlit"}},
+      "objects": [{"shape": "quad", "size": [1,1], "material": "w"}]})";
+  ExpectFails("run --scenes " + (dir / "bad.json").string() + " --out " + (dir / "r").string(),
+              {"bad.json", "/camera/height", "-2", "out of range"});
+  EXPECT_FALSE(fs::exists(dir / "r"));
+}
+
+TEST(Cli, RunWritesReportCoveringTheMatrix) {
+  const fs::path dir = TempDir("run");
+  const fs::path out = dir / "report";
+  const CmdResult r = Aalab("run --scenes wedges,circle --methods none,ssaa-2x2,ssaa-jitter:spp=4 --size 48x27 "
+                            "--ref-spp 16 --repeat 1 --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("report.json"), std::string::npos);
+  std::ifstream f(out / "report.json");
+  const auto doc = nlohmann::json::parse(f);
+  EXPECT_EQ(doc["rows"].size(), 6u);
+  for (const auto& row : doc["rows"]) {
+    EXPECT_TRUE(fs::exists(out / row["images"]["output"].get<std::string>()));
+  }
+  EXPECT_EQ(doc["rows"][2]["spec"], "ssaa-jitter:spp=4");
+  // A second run replaces the folder (it holds a report.json).
+  EXPECT_EQ(Aalab("run --scenes wedges --methods none --size 16x9 --ref-spp 4 --repeat 1 --quiet --out " + out.string()).code, 0);
+  // A folder that is not an aalab report is never replaced.
+  const fs::path foreign = dir / "foreign";
+  fs::create_directories(foreign);
+  std::ofstream(foreign / "notes.txt") << "mine";
+  ExpectFails("run --scenes wedges --methods none --size 16x9 --ref-spp 4 --quiet --out " + foreign.string(),
+              {"refusing to replace"});
+  EXPECT_TRUE(fs::exists(foreign / "notes.txt"));
+}
+
+TEST(Cli, RenderWritesImages) {
+  const fs::path dir = TempDir("render");
+  EXPECT_EQ(Aalab("render --scene circle --size 32x18 --spp 4 --out " + (dir / "c.png").string()).code, 0);
+  EXPECT_EQ(Aalab("render --scene circle --size 32x18 --out " + (dir / "c.exr").string()).code, 0);
+  EXPECT_TRUE(fs::exists(dir / "c.png"));
+  EXPECT_TRUE(fs::exists(dir / "c.exr"));
+  ExpectFails("render --scene circle --spp 3 --out " + (dir / "x.png").string(), {"--spp 3", "square"});
+  ExpectFails("render --scene circle --out " + (dir / "x.bmp").string(), {".exr or .png"});
+  ExpectFails("render --scene circle --out /nonexistent-dir/x.png", {"does not exist"});
+}
+
+}  // namespace
