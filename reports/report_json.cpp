@@ -90,6 +90,9 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
     Json im = Json::object();
     for (const auto& [k, v] : s.images) im[k] = v;
     j["images"] = im;
+    Json crops = Json::array();
+    for (const auto& c : s.crops) crops.push_back({c[0], c[1], c[2], c[3]});
+    j["crops"] = crops;
     scenes.push_back(j);
   }
   doc["scenes"] = scenes;
@@ -166,6 +169,7 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       for (auto it = j.at("images").begin(); it != j.at("images").end(); ++it) {
         s.images[it.key()] = it.value().get<std::string>();
       }
+      for (const auto& c : j.at("crops")) s.crops.push_back(c.get<std::array<int, 4>>());
       r.scenes.push_back(s);
     }
     for (const auto& j : doc.at("rows")) {

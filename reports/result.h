@@ -1,5 +1,6 @@
 /// The result model: what a run produced, independent of how it is written (JSON, HTML).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -52,6 +53,8 @@ struct SceneResult {
   double ref_primary_rays_per_px = 0, ref_shadow_rays_per_px = 0, ref_texture_lookups_per_px = 0;
   double edge_pixel_fraction = 0;
   std::map<std::string, std::string> images;
+  /// Zoom windows [x, y, w, h] where `none` is furthest from the reference on edges.
+  std::vector<std::array<int, 4>> crops;
 };
 
 /// A whole run.

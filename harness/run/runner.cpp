@@ -12,6 +12,7 @@
 #include "harness/core/params.h"
 #include "harness/core/timer.h"
 #include "harness/io/image_io.h"
+#include "metrics/crops.h"
 #include "metrics/metric.h"
 #include "methods/registry.h"
 #include "reports/report_json.h"
@@ -208,6 +209,10 @@ Report RunSuite(const RunSettings& s) {
       counters1x = c;
     });
     const ImageF none_f = ToFloat(frame1x, 3);
+    const int crop_size = std::max(8, std::min(32, std::min(W, H) / 4));
+    for (const auto& c : PickCrops(CropScore(none_f, ref.image, &ref.edge_mask), crop_size, 4)) {
+      sr.crops.push_back({c.x, c.y, c.w, c.h});
+    }
 
     for (const MethodPlan& plan : plans) {
       ResultRow row;
