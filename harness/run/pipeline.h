@@ -1,0 +1,55 @@
+/// The per-scene pipeline shared by `run` and `sweep`: a scene is prepared once (BVH,
+/// reference, the shared 1x frame) and any number of methods then run against it.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "harness/core/image.h"
+#include "methods/method.h"
+#include "reports/result.h"
+#include "scenes/render.h"
+#include "scenes/scene.h"
+#include "scenes/tracer.h"
+
+namespace aalab {
+
+/// A scene ready for methods. Everything here is computed once per scene.
+struct PreparedScene {
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<Tracer> tracer;
+  Reference ref;
+  Image8 frame1x;             ///< the 1x centre-sample frame (the `none` output)
+  ImageF none_f;              ///< frame1x as float RGB
+  TraceCounters counters1x;   ///< cost of frame1x
+  Timing render1x;            ///< timing of frame1x over the repeats
+  SceneResult info;           ///< what the report says about the scene (images filled by the caller)
+};
+
+/// Loads and validates scenes by name or path; duplicates are an error.
+std::vector<std::unique_ptr<Scene>> LoadScenes(const std::vector<std::string>& names);
+
+/// Resolves method specs; duplicates (same canonical spec) are an error.
+std::vector<MethodPlan> ResolveMethods(const std::vector<std::string>& specs);
+
+/// Builds the BVH, renders the reference (grid × grid spp) and the timed 1x frame, computes
+/// the noise floor and the crop windows.
+std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int width, int height, int grid,
+                                            uint64_t seed, int repeat);
+
+/// What one method produced on a prepared scene.
+struct MethodOutput {
+  ResultRow row;  ///< metrics, timing, cost and hash filled; `images` left to the caller
+  Image8 input;   ///< the frame the post filter saw (for debug views); empty without a post filter
+  Image8 output;  ///< the final frame at the output size
+};
+
+/// Renders (or reuses the 1x frame), post-filters and rescales as the plan says, timing each
+/// stage (one warm-up + `repeat` runs), and scores the output against the reference.
+MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat);
+
+/// Runs `body` once untimed, then `repeat` times timed (wall clock).
+Timing TimeRepeats(int repeat, const std::function<void()>& body);
+
+}  // namespace aalab
