@@ -10,4 +10,8 @@ namespace aalab {
 /// `none`, `ssaa-2x2`, `ssaa-4x4`, `ssaa-rgss`, `ssaa-jitter` (methods/supersample.cpp).
 std::vector<MethodEntry> SupersampleMethods();
 
+/// `fxaa311-p10` .. `-p15`, `-p20` .. `-p29`, `-p39`, `fxaa-low`, `fxaa-medium`,
+/// `fxaa-high`, `fxaa-iter12` (methods/fxaa311.cpp).
+std::vector<MethodEntry> Fxaa311Methods();
+
 }  // namespace aalab

@@ -13,6 +13,7 @@ const std::vector<MethodEntry>& MethodRegistry() {
     };
     // One line per family file, in listing order.
     add(SupersampleMethods());
+    add(Fxaa311Methods());
     return all;
   }();
   return table;
