@@ -14,4 +14,8 @@ std::vector<MethodEntry> SupersampleMethods();
 /// `fxaa-high`, `fxaa-iter12` (methods/fxaa311.cpp).
 std::vector<MethodEntry> Fxaa311Methods();
 
+/// `scale43`, `scale43-fxaa-high`: render scale with bilinear / bicubic rescale
+/// (methods/render_scale.cpp).
+std::vector<MethodEntry> RenderScaleMethods();
+
 }  // namespace aalab
