@@ -12,5 +12,12 @@ std::vector<MethodEntry> SupersampleMethods();
 
 /// `fxaa1-p0` … `fxaa1-p5`: FXAA 1.0 whitepaper presets (methods/fxaa1.cpp).
 std::vector<MethodEntry> Fxaa1Methods();
+/// `fxaa311-p10` .. `-p15`, `-p20` .. `-p29`, `-p39`, `fxaa-low`, `fxaa-medium`,
+/// `fxaa-high`, `fxaa-iter12` (methods/fxaa311.cpp).
+std::vector<MethodEntry> Fxaa311Methods();
+
+/// `scale43`, `scale43-fxaa-high`: render scale with bilinear / bicubic rescale
+/// (methods/render_scale.cpp).
+std::vector<MethodEntry> RenderScaleMethods();
 
 }  // namespace aalab

@@ -14,6 +14,8 @@ const std::vector<MethodEntry>& MethodRegistry() {
     // One line per family file, in listing order.
     add(SupersampleMethods());
     add(Fxaa1Methods());
+    add(Fxaa311Methods());
+    add(RenderScaleMethods());
     return all;
   }();
   return table;

@@ -9,6 +9,7 @@
 #include "metrics/crops.h"
 #include "metrics/metric.h"
 #include "methods/registry.h"
+#include "methods/rescale.h"
 #include "scenes/library.h"
 
 namespace aalab {
@@ -156,7 +157,13 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   }
   PostStats rescale_stats;
   if (plan.rescale != Rescale::kNone) {
-    throw InternalError("rescaling methods are not wired into the runner yet");
+    Image8 scaled;
+    row.resample = TimeRepeats(repeat, [&] {
+      PostStats st;
+      scaled = RescaleFrame(frame, W, H, plan.rescale, &st);
+      rescale_stats = st;
+    });
+    frame = std::move(scaled);
   } else {
     row.resample = ZeroTiming(repeat);
   }

@@ -24,8 +24,8 @@ namespace aalab {
 namespace fs = std::filesystem;
 
 std::vector<std::string> DefaultMethods() {
-  return {"none", "ssaa-2x2", "ssaa-4x4", "ssaa-rgss", "ssaa-jitter", "fxaa1-p0", "fxaa1-p1", "fxaa1-p2",
-          "fxaa1-p3", "fxaa1-p4"};
+  // Every registered method at its defaults, in registry order.
+  return MethodNames();
 }
 
 void ParseSize(const std::string& text, int* width, int* height) {
