@@ -38,7 +38,7 @@ TEST(SceneParse, EveryLibrarySceneParsesAndDescribesItself) {
     EXPECT_EQ(s.name, n);
     EXPECT_FALSE(s.description.empty()) << n;
   }
-  EXPECT_EQ(SuiteScenes("default").size(), names.size());
+  EXPECT_EQ(SuiteScenes("default").size() + SuiteScenes("hard").size(), names.size());
   EXPECT_FALSE(SuiteScenes("quick").empty());
 }
 
