@@ -31,6 +31,9 @@ struct MetricEntry {
   std::string help;
   std::vector<std::string> outputs;  ///< names of the values it produces
   std::vector<MetricValue> (*compute)(const MetricInput& in);
+  /// The row needs `MetricInput::edge_mask`; ComputeAllMetrics reports its values as null
+  /// ("no edge mask") when the mask is absent instead of calling `compute`.
+  bool needs_edge_mask = false;
 };
 
 /// Every metric, in listing order.
