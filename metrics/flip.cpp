@@ -138,6 +138,17 @@ void CheckPair(const ImageF& reference, const ImageF& test) {
 
 int Clamp(int v, int lo, int hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
+// body(i) for every pixel index in [0, n), in parallel; each call writes only element i.
+template <typename F>
+void ForEachPixel(size_t n, const F& body) {
+  constexpr int kBlock = 4096;
+  const int blocks = static_cast<int>((n + kBlock - 1) / kBlock);
+  ParallelFor(blocks, [&](int blk) {
+    const size_t end = std::min(n, static_cast<size_t>(blk + 1) * kBlock);
+    for (size_t i = static_cast<size_t>(blk) * kBlock; i < end; ++i) body(i);
+  });
+}
+
 // An image in YCxCz, one plane per channel, row-major.
 struct Planes {
   int w = 0, h = 0;
@@ -301,7 +312,7 @@ std::vector<double> ColorErrorFromPlanes(const Planes& ref, const Planes& test, 
   const std::vector<Color> a = FilteredHuntLab(ref, k);
   const std::vector<Color> b = FilteredHuntLab(test, k);
   std::vector<double> out(a.size());
-  for (size_t i = 0; i < a.size(); ++i) out[i] = RemapColorError(std::pow(HyAB(a[i], b[i]), kQc));
+  ForEachPixel(out.size(), [&](size_t i) { out[i] = RemapColorError(std::pow(HyAB(a[i], b[i]), kQc)); });
   return out;
 }
 
@@ -311,10 +322,10 @@ std::vector<double> FeatureErrorFromPlanes(const Planes& ref, const Planes& test
   const Features b = DetectFeatures(test, k);
   std::vector<double> out(a.edge.size());
   const double inv_sqrt2 = 1.0 / std::sqrt(2.0);
-  for (size_t i = 0; i < out.size(); ++i) {
+  ForEachPixel(out.size(), [&](size_t i) {
     const double d = std::max(std::abs(a.edge[i] - b.edge[i]), std::abs(a.point[i] - b.point[i]));
     out[i] = std::pow(inv_sqrt2 * d, kQf);
-  }
+  });
   return out;
 }
 
@@ -469,7 +480,7 @@ std::vector<double> ErrorValues(const ImageF& reference, const ImageF& test, dou
   const Planes b = ToYCxCz(test);
   std::vector<double> out = ColorErrorFromPlanes(a, b, ppd);
   const std::vector<double> feature = FeatureErrorFromPlanes(a, b, ppd);
-  for (size_t i = 0; i < out.size(); ++i) out[i] = std::pow(out[i], 1.0 - feature[i]);
+  ForEachPixel(out.size(), [&](size_t i) { out[i] = std::pow(out[i], 1.0 - feature[i]); });
   return out;
 }
 
