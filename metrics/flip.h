@@ -31,8 +31,9 @@ struct FlipPooled {
 /// Pools per-pixel FLIP values (non-empty; the order is the row-major pixel order).
 /// weighted_median: sort ascending e(1) <= ... <= e(N); it is the first e(k) with
 /// e(1) + ... + e(k) > 0.5 · (e(1) + ... + e(N)) (sums in double, in sorted order), i.e. the
-/// median of the distribution in which each pixel weighs its own error, as NVIDIA's
-/// `pooling::getPercentile(0.5, weighted = true)`; 0 when every value is 0.
+/// median of the distribution in which each pixel weighs its own error: the "Weighted
+/// median" of NVIDIA's FLIP tool v1.4 (`pooling::getPercentile(0.5, weighted = true)`);
+/// 0 when every value is 0.
 FlipPooled PoolFlip(const std::vector<double>& values);
 
 /// Building blocks of LDR-FLIP, exposed for tests and cross-checks. Colours are triples of
