@@ -40,6 +40,7 @@ FlipPooled PoolFlip(const std::vector<double>& values);
 /// double; "Lab" is CIELAB with the D65 white of NVIDIA's code.
 namespace flip {
 
+/// A colour triple (RGB, XYZ, YCxCz or Lab, as the function says).
 using Color = std::array<double, 3>;
 
 inline constexpr double kQc = 0.7;    ///< exponent on the HyAB distance
@@ -56,9 +57,9 @@ inline constexpr Color kWhite = {0.950428545, 1.0, 1.088900371};
 struct CsfParams {
   double a1, b1, a2, b2;
 };
-inline constexpr CsfParams kCsfY = {1.0, 0.0047, 0.0, 1e-5};
-inline constexpr CsfParams kCsfCx = {1.0, 0.0053, 0.0, 1e-5};
-inline constexpr CsfParams kCsfCz = {34.1, 0.04, 13.5, 0.025};
+inline constexpr CsfParams kCsfY = {1.0, 0.0047, 0.0, 1e-5};   ///< achromatic (Y)
+inline constexpr CsfParams kCsfCx = {1.0, 0.0053, 0.0, 1e-5};  ///< red-green (Cx)
+inline constexpr CsfParams kCsfCz = {34.1, 0.04, 13.5, 0.025};  ///< blue-yellow (Cz)
 
 /// sRGB decode of one encoded value, clamped to [0, 1] first (NaN → 0).
 double SrgbToLinear(double encoded);
@@ -96,6 +97,7 @@ struct SpatialKernels {
   int radius = 0;
   std::vector<double> y, cx, cz1, cz2;
 };
+/// The CSF kernels for `ppd` (finite, > 0; UserError otherwise).
 SpatialKernels MakeSpatialKernels(double ppd);
 
 /// 1-D feature kernels (length 2·radius + 1): `g` the Gaussian (sum 1), `dg` its first
@@ -103,12 +105,14 @@ SpatialKernels MakeSpatialKernels(double ppd);
 /// (x²/σ² − 1)·g (positive taps sum to 1, negative to −1).
 struct FeatureKernels {
   int radius = 0;
-  double sigma = 0.0;
+  double sigma = 0.0;  ///< 0.5·w·ppd, in pixels
   std::vector<double> g, dg, ddg;
 };
+/// The feature kernels for `ppd` (finite, > 0; UserError otherwise).
 FeatureKernels MakeFeatureKernels(double ppd);
 
-/// Colour pipeline alone: ΔEc per pixel (row-major), in [0, 1].
+/// Colour pipeline alone: ΔEc per pixel (row-major), in [0, 1]. Same checks and input
+/// handling as FlipErrorMap (UserError on bad shapes or ppd).
 std::vector<double> ColorErrorValues(const ImageF& reference, const ImageF& test, double ppd);
 /// Feature pipeline alone: ΔEf per pixel (row-major), in [0, 1].
 std::vector<double> FeatureErrorValues(const ImageF& reference, const ImageF& test, double ppd);

@@ -33,6 +33,7 @@
 // numerator == denominator bit for bit, so SSIM(x, x) = 1 exactly.
 #include "metrics/ssim.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
