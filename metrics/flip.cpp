@@ -315,7 +315,9 @@ std::vector<double> ColorErrorFromPlanes(const Planes& ref, const Planes& test, 
   const std::vector<Color> a = FilteredHuntLab(ref, k);
   const std::vector<Color> b = FilteredHuntLab(test, k);
   std::vector<double> out(a.size());
-  ForEachPixel(out.size(), [&](size_t i) { out[i] = RemapColorError(std::pow(HyAB(a[i], b[i]), kQc)); });
+  ForEachPixel(out.size(), [&](size_t i) {
+    out[i] = RemapColorError(std::pow(HyAB(a[i], b[i]), kQc));
+  });
   return out;
 }
 

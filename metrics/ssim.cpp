@@ -1,11 +1,11 @@
 // SSIM: structural similarity index.
 //
 // Source: Z. Wang, A. C. Bovik, H. R. Sheikh, E. P. Simoncelli, "Image Quality Assessment:
-// From Error Visibility to Structural Similarity", IEEE TIP 13(4), 2004. Per-pixel index
-// Eq. (13): SSIM = ((2 μx μy + C1)(2 σxy + C2)) / ((μx² + μy² + C1)(σx² + σy² + C2)), with
-// C1 = (K1 L)², C2 = (K2 L)² (Eqs. 7, 9); local statistics weighted by a circular-symmetric
-// Gaussian window, σ = 1.5, 11×11, normalised to unit sum (Eqs. 14–16); mean over the map
-// (MSSIM, Eq. 17).
+// From Error Visibility to Structural Similarity", IEEE TIP 13(4), 2004. Per-pixel index,
+// Eq. (13): SSIM = ((2 μx μy + C1)(2 σxy + C2)) / ((μx² + μy² + C1)(σx² + σy² + C2)),
+// C1 = (K1 L)², C2 = (K2 L)²; local statistics weighted by a circular-symmetric Gaussian
+// window, σ = 1.5, 11×11, normalised to unit sum (Eqs. 14–16); mean over the map (MSSIM,
+// Eq. 17).
 //
 // Parameters (fixed, the paper's): σ = 1.5, window 11×11 (radius 5), K1 = 0.01, K2 = 0.03,
 // L = 1 (data range of sRGB-encoded values in [0, 1]).

@@ -10,7 +10,7 @@
 
 namespace aalab {
 
-/// Window and constants (Wang et al. 2004, Sec. III-B/C): Gaussian σ = 1.5 truncated to
+/// Window and constants (the choices of Wang et al. 2004): Gaussian σ = 1.5 truncated to
 /// 11×11 (radius 5), K1 = 0.01, K2 = 0.03, data range L = 1.
 inline constexpr int kSsimRadius = 5;
 inline constexpr double kSsimSigma = 1.5;
