@@ -6,7 +6,16 @@
 
 namespace aalab {
 
-/// `psnr` (metrics/psnr.cpp).
+/// `psnr` (metrics/psnr.cpp): psnr_db, mse.
 std::vector<MetricEntry> PsnrMetrics();
+/// `edge` (metrics/edge_error.cpp): edge_psnr_db, edge_rmse, interior_psnr_db,
+/// edge_error_removed. Needs the edge mask.
+std::vector<MetricEntry> EdgeErrorMetrics();
+/// `ssim` (metrics/ssim.cpp): ssim.
+std::vector<MetricEntry> SsimMetrics();
+/// `flip` (metrics/flip.cpp): flip_mean, flip_median_weighted, flip_max.
+std::vector<MetricEntry> FlipMetrics();
+/// `abs_error` (metrics/error_stats.cpp): abs_err_p50, abs_err_p95, abs_err_p99, abs_err_max.
+std::vector<MetricEntry> AbsErrorMetrics();
 
 }  // namespace aalab

@@ -16,6 +16,9 @@ struct MetricInput {
   const ImageF* reference = nullptr;
   const ImageF* edge_mask = nullptr;
   const ImageF* none_image = nullptr;  ///< the `none` frame, for relative metrics (optional)
+  /// Optional: flip::ErrorValues(*reference, *image, kFlipDefaultPpd), already computed by
+  /// the caller (the runner also needs it for the FLIP heatmap). Same values either way.
+  const std::vector<double>* flip_values = nullptr;
 };
 
 /// One named value. `value` empty means "not defined" (JSON null), with `null_reason`.
@@ -31,6 +34,9 @@ struct MetricEntry {
   std::string help;
   std::vector<std::string> outputs;  ///< names of the values it produces
   std::vector<MetricValue> (*compute)(const MetricInput& in);
+  /// The row needs `MetricInput::edge_mask`; ComputeAllMetrics reports its values as null
+  /// ("no edge mask") when the mask is absent instead of calling `compute`.
+  bool needs_edge_mask = false;
 };
 
 /// Every metric, in listing order.

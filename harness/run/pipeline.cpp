@@ -8,6 +8,7 @@
 #include "harness/run/runner.h"
 #include "metrics/crops.h"
 #include "metrics/metric.h"
+#include "metrics/metrics.h"
 #include "methods/registry.h"
 #include "methods/rescale.h"
 #include "scenes/library.h"
@@ -179,14 +180,20 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   row.output_hash = HashBytes(frame.Data().data(), frame.Data().size());
 
   const ImageF out_f = ToFloat(frame, 3);
+  const std::vector<double> flip_values = flip::ErrorValues(p.ref.image, out_f, kFlipDefaultPpd);
   MetricInput in;
   in.image = &out_f;
   in.reference = &p.ref.image;
   in.edge_mask = &p.ref.edge_mask;
   in.none_image = &p.none_f;
-  for (const auto& entry : MetricRegistry()) {
-    for (const auto& v : entry.compute(in)) row.metrics.push_back({v.name, v.value, v.null_reason});
-  }
+  in.flip_values = &flip_values;
+  for (const auto& v : ComputeAllMetrics(in)) row.metrics.push_back({v.name, v.value, v.null_reason});
+  // Heatmaps: per-pixel |error| (mean over RGB, viridis, full scale 0.25) and FLIP (magma,
+  // full scale 1), both against the reference.
+  out.error_heatmap = Heatmap(AbsErrorMap(out_f, p.ref.image), kErrorHeatmapMax, Colormap::kViridis);
+  ImageF flip_map(W, H, 1);
+  for (size_t i = 0; i < flip_values.size(); ++i) flip_map.Data()[i] = static_cast<float>(flip_values[i]);
+  out.flip_heatmap = Heatmap(flip_map, 1.0f, Colormap::kMagma);
   out.output = std::move(frame);
   return out;
 }

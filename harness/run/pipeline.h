@@ -43,7 +43,12 @@ struct MethodOutput {
   ResultRow row;  ///< metrics, timing, cost and hash filled; `images` left to the caller
   Image8 input;   ///< the frame the post filter saw (for debug views); empty without a post filter
   Image8 output;  ///< the final frame at the output size
+  Image8 error_heatmap;  ///< |output − reference| (mean over RGB), viridis, 0 → kErrorHeatmapMax
+  Image8 flip_heatmap;   ///< LDR-FLIP map, magma, 0 → 1
 };
+
+/// Full scale of the absolute-error heatmap (sRGB-encoded units): errors ≥ 0.25 saturate.
+inline constexpr float kErrorHeatmapMax = 0.25f;
 
 /// Renders (or reuses the 1x frame), post-filters and rescales as the plan says, timing each
 /// stage (one warm-up + `repeat` runs), and scores the output against the reference.

@@ -147,9 +147,13 @@ Report RunSuite(const RunSettings& s) {
           row.images["debug_" + view] = rel;
         }
       }
-      const std::string rel = rel_dir + "/" + FileSafe(plan.spec) + ".png";
-      WriteImage8((tmp / rel).string(), mo.output);
-      row.images["output"] = rel;
+      const std::string base = rel_dir + "/" + FileSafe(plan.spec);
+      WriteImage8((tmp / (base + ".png")).string(), mo.output);
+      WriteImage8((tmp / (base + ".error.png")).string(), mo.error_heatmap);
+      WriteImage8((tmp / (base + ".flip.png")).string(), mo.flip_heatmap);
+      row.images["output"] = base + ".png";
+      row.images["error_heatmap"] = base + ".error.png";
+      row.images["flip_heatmap"] = base + ".flip.png";
       report.rows.push_back(std::move(row));
       progress.Step(name + " " + plan.spec);
     }

@@ -1,0 +1,170 @@
+// SSIM: structural similarity index.
+//
+// Source: Z. Wang, A. C. Bovik, H. R. Sheikh, E. P. Simoncelli, "Image Quality Assessment:
+// From Error Visibility to Structural Similarity", IEEE TIP 13(4), 2004. Per-pixel index,
+// Eq. (13): SSIM = ((2 μx μy + C1)(2 σxy + C2)) / ((μx² + μy² + C1)(σx² + σy² + C2)),
+// C1 = (K1 L)², C2 = (K2 L)²; local statistics weighted by a circular-symmetric Gaussian
+// window, σ = 1.5, 11×11, normalised to unit sum (Eqs. 14–16); mean over the map (MSSIM,
+// Eq. 17).
+//
+// Parameters (fixed, the paper's): σ = 1.5, window 11×11 (radius 5), K1 = 0.01, K2 = 0.03,
+// L = 1 (data range of sRGB-encoded values in [0, 1]).
+//
+// Choices (stated so users can cross-check):
+//  - Colour: SSIM is computed on each of R, G, B separately, on sRGB-encoded values (no
+//    linearisation, no luma), and the value `ssim` is the mean of the three channel means.
+//  - Statistics are population (biased) moments: σx² = E_w[x²] − E_w[x]², no N/(N−1).
+//  - The window is separable: 1-D weights w(i) = exp(−i²/(2σ²)), i = −5..5, divided by
+//    their sum; the 2-D window is w(i)·w(j) (exactly the normalised 2-D Gaussian).
+//  - Border: only the "valid" region is averaged, i.e. pixels whose 11×11 window lies inside
+//    the image (x in [5, W−6], y in [5, H−6]); no padding is ever read. This equals
+//    scikit-image 0.19 `structural_similarity(a, b, channel_axis=2, gaussian_weights=True,
+//    sigma=1.5, use_sample_covariance=False, data_range=1)`: it filters with mode='reflect'
+//    and truncate=3.5 (radius 5) but then crops 5 pixels on each side before averaging, so
+//    its padded values never reach the mean either. Checked against scikit-image 0.19.3 on
+//    float64 inputs (agreement ≈ 1e-15; see METRICS.md). Pass float64 arrays when
+//    cross-checking: with float32 inputs scikit-image filters in float32 (≈ 1e-7 off).
+//  - Images smaller than 11 in either dimension: SSIM is undefined here (null, reason
+//    "image smaller than the 11x11 SSIM window"); scikit-image raises an error.
+//
+// Precision: inputs are float32 converted to double; every product and sum is double, in a
+// fixed order (window taps in index order; the map summed row by row, each row left to
+// right, rows in order), so the value is bit-identical at any thread count. x == y gives
+// numerator == denominator bit for bit, so SSIM(x, x) = 1 exactly.
+#include "metrics/ssim.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "harness/core/error.h"
+#include "harness/core/parallel.h"
+#include "metrics/families.h"
+#include "metrics/metric.h"
+
+namespace aalab {
+namespace {
+
+constexpr int kTaps = 2 * kSsimRadius + 1;
+
+std::array<double, kTaps> GaussianWindow() {
+  std::array<double, kTaps> w{};
+  double sum = 0.0;
+  for (int i = 0; i < kTaps; ++i) {
+    const double d = i - kSsimRadius;
+    w[i] = std::exp(-(d * d) / (2.0 * kSsimSigma * kSsimSigma));
+    sum += w[i];
+  }
+  for (double& v : w) v /= sum;
+  return w;
+}
+
+// Mean SSIM of channel c over the valid region.
+double ChannelSsim(const ImageF& a, const ImageF& b, int c, const std::array<double, kTaps>& w) {
+  const int width = a.Width(), height = a.Height();
+  const int nx = width - 2 * kSsimRadius;   // valid columns: x = 5 .. W-6
+  const int ny = height - 2 * kSsimRadius;  // valid rows:    y = 5 .. H-6
+  const size_t plane = static_cast<size_t>(height) * nx;
+  // Horizontal pass on every row, valid columns only: weighted sums of a, b, a², b², ab.
+  std::vector<double> ha(plane), hb(plane), haa(plane), hbb(plane), hab(plane);
+  ParallelForChunks(height, 8, [&](int y0, int y1) {
+    std::vector<double> ra(width), rb(width);
+    for (int y = y0; y < y1; ++y) {
+      for (int x = 0; x < width; ++x) {
+        ra[x] = static_cast<double>(a.At(x, y, c));
+        rb[x] = static_cast<double>(b.At(x, y, c));
+      }
+      const size_t row = static_cast<size_t>(y) * nx;
+      for (int ox = 0; ox < nx; ++ox) {
+        double sa = 0.0, sb = 0.0, saa = 0.0, sbb = 0.0, sab = 0.0;
+        for (int i = 0; i < kTaps; ++i) {
+          const double va = ra[ox + i], vb = rb[ox + i];  // x = ox + 5, tap offset i − 5
+          sa += w[i] * va;
+          sb += w[i] * vb;
+          saa += w[i] * (va * va);
+          sbb += w[i] * (vb * vb);
+          sab += w[i] * (va * vb);
+        }
+        ha[row + ox] = sa;
+        hb[row + ox] = sb;
+        haa[row + ox] = saa;
+        hbb[row + ox] = sbb;
+        hab[row + ox] = sab;
+      }
+    }
+  });
+  // Vertical pass on valid rows, then the SSIM map, summed per row.
+  const double c1 = (kSsimK1 * 1.0) * (kSsimK1 * 1.0);
+  const double c2 = (kSsimK2 * 1.0) * (kSsimK2 * 1.0);
+  std::vector<double> row_sums(ny, 0.0);
+  ParallelForChunks(ny, 8, [&](int r0, int r1) {
+    std::vector<double> ma(nx), mb(nx), maa(nx), mbb(nx), mab(nx);
+    for (int r = r0; r < r1; ++r) {  // output row y = r + 5 uses input rows r .. r + 10
+      std::fill(ma.begin(), ma.end(), 0.0);
+      std::fill(mb.begin(), mb.end(), 0.0);
+      std::fill(maa.begin(), maa.end(), 0.0);
+      std::fill(mbb.begin(), mbb.end(), 0.0);
+      std::fill(mab.begin(), mab.end(), 0.0);
+      for (int j = 0; j < kTaps; ++j) {
+        const size_t src = static_cast<size_t>(r + j) * nx;
+        const double wj = w[j];
+        for (int ox = 0; ox < nx; ++ox) {
+          ma[ox] += wj * ha[src + ox];
+          mb[ox] += wj * hb[src + ox];
+          maa[ox] += wj * haa[src + ox];
+          mbb[ox] += wj * hbb[src + ox];
+          mab[ox] += wj * hab[src + ox];
+        }
+      }
+      double sum = 0.0;
+      for (int ox = 0; ox < nx; ++ox) {
+        const double mx = ma[ox], my = mb[ox];
+        const double vx = maa[ox] - mx * mx;
+        const double vy = mbb[ox] - my * my;
+        const double vxy = mab[ox] - mx * my;
+        const double num = (2.0 * mx * my + c1) * (2.0 * vxy + c2);
+        const double den = (mx * mx + my * my + c1) * (vx + vy + c2);
+        sum += num / den;
+      }
+      row_sums[r] = sum;
+    }
+  });
+  double total = 0.0;
+  for (double s : row_sums) total += s;
+  return total / (static_cast<double>(nx) * static_cast<double>(ny));
+}
+
+std::vector<MetricValue> ComputeSsimMetric(const MetricInput& in) {
+  AALAB_CHECK(in.image && in.reference, "ssim needs image and reference");
+  const SsimResult r = ComputeSsim(*in.image, *in.reference);
+  return {MetricValue{"ssim", r.ssim, r.null_reason}};
+}
+
+}  // namespace
+
+SsimResult ComputeSsim(const ImageF& a, const ImageF& b) {
+  RequireSameShape(a, b, "ssim");
+  if (a.Channels() < 3) {
+    throw UserError("ssim: needs RGB images (got " + std::to_string(a.Channels()) +
+                    " channels)");
+  }
+  SsimResult out;
+  if (a.Width() < 2 * kSsimRadius + 1 || a.Height() < 2 * kSsimRadius + 1) {
+    out.null_reason = "image smaller than the 11x11 SSIM window";
+    return out;
+  }
+  const auto w = GaussianWindow();
+  for (int c = 0; c < 3; ++c) out.per_channel[c] = ChannelSsim(a, b, c, w);
+  out.ssim = (out.per_channel[0] + out.per_channel[1] + out.per_channel[2]) / 3.0;
+  return out;
+}
+
+std::vector<MetricEntry> SsimMetrics() {
+  return {{"ssim",
+           "SSIM (Wang 2004; 11x11 Gaussian σ=1.5, K1=0.01, K2=0.03), mean over R,G,B on "
+           "sRGB values, valid region",
+           {"ssim"},
+           &ComputeSsimMetric}};
+}
+
+}  // namespace aalab

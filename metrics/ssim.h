@@ -1,0 +1,38 @@
+/// SSIM (Wang, Bovik, Sheikh, Simoncelli 2004), mean of per-channel SSIM over R, G, B on
+/// sRGB-encoded values. Definition, border rule and precision: the block at the top of
+/// metrics/ssim.cpp and metrics/METRICS.md.
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+
+#include "harness/core/image.h"
+
+namespace aalab {
+
+/// Window and constants (the choices of Wang et al. 2004): Gaussian σ = 1.5 truncated to
+/// 11×11 (radius 5), K1 = 0.01, K2 = 0.03, data range L = 1.
+inline constexpr int kSsimRadius = 5;
+inline constexpr double kSsimSigma = 1.5;
+inline constexpr double kSsimK1 = 0.01;
+inline constexpr double kSsimK2 = 0.03;
+
+/// Result of ComputeSsim.
+struct SsimResult {
+  /// Mean of `per_channel`; empty when SSIM is undefined, with `null_reason`.
+  std::optional<double> ssim;
+  /// Mean SSIM of R, G, B over the valid region (all 0 when `ssim` is empty).
+  std::array<double, 3> per_channel{};
+  std::string null_reason;
+};
+
+/// SSIM of two same-size RGB images (channels 0..2; any further channel is ignored), values
+/// sRGB-encoded in [0, 1]. Symmetric in (a, b); SSIM(x, x) = 1 exactly. The SSIM map is
+/// averaged over the "valid" region only: pixels at least 5 from every border, where the
+/// 11×11 window lies inside the image (matches scikit-image's default crop). Images narrower
+/// or shorter than 11 pixels give an empty `ssim` with reason "image smaller than the 11x11
+/// SSIM window". Double precision throughout; bit-identical at any thread count.
+/// Throws UserError when the shapes differ or there are fewer than 3 channels.
+SsimResult ComputeSsim(const ImageF& a, const ImageF& b);
+
+}  // namespace aalab
