@@ -220,6 +220,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       return 0;
     };
   });
+  RegisterMetricsCommand(app, commands);
 }
 
 }  // namespace aalab

@@ -15,4 +15,7 @@ struct Commands {
 /// Adds every subcommand to `app`; the parsed one sets `commands.action`.
 void RegisterCommands(CLI::App& app, Commands& commands);
 
+/// `aalab metrics` (harness/cli/metrics_command.cpp).
+void RegisterMetricsCommand(CLI::App& app, Commands& commands);
+
 }  // namespace aalab

@@ -127,4 +127,70 @@ TEST(Cli, RenderWritesImages) {
   ExpectFails("render --scene circle --out /nonexistent-dir/x.png", {"does not exist"});
 }
 
+TEST(Cli, MetricsCommand) {
+  const fs::path dir = TempDir("metrics");
+  ASSERT_EQ(Aalab("render --scene circle --size 32x18 --spp 16 --out " + (dir / "ref.png").string()).code, 0);
+  ASSERT_EQ(Aalab("render --scene circle --size 32x18 --out " + (dir / "none.png").string()).code, 0);
+  ASSERT_EQ(Aalab("render --scene circle --size 16x9 --out " + (dir / "small.png").string()).code, 0);
+  // Identical images: PSNR null with the reason, "identical": true, no NaN/Infinity.
+  CmdResult r = Aalab("metrics --json --reference " + (dir / "ref.png").string() + " " + (dir / "ref.png").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_TRUE(j["identical"].get<bool>());
+  EXPECT_TRUE(j["metrics"]["psnr_db"].is_null());
+  EXPECT_EQ(j["null_reasons"]["psnr_db"], "identical");
+  EXPECT_EQ(j["metrics"]["ssim"], 1.0);
+  EXPECT_EQ(r.output.find("NaN"), std::string::npos);
+  r = Aalab("metrics --reference " + (dir / "ref.png").string() + " " + (dir / "none.png").string());
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.output.find("psnr_db"), std::string::npos);
+  EXPECT_NE(r.output.find("edge_psnr_db           null (no edge mask)"), std::string::npos) << r.output;
+  ExpectFails("metrics --reference " + (dir / "ref.png").string() + " " + (dir / "small.png").string(),
+              {"sizes differ", "32x18", "16x9", "never resampled"});
+  ExpectFails("metrics --reference " + (dir / "nope.png").string() + " " + (dir / "ref.png").string(), {"does not exist"});
+  std::ofstream(dir / "trunc.png") << "\x89PNG\r\n";
+  ExpectFails("metrics --reference " + (dir / "trunc.png").string() + " " + (dir / "ref.png").string(), {"trunc.png"});
+}
+
+TEST(Cli, ApplyRunsPostFiltersOnUserImages) {
+  const fs::path dir = TempDir("apply");
+  const std::string in = (dir / "in.png").string();
+  ASSERT_EQ(Aalab("render --scene wedges --size 64x36 --out " + in).code, 0);
+  CmdResult r = Aalab("apply --method fxaa1-p3 " + in + " " + (dir / "out.png").string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out.png"));
+  r = Aalab("apply --method fxaa311-p39:subpix=0.5 " + in + " " + (dir / "out311.png").string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  r = Aalab("apply --method fxaa1-p3 --debug horzvert " + in + " " + (dir / "dbg.png").string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  // Float input goes through the display transform, and the command says so.
+  ASSERT_EQ(Aalab("render --scene wedges --size 64x36 --out " + (dir / "in.exr").string()).code, 0);
+  r = Aalab("apply --method fxaa-high " + (dir / "in.exr").string() + " " + (dir / "fromexr.png").string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("display transform"), std::string::npos) << r.output;
+}
+
+TEST(Cli, ApplyErrorsLeaveNoOutput) {
+  const fs::path dir = TempDir("apply-bad");
+  const std::string in = (dir / "in.png").string();
+  ASSERT_EQ(Aalab("render --scene wedges --size 32x18 --out " + in).code, 0);
+  const std::string out = (dir / "out.png").string();
+  ExpectFails("apply --method fxaa1-p3 " + (dir / "missing.png").string() + " " + out, {"missing.png", "does not exist"});
+  std::ofstream(dir / "trunc.png") << "\x89PNG\r\n\x1a\n";
+  ExpectFails("apply --method fxaa1-p3 " + (dir / "trunc.png").string() + " " + out, {"trunc.png"});
+  std::ofstream(dir / "text.png") << "not an image at all";
+  ExpectFails("apply --method fxaa1-p3 " + (dir / "text.png").string() + " " + out, {"text.png"});
+  ExpectFails("apply --method fxaa1-p3 " + in + " /nonexistent-dir/out.png", {"/nonexistent-dir", "does not exist"});
+  ExpectFails("apply --method fxaa1-p3 " + in + " " + (dir / "out.bmp").string(), {".png, .jpg"});
+  ExpectFails("apply --method ssaa-4x4 " + in + " " + out, {"not a post filter", "aalab run"});
+  ExpectFails("apply --method scale43-fxaa-high " + in + " " + out, {"not a post filter", "another scale"});
+  ExpectFails("apply --method fxaa1-p3 --debug sparkle " + in + " " + out, {"no debug view 'sparkle'", "horzvert"});
+  ExpectFails("apply --method fxaa311-p39 --debug horzvert " + in + " " + out, {"no debug view"});
+  ExpectFails("apply --method fxaa1-p3:edge_threshold=2 " + in + " " + out, {"out of range"});
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(dir)) {
+    EXPECT_EQ(e.path().filename().string().rfind(".tmp-", 0), std::string::npos) << "left a temporary file";
+  }
+}
+
 }  // namespace
