@@ -267,7 +267,7 @@ const char* const kScriptCharts = R"JS(
       else if (dt <= 0) tr.append(dash('time added is ' + A.fmtMs(dt) + ' ms (≤ 0): not measurably slower than none in this run, so a gain per ms is undefined (no division by zero or by a negative time)'));
       else {
         const g = better * (p.q - base.q);
-        tr.append(num(g / dt, A.fmtSig(g / dt)));
+        tr.append(num(g / dt, A.fmtSig(g / dt).replace('-', '−'), g < 0 ? 'negative: worse than none and slower' : null));
       }
       tr.append(front.has(p.spec) ? el('td', { class: 'front-mark', 'data-v': '1', title: 'on the Pareto front' }, '●')
                                   : el('td', { 'data-v': '0' }, ''));
