@@ -14,6 +14,7 @@
 #include "harness/io/image_io.h"
 #include "metrics/metric.h"
 #include "methods/registry.h"
+#include "reports/html_report.h"
 #include "reports/report_json.h"
 #include "harness/run/pipeline.h"
 #include "scenes/library.h"
@@ -161,6 +162,7 @@ Report RunSuite(const RunSettings& s) {
   }
 
   WriteTextFile((tmp / "report.json").string(), ReportToJson(report).dump(2) + "\n");
+  WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(report));
   fs::remove_all(out);
   fs::rename(tmp, out);
   return report;

@@ -1,0 +1,422 @@
+#include "reports/html_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "reports/html_assets.h"
+#include "reports/report_json.h"
+
+namespace aalab {
+
+std::string HtmlEscape(std::string_view text) {
+  std::string out;
+  out.reserve(text.size() + text.size() / 8);
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string JsonForScriptTag(std::string_view json) {
+  std::string out;
+  out.reserve(json.size() + 64);
+  for (size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (c == '<') {
+      out += "\\u003c";
+    } else if (c == '>') {
+      out += "\\u003e";
+    } else if (c == '&') {
+      out += "\\u0026";
+    } else if (c == '\xE2' && i + 2 < json.size() && json[i + 1] == '\x80' &&
+               (json[i + 2] == '\xA8' || json[i + 2] == '\xA9')) {
+      out += json[i + 2] == '\xA8' ? "\\u2028" : "\\u2029";  // valid JSON, odd in a script
+      i += 2;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string UrlEncodePath(std::string_view path) {
+  static const char* kHex = "0123456789ABCDEF";
+  std::string out;
+  for (unsigned char c : path) {
+    if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '.' ||
+        c == '_' || c == '~' || c == '/') {
+      out += static_cast<char>(c);
+    } else {
+      out += '%';
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  return out;
+}
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+/// Scores at least this close to the noise floor (dB) are marked.
+constexpr double kNearFloorDb = 3.0;
+
+std::string Printf(const char* fmt, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+
+std::string FmtMs(double v) { return Printf(v < 1 ? "%.3f" : v < 100 ? "%.2f" : "%.1f", v); }
+std::string FmtCount(double v) { return Printf("%.4g", v); }
+std::string FmtMetric(const std::string& name, double v) {
+  const bool db = name.size() > 3 && name.compare(name.size() - 3, 3, "_db") == 0;
+  return Printf(db ? "%.2f" : "%.4g", v);
+}
+/// Exact sort key for data-v (round-trips).
+std::string Key(double v) { return Printf("%.17g", v); }
+std::string Int(long v) { return std::to_string(v); }
+
+std::string Attr(std::string_view s) { return HtmlEscape(s); }
+
+/// Metric names in first-appearance order over `rows` (optionally one scene's).
+std::vector<std::string> MetricNames(const std::vector<ResultRow>& rows, const std::string* scene) {
+  std::vector<std::string> names;
+  std::set<std::string> seen;
+  for (const auto& row : rows) {
+    if (scene && row.scene != *scene) continue;
+    for (const auto& m : row.metrics) {
+      if (seen.insert(m.name).second) names.push_back(m.name);
+    }
+  }
+  return names;
+}
+
+const MetricResult* FindMetric(const ResultRow& row, const std::string& name) {
+  for (const auto& m : row.metrics) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
+
+std::string SettingOf(const Report& r, const std::string& key) {
+  for (const auto& [k, v] : r.settings) {
+    if (k == key) return v;
+  }
+  return "";
+}
+
+std::string ContextOf(const Report& r, const std::string& key) {
+  const auto it = r.context.find(key);
+  return it == r.context.end() ? "unknown" : it->second;
+}
+
+/// The per-metric facts the script needs (labels, units, direction), the chart axis choices
+/// and the default axis.
+Json MetaJson(const Report& r) {
+  const std::vector<std::string> names = MetricNames(r.rows, nullptr);
+  Json meta;
+  Json metrics = Json::object();
+  std::vector<std::string> axis;
+  std::set<std::string> has_value;
+  for (const auto& row : r.rows) {
+    for (const auto& m : row.metrics) {
+      if (m.value) has_value.insert(m.name);
+    }
+  }
+  for (const auto& name : names) {
+    const html::MetricInfo info = html::DescribeMetric(name);
+    metrics[name] = {{"label", info.label},
+                     {"unit", info.unit},
+                     {"better", info.better},
+                     {"help", info.help},
+                     {"psnr", html::IsPsnrMetric(name)}};
+  }
+  for (const char* first : {"edge_psnr_db", "psnr_db", "flip_mean"}) {
+    if (std::find(names.begin(), names.end(), first) != names.end()) axis.push_back(first);
+  }
+  for (const auto& name : names) {
+    if (html::DescribeMetric(name).better != 0 && std::find(axis.begin(), axis.end(), name) == axis.end()) {
+      axis.push_back(name);
+    }
+  }
+  std::string def;
+  for (const auto& name : axis) {
+    if (has_value.count(name)) {
+      def = name;
+      break;
+    }
+  }
+  meta["metrics"] = metrics;
+  meta["axis"] = axis;
+  meta["default_axis"] = def.empty() ? Json(nullptr) : Json(def);
+  meta["near_floor_db"] = kNearFloorDb;
+  return meta;
+}
+
+void Header(std::string& h, const Report& r) {
+  std::set<std::string> specs;
+  for (const auto& row : r.rows) specs.insert(row.spec);
+  h += "<header class=\"top\">\n<h1>aalab report <span class=\"sub\">suite " + HtmlEscape(SettingOf(r, "suite")) +
+       " · " + HtmlEscape(SettingOf(r, "size")) + " · " + Int(static_cast<long>(r.scenes.size())) + " scenes × " +
+       Int(static_cast<long>(specs.size())) + " methods</span></h1>\n";
+  h += "<p class=\"facts\">Reference " + HtmlEscape(SettingOf(r, "ref_spp")) + " spp · seed " +
+       HtmlEscape(SettingOf(r, "seed")) + " · " + HtmlEscape(SettingOf(r, "repeat")) + " timed run(s) after " +
+       HtmlEscape(SettingOf(r, "warmup")) + " warm-up · " + HtmlEscape(ContextOf(r, "cpu")) + ", " +
+       HtmlEscape(ContextOf(r, "threads")) + " of " + HtmlEscape(ContextOf(r, "hardware_threads")) +
+       " threads · aalab " + HtmlEscape(ContextOf(r, "tool_version")) + " @ " +
+       HtmlEscape(ContextOf(r, "git_commit")) + " (" + HtmlEscape(ContextOf(r, "build_type")) + ")</p>\n";
+  h += "<p class=\"links\"><a href=\"report.json\">report.json</a> (all numbers, every timed sample) · "
+       "<a href=\"#methodology\">timing methodology</a> · <a href=\"#context\">run context</a></p>\n";
+  h += "<nav class=\"views\" aria-label=\"Views\"><a href=\"#suite\" data-view=\"suite\">Suite</a>";
+  for (const auto& s : r.scenes) {
+    h += "<a href=\"#scene-" + Attr(UrlEncodePath(s.name)) + "\" data-view=\"scene-" + Attr(s.name) + "\">" +
+         HtmlEscape(s.name) + "</a>";
+  }
+  h += "</nav>\n</header>\n";
+}
+
+/// The quality-vs-cost block (chart + cost-of-accuracy table), drawn by the script.
+void QualityCostBlock(std::string& h, const std::string& scope, const std::string* scene) {
+  h += "<div class=\"qc\" data-scope=\"" + scope + "\"";
+  if (scene) h += " data-scene=\"" + Attr(*scene) + "\"";
+  h += "><noscript><p class=\"note\">The quality-vs-cost chart and the cost-of-accuracy table are drawn by "
+       "the page's script; enable JavaScript to see them (the numbers are in the tables below and in "
+       "report.json).</p></noscript></div>\n";
+}
+
+void SceneFacts(std::string& h, const SceneResult& s) {
+  h += "<dl class=\"scene-facts\">";
+  auto fact = [&h](const std::string& k, const std::string& v) {
+    h += "<div><dt>" + k + "</dt><dd>" + v + "</dd></div>";
+  };
+  fact("output", Int(s.width) + "×" + Int(s.height) + " px");
+  fact("effects", s.effects.empty() ? "—" : [&] {
+    std::string e;
+    for (const auto& x : s.effects) e += (e.empty() ? "" : ", ") + HtmlEscape(x);
+    return e;
+  }());
+  fact("reference", Int(s.ref_spp) + " spp, " + FmtMs(s.reference_ms) + " ms, " +
+                        FmtCount(s.ref_primary_rays_per_px) + " + " + FmtCount(s.ref_shadow_rays_per_px) +
+                        " rays/px, " + FmtCount(s.ref_texture_lookups_per_px) + " texture lookups/px");
+  fact("noise floor",
+       s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db) + " (halves " +
+                                 Printf("%.2f dB", s.ref_halves_psnr_db ? *s.ref_halves_psnr_db : 0.0) + " + 6.02 dB)"
+                           : std::string("none: the two half-references are identical (nothing to converge)"));
+  fact("edge pixels", Printf("%.2f %%", 100.0 * s.edge_pixel_fraction));
+  fact("BVH build", FmtMs(s.bvh_build_ms) + " ms (once per scene, not in method times)");
+  fact("scene file", "<code>" + HtmlEscape(s.source) + "</code>");
+  h += "</dl>\n";
+}
+
+std::string FloorWarning(const SceneResult& s, const std::string& metric, double v) {
+  if (!s.ref_floor_psnr_db || !html::IsPsnrMetric(metric) || v < *s.ref_floor_psnr_db - kNearFloorDb) return "";
+  std::string why = "Within " + Printf("%.0f", kNearFloorDb) + " dB of the reference's noise floor (" +
+                    Printf("%.2f", *s.ref_floor_psnr_db) + " dB at " + Int(s.ref_spp) +
+                    " spp): the reference's own noise limits this score, so differences between such "
+                    "scores are not meaningful. Re-run with a higher --ref-spp to separate them.";
+  if (metric != "psnr_db") why += " (The floor is estimated over the whole image; on a subset of pixels it may differ.)";
+  return "<span class=\"warn\" role=\"img\" aria-label=\"near the noise floor\" title=\"" + Attr(why) + "\">⚠</span>";
+}
+
+void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index) {
+  const std::vector<std::string> metrics = MetricNames(r.rows, &s.name);
+  h += "<div class=\"table-wrap\"><table class=\"metrics sortable\" id=\"table-" + Int(index) + "\" data-scene=\"" +
+       Attr(s.name) + "\">\n<caption>Every method on <b>" + HtmlEscape(s.name) + "</b> against the reference (" +
+       Int(s.ref_spp) + " spp; noise floor ";
+  h += s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db) : std::string("none");
+  h += "). <span class=\"warn\">⚠</span> marks a PSNR within " + Printf("%.0f", kNearFloorDb) +
+       " dB of the floor. Click or press Enter on a column header to sort.</caption>\n<thead><tr>"
+       "<th scope=\"col\" data-type=\"text\"><button type=\"button\">Method</button></th>";
+  for (const auto& m : metrics) {
+    const html::MetricInfo info = html::DescribeMetric(m);
+    const std::string dir = info.better > 0 ? " ↑" : info.better < 0 ? " ↓" : "";
+    const std::string dir_text = info.better > 0   ? " Higher is better."
+                                 : info.better < 0 ? " Lower is better."
+                                                   : "";
+    h += "<th scope=\"col\" data-metric=\"" + Attr(m) + "\"" +
+         (info.better > 0 ? " data-first=\"descending\"" : "") + " title=\"" + Attr(m + ": " + info.help + dir_text) +
+         "\"><button type=\"button\">" + HtmlEscape(info.label) +
+         (info.unit.empty() ? "" : " <span class=\"unit\">" + HtmlEscape(info.unit) + "</span>") + dir +
+         "</button></th>";
+  }
+  h += "<th scope=\"col\" title=\"Wall time per frame of the timed stages (render + post + resample), median "
+       "[min–max] over the timed runs. See the timing methodology.\"><button type=\"button\">Time ms "
+       "<span class=\"unit\">median [min–max]</span></button></th>"
+       "<th scope=\"col\" title=\"Camera rays + shadow rays per output pixel (hardware-independent)\"><button "
+       "type=\"button\">Rays/px <span class=\"unit\">primary + shadow</span></button></th>"
+       "<th scope=\"col\" title=\"Texture (colour and alpha pattern) evaluations per output pixel\"><button "
+       "type=\"button\">Tex lookups/px</button></th>"
+       "<th scope=\"col\" title=\"Post-filter texture fetches per output pixel (edge search included)\"><button "
+       "type=\"button\">Taps/px</button></th></tr></thead>\n<tbody>\n";
+  std::map<std::string, std::string> first_with_hash;
+  for (const auto& row : r.rows) {
+    if (row.scene != s.name) continue;
+    h += "<tr class=\"row\" data-scene=\"" + Attr(row.scene) + "\" data-spec=\"" + Attr(row.spec) +
+         "\"><th scope=\"row\" data-v=\"" + Attr(row.spec) + "\"><span class=\"method\">" + HtmlEscape(row.spec) +
+         "</span>";
+    if (row.render_width != s.width || row.render_height != s.height) {
+      h += " <small title=\"rendered at a different size, then resampled to the output size\">render " +
+           Int(row.render_width) + "×" + Int(row.render_height) + "</small>";
+    }
+    if (row.samples_per_pixel > 1) h += " <small>" + Int(row.samples_per_pixel) + " spp</small>";
+    if (!row.output_hash.empty()) {
+      const auto [it, inserted] = first_with_hash.emplace(row.output_hash, row.spec);
+      if (!inserted) {
+        h += " <small class=\"same\" title=\"bit-identical output to " + Attr(it->second) + " (same output_hash " +
+             Attr(row.output_hash) + ")\">≡ " + HtmlEscape(it->second) + "</small>";
+      }
+    }
+    h += "</th>";
+    for (const auto& name : metrics) {
+      const MetricResult* m = FindMetric(row, name);
+      if (!m) {
+        h += "<td class=\"num null\" data-metric=\"" + Attr(name) + "\" title=\"not computed for this row\">—</td>";
+      } else if (!m->value) {
+        const std::string reason = m->null_reason.empty() ? "no reason given" : m->null_reason;
+        h += "<td class=\"num null\" data-metric=\"" + Attr(name) + "\" title=\"" + Attr("null: " + reason) +
+             "\">—</td>";
+      } else {
+        const std::string warn = FloorWarning(s, name, *m->value);
+        h += "<td class=\"num" + std::string(warn.empty() ? "" : " near-floor") + "\" data-metric=\"" + Attr(name) +
+             "\" data-v=\"" + Key(*m->value) + "\">" + FmtMetric(name, *m->value) + warn + "</td>";
+      }
+    }
+    std::string stages = "render " + FmtMs(row.render.median_ms) + " + post " + FmtMs(row.post.median_ms) +
+                         " + resample " + FmtMs(row.resample.median_ms) + " ms (medians of " +
+                         Int(static_cast<long>(row.total.samples_ms.size())) + " timed runs)";
+    if (row.render_shared) stages += "; the render is the 1x frame shared with none (timed once, for none)";
+    h += "<td class=\"num time\" data-v=\"" + Key(row.total.median_ms) + "\" title=\"" + Attr(stages) + "\">" +
+         FmtMs(row.total.median_ms) + " <span class=\"range\">[" + FmtMs(row.total.min_ms) + "–" +
+         FmtMs(row.total.max_ms) + "]</span></td>";
+    h += "<td class=\"num\" data-v=\"" + Key(row.primary_rays_per_px + row.shadow_rays_per_px) + "\">" +
+         FmtCount(row.primary_rays_per_px) + " + " + FmtCount(row.shadow_rays_per_px) + "</td>";
+    h += "<td class=\"num\" data-v=\"" + Key(row.texture_lookups_per_px) + "\">" +
+         FmtCount(row.texture_lookups_per_px) + "</td>";
+    h += "<td class=\"num\" data-v=\"" + Key(row.taps_per_px) + "\">" + FmtCount(row.taps_per_px) + "</td></tr>\n";
+  }
+  h += "</tbody></table></div>\n";
+}
+
+void SceneSection(std::string& h, const Report& r, const SceneResult& s, int index) {
+  h += "<section class=\"view\" id=\"view-scene-" + Attr(s.name) + "\" data-view=\"scene-" + Attr(s.name) +
+       "\" data-scene=\"" + Attr(s.name) + "\">\n<h2>Scene <span class=\"name\">" + HtmlEscape(s.name) +
+       "</span></h2>\n<p class=\"desc\">" + HtmlEscape(s.description) + "</p>\n";
+  SceneFacts(h, s);
+  h += "<h3>Quality vs cost</h3>\n";
+  QualityCostBlock(h, "scene", &s.name);
+  h += "<h3>All metrics</h3>\n";
+  SceneTable(h, r, s, index);
+  h += "<h3>Gallery</h3>\n<div class=\"gallery-host\" data-scene=\"" + Attr(s.name) +
+       "\"><noscript><p class=\"note\">The gallery needs JavaScript. Images: ";
+  for (const auto& [role, path] : s.images) {
+    h += "<a href=\"" + Attr(UrlEncodePath(path)) + "\">" + HtmlEscape(role) + "</a> ";
+  }
+  for (const auto& row : r.rows) {
+    if (row.scene != s.name) continue;
+    const auto it = row.images.find("output");
+    if (it != row.images.end()) {
+      h += "<a href=\"" + Attr(UrlEncodePath(it->second)) + "\">" + HtmlEscape(row.spec) + "</a> ";
+    }
+  }
+  h += "</p></noscript></div>\n</section>\n";
+}
+
+void Methodology(std::string& h, const Report& r) {
+  const std::string repeat = SettingOf(r, "repeat");
+  h += "<section id=\"methodology\" class=\"prose\">\n<h2>Timing methodology</h2>\n<ul>\n";
+  h += "<li><b>Runs.</b> For each scene × method: " + HtmlEscape(SettingOf(r, "warmup")) +
+       " untimed warm-up run, then " + HtmlEscape(repeat) +
+       " timed run(s) of each stage, wall clock (<code>std::chrono::steady_clock</code>). Tables show the "
+       "<b>median [min–max]</b> of the per-run total; the charts use the median.";
+  if (repeat == "1" || repeat == "2") {
+    h += " <b class=\"caveat\">This run has only " + HtmlEscape(repeat) +
+         " timed run(s): min and max say little about the spread, so treat small time differences as noise.</b>";
+  }
+  h += "</li>\n<li><b>Stages.</b> <i>render</i>: tracing and resolving the frame the method asks for (1x pixel "
+       "centres, supersampled, or a scaled size); <i>post</i>: the post filter (FXAA) on the 8-bit frame; "
+       "<i>resample</i>: rescaling a render-scale frame to the output size. The total is their sum per run.</li>\n"
+       "<li><b>Shared frame.</b> Post filters reuse the 1x frame rendered once for <code>none</code>: their "
+       "render time <i>is</i> none's render time (the same samples), so their time added over none is their "
+       "post (and resample) time.</li>\n"
+       "<li><b>Not counted.</b> Writing images, computing metrics, rendering the reference, building the BVH "
+       "(shown per scene).</li>\n";
+  h += "<li><b>Machine.</b> " + HtmlEscape(ContextOf(r, "cpu")) + ", " + HtmlEscape(ContextOf(r, "hardware_threads")) +
+       " hardware threads (" + HtmlEscape(ContextOf(r, "threads")) + " used), " +
+       HtmlEscape(ContextOf(r, "memory")) + ", host <code>" + HtmlEscape(ContextOf(r, "host")) + "</code>; " +
+       HtmlEscape(ContextOf(r, "build_type")) + " build, " + HtmlEscape(ContextOf(r, "compiler")) + ", " +
+       HtmlEscape(ContextOf(r, "float_flags")) + ". Other processes on the machine add noise.</li>\n";
+  h += "<li><b>CPU time is not GPU cost.</b> These are the times of this implementation: an Embree CPU ray "
+       "tracer and a CPU emulation of GPU texture filtering. On a GPU the balance differs (rasterisation "
+       "instead of rays, hardware texture filtering), so a time ratio here does not predict a GPU frame time. "
+       "The hardware-independent counters — rays/px (primary + shadow), texture lookups/px, taps/px (post-"
+       "filter fetches) — are the portable measure of work.</li>\n</ul>\n</section>\n";
+}
+
+void ContextSection(std::string& h, const Report& r) {
+  h += "<footer id=\"context\">\n<h2>Run context</h2>\n<div class=\"ctx\"><table class=\"kv\"><caption>Tool and "
+       "machine</caption><tbody>";
+  for (const auto& [k, v] : r.context) {
+    h += "<tr><th scope=\"row\">" + HtmlEscape(k) + "</th><td>" + HtmlEscape(v) + "</td></tr>";
+  }
+  h += "</tbody></table><table class=\"kv\"><caption>Settings</caption><tbody>";
+  for (const auto& [k, v] : r.settings) {
+    h += "<tr><th scope=\"row\">" + HtmlEscape(k) + "</th><td>" + HtmlEscape(v) + "</td></tr>";
+  }
+  h += "</tbody></table></div>\n<p>Schema version " + Int(r.schema_version) +
+       ". Every number on this page comes from <a href=\"report.json\">report.json</a> (embedded below as "
+       "data); metric definitions: <code>metrics/METRICS.md</code>, report format: "
+       "<code>reports/SCHEMA.md</code> in the aalab source.</p>\n</footer>\n";
+}
+
+}  // namespace
+
+std::string RenderHtmlReport(const Report& r) {
+  std::string h;
+  h.reserve(64 * 1024 + r.rows.size() * 2048);
+  h += "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+       "<meta name=\"generator\" content=\"aalab " + Attr(ContextOf(r, "tool_version")) + "\">\n<title>aalab report — " +
+       HtmlEscape(SettingOf(r, "suite")) + " " + HtmlEscape(SettingOf(r, "size")) + "</title>\n<style>\n";
+  h += html::kStyle;
+  h += "</style>\n</head>\n<body>\n<a class=\"skip\" href=\"#main\">Skip to content</a>\n";
+  Header(h, r);
+  h += "<main id=\"main\">\n<section class=\"view\" id=\"view-suite\" data-view=\"suite\">\n<h2>Suite overview</h2>\n"
+       "<p class=\"desc\">Each method's quality and time averaged over the " +
+       Int(static_cast<long>(r.scenes.size())) +
+       " scenes (arithmetic mean of the per-scene scores and of the per-scene median times; a method is "
+       "plotted only when it has a value on every scene). Per-scene details, tables and the gallery are in "
+       "the scene tabs.</p>\n";
+  QualityCostBlock(h, "suite", nullptr);
+  h += "</section>\n";
+  for (size_t i = 0; i < r.scenes.size(); ++i) SceneSection(h, r, r.scenes[i], static_cast<int>(i));
+  Methodology(h, r);
+  h += "</main>\n";
+  ContextSection(h, r);
+  h += "<div id=\"tooltip\" role=\"tooltip\" hidden></div>\n";
+  h += "<script type=\"application/json\" id=\"aalab-data\">" + JsonForScriptTag(ReportToJson(r).dump()) +
+       "</script>\n";
+  h += "<script type=\"application/json\" id=\"aalab-meta\">" + JsonForScriptTag(MetaJson(r).dump()) +
+       "</script>\n<script>\n";
+  h += html::kScriptCore;
+  h += html::kScriptCharts;
+  h += html::kScriptGallery;
+  h += "</script>\n</body>\n</html>\n";
+  return h;
+}
+
+}  // namespace aalab

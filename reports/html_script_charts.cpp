@@ -1,0 +1,326 @@
+// The HTML report's script, part 2: quality-vs-cost charts (inline SVG, log time axis, Pareto
+// front for the metric's direction) and the cost-of-accuracy tables.
+#include "reports/html_assets.h"
+
+namespace aalab::html {
+
+const char* const kScriptCharts = R"JS(
+(function () {
+  const A = AA, el = A.el, sv = A.sv;
+
+  /// Points of a scope. Scene: one per row. Suite: mean over scenes of the quality and of the
+  /// median time, only for methods with a value on every scene.
+  function collect(scope, sceneName, metric) {
+    const pts = [], unplotted = [];
+    const label = A.metricInfo(metric).label;
+    if (scope === 'scene') {
+      for (const r of A.rowsByScene.get(sceneName) || []) {
+        const q = A.metricValue(r, metric), t = r.timing.total;
+        const p = { spec: r.spec, q, t: t.median_ms, tmin: t.min_ms, tmax: t.max_ms, rows: [r] };
+        if (q === null) unplotted.push({ p, why: label + ' is null (' + A.nullReason(r, metric) + ')' });
+        else if (!(t.median_ms > 0)) unplotted.push({ p, why: 'its time is 0 ms, which a log axis cannot show' });
+        else pts.push(p);
+      }
+    } else {
+      const n = A.scenes.length;
+      for (const spec of A.specs) {
+        const rows = A.DATA.rows.filter(r => r.spec === spec);
+        const mean = f => rows.reduce((s, r) => s + f(r), 0) / rows.length;
+        const p = { spec, q: null, t: mean(r => r.timing.total.median_ms), tmin: null, tmax: null, rows };
+        const bad = rows.find(r => A.metricValue(r, metric) === null);
+        if (rows.length < n) unplotted.push({ p, why: 'not run on ' + (n - rows.length) + ' of ' + n + ' scenes' });
+        else if (bad) unplotted.push({ p, why: label + ' is null on ' + bad.scene + ' (' + A.nullReason(bad, metric) + '), so its mean is undefined' });
+        else {
+          p.q = mean(r => A.metricValue(r, metric));
+          if (p.t > 0) pts.push(p); else unplotted.push({ p, why: 'its time is 0 ms, which a log axis cannot show' });
+        }
+      }
+    }
+    const order = new Map(A.specs.map((s, i) => [s, i]));
+    const all = pts.concat(unplotted.map(u => u.p)).sort((a, b) => order.get(a.spec) - order.get(b.spec));
+    return { pts, unplotted, all };
+  }
+
+  /// The Pareto front: no other point is at least as fast and at least as good (better = +1:
+  /// higher quality is better, -1: lower). Returned in increasing time.
+  function paretoFront(pts, better) {
+    const sorted = pts.slice().sort((a, b) => a.t - b.t || better * (b.q - a.q));
+    const out = [];
+    let best = -Infinity;
+    for (const p of sorted) {
+      if (better * p.q > best) { out.push(p); best = better * p.q; }
+    }
+    return out;
+  }
+  function dominator(p, pts, better) {
+    let found = null;
+    for (const o of pts) {
+      if (o === p || !(o.t <= p.t && better * o.q >= better * p.q && (o.t < p.t || better * o.q > better * p.q))) continue;
+      if (!found || o.t < found.t) found = o;
+    }
+    return found;
+  }
+
+  function logTicks(lo, hi) {
+    const out = [];
+    const e0 = Math.floor(Math.log10(lo)), e1 = Math.ceil(Math.log10(hi));
+    for (const mants of [[1, 2, 5], [1, 2, 3, 4, 5, 6, 7, 8, 9]]) {
+      out.length = 0;
+      for (let e = e0; e <= e1; e++) for (const m of mants) {
+        const v = Number((m * Math.pow(10, e)).toPrecision(6));
+        if (v >= lo && v <= hi) out.push(v);
+      }
+      if (out.length >= 3) break;
+    }
+    return out;
+  }
+  function linTicks(lo, hi) {
+    const raw = (hi - lo) / 6, mag = Math.pow(10, Math.floor(Math.log10(raw)));
+    const step = [1, 2, 2.5, 5, 10].map(k => k * mag).find(s => s >= raw);
+    const out = [];
+    for (let v = Math.ceil(lo / step) * step; v <= hi + step * 1e-9; v += step) out.push(Number(v.toPrecision(12)));
+    return out;
+  }
+  const tickText = v => String(Number(v.toPrecision(3)));
+
+  function qualityText(metric, q) {
+    const i = A.metricInfo(metric);
+    return A.fmtMetric(metric, q) + (i.unit ? ' ' + i.unit : '');
+  }
+
+  function tipText(p, ctx) {
+    const { scope, metric, base, better, dom, onFront } = ctx;
+    const i = A.metricInfo(metric);
+    const lines = [p.spec];
+    lines.push(i.label + ': ' + qualityText(metric, p.q) + (scope === 'suite' ? ' (mean over ' + p.rows.length + ' scenes)' : ''));
+    lines.push('time: ' + A.fmtMs(p.t) + ' ms' + (scope === 'scene' ? ' [' + A.fmtMs(p.tmin) + '–' + A.fmtMs(p.tmax) + ']' : ' (mean of medians)'));
+    if (base && base !== p && base.q !== null) {
+      const g = better * (p.q - base.q), dt = p.t - base.t;
+      lines.push('vs none: ' + A.signed(g, v => A.fmtMetric(metric, v)) + (i.unit ? ' ' + i.unit : '') + ' quality, ' +
+                 A.signed(dt, A.fmtMs) + ' ms' + (dt > 0 ? ' → ' + A.fmtSig(g / dt) + ' ' + (i.unit || 'Δ') + '/ms' : ''));
+    }
+    if (scope === 'scene') {
+      const r = p.rows[0], c = r.cost;
+      lines.push('rays/px ' + A.fmtSig(c.primary_rays_per_px) + ' + ' + A.fmtSig(c.shadow_rays_per_px) +
+                 ' · tex/px ' + A.fmtSig(c.texture_lookups_per_px) + ' · taps/px ' + A.fmtSig(c.taps_per_px));
+    }
+    lines.push(onFront ? 'on the Pareto front' : dom ? 'dominated by ' + dom.spec + ' (as fast or faster, as good or better)' : '');
+    return lines.filter(Boolean).join('\n');
+  }
+
+  function drawChart(box, scope, sceneName, metric, data) {
+    const info = A.metricInfo(metric), better = info.better, pts = data.pts;
+    if (!pts.length) {
+      box.append(el('p', { class: 'note', text: 'No method has a value of ' + info.label + ' to plot here.' }));
+      return;
+    }
+    const W = 660, H = 420, m = { l: 64, r: 18, t: 16, b: 52 };
+    let lx0 = Math.log10(Math.min(...pts.map(p => p.t))), lx1 = Math.log10(Math.max(...pts.map(p => p.t)));
+    if (lx1 - lx0 < 0.5) { const c = (lx0 + lx1) / 2; lx0 = c - 0.25; lx1 = c + 0.25; }
+    const padx = (lx1 - lx0) * 0.07; lx0 -= padx; lx1 += padx;
+    let y0 = Math.min(...pts.map(p => p.q)), y1 = Math.max(...pts.map(p => p.q));
+    let floor = null;
+    if (scope === 'scene' && info.psnr) {
+      const f = A.sceneByName.get(sceneName).reference.noise_floor_psnr_db;
+      if (typeof f === 'number') floor = f;
+    }
+    const floorIn = floor !== null && floor <= y1 + 6 && floor >= y0 - 6;
+    if (floorIn) { y0 = Math.min(y0, floor); y1 = Math.max(y1, floor); }
+    if (y1 - y0 < 1e-12) { const d = Math.abs(y0) * 0.05 || 0.5; y0 -= d; y1 += d; }
+    const pady = (y1 - y0) * 0.08; y0 -= pady; y1 += pady;
+    const X = t => m.l + (Math.log10(t) - lx0) / (lx1 - lx0) * (W - m.l - m.r);
+    const Y = q => H - m.b - (q - y0) / (y1 - y0) * (H - m.t - m.b);
+    const dirText = better > 0 ? 'higher is better ↑' : 'lower is better ↓';
+    const svg = sv('svg', { viewBox: '0 0 ' + W + ' ' + H, role: 'group',
+      'aria-label': (scope === 'suite' ? 'Suite mean: ' : 'Scene ' + sceneName + ': ') + info.label + ' (' + dirText + ') against time per frame; one focusable point per method' });
+    const grid = sv('g', { class: 'grid' }), axis = sv('g', { class: 'axis' });
+    for (const v of logTicks(Math.pow(10, lx0), Math.pow(10, lx1))) {
+      const x = X(v);
+      grid.append(sv('line', { x1: x, x2: x, y1: m.t, y2: H - m.b }));
+      axis.append(sv('text', { x, y: H - m.b + 15, 'text-anchor': 'middle', text: tickText(v) }));
+    }
+    for (const v of linTicks(y0, y1)) {
+      const y = Y(v);
+      grid.append(sv('line', { x1: m.l, x2: W - m.r, y1: y, y2: y }));
+      axis.append(sv('text', { x: m.l - 6, y: y + 4, 'text-anchor': 'end', text: A.fmtMetric(metric, v).replace(/\.?0+$/, '') || '0' }));
+    }
+    axis.append(sv('line', { x1: m.l, x2: W - m.r, y1: H - m.b, y2: H - m.b }));
+    axis.append(sv('line', { x1: m.l, x2: m.l, y1: m.t, y2: H - m.b }));
+    axis.append(sv('text', { class: 'axis-label', x: m.l + (W - m.l - m.r) / 2, y: H - 14, 'text-anchor': 'middle',
+      text: 'time per frame, ms (' + (scope === 'suite' ? 'mean of per-scene medians' : 'median') + ', log scale) →' }));
+    axis.append(sv('text', { class: 'axis-label', transform: 'translate(16 ' + (m.t + (H - m.t - m.b) / 2) + ') rotate(-90)',
+      'text-anchor': 'middle', text: (scope === 'suite' ? 'mean ' : '') + info.label + (info.unit ? ' (' + info.unit + ')' : '') + ' — ' + dirText }));
+    svg.append(grid, axis);
+    if (floor !== null) {
+      const label = 'reference noise floor ' + floor.toFixed(2) + ' dB';
+      if (floorIn) {
+        svg.append(sv('line', { class: 'floor', x1: m.l, x2: W - m.r, y1: Y(floor), y2: Y(floor) }));
+        svg.append(sv('text', { class: 'floor-label', x: W - m.r - 4, y: Y(floor) - 4, 'text-anchor': 'end',
+          text: label + (metric !== 'psnr_db' ? ' (whole image)' : '') }));
+      } else {
+        svg.append(sv('text', { class: 'floor-label', x: W - m.r - 4, y: m.t + 10, 'text-anchor': 'end',
+          text: label + (floor > y1 ? ' (above the plot)' : ' (below the plot)') }));
+      }
+    }
+    const front = paretoFront(pts, better);
+    const onFront = new Set(front);
+    if (front.length > 1) {
+      let d = 'M' + X(front[0].t).toFixed(1) + ' ' + Y(front[0].q).toFixed(1);
+      for (const p of front.slice(1)) d += ' H' + X(p.t).toFixed(1) + ' V' + Y(p.q).toFixed(1);
+      svg.append(sv('path', { class: 'front', d }, sv('title', { text: 'Pareto front: no method is both faster and better than these' })));
+    }
+    const base = data.all.find(p => p.spec === 'none' && p.q !== null) || null;
+    const placed = [];
+    const fits = (x, y, w) => {
+      const b = { x0: x, x1: x + w, y0: y - 10, y1: y + 2 };
+      if (b.x0 < m.l || b.x1 > W - m.r || b.y0 < m.t || b.y1 > H - m.b) return null;
+      for (const o of placed) if (!(b.x1 < o.x0 || b.x0 > o.x1 || b.y1 < o.y0 || b.y0 > o.y1)) return null;
+      return b;
+    };
+    for (const p of pts) placed.push({ x0: X(p.t) - 5, x1: X(p.t) + 5, y0: Y(p.q) - 5, y1: Y(p.q) + 5 });
+    const ordered = pts.filter(p => !onFront.has(p)).concat(front);
+    for (const p of ordered) {
+      const ctx = { scope, metric, base, better, onFront: onFront.has(p), dom: onFront.has(p) ? null : dominator(p, pts, better) };
+      const text = tipText(p, ctx);
+      const cx = X(p.t), cy = Y(p.q), c = A.colour(p.spec);
+      const g = sv('g', { class: 'pt ' + (onFront.has(p) ? 'front-pt' : 'dominated'), tabindex: '0', role: 'button',
+        'data-spec': p.spec, 'aria-label': text.replace(/\n/g, '; ') },
+        sv('title', { text }),
+        sv('circle', { cx: cx.toFixed(1), cy: cy.toFixed(1), r: onFront.has(p) ? 5.5 : 4.5, fill: c, stroke: c }));
+      if (onFront.has(p) || p.spec === 'none') {
+        const w = p.spec.length * 6 + 4;
+        for (const [dx, dy, anchor] of [[8, 4, 'start'], [8, -7, 'start'], [8, 15, 'start'], [-8, 4, 'end'], [-8, -7, 'end'], [-8, 15, 'end']]) {
+          const b = fits(anchor === 'end' ? cx + dx - w : cx + dx, cy + dy, w);
+          if (!b) continue;
+          placed.push(b);
+          g.append(sv('text', { x: (cx + dx).toFixed(1), y: (cy + dy).toFixed(1), 'text-anchor': anchor, text: p.spec }));
+          break;
+        }
+      }
+      g.addEventListener('mouseenter', e => A.showTip(text, g, e));
+      g.addEventListener('mousemove', e => A.showTip(text, g, e));
+      g.addEventListener('mouseleave', A.hideTip);
+      g.addEventListener('focus', () => A.showTip(text, g, null));
+      g.addEventListener('blur', A.hideTip);
+      g.addEventListener('click', () => A.select(p.spec));
+      g.addEventListener('keydown', e => { if (e.key === 'Enter' || e.key === ' ') { e.preventDefault(); A.select(p.spec); } });
+      svg.append(g);
+    }
+    box.append(svg);
+    const fams = A.families.filter(f => pts.some(p => A.family(p.spec) === f));
+    box.append(el('div', { class: 'legend' }, ...fams.map(f => el('span', {}, el('i', { style: 'background:' + A.colour(f) }), f)),
+      el('span', {}, el('i', { style: 'background:transparent;border:2px solid ' + getComputedStyle(document.documentElement).getPropertyValue('--front') }),
+        'Pareto front (filled: on it; hollow: dominated)')));
+    if (data.unplotted.length) {
+      box.append(el('p', { class: 'unplotted' }, 'Not plotted: ' + data.unplotted.map(u => u.p.spec + ' — ' + u.why).join('; ') + '.'));
+    }
+  }
+
+  function costTable(box, scope, metric, data) {
+    const info = A.metricInfo(metric), better = info.better;
+    const gainUnit = info.unit || 'Δ';
+    const base = data.all.find(p => p.spec === 'none') || null;
+    const front = new Set(paretoFront(data.pts, better).map(p => p.spec));
+    const th = (label, attrs, title) => el('th', Object.assign({ scope: 'col', title }, attrs || {}), el('button', { type: 'button' }, label));
+    const table = el('table', { class: 'cost sortable' },
+      el('caption', {}, 'Cost of accuracy' + (scope === 'suite' ? ' (suite means)' : '') + ': what each method gains over ',
+        el('code', { text: 'none' }), ' in ' + info.label + ' and what it adds in time.'),
+      el('thead', {}, el('tr', {},
+        th('Method', { 'data-type': 'text' }),
+        th(info.label + (info.unit ? ' ' + info.unit : ''), { 'data-first': better > 0 ? 'descending' : 'ascending' }, info.help),
+        th('Gain ' + gainUnit, { 'data-first': 'descending' }, better > 0 ? 'quality − none\'s quality' : 'none\'s value − this value (positive = less error)'),
+        th('Time ms', {}, scope === 'suite' ? 'mean over scenes of the median time per frame' : 'median time per frame'),
+        th('Added ms', {}, 'time − none\'s time'),
+        th(gainUnit + '/ms', { 'data-first': 'descending' }, 'gain ÷ time added, only when time added > 0'),
+        th('Front', { 'data-first': 'descending' }, 'on the Pareto front of the chart'))));
+    const body = el('tbody');
+    const dash = (why) => el('td', { class: 'dash', title: why }, '—');
+    const num = (v, text, title) => el('td', { class: 'num', 'data-v': v, title }, text);
+    for (const p of data.all) {
+      const tr = el('tr', { 'data-spec': p.spec });
+      tr.append(el('th', { scope: 'row', 'data-v': p.spec }, el('span', { class: 'method', text: p.spec })));
+      const un = data.unplotted.find(u => u.p === p);
+      tr.append(p.q === null ? dash(un ? un.why : 'no value') : num(p.q, A.fmtMetric(metric, p.q)));
+      const tOk = Number.isFinite(p.t);
+      if (!base) {
+        tr.append(dash('this run has no none row: nothing to compare with'));
+      } else if (p.q === null || base.q === null) {
+        tr.append(dash(p.q === null ? (un ? un.why : 'no value') : 'none has no value of ' + info.label));
+      } else {
+        const g = better * (p.q - base.q);
+        tr.append(num(g, A.signed(g, v => A.fmtMetric(metric, v))));
+      }
+      tr.append(tOk ? num(p.t, A.fmtMs(p.t), scope === 'scene' ? 'min–max ' + A.fmtMs(p.tmin) + '–' + A.fmtMs(p.tmax) + ' ms' : null)
+                    : dash('time undefined'));
+      let dt = null;
+      if (!base || !tOk) tr.append(dash(!base ? 'no none row' : 'time undefined'));
+      else {
+        dt = p.t - base.t;
+        const noisy = scope === 'scene' && p !== base && p.tmin <= base.tmax && base.tmin <= p.tmax;
+        const td = num(dt, A.signed(dt, A.fmtMs) + (noisy ? ' ≈' : ''),
+          noisy ? 'min–max ranges overlap with none\'s (' + A.fmtMs(base.tmin) + '–' + A.fmtMs(base.tmax) +
+                  ' ms): within this run\'s timing noise' : null);
+        tr.append(td);
+      }
+      if (p === base) tr.append(dash('the baseline: no gain, no time added'));
+      else if (!base || p.q === null || base.q === null || dt === null) tr.append(dash('no gain or no time to divide'));
+      else if (dt <= 0) tr.append(dash('time added is ' + A.fmtMs(dt) + ' ms (≤ 0): not measurably slower than none in this run, so a gain per ms is undefined (no division by zero or by a negative time)'));
+      else {
+        const g = better * (p.q - base.q);
+        tr.append(num(g / dt, A.fmtSig(g / dt).replace('-', '−'), g < 0 ? 'negative: worse than none and slower' : null));
+      }
+      tr.append(front.has(p.spec) ? el('td', { class: 'front-mark', 'data-v': '1', title: 'on the Pareto front' }, '●')
+                                  : el('td', { 'data-v': '0' }, ''));
+      tr.addEventListener('click', () => A.select(p.spec));
+      body.append(tr);
+    }
+    table.append(body);
+    A.makeSortable(table);
+    A.sortTable(table, 3);  // by time, fastest first
+    box.append(el('div', { class: 'table-wrap' }, table));
+    box.append(el('p', { class: 'note' }, better > 0
+      ? 'Gain = quality − none\'s quality; '
+      : 'Gain = none\'s ' + info.label + ' − this method\'s (lower is better, so a positive gain means less error); ',
+      gainUnit + '/ms = gain ÷ time added, shown only when time added > 0 ms (else “—”, hover for why). ≈: the time difference is within the min–max spread. CPU times of this implementation; see the timing methodology.'));
+  }
+
+  function renderQC(qc) {
+    const scope = qc.dataset.scope, sceneName = qc.dataset.scene, metric = A.state.metric;
+    const hadFocus = qc.contains(document.activeElement) && document.activeElement.tagName === 'SELECT';
+    qc.replaceChildren();
+    qc.dataset.metric = metric || '';
+    if (!metric) {
+      qc.append(A.el('p', { class: 'note', text: 'No metric in this report has a known direction (better = higher or lower), so there is nothing to chart.' }));
+      return;
+    }
+    const selectEl = el('select', { onchange: e => { A.state.metric = e.target.value; refreshActive(true); } },
+      ...A.META.axis.map(n => el('option', { value: n, selected: n === metric }, A.metricLabel(n) + (A.metricInfo(n).better > 0 ? ' ↑ higher is better' : ' ↓ lower is better'))));
+    const data = collect(scope, sceneName, metric);
+    const chartBox = el('div', { class: 'chart-box' },
+      el('div', { class: 'ctl' }, el('label', {}, 'Quality axis ', selectEl),
+        el('span', { class: 'hint', text: 'Hover or Tab to a point for its numbers; Enter or click selects it in the gallery.' })));
+    drawChart(chartBox, scope, sceneName, metric, data);
+    const costBox = el('div', { class: 'cost-box' });
+    costTable(costBox, scope, metric, data);
+    qc.append(chartBox, costBox);
+    if (hadFocus) selectEl.focus();
+    markSelected(qc);
+  }
+  function markSelected(root) {
+    for (const g of root.querySelectorAll('.pt')) g.classList.toggle('selected', g.dataset.spec === A.state.spec);
+    for (const tr of root.querySelectorAll('table.cost tbody tr')) tr.classList.toggle('selected', tr.dataset.spec === A.state.spec);
+  }
+  function refreshActive(force) {
+    const sec = A.sectionOf(A.state.view);
+    if (!sec) return;
+    for (const qc of sec.querySelectorAll('.qc')) if (force || qc.dataset.metric !== (A.state.metric || '')) renderQC(qc);
+  }
+  A.hooks.render.push(sec => { for (const qc of sec.querySelectorAll('.qc')) if (qc.dataset.metric !== (A.state.metric || '')) renderQC(qc); });
+  A.hooks.select.push(() => { for (const qc of document.querySelectorAll('.qc')) markSelected(qc); });
+  A.setMetric = m => { A.state.metric = m; refreshActive(true); };
+  A.collect = collect;
+  A.paretoFront = paretoFront;
+})();
+)JS";
+
+}  // namespace aalab::html

@@ -1,0 +1,275 @@
+// The HTML report's script, part 3: the gallery (A/B slider against the reference or `none`,
+// zoomed crops of every method, heatmaps, edge mask, debug views; arrow-key navigation), the
+// self-test behind `#selftest`, and the start-up call.
+#include "reports/html_assets.h"
+
+namespace aalab::html {
+
+const char* const kScriptGallery = R"JS(
+(function () {
+  const A = AA, el = A.el, state = A.state;
+  let G = null;  // the one gallery that exists: { host, scene, specs, parts }
+
+  function rowOf(sceneName, spec) { return (A.rowsByScene.get(sceneName) || []).find(r => r.spec === spec) || null; }
+  function outputOf(sceneName, spec) { const r = rowOf(sceneName, spec); return r && r.images ? r.images.output || null : null; }
+  function autoCropZoom(scene) {
+    const w = Math.max(1, ...scene.crops.map(c => c[2]));
+    return Math.max(4, Math.min(8, Math.round(128 / w)));
+  }
+  function fileLink(path, label) { return el('a', { href: A.imgUrl(path) }, label); }
+  function roleLabel(role) { const s = role.replace(/^debug_/, '').replace(/_/g, ' '); return s.charAt(0).toUpperCase() + s.slice(1); }
+
+  function zoomSelect(label, values, current, onchange) {
+    return el('label', {}, label + ' ', el('select', { onchange: e => onchange(Number(e.target.value)) },
+      ...values.map(v => el('option', { value: v, selected: v === current }, v === 0 ? 'auto' : '×' + v))));
+  }
+
+  function build(host) {
+    const scene = A.sceneByName.get(host.dataset.scene);
+    const specs = (A.rowsByScene.get(scene.name) || []).map(r => r.spec);
+    if (!specs.length) { host.replaceChildren(el('p', { class: 'note', text: 'No rows for this scene.' })); return; }
+    if (!specs.includes(state.spec)) state.spec = specs.find(s => s !== 'none') || specs[0];
+    const idx = A.scenes.indexOf(scene), n = A.scenes.length;
+    const g = el('div', { class: 'gallery', tabindex: '0', role: 'region',
+      'aria-label': 'Gallery of ' + scene.name + '. Left and right arrows switch methods, up and down switch scenes.' });
+    const hasNone = specs.includes('none');
+    const cmp = v => el('label', {}, el('input', { type: 'radio', name: 'cmp-' + idx, value: v, checked: state.compare === v,
+      disabled: v === 'none' && !hasNone, onchange: () => { state.compare = v; renderAB(); } }), ' ' + v);
+    g.append(el('div', { class: 'bar' },
+      el('span', {}, 'Scene ', el('b', { text: scene.name }), ' (' + (idx + 1) + '/' + n + ') ',
+        el('button', { type: 'button', disabled: idx === 0, title: 'previous scene (↑)', onclick: () => moveScene(-1, false) }, '↑'),
+        el('button', { type: 'button', disabled: idx === n - 1, title: 'next scene (↓)', onclick: () => moveScene(1, false) }, '↓')),
+      el('span', {}, 'Compare with ', cmp('reference'), ' ', cmp('none')),
+      zoomSelect('A/B zoom', [0, 1, 2, 4, 8], state.abZoom, v => { state.abZoom = v; renderAB(); }),
+      zoomSelect('Crop zoom', [0, 4, 6, 8], state.cropZoom, v => { state.cropZoom = v; renderCrops(); }),
+      el('span', { class: 'hint', text: 'Click here, then ←/→ method, ↑/↓ scene. Every image opens its file.' })));
+    const methods = el('div', { class: 'methods', role: 'group', 'aria-label': 'Methods' },
+      ...specs.map(s => el('button', { type: 'button', 'data-spec': s, 'aria-pressed': String(s === state.spec), onclick: () => A.select(s) }, s)));
+    const parts = { summary: el('div', { class: 'summary' }), ab: el('div'), links: el('p', { class: 'links' }),
+      crops: el('div', { class: 'crops' }), maps: el('div', { class: 'figs' }), debug: el('div', { class: 'figs debug' }) };
+    g.append(methods, parts.summary, parts.ab, parts.links,
+      el('h4', { text: 'Zoomed crops — where none is furthest from the reference on edges (reference first)' }), parts.crops,
+      el('h4', { text: 'Error maps and edge mask' }), parts.maps,
+      el('h4', { text: 'Debug views' }), parts.debug);
+    g.addEventListener('keydown', onKey);
+    host.replaceChildren(g);
+    G = { host, scene, specs, parts, methods, g };
+    renderCrops();
+    renderSelected();
+  }
+
+  function onKey(e) {
+    if (e.altKey || e.ctrlKey || e.metaKey || e.shiftKey) return;
+    if (e.target.closest && e.target.closest('input, select, textarea')) return;  // the slider and selects keep their arrows
+    if (e.key === 'ArrowLeft' || e.key === 'ArrowRight') {
+      const i = G.specs.indexOf(state.spec), d = e.key === 'ArrowLeft' ? -1 : 1;
+      A.select(G.specs[(i + d + G.specs.length) % G.specs.length]);
+      e.preventDefault();
+    } else if (e.key === 'ArrowUp' || e.key === 'ArrowDown') {
+      moveScene(e.key === 'ArrowUp' ? -1 : 1, true);
+      e.preventDefault();
+    }
+  }
+
+  function moveScene(d, focus) {
+    const i = A.scenes.indexOf(G.scene) + d;
+    if (i < 0 || i >= A.scenes.length) return;
+    A.goScene(A.scenes[i].name);
+    if (focus && G) G.g.focus();
+  }
+
+  function renderSelected() {
+    if (!G) return;
+    for (const b of G.methods.querySelectorAll('button')) b.setAttribute('aria-pressed', String(b.dataset.spec === state.spec));
+    for (const c of G.parts.crops.querySelectorAll('.crop-cell')) c.classList.toggle('selected', c.dataset.spec === state.spec);
+    renderSummary();
+    renderAB();
+    renderMaps();
+  }
+
+  function renderSummary() {
+    const r = rowOf(G.scene.name, state.spec), s = G.scene;
+    const bits = [];
+    for (const name of Object.keys(r.metrics || {})) {
+      const v = A.metricValue(r, name), i = A.metricInfo(name);
+      bits.push(i.label + ' ' + (v === null ? '— (' + A.nullReason(r, name) + ')' : A.fmtMetric(name, v) + (i.unit ? ' ' + i.unit : '')));
+    }
+    const t = r.timing.total;
+    bits.push('time ' + A.fmtMs(t.median_ms) + ' ms [' + A.fmtMs(t.min_ms) + '–' + A.fmtMs(t.max_ms) + ']');
+    if (r.render_size && (r.render_size[0] !== s.width || r.render_size[1] !== s.height)) bits.push('rendered at ' + r.render_size[0] + '×' + r.render_size[1]);
+    G.parts.summary.replaceChildren(el('b', { class: 'method', text: r.spec }), ': ' + bits.join(' · '));
+  }
+
+  function renderAB() {
+    if (!G) return;
+    const s = G.scene, W = s.width, H = s.height;
+    const z = state.abZoom || Math.max(1, Math.min(8, Math.floor(960 / W)));  // auto: about 960 px wide
+    const aPath = outputOf(s.name, state.spec);
+    const useNone = state.compare === 'none' && outputOf(s.name, 'none');
+    const bPath = useNone ? outputOf(s.name, 'none') : s.images.reference_png;
+    const bName = useNone ? 'none' : 'reference (' + s.reference.spp + ' spp)';
+    if (!aPath || !bPath) {
+      G.parts.ab.replaceChildren(el('p', { class: 'note', text: 'No ' + (!aPath ? 'output image for ' + state.spec : 'image to compare with') + ' in this report.' }));
+      G.parts.links.replaceChildren();
+      return;
+    }
+    const imgA = el('img', { class: 'a', src: A.imgUrl(aPath), alt: state.spec + ' output', width: W, height: H, draggable: 'false' });
+    const imgB = el('img', { src: A.imgUrl(bPath), alt: bName, width: W, height: H, draggable: 'false' });
+    const b = el('div', { class: 'b' }, imgB);
+    const line = el('div', { class: 'line' });
+    const ab = el('div', { class: 'ab' + (z > 1 ? ' zoomed' : ''), style: 'width:' + W * z + 'px;height:' + H * z + 'px',
+      title: 'Drag to move the split: left ' + state.spec + ', right ' + bName },
+      imgA, b, line, el('span', { class: 'tag', style: 'left:4px', text: '◀ ' + state.spec }),
+      el('span', { class: 'tag', style: 'right:4px', text: bName + ' ▶' }));
+    s.crops.forEach((c, k) => ab.append(el('div', { class: 'crop-box',
+      style: 'left:' + c[0] * z + 'px;top:' + c[1] * z + 'px;width:' + c[2] * z + 'px;height:' + c[3] * z + 'px' },
+      el('span', { text: String(k + 1) }))));
+    const range = el('input', { type: 'range', class: 'ab-range', min: '0', max: '100', step: '0.5', value: String(state.split),
+      'aria-label': 'A/B split: left ' + state.spec + ', right ' + bName });
+    const setSplit = v => {
+      state.split = Math.max(0, Math.min(100, v));
+      b.style.clipPath = 'inset(0 0 0 ' + state.split + '%)';
+      line.style.left = state.split + '%';
+      range.value = String(state.split);
+    };
+    setSplit(state.split);
+    range.addEventListener('input', () => setSplit(Number(range.value)));
+    let drag = false;
+    const fromEvent = e => { const r = ab.getBoundingClientRect(); setSplit((e.clientX - r.left) / r.width * 100); };
+    ab.addEventListener('pointerdown', e => { drag = true; ab.setPointerCapture(e.pointerId); fromEvent(e); });
+    ab.addEventListener('pointermove', e => { if (drag) fromEvent(e); });
+    ab.addEventListener('pointerup', () => { drag = false; });
+    ab.addEventListener('pointercancel', () => { drag = false; });
+    G.parts.ab.replaceChildren(el('div', { class: 'ab-wrap', style: 'width:min(100%,' + W * z + 'px)' }, el('div', { class: 'ab-scroll' }, ab), range));
+    const links = ['Files: ', fileLink(aPath, state.spec + ' output'), ' · ', fileLink(s.images.reference_png, 'reference PNG')];
+    if (s.images.reference_exr) links.push(' · ', fileLink(s.images.reference_exr, 'reference EXR'), ' (display-linear float)');
+    if (outputOf(s.name, 'none')) links.push(' · ', fileLink(outputOf(s.name, 'none'), 'none'));
+    links.push(' · ', el('a', { href: 'report.json' }, 'report.json'));
+    G.parts.links.replaceChildren(...links);
+  }
+
+  function renderCrops() {
+    if (!G) return;
+    const s = G.scene, W = s.width, H = s.height, box = G.parts.crops;
+    box.replaceChildren();
+    if (!s.crops.length) { box.append(el('p', { class: 'note', text: 'No crop windows: none has no edge error against the reference here.' })); return; }
+    const z = state.cropZoom || autoCropZoom(s);
+    const items = [{ label: 'reference', path: s.images.reference_png, spec: '' }]
+      .concat(G.specs.map(sp => ({ label: sp, path: outputOf(s.name, sp), spec: sp })));
+    s.crops.forEach((c, k) => {
+      const strip = el('div', { class: 'crop-strip' });
+      for (const it of items) {
+        if (!it.path) continue;
+        const cell = el('div', { class: 'crop-cell' + (it.spec && it.spec === state.spec ? ' selected' : ''), 'data-spec': it.spec, style: 'width:' + c[2] * z + 'px' },
+          el('a', { class: 'crop', href: A.imgUrl(it.path), title: it.label + ' — crop ' + (k + 1) + ' (click opens the full image)',
+            style: 'width:' + c[2] * z + 'px;height:' + c[3] * z + 'px' },
+            el('img', { src: A.imgUrl(it.path), loading: 'lazy', alt: it.label + ', crop ' + (k + 1), width: W * z, height: H * z,
+              style: 'left:' + -c[0] * z + 'px;top:' + -c[1] * z + 'px;width:' + W * z + 'px;height:' + H * z + 'px' })),
+          it.spec ? el('button', { type: 'button', title: 'select ' + it.spec, onclick: () => A.select(it.spec) }, it.label)
+                  : el('span', { class: 'hint', text: 'reference' }));
+        strip.append(cell);
+      }
+      box.append(el('div', {}, el('div', { class: 'hint', text: 'Crop ' + (k + 1) + ': x ' + c[0] + ', y ' + c[1] + ', ' + c[2] + '×' + c[3] + ' px, ×' + z + ' nearest neighbour' }), strip));
+    });
+  }
+
+  function figure(path, caption, W, H, pixelated) {
+    return el('figure', {}, el('a', { href: A.imgUrl(path) },
+      el('img', { src: A.imgUrl(path), loading: 'lazy', alt: caption, width: W, height: H, class: pixelated ? 'pixelated' : null })),
+      el('figcaption', { text: caption }));
+  }
+
+  function renderMaps() {
+    const s = G.scene, r = rowOf(s.name, state.spec), images = (r && r.images) || {};
+    const maps = Object.keys(images).filter(k => k !== 'output' && !k.startsWith('debug_'));
+    const figs = maps.map(k => figure(images[k], roleLabel(k) + ' — ' + r.spec, s.width, s.height, false));
+    if (s.images.edge_mask) figs.push(figure(s.images.edge_mask, 'Edge mask (white = geometric edge; ' + (100 * s.edge_pixel_fraction).toFixed(1) + '% of pixels)', s.width, s.height, false));
+    if (!maps.length) figs.unshift(el('p', { class: 'note', text: 'No error heatmaps for ' + state.spec + ' in this report.' }));
+    G.parts.maps.replaceChildren(...figs);
+    const dbg = Object.keys(images).filter(k => k.startsWith('debug_'));
+    if (dbg.length) G.parts.debug.replaceChildren(...dbg.map(k => figure(images[k], roleLabel(k) + ' — ' + r.spec, s.width, s.height, true)));
+    else G.parts.debug.replaceChildren(el('p', { class: 'note', text: A.DATA.settings.debug_views === 'true'
+      ? state.spec + ' has no debug views.' : 'Debug views were not saved in this run (aalab run --debug-views saves the FXAA ones).' }));
+  }
+
+  A.hooks.render.push(sec => { for (const host of sec.querySelectorAll('.gallery-host')) if (!G || G.host !== host) build(host); });
+  A.hooks.leave.push(sec => {
+    for (const host of sec.querySelectorAll('.gallery-host')) {
+      if (G && G.host === host) { host.replaceChildren(); G = null; }  // one gallery in the DOM at a time
+    }
+  });
+  A.hooks.select.push(() => renderSelected());
+
+  // ---- self-test (only with #selftest in the URL): used by tests/reports/html_browser_test ----
+  A.selfTest = async function () {
+    const problems = [];
+    let rows = 0, points = 0, galleries = 0;
+    const srcs = new Set();
+    const addSrc = p => { if (p && !/\.exr$/i.test(p)) srcs.add(A.imgUrl(p)); };
+    try {
+      for (const s of A.scenes) {
+        A.goScene(s.name);
+        const sec = A.sectionOf('scene-' + s.name);
+        if (!sec || !sec.classList.contains('active')) { problems.push('scene view not shown: ' + s.name); continue; }
+        for (const p of Object.values(s.images || {})) addSrc(p);
+        for (const r of A.rowsByScene.get(s.name) || []) {
+          for (const p of Object.values(r.images || {})) addSrc(p);
+          if (Array.from(sec.querySelectorAll('table.metrics tr.row')).some(t => t.dataset.spec === r.spec && t.dataset.scene === s.name)) rows++;
+          else problems.push('no table row: ' + s.name + ' × ' + r.spec);
+          const unp = sec.querySelector('.qc .unplotted');
+          if (Array.from(sec.querySelectorAll('.qc .pt')).some(g => g.dataset.spec === r.spec) || (unp && unp.textContent.includes(r.spec))) points++;
+          else if (A.state.metric) problems.push('not in the chart: ' + s.name + ' × ' + r.spec);
+          const btn = Array.from(sec.querySelectorAll('.gallery .methods button')).find(b => b.dataset.spec === r.spec);
+          if (btn) { btn.click(); galleries++; } else problems.push('not in the gallery: ' + s.name + ' × ' + r.spec);
+        }
+        const g = sec.querySelector('.gallery'), before = A.state.spec;
+        if (g) g.dispatchEvent(new KeyboardEvent('keydown', { key: 'ArrowRight', bubbles: true }));
+        if ((A.rowsByScene.get(s.name) || []).length > 1 && A.state.spec === before) problems.push('ArrowRight did not switch the method on ' + s.name);
+      }
+      if (A.scenes.length > 1) {  // ArrowUp in the last scene's gallery goes to the one before
+        const g = document.querySelector('section.view.active .gallery');
+        if (g) g.dispatchEvent(new KeyboardEvent('keydown', { key: 'ArrowUp', bubbles: true }));
+        if (A.state.view !== 'scene-' + A.scenes[A.scenes.length - 2].name) problems.push('ArrowUp did not switch the scene');
+      }
+      A.showView('suite');
+      const def = A.state.metric;
+      for (const m of A.META.axis) A.setMetric(m);
+      A.setMetric(def);
+      const pt = document.querySelector('section.view.active .qc .pt');
+      if (pt) {  // keyboard focus on a point shows its numbers
+        pt.focus();
+        const t = document.getElementById('tooltip');
+        if (t.hidden || !t.textContent.includes(pt.dataset.spec)) problems.push('focusing a chart point shows no tooltip');
+        pt.blur();
+      }
+      const table = document.querySelector('table.metrics');
+      if (table && table.tHead.rows[0].cells.length > 1) {  // sorting by the first numeric column
+        table.tHead.rows[0].cells[1].querySelector('button').click();
+        const th = table.tHead.rows[0].cells[1], desc = th.getAttribute('aria-sort') === 'descending';
+        const keys = Array.from(table.tBodies[0].rows).map(r => r.cells[1].dataset.v).filter(v => v !== undefined).map(Number);
+        if (!th.getAttribute('aria-sort') || keys.some((v, i) => i > 0 && (desc ? v > keys[i - 1] : v < keys[i - 1]))) problems.push('sorting a table failed');
+      }
+      for (const e of document.querySelectorAll('[href], [src]')) {
+        const v = e.getAttribute('href') !== null ? e.getAttribute('href') : e.getAttribute('src');
+        if (/^([a-z][a-z0-9+.-]*:|\/)/i.test(v)) problems.push('absolute or network URL: ' + v);
+      }
+      const failed = (await Promise.all(Array.from(srcs).map(src => new Promise(res => {
+        const im = new Image();
+        im.onload = () => res(im.naturalWidth > 0 ? null : src);
+        im.onerror = () => res(src);
+        im.src = src;
+      })))).filter(Boolean);
+      const ok = !problems.length && !failed.length && !A.errors.length;
+      const lines = [(ok ? 'OK' : 'FAIL') + ' scenes=' + A.scenes.length + ' rows=' + rows + ' points=' + points + ' galleries=' + galleries +
+        ' images=' + srcs.size + ' failed=' + failed.length + ' errors=' + A.errors.length + ' problems=' + problems.length]
+        .concat(failed.map(f => 'failed image: ' + f), A.errors, problems);
+      document.body.prepend(el('pre', { id: 'selftest', text: lines.join('\n') }));
+    } catch (e) {
+      document.body.prepend(el('pre', { id: 'selftest', text: 'FAIL exception: ' + (e && e.stack || e) + '\n' + A.errors.concat(problems).join('\n') }));
+    }
+  };
+})();
+AA.init();
+)JS";
+
+}  // namespace aalab::html

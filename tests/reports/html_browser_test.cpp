@@ -1,0 +1,124 @@
+// The HTML report in a real browser: `aalab run` on a tiny suite, then index.html loaded from
+// disk (file://) in headless Chromium with the page's self-test (#selftest). Fails on any
+// console message or script error, any image that does not load, and any scene × method the
+// page does not show. Saves screenshots into the build folder for a human to look at.
+// Skipped (visibly) only when /usr/bin/chromium is not installed.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+namespace fs = std::filesystem;
+
+constexpr const char* kChromium = "/usr/bin/chromium";
+
+struct CmdResult {
+  int code = -1;
+  std::string output;
+};
+
+CmdResult RunCmd(const std::string& cmd) {
+  CmdResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string ReadFile(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+std::string Quote(const std::string& s) { return "'" + s + "'"; }  // paths here have no quotes
+
+/// Headless Chromium with no network services, a throw-away profile and console logging to stderr.
+std::string Chromium(const fs::path& profile, const std::string& args) {
+  return std::string("timeout 180 ") + kChromium +
+         " --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --disable-background-networking"
+         " --disable-component-update --disable-sync --no-first-run --hide-scrollbars --user-data-dir=" +
+         Quote(profile.string()) + " --enable-logging=stderr --v=0 " + args;
+}
+
+TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
+  if (!fs::exists(kChromium)) {
+    GTEST_SKIP() << "SKIPPED: " << kChromium
+                 << " is not installed, so the HTML report was NOT tested in a browser. Install it with "
+                    "scripts/install-deps.sh (Debian package 'chromium').";
+  }
+  const fs::path work = fs::path(AALAB_BINARY_DIR) / "html_browser_test";
+  const fs::path out = work / "run";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  const CmdResult run = RunCmd(std::string(AALAB_BINARY_DIR) + "/aalab run --scenes wedges,circle --methods "
+                            "none,ssaa-2x2,fxaa1-p3 --size 64x36 --ref-spp 4 --repeat 1 --debug-views --quiet --out " +
+                            Quote(out.string()) + " 2>&1");
+  ASSERT_EQ(run.code, 0) << run.output;
+  ASSERT_TRUE(fs::exists(out / "index.html"));
+  const std::string url = "file://" + fs::absolute(out / "index.html").string();
+
+  // 1. The self-test: every view, every row, every chart point, every gallery entry, every image.
+  const fs::path dom_path = work / "dom.html", log_path = work / "chromium.log";
+  const CmdResult dump = RunCmd(Chromium(work / "profile-selftest", "--virtual-time-budget=30000 --dump-dom " +
+                                                                     Quote(url + "#selftest")) +
+                             " > " + Quote(dom_path.string()) + " 2> " + Quote(log_path.string()));
+  ASSERT_EQ(dump.code, 0) << "chromium failed; log: " << log_path << "\n" << ReadFile(log_path);
+  const std::string dom = ReadFile(dom_path);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(dom, m, std::regex("<pre id=\"selftest\">([^<]*)</pre>")))
+      << "no self-test verdict in the page (script did not run?); DOM in " << dom_path;
+  const std::string verdict = m[1];
+  EXPECT_EQ(verdict.rfind("OK scenes=2 rows=6 points=6 galleries=6 ", 0), 0u) << verdict;
+  for (const char* zero : {" failed=0", " errors=0", " problems=0"}) EXPECT_NE(verdict.find(zero), std::string::npos) << verdict;
+  EXPECT_EQ(verdict.find("images=0 "), std::string::npos) << verdict;
+
+  // 2. Every scene and method of report.json is in the page (the tables are static HTML).
+  const auto report = nlohmann::json::parse(ReadFile(out / "report.json"));
+  ASSERT_EQ(report["rows"].size(), 6u);
+  for (const auto& row : report["rows"]) {
+    const std::string key = "data-scene=\"" + row["scene"].get<std::string>() + "\" data-spec=\"" +
+                            row["spec"].get<std::string>() + "\"";
+    EXPECT_NE(dom.find(key), std::string::npos) << key;
+  }
+  for (const auto& s : report["scenes"]) {
+    EXPECT_NE(dom.find("data-view=\"scene-" + s["name"].get<std::string>() + "\""), std::string::npos) << s["name"];
+  }
+
+  // 3. A healthy page logs nothing: any console message or uncaught error from it fails.
+  std::istringstream log(ReadFile(log_path));
+  for (std::string line; std::getline(log, line);) {
+    EXPECT_EQ(line.find(":CONSOLE"), std::string::npos) << "console output: " << line;
+    EXPECT_EQ(line.find("Uncaught"), std::string::npos) << line;
+  }
+
+  // 4. Screenshots of the suite overview and of a scene (charts, tables, gallery) for a human.
+  for (const std::string view : {"suite", "scene-wedges"}) {
+    const fs::path shot = work / ("screenshot-" + view + ".png");
+    const CmdResult r = RunCmd(Chromium(work / ("profile-" + view), "--virtual-time-budget=10000 --window-size=1400,2000 "
+                                                                 "--screenshot=" + Quote(shot.string()) + " " +
+                                                                 Quote(url + "#" + view)) +
+                            " 2>&1");
+    EXPECT_EQ(r.code, 0) << r.output;
+    ASSERT_TRUE(fs::exists(shot)) << r.output;
+    EXPECT_GT(fs::file_size(shot), 20000u) << shot << " looks empty";
+    std::printf("screenshot: %s\n", shot.c_str());
+  }
+}
+
+}  // namespace
