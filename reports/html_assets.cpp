@@ -159,6 +159,9 @@ td.near-floor { color:var(--warn); }
 .prose { max-width:1000px; } .prose li { margin:4px 0; } .caveat { color:var(--warn); }
 footer { padding:4px 20px 30px; border-top:1px solid var(--line); background:var(--panel); }
 .ctx { display:flex; flex-wrap:wrap; gap:24px; }
+table.stability td, table.stability th { padding:3px 8px; vertical-align:top; border-bottom:1px solid #ddd; }
+table.stability tr.hard th { color:#8a3b00; } .tag { font-size:11px; border:1px solid currentColor; border-radius:3px; padding:0 3px; }
+ul.nulls { margin:0; padding-left:16px; font-size:12px; }
 table.kv th { color:var(--muted); } table.kv td { font-family: ui-monospace, "DejaVu Sans Mono", monospace; }
 #selftest { white-space:pre-wrap; font-size:12px; border:2px solid var(--accent); padding:6px; margin:10px 20px; }
 @media print { .js .view { display:block; } header.top { position:static; } .gallery { display:none; } }

@@ -1,4 +1,5 @@
 #include "reports/html_report.h"
+#include "reports/html_stability.h"
 
 #include <algorithm>
 #include <cmath>
@@ -405,6 +406,7 @@ std::string RenderHtmlReport(const Report& r) {
   h += "</section>\n";
   for (size_t i = 0; i < r.scenes.size(); ++i) SceneSection(h, r, r.scenes[i], static_cast<int>(i));
   Methodology(h, r);
+  AppendStabilitySection(h, r);
   h += "</main>\n";
   ContextSection(h, r);
   h += "<div id=\"tooltip\" role=\"tooltip\" hidden></div>\n";

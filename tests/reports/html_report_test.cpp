@@ -1,6 +1,7 @@
 // The HTML report page built from a Report made in code: rows, escaping, embedded JSON, links,
 // noise-floor marks, null reasons.
 #include "reports/html_report.h"
+#include "reports/html_stability.h"
 
 #include <gtest/gtest.h>
 
@@ -209,6 +210,36 @@ TEST(HtmlReport, Helpers) {
   EXPECT_EQ(html::DescribeMetric("mystery").better, 0);  // unknown direction: not offered as a chart axis
   EXPECT_TRUE(html::IsPsnrMetric("interior_psnr_db"));
   EXPECT_FALSE(html::IsPsnrMetric("mse"));
+}
+
+
+TEST(HtmlStability, CountsFiniteAndNullValuesWithReasons) {
+  Report r;
+  SceneResult hard;
+  hard.name = "hard-dark";
+  SceneResult easy;
+  easy.name = "wedges";
+  r.scenes = {easy, hard};
+  ResultRow a;
+  a.scene = "hard-dark";
+  a.spec = "fxaa311-p39";
+  a.metrics = {{"psnr_db", std::nullopt, "identical"}, {"ssim", 1.0, ""}};
+  ResultRow b;
+  b.scene = "wedges";
+  b.spec = "none";
+  b.metrics = {{"psnr_db", 30.0, ""}, {"ssim", 0.9, ""}};
+  r.rows = {a, b};
+  std::string h;
+  AppendStabilitySection(h, r);
+  EXPECT_NE(h.find("4 metric values, 1 null with a reason, 0 invalid"), std::string::npos) << h;
+  // The hard scene is listed first, with its null value, reason and method.
+  EXPECT_LT(h.find("hard-dark"), h.find("wedges"));
+  EXPECT_NE(h.find("<code>psnr_db</code> null — identical: fxaa311-p39"), std::string::npos);
+  // A null without a reason counts as invalid.
+  r.rows[1].metrics[1] = {"ssim", std::nullopt, ""};
+  h.clear();
+  AppendStabilitySection(h, r);
+  EXPECT_NE(h.find("1 invalid"), std::string::npos);
 }
 
 }  // namespace
