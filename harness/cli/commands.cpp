@@ -220,6 +220,8 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       return 0;
     };
   });
+  RegisterCompareCommands(app, commands);
+  RegisterSweepCommands(app, commands);
 }
 
 }  // namespace aalab

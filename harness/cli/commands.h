@@ -15,4 +15,11 @@ struct Commands {
 /// Adds every subcommand to `app`; the parsed one sets `commands.action`.
 void RegisterCommands(CLI::App& app, Commands& commands);
 
+/// Adds `compare` and `history` (compare_commands.cpp). `compare` returns its own exit codes:
+/// 0 no regression, 1 regression, 2 could not compare (errors included).
+void RegisterCompareCommands(CLI::App& app, Commands& commands);
+
+/// Adds `sweep` (sweep_commands.cpp).
+void RegisterSweepCommands(CLI::App& app, Commands& commands);
+
 }  // namespace aalab
