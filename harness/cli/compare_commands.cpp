@@ -146,9 +146,13 @@ int CompareCommand(const CompareArgs& a) {
     std::fprintf(stderr, "aalab: error: %s\n", e.what());
     std::fprintf(stderr, "aalab: could not compare (exit 2)\n");
     return 2;
-  } catch (const fs::filesystem_error& e) {
+  } catch (const InternalError&) {
+    throw;  // a bug: exit 3 from main
+  } catch (const std::exception& e) {
+    // Anything else (file system, parsing) also means "could not compare", never "regression".
     std::fflush(stdout);
     std::fprintf(stderr, "aalab: error: %s\n", e.what());
+    std::fprintf(stderr, "aalab: could not compare (exit 2)\n");
     return 2;
   }
 }

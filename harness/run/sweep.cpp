@@ -481,7 +481,9 @@ std::string ParetoSvg(const SweepResult& r) {
     lo -= d;
     hi += d;
   };
+  const bool nonneg = tmin >= 0;
   pad(tmin, tmax);
+  if (nonneg) tmin = std::max(0.0, tmin);  // no negative times on the axis
   pad(qmin, qmax);
   auto X = [&](double t) { return L + (W - L - R) * (t - tmin) / (tmax - tmin); };
   auto Y = [&](double q) { return std::isinf(q) ? T - 8 : T + (H - T - B) * (1.0 - (q - qmin) / (qmax - qmin)); };
