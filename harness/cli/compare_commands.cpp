@@ -194,6 +194,11 @@ int HistoryAdd(const HistoryAddArgs& a) {
     auto it = report.context.find("date");
     if (it != report.context.end()) {
       date = it->second;
+      try {
+        ValidateHistoryDate(date);
+      } catch (const UserError& e) {
+        throw UserError("report '" + a.report + "' context.date: " + e.what() + "; give the date with --date");
+      }
     } else {
       struct stat st {};
       if (stat(a.report.c_str(), &st) != 0) throw UserError("report '" + a.report + "' cannot be read");
