@@ -221,6 +221,8 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
     };
   });
   RegisterMetricsCommand(app, commands);
+  RegisterCompareCommands(app, commands);
+  RegisterSweepCommands(app, commands);
 }
 
 }  // namespace aalab

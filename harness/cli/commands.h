@@ -17,5 +17,11 @@ void RegisterCommands(CLI::App& app, Commands& commands);
 
 /// `aalab metrics` (harness/cli/metrics_command.cpp).
 void RegisterMetricsCommand(CLI::App& app, Commands& commands);
+/// Adds `compare` and `history` (compare_commands.cpp). `compare` returns its own exit codes:
+/// 0 no regression, 1 regression, 2 could not compare (errors included).
+void RegisterCompareCommands(CLI::App& app, Commands& commands);
+
+/// Adds `sweep` (sweep_commands.cpp).
+void RegisterSweepCommands(CLI::App& app, Commands& commands);
 
 }  // namespace aalab

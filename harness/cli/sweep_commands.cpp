@@ -1,0 +1,78 @@
+// `aalab sweep`: thin CLI over harness/run/sweep.h.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "harness/cli/commands.h"
+#include "harness/core/error.h"
+#include "harness/run/runner.h"
+#include "harness/run/sweep.h"
+
+namespace aalab {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::string> SplitNames(const std::string& text, const std::string& what) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item.empty()) throw UserError(what + " '" + text + "' has an empty item");
+    out.push_back(item);
+  }
+  if (!text.empty() && text.back() == ',') throw UserError(what + " '" + text + "' ends with a comma");
+  return out;
+}
+
+constexpr const char* kSweepNotes = R"(Each scene's reference and 1x frame are rendered once and reused for every grid point.
+Grid values go through the method's parameter table (unknown parameter or out-of-range value:
+the method's own error); a parameter given twice is an error; at most 1024 points.
+Objective: mean over scenes (a null 'identical' PSNR counts as +infinity; any other null
+makes the point's mean null). Time: the method's own time (post + resample, plus render unless
+shared with 'none'), median over repeats, mean over scenes. Best: the best mean, ties broken by
+grid order. Pareto front: points no other point beats on both objective and time.
+Writes DIR/sweep.json and DIR/index.html (via DIR.partial).)";
+
+}  // namespace
+
+void RegisterSweepCommands(CLI::App& app, Commands& commands) {
+  auto* sw = app.add_subcommand("sweep", "tune one method over a parameter grid; prints the best setting and a preset line");
+  struct Args {
+    SweepSettings s;
+    std::string scenes, size = "960x540", objectives;
+  };
+  auto a = std::make_shared<Args>();
+  sw->add_option("--scenes", a->scenes, "comma-separated library scene names or scene file paths")->required();
+  sw->add_option("--method", a->s.method, "method to tune, optionally with fixed overrides (fxaa1-p3:search_steps=8)")
+      ->required();
+  sw->add_option("--grid", a->s.grid, "NAME=V1,V2,... (repeat for more parameters; see aalab list methods)")
+      ->required();
+  sw->add_option("--objective", a->objectives,
+                 "comma-separated metrics to optimise, the first drives the Pareto front, heatmaps and suggested "
+                 "preset (default: edge_psnr_db when computed, else psnr_db)");
+  sw->add_option("--out", a->s.out_dir, "output folder")->capture_default_str();
+  sw->add_option("--size", a->size, "output size WxH")->capture_default_str();
+  sw->add_option("--ref-spp", a->s.ref_spp, "reference samples per pixel: n*n, n even (4, 16, 64, 256, 1024)")
+      ->capture_default_str();
+  sw->add_option("--seed", a->s.seed, "jitter seed")->capture_default_str();
+  sw->add_option("--repeat", a->s.repeat, "timed repeats after one warm-up")->capture_default_str();
+  sw->add_option("--threads", a->s.threads, "worker threads (0 = all hardware threads)")->capture_default_str();
+  sw->add_flag("--quiet", a->s.quiet, "no progress on stderr");
+  sw->footer(kSweepNotes);
+  sw->callback([&commands, a] {
+    commands.action = [a] {
+      ParseSize(a->size, &a->s.width, &a->s.height);
+      a->s.scenes = SplitNames(a->scenes, "--scenes");
+      if (!a->objectives.empty()) a->s.objectives = SplitNames(a->objectives, "--objective");
+      const SweepResult r = RunSweep(a->s);
+      std::fputs(SweepSummaryText(r).c_str(), stdout);
+      std::printf("wrote %s and %s\n", (fs::absolute(r.out_dir) / "sweep.json").string().c_str(),
+                  (fs::absolute(r.out_dir) / "index.html").string().c_str());
+      return 0;
+    };
+  });
+}
+
+}  // namespace aalab

@@ -1,0 +1,672 @@
+// Preset tuning: one method over a parameter grid, references rendered once per scene.
+// Rules (objective means, Pareto front, heatmap aggregation, tie-break) in sweep.h and
+// README "Regression tracking and tuning".
+#include "harness/run/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/core/error.h"
+#include "harness/core/parallel.h"
+#include "harness/core/params.h"
+#include "harness/core/timer.h"
+#include "harness/io/image_io.h"
+#include "harness/run/pipeline.h"
+#include "harness/run/runner.h"
+#include "methods/registry.h"
+#include "metrics/metric.h"
+#include "reports/compare_html.h"
+#include "reports/report_json.h"
+#include "scenes/render.h"
+
+namespace aalab {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string JoinOverrides(const std::vector<std::pair<std::string, std::string>>& kv) {
+  std::string s;
+  for (const auto& [k, v] : kv) s += (s.empty() ? "" : ",") + k + "=" + v;
+  return s;
+}
+
+std::string SpecText(const std::string& name, const std::vector<std::pair<std::string, std::string>>& overrides) {
+  return overrides.empty() ? name : name + ":" + JoinOverrides(overrides);
+}
+
+std::string ValueText(const std::string& metric, double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (IsDbMetric(metric)) return FormatFixed(v, 3);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string MeanText(const std::string& metric, const ObjectiveMean& m) {
+  if (!m.mean) return "null (" + m.null_reason + ")";
+  return ValueText(metric, *m.mean) + (IsDbMetric(metric) && std::isfinite(*m.mean) ? " dB" : "");
+}
+
+/// a better than b (strictly) for `better`; empty values are worst.
+bool Better_(const std::optional<double>& a, const std::optional<double>& b, Better better) {
+  if (!a) return false;
+  if (!b) return true;
+  return better == Better::kHigher ? *a > *b : *a < *b;
+}
+
+/// Progress on stderr.
+void Progress(bool quiet, int done, int total, const std::string& what, const Stopwatch& clock) {
+  if (quiet) return;
+  const double elapsed = clock.ElapsedMs() / 1000.0;
+  const double eta = done > 0 ? elapsed / done * (total - done) : 0.0;
+  std::fprintf(stderr, "[%4d/%d] %-52s elapsed %6.1fs  eta %6.1fs\n", done, total, what.c_str(), elapsed, eta);
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+std::vector<GridAxis> ParseGrid(const std::vector<std::string>& args, const std::string& base_spec) {
+  if (args.empty()) {
+    throw UserError("give at least one --grid NAME=V1,V2,... (the method's parameters: aalab list methods)");
+  }
+  const Spec base = ParseSpec(base_spec);
+  std::vector<GridAxis> axes;
+  std::vector<std::string> given;
+  for (const auto& arg : args) {
+    const auto eq = arg.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == arg.size()) {
+      throw UserError("--grid '" + arg + "' is not NAME=V1,V2,... (e.g. --grid edge_threshold=0.063,0.125,0.25)");
+    }
+    GridAxis axis;
+    axis.name = arg.substr(0, eq);
+    for (size_t i = 0; i < axes.size(); ++i) {
+      if (axes[i].name == axis.name) {
+        throw UserError("parameter '" + axis.name + "' is given twice (--grid " + given[i] + " and --grid " + arg + ")");
+      }
+    }
+    for (const auto& [k, v] : base.overrides) {
+      if (k == axis.name) {
+        throw UserError("parameter '" + axis.name + "' is set both in --method '" + base_spec + "' and in --grid " + arg);
+      }
+    }
+    const std::string list = arg.substr(eq + 1);
+    size_t pos = 0;
+    while (true) {
+      const size_t comma = list.find(',', pos);
+      const std::string v = list.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+      if (v.empty()) throw UserError("--grid '" + arg + "' has an empty value");
+      if (std::find(axis.values.begin(), axis.values.end(), v) != axis.values.end()) {
+        throw UserError("--grid '" + arg + "' lists value '" + v + "' twice");
+      }
+      axis.values.push_back(v);
+      if (comma == std::string::npos) break;
+      pos = comma + 1;
+    }
+    axes.push_back(axis);
+    given.push_back(arg);
+  }
+  return axes;
+}
+
+std::vector<std::string> ExpandGrid(const std::string& base_spec, std::vector<GridAxis>* axes) {
+  const Spec base = ParseSpec(base_spec);
+  size_t count = 1;
+  std::string shape;
+  for (const auto& a : *axes) {
+    count = std::min(count * a.values.size(), kMaxSweepPoints + 1);
+    shape += (shape.empty() ? "" : " x ") + a.name + " (" + std::to_string(a.values.size()) + ")";
+  }
+  if (count > kMaxSweepPoints) {
+    size_t exact = 1;
+    bool overflow = false;
+    for (const auto& a : *axes) {
+      if (exact > std::numeric_limits<size_t>::max() / a.values.size()) overflow = true;
+      exact *= a.values.size();
+    }
+    throw UserError("the grid " + shape + " has " + (overflow ? std::string("too many") : std::to_string(exact)) +
+                    " points; the limit is " + std::to_string(kMaxSweepPoints) + " (sweep fewer values or split the sweep)");
+  }
+  // Each value through the method's own parameter table, to its canonical text.
+  for (auto& a : *axes) {
+    std::vector<std::string> canon;
+    for (const auto& v : a.values) {
+      auto overrides = base.overrides;
+      overrides.emplace_back(a.name, v);
+      const MethodPlan plan = MakeMethod(SpecText(base.name, overrides));
+      std::string text;
+      for (const auto& [k, val] : plan.params.Ordered()) {
+        if (k == a.name) text = val;
+      }
+      AALAB_CHECK(!text.empty(), "a resolved parameter has a value");
+      for (size_t i = 0; i < canon.size(); ++i) {
+        if (canon[i] == text) {
+          throw UserError("--grid " + a.name + ": values '" + a.values[i] + "' and '" + v + "' are the same value (" + text + ")");
+        }
+      }
+      canon.push_back(text);
+    }
+    a.values = canon;
+  }
+  std::vector<std::string> specs;
+  std::vector<size_t> odo(axes->size(), 0);
+  for (size_t n = 0; n < count; ++n) {
+    auto overrides = base.overrides;
+    for (size_t k = 0; k < axes->size(); ++k) overrides.emplace_back((*axes)[k].name, (*axes)[k].values[odo[k]]);
+    specs.push_back(MakeMethod(SpecText(base.name, overrides)).spec);
+    for (size_t k = axes->size(); k-- > 0;) {
+      if (++odo[k] < (*axes)[k].values.size()) break;
+      odo[k] = 0;
+    }
+  }
+  return specs;
+}
+
+std::vector<size_t> ParetoFront(const std::vector<double>& t, const std::vector<std::optional<double>>& q, Better better) {
+  AALAB_CHECK(t.size() == q.size(), "one time per quality");
+  auto at_least = [better](double a, double b) { return better == Better::kHigher ? a >= b : a <= b; };
+  auto strictly = [better](double a, double b) { return better == Better::kHigher ? a > b : a < b; };
+  std::vector<size_t> front;
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (!q[i]) continue;
+    bool dominated = false;
+    for (size_t j = 0; j < t.size() && !dominated; ++j) {
+      if (j == i || !q[j]) continue;
+      dominated = t[j] <= t[i] && at_least(*q[j], *q[i]) && (t[j] < t[i] || strictly(*q[j], *q[i]));
+    }
+    if (!dominated) front.push_back(i);
+  }
+  std::sort(front.begin(), front.end(), [&t](size_t a, size_t b) { return t[a] != t[b] ? t[a] < t[b] : a < b; });
+  return front;
+}
+
+ObjectiveMean MeanOverScenes(const std::vector<const ResultRow*>& rows, const std::string& metric) {
+  ObjectiveMean m;
+  const auto dir = MetricDirection(metric);
+  double sum = 0;
+  bool inf = false;
+  std::string inf_scene;
+  for (const ResultRow* r : rows) {
+    const MetricResult* found = nullptr;
+    for (const auto& x : r->metrics) {
+      if (x.name == metric) found = &x;
+    }
+    if (!found) {
+      m.null_reason = "absent on scene " + r->scene;
+      return m;
+    }
+    if (found->value) {
+      sum += *found->value;
+    } else if (found->null_reason == "identical" && dir && *dir == Better::kHigher) {
+      inf = true;
+      if (inf_scene.empty()) inf_scene = r->scene;
+    } else {
+      m.null_reason = "null on scene " + r->scene + ": " + found->null_reason;
+      return m;
+    }
+  }
+  if (rows.empty()) {
+    m.null_reason = "no scenes";
+    return m;
+  }
+  m.mean = inf ? kInf : sum / static_cast<double>(rows.size());
+  if (inf) m.null_reason = "identical to the reference on scene " + inf_scene;
+  return m;
+}
+
+SweepResult RunSweep(const SweepSettings& s) {
+  SetThreadCount(s.threads);
+  // Validate everything before any work.
+  if (s.repeat < 1 || s.repeat > 1000) throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
+  const int ref_grid = ReferenceGridForSpp(s.ref_spp);
+  if (s.scenes.empty()) throw UserError("give the scenes to sweep with --scenes a,b (see aalab list scenes)");
+  if (s.method.empty()) throw UserError("give the method to tune with --method NAME (see aalab list methods)");
+  SweepResult res;
+  res.method = MakeMethod(s.method).name;
+  res.axes = ParseGrid(s.grid, s.method);
+  const std::vector<std::string> specs = ExpandGrid(s.method, &res.axes);
+  const std::vector<MethodPlan> plans = ResolveMethods(specs);
+
+  std::vector<std::string> produced;
+  for (const auto& e : MetricRegistry()) {
+    for (const auto& o : e.outputs) produced.push_back(o);
+  }
+  auto is_produced = [&produced](const std::string& m) {
+    return std::find(produced.begin(), produced.end(), m) != produced.end();
+  };
+  res.objectives = s.objectives;
+  if (res.objectives.empty()) {
+    res.objectives = {is_produced("edge_psnr_db") ? "edge_psnr_db" : "psnr_db"};
+    if (res.objectives[0] != "edge_psnr_db") {
+      res.objective_note = "objective psnr_db: the default edge_psnr_db is not computed by this build";
+    }
+  }
+  for (size_t i = 0; i < res.objectives.size(); ++i) {
+    const std::string& o = res.objectives[i];
+    if (!MetricDirection(o)) throw UserError("--objective: unknown metric '" + o + "' (known: " + KnownMetricsText() + ")");
+    if (!is_produced(o)) {
+      throw UserError("--objective: metric '" + o + "' is not computed by this build (computed: " + JoinNames(produced) + ")");
+    }
+    for (size_t j = 0; j < i; ++j) {
+      if (res.objectives[j] == o) throw UserError("--objective: metric '" + o + "' is listed twice");
+    }
+  }
+  std::vector<std::unique_ptr<Scene>> scenes = LoadScenes(s.scenes);
+
+  if (s.out_dir.empty()) throw UserError("--out must not be empty");
+  const fs::path out(s.out_dir);
+  if (fs::exists(out)) {
+    if (!fs::is_directory(out)) throw UserError("--out '" + s.out_dir + "' exists and is not a folder");
+    if (!fs::is_empty(out) && !fs::exists(out / "sweep.json")) {
+      throw UserError("--out '" + s.out_dir + "' is a non-empty folder without a sweep.json; refusing to replace it");
+    }
+  }
+  res.out_dir = s.out_dir;
+
+  Report& report = res.report;
+  for (const auto& [k, v] : ContextFacts()) report.context[k] = v;
+  std::string grid_text;
+  for (const auto& a : res.axes) {
+    std::string values;
+    for (const auto& v : a.values) values += (values.empty() ? "" : ",") + v;
+    grid_text += (grid_text.empty() ? "" : "; ") + a.name + "=" + values;
+  }
+  report.settings = {{"scenes", JoinNames(s.scenes)},
+                     {"method", s.method},
+                     {"grid", grid_text},
+                     {"objectives", JoinNames(res.objectives)},
+                     {"size", std::to_string(s.width) + "x" + std::to_string(s.height)},
+                     {"ref_spp", std::to_string(s.ref_spp)},
+                     {"seed", std::to_string(s.seed)},
+                     {"threads", std::to_string(ThreadCount())},
+                     {"repeat", std::to_string(s.repeat)},
+                     {"warmup", "1"}};
+
+  const int total = static_cast<int>(scenes.size() * (plans.size() + 1));
+  int done = 0;
+  Stopwatch clock;
+  std::vector<std::vector<const ResultRow*>> per_point(plans.size());
+  report.rows.reserve(scenes.size() * plans.size());
+  for (auto& scene_ptr : scenes) {
+    const std::string name = scene_ptr->name;
+    const auto prepared = PrepareScene(std::move(scene_ptr), s.width, s.height, ref_grid, s.seed, s.repeat);
+    ++res.reference_renders;
+    report.scenes.push_back(prepared->info);
+    Progress(s.quiet, ++done, total, name + " reference", clock);
+    for (size_t p = 0; p < plans.size(); ++p) {
+      MethodOutput mo = RunMethod(*prepared, plans[p], s.seed, s.repeat);
+      report.rows.push_back(std::move(mo.row));
+      res.row_point.push_back(p);
+      Progress(s.quiet, ++done, total, name + " " + plans[p].spec, clock);
+    }
+  }
+  for (size_t i = 0; i < report.rows.size(); ++i) per_point[res.row_point[i]].push_back(&report.rows[i]);
+
+  // Summaries.
+  for (size_t p = 0; p < plans.size(); ++p) {
+    SweepPoint pt;
+    pt.spec = plans[p].spec;
+    for (const auto& a : res.axes) {
+      for (const auto& [k, v] : plans[p].params.Ordered()) {
+        if (k == a.name) pt.overrides.emplace_back(k, v);
+      }
+    }
+    for (const auto& o : res.objectives) pt.objectives[o] = MeanOverScenes(per_point[p], o);
+    double t = 0;
+    for (const ResultRow* r : per_point[p]) t += MethodTime(*r).median_ms;
+    pt.mean_time_ms = per_point[p].empty() ? 0.0 : t / static_cast<double>(per_point[p].size());
+    res.points.push_back(pt);
+  }
+  const std::string& primary = res.objectives.front();
+  const Better primary_dir = *MetricDirection(primary);
+  {
+    std::vector<double> t;
+    std::vector<std::optional<double>> q;
+    for (const auto& pt : res.points) {
+      t.push_back(pt.mean_time_ms);
+      q.push_back(pt.objectives.at(primary).mean);
+    }
+    res.pareto_front = ParetoFront(t, q, primary_dir);
+    for (size_t i : res.pareto_front) res.points[i].pareto = true;
+  }
+  for (const auto& o : res.objectives) {
+    const Better dir = *MetricDirection(o);
+    std::optional<size_t> best;
+    for (size_t p = 0; p < res.points.size(); ++p) {
+      const auto& m = res.points[p].objectives.at(o).mean;
+      if (!m) continue;
+      if (!best || Better_(m, res.points[*best].objectives.at(o).mean, dir)) best = p;  // ties: first in grid order
+    }
+    if (best) {
+      res.best[o] = *best;
+      int ties = 0;
+      for (size_t p = 0; p < res.points.size(); ++p) {
+        if (p != *best && res.points[p].objectives.at(o).mean == res.points[*best].objectives.at(o).mean) ++ties;
+      }
+      res.best_ties[o] = ties;
+    }
+  }
+  if (res.best.count(primary)) res.suggested_preset = res.points[res.best.at(primary)].spec;
+
+  // sweep.json: the summary, then scenes and rows in the report schema (plus each row's point).
+  using Json = nlohmann::ordered_json;
+  const Json rep = ReportToJson(report);
+  Json j;
+  j["sweep_version"] = 1;
+  j["context"] = rep["context"];
+  j["settings"] = rep["settings"];
+  j["method"] = res.method;
+  j["base_spec"] = s.method;
+  Json axes = Json::array();
+  for (const auto& a : res.axes) axes.push_back({{"name", a.name}, {"values", a.values}});
+  j["axes"] = axes;
+  j["objectives"] = res.objectives;
+  j["reference_renders"] = res.reference_renders;
+  auto mean_json = [](const ObjectiveMean& m) {
+    Json x;
+    x["mean"] = m.mean && std::isfinite(*m.mean) ? Json(*m.mean) : Json(nullptr);
+    if (!m.mean || !std::isfinite(*m.mean)) {
+      x["null_reason"] = m.mean ? "infinite: " + m.null_reason : m.null_reason;
+    }
+    return x;
+  };
+  Json points = Json::array();
+  for (size_t p = 0; p < res.points.size(); ++p) {
+    const auto& pt = res.points[p];
+    Json x;
+    x["index"] = p;
+    Json ov = Json::object();
+    for (const auto& [k, v] : pt.overrides) ov[k] = v;
+    x["overrides"] = ov;
+    x["spec"] = pt.spec;
+    Json obj = Json::object();
+    for (const auto& o : res.objectives) obj[o] = mean_json(pt.objectives.at(o));
+    x["objectives"] = obj;
+    x["mean_time_ms"] = pt.mean_time_ms;
+    x["pareto"] = pt.pareto;
+    points.push_back(x);
+  }
+  j["points"] = points;
+  j["pareto_front"] = res.pareto_front;
+  Json best = Json::object();
+  for (const auto& [o, p] : res.best) {
+    Json b = mean_json(res.points[p].objectives.at(o));
+    b["point"] = p;
+    b["spec"] = res.points[p].spec;
+    b["ties"] = res.best_ties.at(o);
+    best[o] = b;
+  }
+  j["best"] = best;
+  j["suggested_preset"] = res.suggested_preset.empty() ? Json(nullptr) : Json(res.suggested_preset);
+  j["scenes"] = rep["scenes"];
+  Json rows = rep["rows"];
+  for (size_t i = 0; i < rows.size(); ++i) rows[i]["point"] = res.row_point[i];
+  j["rows"] = rows;
+
+  const fs::path tmp = out.string() + ".partial";
+  fs::remove_all(tmp);
+  fs::create_directories(tmp);
+  WriteTextFile((tmp / "sweep.json").string(), j.dump(2) + "\n");
+  WriteTextFile((tmp / "index.html").string(), SweepHtml(res));
+  fs::remove_all(out);
+  fs::rename(tmp, out);
+  return res;
+}
+
+std::string SweepSummaryText(const SweepResult& r) {
+  std::ostringstream o;
+  std::string shape;
+  for (const auto& a : r.axes) shape += (shape.empty() ? "" : " x ") + a.name + " (" + std::to_string(a.values.size()) + ")";
+  o << "sweep: " << r.method << " over " << shape << " = " << r.points.size() << " points on "
+    << r.report.scenes.size() << " scenes; " << r.reference_renders << " reference renders\n";
+  if (!r.objective_note.empty()) o << "note: " << r.objective_note << "\n";
+  for (const auto& obj : r.objectives) {
+    auto it = r.best.find(obj);
+    if (it == r.best.end()) {
+      o << "best " << obj << ": none (every point's mean is null: " << r.points.front().objectives.at(obj).null_reason
+        << ")\n";
+      continue;
+    }
+    const SweepPoint& p = r.points[it->second];
+    o << "best " << obj << " (mean over " << r.report.scenes.size() << " scenes): " << MeanText(obj, p.objectives.at(obj))
+      << " at " << JoinOverrides(p.overrides) << " (method time " << FormatFixed(p.mean_time_ms, 3) << " ms)";
+    const int ties = r.best_ties.at(obj);
+    if (ties > 0) o << "; " << ties << " other point(s) tie, the first in grid order is shown";
+    o << "\n";
+  }
+  const std::string& primary = r.objectives.front();
+  o << "pareto front (" << primary << " vs method time, " << r.pareto_front.size() << " points):\n";
+  for (size_t i : r.pareto_front) {
+    const SweepPoint& p = r.points[i];
+    o << "  " << FormatFixed(p.mean_time_ms, 3) << " ms  " << MeanText(primary, p.objectives.at(primary)) << "  "
+      << JoinOverrides(p.overrides) << "\n";
+  }
+  if (r.suggested_preset.empty()) {
+    o << "suggested preset: none (no point has a defined " << primary << ")\n";
+  } else {
+    o << "suggested preset: " << r.suggested_preset << "\n";
+  }
+  return o.str();
+}
+
+namespace {
+
+std::string ParetoSvg(const SweepResult& r) {
+  const std::string& obj = r.objectives.front();
+  const double W = 620, H = 380, L = 70, R = 20, T = 20, B = 44;
+  double tmin = kInf, tmax = -kInf, qmin = kInf, qmax = -kInf;
+  for (const auto& p : r.points) {
+    tmin = std::min(tmin, p.mean_time_ms);
+    tmax = std::max(tmax, p.mean_time_ms);
+    const auto& m = p.objectives.at(obj).mean;
+    if (m && std::isfinite(*m)) {
+      qmin = std::min(qmin, *m);
+      qmax = std::max(qmax, *m);
+    }
+  }
+  if (!(tmin <= tmax)) tmin = 0, tmax = 1;
+  if (!(qmin <= qmax)) qmin = 0, qmax = 1;
+  auto pad = [](double& lo, double& hi) {
+    const double span = hi - lo;
+    const double d = span > 1e-12 ? span * 0.06 : std::max(1e-3, std::fabs(hi) * 0.01);
+    lo -= d;
+    hi += d;
+  };
+  const bool nonneg = tmin >= 0;
+  pad(tmin, tmax);
+  if (nonneg) tmin = std::max(0.0, tmin);  // no negative times on the axis
+  pad(qmin, qmax);
+  auto X = [&](double t) { return L + (W - L - R) * (t - tmin) / (tmax - tmin); };
+  auto Y = [&](double q) { return std::isinf(q) ? T - 8 : T + (H - T - B) * (1.0 - (q - qmin) / (qmax - qmin)); };
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W
+    << " " << H << "\" role=\"img\"><title>Pareto front: " << HtmlEscape(obj) << " vs method time</title>\n";
+  s << "<line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L << "\" y2=\"" << H - B << "\" stroke=\"#888\"/>"
+    << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << W - R << "\" y2=\"" << H - B << "\" stroke=\"#888\"/>\n";
+  const int dq = IsDbMetric(obj) ? 2 : 4;
+  s << "<text x=\"" << L - 4 << "\" y=\"" << T + 4 << "\" font-size=\"11\" text-anchor=\"end\">" << FormatFixed(qmax, dq)
+    << "</text><text x=\"" << L - 4 << "\" y=\"" << H - B << "\" font-size=\"11\" text-anchor=\"end\">"
+    << FormatFixed(qmin, dq) << "</text>\n";
+  s << "<text x=\"" << L << "\" y=\"" << H - B + 14 << "\" font-size=\"11\">" << FormatFixed(tmin, 3) << "</text>"
+    << "<text x=\"" << W - R << "\" y=\"" << H - B + 14 << "\" font-size=\"11\" text-anchor=\"end\">" << FormatFixed(tmax, 3)
+    << "</text>\n";
+  s << "<text x=\"" << (L + W - R) / 2 << "\" y=\"" << H - 8 << "\" font-size=\"12\" text-anchor=\"middle\">method time, "
+       "mean over scenes of the median (ms) &#8594; cheaper to the left</text>\n";
+  s << "<text x=\"14\" y=\"" << (T + H - B) / 2 << "\" font-size=\"12\" text-anchor=\"middle\" transform=\"rotate(-90 14 "
+    << (T + H - B) / 2 << ")\">" << HtmlEscape(obj) << " (mean over scenes)</text>\n";
+  std::string path;
+  for (size_t i : r.pareto_front) {
+    const auto& m = r.points[i].objectives.at(obj).mean;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s%.1f,%.1f ", path.empty() ? "M" : "L", X(r.points[i].mean_time_ms), Y(*m));
+    path += buf;
+  }
+  if (!path.empty()) s << "<path d=\"" << path << "\" fill=\"none\" stroke=\"#d00020\" stroke-width=\"1.5\"/>\n";
+  for (size_t i = 0; i < r.points.size(); ++i) {
+    const auto& p = r.points[i];
+    const auto& m = p.objectives.at(obj);
+    if (!m.mean) continue;
+    s << "<g><title>" << HtmlEscape(p.spec + ": " + MeanText(obj, m) + ", " + FormatFixed(p.mean_time_ms, 3) + " ms" +
+                                     (p.pareto ? " (Pareto front)" : ""))
+      << "</title><circle cx=\"" << X(p.mean_time_ms) << "\" cy=\"" << Y(*m.mean) << "\" r=\"" << (p.pareto ? 5 : 3)
+      << "\" fill=\"" << (p.pareto ? "#d00020" : "#8899aa") << "\"/></g>\n";
+  }
+  s << "</svg>";
+  return s.str();
+}
+
+/// Heatmap of the first objective over axes a (rows) × b (columns; b == a: one row), each
+/// cell the best value over the other axes.
+std::string HeatmapSvg(const SweepResult& r, size_t a, size_t b) {
+  const std::string& obj = r.objectives.front();
+  const Better dir = *MetricDirection(obj);
+  const GridAxis& A = r.axes[a];
+  const GridAxis& Bx = r.axes[b];
+  const bool one = a == b;
+  const size_t rows = one ? 1 : A.values.size(), cols = Bx.values.size();
+  std::vector<std::optional<double>> cell(rows * cols);
+  std::vector<bool> defined(rows * cols, false);
+  for (const auto& p : r.points) {
+    size_t i = 0, j = 0;
+    for (size_t k = 0; k < A.values.size(); ++k) {
+      if (p.overrides[a].second == A.values[k]) i = k;
+    }
+    for (size_t k = 0; k < Bx.values.size(); ++k) {
+      if (p.overrides[b].second == Bx.values[k]) j = k;
+    }
+    if (one) i = 0;
+    const auto& m = p.objectives.at(obj).mean;
+    auto& c = cell[i * cols + j];
+    if (m && (!c || Better_(m, c, dir))) c = m;
+    defined[i * cols + j] = true;
+  }
+  double lo = kInf, hi = -kInf;
+  for (const auto& c : cell) {
+    if (c && std::isfinite(*c)) {
+      lo = std::min(lo, *c);
+      hi = std::max(hi, *c);
+    }
+  }
+  std::optional<double> best_value;
+  for (const auto& c : cell) {
+    if (c && (!best_value || Better_(c, best_value, dir))) best_value = c;
+  }
+  const double cw = 76, ch = 30, L = 120, T = 52;
+  const double W = L + cw * cols + 10, H = T + ch * rows + 10;
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W << " "
+    << H << "\" role=\"img\"><title>" << HtmlEscape(obj) << " over " << HtmlEscape(one ? A.name : A.name + " x " + Bx.name)
+    << "</title>\n";
+  s << "<text x=\"" << L << "\" y=\"14\" font-size=\"12\">" << HtmlEscape(Bx.name) << " &#8594;"
+    << (one ? "" : "  (rows: " + HtmlEscape(A.name) + ")") << "</text>\n";
+  for (size_t j = 0; j < cols; ++j) {
+    s << "<text x=\"" << L + cw * j + cw / 2 << "\" y=\"" << T - 8 << "\" font-size=\"11\" text-anchor=\"middle\">"
+      << HtmlEscape(Bx.values[j]) << "</text>";
+  }
+  s << "\n";
+  for (size_t i = 0; i < rows; ++i) {
+    s << "<text x=\"" << L - 6 << "\" y=\"" << T + ch * i + ch / 2 + 4 << "\" font-size=\"11\" text-anchor=\"end\">"
+      << HtmlEscape(one ? obj : A.name + "=" + A.values[i]) << "</text>";
+    for (size_t j = 0; j < cols; ++j) {
+      const auto& c = cell[i * cols + j];
+      double t = 0.5;
+      std::string fill = "#dddddd", label = "null";
+      if (c) {
+        if (std::isinf(*c)) {
+          t = dir == Better::kHigher ? (*c > 0 ? 1.0 : 0.0) : (*c < 0 ? 1.0 : 0.0);
+        } else if (hi > lo) {
+          t = (*c - lo) / (hi - lo);
+          if (dir == Better::kLower) t = 1.0 - t;
+        } else {
+          t = 1.0;
+        }
+        fill = RampColor(t);
+        label = ValueText(obj, *c);
+      }
+      const std::string text_color = c && t < 0.55 ? "#ffffff" : "#000000";
+      s << "<g><title>" << HtmlEscape((one ? "" : A.name + "=" + A.values[i] + ", ") + Bx.name + "=" + Bx.values[j] + ": " +
+                                      label + (r.axes.size() > 2 ? " (best over the other parameters)" : ""))
+        << "</title><rect x=\"" << L + cw * j << "\" y=\"" << T + ch * i << "\" width=\"" << cw - 1 << "\" height=\""
+        << ch - 1 << "\" fill=\"" << fill << "\""
+        << (c && c == best_value ? " stroke=\"#d00020\" stroke-width=\"3\"" : "") << "/><text x=\"" << L + cw * j + cw / 2 << "\" y=\"" << T + ch * i + ch / 2 + 4
+        << "\" font-size=\"11\" text-anchor=\"middle\" fill=\"" << text_color << "\">" << HtmlEscape(label)
+        << "</text></g>";
+    }
+    s << "\n";
+  }
+  s << "</svg>";
+  return s.str();
+}
+
+}  // namespace
+
+std::string SweepHtml(const SweepResult& r) {
+  std::ostringstream h;
+  const std::string& primary = r.objectives.front();
+  h << HtmlPageStart("aalab sweep: " + r.method);
+  h << "<h1>aalab sweep: " << HtmlEscape(r.method) << "</h1>\n<p>";
+  for (const auto& [k, v] : r.report.settings) h << HtmlEscape(k) << " <code>" << HtmlEscape(v) << "</code> ";
+  h << "<br>" << r.points.size() << " grid points on " << r.report.scenes.size() << " scenes; each scene's reference "
+    << "and 1x frame rendered once (" << r.reference_renders << " reference renders). Objective values are means over "
+    << "scenes; time is the method's own time (post + resample, plus render unless it is the 1x frame shared with "
+    << "<code>none</code>), median over repeats, mean over scenes.</p>\n";
+  h << "<h2>Best setting per objective</h2>\n<table><tr><th class=\"l\">objective</th><th>mean</th><th>time (ms)</th>"
+       "<th class=\"l\">setting</th><th class=\"l\">spec</th></tr>\n";
+  for (const auto& o : r.objectives) {
+    auto it = r.best.find(o);
+    if (it == r.best.end()) {
+      h << "<tr><td class=\"l\">" << HtmlEscape(o) << "</td><td colspan=\"4\" class=\"l\">every point is null</td></tr>\n";
+      continue;
+    }
+    const auto& p = r.points[it->second];
+    h << "<tr><td class=\"l\">" << HtmlEscape(o) << "</td><td>" << HtmlEscape(MeanText(o, p.objectives.at(o))) << "</td><td>"
+      << FormatFixed(p.mean_time_ms, 3) << "</td><td class=\"l\">" << HtmlEscape(JoinOverrides(p.overrides))
+      << "</td><td class=\"l\"><code>" << HtmlEscape(p.spec) << "</code></td></tr>\n";
+  }
+  h << "</table>\n";
+  if (!r.suggested_preset.empty()) {
+    h << "<p>Suggested preset: <code>" << HtmlEscape(r.suggested_preset) << "</code></p>\n";
+  }
+  h << "<h2>Pareto front: " << HtmlEscape(primary) << " vs time</h2>\n" << ParetoSvg(r) << "\n";
+  h << "<h2>Heatmaps of " << HtmlEscape(primary) << "</h2>\n";
+  h << "<p>Colour from worse (dark) to better (yellow), scaled to the cells shown; red outline: the best cell"
+    << (r.axes.size() > 2 ? "; each cell is the best value over the parameters not shown" : "") << ".</p>\n";
+  if (r.axes.size() == 1) {
+    h << HeatmapSvg(r, 0, 0) << "\n";
+  } else {
+    for (size_t a = 0; a < r.axes.size(); ++a) {
+      for (size_t b = a + 1; b < r.axes.size(); ++b) h << "<div>" << HeatmapSvg(r, a, b) << "</div>\n";
+    }
+  }
+  // Every point, best first.
+  std::vector<size_t> order(r.points.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const Better dir = *MetricDirection(primary);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return Better_(r.points[a].objectives.at(primary).mean, r.points[b].objectives.at(primary).mean, dir);
+  });
+  h << "<h2>All points</h2>\n<table><tr>";
+  for (const auto& a : r.axes) h << "<th>" << HtmlEscape(a.name) << "</th>";
+  for (const auto& o : r.objectives) h << "<th>" << HtmlEscape(o) << "</th>";
+  h << "<th>time (ms)</th><th>Pareto</th></tr>\n";
+  for (size_t i : order) {
+    const auto& p = r.points[i];
+    h << "<tr>";
+    for (const auto& [k, v] : p.overrides) h << "<td>" << HtmlEscape(v) << "</td>";
+    for (const auto& o : r.objectives) h << "<td>" << HtmlEscape(MeanText(o, p.objectives.at(o))) << "</td>";
+    h << "<td>" << FormatFixed(p.mean_time_ms, 3) << "</td><td>" << (p.pareto ? "&#9679;" : "") << "</td></tr>\n";
+  }
+  h << "</table>\n" << HtmlPageEnd();
+  return h.str();
+}
+
+}  // namespace aalab

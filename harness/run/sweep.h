@@ -1,0 +1,106 @@
+/// Preset tuning (`aalab sweep`): one method over a grid of parameter values, each scene's
+/// reference and 1x frame rendered once (PrepareScene) and reused for every grid point
+/// (RunMethod). Writes DIR/sweep.json and DIR/index.html (Pareto front of quality vs time,
+/// heatmap per parameter pair; inline SVG, offline) and returns the summary.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "reports/compare.h"
+#include "reports/result.h"
+
+namespace aalab {
+
+/// The largest grid `sweep` accepts (points = product of the axes' value counts).
+constexpr size_t kMaxSweepPoints = 1024;
+
+struct SweepSettings {
+  std::vector<std::string> scenes;      ///< names or paths (required)
+  std::string method;                   ///< base spec; may override parameters not in the grid
+  std::vector<std::string> grid;        ///< one "name=v1,v2,..." per --grid
+  std::vector<std::string> objectives;  ///< empty: edge_psnr_db when a metric produces it, else psnr_db
+  int width = 960, height = 540;
+  int ref_spp = 256;
+  uint64_t seed = 1;
+  int repeat = 3;
+  int threads = 0;
+  std::string out_dir = "sweep";
+  bool quiet = false;
+};
+
+/// One swept parameter and its values (canonical text, as the method resolves them).
+struct GridAxis {
+  std::string name;
+  std::vector<std::string> values;
+};
+
+/// Parses the --grid arguments: "name=v1,v2,..." each, non-empty names and values; a
+/// parameter given twice (in two --grid, or in --grid and the base spec `base_spec`), or a
+/// value repeated within an axis, is a UserError. Values are not checked here.
+std::vector<GridAxis> ParseGrid(const std::vector<std::string>& args, const std::string& base_spec);
+
+/// Every grid point's method spec (base overrides, then the axes in order; the last axis
+/// varies fastest). Checks the point count against kMaxSweepPoints first (UserError naming
+/// the count), then resolves each axis value through MakeMethod, so an unknown parameter or
+/// out-of-range value gets the method's own error; values that resolve to the same number
+/// are a UserError. Replaces each axis value with its canonical text.
+std::vector<std::string> ExpandGrid(const std::string& base_spec, std::vector<GridAxis>* axes);
+
+/// Indices of the Pareto-optimal points (no other point is at least as fast and at least as
+/// good, and strictly better in one), sorted by time then index. Points with an empty quality
+/// are excluded; +inf quality (identical) is the best possible.
+std::vector<size_t> ParetoFront(const std::vector<double>& time_ms, const std::vector<std::optional<double>>& quality,
+                                Better better);
+
+/// An objective averaged over scenes: arithmetic mean of the per-scene values; +inf when any
+/// scene is identical to the reference (higher-is-better metrics); empty with a reason when
+/// any scene's value is null for another reason.
+struct ObjectiveMean {
+  std::optional<double> mean;
+  std::string null_reason;
+};
+
+/// One grid point, summarised over scenes.
+struct SweepPoint {
+  std::vector<std::pair<std::string, std::string>> overrides;  ///< axis name → value
+  std::string spec;                                             ///< canonical spec
+  std::map<std::string, ObjectiveMean> objectives;
+  double mean_time_ms = 0;  ///< mean over scenes of the method time's median (MethodTime)
+  bool pareto = false;      ///< on the front of the first objective vs time
+};
+
+struct SweepResult {
+  std::string method;                 ///< registry name
+  std::vector<GridAxis> axes;
+  std::vector<std::string> objectives;
+  std::string objective_note;         ///< set when the default objective fell back to psnr_db
+  int reference_renders = 0;          ///< PrepareScene calls (one per scene)
+  std::vector<SweepPoint> points;
+  std::vector<size_t> pareto_front;   ///< indices into points, by time
+  std::map<std::string, size_t> best; ///< objective → best point (absent when all are null)
+  std::map<std::string, int> best_ties;  ///< objective → other points with the same best mean
+  std::string suggested_preset;       ///< spec of the best point of the first objective
+  Report report;                      ///< context, settings, scenes, rows (scene-major)
+  std::vector<size_t> row_point;      ///< point index of each report row
+  std::string out_dir;
+};
+
+/// Runs the sweep (validating every input before any rendering), writes DIR/sweep.json and
+/// DIR/index.html through DIR.partial (a non-empty DIR without sweep.json is never replaced).
+SweepResult RunSweep(const SweepSettings& settings);
+
+/// Mean of per-scene values of `metric` for one point (rules in ObjectiveMean).
+ObjectiveMean MeanOverScenes(const std::vector<const ResultRow*>& rows, const std::string& metric);
+
+/// The summary printed by the CLI: best setting per objective, the Pareto front and the
+/// suggested preset line.
+std::string SweepSummaryText(const SweepResult& result);
+
+/// The offline HTML page.
+std::string SweepHtml(const SweepResult& result);
+
+}  // namespace aalab

@@ -1,0 +1,724 @@
+// Regression comparison of two reports. The rules are in compare.h and README
+// "Regression tracking and tuning"; exit codes as OpenImageIO's idiff (0 pass, 1 fail,
+// 2 could not compare).
+#include "reports/compare.h"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "harness/core/error.h"
+#include "reports/compare_html.h"
+
+namespace aalab {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct DirectionRule {
+  const char* text;  // exact name, or pattern with one '*' at the start or end
+  Better better;
+};
+
+// The explicit table (METRICS.md "better" column). Exact names first, then patterns.
+constexpr DirectionRule kDirections[] = {
+    {"psnr_db", Better::kHigher},          {"edge_psnr_db", Better::kHigher},
+    {"interior_psnr_db", Better::kHigher}, {"ssim", Better::kHigher},
+    {"edge_error_removed", Better::kHigher}, {"mse", Better::kLower},
+    {"edge_rmse", Better::kLower},         {"*_psnr_db", Better::kHigher},
+    {"flip_*", Better::kLower},            {"abs_err_*", Better::kLower},
+};
+
+bool Matches(const std::string& pattern, const std::string& name) {
+  if (pattern.front() == '*') {
+    const std::string suffix = pattern.substr(1);
+    return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  }
+  if (pattern.back() == '*') {
+    const std::string prefix = pattern.substr(0, pattern.size() - 1);
+    return name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0;
+  }
+  return pattern == name;
+}
+
+bool ParseNumber(const std::string& text, double* out) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return false;
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (errno != 0 || end != text.c_str() + text.size() || !std::isfinite(v)) return false;
+  *out = v;
+  return true;
+}
+
+std::string RowName(const std::string& scene, const std::string& spec) { return scene + " / " + spec; }
+
+std::string FormatValue(const std::string& quantity, double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (IsDbMetric(quantity)) return FormatFixed(v, 3);
+  if (quantity == "time_ms") return FormatFixed(v, 3);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string FormatDelta(const std::string& quantity, double d) {
+  if (std::isinf(d)) return d > 0 ? "+inf" : "-inf";
+  std::string s = FormatValue(quantity, d);
+  if (d >= 0 && s.front() != '-') s = "+" + s;
+  return s;
+}
+
+std::string LineValueText(const CompareLine& l, bool base) {
+  const auto& v = base ? l.base : l.current;
+  const std::string& reason = base ? l.base_null : l.current_null;
+  if (v) {
+    if (std::isinf(*v) && !reason.empty()) return "inf (" + reason + ")";
+    return FormatValue(l.quantity, *v);
+  }
+  return "null (" + reason + ")";
+}
+
+struct MetricLookup {
+  bool present = false;
+  std::optional<double> value;
+  std::string null_reason;
+};
+
+MetricLookup Lookup(const ResultRow& row, const std::string& name) {
+  for (const auto& m : row.metrics) {
+    if (m.name == name) return {true, m.value, m.value ? std::string() : (m.null_reason.empty() ? "no reason given" : m.null_reason)};
+  }
+  return {};
+}
+
+bool HasMetricEverywhere(const Report& r, const std::string& name) {
+  for (const auto& row : r.rows) {
+    if (!Lookup(row, name).present) return false;
+  }
+  return !r.rows.empty();
+}
+
+std::string ParamsDiff(const ResultRow& a, const ResultRow& b) {
+  std::map<std::string, std::string> ma(a.params.begin(), a.params.end()), mb(b.params.begin(), b.params.end());
+  std::vector<std::string> parts;
+  for (const auto& [k, v] : ma) {
+    auto it = mb.find(k);
+    if (it == mb.end()) {
+      parts.push_back(k + " " + v + " -> (absent)");
+    } else if (it->second != v) {
+      parts.push_back(k + " " + v + " -> " + it->second);
+    }
+  }
+  for (const auto& [k, v] : mb) {
+    if (!ma.count(k)) parts.push_back(k + " (absent) -> " + v);
+  }
+  std::string s;
+  for (size_t i = 0; i < parts.size(); ++i) s += (i ? ", " : "") + parts[i];
+  return s;
+}
+
+bool QualityLine(const CompareLine& l) { return l.quantity != "time_ms"; }
+
+}  // namespace
+
+std::optional<Better> MetricDirection(const std::string& name) {
+  for (const auto& rule : kDirections) {
+    if (Matches(rule.text, name)) return rule.better;
+  }
+  return std::nullopt;
+}
+
+std::string KnownMetricsText() {
+  std::string higher, lower;
+  for (const auto& rule : kDirections) {
+    std::string& s = rule.better == Better::kHigher ? higher : lower;
+    s += (s.empty() ? "" : ", ") + std::string(rule.text);
+  }
+  return higher + " (higher is better); " + lower + " (lower is better)";
+}
+
+bool IsDbMetric(const std::string& name) {
+  return name.size() > 3 && name.compare(name.size() - 3, 3, "_db") == 0;
+}
+
+double Threshold::Allowed(double base) const { return relative ? value * std::fabs(base) : value; }
+
+std::string Threshold::Text(const std::string& unit) const {
+  char buf[64];
+  if (relative) {
+    std::snprintf(buf, sizeof buf, "%g%%", value * 100.0);
+  } else {
+    std::snprintf(buf, sizeof buf, "%g%s", value, unit.c_str());
+  }
+  return buf;
+}
+
+Threshold ParseMetricThreshold(const std::string& text, const std::string& what) {
+  Threshold t;
+  std::string num = text;
+  if (!num.empty() && num.back() == '%') {
+    t.relative = true;
+    num.pop_back();
+  }
+  double v = 0;
+  if (!ParseNumber(num, &v) || v < 0) {
+    throw UserError(what + " '" + text + "' is not a non-negative number (absolute, e.g. 0.005) or percentage (relative to the baseline value, e.g. 2%)");
+  }
+  t.value = t.relative ? v / 100.0 : v;
+  return t;
+}
+
+Threshold ParseTimeThreshold(const std::string& text, const std::string& what) {
+  Threshold t;
+  std::string num = text;
+  if (!num.empty() && num.back() == '%') {
+    t.relative = true;
+    num.pop_back();
+  } else if (num.size() > 2 && num.compare(num.size() - 2, 2, "ms") == 0) {
+    num.resize(num.size() - 2);
+  } else {
+    throw UserError(what + " '" + text + "' needs a unit: a percentage of the baseline median (e.g. 10%) or milliseconds (e.g. 0.5ms), or 'off'");
+  }
+  double v = 0;
+  if (!ParseNumber(num, &v) || v < 0) {
+    throw UserError(what + " '" + text + "' is not a non-negative percentage (e.g. 10%) or duration (e.g. 0.5ms)");
+  }
+  t.value = t.relative ? v / 100.0 : v;
+  return t;
+}
+
+std::map<std::string, Threshold> ParseMetricChangeOption(const std::string& text) {
+  std::map<std::string, Threshold> out;
+  if (text.find('=') == std::string::npos) {
+    out["*"] = ParseMetricThreshold(text, "--max-metric-change");
+    return out;
+  }
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw UserError("--max-metric-change item '" + item + "' is not NAME=THRESHOLD (e.g. ssim=0.002,mse=5%)");
+    }
+    const std::string name = item.substr(0, eq);
+    if (!MetricDirection(name)) {
+      throw UserError("--max-metric-change: unknown metric '" + name + "' (known: " + KnownMetricsText() + ")");
+    }
+    if (IsDbMetric(name)) {
+      throw UserError("--max-metric-change: '" + name + "' is in dB; its tolerance is --max-drop-db");
+    }
+    if (out.count(name)) throw UserError("--max-metric-change: metric '" + name + "' is given twice");
+    out[name] = ParseMetricThreshold(item.substr(eq + 1), "--max-metric-change " + name);
+  }
+  if (!text.empty() && text.back() == ',') throw UserError("--max-metric-change '" + text + "' ends with a comma");
+  return out;
+}
+
+void ValidateCompareOptions(const CompareOptions& o) {
+  if (!std::isfinite(o.max_drop_db) || o.max_drop_db < 0) {
+    throw UserError("--max-drop-db " + FormatFixed(o.max_drop_db, 3) + " must be a non-negative number of dB");
+  }
+  std::set<std::string> seen;
+  for (const auto& m : o.metrics) {
+    if (!MetricDirection(m)) {
+      throw UserError("--metrics: unknown metric '" + m + "' (known: " + KnownMetricsText() + ")");
+    }
+    if (!seen.insert(m).second) throw UserError("--metrics: metric '" + m + "' is listed twice");
+    if (!IsDbMetric(m) && !o.metric_change.count(m) && !o.metric_change.count("*")) {
+      throw UserError("--metrics: '" + m + "' is not in dB, so --max-drop-db does not apply; give its tolerance with "
+                      "--max-metric-change (absolute, e.g. 0.005, or relative, e.g. 2%; per metric: " + m +
+                      "=0.005) or leave it out of --metrics");
+    }
+  }
+  for (const auto& [name, t] : o.metric_change) {
+    if (o.metrics.empty()) {
+      throw UserError("--max-metric-change applies to non-dB metrics, but no --metrics are given and the default "
+                      "metrics (edge_psnr_db, psnr_db) are in dB");
+    }
+    if (name != "*" && !seen.count(name)) {
+      throw UserError("--max-metric-change names '" + name + "', which --metrics does not compare");
+    }
+  }
+  if (o.time_increase.value < 0 || !std::isfinite(o.time_increase.value)) {
+    throw UserError("--max-time-increase must be non-negative");
+  }
+}
+
+const char* VerdictName(Verdict v) {
+  switch (v) {
+    case Verdict::kUnchanged: return "unchanged";
+    case Verdict::kWithin: return "within";
+    case Verdict::kImproved: return "improved";
+    case Verdict::kRegression: return "REGRESSION";
+    case Verdict::kNotJudged: return "not judged";
+  }
+  return "?";
+}
+
+int CompareResult::ExitCode() const {
+  if (!cannot_compare.empty() || !missing_rows.empty() || !extra_rows.empty()) return 2;
+  return regressions > 0 ? 1 : 0;
+}
+
+std::string SettingValue(const Report& report, const std::string& key) {
+  for (const auto& [k, v] : report.settings) {
+    if (k == key) return v;
+  }
+  return "";
+}
+
+Timing MethodTime(const ResultRow& row) {
+  Timing t;
+  const size_t n = std::max({row.render.samples_ms.size(), row.post.samples_ms.size(), row.resample.samples_ms.size()});
+  auto at = [](const Timing& s, size_t i) { return i < s.samples_ms.size() ? s.samples_ms[i] : 0.0; };
+  for (size_t i = 0; i < n; ++i) {
+    t.samples_ms.push_back(at(row.post, i) + at(row.resample, i) + (row.render_shared ? 0.0 : at(row.render, i)));
+  }
+  t.Summarize();
+  return t;
+}
+
+CompareResult CompareReports(const Report& base, const Report& cur, const CompareOptions& o) {
+  CompareResult res;
+  if (base.schema_version != cur.schema_version) {
+    res.cannot_compare.push_back("schema_version differs: baseline " + std::to_string(base.schema_version) +
+                                 ", current " + std::to_string(cur.schema_version));
+  }
+  for (const char* key : {"size", "ref_spp", "seed"}) {
+    const std::string a = SettingValue(base, key), b = SettingValue(cur, key);
+    if (a.empty() || b.empty()) {
+      res.cannot_compare.push_back(std::string("setting '") + key + "' is missing from the " +
+                                   (a.empty() ? "baseline" : "current") + " report");
+    } else if (a != b) {
+      res.cannot_compare.push_back(std::string("setting '") + key + "' differs: baseline " + a + ", current " + b +
+                                   " (reports are comparable only when size, ref_spp and seed agree)");
+    }
+  }
+  if (base.rows.empty()) res.cannot_compare.push_back("the baseline report has no rows");
+  if (cur.rows.empty()) res.cannot_compare.push_back("the current report has no rows");
+  if (!res.cannot_compare.empty()) return res;
+
+  // Metrics.
+  if (o.metrics.empty()) {
+    const bool edge_base = HasMetricEverywhere(base, "edge_psnr_db"), edge_cur = HasMetricEverywhere(cur, "edge_psnr_db");
+    if (edge_base && edge_cur) {
+      res.metrics = {"edge_psnr_db", "psnr_db"};
+    } else {
+      res.metrics = {"psnr_db"};
+      if (edge_base || edge_cur) {
+        res.notes.push_back(std::string("edge_psnr_db not compared: the ") + (edge_base ? "current" : "baseline") +
+                            " report does not have it in every row (default metrics: edge_psnr_db and psnr_db when "
+                            "both reports have them, else psnr_db)");
+      }
+    }
+  } else {
+    res.metrics = o.metrics;
+  }
+
+  // Index rows; duplicates are ambiguous.
+  auto index = [&res](const Report& r, const char* which) {
+    std::map<std::pair<std::string, std::string>, int> idx;
+    for (size_t i = 0; i < r.rows.size(); ++i) {
+      const auto key = std::make_pair(r.rows[i].scene, r.rows[i].spec);
+      if (!idx.emplace(key, static_cast<int>(i)).second) {
+        res.cannot_compare.push_back(std::string("the ") + which + " report holds row " + RowName(key.first, key.second) +
+                                     " twice");
+      }
+    }
+    return idx;
+  };
+  const auto base_idx = index(base, "baseline");
+  const auto cur_idx = index(cur, "current");
+  for (const auto& row : base.rows) {
+    if (!cur_idx.count({row.scene, row.spec})) res.missing_rows.push_back(RowName(row.scene, row.spec));
+  }
+  for (const auto& row : cur.rows) {
+    if (!base_idx.count({row.scene, row.spec})) res.extra_rows.push_back(RowName(row.scene, row.spec));
+  }
+
+  // Timing judged only on the same machine configuration.
+  bool judge_time = o.check_time;
+  if (o.check_time) {
+    auto ctx = [](const Report& r, const std::string& k) {
+      auto it = r.context.find(k);
+      return it == r.context.end() ? std::string("unknown") : it->second;
+    };
+    auto threads = [&](const Report& r) {
+      const std::string s = SettingValue(r, "threads");
+      return s.empty() ? ctx(r, "threads") : s;
+    };
+    const std::string a = "cpu '" + ctx(base, "cpu") + "', " + threads(base) + " threads, " + ctx(base, "build_type");
+    const std::string b = "cpu '" + ctx(cur, "cpu") + "', " + threads(cur) + " threads, " + ctx(cur, "build_type");
+    if (a != b) {
+      if (o.time_across_machines) {
+        res.notes.push_back("time judged across different machine configurations (--time-across-machines): baseline " + a +
+                            "; current " + b);
+      } else {
+        judge_time = false;
+        res.notes.push_back("time not judged: the reports come from different machine configurations (baseline " + a +
+                            "; current " + b + "); pass --time-across-machines to judge it anyway");
+      }
+    }
+  } else {
+    res.notes.push_back("time not compared (--max-time-increase off)");
+  }
+
+  // Missing metrics: per (metric, side) the count and the first row.
+  std::map<std::pair<std::string, std::string>, std::pair<int, std::string>> missing_metric;
+  int bit_identical_value_changes = 0;
+  std::string bit_identical_example;
+  bool few_samples = false;
+
+  for (const auto& brow : base.rows) {
+    auto it = cur_idx.find({brow.scene, brow.spec});
+    if (it == cur_idx.end()) continue;
+    const ResultRow& crow = cur.rows[static_cast<size_t>(it->second)];
+    const std::string name = RowName(brow.scene, brow.spec);
+    const std::string pdiff = ParamsDiff(brow, crow);
+    if (!pdiff.empty()) {
+      res.cannot_compare.push_back("row " + name + ": resolved parameters differ (" + pdiff +
+                                   "); the method's defaults changed, so the rows measure different settings");
+      continue;
+    }
+    RowMatch match;
+    match.scene = brow.scene;
+    match.spec = brow.spec;
+    match.base_index = base_idx.at({brow.scene, brow.spec});
+    match.current_index = it->second;
+    match.bit_identical = !brow.output_hash.empty() && brow.output_hash == crow.output_hash;
+
+    for (const auto& metric : res.metrics) {
+      const MetricLookup a = Lookup(brow, metric), b = Lookup(crow, metric);
+      bool skip = false;
+      for (const auto& [side, look] : {std::make_pair("baseline", a), std::make_pair("current", b)}) {
+        if (look.present) continue;
+        auto& entry = missing_metric[{metric, side}];
+        if (entry.first++ == 0) entry.second = name;
+        skip = true;
+      }
+      if (skip) {
+        continue;
+      }
+      const Better better = *MetricDirection(metric);
+      CompareLine l;
+      l.scene = brow.scene;
+      l.spec = brow.spec;
+      l.quantity = metric;
+      l.base = a.value;
+      l.current = b.value;
+      l.base_null = a.null_reason;
+      l.current_null = b.null_reason;
+      // Identical images: infinite PSNR, better than any number.
+      if (better == Better::kHigher) {
+        if (!l.base && a.null_reason == "identical") l.base = kInf;
+        if (!l.current && b.null_reason == "identical") l.current = kInf;
+      }
+      Threshold tol;
+      if (IsDbMetric(metric)) {
+        tol = Threshold{o.max_drop_db, false};
+        l.threshold = (better == Better::kHigher ? "-" : "+") + FormatFixed(o.max_drop_db, 3) + " dB";
+      } else {
+        auto t = o.metric_change.find(metric);
+        if (t == o.metric_change.end()) t = o.metric_change.find("*");
+        AALAB_CHECK(t != o.metric_change.end(), "validated options must give every non-dB metric a tolerance");
+        tol = t->second;
+        l.threshold = (better == Better::kHigher ? "-" : "+") + tol.Text();
+      }
+      const bool same_value = (l.base == l.current) && (l.base_null == l.current_null);
+      if (l.base && l.current) {
+        const double d = *l.current - *l.base;
+        l.delta = std::isnan(d) ? 0.0 : d;  // inf − inf: both identical
+      }
+      if (match.bit_identical) {
+        l.verdict = Verdict::kUnchanged;
+        if (!same_value) {
+          l.note = "output bit-identical; value differs (the reference or the metric changed, not the method)";
+          if (bit_identical_value_changes++ == 0) {
+            bit_identical_example = name + " " + metric + " " + LineValueText(l, true) + " -> " + LineValueText(l, false);
+          }
+        }
+      } else if (same_value) {
+        l.verdict = Verdict::kUnchanged;
+      } else if (l.base && l.current) {
+        const double gain = better == Better::kHigher ? *l.current - *l.base : *l.base - *l.current;
+        if (std::isinf(*l.base) && !std::isinf(*l.current)) {
+          l.verdict = Verdict::kRegression;
+          l.note = "baseline was identical to the reference (infinite PSNR)";
+        } else if (std::isinf(*l.current) && !std::isinf(*l.base)) {
+          l.verdict = Verdict::kImproved;
+          l.note = "now identical to the reference (infinite PSNR)";
+        } else {
+          const double allowed = tol.Allowed(*l.base);
+          l.verdict = gain == 0.0 ? Verdict::kUnchanged
+                      : gain < -allowed ? Verdict::kRegression
+                      : gain > allowed  ? Verdict::kImproved
+                                        : Verdict::kWithin;
+        }
+      } else if (l.base && !l.current) {
+        l.verdict = Verdict::kRegression;
+        l.note = "became null: " + l.current_null;
+      } else if (!l.base && l.current) {
+        l.verdict = Verdict::kNotJudged;
+        l.note = "was null (" + l.base_null + "), now a number";
+      } else {
+        l.verdict = Verdict::kRegression;
+        l.note = "null reason changed: '" + l.base_null + "' -> '" + l.current_null + "'";
+      }
+      res.lines.push_back(l);
+    }
+
+    if (o.check_time) {
+      const Timing ta = MethodTime(brow), tb = MethodTime(crow);
+      if (ta.samples_ms.size() < 2 || tb.samples_ms.size() < 2) few_samples = true;
+      CompareLine l;
+      l.scene = brow.scene;
+      l.spec = brow.spec;
+      l.quantity = "time_ms";
+      l.base = ta.median_ms;
+      l.current = tb.median_ms;
+      l.delta = tb.median_ms - ta.median_ms;
+      const double allowed = o.time_increase.Allowed(ta.median_ms);
+      const double noise = std::max(ta.max_ms - ta.min_ms, tb.max_ms - tb.min_ms);
+      l.threshold = "+" + o.time_increase.Text("ms") + (o.time_increase.relative ? " (" + FormatFixed(allowed, 3) + "ms)" : "") +
+                    " & >spread " + FormatFixed(noise, 3) + "ms";
+      const double d = *l.delta;
+      if (d == 0.0) {
+        l.verdict = Verdict::kUnchanged;
+      } else if (!judge_time) {
+        l.verdict = Verdict::kNotJudged;
+      } else if (d > allowed && d > noise) {
+        l.verdict = Verdict::kRegression;
+      } else if (-d > allowed && -d > noise) {
+        l.verdict = Verdict::kImproved;
+      } else {
+        l.verdict = Verdict::kWithin;
+        if (d > allowed) l.note = "increase within the repeats' spread (noise)";
+      }
+      res.lines.push_back(l);
+    }
+    res.rows.push_back(match);
+  }
+
+  for (const auto& [key, entry] : missing_metric) {
+    res.cannot_compare.push_back("metric '" + key.first + "' is missing from " + std::to_string(entry.first) + " " +
+                                 key.second + " row(s), e.g. " + entry.second +
+                                 " (a report written before the metric existed cannot be compared on it; choose "
+                                 "--metrics present in both)");
+  }
+  if (bit_identical_value_changes > 0) {
+    res.notes.push_back(std::to_string(bit_identical_value_changes) +
+                        " value(s) of rows with bit-identical output differ (so the reference or a metric changed, "
+                        "not the method); counted as unchanged. E.g. " + bit_identical_example);
+  }
+  if (few_samples && judge_time) {
+    res.notes.push_back("some rows have fewer than 2 timed repeats: their timing spread is 0, so any increase beyond "
+                        "the threshold counts (run with --repeat 3 or more)");
+  }
+
+  // Per-row flags and totals.
+  for (auto& m : res.rows) {
+    for (const auto& l : res.lines) {
+      if (l.scene != m.scene || l.spec != m.spec) continue;
+      if (l.verdict == Verdict::kRegression) m.regression = true;
+      if (l.verdict == Verdict::kRegression || l.verdict == Verdict::kImproved ||
+          (QualityLine(l) && l.verdict != Verdict::kUnchanged)) {
+        m.changed = true;
+      }
+    }
+    if (!m.bit_identical) m.changed = true;
+  }
+  for (const auto& l : res.lines) {
+    if (l.verdict == Verdict::kRegression) ++res.regressions;
+    if (l.verdict == Verdict::kImproved) ++res.improvements;
+  }
+  return res;
+}
+
+std::string FormatCompareText(const CompareResult& r, const Report& base, const Report& cur, const std::string& base_name,
+                              const std::string& cur_name, bool all) {
+  std::ostringstream out;
+  auto describe = [](const Report& rep) {
+    auto it = rep.context.find("git_commit");
+    return "commit " + (it == rep.context.end() ? std::string("unknown") : it->second) + ", size " +
+           SettingValue(rep, "size") + ", ref_spp " + SettingValue(rep, "ref_spp") + ", seed " + SettingValue(rep, "seed");
+  };
+  out << "baseline: " << base_name << " (" << describe(base) << ")\n";
+  out << "current:  " << cur_name << " (" << describe(cur) << ")\n";
+
+  // Table of changed values.
+  std::vector<std::array<std::string, 8>> table;
+  table.push_back({"scene", "method", "metric", "baseline", "current", "delta", "threshold", "verdict"});
+  for (const auto& l : r.lines) {
+    const bool show = all || l.verdict == Verdict::kRegression || l.verdict == Verdict::kImproved ||
+                      (QualityLine(l) && l.verdict != Verdict::kUnchanged);
+    if (!show) continue;
+    std::string verdict = VerdictName(l.verdict);
+    if (!l.note.empty()) verdict += ": " + l.note;
+    table.push_back({l.scene, l.spec, l.quantity, LineValueText(l, true), LineValueText(l, false),
+                     l.delta ? FormatDelta(l.quantity, *l.delta) : "-", l.threshold, verdict});
+  }
+  if (table.size() > 1) {
+    std::array<size_t, 8> w{};
+    for (const auto& row : table) {
+      for (size_t c = 0; c < 8; ++c) w[c] = std::max(w[c], row[c].size());
+    }
+    for (const auto& row : table) {
+      std::string line;
+      for (size_t c = 0; c < 8; ++c) {
+        std::string cell = row[c];
+        if (c + 1 < 8) cell.resize(w[c], ' ');
+        line += cell + (c + 1 < 8 ? "  " : "");
+      }
+      out << line << "\n";
+    }
+  } else if (r.cannot_compare.empty() || !r.rows.empty()) {
+    out << (all ? "no values compared\n" : "no changed values\n");
+  }
+  if (!r.cannot_compare.empty()) {
+    out << "could not compare (" << r.cannot_compare.size() << "):\n";
+    for (const auto& s : r.cannot_compare) out << "  " << s << "\n";
+  }
+  if (!r.missing_rows.empty()) {
+    out << "missing from the current report (" << r.missing_rows.size() << " rows):\n";
+    for (const auto& s : r.missing_rows) out << "  " << s << "\n";
+  }
+  if (!r.extra_rows.empty()) {
+    out << "extra in the current report, not in the baseline (" << r.extra_rows.size() << " rows):\n";
+    for (const auto& s : r.extra_rows) out << "  " << s << "\n";
+  }
+  for (const auto& n : r.notes) out << "note: " << n << "\n";
+  int identical = 0;
+  for (const auto& m : r.rows) identical += m.bit_identical ? 1 : 0;
+  std::string metrics;
+  for (const auto& m : r.metrics) metrics += (metrics.empty() ? "" : ", ") + m;
+  const int code = r.ExitCode();
+  out << "summary: " << r.rows.size() << " rows compared on " << (metrics.empty() ? "(none)" : metrics)
+      << (r.lines.empty() || r.lines.back().quantity != "time_ms" ? "" : " and time") << " (" << identical
+      << " bit-identical outputs); " << r.regressions << " regression(s), " << r.improvements << " improvement(s); exit "
+      << code << (code == 0 ? " (no regression)" : code == 1 ? " (regression)" : " (could not compare)") << "\n";
+  return out.str();
+}
+
+std::vector<size_t> ChangedRowOrder(const CompareResult& r) {
+  std::vector<size_t> order;
+  for (size_t i = 0; i < r.rows.size(); ++i) {
+    if (r.rows[i].regression) order.push_back(i);
+  }
+  for (size_t i = 0; i < r.rows.size(); ++i) {
+    if (!r.rows[i].regression && r.rows[i].changed) order.push_back(i);
+  }
+  return order;
+}
+
+std::vector<std::vector<HtmlImage>> CompareHtmlImages(const CompareResult& r, const Report& base, const Report& cur,
+                                                      const std::string& base_dir, const std::string& cur_dir) {
+  namespace fs = std::filesystem;
+  std::vector<std::vector<HtmlImage>> out;
+  auto image = [](const std::string& label, const std::map<std::string, std::string>& images, const std::string& key,
+                  const std::string& dir, const std::string& which) {
+    HtmlImage im;
+    im.label = label;
+    auto it = images.find(key);
+    if (it == images.end()) {
+      im.missing = "the " + which + " names no '" + key + "' image";
+    } else {
+      im.source = (fs::path(dir) / it->second).string();
+    }
+    return im;
+  };
+  for (size_t i : ChangedRowOrder(r)) {
+    const RowMatch& m = r.rows[i];
+    const ResultRow& brow = base.rows[static_cast<size_t>(m.base_index)];
+    const ResultRow& crow = cur.rows[static_cast<size_t>(m.current_index)];
+    std::vector<HtmlImage> ims;
+    ims.push_back(image("baseline output", brow.images, "output", base_dir, "baseline row"));
+    ims.push_back(image("current output", crow.images, "output", cur_dir, "current row"));
+    const SceneResult* scene = nullptr;
+    for (const auto& s : cur.scenes) {
+      if (s.name == m.scene) scene = &s;
+    }
+    if (scene) {
+      ims.push_back(image("reference", scene->images, "reference_png", cur_dir, "current report's scene"));
+    } else {
+      HtmlImage im;
+      im.label = "reference";
+      im.missing = "the current report has no scene entry '" + m.scene + "'";
+      ims.push_back(im);
+    }
+    out.push_back(ims);
+  }
+  return out;
+}
+
+std::string CompareHtml(const CompareResult& r, const std::vector<std::vector<HtmlImage>>& images,
+                        const std::string& base_name, const std::string& cur_name) {
+  std::ostringstream h;
+  const int code = r.ExitCode();
+  h << HtmlPageStart("aalab compare");
+  h << "<h1>aalab compare</h1>\n<p>baseline <code>" << HtmlEscape(base_name) << "</code>, current <code>"
+    << HtmlEscape(cur_name) << "</code></p>\n";
+  h << "<p class=\"" << (code == 0 ? "improved" : "regression") << "\">exit " << code << ": "
+    << (code == 0 ? "no regression" : code == 1 ? "regression" : "could not compare") << " &mdash; " << r.rows.size()
+    << " rows compared, " << r.regressions << " regression(s), " << r.improvements << " improvement(s)</p>\n";
+  auto list = [&h](const std::string& title, const std::vector<std::string>& items) {
+    if (items.empty()) return;
+    h << "<h2>" << HtmlEscape(title) << " (" << items.size() << ")</h2>\n<ul>\n";
+    for (const auto& s : items) h << "<li>" << HtmlEscape(s) << "</li>\n";
+    h << "</ul>\n";
+  };
+  list("Could not compare", r.cannot_compare);
+  list("Missing from the current report", r.missing_rows);
+  list("Extra in the current report", r.extra_rows);
+  list("Notes", r.notes);
+  auto verdict_class = [](Verdict v) {
+    switch (v) {
+      case Verdict::kRegression: return "regression";
+      case Verdict::kImproved: return "improved";
+      case Verdict::kWithin: return "within";
+      case Verdict::kNotJudged: return "not-judged";
+      default: return "unchanged";
+    }
+  };
+  const std::vector<size_t> order = ChangedRowOrder(r);
+  AALAB_CHECK(order.size() == images.size(), "one image list per changed row");
+  if (order.empty()) h << "<p>No changed rows.</p>\n";
+  for (size_t k = 0; k < order.size(); ++k) {
+    const RowMatch& m = r.rows[order[k]];
+    h << "<section><h2 class=\"" << (m.regression ? "regression" : "") << "\">" << HtmlEscape(m.scene) << " / "
+      << HtmlEscape(m.spec) << (m.bit_identical ? " (bit-identical output)" : "") << "</h2>\n";
+    h << "<table><tr><th class=\"l\">metric</th><th>baseline</th><th>current</th><th>delta</th><th>threshold</th>"
+         "<th class=\"l\">verdict</th></tr>\n";
+    for (const auto& l : r.lines) {
+      if (l.scene != m.scene || l.spec != m.spec) continue;
+      h << "<tr><td class=\"l\">" << HtmlEscape(l.quantity) << "</td><td>" << HtmlEscape(LineValueText(l, true))
+        << "</td><td>" << HtmlEscape(LineValueText(l, false)) << "</td><td>"
+        << (l.delta ? HtmlEscape(FormatDelta(l.quantity, *l.delta)) : "-") << "</td><td>" << HtmlEscape(l.threshold)
+        << "</td><td class=\"l " << verdict_class(l.verdict) << "\">" << VerdictName(l.verdict)
+        << (l.note.empty() ? "" : ": " + HtmlEscape(l.note)) << "</td></tr>\n";
+    }
+    h << "</table>\n<div class=\"imgs\">\n";
+    for (const auto& im : images[k]) {
+      h << "<figure>";
+      if (!im.href.empty()) {
+        h << "<img src=\"" << HtmlEscape(im.href) << "\" alt=\"" << HtmlEscape(im.label) << "\" width=\"320\">";
+      } else {
+        h << "<div class=\"missing\">not available: " << HtmlEscape(im.missing) << "</div>";
+      }
+      h << "<figcaption>" << HtmlEscape(im.label) << "</figcaption></figure>\n";
+    }
+    h << "</div></section>\n";
+  }
+  h << HtmlPageEnd();
+  return h.str();
+}
+
+}  // namespace aalab

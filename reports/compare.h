@@ -1,0 +1,177 @@
+/// Regression comparison of two reports (`aalab compare`), shared by `aalab history`.
+///
+/// Pure functions: no I/O except what the caller does with the results. The rules (also in
+/// `aalab compare --help` and README "Regression tracking and tuning"):
+///
+/// - Reports are comparable when schema_version and the settings `size`, `ref_spp` and `seed`
+///   agree. Otherwise nothing is compared (exit 2).
+/// - Rows match by (scene, canonical spec). A matched pair whose resolved `params` differ
+///   (e.g. a preset's defaults changed) is not compared: "could not compare" (exit 2). Rows
+///   present in only one report are listed by name as missing / extra (exit 2). Duplicate
+///   (scene, spec) rows in one report are an error (exit 2).
+/// - Quality: each compared metric's "gain" is current − baseline for higher-is-better
+///   metrics and baseline − current for lower-is-better ones. The tolerance is
+///   `max_drop_db` for dB metrics (names ending in `_db`) and the metric's
+///   `--max-metric-change` (absolute, or relative to |baseline|) otherwise. gain < −tol:
+///   regression; gain > tol: improved; gain = 0: unchanged; otherwise changed within
+///   tolerance. A null with reason `identical` on a higher-is-better metric is +infinity
+///   (better than any number); a value that became null for another reason is a regression
+///   with that reason. Rows with equal `output_hash` are unchanged for quality at once.
+/// - Time: the method's own time per repeat (post + resample, plus render unless the render
+///   is the 1x frame shared with `none`), median over repeats. increase = median_cur −
+///   median_base; it is a regression only when it exceeds the allowed increase (a percentage
+///   of the baseline median, or milliseconds) AND the repeats' spread (max − min of either
+///   run's samples). Improvement symmetric. Time is judged only when both reports come from
+///   the same CPU model, thread count and build type (else: not judged, with a note).
+/// - Exit code: 2 when anything could not be compared (settings, missing/extra rows,
+///   parameters, missing metrics), else 1 when a regression was found, else 0.
+#pragma once
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "reports/result.h"
+
+namespace aalab {
+
+/// Which way a metric improves.
+enum class Better { kHigher, kLower };
+
+/// The explicit direction table. Exact names: psnr_db, edge_psnr_db, interior_psnr_db, ssim,
+/// edge_error_removed (higher); mse, edge_rmse (lower). Patterns: `*_psnr_db` (higher),
+/// `flip_*`, `abs_err_*` (lower). Empty for any other name.
+std::optional<Better> MetricDirection(const std::string& name);
+
+/// The known names and patterns, for "allowed: ..." messages.
+std::string KnownMetricsText();
+
+/// True for metrics in decibels (name ends in `_db`): judged with --max-drop-db.
+bool IsDbMetric(const std::string& name);
+
+/// A tolerance: absolute (metric units or ms) or relative (fraction of the baseline).
+struct Threshold {
+  double value = 0.0;
+  bool relative = false;
+  /// The allowed change for a baseline value `base`.
+  double Allowed(double base) const;
+  /// "0.005", "2%", "1.5ms" (`unit` appended to absolute values).
+  std::string Text(const std::string& unit = "") const;
+};
+
+/// Parses "0.005" (absolute) or "2%" (relative); negative or non-numeric values are a
+/// UserError naming `what`.
+Threshold ParseMetricThreshold(const std::string& text, const std::string& what);
+
+/// Parses "10%" (relative) or "2ms" (absolute milliseconds); a bare number is a UserError
+/// (the unit must be explicit). "off" is handled by the caller.
+Threshold ParseTimeThreshold(const std::string& text, const std::string& what);
+
+struct CompareOptions {
+  double max_drop_db = 0.1;
+  /// Metrics to compare; empty: edge_psnr_db and psnr_db when every row of both reports has
+  /// edge_psnr_db, else psnr_db.
+  std::vector<std::string> metrics;
+  /// Tolerances for non-dB metrics, by name; the key "*" applies to every non-dB metric
+  /// without its own entry.
+  std::map<std::string, Threshold> metric_change;
+  bool check_time = true;
+  Threshold time_increase{0.10, true};
+  /// Judge time even when the reports come from different machines / thread counts.
+  bool time_across_machines = false;
+};
+
+/// Parses --max-metric-change: "0.005", "2%" (every non-dB metric) or
+/// "ssim=0.002,mse=5%" (per metric; names must be known). UserError otherwise.
+std::map<std::string, Threshold> ParseMetricChangeOption(const std::string& text);
+
+/// Checks the options: every metric is known (else the message lists the known ones),
+/// listed once, and has a threshold (dB metrics: max_drop_db >= 0; others: an entry in
+/// metric_change). Throws UserError.
+void ValidateCompareOptions(const CompareOptions& options);
+
+enum class Verdict {
+  kUnchanged,   ///< equal (or bit-identical output)
+  kWithin,      ///< changed, within the tolerance
+  kImproved,    ///< better by more than the tolerance
+  kRegression,  ///< worse by more than the tolerance
+  kNotJudged,   ///< changed but no rule applies (timing across machines; null → number)
+};
+const char* VerdictName(Verdict v);
+
+/// One compared value of one matched row.
+struct CompareLine {
+  std::string scene, spec;
+  std::string quantity;  ///< metric name, or "time_ms"
+  std::optional<double> base, current;  ///< +inf for a null `identical` on higher-is-better
+  std::string base_null, current_null;  ///< null reasons ("" when a number)
+  std::optional<double> delta;          ///< current − base (may be ±inf)
+  std::string threshold;                ///< the rule applied, as text
+  Verdict verdict = Verdict::kUnchanged;
+  std::string note;                     ///< why, when the numbers alone do not say
+};
+
+/// A matched row pair.
+struct RowMatch {
+  std::string scene, spec;
+  int base_index = -1, current_index = -1;  ///< into the reports' rows
+  bool bit_identical = false;               ///< equal output_hash
+  bool regression = false, changed = false; ///< any line regressed / any line not unchanged
+};
+
+struct CompareResult {
+  std::vector<std::string> metrics;          ///< the metrics compared
+  std::vector<std::string> cannot_compare;   ///< reasons for exit 2 (settings, params, metrics)
+  std::vector<std::string> missing_rows;     ///< "scene / spec" only in the baseline
+  std::vector<std::string> extra_rows;       ///< "scene / spec" only in the current report
+  std::vector<std::string> notes;            ///< said once (timing not judged, noise unknown)
+  std::vector<RowMatch> rows;
+  std::vector<CompareLine> lines;            ///< every compared value, unchanged ones included
+  int regressions = 0, improvements = 0;
+
+  /// 2 could not compare (anything in cannot_compare / missing_rows / extra_rows), 1 at
+  /// least one regression, 0 otherwise.
+  int ExitCode() const;
+};
+
+/// Compares `current` against `baseline` with the rules above. Options must have passed
+/// ValidateCompareOptions.
+CompareResult CompareReports(const Report& baseline, const Report& current, const CompareOptions& options);
+
+/// The method's own time per repeat: post + resample (+ render unless shared with `none`).
+Timing MethodTime(const ResultRow& row);
+
+/// The human-readable result: a header, the table of changed values (every value with
+/// `all`), missing/extra rows, notes and a summary line ending in the exit code.
+std::string FormatCompareText(const CompareResult& result, const Report& baseline, const Report& current,
+                              const std::string& baseline_name, const std::string& current_name, bool all);
+
+/// One image shown on the HTML page.
+struct HtmlImage {
+  std::string label;   ///< "baseline output", "current output", "reference"
+  std::string source;  ///< path of the image as the report names it, joined to its folder
+  std::string href;    ///< path relative to the HTML file; empty when not available
+  std::string missing; ///< why it is not shown (when href is empty)
+};
+
+/// The images to show per changed row, in the order of result.rows filtered to changed or
+/// regressed rows: baseline output, current output, reference (current report's
+/// `reference_png`). `href` is left for the caller, who copies the files.
+std::vector<std::vector<HtmlImage>> CompareHtmlImages(const CompareResult& result, const Report& baseline,
+                                                      const Report& current, const std::string& baseline_dir,
+                                                      const std::string& current_dir);
+
+/// The offline HTML page: summary, missing/extra rows, and per changed row its lines and
+/// images side by side (`images` as returned by CompareHtmlImages with hrefs filled).
+std::string CompareHtml(const CompareResult& result, const std::vector<std::vector<HtmlImage>>& images,
+                        const std::string& baseline_name, const std::string& current_name);
+
+/// Indices (into result.rows) of the rows shown on the HTML page: rows with a regression
+/// first, then other changed rows, in report order.
+std::vector<size_t> ChangedRowOrder(const CompareResult& result);
+
+/// Value of a report setting, or empty when absent.
+std::string SettingValue(const Report& report, const std::string& key);
+
+}  // namespace aalab

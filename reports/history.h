@@ -1,0 +1,81 @@
+/// Quality and time over commits (`aalab history`): a JSON-lines database, one line per
+/// report (per-row metrics, timing samples, output hashes and parameters; no images), grouped
+/// into named series whose run settings agree, and an offline HTML trend page.
+///
+/// Line format (history_version 1), keys in this order:
+///   {"history_version":1, "series":S, "commit":C, "date":D, "source":PATH,
+///    "settings":{...report settings...}, "context":{...report context...},
+///    "rows":[{"scene","method","spec","params":{},"metrics":{},"null_reasons":{},
+///             "output_hash","render_shared_with_none":bool,
+///             "timing":{"render":[ms...],"post":[...],"resample":[...],"total":[...]}}]}
+#pragma once
+#include <string>
+#include <vector>
+
+#include "reports/compare.h"
+#include "reports/result.h"
+
+namespace aalab {
+
+constexpr int kHistoryVersion = 1;
+
+/// One report in the database.
+struct HistoryEntry {
+  int line = 0;          ///< 1-based line in the file (0 before it is written)
+  std::string series;    ///< series name
+  std::string commit;    ///< git commit of the build that ran the report
+  std::string date;      ///< when the report was made (ISO 8601, UTC)
+  std::string source;    ///< path of the report file as given to `history add`
+  Report report;         ///< settings, context and rows (no scenes, no images)
+};
+
+/// The settings that must agree within a series.
+const std::vector<std::string>& HistorySeriesKeys();
+
+/// Checks a series name: 1–64 characters from [A-Za-z0-9._-]. UserError otherwise.
+void ValidateSeriesName(const std::string& name);
+
+/// Checks a date: "YYYY-MM-DD" or "YYYY-MM-DDTHH:MM:SSZ". UserError otherwise.
+void ValidateHistoryDate(const std::string& date);
+
+/// Builds an entry from a report (images and scene details dropped). UserError when the
+/// commit is empty or "unknown" (give one with --commit).
+HistoryEntry HistoryEntryFromReport(const Report& report, const std::string& series, const std::string& commit,
+                                    const std::string& date, const std::string& source);
+
+/// The entry as one JSON line (no trailing newline). Non-finite numbers are an internal error.
+std::string HistoryLine(const HistoryEntry& entry);
+
+/// Parses a whole database. Every line (a final newline excepted) must be a valid entry:
+/// a malformed or empty line is a UserError naming `origin` and the 1-based line number.
+std::vector<HistoryEntry> ParseHistory(const std::string& text, const std::string& origin);
+
+/// Reads and parses a database file; a missing file is a UserError unless `missing_ok`
+/// (then: empty).
+std::vector<HistoryEntry> ReadHistoryFile(const std::string& path, bool missing_ok);
+
+/// Checks that `entry` may be appended: its settings (HistorySeriesKeys) equal those of the
+/// series' last entry, and no entry of the series has the same commit and date. UserError
+/// listing the differing settings and suggesting --series NAME otherwise.
+void CheckSeriesCompatible(const std::vector<HistoryEntry>& entries, const HistoryEntry& entry);
+
+/// Series names in order of first appearance.
+std::vector<std::string> HistorySeriesNames(const std::vector<HistoryEntry>& entries);
+
+/// What `history report` produced.
+struct HistoryPage {
+  std::string html;
+  int series = 0, entries = 0, charts = 0;
+  int regressions = 0, improvements = 0, cannot_compare = 0;  ///< over consecutive pairs
+};
+
+/// The offline trend page: per series and scene × method an inline-SVG chart each for
+/// edge_psnr_db (when every entry has it), psnr_db and the method time (median, min–max
+/// bar), with every point where CompareReports(previous, this, options) crossed a threshold
+/// marked (red regression, green improvement, orange could not compare; the reason in the
+/// point's tooltip and in a table). `only_series` empty: every series, else that one
+/// (UserError when unknown). `options.metrics` is ignored (the charted metrics are used).
+HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::string& only_series,
+                        const CompareOptions& options);
+
+}  // namespace aalab

@@ -1,0 +1,325 @@
+// End-to-end tests of `aalab compare`, `aalab history` and `aalab sweep` on real (tiny) runs:
+// exit codes, messages, and what is written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+struct CmdResult {
+  int code = -1;
+  std::string output;  // stdout + stderr
+};
+
+CmdResult Aalab(const std::string& args) {
+  const std::string cmd = std::string(AALAB_BINARY_DIR) + "/aalab " + args + " 2>&1";
+  CmdResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path TempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("aalab-cmp-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+Json ReadJson(const fs::path& p) {
+  std::ifstream f(p);
+  return Json::parse(f);
+}
+
+void WriteJson(const fs::path& p, const Json& j) { std::ofstream(p) << j.dump(2); }
+
+/// A tiny real run; returns the report path.
+fs::path RunTiny(const fs::path& out, const std::string& methods, const std::string& extra = "") {
+  const CmdResult r = Aalab("run --scenes wedges,circle --methods " + methods +
+                            " --size 48x27 --ref-spp 16 --repeat 3 --quiet --out " + out.string() + " " + extra);
+  EXPECT_EQ(r.code, 0) << r.output;
+  return out / "report.json";
+}
+
+bool Has(const CmdResult& r, const std::string& s) { return r.output.find(s) != std::string::npos; }
+
+TEST(CompareCli, FlagsAnInjectedQualityDropAndWritesHtml) {
+  const fs::path dir = TempDir("drop");
+  const fs::path base = RunTiny(dir / "base", "none,fxaa1-p3");
+  // The "current" build's fxaa1-p3 is worse: produced with edge_threshold=1 (FXAA skips every
+  // pixel), relabelled as plain fxaa1-p3 with its usual parameters.
+  const fs::path cur = RunTiny(dir / "cur", "none,fxaa1-p3:edge_threshold=1");
+  Json j = ReadJson(cur);
+  for (auto& row : j["rows"]) {
+    if (row["spec"] == "fxaa1-p3:edge_threshold=1") {
+      row["spec"] = "fxaa1-p3";
+      row["params"]["edge_threshold"] = "0.125";
+    }
+  }
+  WriteJson(cur, j);
+  const fs::path html = dir / "cmp" / "compare.html";
+  const CmdResult r = Aalab("compare " + base.string() + " " + cur.string() + " --max-time-increase off --html " +
+                            html.string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  for (const char* s : {"wedges  fxaa1-p3  psnr_db", "circle  fxaa1-p3  psnr_db", "REGRESSION", "-0.100 dB",
+                        "exit 1 (regression)", "(2 bit-identical outputs)"}) {
+    EXPECT_TRUE(Has(r, s)) << s << "\n" << r.output;
+  }
+  EXPECT_FALSE(Has(r, "wedges  none ")) << "unchanged rows are not listed\n" << r.output;
+  // The page and its copied images (offline: relative paths into compare_files/).
+  ASSERT_TRUE(fs::exists(html));
+  std::stringstream page;
+  page << std::ifstream(html).rdbuf();
+  EXPECT_NE(page.str().find("src=\"compare_files/row1-baseline-output.png\""), std::string::npos);
+  EXPECT_NE(page.str().find("src=\"compare_files/row1-reference.png\""), std::string::npos);
+  for (const char* f : {"row1-baseline-output.png", "row1-current-output.png", "row1-reference.png",
+                        "row2-current-output.png"}) {
+    EXPECT_TRUE(fs::exists(dir / "cmp" / "compare_files" / f)) << f;
+  }
+  EXPECT_FALSE(fs::exists(dir / "cmp" / "compare_files.partial"));
+  // A folder that is not ours is never replaced.
+  fs::create_directories(dir / "mine_files");
+  const CmdResult refused = Aalab("compare " + base.string() + " " + cur.string() + " --html " + (dir / "mine.html").string());
+  EXPECT_EQ(refused.code, 2) << refused.output;
+  EXPECT_TRUE(Has(refused, "not written by aalab compare")) << refused.output;
+
+  // A report compared with itself: bit-identical, exit 0 (time included: equal samples).
+  const CmdResult same = Aalab("compare " + base.string() + " " + base.string());
+  EXPECT_EQ(same.code, 0) << same.output;
+  EXPECT_TRUE(Has(same, "(4 bit-identical outputs)")) << same.output;
+  // A second run of the same build: bit-identical outputs pass (time left out: it is noisy).
+  const fs::path again = RunTiny(dir / "again", "none,fxaa1-p3");
+  const CmdResult rerun = Aalab("compare " + base.string() + " " + again.string() + " --max-time-increase off");
+  EXPECT_EQ(rerun.code, 0) << rerun.output;
+  EXPECT_TRUE(Has(rerun, "no changed values")) << rerun.output;
+  EXPECT_TRUE(Has(rerun, "time not compared")) << rerun.output;
+}
+
+TEST(CompareCli, MissingRowsAndMismatchedSettingsExit2) {
+  const fs::path dir = TempDir("mismatch");
+  const fs::path base = RunTiny(dir / "base", "none,fxaa1-p3");
+  const fs::path fewer = RunTiny(dir / "fewer", "none");
+  CmdResult r = Aalab("compare " + base.string() + " " + fewer.string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_TRUE(Has(r, "missing from the current report (2 rows):")) << r.output;
+  EXPECT_TRUE(Has(r, "  wedges / fxaa1-p3")) << r.output;
+  EXPECT_TRUE(Has(r, "  circle / fxaa1-p3")) << r.output;
+  r = Aalab("compare " + fewer.string() + " " + base.string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_TRUE(Has(r, "extra in the current report, not in the baseline (2 rows):")) << r.output;
+
+  // Size, seed, ref_spp, schema.
+  const Json j = ReadJson(base);
+  struct Case {
+    const char* key;
+    const char* value;
+    const char* message;
+  };
+  for (const Case& c : {Case{"size", "96x54", "setting 'size' differs: baseline 48x27, current 96x54"},
+                        Case{"seed", "2", "setting 'seed' differs: baseline 1, current 2"},
+                        Case{"ref_spp", "64", "setting 'ref_spp' differs"}}) {
+    Json k = j;
+    k["settings"][c.key] = c.value;
+    WriteJson(dir / "edited.json", k);
+    r = Aalab("compare " + base.string() + " " + (dir / "edited.json").string());
+    EXPECT_EQ(r.code, 2) << c.key << "\n" << r.output;
+    EXPECT_TRUE(Has(r, c.message)) << r.output;
+  }
+  Json k = j;
+  k["schema_version"] = 2;
+  WriteJson(dir / "v2.json", k);
+  r = Aalab("compare " + base.string() + " " + (dir / "v2.json").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_TRUE(Has(r, "schema_version 2 is not supported")) << r.output;
+  // A real run at another size.
+  const fs::path small = dir / "small";
+  ASSERT_EQ(Aalab("run --scenes wedges,circle --methods none,fxaa1-p3 --size 16x9 --ref-spp 16 --repeat 1 --quiet --out " +
+                  small.string()).code, 0);
+  r = Aalab("compare " + base.string() + " " + (small / "report.json").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_TRUE(Has(r, "setting 'size' differs")) << r.output;
+
+  // Unreadable input and bad options are "could not compare" too, never "regression".
+  r = Aalab("compare " + base.string() + " " + (dir / "nope.json").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_TRUE(Has(r, "nope.json")) << r.output;
+  r = Aalab("compare " + base.string() + " " + base.string() + " --metrics ssim");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_TRUE(Has(r, "--max-metric-change")) << r.output;
+  r = Aalab("compare " + base.string() + " " + base.string() + " --metrics psnr");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_TRUE(Has(r, "unknown metric 'psnr'")) << r.output;
+  EXPECT_TRUE(Has(r, "edge_psnr_db")) << r.output;
+  r = Aalab("compare " + base.string() + " " + base.string() + " --max-time-increase 10");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_TRUE(Has(r, "needs a unit")) << r.output;
+  // Non-dB metric with a tolerance works.
+  r = Aalab("compare " + base.string() + " " + base.string() + " --metrics psnr_db,mse --max-metric-change mse=2%");
+  EXPECT_EQ(r.code, 0) << r.output;
+  // The rules are in --help.
+  r = Aalab("compare --help");
+  EXPECT_EQ(r.code, 0);
+  for (const char* s : {"max - min of samples_ms", "Exit codes: 0 no regression; 1 regression; 2 could not compare"}) {
+    EXPECT_TRUE(Has(r, s)) << s << "\n" << r.output;
+  }
+}
+
+TEST(HistoryCli, AddsReportsRejectsMismatchedSeriesAndWritesTrends) {
+  const fs::path dir = TempDir("history");
+  const fs::path a = RunTiny(dir / "a", "none,fxaa1-p3");
+  const fs::path b = RunTiny(dir / "b", "none,fxaa1-p3");
+  const fs::path db = dir / "history.jsonl";
+  CmdResult r = Aalab("history add " + a.string() + " --db " + db.string() + " --commit 1111111 --date 2026-01-01");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(Has(r, "added commit 1111111")) << r.output;
+  r = Aalab("history add " + b.string() + " --db " + db.string() + " --commit 2222222 --date 2026-01-02");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(Has(r, "vs previous entry (commit 1111111)")) << r.output;
+  // The same commit and date again: refused.
+  r = Aalab("history add " + b.string() + " --db " + db.string() + " --commit 2222222 --date 2026-01-02");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_TRUE(Has(r, "already holds commit 2222222")) << r.output;
+  // Two lines, one per report, with per-row metrics and times, no images.
+  {
+    std::ifstream f(db);
+    std::string line;
+    int n = 0;
+    while (std::getline(f, line)) {
+      const Json e = Json::parse(line);
+      EXPECT_EQ(e["rows"].size(), 4u);
+      EXPECT_TRUE(e["rows"][0]["metrics"].contains("psnr_db"));
+      EXPECT_EQ(e["rows"][0]["timing"]["post"].size(), 3u);
+      EXPECT_FALSE(e["rows"][0].contains("images"));
+      ++n;
+    }
+    EXPECT_EQ(n, 2);
+  }
+  // Another size does not join the series ...
+  const fs::path small = dir / "small";
+  ASSERT_EQ(Aalab("run --scenes wedges,circle --methods none,fxaa1-p3 --size 16x9 --ref-spp 16 --repeat 1 --quiet --out " +
+                  small.string()).code, 0);
+  r = Aalab("history add " + (small / "report.json").string() + " --db " + db.string() + " --commit 3333333");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_TRUE(Has(r, "does not match series 'default'")) << r.output;
+  EXPECT_TRUE(Has(r, "size: series 48x27, report 16x9")) << r.output;
+  EXPECT_TRUE(Has(r, "--series NAME")) << r.output;
+  // ... but starts another one with --series (date from the file's modification time).
+  r = Aalab("history add " + (small / "report.json").string() + " --db " + db.string() + " --commit 3333333 --series small");
+  EXPECT_EQ(r.code, 0) << r.output;
+  // The trend page.
+  r = Aalab("history report --db " + db.string() + " --out " + (dir / "trend").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(Has(r, "2 series, 3 entries")) << r.output;
+  std::stringstream page;
+  page << std::ifstream(dir / "trend" / "index.html").rdbuf();
+  for (const char* s : {"<svg", "series default", "series small", "circle / fxaa1-p3", "method time", "2222222"}) {
+    EXPECT_NE(page.str().find(s), std::string::npos) << s;
+  }
+  // A malformed line is an error naming its number; nothing is appended.
+  std::ofstream(db, std::ios::app) << "{oops\n";
+  const auto size_before = fs::file_size(db);
+  r = Aalab("history add " + a.string() + " --db " + db.string() + " --commit 4444444");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_TRUE(Has(r, "line 4: malformed JSON")) << r.output;
+  EXPECT_EQ(fs::file_size(db), size_before);
+  r = Aalab("history report --db " + db.string() + " --out " + (dir / "trend").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_TRUE(Has(r, "line 4")) << r.output;
+}
+
+TEST(SweepCli, RendersEachReferenceOnceAndWritesTheFront) {
+  const fs::path dir = TempDir("sweep");
+  const fs::path out = dir / "sweep";
+  const CmdResult r = Aalab("sweep --scenes wedges,circle --method fxaa1-p3 --grid edge_threshold=0.125,1 "
+                            "--grid subpix_cap=0,0.75 --objective psnr_db,mse --size 48x27 --ref-spp 4 --repeat 1 "
+                            "--quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* s : {"4 points on 2 scenes; 2 reference renders", "best psnr_db (mean over 2 scenes)", "best mse",
+                        "pareto front", "suggested preset: fxaa1-p3:edge_threshold="}) {
+    EXPECT_TRUE(Has(r, s)) << s << "\n" << r.output;
+  }
+  const Json j = ReadJson(out / "sweep.json");
+  EXPECT_EQ(j["reference_renders"], 2);  // one per scene, not per grid point
+  EXPECT_EQ(j["points"].size(), 4u);
+  ASSERT_EQ(j["rows"].size(), 8u);
+  int per_scene[2] = {0, 0};
+  for (const auto& row : j["rows"]) ++per_scene[row["scene"] == "wedges" ? 0 : 1];
+  EXPECT_EQ(per_scene[0], 4);
+  EXPECT_EQ(per_scene[1], 4);
+  EXPECT_EQ(j["rows"][3]["spec"], "fxaa1-p3:edge_threshold=1,subpix_cap=0.75");
+  EXPECT_EQ(j["rows"][3]["point"], 3);
+  EXPECT_EQ(j["axes"][0]["name"], "edge_threshold");
+  // The Pareto front: non-empty, flagged points, and no point on it dominated by another.
+  const auto& front = j["pareto_front"];
+  ASSERT_FALSE(front.empty());
+  for (const auto& i : front) {
+    const auto& p = j["points"][i.get<size_t>()];
+    EXPECT_TRUE(p["pareto"].get<bool>());
+    for (const auto& q : j["points"]) {
+      const double pq = p["objectives"]["psnr_db"]["mean"], qq = q["objectives"]["psnr_db"]["mean"];
+      const double pt = p["mean_time_ms"], qt = q["mean_time_ms"];
+      EXPECT_FALSE(qt <= pt && qq >= pq && (qt < pt || qq > pq)) << p["spec"] << " dominated by " << q["spec"];
+    }
+  }
+  // edge_threshold=1 turns FXAA off: the best psnr_db point has edge_threshold 0.125.
+  EXPECT_EQ(j["points"][j["best"]["psnr_db"]["point"].get<size_t>()]["overrides"]["edge_threshold"], "0.125");
+  EXPECT_EQ(j["suggested_preset"], j["best"]["psnr_db"]["spec"]);
+  std::stringstream page;
+  page << std::ifstream(out / "index.html").rdbuf();
+  for (const char* s : {"<svg", "Pareto front", "edge_threshold", "subpix_cap", "Suggested preset"}) {
+    EXPECT_NE(page.str().find(s), std::string::npos) << s;
+  }
+  EXPECT_FALSE(fs::exists(dir / "sweep.partial"));
+}
+
+TEST(SweepCli, GridErrorsNameTheProblem) {
+  const fs::path dir = TempDir("sweep-bad");
+  const std::string common = " --scenes wedges --size 16x9 --ref-spp 4 --repeat 1 --quiet --objective psnr_db --out " +
+                             (dir / "s").string();
+  struct Case {
+    std::string args;
+    std::vector<std::string> parts;
+  };
+  const std::vector<Case> cases = {
+      {"--method fxaa1-p3 --grid edge_threshld=0.1,0.2", {"unknown parameter 'edge_threshld'", "edge_threshold"}},
+      {"--method fxaa1-p3 --grid edge_threshold=0.1,2", {"out of range"}},
+      {"--method fxaa1-p3 --grid edge_threshold=0.1 --grid edge_threshold=0.2", {"'edge_threshold' is given twice"}},
+      {"--method fxaa1-p3:edge_threshold=0.1 --grid edge_threshold=0.2", {"set both in --method"}},
+      {"--method fxaa1-p3 --grid edge_threshold=0.1,0.1", {"lists value '0.1' twice"}},
+      {"--method fxaa1-p3 --grid edge_threshold=0.5,0.50", {"are the same value"}},
+      {"--method fxaa1-p3 --grid edge_threshold", {"is not NAME=V1,V2"}},
+      {"--method fxaa9 --grid edge_threshold=0.1", {"unknown method 'fxaa9'"}},
+      {"--method fxaa1-p3 --grid search_steps=1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22,23,24,25,26,27,28,"
+       "29,30,31,32 --grid subpix_cap=0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1 --grid edge_threshold=0.1,0.2,0.3",
+       {"has 1056 points; the limit is 1024"}},
+  };
+  for (const auto& c : cases) {
+    const CmdResult r = Aalab("sweep " + c.args + common);
+    EXPECT_EQ(r.code, 1) << c.args << "\n" << r.output;
+    EXPECT_TRUE(Has(r, "aalab: error:")) << r.output;
+    for (const auto& p : c.parts) EXPECT_TRUE(Has(r, p)) << c.args << "\nmissing: " << p << "\n" << r.output;
+  }
+  const CmdResult r = Aalab("sweep --method fxaa1-p3 --grid edge_threshold=0.1 --objective nope" + common.substr(0, common.find(" --objective")) +
+                            " --out " + (dir / "s").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_TRUE(Has(r, "unknown metric 'nope'")) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "s"));  // nothing written by a refused sweep
+}
+
+}  // namespace
