@@ -1,13 +1,37 @@
 /// Frame rendering on top of the tracer: 1x and supersampled method frames (8-bit, the back
 /// buffer) and the float reference with its noise floor and geometric edge mask.
 #pragma once
+#include <algorithm>
 #include <cstdint>
+
+#include "harness/core/color.h"
 
 #include "harness/core/image.h"
 #include "harness/core/render_spec.h"
 #include "scenes/tracer.h"
 
 namespace aalab {
+
+/// DisplayLinear (harness/core/color.h) for one sample, inlined for the per-sample resolve
+/// loops: the same operations in the same order, hence the same bits (a test compares it
+/// with DisplayLinear over the whole float range, NaN and infinities included).
+inline void DisplayLinearInline(const Display& d, const float rgb[3], float out[3]) {
+  for (int c = 0; c < 3; ++c) {
+    float v = rgb[c];
+    if (!(v > 0.0f)) v = 0.0f;  // negatives and NaN → 0
+    v = v * d.exposure;
+    switch (d.tonemap) {
+      case Tonemap::kNone: break;
+      case Tonemap::kReinhard: v = v / (1.0f + v); break;
+      case Tonemap::kAces: {
+        const float x = v * 0.6f;
+        v = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
+        break;
+      }
+    }
+    out[c] = std::clamp(v, 0.0f, 1.0f);
+  }
+}
 
 /// Renders a method frame of width × height with the render spec's sample pattern: each
 /// sample goes through the scene's display transform, samples are box-averaged in linear
