@@ -125,16 +125,7 @@ Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec
   };
   Image8 out(width, height, 4, 255);
   auto resolve = [&](int x, int y, const SampleResult* r, int count) {
-    double sum[3] = {0, 0, 0};
-    for (int s = 0; s < count; ++s) {
-      float d[3];
-      DisplayLinearInline(display, r[s].rgb, d);
-      for (int c = 0; c < 3; ++c) sum[c] += d[c];
-    }
-    uint8_t* p = out.Pixel(x, y);
-    for (int c = 0; c < 3; ++c) {
-      p[c] = QuantizeUnorm8(SrgbEncode(static_cast<float>(sum[c] / count)));
-    }
+    ResolveBoxPixel(display, r, count, out.Pixel(x, y));
   };
   RenderTiles(tracer, width, height, spp, place, resolve, counters);
   return out;

@@ -33,6 +33,19 @@ inline void DisplayLinearInline(const Display& d, const float rgb[3], float out[
   }
 }
 
+/// The SSAA resolve of one pixel: each of its `count` samples through the display
+/// transform, box average in linear light (double sums in sample order), sRGB encode,
+/// round to 8 bits into p[0..2]. What RenderFrame does for every pixel.
+inline void ResolveBoxPixel(const Display& display, const SampleResult* r, int count, uint8_t* p) {
+  double sum[3] = {0, 0, 0};
+  for (int s = 0; s < count; ++s) {
+    float d[3];
+    DisplayLinearInline(display, r[s].rgb, d);
+    for (int c = 0; c < 3; ++c) sum[c] += d[c];
+  }
+  for (int c = 0; c < 3; ++c) p[c] = QuantizeUnorm8(SrgbEncode(static_cast<float>(sum[c] / count)));
+}
+
 /// Renders a method frame of width × height with the render spec's sample pattern: each
 /// sample goes through the scene's display transform, samples are box-averaged in linear
 /// light, sRGB-encoded and quantised to RGBA8 (alpha 255). `spec.scale` is ignored here (the

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "harness/core/error.h"
+#include "harness/core/parallel.h"
 
 namespace aalab {
 
@@ -529,6 +530,75 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
     r.rgb[2] = c.z;
   }
   if (counters) *counters += local;
+}
+
+uint64_t Tracer::BareTrace(int width, int height, int grid) const {
+  const Impl& im = *impl_;
+  const Camera& cam = scene_.camera;
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const float half_h = cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f)
+                                                            : cam.height * 0.5f;
+  const bool persp = cam.type == CameraType::kPerspective;
+  constexpr int kTileSize = 8;
+  const int tiles_x = (width + kTileSize - 1) / kTileSize;
+  const int tiles_y = (height + kTileSize - 1) / kTileSize;
+  std::vector<uint64_t> hits(static_cast<size_t>(tiles_x) * tiles_y, 0);
+  ParallelForChunks(tiles_x * tiles_y, 1, [&](int begin, int end) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[kPacket];
+    for (int k = 0; k < kPacket; ++k) {
+      rh.ray.time[k] = 0.0f;
+      rh.ray.mask[k] = 0xFFFFFFFFu;
+      rh.ray.id[k] = static_cast<unsigned>(k);
+      rh.ray.flags[k] = 0;
+    }
+    for (int t = begin; t < end; ++t) {
+      const int x0 = (t % tiles_x) * kTileSize, y0 = (t / tiles_x) * kTileSize;
+      const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+      uint64_t n_hit = 0;
+      int lane = 0;
+      auto flush = [&]() {
+        for (int k = 0; k < kPacket; ++k) valid[k] = k < lane ? -1 : 0;
+        rtcIntersect16(valid, im.scene, &ctx, &rh);
+        for (int k = 0; k < lane; ++k) n_hit += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+        lane = 0;
+      };
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+          for (int j = 0; j < grid; ++j) {
+            for (int i = 0; i < grid; ++i) {
+              const float px = static_cast<float>(x) + (static_cast<float>(i) + 0.5f) / static_cast<float>(grid);
+              const float py = static_cast<float>(y) + (static_cast<float>(j) + 0.5f) / static_cast<float>(grid);
+              const float nx = 2.0f * px / static_cast<float>(width) - 1.0f;
+              const float ny = 1.0f - 2.0f * py / static_cast<float>(height);
+              const glm::vec3 offset = im.right * (nx * half_h * aspect) + im.up * (ny * half_h);
+              const glm::vec3 o = persp ? im.origin : im.origin + offset;
+              const glm::vec3 d = persp ? glm::normalize(im.forward + offset) : im.forward;
+              rh.ray.org_x[lane] = o.x;
+              rh.ray.org_y[lane] = o.y;
+              rh.ray.org_z[lane] = o.z;
+              rh.ray.dir_x[lane] = d.x;
+              rh.ray.dir_y[lane] = d.y;
+              rh.ray.dir_z[lane] = d.z;
+              rh.ray.tnear[lane] = 0.0f;
+              rh.ray.tfar[lane] = std::numeric_limits<float>::infinity();
+              rh.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+              rh.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+              if (++lane == kPacket) flush();
+            }
+          }
+        }
+      }
+      if (lane > 0) flush();
+      hits[static_cast<size_t>(t)] = n_hit;
+    }
+  });
+  uint64_t total = 0;
+  for (uint64_t h : hits) total += h;
+  return total;
 }
 
 }  // namespace aalab

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "harness/core/parallel.h"
+#include "methods/fxaa1.h"
 #include "methods/fxaa311.h"
 #include "methods/registry.h"
 #include "tests/perf/frames.h"
@@ -104,6 +105,42 @@ TEST(FastPath, Fxaa311EqualsReferenceAtOneAndTwoThreads) {
     }
   }
   SetThreadCount(0);
+}
+
+void ExpectFxaa1Same(const Image8& img, const Fxaa1Params& p, const std::string& what) {
+  PostStats fast_stats, ref_stats;
+  const Image8 fast = Fxaa1(img, p, "", &fast_stats);
+  const Image8 ref = Fxaa1Reference(img, p, "", &ref_stats);
+  const long d = FirstDifference(fast, ref);
+  EXPECT_EQ(d, -1) << what << ": first differing byte " << d;
+  EXPECT_EQ(fast_stats.taps, ref_stats.taps) << what;
+}
+
+TEST(FastPath, Fxaa1EqualsReferenceOnEveryFrameAndSetting) {
+  std::vector<std::pair<std::string, Fxaa1Params>> settings;
+  for (int preset = 0; preset <= 5; ++preset) settings.push_back({"p" + std::to_string(preset), Fxaa1Preset(preset)});
+  Fxaa1Params zero = Fxaa1Preset(3);
+  zero.edge_threshold = 0.0f;
+  zero.edge_threshold_min = 0.0f;  // range = 0 pixels pass the check and take the guards
+  settings.push_back({"thr0", zero});
+  Fxaa1Params wide = Fxaa1Preset(2);
+  wide.search_acceleration = 4;
+  wide.search_steps = 64;
+  wide.subpix_trim = 0.0f;
+  wide.subpix_cap = 1.0f;
+  wide.edge_threshold = 1.0f / 16.0f;
+  settings.push_back({"wide", wide});
+  const auto frames = AllFrames();
+  for (const auto& [name, p] : settings) {
+    for (const auto& f : frames) ExpectFxaa1Same(f.img, p, name + " on " + f.name);
+  }
+}
+
+TEST(FastPath, Fxaa1DebugViewsStillComeFromTheReference) {
+  const Image8& img = perf_test::SceneFrames()[0].img;
+  for (const auto& view : Fxaa1DebugViews()) {
+    EXPECT_TRUE(Fxaa1(img, Fxaa1Preset(3), view, nullptr) == Fxaa1Reference(img, Fxaa1Preset(3), view, nullptr)) << view;
+  }
 }
 
 }  // namespace
