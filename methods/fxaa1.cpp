@@ -86,6 +86,7 @@
 #include "methods/fxaa1.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -505,16 +506,21 @@ Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_vi
   const int height = in.Height();
   const int width = in.Width();
   // Step 1 for every texel: FxaaLuma(rgb) with rgb = k/255 as the sampler reads it.
+  // Tables of the two terms for every 8-bit value: the same floats the sampler path computes.
+  static const auto tables = [] {
+    std::array<std::array<float, 256>, 2> t{};
+    for (int k = 0; k < 256; ++k) {
+      t[0][k] = static_cast<float>(k) / 255.0f;               // r
+      t[1][k] = (static_cast<float>(k) / 255.0f) * kLumaGreen;  // g · (0.587/0.299)
+    }
+    return t;
+  }();
   std::vector<float> luma(static_cast<size_t>(width) * height);
   ParallelForChunks(height, 16, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       const uint8_t* s = in.Row(y);
       float* l = luma.data() + static_cast<size_t>(y) * width;
-      for (int x = 0; x < width; ++x) {
-        const float r = static_cast<float>(s[4 * x]) / 255.0f;
-        const float g = static_cast<float>(s[4 * x + 1]) / 255.0f;
-        l[x] = g * kLumaGreen + r;
-      }
+      for (int x = 0; x < width; ++x) l[x] = tables[1][s[4 * x + 1]] + tables[0][s[4 * x]];
     }
   });
   constexpr int kGrain = 8;

@@ -104,6 +104,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <type_traits>
 
 #include "harness/core/color.h"
 #include "harness/core/error.h"
@@ -474,12 +475,46 @@ struct LumaPlane {
   }
 };
 
+// Per-channel products of the luma dot, one table per weight: entry k is the product the
+// reference computes for channel value k (k/255·w, or SrgbDecode8(k)·w), so the sums below
+// add exactly the same floats in the same order.
+struct LumaTables {
+  float r[256], g[256], b[256];
+};
+const LumaTables& Rec601Tables() {
+  static const LumaTables t = [] {
+    LumaTables x{};
+    for (int k = 0; k < 256; ++k) {
+      const float u = Unorm(static_cast<uint8_t>(k));
+      x.r[k] = u * 0.299f;
+      x.g[k] = u * 0.587f;
+      x.b[k] = u * 0.114f;
+    }
+    return x;
+  }();
+  return t;
+}
+const LumaTables& SqrtLuminanceTables() {
+  static const LumaTables t = [] {
+    LumaTables x{};
+    for (int k = 0; k < 256; ++k) {
+      x.r[k] = SrgbDecode8(static_cast<uint8_t>(k)) * 0.2126729f;
+      x.g[k] = SrgbDecode8(static_cast<uint8_t>(k)) * 0.7151522f;
+      x.b[k] = SrgbDecode8(static_cast<uint8_t>(k)) * 0.0721750f;
+    }
+    return x;
+  }();
+  return t;
+}
+
 // Luma plane of the frame for the mode (step 1), rows in parallel.
 void BuildPlane(const Image8& in, Luma luma, LumaPlane<uint8_t>* plane) {
   const int w = in.Width(), h = in.Height();
   plane->w = w;
   plane->h = h;
   plane->v.resize(static_cast<size_t>(w) * h);
+  const LumaTables& rec = Rec601Tables();
+  const LumaTables& sq = SqrtLuminanceTables();
   ParallelForChunks(h, 16, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       const uint8_t* p = in.Row(y);
@@ -489,15 +524,11 @@ void BuildPlane(const Image8& in, Luma luma, LumaPlane<uint8_t>* plane) {
       } else if (luma == Luma::kRec601) {
         // Fxaa311LumaFrame: QuantizeUnorm8((r·0.299 + g·0.587) + b·0.114), r = k/255.
         for (int x = 0; x < w; ++x) {
-          const float r = Unorm(p[4 * x]), g = Unorm(p[4 * x + 1]), b = Unorm(p[4 * x + 2]);
-          o[x] = QuantizeFast((r * 0.299f + g * 0.587f) + b * 0.114f);
+          o[x] = QuantizeFast((rec.r[p[4 * x]] + rec.g[p[4 * x + 1]]) + rec.b[p[4 * x + 2]]);
         }
-      } else {  // kSqrtLuminance
+      } else {  // kSqrtLuminance: QuantizeUnorm8(sqrt((R·0.2126729 + G·0.7151522) + B·0.0721750))
         for (int x = 0; x < w; ++x) {
-          const float r = SrgbDecode8(p[4 * x]);
-          const float g = SrgbDecode8(p[4 * x + 1]);
-          const float b = SrgbDecode8(p[4 * x + 2]);
-          o[x] = QuantizeFast(std::sqrt((r * 0.2126729f + g * 0.7151522f) + b * 0.0721750f));
+          o[x] = QuantizeFast(std::sqrt((sq.r[p[4 * x]] + sq.g[p[4 * x + 1]]) + sq.b[p[4 * x + 2]]));
         }
       }
     }
@@ -544,6 +575,68 @@ int ContrastRow(const LumaPlane<P>& pl, int y, float thr, float thr_min, uint8_t
     edge[0] = test(rn[0], rm[0], rm[0], rm[1], rs[0]);
     for (int x = 1; x < w - 1; ++x) edge[x] = test(rn[x], rm[x - 1], rm[x], rm[x + 1], rs[x]);
     edge[w - 1] = test(rn[w - 1], rm[w - 2], rm[w - 1], rm[w - 1], rs[w - 1]);
+  }
+  int count = 0;
+  for (int x = 0; x < w; ++x) count += edge[x];
+  return count;
+}
+
+// The early-exit decision for 8-bit lumas depends only on the (max, min) byte pair: a
+// 256×256 table evaluated with the shader's float expressions, plus the largest byte
+// difference `safe` for which every pair exits (so a vectorised max − min <= safe test
+// settles most pixels without the table).
+struct ExitTable {
+  std::vector<uint8_t> edge;  // [max·256 + min] = 1 when the pixel goes on to the search
+  int safe = -1;              // max − min <= safe always exits
+};
+
+ExitTable MakeExitTable(float thr, float thr_min) {
+  ExitTable t;
+  t.edge.assign(256 * 256, 0);
+  int safe = 255;
+  for (int mx = 0; mx < 256; ++mx) {
+    for (int mn = 0; mn <= mx; ++mn) {
+      const float range_max = LumaValue(static_cast<uint8_t>(mx));
+      const float range = range_max - LumaValue(static_cast<uint8_t>(mn));
+      const float clamped = std::max(thr_min, range_max * thr);
+      const bool exit = range < clamped || range == 0.0f;
+      t.edge[mx * 256 + mn] = exit ? 0 : 1;
+      if (!exit) safe = std::min(safe, mx - mn - 1);
+    }
+  }
+  t.safe = safe;
+  return t;
+}
+
+// Step 2 for one row of 8-bit lumas, through the table: returns the number of edge pixels.
+int ContrastRowBytes(const LumaPlane<uint8_t>& pl, int y, const ExitTable& tab, uint8_t* edge) {
+  const int w = pl.w;
+  const uint8_t* rn = pl.Row(std::max(y - 1, 0));
+  const uint8_t* rm = pl.Row(y);
+  const uint8_t* rs = pl.Row(std::min(y + 1, pl.h - 1));
+  auto exact = [&](uint8_t n, uint8_t wv, uint8_t m, uint8_t e, uint8_t s) -> uint8_t {
+    const uint8_t mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
+    const uint8_t mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
+    return tab.edge[mx * 256 + mn];
+  };
+  if (w <= 2) {
+    for (int x = 0; x < w; ++x) {
+      edge[x] = exact(rn[x], rm[std::max(x - 1, 0)], rm[x], rm[std::min(x + 1, w - 1)], rs[x]);
+    }
+  } else {
+    edge[0] = exact(rn[0], rm[0], rm[0], rm[1], rs[0]);
+    edge[w - 1] = exact(rn[w - 1], rm[w - 2], rm[w - 1], rm[w - 1], rs[w - 1]);
+    // Vectorisable: candidates where max − min exceeds the always-exit difference.
+    const uint8_t safe = static_cast<uint8_t>(std::max(tab.safe, 0));
+    const bool none_safe = tab.safe < 0;
+    for (int x = 1; x < w - 1; ++x) {
+      const uint8_t mx = std::max(std::max(rn[x], rm[x - 1]), std::max(rm[x], std::max(rm[x + 1], rs[x])));
+      const uint8_t mn = std::min(std::min(rn[x], rm[x - 1]), std::min(rm[x], std::min(rm[x + 1], rs[x])));
+      edge[x] = static_cast<uint8_t>(mx - mn) > safe || none_safe;
+    }
+    for (int x = 1; x < w - 1; ++x) {
+      if (edge[x]) edge[x] = exact(rn[x], rm[x - 1], rm[x], rm[x + 1], rs[x]);
+    }
   }
   int count = 0;
   for (int x = 0; x < w; ++x) count += edge[x];
@@ -726,6 +819,8 @@ template <typename P>
 Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* stats) {
   LumaPlane<P> plane;
   BuildPlane(in, params.luma, &plane);
+  ExitTable exit_table;
+  if constexpr (std::is_same_v<P, uint8_t>) exit_table = MakeExitTable(params.edge_threshold, params.edge_threshold_min);
   const int w = in.Width();
   const int h = in.Height();
   const float rcpX = 1.0f / static_cast<float>(w);
@@ -742,7 +837,12 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
       // Every pixel first as the early exit writes it: input rgb, alpha 255.
       uint8_t* orow = out.Row(y);
       CopyRowOpaque(in.Row(y), orow, w);
-      const int edges = ContrastRow(plane, y, params.edge_threshold, params.edge_threshold_min, edge.data());
+      int edges;
+      if constexpr (std::is_same_v<P, uint8_t>) {
+        edges = ContrastRowBytes(plane, y, exit_table, edge.data());
+      } else {
+        edges = ContrastRow(plane, y, params.edge_threshold, params.edge_threshold_min, edge.data());
+      }
       chunk_taps += 5 * static_cast<uint64_t>(w - edges);
       if (edges == 0) continue;
       for (int x = 0; x < w; ++x) {
