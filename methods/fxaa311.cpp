@@ -104,6 +104,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <type_traits>
 
 #include "harness/core/color.h"
@@ -443,16 +444,16 @@ inline uint8_t QuantizeFast(float v) {
 template <typename P>
 struct LumaPlane {
   int w = 0, h = 0;
-  std::vector<P> v;
-  const P* Row(int y) const { return v.data() + static_cast<size_t>(y) * w; }
+  std::unique_ptr<P[]> v;  // w·h values, left uninitialised until BuildPlane writes them
+  const P* Row(int y) const { return v.get() + static_cast<size_t>(y) * w; }
   // Texel read with clamp-to-edge (BilinearSampler::Fetch), as a luma.
-  float Texel(int x, int y) const {
+  [[gnu::always_inline]] float Texel(int x, int y) const {
     x = std::clamp(x, 0, w - 1);
     y = std::clamp(y, 0, h - 1);
     return LumaValue(v[static_cast<size_t>(y) * w + x]);
   }
   // The luma channel of BilinearSampler::SampleNormalized(s, t), operation for operation.
-  float Bilinear(float s, float t) const {
+  [[gnu::always_inline]] float Bilinear(float s, float t) const {
     const float u = s * static_cast<float>(w);
     const float vv = t * static_cast<float>(h);
     const float x = u - 0.5f;
@@ -481,19 +482,6 @@ struct LumaPlane {
 struct LumaTables {
   float r[256], g[256], b[256];
 };
-const LumaTables& Rec601Tables() {
-  static const LumaTables t = [] {
-    LumaTables x{};
-    for (int k = 0; k < 256; ++k) {
-      const float u = Unorm(static_cast<uint8_t>(k));
-      x.r[k] = u * 0.299f;
-      x.g[k] = u * 0.587f;
-      x.b[k] = u * 0.114f;
-    }
-    return x;
-  }();
-  return t;
-}
 const LumaTables& SqrtLuminanceTables() {
   static const LumaTables t = [] {
     LumaTables x{};
@@ -507,18 +495,32 @@ const LumaTables& SqrtLuminanceTables() {
   return t;
 }
 
+const LumaTables& Rec601Tables() {
+  static const LumaTables t = [] {
+    LumaTables x{};
+    for (int k = 0; k < 256; ++k) {
+      const float u = Unorm(static_cast<uint8_t>(k));
+      x.r[k] = u * 0.299f;
+      x.g[k] = u * 0.587f;
+      x.b[k] = u * 0.114f;
+    }
+    return x;
+  }();
+  return t;
+}
+
 // Luma plane of the frame for the mode (step 1), rows in parallel.
 void BuildPlane(const Image8& in, Luma luma, LumaPlane<uint8_t>* plane) {
   const int w = in.Width(), h = in.Height();
   plane->w = w;
   plane->h = h;
-  plane->v.resize(static_cast<size_t>(w) * h);
+  plane->v.reset(new uint8_t[static_cast<size_t>(w) * h]);
   const LumaTables& rec = Rec601Tables();
   const LumaTables& sq = SqrtLuminanceTables();
   ParallelForChunks(h, 16, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       const uint8_t* p = in.Row(y);
-      uint8_t* o = plane->v.data() + static_cast<size_t>(y) * w;
+      uint8_t* o = plane->v.get() + static_cast<size_t>(y) * w;
       if (luma == Luma::kGreen) {
         for (int x = 0; x < w; ++x) o[x] = p[4 * x + 1];
       } else if (luma == Luma::kRec601) {
@@ -539,11 +541,11 @@ void BuildPlane(const Image8& in, Luma, LumaPlane<float>* plane) {  // kRec601Rg
   const int w = in.Width(), h = in.Height();
   plane->w = w;
   plane->h = h;
-  plane->v.resize(static_cast<size_t>(w) * h);
+  plane->v.reset(new float[static_cast<size_t>(w) * h]);
   ParallelForChunks(h, 16, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       const uint8_t* p = in.Row(y);
-      float* o = plane->v.data() + static_cast<size_t>(y) * w;
+      float* o = plane->v.get() + static_cast<size_t>(y) * w;
       for (int x = 0; x < w; ++x) {
         const float r = Unorm(p[4 * x]), g = Unorm(p[4 * x + 1]), b = Unorm(p[4 * x + 2]);
         o[x] = (r * 0.299f + g * 0.587f) + b * 0.114f;  // Fxaa311TapLuma(kRec601Rgb)
@@ -635,6 +637,14 @@ int ContrastRowBytes(const LumaPlane<uint8_t>& pl, int y, const ExitTable& tab, 
       edge[x] = static_cast<uint8_t>(mx - mn) > safe || none_safe;
     }
     for (int x = 1; x < w - 1; ++x) {
+      if ((x & 7) == 0 && x + 8 <= w - 1) {  // skip 8 candidates at a time when none is set
+        uint64_t word;
+        std::memcpy(&word, edge + x, 8);
+        if (word == 0) {
+          x += 7;
+          continue;
+        }
+      }
       if (edge[x]) edge[x] = exact(rn[x], rm[x - 1], rm[x], rm[x + 1], rs[x]);
     }
   }
@@ -643,11 +653,38 @@ int ContrastRowBytes(const LumaPlane<uint8_t>& pl, int y, const ExitTable& tab, 
   return count;
 }
 
+// The rgb of BilinearSampler::SampleNormalized(s, t) on `img`, operation for operation
+// (Sample's floor/clamp/weights, Fetch's clamp and k/255), without the alpha channel.
+inline void FinalTap(const Image8& img, float s, float t, float rgb[3]) {
+  const int W = img.Width(), H = img.Height();
+  const float u = s * static_cast<float>(W);
+  const float v = t * static_cast<float>(H);
+  const float x = u - 0.5f;
+  const float y = v - 0.5f;
+  const float x0f = std::floor(x);
+  const float y0f = std::floor(y);
+  const float fx = x - x0f;
+  const float fy = y - y0f;
+  const int x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(W)));
+  const int y0 = static_cast<int>(std::clamp(y0f, -1.0f, static_cast<float>(H)));
+  const int xa = std::clamp(x0, 0, W - 1), xb = std::clamp(x0 + 1, 0, W - 1);
+  const int ya = std::clamp(y0, 0, H - 1), yb = std::clamp(y0 + 1, 0, H - 1);
+  const uint8_t* a = img.Pixel(xa, ya);
+  const uint8_t* b = img.Pixel(xb, ya);
+  const uint8_t* c = img.Pixel(xa, yb);
+  const uint8_t* d = img.Pixel(xb, yb);
+  const float wa = (1.0f - fx) * (1.0f - fy);
+  const float wb = fx * (1.0f - fy);
+  const float wc = (1.0f - fx) * fy;
+  const float wd = fx * fy;
+  for (int k = 0; k < 3; ++k) rgb[k] = Unorm(a[k]) * wa + Unorm(b[k]) * wb + Unorm(c[k]) * wc + Unorm(d[k]) * wd;
+}
+
 // ShadePixel for a pixel that passed the early exit with range > 0, lumas from the plane.
 // Statement order and float expressions are ShadePixel's; returns the taps it took.
 template <typename P>
-uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, int x, int y, const Fxaa311Params& prm,
-                   float rcpX, float rcpY, uint8_t* out) {
+uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, const Image8& src, int x, int y,
+                   const Fxaa311Params& prm, float rcpX, float rcpY, uint8_t* out) {
   const bool glsl = prm.order == Order::kSeed003Glsl;
   const bool rgb_taps = prm.luma == Luma::kRec601Rgb;  // bilinear lumas need filtered rgb
   const std::vector<float>& P_ = prm.steps;
@@ -795,11 +832,12 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, int x, int y, c
   const float pixelOffsetSubpix = std::max(pixelOffsetGood, subpixH);
   if (!horzSpan) posMx += pixelOffsetSubpix * lengthSign;
   if (horzSpan) posMy += pixelOffsetSubpix * lengthSign;
-  const Float4 c = tex.SampleNormalized(posMx, posMy);
+  float rgb[3];
+  FinalTap(src, posMx, posMy, rgb);  // tex.SampleNormalized(posMx, posMy).rgb
   ++taps;
-  out[0] = QuantizeFast(c.r);
-  out[1] = QuantizeFast(c.g);
-  out[2] = QuantizeFast(c.b);
+  out[0] = QuantizeFast(rgb[0]);
+  out[1] = QuantizeFast(rgb[1]);
+  out[2] = QuantizeFast(rgb[2]);
   out[3] = 255;
   return taps;
 }
@@ -846,8 +884,16 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
       chunk_taps += 5 * static_cast<uint64_t>(w - edges);
       if (edges == 0) continue;
       for (int x = 0; x < w; ++x) {
+        if ((x & 7) == 0 && x + 8 <= w) {  // skip 8 pixels at a time when none is an edge
+          uint64_t word;
+          std::memcpy(&word, edge.data() + x, 8);
+          if (word == 0) {
+            x += 7;
+            continue;
+          }
+        }
         if (!edge[x]) continue;
-        chunk_taps += EdgePixel(plane, tex, x, y, params, rcpX, rcpY, orow + 4 * x);
+        chunk_taps += EdgePixel(plane, tex, in, x, y, params, rcpX, rcpY, orow + 4 * x);
       }
     }
     taps[static_cast<size_t>(y0 / kGrain)] = chunk_taps;

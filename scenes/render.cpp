@@ -34,6 +34,33 @@ struct PixelHash {
   }
 };
 
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
+#else
+#define AALAB_SIMD_CLONES
+#endif
+
+/// The reference's stratified positions of one pixel, s = j·grid + i: the PixelHash::Jitter2
+/// arithmetic laid out over all samples at once so it vectorises (64-bit multiplies and the
+/// divisions are exact operations, identical in every clone and lane).
+AALAB_SIMD_CLONES
+void PlaceStratifiedPixel(uint64_t pixel_hash, int grid, uint64_t seed, float fx, float fy, SamplePos* out) {
+  const float g = static_cast<float>(grid);
+  for (int j = 0; j < grid; ++j) {
+    for (int i = 0; i < grid; ++i) {
+    const int s = j * grid + i;
+    uint64_t h = MixBits(pixel_hash ^ (static_cast<uint64_t>(static_cast<uint32_t>(s)) + 0x85157af5a2a6b5f1ULL));
+    h = MixBits(h ^ (seed + 0xd6e8feb86659fd93ULL));
+    const float j0 = HashToUnitFloat(MixBits(h ^ (0ULL + 0xa0761d6478bd642fULL)));
+    const float j1 = HashToUnitFloat(MixBits(h ^ (1ULL + 0xa0761d6478bd642fULL)));
+    const float ox = (static_cast<float>(i) + j0) / g;
+    const float oy = (static_cast<float>(j) + j1) / g;
+    out[s].x = fx + ox;
+    out[s].y = fy + oy;
+    }
+  }
+}
+
 /// Per-thread sample buffers of RenderTiles, reused from tile to tile.
 struct TileScratch {
   std::vector<SamplePos> pos;
@@ -153,18 +180,7 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
   const uint64_t rseed = seed ^ kStreamReference;
   auto place = [&](int x, int y, SamplePos* out_pos) {
     const PixelHash ph(x, y);
-    const float fx = static_cast<float>(x), fy = static_cast<float>(y);
-    const float g = static_cast<float>(grid);
-    int s = 0;
-    for (int j = 0; j < grid; ++j) {  // s = j·grid + i
-      for (int i = 0; i < grid; ++i, ++s) {
-        float j0, j1;
-        ph.Jitter2(s, rseed, &j0, &j1);
-        const float ox = (static_cast<float>(i) + j0) / g;
-        const float oy = (static_cast<float>(j) + j1) / g;
-        out_pos[s] = SamplePos{fx + ox, fy + oy};
-      }
-    }
+    PlaceStratifiedPixel(ph.h, grid, rseed, static_cast<float>(x), static_cast<float>(y), out_pos);
   };
   auto resolve = [&](int x, int y, const SampleResult* r, int count) {
     double all[3] = {0, 0, 0}, a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
