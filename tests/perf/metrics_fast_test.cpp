@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "harness/core/parallel.h"
+#include "metrics/flip.h"
 #include "metrics/ssim.h"
 #include "tests/perf/frames.h"
 
@@ -57,6 +58,24 @@ TEST(FastPath, SsimSameAtOneAndTwoThreads) {
   const SsimResult two = ComputeSsim(a, b);
   SetThreadCount(0);
   EXPECT_EQ(std::memcmp(&*one.ssim, &*two.ssim, sizeof(double)), 0);
+}
+
+TEST(FastPath, FlipWithReusedReferenceEqualsFreshComputation) {
+  const auto& frames = perf_test::SceneFrames();
+  const ImageF ref_a = ToFloat(frames[0].img);
+  const ImageF ref_b = ToFloat(frames[1].img);
+  ImageF ref_a_changed = ref_a;
+  ref_a_changed.Data()[12345] = 0.5f;  // one value differs: the cached half must not be reused
+  const std::vector<std::pair<const ImageF*, const ImageF*>> calls = {
+      {&ref_a, &ref_b}, {&ref_a, &ref_a_changed}, {&ref_a, &ref_a}, {&ref_a_changed, &ref_b}, {&ref_a, &ref_b}, {&ref_b, &ref_a}};
+  for (double ppd : {67.0, 30.0}) {  // consecutive calls with one reference: cache hits
+    for (size_t k = 0; k < calls.size(); ++k) {
+      const std::vector<double> fast = flip::ErrorValues(*calls[k].first, *calls[k].second, ppd);
+      const std::vector<double> ref = flip::ErrorValuesUncached(*calls[k].first, *calls[k].second, ppd);
+      ASSERT_EQ(fast.size(), ref.size());
+      EXPECT_EQ(std::memcmp(fast.data(), ref.data(), fast.size() * sizeof(double)), 0) << "call " << k << " ppd " << ppd;
+    }
+  }
 }
 
 }  // namespace
