@@ -1,9 +1,11 @@
-# aalab — the two commands of the quick start: `make run` and `make test`.
+# aalab — the commands of the quick start: `make run` and `make test`; `make bench` measures
+# the harness against limits measured in the same run (writes bench.json).
 BUILD     ?= build
 JOBS      ?= $(shell nproc 2>/dev/null || echo 2)
 OUT       ?= out
 RUN_ARGS  ?=
 CMAKE_FLAGS ?=
+BENCH_ARGS ?=
 
 .PHONY: all deps configure build run test bench clean
 
@@ -23,6 +25,10 @@ run: build
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+bench: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target aalab aalab_bench
+	@./$(BUILD)/bench/aalab_bench --json bench.json $(BENCH_ARGS)
 
 clean:
 	rm -rf $(BUILD) $(BUILD).configure.log

@@ -74,7 +74,15 @@ Fxaa1Trace Fxaa1TracePixel(BilinearSampler& tex, int x, int y, const Fxaa1Params
 /// (optional) gets the texture taps added: every bilinear probe and exact texel read,
 /// an anisotropic search fetch counting as search_acceleration probes. Parallel over rows,
 /// bit-identical at any thread count. Throws UserError for parameters out of range.
+/// This is the production path (luma plane once per frame, row-wise contrast check, only
+/// edge pixels through Fxaa1TracePixel; debug views through Fxaa1Reference): same bits and
+/// taps as Fxaa1Reference.
 Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_view,
              PostStats* stats);
+
+/// The simple implementation of Fxaa1: Fxaa1TracePixel for every pixel. Kept as the
+/// reference the production path is tested against, bit for bit.
+Image8 Fxaa1Reference(const Image8& in, const Fxaa1Params& p, const std::string& debug_view,
+                      PostStats* stats);
 
 }  // namespace aalab

@@ -69,7 +69,14 @@ float Fxaa311TapLuma(const Float4& tap, Fxaa311Params::Luma luma);
 /// Pixels where the shader would divide by a zero luma range (possible only with
 /// edge_threshold_min = 0) are returned unchanged instead of going through 1/0.
 /// Requires params.steps.size() >= 2 (InternalError otherwise).
+/// This is the production path (luma plane once per frame, row-wise early exit, only edge
+/// pixels through the search); it returns the same bits and tap count as Fxaa311Reference.
 Image8 Fxaa311(const Image8& in, const Fxaa311Params& params, PostStats* stats);
+
+/// The simple implementation of Fxaa311: the luma pre-pass frame, then ShadePixel for every
+/// pixel through BilinearSampler, statement by statement as the shader. Kept as the
+/// reference the fast path is tested against (bit for bit, taps included).
+Image8 Fxaa311Reference(const Image8& in, const Fxaa311Params& params, PostStats* stats);
 
 /// The FXAA 3.11 quality presets this build knows (10..15, 20..29, 39), ascending.
 std::vector<int> Fxaa311PresetIds();

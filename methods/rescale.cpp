@@ -18,6 +18,8 @@
 // rescale=bicubic here always does ("Up And Down").
 #include "methods/rescale.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "harness/core/color.h"
@@ -68,7 +70,7 @@ Axis BicubicAxis(int X, int n_out, int n_in) {
 
 }  // namespace
 
-Image8 RescaleFrame(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats) {
+Image8 RescaleFrameReference(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats) {
   AALAB_CHECK(in.Channels() == 4, "RescaleFrame needs an RGBA8 frame");
   AALAB_CHECK(out_w > 0 && out_h > 0, "RescaleFrame needs a positive output size");
   if (kind == Rescale::kNone) {
@@ -124,6 +126,127 @@ Image8 RescaleFrame(const Image8& in, int out_w, int out_h, Rescale kind, PostSt
   if (stats) {
     for (uint64_t n : taps) stats->taps += n;
   }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------
+// The production path: the same taps and float expressions as RescaleFrameReference, with
+// each tap's texel indices and fractions computed once per output column and row (they
+// depend on one axis each), k/255 from a table, and only the rgb channels filtered (alpha is
+// written as 255). Tested bit for bit against the reference (tests/perf/fxaa_fast_test.cpp).
+
+namespace {
+
+// One axis of a BilinearSampler::Sample at coordinate u (pixels): the two clamped texel
+// indices and the fraction, exactly as Sample and Fetch compute them.
+struct Tap1 {
+  int i0, i1;
+  float f;
+};
+
+Tap1 MakeTap(float u, int n) {
+  const float x = u - 0.5f;
+  const float x0f = std::floor(x);
+  Tap1 t;
+  t.f = x - x0f;
+  const int x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(n)));
+  t.i0 = std::clamp(x0, 0, n - 1);
+  t.i1 = std::clamp(x0 + 1, 0, n - 1);
+  return t;
+}
+
+const float* UnormTable() {
+  static const auto table = [] {
+    std::array<float, 256> t{};
+    for (int k = 0; k < 256; ++k) t[k] = static_cast<float>(k) / 255.0f;
+    return t;
+  }();
+  return table.data();
+}
+
+// The rgb of a bilinear fetch (BilinearSampler::Sample's arithmetic, channels 0..2).
+inline void Bilerp(const Image8& in, const float* u8, const Tap1& tx, const Tap1& ty, float out[3]) {
+  const float fx = tx.f, fy = ty.f;
+  const uint8_t* a = in.Pixel(tx.i0, ty.i0);
+  const uint8_t* b = in.Pixel(tx.i1, ty.i0);
+  const uint8_t* c = in.Pixel(tx.i0, ty.i1);
+  const uint8_t* d = in.Pixel(tx.i1, ty.i1);
+  const float wa = (1.0f - fx) * (1.0f - fy);
+  const float wb = fx * (1.0f - fy);
+  const float wc = (1.0f - fx) * fy;
+  const float wd = fx * fy;
+  for (int k = 0; k < 3; ++k) out[k] = u8[a[k]] * wa + u8[b[k]] * wb + u8[c[k]] * wc + u8[d[k]] * wd;
+}
+
+inline uint8_t Quantize(float v) {  // QuantizeUnorm8: lround(v·255) = floor(v·255 + 0.5) in double
+  if (!(v > 0.0f)) return 0;
+  if (v >= 1.0f) return 255;
+  return static_cast<uint8_t>(static_cast<int>(static_cast<double>(v * 255.0f) + 0.5));
+}
+
+}  // namespace
+
+Image8 RescaleFrame(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats) {
+  AALAB_CHECK(in.Channels() == 4, "RescaleFrame needs an RGBA8 frame");
+  AALAB_CHECK(out_w > 0 && out_h > 0, "RescaleFrame needs a positive output size");
+  if (kind == Rescale::kNone) return RescaleFrameReference(in, out_w, out_h, kind, stats);
+  AALAB_CHECK(!in.Empty(), "RescaleFrame needs a non-empty frame");
+  const int W = in.Width(), H = in.Height();
+  const float* u8 = UnormTable();
+  Image8 out(out_w, out_h, 4);
+  // Per column / row: the taps of that axis.
+  std::vector<Tap1> cx0(static_cast<size_t>(out_w)), cx1, cy0(static_cast<size_t>(out_h)), cy1;
+  std::vector<Axis> ax, ay;
+  if (kind == Rescale::kBilinear) {
+    for (int X = 0; X < out_w; ++X) {
+      const float s = (static_cast<float>(X) + 0.5f) / static_cast<float>(out_w);
+      cx0[X] = MakeTap(s * static_cast<float>(W), W);  // SampleNormalized: u = s·W
+    }
+    for (int Y = 0; Y < out_h; ++Y) {
+      const float t = (static_cast<float>(Y) + 0.5f) / static_cast<float>(out_h);
+      cy0[Y] = MakeTap(t * static_cast<float>(H), H);
+    }
+  } else {
+    cx1.resize(static_cast<size_t>(out_w));
+    cy1.resize(static_cast<size_t>(out_h));
+    for (int X = 0; X < out_w; ++X) {
+      ax.push_back(BicubicAxis(X, out_w, W));
+      cx0[X] = MakeTap(ax.back().tap0, W);
+      cx1[X] = MakeTap(ax.back().tap1, W);
+    }
+    for (int Y = 0; Y < out_h; ++Y) {
+      ay.push_back(BicubicAxis(Y, out_h, H));
+      cy0[Y] = MakeTap(ay.back().tap0, H);
+      cy1[Y] = MakeTap(ay.back().tap1, H);
+    }
+  }
+  ParallelForChunks(out_h, 8, [&](int y0, int y1) {
+    for (int Y = y0; Y < y1; ++Y) {
+      uint8_t* o = out.Row(Y);
+      for (int X = 0; X < out_w; ++X, o += 4) {
+        float rgb[3];
+        if (kind == Rescale::kBilinear) {
+          Bilerp(in, u8, cx0[X], cy0[Y], rgb);
+        } else {
+          float a00[3], a10[3], a01[3], a11[3];
+          Bilerp(in, u8, cx0[X], cy0[Y], a00);
+          Bilerp(in, u8, cx1[X], cy0[Y], a10);
+          Bilerp(in, u8, cx0[X], cy1[Y], a01);
+          Bilerp(in, u8, cx1[X], cy1[Y], a11);
+          const Axis& bx = ax[static_cast<size_t>(X)];
+          const Axis& by = ay[static_cast<size_t>(Y)];
+          for (int c = 0; c < 3; ++c) {
+            rgb[c] = by.g0 * (bx.g0 * a00[c] + bx.g1 * a10[c]) + by.g1 * (bx.g0 * a01[c] + bx.g1 * a11[c]);
+          }
+        }
+        o[0] = Quantize(rgb[0]);
+        o[1] = Quantize(rgb[1]);
+        o[2] = Quantize(rgb[2]);
+        o[3] = 255;
+      }
+    }
+  });
+  if (stats) stats->taps += static_cast<uint64_t>(out_w) * out_h * (kind == Rescale::kBicubic ? 4 : 1);
   return out;
 }
 

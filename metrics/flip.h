@@ -116,8 +116,12 @@ FeatureKernels MakeFeatureKernels(double ppd);
 std::vector<double> ColorErrorValues(const ImageF& reference, const ImageF& test, double ppd);
 /// Feature pipeline alone: ΔEf per pixel (row-major), in [0, 1].
 std::vector<double> FeatureErrorValues(const ImageF& reference, const ImageF& test, double ppd);
-/// Full LDR-FLIP per pixel (row-major): ΔEc^(1 − ΔEf).
+/// Full LDR-FLIP per pixel (row-major): ΔEc^(1 − ΔEf). The reference's half of the work is
+/// kept from the previous call and reused when the reference pixels (compared in full), size
+/// and ppd are the same: a run scores many methods against one reference.
 std::vector<double> ErrorValues(const ImageF& reference, const ImageF& test, double ppd);
+/// ErrorValues computed from scratch every time (the simple path; tests compare the two).
+std::vector<double> ErrorValuesUncached(const ImageF& reference, const ImageF& test, double ppd);
 
 }  // namespace flip
 }  // namespace aalab

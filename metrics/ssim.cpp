@@ -60,7 +60,7 @@ std::array<double, kTaps> GaussianWindow() {
 }
 
 // Mean SSIM of channel c over the valid region.
-double ChannelSsim(const ImageF& a, const ImageF& b, int c, const std::array<double, kTaps>& w) {
+double ChannelSsimReference(const ImageF& a, const ImageF& b, int c, const std::array<double, kTaps>& w) {
   const int width = a.Width(), height = a.Height();
   const int nx = width - 2 * kSsimRadius;   // valid columns: x = 5 .. W-6
   const int ny = height - 2 * kSsimRadius;  // valid rows:    y = 5 .. H-6
@@ -134,6 +134,182 @@ double ChannelSsim(const ImageF& a, const ImageF& b, int c, const std::array<dou
   return total / (static_cast<double>(nx) * static_cast<double>(ny));
 }
 
+// The production ChannelSsim: the same sums as ChannelSsimReference, term for term and in
+// the same order for every output value, laid out so the compiler can vectorise across
+// pixels (never within one sum, which would reorder it):
+//  - the products a², b², ab of a row are formed once per input pixel (the reference forms
+//    them again for each of the 11 taps; the values are the same doubles);
+//  - horizontal sums run tap-outer, pixel-inner: acc[x] = 0, then acc[x] += w[i]·v[x+i] for
+//    i = 0..10, which is exactly the reference's left-to-right sum for each x;
+//  - each SSIM map row is evaluated into an array, then summed left to right in a scalar
+//    loop (the reference's order).
+// The kernels are compiled for AVX-512, AVX2 and the baseline (target_clones, picked at run
+// time): separate multiplies and adds (-ffp-contract=off), so every clone gives the same bits.
+// Tests compare ComputeSsim with ComputeSsimReference bit for bit.
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define AALAB_SIMD_CLONES
+#endif
+
+// Sums are kept in registers for a block of kLanes neighbouring outputs; each output's sum
+// still runs over the taps in index order.
+constexpr int kLanes = 32;   // horizontal: 2 sums × 4 registers of 8 doubles
+constexpr int kVLanes = 16;  // vertical: 5 sums × 2 registers
+
+AALAB_SIMD_CLONES
+void HorizontalRow(const float* src, int stride, int width, int nx, const double* w, double* ra, double* raa,
+                   double* out, double* out_sq) {
+  for (int x = 0; x < width; ++x) {
+    ra[x] = static_cast<double>(src[static_cast<size_t>(x) * stride]);
+    raa[x] = ra[x] * ra[x];
+  }
+  int ox = 0;
+  for (; ox + kLanes <= nx; ox += kLanes) {
+    double s[kLanes] = {}, q[kLanes] = {};
+    for (int i = 0; i < kTaps; ++i) {
+      const double wi = w[i];
+      for (int k = 0; k < kLanes; ++k) {
+        s[k] += wi * ra[ox + k + i];
+        q[k] += wi * raa[ox + k + i];
+      }
+    }
+    for (int k = 0; k < kLanes; ++k) {
+      out[ox + k] = s[k];
+      out_sq[ox + k] = q[k];
+    }
+  }
+  for (; ox < nx; ++ox) {
+    double s = 0.0, q = 0.0;
+    for (int i = 0; i < kTaps; ++i) {
+      s += w[i] * ra[ox + i];
+      q += w[i] * raa[ox + i];
+    }
+    out[ox] = s;
+    out_sq[ox] = q;
+  }
+}
+
+AALAB_SIMD_CLONES
+void HorizontalCross(const double* ra, const double* rb, int width, int nx, const double* w, double* rab, double* out) {
+  for (int x = 0; x < width; ++x) rab[x] = ra[x] * rb[x];
+  int ox = 0;
+  for (; ox + kLanes <= nx; ox += kLanes) {
+    double s[kLanes] = {};
+    for (int i = 0; i < kTaps; ++i) {
+      const double wi = w[i];
+      for (int k = 0; k < kLanes; ++k) s[k] += wi * rab[ox + k + i];
+    }
+    for (int k = 0; k < kLanes; ++k) out[ox + k] = s[k];
+  }
+  for (; ox < nx; ++ox) {
+    double s = 0.0;
+    for (int i = 0; i < kTaps; ++i) s += w[i] * rab[ox + i];
+    out[ox] = s;
+  }
+}
+
+// One SSIM map value from the five window sums (the reference's expressions).
+inline double MapValue(double mx, double my, double sxx, double syy, double sxy, double c1, double c2) {
+  const double vx = sxx - mx * mx;
+  const double vy = syy - my * my;
+  const double vxy = sxy - mx * my;
+  const double num = (2.0 * mx * my + c1) * (2.0 * vxy + c2);
+  const double den = (mx * mx + my * my + c1) * (vx + vy + c2);
+  return num / den;
+}
+
+AALAB_SIMD_CLONES
+void VerticalAndMap(const double* const* rows_a, const double* const* rows_b, const double* const* rows_aa,
+                    const double* const* rows_bb, const double* const* rows_ab, int nx, const double* w, double c1,
+                    double c2, double* map) {
+  int ox = 0;
+  for (; ox + kVLanes <= nx; ox += kVLanes) {
+    double ma[kVLanes] = {}, mb[kVLanes] = {}, maa[kVLanes] = {}, mbb[kVLanes] = {}, mab[kVLanes] = {};
+    for (int j = 0; j < kTaps; ++j) {
+      const double wj = w[j];
+      for (int k = 0; k < kVLanes; ++k) {
+        ma[k] += wj * rows_a[j][ox + k];
+        mb[k] += wj * rows_b[j][ox + k];
+        maa[k] += wj * rows_aa[j][ox + k];
+        mbb[k] += wj * rows_bb[j][ox + k];
+        mab[k] += wj * rows_ab[j][ox + k];
+      }
+    }
+    for (int k = 0; k < kVLanes; ++k) map[ox + k] = MapValue(ma[k], mb[k], maa[k], mbb[k], mab[k], c1, c2);
+  }
+  for (; ox < nx; ++ox) {
+    double ma = 0.0, mb = 0.0, maa = 0.0, mbb = 0.0, mab = 0.0;
+    for (int j = 0; j < kTaps; ++j) {
+      ma += w[j] * rows_a[j][ox];
+      mb += w[j] * rows_b[j][ox];
+      maa += w[j] * rows_aa[j][ox];
+      mbb += w[j] * rows_bb[j][ox];
+      mab += w[j] * rows_ab[j][ox];
+    }
+    map[ox] = MapValue(ma, mb, maa, mbb, mab, c1, c2);
+  }
+}
+
+// Blocking: chunks of kChunkRows output rows (in parallel), each walked in strips of
+// kStripCols output columns; a strip keeps the horizontal sums of its last 11 input rows in
+// a ring (5 planes × 11 rows × kStripCols doubles ≈ 113 KB, in L2), so no full-size plane is
+// ever written. Row sums of the map continue across strips left to right, as in the
+// reference.
+constexpr int kChunkRows = 64;
+constexpr int kStripCols = 256;
+
+double ChannelSsim(const ImageF& a, const ImageF& b, int c, const std::array<double, kTaps>& w) {
+  const int width = a.Width(), height = a.Height();
+  const int nx = width - 2 * kSsimRadius;
+  const int ny = height - 2 * kSsimRadius;
+  (void)height;
+  const double c1 = (kSsimK1 * 1.0) * (kSsimK1 * 1.0);
+  const double c2 = (kSsimK2 * 1.0) * (kSsimK2 * 1.0);
+  std::vector<double> row_sums(ny, 0.0);
+  const int ca = a.Channels(), cb = b.Channels();
+  ParallelForChunks(ny, kChunkRows, [&](int r0, int r1) {
+    const int strip_in = kStripCols + 2 * kSsimRadius;
+    std::vector<double> ra(strip_in), rb(strip_in), raa(strip_in), rbb(strip_in), rab(strip_in);
+    std::vector<double> ring(static_cast<size_t>(5) * kTaps * kStripCols);
+    std::vector<double> map(kStripCols);
+    for (int r = r0; r < r1; ++r) row_sums[r] = 0.0;
+    for (int x0 = 0; x0 < nx; x0 += kStripCols) {
+      const int sx = std::min(kStripCols, nx - x0);
+      auto slot = [&](int plane, int yy) { return ring.data() + (static_cast<size_t>(plane) * kTaps + yy % kTaps) * kStripCols; };
+      for (int yy = r0; yy < r1 + 2 * kSsimRadius; ++yy) {  // input rows of this chunk
+        HorizontalRow(a.Row(yy) + static_cast<size_t>(x0) * ca + c, ca, sx + 2 * kSsimRadius, sx, w.data(), ra.data(),
+                      raa.data(), slot(0, yy), slot(2, yy));
+        HorizontalRow(b.Row(yy) + static_cast<size_t>(x0) * cb + c, cb, sx + 2 * kSsimRadius, sx, w.data(), rb.data(),
+                      rbb.data(), slot(1, yy), slot(3, yy));
+        HorizontalCross(ra.data(), rb.data(), sx + 2 * kSsimRadius, sx, w.data(), rab.data(), slot(4, yy));
+        const int r = yy - 2 * kSsimRadius;  // output row complete once its 11th input row is in
+        if (r < r0) continue;
+        const double* pa[kTaps];
+        const double* pb[kTaps];
+        const double* paa[kTaps];
+        const double* pbb[kTaps];
+        const double* pab[kTaps];
+        for (int j = 0; j < kTaps; ++j) {
+          pa[j] = slot(0, r + j);
+          pb[j] = slot(1, r + j);
+          paa[j] = slot(2, r + j);
+          pbb[j] = slot(3, r + j);
+          pab[j] = slot(4, r + j);
+        }
+        VerticalAndMap(pa, pb, paa, pbb, pab, sx, w.data(), c1, c2, map.data());
+        double sum = row_sums[r];
+        for (int ox = 0; ox < sx; ++ox) sum += map[ox];
+        row_sums[r] = sum;
+      }
+    }
+  });
+  double total = 0.0;
+  for (double s : row_sums) total += s;
+  return total / (static_cast<double>(nx) * static_cast<double>(ny));
+}
+
 std::vector<MetricValue> ComputeSsimMetric(const MetricInput& in) {
   AALAB_CHECK(in.image && in.reference, "ssim needs image and reference");
   const SsimResult r = ComputeSsim(*in.image, *in.reference);
@@ -142,7 +318,10 @@ std::vector<MetricValue> ComputeSsimMetric(const MetricInput& in) {
 
 }  // namespace
 
-SsimResult ComputeSsim(const ImageF& a, const ImageF& b) {
+namespace {
+
+template <typename Channel>
+SsimResult ComputeSsimWith(const ImageF& a, const ImageF& b, Channel channel) {
   RequireSameShape(a, b, "ssim");
   if (a.Channels() < 3) {
     throw UserError("ssim: needs RGB images (got " + std::to_string(a.Channels()) +
@@ -154,10 +333,19 @@ SsimResult ComputeSsim(const ImageF& a, const ImageF& b) {
     return out;
   }
   const auto w = GaussianWindow();
-  for (int c = 0; c < 3; ++c) out.per_channel[c] = ChannelSsim(a, b, c, w);
+  for (int c = 0; c < 3; ++c) out.per_channel[c] = channel(a, b, c, w);
   out.ssim = (out.per_channel[0] + out.per_channel[1] + out.per_channel[2]) / 3.0;
   return out;
 }
+
+}  // namespace
+
+SsimResult ComputeSsimReference(const ImageF& a, const ImageF& b) {
+  return ComputeSsimWith(a, b, ChannelSsimReference);
+}
+
+SsimResult ComputeSsim(const ImageF& a, const ImageF& b) { return ComputeSsimWith(a, b, ChannelSsim); }
+
 
 std::vector<MetricEntry> SsimMetrics() {
   return {{"ssim",

@@ -33,6 +33,11 @@ struct SsimResult {
 /// or shorter than 11 pixels give an empty `ssim` with reason "image smaller than the 11x11
 /// SSIM window". Double precision throughout; bit-identical at any thread count.
 /// Throws UserError when the shapes differ or there are fewer than 3 channels.
+/// Production path (vectorised kernels); the same bits as ComputeSsimReference.
 SsimResult ComputeSsim(const ImageF& a, const ImageF& b);
+
+/// The simple implementation of ComputeSsim (one loop nest per pass, exactly the sums of the
+/// definition above), kept as the reference the production path is tested against.
+SsimResult ComputeSsimReference(const ImageF& a, const ImageF& b);
 
 }  // namespace aalab

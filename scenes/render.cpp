@@ -1,7 +1,7 @@
 #include "scenes/render.h"
 
 #include <cmath>
-#include <functional>
+#include <algorithm>
 #include <vector>
 
 #include "harness/core/color.h"
@@ -17,35 +17,93 @@ constexpr int kTile = 8;  // tiles of 8×8 pixels; the work split never depends 
 constexpr uint64_t kStreamReference = 0x5265665374726174ULL;  // "RefStrat"
 constexpr uint64_t kStreamJitter = 0x4a69747465725373ULL;     // "JitterSs"
 
-/// Calls `resolve(x, y, samples, spp)` for every pixel after tracing its samples; sample
-/// positions come from `place(x, y, s)`. Tiles run in parallel; counters merge per tile.
-void RenderTiles(const Tracer& tracer, int width, int height, int spp,
-                 const std::function<SamplePos(int, int, int)>& place,
-                 const std::function<void(int, int, const SampleResult*, int)>& resolve,
-                 TraceCounters* counters) {
+/// SampleJitter(x, y, s, seed, 0) and (..., 1) with the shared part of the hash computed
+/// once: HashTuple(x, y, s, seed, dim) mixes x, y, s, seed in that order before dim, so the
+/// pixel prefix (x, y) and the sample prefix (s, seed) are reused. Same bits as SampleJitter.
+struct PixelHash {
+  uint64_t h;  // HashTuple's state after mixing x and y
+  PixelHash(int x, int y) {
+    h = MixBits(static_cast<uint64_t>(static_cast<uint32_t>(x)) + 0x9e3779b97f4a7c15ULL);
+    h = MixBits(h ^ (static_cast<uint64_t>(static_cast<uint32_t>(y)) + 0x632be59bd9b4e019ULL));
+  }
+  void Jitter2(int s, uint64_t seed, float* j0, float* j1) const {
+    uint64_t g = MixBits(h ^ (static_cast<uint64_t>(static_cast<uint32_t>(s)) + 0x85157af5a2a6b5f1ULL));
+    g = MixBits(g ^ (seed + 0xd6e8feb86659fd93ULL));
+    *j0 = HashToUnitFloat(MixBits(g ^ (0ULL + 0xa0761d6478bd642fULL)));
+    *j1 = HashToUnitFloat(MixBits(g ^ (1ULL + 0xa0761d6478bd642fULL)));
+  }
+};
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
+#else
+#define AALAB_SIMD_CLONES
+#endif
+
+/// The reference's stratified positions of one pixel, s = j·grid + i: the PixelHash::Jitter2
+/// arithmetic laid out over all samples at once so it vectorises (64-bit multiplies and the
+/// divisions are exact operations, identical in every clone and lane).
+AALAB_SIMD_CLONES
+void PlaceStratifiedPixel(uint64_t pixel_hash, int grid, uint64_t seed, float fx, float fy, SamplePos* out) {
+  const float g = static_cast<float>(grid);
+  for (int j = 0; j < grid; ++j) {
+    for (int i = 0; i < grid; ++i) {
+    const int s = j * grid + i;
+    uint64_t h = MixBits(pixel_hash ^ (static_cast<uint64_t>(static_cast<uint32_t>(s)) + 0x85157af5a2a6b5f1ULL));
+    h = MixBits(h ^ (seed + 0xd6e8feb86659fd93ULL));
+    const float j0 = HashToUnitFloat(MixBits(h ^ (0ULL + 0xa0761d6478bd642fULL)));
+    const float j1 = HashToUnitFloat(MixBits(h ^ (1ULL + 0xa0761d6478bd642fULL)));
+    const float ox = (static_cast<float>(i) + j0) / g;
+    const float oy = (static_cast<float>(j) + j1) / g;
+    out[s].x = fx + ox;
+    out[s].y = fy + oy;
+    }
+  }
+}
+
+/// Per-thread sample buffers of RenderTiles, reused from tile to tile.
+struct TileScratch {
+  std::vector<SamplePos> pos;
+  std::vector<SampleResult> res;
+};
+
+/// Calls `resolve(x, y, samples, spp)` for every pixel after tracing its samples; the spp
+/// sample positions of pixel (x, y) come from `place(x, y, out)`. Tiles run in parallel,
+/// one Tracer::Trace call per tile (all its samples, pixel by pixel, row-major); counters
+/// merge per tile in tile order.
+template <typename Place, typename Resolve>
+void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Place& place,
+                 const Resolve& resolve, TraceCounters* counters) {
   AALAB_CHECK(width > 0 && height > 0 && spp > 0, "render size and spp must be positive");
   const int tiles_x = (width + kTile - 1) / kTile;
   const int tiles_y = (height + kTile - 1) / kTile;
   const int tiles = tiles_x * tiles_y;
   std::vector<TraceCounters> per_tile(static_cast<size_t>(tiles));
   ParallelForChunks(tiles, 1, [&](int begin, int end) {
-    std::vector<SamplePos> pos;
-    std::vector<SampleResult> res;
+    thread_local TileScratch scratch;
+    const size_t max_samples = static_cast<size_t>(kTile) * kTile * static_cast<size_t>(spp);
+    if (scratch.pos.size() < max_samples) {
+      scratch.pos.resize(max_samples);
+      scratch.res.resize(max_samples);
+    }
+    SamplePos* pos = scratch.pos.data();
+    SampleResult* res = scratch.res.data();
     for (int t = begin; t < end; ++t) {
       const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
       const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
-      pos.clear();
+      size_t n = 0;
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
-          for (int s = 0; s < spp; ++s) pos.push_back(place(x, y, s));
+          place(x, y, pos + n);
+          n += static_cast<size_t>(spp);
         }
       }
-      res.assign(pos.size(), SampleResult{});
-      tracer.Trace(pos.data(), static_cast<int>(pos.size()), width, height, res.data(), &per_tile[t]);
+      std::fill(res, res + n, SampleResult{});
+      tracer.Trace(pos, static_cast<int>(n), width, height, res, &per_tile[t]);
       size_t k = 0;
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
-          resolve(x, y, &res[k], spp);
+          resolve(x, y, res + k, spp);
           k += static_cast<size_t>(spp);
         }
       }
@@ -67,34 +125,34 @@ Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec
     fixed = spec.FixedOffsets();
   }
   const int n = spec.grid;
-  auto place = [&](int x, int y, int s) {
-    float ox, oy;
+  const uint64_t jseed = seed ^ kStreamJitter;
+  auto place = [&](int x, int y, SamplePos* out_pos) {
+    const PixelHash ph(x, y);
+    const float fx = static_cast<float>(x), fy = static_cast<float>(y);
     switch (spec.pattern) {
       case SamplePattern::kJitter:
-        ox = SampleJitter(x, y, s, seed ^ kStreamJitter, 0);
-        oy = SampleJitter(x, y, s, seed ^ kStreamJitter, 1);
+        for (int s = 0; s < spp; ++s) {
+          float ox, oy;
+          ph.Jitter2(s, jseed, &ox, &oy);
+          out_pos[s] = SamplePos{fx + ox, fy + oy};
+        }
         break;
       case SamplePattern::kStratified:
-        ox = (static_cast<float>(s % n) + SampleJitter(x, y, s, seed ^ kStreamJitter, 0)) / static_cast<float>(n);
-        oy = (static_cast<float>(s / n) + SampleJitter(x, y, s, seed ^ kStreamJitter, 1)) / static_cast<float>(n);
+        for (int s = 0; s < spp; ++s) {  // s = j·n + i
+          float j0, j1;
+          ph.Jitter2(s, jseed, &j0, &j1);
+          const float ox = (static_cast<float>(s % n) + j0) / static_cast<float>(n);
+          const float oy = (static_cast<float>(s / n) + j1) / static_cast<float>(n);
+          out_pos[s] = SamplePos{fx + ox, fy + oy};
+        }
         break;
       default:
-        ox = fixed[s].first;
-        oy = fixed[s].second;
+        for (int s = 0; s < spp; ++s) out_pos[s] = SamplePos{fx + fixed[s].first, fy + fixed[s].second};
     }
-    return SamplePos{static_cast<float>(x) + ox, static_cast<float>(y) + oy};
   };
   Image8 out(width, height, 4, 255);
   auto resolve = [&](int x, int y, const SampleResult* r, int count) {
-    double sum[3] = {0, 0, 0};
-    for (int s = 0; s < count; ++s) {
-      const auto d = DisplayLinear(display, {r[s].rgb[0], r[s].rgb[1], r[s].rgb[2]});
-      for (int c = 0; c < 3; ++c) sum[c] += d[c];
-    }
-    uint8_t* p = out.Pixel(x, y);
-    for (int c = 0; c < 3; ++c) {
-      p[c] = QuantizeUnorm8(SrgbEncode(static_cast<float>(sum[c] / count)));
-    }
+    ResolveBoxPixel(display, r, count, out.Pixel(x, y));
   };
   RenderTiles(tracer, width, height, spp, place, resolve, counters);
   return out;
@@ -119,25 +177,29 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
   ref.half_a = ImageF(width, height, 3);
   ref.half_b = ImageF(width, height, 3);
   ref.edge_mask_raw = ImageF(width, height, 1);
-  auto place = [&](int x, int y, int s) {
-    const int i = s % grid, j = s / grid;
-    const float ox = (static_cast<float>(i) + SampleJitter(x, y, s, seed ^ kStreamReference, 0)) / static_cast<float>(grid);
-    const float oy = (static_cast<float>(j) + SampleJitter(x, y, s, seed ^ kStreamReference, 1)) / static_cast<float>(grid);
-    return SamplePos{static_cast<float>(x) + ox, static_cast<float>(y) + oy};
+  const uint64_t rseed = seed ^ kStreamReference;
+  auto place = [&](int x, int y, SamplePos* out_pos) {
+    const PixelHash ph(x, y);
+    PlaceStratifiedPixel(ph.h, grid, rseed, static_cast<float>(x), static_cast<float>(y), out_pos);
   };
   auto resolve = [&](int x, int y, const SampleResult* r, int count) {
     double all[3] = {0, 0, 0}, a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
     int na = 0, nb = 0;
     bool edge = false;
-    for (int s = 0; s < count; ++s) {
-      const auto d = DisplayLinear(display, {r[s].rgb[0], r[s].rgb[1], r[s].rgb[2]});
-      const bool even = ((s % grid) + (s / grid)) % 2 == 0;
-      for (int c = 0; c < 3; ++c) {
-        all[c] += d[c];
-        (even ? a : b)[c] += d[c];
+    AALAB_CHECK(count == grid * grid, "reference pixel sample count");
+    int s = 0;
+    for (int j = 0; j < grid; ++j) {  // s = j·grid + i, stratum (i, j)
+      for (int i = 0; i < grid; ++i, ++s) {
+        float d[3];
+        DisplayLinearInline(display, r[s].rgb, d);
+        const bool even = (i + j) % 2 == 0;
+        for (int c = 0; c < 3; ++c) {
+          all[c] += d[c];
+          (even ? a : b)[c] += d[c];
+        }
+        (even ? na : nb)++;
+        if (r[s].surface != r[0].surface || r[s].shadowed != r[0].shadowed) edge = true;
       }
-      (even ? na : nb)++;
-      if (r[s].surface != r[0].surface || r[s].shadowed != r[0].shadowed) edge = true;
     }
     for (int c = 0; c < 3; ++c) {
       ref.image.At(x, y, c) = SrgbEncode(static_cast<float>(all[c] / count));

@@ -1,13 +1,50 @@
 /// Frame rendering on top of the tracer: 1x and supersampled method frames (8-bit, the back
 /// buffer) and the float reference with its noise floor and geometric edge mask.
 #pragma once
+#include <algorithm>
 #include <cstdint>
+
+#include "harness/core/color.h"
 
 #include "harness/core/image.h"
 #include "harness/core/render_spec.h"
 #include "scenes/tracer.h"
 
 namespace aalab {
+
+/// DisplayLinear (harness/core/color.h) for one sample, inlined for the per-sample resolve
+/// loops: the same operations in the same order, hence the same bits (a test compares it
+/// with DisplayLinear over the whole float range, NaN and infinities included).
+inline void DisplayLinearInline(const Display& d, const float rgb[3], float out[3]) {
+  for (int c = 0; c < 3; ++c) {
+    float v = rgb[c];
+    if (!(v > 0.0f)) v = 0.0f;  // negatives and NaN → 0
+    v = v * d.exposure;
+    switch (d.tonemap) {
+      case Tonemap::kNone: break;
+      case Tonemap::kReinhard: v = v / (1.0f + v); break;
+      case Tonemap::kAces: {
+        const float x = v * 0.6f;
+        v = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
+        break;
+      }
+    }
+    out[c] = std::clamp(v, 0.0f, 1.0f);
+  }
+}
+
+/// The SSAA resolve of one pixel: each of its `count` samples through the display
+/// transform, box average in linear light (double sums in sample order), sRGB encode,
+/// round to 8 bits into p[0..2]. What RenderFrame does for every pixel.
+inline void ResolveBoxPixel(const Display& display, const SampleResult* r, int count, uint8_t* p) {
+  double sum[3] = {0, 0, 0};
+  for (int s = 0; s < count; ++s) {
+    float d[3];
+    DisplayLinearInline(display, r[s].rgb, d);
+    for (int c = 0; c < 3; ++c) sum[c] += d[c];
+  }
+  for (int c = 0; c < 3; ++c) p[c] = QuantizeUnorm8(SrgbEncode(static_cast<float>(sum[c] / count)));
+}
 
 /// Renders a method frame of width × height with the render spec's sample pattern: each
 /// sample goes through the scene's display transform, samples are box-averaged in linear

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "harness/core/error.h"
+#include "harness/core/parallel.h"
 
 namespace aalab {
 
@@ -171,20 +172,30 @@ Tracer::~Tracer() = default;
 
 namespace {
 
-/// Closest hits for n rays, in 16-wide packets. Rays with tnear >= tfar are skipped.
+/// Closest hits for n rays, in 16-wide packets. Ray k of the batch is ray idx[k] of the
+/// arrays (idx == nullptr: ray k itself); hits[k] receives its hit. Rays with tnear >= tfar
+/// are skipped. The packets hold the same rays, in the same lanes, whether or not an index
+/// list is used, so the result never depends on how the caller stores its rays.
 void IntersectRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear,
-                   const float* tfar, int n, Hit* hits, bool coherent) {
+                   const float* tfar, const int* idx, int n, Hit* hits, bool coherent) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[kPacket];
+  for (int k = 0; k < kPacket; ++k) {  // inputs Embree never writes: set once per batch
+    rh.ray.time[k] = 0.0f;
+    rh.ray.mask[k] = 0xFFFFFFFFu;
+    rh.ray.id[k] = static_cast<unsigned>(k);
+    rh.ray.flags[k] = 0;
+  }
   for (int base = 0; base < n; base += kPacket) {
-    alignas(64) RTCRayHit16 rh;
-    alignas(64) int valid[kPacket];
     for (int k = 0; k < kPacket; ++k) {
       const int i = base + k;
-      const bool on = i < n && tnear[i] < tfar[i];
+      const int ri = i < n ? (idx ? idx[i] : i) : 0;
+      const bool on = i < n && tnear[ri] < tfar[ri];
       valid[k] = on ? -1 : 0;
-      const int j = on ? i : base;
+      const int j = on ? ri : (idx ? idx[base] : base);
       rh.ray.org_x[k] = org[j].x;
       rh.ray.org_y[k] = org[j].y;
       rh.ray.org_z[k] = org[j].z;
@@ -193,10 +204,6 @@ void IntersectRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, c
       rh.ray.dir_z[k] = dir[j].z;
       rh.ray.tnear[k] = on ? tnear[j] : 0.0f;
       rh.ray.tfar[k] = on ? tfar[j] : 0.0f;
-      rh.ray.time[k] = 0.0f;
-      rh.ray.mask[k] = 0xFFFFFFFFu;
-      rh.ray.id[k] = static_cast<unsigned>(k);
-      rh.ray.flags[k] = 0;
       rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
       rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
       rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
@@ -282,6 +289,58 @@ float RayEpsilon(glm::vec3 p) {
 
 }  // namespace
 
+namespace {
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define AALAB_SIMD_CLONES
+#endif
+
+/// Perspective camera rays, written out component by component so the loop vectorises:
+/// exactly glm's `normalize(forward + right·(nx·half_h·aspect) + up·(ny·half_h))` —
+/// normalize(v) = v · (1 / sqrt((x·x + y·y) + z·z)) — with the same roundings (IEEE
+/// divide and sqrt, no contraction), so the same bits as the scalar glm code.
+AALAB_SIMD_CLONES
+void PerspectiveRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
+                     glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
+  for (int i = 0; i < count; ++i) {
+    const float nx = 2.0f * pos[i].x / width - 1.0f;
+    const float ny = 1.0f - 2.0f * pos[i].y / height;
+    const float a = nx * half_h * aspect;
+    const float b = ny * half_h;
+    const float vx = fwd.x + (right.x * a + up.x * b);
+    const float vy = fwd.y + (right.y * a + up.y * b);
+    const float vz = fwd.z + (right.z * a + up.z * b);
+    const float inv = 1.0f / std::sqrt((vx * vx + vy * vy) + vz * vz);
+    org[i] = origin;
+    dir[i] = glm::vec3(vx * inv, vy * inv, vz * inv);
+  }
+}
+
+/// Per-thread working memory of Trace, reused from call to call: a call allocates nothing
+/// once its thread has seen a batch of that size (vectors only grow).
+struct TraceScratch {
+  std::vector<glm::vec3> org, dir;
+  std::vector<float> tnear, tfar;
+  std::vector<Hit> hits, layer_hits;
+  std::vector<int> active, next;
+  std::vector<Surface> surf;
+  std::vector<uint32_t> blocked;
+  // shadow rays
+  std::vector<int> who_sample, who_light;
+  std::vector<glm::vec3> so, sd;
+  std::vector<float> stn, stf;
+};
+
+template <typename T>
+T* Sized(std::vector<T>& v, size_t n) {
+  if (v.size() < n) v.resize(n);
+  return v.data();
+}
+
+}  // namespace
+
 void Tracer::Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out,
                    TraceCounters* counters) const {
   const Impl& im = *impl_;
@@ -289,77 +348,108 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
   const float inf = std::numeric_limits<float>::infinity();
   TraceCounters local;
   local.samples = static_cast<uint64_t>(count);
+  if (count <= 0) {
+    if (counters) *counters += local;
+    return;
+  }
+  thread_local TraceScratch scratch;
+  TraceScratch& S = scratch;
+  const size_t n_all = static_cast<size_t>(count);
 
   // 1. Camera rays.
-  std::vector<glm::vec3> org(count), dir(count);
-  std::vector<float> tnear(count, 0.0f), tfar(count, inf);
+  glm::vec3* org = Sized(S.org, n_all);
+  glm::vec3* dir = Sized(S.dir, n_all);
+  float* tnear = Sized(S.tnear, n_all);
+  float* tfar = Sized(S.tfar, n_all);
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   const Camera& cam = sc.camera;
   const float half_h = cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f)
                                                             : cam.height * 0.5f;
-  for (int i = 0; i < count; ++i) {
-    const float nx = 2.0f * pos[i].x / static_cast<float>(width) - 1.0f;
-    const float ny = 1.0f - 2.0f * pos[i].y / static_cast<float>(height);
-    const glm::vec3 offset = im.right * (nx * half_h * aspect) + im.up * (ny * half_h);
-    if (cam.type == CameraType::kPerspective) {
-      org[i] = im.origin;
-      dir[i] = glm::normalize(im.forward + offset);
-    } else {
+  if (cam.type == CameraType::kPerspective) {
+    PerspectiveRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
+                    im.forward, im.right, im.up, org, dir);
+  } else {
+    for (int i = 0; i < count; ++i) {
+      const float nx = 2.0f * pos[i].x / static_cast<float>(width) - 1.0f;
+      const float ny = 1.0f - 2.0f * pos[i].y / static_cast<float>(height);
+      const glm::vec3 offset = im.right * (nx * half_h * aspect) + im.up * (ny * half_h);
       org[i] = im.origin + offset;
       dir[i] = im.forward;
     }
   }
+  for (int i = 0; i < count; ++i) {
+    tnear[i] = 0.0f;
+    tfar[i] = inf;
+  }
 
   // 2. Closest hits, continuing through alpha cut-outs (only with `alpha_test`).
-  std::vector<Hit> hits(count);
-  std::vector<int> active(count);
-  for (int i = 0; i < count; ++i) active[i] = i;
+  Hit* hits = Sized(S.hits, n_all);
   const bool alpha = sc.Has(Effect::kAlphaTest) && im.any_alpha;
-  for (int layer = 0; !active.empty(); ++layer) {
-    const int n = static_cast<int>(active.size());
-    std::vector<glm::vec3> o(n), d(n);
-    std::vector<float> tn(n), tf(n);
-    for (int k = 0; k < n; ++k) {
-      o[k] = org[active[k]];
-      d[k] = dir[active[k]];
-      tn[k] = tnear[active[k]];
-      tf[k] = tfar[active[k]];
+  // Layer 0 holds every ray in order: trace straight into `hits` (same packets as a copy).
+  IntersectRays(im.scene, org, dir, tnear, tfar, nullptr, count, hits, true);
+  local.primary_rays += static_cast<uint64_t>(count);
+  if (alpha) {
+    std::vector<int>& active = S.active;
+    std::vector<int>& next = S.next;
+    active.clear();
+    // Layer 0's rejected hits, then further layers through the cut-outs.
+    auto alpha_pass = [&](int layer, int n, const int* who, const Hit* h) {
+      next.clear();
+      for (int k = 0; k < n; ++k) {
+        const int i = who ? who[k] : k;
+        const Hit hk = h[k];  // h may alias hits (layer 0)
+        hits[i] = hk;
+        if (hk.shape < 0) continue;
+        const Material& m = sc.materials[sc.shapes[hk.shape].material];
+        if (!m.alpha) continue;
+        const Surface srf = SurfaceAt(sc, hk, org[i], dir[i]);
+        ++local.texture_lookups;
+        if (EvaluatePattern(*m.alpha, srf.uv) >= m.alpha_cutoff) continue;
+        // Rejected: continue just past this hit.
+        hits[i] = Hit{};
+        tnear[i] = hk.t + std::max(hk.t * 2e-6f, 1e-6f);
+        if (layer + 1 < kMaxAlphaLayers) next.push_back(i);
+      }
+      active.swap(next);
+    };
+    alpha_pass(0, count, nullptr, hits);
+    for (int layer = 1; !active.empty(); ++layer) {
+      const int n = static_cast<int>(active.size());
+      Hit* h = Sized(S.layer_hits, static_cast<size_t>(n));
+      IntersectRays(im.scene, org, dir, tnear, tfar, active.data(), n, h, false);
+      local.primary_rays += static_cast<uint64_t>(n);
+      alpha_pass(layer, n, active.data(), h);
     }
-    std::vector<Hit> h(n);
-    IntersectRays(im.scene, o.data(), d.data(), tn.data(), tf.data(), n, h.data(), layer == 0);
-    local.primary_rays += static_cast<uint64_t>(n);
-    std::vector<int> next;
-    for (int k = 0; k < n; ++k) {
-      const int i = active[k];
-      hits[i] = h[k];
-      if (!alpha || h[k].shape < 0) continue;
-      const Material& m = sc.materials[sc.shapes[h[k].shape].material];
-      if (!m.alpha) continue;
-      const Surface srf = SurfaceAt(sc, h[k], org[i], dir[i]);
-      ++local.texture_lookups;
-      if (EvaluatePattern(*m.alpha, srf.uv) >= m.alpha_cutoff) continue;
-      // Rejected: continue just past this hit.
-      hits[i] = Hit{};
-      tnear[i] = h[k].t + std::max(h[k].t * 2e-6f, 1e-6f);
-      if (layer + 1 < kMaxAlphaLayers) next.push_back(i);
-    }
-    active.swap(next);
   }
 
   // 3. Surfaces and shadow rays (only with `shadows`, only for shadow-casting lights).
-  std::vector<Surface> surf(count);
-  for (int i = 0; i < count; ++i) {
-    if (hits[i].shape >= 0) surf[i] = SurfaceAt(sc, hits[i], org[i], dir[i]);
-  }
   const bool lambert = sc.Has(Effect::kLambert);
   const bool shadows = sc.Has(Effect::kShadows);
   const bool specular = sc.Has(Effect::kSpecular);
   const bool textures = sc.Has(Effect::kTextures);
-  std::vector<uint32_t> blocked(count, 0);
+  // Surface attributes feed only lighting, shadows and textures: unlit untextured scenes
+  // never read them, so they are not computed there.
+  Surface* surf = Sized(S.surf, n_all);
+  if (lambert || shadows || textures) {
+    for (int i = 0; i < count; ++i) {
+      if (hits[i].shape >= 0) surf[i] = SurfaceAt(sc, hits[i], org[i], dir[i]);
+    }
+  }
+  uint32_t* blocked = Sized(S.blocked, n_all);
+  std::fill(blocked, blocked + count, 0u);
   if (shadows) {
-    std::vector<int> who_sample, who_light;
-    std::vector<glm::vec3> so, sd;
-    std::vector<float> stn, stf;
+    std::vector<int>& who_sample = S.who_sample;
+    std::vector<int>& who_light = S.who_light;
+    std::vector<glm::vec3>& so = S.so;
+    std::vector<glm::vec3>& sd = S.sd;
+    std::vector<float>& stn = S.stn;
+    std::vector<float>& stf = S.stf;
+    who_sample.clear();
+    who_light.clear();
+    so.clear();
+    sd.clear();
+    stn.clear();
+    stf.clear();
     for (int i = 0; i < count; ++i) {
       if (hits[i].shape < 0) continue;
       if (sc.materials[sc.shapes[hits[i].shape].material].shading != Shading::kLambert) continue;
@@ -389,28 +479,24 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
       }
     }
     // Any hit that survives the alpha test blocks the light.
-    std::vector<int> act(so.size());
+    std::vector<int>& act = S.active;
+    std::vector<int>& next = S.next;
+    act.resize(so.size());
     for (size_t k = 0; k < so.size(); ++k) act[k] = static_cast<int>(k);
     for (int layer = 0; !act.empty() && layer < kMaxAlphaLayers; ++layer) {
       const int n = static_cast<int>(act.size());
-      std::vector<glm::vec3> o(n), d(n);
-      std::vector<float> tn(n), tf(n);
-      for (int k = 0; k < n; ++k) {
-        o[k] = so[act[k]];
-        d[k] = sd[act[k]];
-        tn[k] = stn[act[k]];
-        tf[k] = stf[act[k]];
-      }
-      std::vector<Hit> h(n);
-      IntersectRays(im.scene, o.data(), d.data(), tn.data(), tf.data(), n, h.data(), false);
+      Hit* h = Sized(S.layer_hits, static_cast<size_t>(n));
+      // Layer 0 traces every shadow ray in order (no index list needed).
+      IntersectRays(im.scene, so.data(), sd.data(), stn.data(), stf.data(), layer == 0 ? nullptr : act.data(), n,
+                    h, false);
       local.shadow_rays += static_cast<uint64_t>(n);
-      std::vector<int> next;
+      next.clear();
       for (int k = 0; k < n; ++k) {
         const int r = act[k];
         if (h[k].shape < 0) continue;
         const Material& m = sc.materials[sc.shapes[h[k].shape].material];
         if (alpha && m.alpha) {
-          const Surface srf = SurfaceAt(sc, h[k], o[k], d[k]);
+          const Surface srf = SurfaceAt(sc, h[k], so[r], sd[r]);
           ++local.texture_lookups;
           if (EvaluatePattern(*m.alpha, srf.uv) < m.alpha_cutoff) {
             stn[r] = h[k].t + std::max(h[k].t * 2e-6f, 1e-6f);
@@ -473,6 +559,75 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
     r.rgb[2] = c.z;
   }
   if (counters) *counters += local;
+}
+
+uint64_t Tracer::BareTrace(int width, int height, int grid) const {
+  const Impl& im = *impl_;
+  const Camera& cam = scene_.camera;
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const float half_h = cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f)
+                                                            : cam.height * 0.5f;
+  const bool persp = cam.type == CameraType::kPerspective;
+  constexpr int kTileSize = 8;
+  const int tiles_x = (width + kTileSize - 1) / kTileSize;
+  const int tiles_y = (height + kTileSize - 1) / kTileSize;
+  std::vector<uint64_t> hits(static_cast<size_t>(tiles_x) * tiles_y, 0);
+  ParallelForChunks(tiles_x * tiles_y, 1, [&](int begin, int end) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[kPacket];
+    for (int k = 0; k < kPacket; ++k) {
+      rh.ray.time[k] = 0.0f;
+      rh.ray.mask[k] = 0xFFFFFFFFu;
+      rh.ray.id[k] = static_cast<unsigned>(k);
+      rh.ray.flags[k] = 0;
+    }
+    for (int t = begin; t < end; ++t) {
+      const int x0 = (t % tiles_x) * kTileSize, y0 = (t / tiles_x) * kTileSize;
+      const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+      uint64_t n_hit = 0;
+      int lane = 0;
+      auto flush = [&]() {
+        for (int k = 0; k < kPacket; ++k) valid[k] = k < lane ? -1 : 0;
+        rtcIntersect16(valid, im.scene, &ctx, &rh);
+        for (int k = 0; k < lane; ++k) n_hit += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+        lane = 0;
+      };
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+          for (int j = 0; j < grid; ++j) {
+            for (int i = 0; i < grid; ++i) {
+              const float px = static_cast<float>(x) + (static_cast<float>(i) + 0.5f) / static_cast<float>(grid);
+              const float py = static_cast<float>(y) + (static_cast<float>(j) + 0.5f) / static_cast<float>(grid);
+              const float nx = 2.0f * px / static_cast<float>(width) - 1.0f;
+              const float ny = 1.0f - 2.0f * py / static_cast<float>(height);
+              const glm::vec3 offset = im.right * (nx * half_h * aspect) + im.up * (ny * half_h);
+              const glm::vec3 o = persp ? im.origin : im.origin + offset;
+              const glm::vec3 d = persp ? glm::normalize(im.forward + offset) : im.forward;
+              rh.ray.org_x[lane] = o.x;
+              rh.ray.org_y[lane] = o.y;
+              rh.ray.org_z[lane] = o.z;
+              rh.ray.dir_x[lane] = d.x;
+              rh.ray.dir_y[lane] = d.y;
+              rh.ray.dir_z[lane] = d.z;
+              rh.ray.tnear[lane] = 0.0f;
+              rh.ray.tfar[lane] = std::numeric_limits<float>::infinity();
+              rh.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+              rh.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+              if (++lane == kPacket) flush();
+            }
+          }
+        }
+      }
+      if (lane > 0) flush();
+      hits[static_cast<size_t>(t)] = n_hit;
+    }
+  });
+  uint64_t total = 0;
+  for (uint64_t h : hits) total += h;
+  return total;
 }
 
 }  // namespace aalab

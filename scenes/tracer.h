@@ -53,6 +53,13 @@ class Tracer {
 
   const Scene& GetScene() const { return scene_; }
 
+  /// The limit the benchmark measures tracing against: a bare Embree loop over the camera
+  /// rays of a width × height image with grid × grid samples per pixel (strata centres),
+  /// pixel by pixel in 8×8-pixel tiles (tiles in parallel), 16-wide coherent packets
+  /// (rtcIntersect16), no shading, no alpha continuation, no shadow rays. Returns the number
+  /// of rays that hit something (so the work cannot be optimised away).
+  uint64_t BareTrace(int width, int height, int grid) const;
+
  private:
   struct Impl;
   const Scene& scene_;
