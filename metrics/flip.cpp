@@ -64,7 +64,6 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
-#include <mutex>
 #include <numbers>
 #include <string>
 
@@ -492,61 +491,39 @@ std::vector<double> ErrorValuesUncached(const ImageF& reference, const ImageF& t
   return out;
 }
 
-namespace {
-
-// The reference's half of the work (its filtered Hunt-Lab colours and its feature
-// magnitudes) depends on the reference image and ppd alone. A run scores every method
-// against the same reference, so the last reference's half is kept and reused when the
-// next call's reference has the same size, channels, ppd and bit-identical pixels (checked
-// in full, never by pointer): the values are the ones a fresh computation gives.
 struct ReferenceSide {
-  int w = 0, h = 0, channels = 0;
+  int w = 0, h = 0;
   double ppd = 0.0;
-  std::vector<float> pixels;
   std::vector<Color> lab;
   Features features;
 };
 
-std::mutex g_reference_mutex;
-std::shared_ptr<const ReferenceSide> g_reference_side;
-
-std::shared_ptr<const ReferenceSide> ReferenceSideFor(const ImageF& reference, double ppd) {
-  {
-    std::lock_guard<std::mutex> lock(g_reference_mutex);
-    const auto& c = g_reference_side;
-    if (c && c->w == reference.Width() && c->h == reference.Height() && c->channels == reference.Channels() &&
-        std::memcmp(&c->ppd, &ppd, sizeof ppd) == 0 && c->pixels.size() == reference.Data().size() &&
-        std::memcmp(c->pixels.data(), reference.Data().data(), c->pixels.size() * sizeof(float)) == 0) {
-      return c;
-    }
-  }
+std::shared_ptr<const ReferenceSide> PrepareReference(const ImageF& reference, double ppd) {
+  CheckPair(reference, reference);
+  CheckPpd(ppd);
   auto side = std::make_shared<ReferenceSide>();
   side->w = reference.Width();
   side->h = reference.Height();
-  side->channels = reference.Channels();
   side->ppd = ppd;
-  side->pixels = reference.Data();
   const Planes a = ToYCxCz(reference);
   side->lab = FilteredHuntLab(a, MakeSpatialKernels(ppd));
   side->features = DetectFeatures(a, MakeFeatureKernels(ppd));
-  std::lock_guard<std::mutex> lock(g_reference_mutex);
-  g_reference_side = side;
   return side;
 }
 
-}  // namespace
-
-std::vector<double> ErrorValues(const ImageF& reference, const ImageF& test, double ppd) {
-  CheckPair(reference, test);
-  CheckPpd(ppd);
-  const std::shared_ptr<const ReferenceSide> ref = ReferenceSideFor(reference, ppd);
+std::vector<double> ErrorValues(const ReferenceSide& ref, const ImageF& test) {
+  if (test.Width() != ref.w || test.Height() != ref.h) {
+    throw UserError("flip: test image is " + std::to_string(test.Width()) + "x" + std::to_string(test.Height()) +
+                    ", the prepared reference " + std::to_string(ref.w) + "x" + std::to_string(ref.h));
+  }
+  const double ppd = ref.ppd;
   const Planes b = ToYCxCz(test);
-  // ColorErrorFromPlanes and FeatureErrorFromPlanes with the reference's half reused.
+  // ColorErrorFromPlanes and FeatureErrorFromPlanes with the reference's half precomputed.
   const std::vector<Color> lab_b = FilteredHuntLab(b, MakeSpatialKernels(ppd));
   std::vector<double> out(lab_b.size());
-  ForEachPixel(out.size(), [&](size_t i) { out[i] = RemapColorError(std::pow(HyAB(ref->lab[i], lab_b[i]), kQc)); });
+  ForEachPixel(out.size(), [&](size_t i) { out[i] = RemapColorError(std::pow(HyAB(ref.lab[i], lab_b[i]), kQc)); });
   const Features fb = DetectFeatures(b, MakeFeatureKernels(ppd));
-  const Features& fa = ref->features;
+  const Features& fa = ref.features;
   std::vector<double> feature(out.size());
   const double inv_sqrt2 = 1.0 / std::sqrt(2.0);
   ForEachPixel(out.size(), [&](size_t i) {
@@ -555,6 +532,11 @@ std::vector<double> ErrorValues(const ImageF& reference, const ImageF& test, dou
   });
   ForEachPixel(out.size(), [&](size_t i) { out[i] = std::pow(out[i], 1.0 - feature[i]); });
   return out;
+}
+
+std::vector<double> ErrorValues(const ImageF& reference, const ImageF& test, double ppd) {
+  CheckPair(reference, test);
+  return ErrorValues(*PrepareReference(reference, ppd), test);
 }
 
 }  // namespace flip

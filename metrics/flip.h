@@ -4,6 +4,7 @@
 /// reference code and precision: the block at the top of metrics/flip.cpp and METRICS.md.
 #pragma once
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "harness/core/image.h"
@@ -120,6 +121,15 @@ std::vector<double> FeatureErrorValues(const ImageF& reference, const ImageF& te
 /// kept from the previous call and reused when the reference pixels (compared in full), size
 /// and ppd are the same: a run scores many methods against one reference.
 std::vector<double> ErrorValues(const ImageF& reference, const ImageF& test, double ppd);
+/// The reference's half of LDR-FLIP (its filtered Hunt-adjusted Lab colours and feature
+/// magnitudes), which depends on the reference and ppd alone: a run scores every method
+/// against one reference, so the runner prepares it once per scene (explicit, no cache).
+struct ReferenceSide;
+/// Prepares the reference side (same checks as FlipErrorMap).
+std::shared_ptr<const ReferenceSide> PrepareReference(const ImageF& reference, double ppd);
+/// ErrorValues against a prepared reference: the same values as ErrorValues(reference,
+/// test, ppd), bit for bit. UserError when `test`'s size differs from the reference's.
+std::vector<double> ErrorValues(const ReferenceSide& reference, const ImageF& test);
 /// ErrorValues computed from scratch every time (the simple path; tests compare the two).
 std::vector<double> ErrorValuesUncached(const ImageF& reference, const ImageF& test, double ppd);
 

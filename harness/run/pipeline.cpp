@@ -105,6 +105,7 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
     p->counters1x = c;
   });
   p->none_f = ToFloat(p->frame1x, 3);
+  p->flip_reference = flip::PrepareReference(p->ref.image, kFlipDefaultPpd);
   const int crop_size = std::max(8, std::min(32, std::min(W, H) / 4));
   for (const auto& c : PickCrops(CropScore(p->none_f, p->ref.image, &p->ref.edge_mask), crop_size, 4)) {
     sr.crops.push_back({c.x, c.y, c.w, c.h});
@@ -180,7 +181,7 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   row.output_hash = HashBytes(frame.Data().data(), frame.Data().size());
 
   const ImageF out_f = ToFloat(frame, 3);
-  const std::vector<double> flip_values = flip::ErrorValues(p.ref.image, out_f, kFlipDefaultPpd);
+  const std::vector<double> flip_values = flip::ErrorValues(*p.flip_reference, out_f);
   MetricInput in;
   in.image = &out_f;
   in.reference = &p.ref.image;

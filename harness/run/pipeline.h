@@ -8,6 +8,7 @@
 
 #include "harness/core/image.h"
 #include "methods/method.h"
+#include "metrics/flip.h"
 #include "reports/result.h"
 #include "scenes/render.h"
 #include "scenes/scene.h"
@@ -25,6 +26,8 @@ struct PreparedScene {
   TraceCounters counters1x;   ///< cost of frame1x
   Timing render1x;            ///< timing of frame1x over the repeats
   SceneResult info;           ///< what the report says about the scene (images filled by the caller)
+  /// The reference's half of LDR-FLIP, computed once and shared by every method's score.
+  std::shared_ptr<const flip::ReferenceSide> flip_reference;
 };
 
 /// Loads and validates scenes by name or path; duplicates are an error.
