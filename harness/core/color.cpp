@@ -40,11 +40,17 @@ float SrgbDecode(float v) {
 float ApplyTonemap(Tonemap t, float v) {
   switch (t) {
     case Tonemap::kNone: return v;
-    case Tonemap::kReinhard: return v / (1.0f + v);
+    case Tonemap::kReinhard:
+      // inf / (1 + inf) would be NaN; for every finite v the quotient is at most 1.
+      return std::isinf(v) && v > 0.0f ? 1.0f : v / (1.0f + v);
     case Tonemap::kAces: {
       // Narkowicz 2015 fit of the ACES RRT+ODT (per channel), input pre-scaled by 0.6 so
       // that exposure 1 maps scene value 1 near display 0.8, as in the original note.
       const float x = v * 0.6f;
+      // Beyond 1e15 the fit equals its limit 2.51/2.43 to float precision, and from about
+      // 1.8e19 on x*x overflows: inf / inf = NaN, which the display transform turned into
+      // black. Return the limit instead (the caller clamps it to 1).
+      if (x > 1e15f) return 2.51f / 2.43f;
       return (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
     }
   }

@@ -24,6 +24,8 @@ float SrgbEncode(float linear);
 /// Inverse sRGB OETF for x in [0, 1].
 float SrgbDecode(float encoded);
 /// Tonemaps one linear channel value (exposure already applied). Output is not clamped.
+/// Defined for every v in [0, +inf]: very large and infinite values give the curve's limit
+/// (1 for reinhard, 2.51/2.43 for aces, v for none), never NaN.
 float ApplyTonemap(Tonemap t, float v);
 /// Display transform of one linear RGB sample to display-linear RGB, clamped to [0, 1].
 /// NaN inputs map to 0 (documented sanitisation: the tracer never produces NaN, but a user
