@@ -5,7 +5,7 @@ OUT       ?= out
 RUN_ARGS  ?=
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build run test bench clean
+.PHONY: all deps configure build run test bench clean test-asan fuzz
 
 all: build
 
@@ -24,5 +24,14 @@ run: build
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# AddressSanitizer + UndefinedBehaviorSanitizer: every test, then the hard suite through the
+# CLI (not part of `make test`; see README "Hard cases and robustness").
+test-asan: deps
+	@bash scripts/test-asan.sh
+
+# libFuzzer targets (clang), FUZZ_SECONDS per target (default 60).
+fuzz: deps
+	@bash scripts/fuzz.sh
+
 clean:
-	rm -rf $(BUILD) $(BUILD).configure.log
+	rm -rf $(BUILD) $(BUILD).configure.log build-asan build-asan.configure.log build-fuzz build-fuzz.configure.log
