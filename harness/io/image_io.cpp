@@ -46,6 +46,9 @@ void WriteRaw(const std::string& path, int w, int h, int nc, OIIO::TypeDesc type
     throw UserError("cannot write '" + path + "': unknown image format (use .png, .jpg, .tif or .exr)");
   }
   OIIO::ImageSpec spec(w, h, nc, type);
+  // OpenImageIO stamps EXR and TIFF files with the current time unless DateTime is set; an
+  // empty value writes none, so the same pixels always give the same bytes (determinism).
+  spec.attribute("DateTime", "");
   if (!out->open(tmp, spec) || !out->write_image(type, data) || !out->close()) {
     std::error_code ec;
     fs::remove(tmp, ec);

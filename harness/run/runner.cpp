@@ -104,6 +104,15 @@ Report RunSuite(const RunSettings& s) {
   const fs::path tmp = out.string() + ".partial";
   fs::remove_all(tmp);
   fs::create_directories(tmp / "images");
+  // A run that fails half-way (an exception from any stage) removes its partial output.
+  struct RemovePartial {
+    fs::path dir;
+    bool armed = true;
+    ~RemovePartial() {
+      std::error_code ec;
+      if (armed) fs::remove_all(dir, ec);
+    }
+  } cleanup{tmp};
 
   Report report;
   for (const auto& [k, v] : ContextFacts()) report.context[k] = v;
@@ -163,6 +172,7 @@ Report RunSuite(const RunSettings& s) {
   WriteTextFile((tmp / "report.json").string(), ReportToJson(report).dump(2) + "\n");
   fs::remove_all(out);
   fs::rename(tmp, out);
+  cleanup.armed = false;
   return report;
 }
 
