@@ -121,13 +121,19 @@ void CheckScene(const Scene& s) {
   }
 }
 
-const std::string& TempBase() {
-  static const std::string base = [] {
-    const fs::path dir = fs::temp_directory_path() / ("aalab-fuzz-" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-    return (dir / "input").string();
-  }();
-  return base;
+/// A private temporary folder, removed when the process exits.
+struct TempFolder {
+  fs::path dir = fs::temp_directory_path() / ("aalab-fuzz-" + std::to_string(::getpid()));
+  TempFolder() { fs::create_directories(dir); }
+  ~TempFolder() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
+std::string TempBase() {
+  static const TempFolder folder;
+  return (folder.dir / "input").string();
 }
 
 }  // namespace
