@@ -108,6 +108,51 @@ TEST(ImageIo, TruncatedEmptyAndMissingFilesNameThePath) {
   EXPECT_NE(ReadError(Dir() / "dir.png").find("is a directory"), std::string::npos);
 }
 
+TEST(ImageIo, OnlyTheReaderTheExtensionNamesIsTried) {
+  const fs::path png = Dir() / "real.png";
+  WriteImage8(png.string(), Image8(4, 3, 4, 200));
+  EXPECT_TRUE(ReadError(png).empty());
+  // The same bytes under another supported extension: refused, not handed to other readers.
+  fs::copy_file(png, Dir() / "fake.exr", fs::copy_options::overwrite_existing);
+  const std::string e = ReadError(Dir() / "fake.exr");
+  EXPECT_NE(e.find("fake.exr"), std::string::npos) << e;
+  EXPECT_NE(e.find("must match the file's extension"), std::string::npos) << e;
+  // Extensions outside PNG/JPEG/TIFF/EXR, and upper case accepted.
+  fs::copy_file(png, Dir() / "pic.bmp", fs::copy_options::overwrite_existing);
+  EXPECT_NE(ReadError(Dir() / "pic.bmp").find("unsupported file type '.bmp' (readable: .png, .jpg"), std::string::npos);
+  fs::copy_file(png, Dir() / "noext", fs::copy_options::overwrite_existing);
+  EXPECT_NE(ReadError(Dir() / "noext").find("unsupported file type ''"), std::string::npos);
+  fs::copy_file(png, Dir() / "UPPER.PNG", fs::copy_options::overwrite_existing);
+  EXPECT_TRUE(ReadError(Dir() / "UPPER.PNG").empty());
+}
+
+TEST(ImageIo, ContainerSizesAreCheckedBeforeTheDecodersTrustThem) {
+  // Found by fuzzing: OpenEXR allocated (and zeroed) whatever a string attribute's size field
+  // claimed, 1.8 GB for a 600-byte file, before failing on the missing bytes.
+  std::string exr("\x76\x2f\x31\x01\x02\x00\x00\x00", 8);
+  exr += std::string("comment\0string\0", 15) + std::string("\xf0\xff\xff\x6f", 4) + "abc";
+  std::ofstream(Dir() / "claims.exr", std::ios::binary) << exr;
+  const std::string e = ReadError(Dir() / "claims.exr");
+  EXPECT_NE(e.find("not a valid OpenEXR file: attribute 'comment' claims 1879048176 bytes but only 3 remain"),
+            std::string::npos)
+      << e;
+  // The same for PNG: libpng allocated a chunk's claimed length (2 GB for a 260-byte file).
+  const fs::path png = Dir() / "ok.png";
+  WriteImage8(png.string(), Image8(3, 2, 4, 50));
+  std::string bytes = Bytes(png);
+  ASSERT_EQ(bytes.substr(12, 4), "IHDR");
+  std::string claims = bytes.substr(0, 33) + std::string("\x7f\xff\xff\x00tEXt", 8) + "key";
+  std::ofstream(Dir() / "claims.png", std::ios::binary) << claims;
+  const std::string pe = ReadError(Dir() / "claims.png");
+  EXPECT_NE(pe.find("not a valid PNG file: chunk 'tEXt' claims 2147483392 bytes but only 0 remain"), std::string::npos)
+      << pe;
+  EXPECT_TRUE(ReadError(png).empty());
+  // A valid file still reads.
+  ImageF img(6, 4, 3, 0.5f);
+  WriteImageF((Dir() / "valid.exr").string(), img);
+  EXPECT_TRUE(ReadError(Dir() / "valid.exr").empty());
+}
+
 TEST(ImageIo, WritesAreAtomicAndDeterministic) {
   // A failed write leaves nothing behind.
   EXPECT_THROW(WriteImage8((Dir() / "nope" / "x.png").string(), Image8(2, 2, 4, 0)), UserError);
