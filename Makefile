@@ -7,7 +7,7 @@ RUN_ARGS  ?=
 CMAKE_FLAGS ?=
 BENCH_ARGS ?=
 
-.PHONY: all deps configure build run test bench clean
+.PHONY: all deps configure build run test bench clean test-asan fuzz
 
 all: build
 
@@ -30,5 +30,14 @@ bench: configure
 	@cmake --build $(BUILD) -j $(JOBS) --target aalab aalab_bench
 	@./$(BUILD)/bench/aalab_bench --json bench.json $(BENCH_ARGS)
 
+# AddressSanitizer + UndefinedBehaviorSanitizer: every test, then the hard suite through the
+# CLI (not part of `make test`; see README "Hard cases and robustness").
+test-asan: deps
+	@bash scripts/test-asan.sh
+
+# libFuzzer targets (clang), FUZZ_SECONDS per target (default 60).
+fuzz: deps
+	@bash scripts/fuzz.sh
+
 clean:
-	rm -rf $(BUILD) $(BUILD).configure.log
+	rm -rf $(BUILD) $(BUILD).configure.log build-asan build-asan.configure.log build-fuzz build-fuzz.configure.log

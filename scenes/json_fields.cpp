@@ -1,13 +1,49 @@
 #include "scenes/json_fields.h"
 
+#include <cfloat>
+
 #include "harness/core/error.h"
 #include "harness/core/params.h"
 
 namespace aalab {
 
+namespace {
+
+constexpr size_t kShownChars = 60;
+
+// An abbreviated rendering for messages. nlohmann's dump() recurses once per nesting level
+// and overflows the stack on deeply nested input (a 2 MB file of '[' is enough), so arrays
+// and objects are written here with a depth limit and a character budget instead.
+void Abbreviate(const nlohmann::json& v, std::string& out, int depth) {
+  if (out.size() > kShownChars) return;
+  if (!v.is_structured()) {
+    std::string s = v.dump();
+    if (s.size() > kShownChars) s.resize(kShownChars + 1);  // long strings: cut, "..." follows
+    out += s;
+    return;
+  }
+  const bool array = v.is_array();
+  if (depth >= 4) {
+    out += array ? "[...]" : "{...}";
+    return;
+  }
+  out += array ? '[' : '{';
+  bool first = true;
+  for (auto it = v.begin(); it != v.end() && out.size() <= kShownChars; ++it) {
+    if (!first) out += ',';
+    first = false;
+    if (!array) out += nlohmann::json(it.key()).dump() + ':';
+    Abbreviate(*it, out, depth + 1);
+  }
+  out += array ? ']' : '}';
+}
+
+}  // namespace
+
 std::string JsonField::Shown() const {
-  std::string s = value_.dump();
-  if (s.size() > 60) s = s.substr(0, 57) + "...";
+  std::string s;
+  Abbreviate(value_, s, 0);
+  if (s.size() > kShownChars) s = s.substr(0, kShownChars - 3) + "...";
   return s;
 }
 
@@ -60,6 +96,12 @@ double JsonField::Number(double min, double max, bool open_min) const {
   if (v < min || v > max || (open_min && v <= min)) {
     Fail(Shown() + " is out of range (allowed: " + (open_min ? "> " : ">= ") + FormatNumber(min) +
          " and <= " + FormatNumber(max) + ")");
+  }
+  // Scene values are stored as float: a value that must stay above `min` must not round
+  // down onto it (1e-300 > 0, but it is 0 as a float).
+  if (open_min && !(std::fabs(static_cast<float>(v) - static_cast<float>(min)) >= FLT_MIN)) {
+    Fail(Shown() + " is too close to " + FormatNumber(min) + ": it rounds to " + FormatNumber(min) +
+         " in single precision (allowed: > " + FormatNumber(min) + ")");
   }
   return v;
 }

@@ -24,7 +24,7 @@ nlohmann::ordered_json ReadSuites() {
   ss << f.rdbuf();
   try {
     return nlohmann::ordered_json::parse(ss.str());
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
     throw UserError("suite file '" + p.string() + "' is not valid JSON: " + e.what());
   }
 }
@@ -62,9 +62,19 @@ std::vector<std::string> SuiteScenes(const std::string& suite) {
     throw UserError("unknown suite '" + suite + "' (valid: " + JoinNames(SuiteNames()) + ")");
   }
   const auto& entry = doc.at(suite);
-  if (entry.contains("scenes") && entry.at("scenes") == "all") return LibrarySceneNames();
+  if (entry.is_object() && entry.contains("scenes") && entry.at("scenes") == "all") return LibrarySceneNames();
+  if (!entry.is_object() || !entry.contains("scenes") || !entry.at("scenes").is_array()) {
+    throw UserError("suite '" + suite + "' in '" + SceneLibraryDir() +
+                    "/suites.json' needs \"scenes\": an array of scene names or \"all\"");
+  }
   std::vector<std::string> names;
-  for (const auto& n : entry.at("scenes")) names.push_back(n.get<std::string>());
+  for (const auto& n : entry.at("scenes")) {
+    if (!n.is_string()) {
+      throw UserError("suite '" + suite + "' in '" + SceneLibraryDir() + "/suites.json': scene names must be strings, got " +
+                      std::string(n.type_name()));
+    }
+    names.push_back(n.get<std::string>());
+  }
   return names;
 }
 

@@ -19,16 +19,7 @@ inline void DisplayLinearInline(const Display& d, const float rgb[3], float out[
   for (int c = 0; c < 3; ++c) {
     float v = rgb[c];
     if (!(v > 0.0f)) v = 0.0f;  // negatives and NaN → 0
-    v = v * d.exposure;
-    switch (d.tonemap) {
-      case Tonemap::kNone: break;
-      case Tonemap::kReinhard: v = v / (1.0f + v); break;
-      case Tonemap::kAces: {
-        const float x = v * 0.6f;
-        v = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
-        break;
-      }
-    }
+    v = ApplyTonemap(d.tonemap, v * d.exposure);
     out[c] = std::clamp(v, 0.0f, 1.0f);
   }
 }

@@ -1,4 +1,6 @@
 // Scene files: JSON → Scene, with validation. Every field is documented in scenes/README.md.
+#include <cfloat>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -79,9 +81,13 @@ Light ParseLight(const JsonField& f) {
   const std::string type = f.Child("type").Choice({"directional", "point"});
   if (type == "directional") {
     l.type = LightType::kDirectional;
-    l.direction = f.Child("direction").Vec3();
-    if (glm::length(l.direction) == 0.0f) f.Child("direction").Fail("direction must not be zero");
-    l.direction = glm::normalize(l.direction);
+    // Normalised in double: in float the squared length of (1e30, 1e30, 1e30) overflows and
+    // normalize() silently returns the zero vector.
+    const glm::dvec3 d(f.Child("direction").Vec3());
+    const double len = glm::length(d);
+    if (!(len > 0.0)) f.Child("direction").Fail("direction must not be zero");
+    l.direction = glm::vec3(d / len);
+    if (glm::length(l.direction) < 0.5f) f.Child("direction").Fail("direction is too small to normalise");
     if (f.Has("position")) f.Child("position").Fail("a directional light has no position");
   } else {
     l.type = LightType::kPoint;
@@ -102,12 +108,16 @@ Camera ParseCamera(const JsonField& f) {
   c.position = f.Child("position").Vec3(-kMaxCoord, kMaxCoord);
   c.look_at = f.Child("look_at").Vec3(-kMaxCoord, kMaxCoord);
   c.up = f.Vec3Or("up", glm::vec3(0, 1, 0));
-  const glm::vec3 fwd = c.look_at - c.position;
-  if (glm::length(fwd) == 0.0f) f.Child("look_at").Fail("look_at equals position");
-  if (glm::length(glm::cross(fwd, c.up)) <= 1e-6f * glm::length(fwd) * glm::length(c.up)) {
+  // In double: with float, cross products of large vectors overflow (up = [1e30, 0, 0] was
+  // reported as "parallel") and tiny ones underflow.
+  const glm::dvec3 fwd = glm::dvec3(c.look_at) - glm::dvec3(c.position);
+  const glm::dvec3 up(c.up);
+  if (glm::length(fwd) == 0.0) f.Child("look_at").Fail("look_at equals position");
+  if (!(glm::length(glm::cross(fwd / glm::length(fwd), up)) > 1e-6 * glm::length(up))) {
     f.Has("up") ? f.Child("up").Fail("up is zero or parallel to the view direction")
                 : f.Fail("the default up (0,1,0) is parallel to the view direction; give 'up'");
   }
+  c.up = glm::vec3(glm::normalize(up));  // only its direction matters
   if (c.type == CameraType::kPerspective) {
     c.fov_y_deg = static_cast<float>(f.Child("fov_y").Number(0.0, 179.0, true));
     if (f.Has("height")) f.Child("height").Fail("'height' is for orthographic cameras (perspective uses fov_y)");
@@ -235,6 +245,10 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
     doc = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw UserError(origin + ": not valid JSON: " + e.what());
+  } catch (const nlohmann::json::exception& e) {
+    // Not a parse_error: a number too large for a double (out_of_range.406, "1e999").
+    throw UserError(origin + ": not valid JSON: " + e.what() +
+                    " (numbers must be finite doubles; JSON has no NaN or Infinity)");
   }
   const JsonField root(doc, origin, "");
   root.RequireObject({"name", "description", "effects", "camera", "display", "background", "ambient",
@@ -304,6 +318,10 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
     mat_used[it->second] = true;
     if (o.Has("transform") && !TransformShape(shape, ParseTransform(o.Child("transform")))) {
       o.Child("transform").Fail("a " + shape.source + " needs a uniform scale (it stays an exact analytic shape)");
+    }
+    if (shape.kind != ShapeKind::kTriangles && !(shape.radius >= FLT_MIN && std::isfinite(shape.radius))) {
+      o.Fail("the " + shape.source + "'s radius times the transform's scale is " + FormatNumber(shape.radius) +
+             ", outside single precision (radius x scale must lie in [1.2e-38, 3.4e38])");
     }
     s.shapes.push_back(std::move(shape));
   }

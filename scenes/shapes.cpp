@@ -195,26 +195,31 @@ glm::mat4 MakeTransform(glm::vec3 translate, glm::vec3 rotate_deg, glm::vec3 sca
 
 bool TransformShape(Shape& s, const glm::mat4& m) {
   const glm::mat3 linear(m);
-  const glm::mat3 normal_m = glm::transpose(glm::inverse(linear));
+  // The normal matrix in double: the inverse of a 1e-30 scale is 1e30, whose square
+  // overflows float and normalize() would return a zero normal.
+  const glm::dmat3 normal_m = glm::transpose(glm::inverse(glm::dmat3(linear)));
   auto point = [&m](glm::vec3 p) { return glm::vec3(m * glm::vec4(p, 1.0f)); };
   if (s.kind == ShapeKind::kTriangles) {
     for (auto& p : s.positions) p = point(p);
     for (auto& n : s.normals) {
-      const glm::vec3 t = normal_m * n;
-      const float len = glm::length(t);
-      n = len > 0.0f ? t / len : glm::vec3(0, 0, 1);
+      const glm::dvec3 t = normal_m * glm::dvec3(n);
+      const double len = glm::length(t);
+      n = len > 0.0 ? glm::vec3(t / len) : glm::vec3(0, 0, 1);
     }
     return true;
   }
-  const float sx = glm::length(linear[0]), sy = glm::length(linear[1]), sz = glm::length(linear[2]);
-  const float smax = std::max(sx, std::max(sy, sz)), smin = std::min(sx, std::min(sy, sz));
-  if (!(smin > 0.0f) || (smax - smin) > 1e-5f * smax) return false;
+  // Column lengths in double: in float, a scale of 1e-30 squares to 0 and was reported as a
+  // non-uniform scale (the caller checks the scaled radius for float under/overflow).
+  const double sx = glm::length(glm::dvec3(linear[0])), sy = glm::length(glm::dvec3(linear[1])),
+               sz = glm::length(glm::dvec3(linear[2]));
+  const double smax = std::max(sx, std::max(sy, sz)), smin = std::min(sx, std::min(sy, sz));
+  if (!(smin > 0.0) || (smax - smin) > 1e-5 * smax) return false;
   s.center = point(s.center);
   s.p0 = point(s.p0);
   s.p1 = point(s.p1);
-  s.radius *= sx;
-  s.normal = glm::normalize(normal_m * s.normal);
-  s.tangent = glm::normalize(linear * s.tangent);
+  s.radius = static_cast<float>(s.radius * sx);
+  s.normal = glm::vec3(glm::normalize(normal_m * glm::dvec3(s.normal)));
+  s.tangent = glm::vec3(glm::normalize(glm::dmat3(linear) * glm::dvec3(s.tangent)));
   return true;
 }
 

@@ -37,20 +37,6 @@ float SrgbDecode(float v) {
   return std::pow((v + 0.055f) / 1.055f, 2.4f);
 }
 
-float ApplyTonemap(Tonemap t, float v) {
-  switch (t) {
-    case Tonemap::kNone: return v;
-    case Tonemap::kReinhard: return v / (1.0f + v);
-    case Tonemap::kAces: {
-      // Narkowicz 2015 fit of the ACES RRT+ODT (per channel), input pre-scaled by 0.6 so
-      // that exposure 1 maps scene value 1 near display 0.8, as in the original note.
-      const float x = v * 0.6f;
-      return (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
-    }
-  }
-  return v;
-}
-
 std::array<float, 3> DisplayLinear(const Display& d, const std::array<float, 3>& rgb) {
   std::array<float, 3> out{};
   for (int c = 0; c < 3; ++c) {

@@ -8,6 +8,9 @@
 
 #include <memory>
 #include <mutex>
+#include <string>
+
+#include "harness/core/error.h"
 
 namespace aalab {
 namespace {
@@ -17,6 +20,10 @@ std::mutex g_mutex;
 }  // namespace
 
 void SetThreadCount(int threads) {
+  if (threads < 0 || threads > kMaxThreads) {
+    throw UserError("--threads " + std::to_string(threads) + " is out of range (0 = all hardware threads, or 1.." +
+                    std::to_string(kMaxThreads) + ")");
+  }
   std::lock_guard<std::mutex> lock(g_mutex);
   g_control.reset();
   g_threads = threads > 0 ? threads : 0;

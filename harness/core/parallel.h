@@ -4,9 +4,13 @@
 
 namespace aalab {
 
+/// Largest thread count SetThreadCount accepts.
+inline constexpr int kMaxThreads = 4096;
+
 /// Sets the number of worker threads for all later parallel loops (0 = hardware default).
 /// Results never depend on it: every loop writes disjoint outputs, and reductions merge
-/// per-chunk partials in chunk order.
+/// per-chunk partials in chunk order. Throws UserError outside 0..kMaxThreads (a negative
+/// count is never silently taken as "all").
 void SetThreadCount(int threads);
 /// The thread count in force (resolved: never 0).
 int ThreadCount();

@@ -15,7 +15,9 @@ struct LoadedImage {
   std::string format;     ///< OpenImageIO format name ("png", "openexr", ...)
 };
 
-/// Reads an image. Throws UserError naming the path for: missing or unreadable file,
+/// Reads a PNG, JPEG, TIFF or EXR image, chosen by the extension (.png, .jpg, .jpeg, .tif,
+/// .tiff, .exr; no other reader is tried). Throws UserError naming the path for: another
+/// extension, content that does not match it, missing or unreadable file,
 /// truncated data, zero size, more than `max_pixels` pixels, unsupported channel count
 /// (allowed 1–4; grey is expanded to RGB, the alpha of 2/4-channel images is kept as
 /// channel 3), and NaN/Inf pixels (rejected; the message gives the first bad pixel).

@@ -105,6 +105,15 @@ Report RunSuite(const RunSettings& s) {
   const fs::path tmp = out.string() + ".partial";
   fs::remove_all(tmp);
   fs::create_directories(tmp / "images");
+  // A run that fails half-way (an exception from any stage) removes its partial output.
+  struct RemovePartial {
+    fs::path dir;
+    bool armed = true;
+    ~RemovePartial() {
+      std::error_code ec;
+      if (armed) fs::remove_all(dir, ec);
+    }
+  } cleanup{tmp};
 
   Report report;
   for (const auto& [k, v] : ContextFacts()) report.context[k] = v;
@@ -165,6 +174,7 @@ Report RunSuite(const RunSettings& s) {
   WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(report));
   fs::remove_all(out);
   fs::rename(tmp, out);
+  cleanup.armed = false;
   return report;
 }
 

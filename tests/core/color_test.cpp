@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "harness/core/error.h"
 
 namespace aalab {
@@ -61,6 +64,27 @@ TEST(Color, ParseTonemapErrors) {
   } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("none, reinhard, aces"), std::string::npos);
   }
+}
+
+TEST(Color, TonemapsStayFiniteForHugeAndInfiniteRadiance) {
+  // Radiance far above display white (an emitter times a bright light times exposure) used to
+  // overflow inside the tonemap: ACES computed x*x = inf and returned inf/inf = NaN, Reinhard
+  // inf/(1+inf) = NaN, and the display transform mapped that NaN to black.
+  const float inf = std::numeric_limits<float>::infinity();
+  for (float v : {1e10f, 1e15f, 1e19f, 1e20f, 1e30f, 3.4e38f, inf}) {
+    for (Tonemap t : {Tonemap::kNone, Tonemap::kReinhard, Tonemap::kAces}) {
+      EXPECT_FALSE(std::isnan(ApplyTonemap(t, v))) << TonemapName(t) << " " << v;
+      Display d;
+      d.tonemap = t;
+      d.exposure = 1e9f;
+      const auto out = DisplayLinear(d, {v, v, 0.5f});
+      EXPECT_EQ(out[0], 1.0f) << TonemapName(t) << " " << v;
+      EXPECT_EQ(out[1], 1.0f) << TonemapName(t) << " " << v;
+    }
+  }
+  // Continuous at the ACES cut-off: the fit has reached its limit there.
+  EXPECT_NEAR(ApplyTonemap(Tonemap::kAces, 1e15f / 0.6f * 0.999f), 2.51f / 2.43f, 1e-6f);
+  EXPECT_EQ(ApplyTonemap(Tonemap::kReinhard, 3.4e38f), 1.0f);
 }
 
 }  // namespace

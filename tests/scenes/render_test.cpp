@@ -235,5 +235,24 @@ TEST(Ssaa, NoEdgesMeansSsaaEqualsNoneUpToQuantization) {
   EXPECT_TRUE(RenderFrame(t, 12, 7, ss, 1, nullptr) == RenderFrame(t, 12, 7, RenderSpec{}, 1, nullptr));
 }
 
+TEST(Display, ExtremeRadianceSaturatesToWhiteNotBlack) {
+  // Within every documented range (ambient and colour <= 1e7, exposure <= 1e9) the radiance
+  // reaches 1e23: ACES overflowed to NaN there and the pixel came out black (Reinhard did the
+  // same for infinite radiance, e.g. a point light almost on a surface: tests/core/color_test).
+  const std::string lit = R"({"w": {"shading": "lambert", "color": [1e7, 1e7, 1e7]}})";
+  for (const char* tonemap : {"none", "reinhard", "aces"}) {
+    const Scene s = ParseText(MakeScene(R"(["lambert"])", lit, kQuadBig,
+                                        std::string(R"(, "ambient": [1e7, 1e7, 1e7], "display": {"exposure": 1e9, "tonemap": ")") +
+                                            tonemap + R"("})"));
+    Tracer t(s);
+    const Reference ref = RenderReference(t, 4, 3, 2, 1, nullptr);
+    const Image8 frame = RenderFrame(t, 4, 3, RenderSpec{}, 1, nullptr);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(frame.At(1, 1, c), 255) << tonemap;
+      EXPECT_EQ(ref.image.At(1, 1, c), 1.0f) << tonemap;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace aalab

@@ -1,4 +1,9 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "scene_test_util.h"
 #include "scenes/library.h"
@@ -122,6 +127,156 @@ TEST(SceneParse, LoadSceneErrorsListLibrary) {
   }
   EXPECT_THROW(LoadScene("/nonexistent/scene.json"), UserError);
   EXPECT_THROW(SuiteScenes("nope"), UserError);
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad input: every malformed file is a UserError naming the file, the JSON path and the
+// problem; none crashes, none throws anything else, none parses into non-finite numbers.
+
+std::string Replace(std::string s, const std::string& from, const std::string& to) {
+  const auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  return s;
+}
+
+const std::string kOrtho = MakeScene(R"(["unlit"])", kWhite, kQuad);
+
+TEST(SceneBadInput, SyntaxErrorsSayWhereAndNeverThrowAnythingElse) {
+  for (const std::string& text : {std::string(""), std::string("   "), std::string("{"), std::string("{\"name\": \"t\",}"),
+                                  kOrtho.substr(0, kOrtho.size() / 2), std::string("\x89PNG\r\n\x1a\n", 8),
+                                  std::string("\0\0\0", 3), std::string("[1, 2, 3]"), std::string("null")}) {
+    const std::string e = ParseError(text);
+    EXPECT_NE(e.find("test.json"), std::string::npos) << "input: " << text << "\nmessage: " << e;
+  }
+  ExpectError("{\"name\": \"t\",}", {"test.json", "not valid JSON", "line 1"});
+  ExpectError("[1, 2, 3]", {"test.json", "/: expected an object"});
+}
+
+TEST(SceneBadInput, NonFiniteNumbersAreRejected) {
+  // JSON has no NaN or Infinity: the literals are syntax errors, strings are type errors and
+  // numbers beyond the double range are refused (nlohmann throws out_of_range for those, which
+  // used to escape ParseScene as a non-UserError).
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": NaN"), {"test.json", "not valid JSON"});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": Infinity"), {"test.json", "not valid JSON"});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": -Infinity"), {"test.json", "not valid JSON"});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": 1e999"), {"test.json", "1e999", "must be finite"});
+  ExpectError(Replace(kOrtho, "\"size\": [2,2]", "\"size\": [-1e999,2]"), {"test.json", "-1e999", "must be finite"});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": \"nan\""), {"/camera/height", "expected a number", "\"nan\""});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": \"Infinity\""), {"/camera/height", "expected a number"});
+  ExpectError(Replace(kOrtho, "\"size\": [2,2]", "\"size\": [2,\"inf\"]"), {"/objects/0/size/1", "expected a number"});
+  // 1e-999 underflows to 0 (a finite number) and then meets the range check.
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": 1e-999"), {"/camera/height", "out of range"});
+}
+
+TEST(SceneBadInput, WrongTypesNameThePath) {
+  ExpectError(Replace(kOrtho, "\"effects\": [\"unlit\"]", "\"effects\": \"unlit\""), {"/effects", "expected an array"});
+  ExpectError(Replace(kOrtho, "\"name\": \"t\"", "\"name\": 7"), {"/name", "expected a string", "7"});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": [4]"), {"/camera/height", "expected a number", "[4]"});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": true"), {"/camera/height", "expected a number"});
+  ExpectError(Replace(kOrtho, "\"size\": [2,2]", "\"size\": [2,2,2]"), {"/objects/0/size", "2 numbers"});
+  ExpectError(Replace(kOrtho, "\"size\": [2,2]", "\"size\": {\"w\": 2}"), {"/objects/0/size", "2 numbers"});
+  ExpectError(MakeScene(R"(["unlit"])", "[]", kQuad), {"/materials", "named materials"});
+  ExpectError(MakeScene(R"(["unlit"])", kWhite, R"({"shape": "quad"})"), {"/objects", "expected an array"});
+  ExpectError(MakeScene(R"(["unlit"])", kWhite, R"([7])"), {"/objects/0", "expected an object"});
+  ExpectError(MakeScene(R"(["unlit"])", kWhite,
+                        R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,2.5]], "material": "w"}])"),
+              {"/objects/0/indices/0/2", "expected an integer"});
+}
+
+TEST(SceneBadInput, OutOfRangeAndAbsurdValuesAreRefusedWithTheLimit) {
+  ExpectError(Replace(kOrtho, "\"size\": [2,2]", "\"size\": [-2,2]"), {"/objects/0/size/0", "-2", "out of range"});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": -4"), {"/camera/height", "> 0"});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": 1e300"), {"/camera/height", "1e+300", "<= 1e+09"});
+  ExpectError(Replace(kOrtho, "\"size\": [2,2]", "\"size\": [1e10,2]"), {"/objects/0/size/0", "<= 1e+09"});
+  ExpectError(Replace(kOrtho, "\"position\": [0,0,10]", "\"position\": [0,0,1e9]"),
+              {"/camera/position/2", "<= 1e+08"});
+  ExpectError(MakeScene(R"(["unlit"])", R"({"w": {"shading": "unlit", "color": [1e8, 1, 1]}})", kQuad),
+              {"/materials/w/color/0", "<= 1e+07"});
+  ExpectError(MakeScene(R"(["unlit"])", R"({"w": {"shading": "unlit", "color": [-1, 1, 1]}})", kQuad),
+              {"/materials/w/color/0", ">= 0"});
+  ExpectError(MakeScene(R"(["unlit"])", kWhite,
+                        R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,3]], "material": "w"}])"),
+              {"/objects/0/indices/0/2", "out of range", "0..2"});
+  ExpectError(MakeScene(R"(["unlit"])", kWhite,
+                        R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,18446744073709551616]], "material": "w"}])"),
+              {"/objects/0/indices/0/2", "expected an integer"});
+  ExpectError(MakeScene(R"(["unlit"])", kWhite,
+                        R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,-1]], "material": "w"}])"),
+              {"/objects/0/indices/0/2", "out of range"});
+  ExpectError(MakeScene(R"(["unlit", "textures"])", R"({"w": {"shading": "unlit", "texture": {"pattern": "noise", "seed": 4294967296}}})",
+                        kQuad),
+              {"/materials/w/texture/seed", "out of range"});
+  // Values above 0 that round to 0 as floats (every scene value is stored as a float).
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": 1e-300"), {"/camera/height", "rounds to 0"});
+  ExpectError(MakeScene(R"(["unlit"])", kWhite, R"([{"shape": "sphere", "radius": 1e-50, "material": "w"}])"),
+              {"/objects/0/radius", "rounds to 0"});
+  ExpectError(MakeScene(R"(["unlit"])", kWhite,
+                        R"([{"shape": "sphere", "radius": 1e-30, "material": "w", "transform": {"scale": 1e-30}}])"),
+              {"/objects/0", "radius times the transform's scale"});
+  ExpectError(MakeScene(R"(["unlit"])", kWhite,
+                        R"([{"shape": "quad", "size": [1,1], "material": "w", "transform": {"scale": 1e-60}}])"),
+              {"/objects/0/transform/scale", "rounds to 0"});
+}
+
+TEST(SceneBadInput, ExtremeButValidVectorsStayFinite) {
+  // Large direction/up components used to overflow float arithmetic: the light direction
+  // normalised to zero (light silently gone) and up = [1e30, 0, 0] was called "parallel".
+  const std::string lit = R"({"w": {"shading": "lambert"}})";
+  const Scene s = ParseText(MakeScene(R"(["lambert"])", lit, kQuad,
+                                      R"(, "lights": [{"type": "directional", "direction": [1e30, 1e30, -1e30]}])"));
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_NEAR(glm::length(s.lights[0].direction), 1.0f, 1e-6f);
+  EXPECT_NEAR(s.lights[0].direction.x, 1.0f / std::sqrt(3.0f), 1e-6f);
+  const Scene tiny = ParseText(MakeScene(R"(["lambert"])", lit, kQuad,
+                                         R"(, "lights": [{"type": "directional", "direction": [0, 0, -1e-30]}])"));
+  EXPECT_NEAR(tiny.lights[0].direction.z, -1.0f, 1e-6f);
+  const Scene up = ParseText(Replace(kOrtho, "\"look_at\": [0,0,0]", "\"look_at\": [0,0,0], \"up\": [0,1e30,0]"));
+  EXPECT_NEAR(glm::length(up.camera.up), 1.0f, 1e-6f);
+  ExpectError(Replace(kOrtho, "\"look_at\": [0,0,0]", "\"look_at\": [0,0,0], \"up\": [0,0,1e30]"),
+              {"/camera/up", "parallel"});
+  ExpectError(Replace(kOrtho, "\"look_at\": [0,0,0]", "\"look_at\": [0,0,0], \"up\": [0,0,0]"), {"/camera/up", "zero"});
+}
+
+TEST(SceneBadInput, DeepNestingIsAnErrorNotAStackOverflow) {
+  // nlohmann's dump() recursed once per level when a message showed the bad value: a 2 MB
+  // file of brackets crashed the parser with a stack overflow.
+  const int depth = 1000000;
+  const std::string nested = std::string(depth, '[') + std::string(depth, ']');
+  ExpectError(Replace(kOrtho, "\"name\": \"t\"", "\"name\": " + nested), {"/name", "expected a string", "[[[[...]]]]"});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": {\"a\": " + nested + "}"), {"/camera/height", "{\"a\":[[[["});
+}
+
+TEST(SceneBadInput, MeshFilesThatAreMissingUnreadableOrBroken) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("aalab-mesh-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "adir.obj");
+  std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv 1e999 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "index.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
+  std::ofstream(dir / "empty.obj") << "# nothing\n";
+  std::ofstream(dir / "garbage.obj") << std::string("\x7f" "ELF\x02\x01\x01\0\0\0", 10);
+  auto scene = [](const std::string& file) {
+    return MakeScene(R"(["unlit"])", kWhite, R"([{"shape": "mesh", "file": ")" + file + R"(", "material": "w"}])");
+  };
+  auto parse = [&](const std::string& file) {
+    try {
+      ParseScene(scene(file), "test.json", dir.string());
+    } catch (const UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  for (const auto& [file, want] : std::vector<std::pair<std::string, std::string>>{
+           {"missing.obj", "not found"},
+           {"adir.obj", "not found"},
+           {"nan.obj", "non-finite vertex"},
+           {"index.obj", "out of range"},
+           {"empty.obj", "no triangles"},
+           {"garbage.obj", "no triangles"}}) {
+    const std::string e = parse(file);
+    EXPECT_NE(e.find("/objects/0/file"), std::string::npos) << file << ": " << e;
+    EXPECT_NE(e.find(want), std::string::npos) << file << ": " << e;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
