@@ -153,7 +153,8 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       if (!run_scenes->empty()) rs->scenes = SplitList(*run_scenes);
       if (!run_methods->empty()) rs->methods = SplitList(*run_methods);
       const Report report = RunSuite(*rs);
-      std::printf("wrote %zu results for %zu scenes\nreport: %s\n", report.rows.size(), report.scenes.size(),
+      std::printf("wrote %zu results for %zu scenes\nhtml:   %s\nreport: %s\n", report.rows.size(), report.scenes.size(),
+                  (fs::absolute(rs->out_dir) / "index.html").string().c_str(),
                   (fs::absolute(rs->out_dir) / "report.json").string().c_str());
       return 0;
     };
