@@ -23,8 +23,10 @@ LOGS="$ROOT/$BUILD/sanitizer-logs"
 rm -rf "$LOGS"
 mkdir -p "$LOGS"
 # halt_on_error: the first report ends the process; log_path: reports also land in files, so a
-# report inside a process whose failure a test expects is still seen.
-export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:log_path=$LOGS/asan"
+# report inside a process whose failure a test expects is still seen. fast_unwind_on_malloc=0:
+# the frame-pointer unwinder stops at the first uninstrumented library (libstdc++, OIIO), and
+# the leak suppressions need the OIIO frames (about 30% slower).
+export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1:fast_unwind_on_malloc=0:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:log_path=$LOGS/asan"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$ROOT/tests/sanitizers/ubsan.supp:log_path=$LOGS/ubsan"
 export LSAN_OPTIONS="suppressions=$ROOT/tests/sanitizers/lsan.supp:print_suppressions=0"
 

@@ -51,8 +51,8 @@ std::string Scene(const std::string& height, const std::string& size) {
 
 TEST(CliBadInput, AbsurdFrameSizesAreRefusedWithTheLimit) {
   const fs::path dir = TempDir("size");
-  for (const std::string size : {"100000x100000", "16385x16", "16384x16384", "0x0", "-5x5", "1e3x5",
-                                 "99999999999999x1", "64x36x2"}) {
+  // (Every --size form is tested in-process in tests/run/limits_test.cpp; here the CLI contract.)
+  for (const std::string size : {"100000x100000", "16384x16384", "0x0", "1e3x5", "99999999999999x1"}) {
     ExpectUserError("run --scenes wedges --methods none --size '" + size + "' --out " + (dir / "r").string(),
                     {"--size '" + size + "'", "16384", "64 Mpx"});
   }
@@ -63,7 +63,6 @@ TEST(CliBadInput, AbsurdFrameSizesAreRefusedWithTheLimit) {
   ExpectUserError("render --scene wedges --spp 1000000 --out " + (dir / "x.png").string(), {"--spp 1000000", "4096"});
   ExpectUserError("run --scenes wedges --threads -1 --out " + (dir / "r").string(), {"--threads -1", "0 = all"});
   ExpectUserError("run --scenes wedges --threads 100000 --out " + (dir / "r").string(), {"--threads 100000", "4096"});
-  ExpectUserError("render --scene wedges --threads -2 --out " + (dir / "x.png").string(), {"--threads -2"});
   ExpectOnly(dir, {});
   fs::remove_all(dir);
 }
@@ -77,7 +76,6 @@ TEST(CliBadInput, MalformedSceneFilesNameTheFileAndTheProblem) {
   const std::string deep = std::string(300000, '[') + std::string(300000, ']');
   const std::vector<Case> cases = {
       {"syntax.json", "{\"name\": \"t\", \"effects\": [\"unlit\"],", {"syntax.json", "not valid JSON"}},
-      {"empty.json", "", {"empty.json", "not valid JSON"}},
       {"nan.json", Scene("NaN", "1"), {"nan.json", "not valid JSON"}},
       {"infinity.json", Scene("Infinity", "1"), {"infinity.json", "not valid JSON"}},
       {"overflow.json", Scene("4", "1e999"), {"overflow.json", "1e999", "must be finite"}},
@@ -85,7 +83,6 @@ TEST(CliBadInput, MalformedSceneFilesNameTheFileAndTheProblem) {
       {"negative.json", Scene("4", "-3"), {"negative.json", "/objects/0/size/0", "-3", "out of range"}},
       {"huge.json", Scene("1e300", "1"), {"huge.json", "/camera/height", "1e+300", "<= 1e+09"}},
       {"tiny.json", Scene("1e-300", "1"), {"tiny.json", "/camera/height", "rounds to 0"}},
-      {"type.json", Scene("[4]", "1"), {"type.json", "/camera/height", "expected a number"}},
       {"deep.json", Scene(deep, "1"), {"deep.json", "/camera/height", "expected a number", "[[[[...]]]]"}},
       {"mesh.json",
        "{\"name\": \"t\", \"effects\": [\"unlit\"], \"camera\": {\"type\": \"orthographic\", \"position\": [0,0,10], "

@@ -25,7 +25,7 @@ int FuzzImage(const uint8_t* data, size_t size);
 
 /// ReadImage's pixel limit inside FuzzImage: small, so a header that claims a huge image
 /// is refused before the (legitimate, documented) allocation of up to 2^28 pixels.
-inline constexpr size_t kFuzzMaxPixels = size_t{1} << 20;
+inline constexpr size_t kFuzzMaxPixels = size_t{1} << 16;
 
 /// Reports a violated post-condition on stderr and aborts (a fuzzer finding).
 [[noreturn]] void FuzzFail(const std::string& what);

@@ -26,10 +26,14 @@
 //     unquantised colour by a few ulps. Such a difference can change the 8-bit output only
 //     where the colour lies within float rounding of a rounding boundary (k + 0.5)/255;
 //     FXAA 1.0's trace shows the unquantised colour, so those pixels are identified exactly.
-//   * FXAA 3.11's end-of-edge test |lumaEnd| >= gradient/4 compares a bilinear tap whose
-//     value can differ by ulps between the orientations (weights summed in another order):
-//     a pixel whose exact tap value ties the threshold may stop its search at different
-//     steps. Tested images avoid this by construction (see Fxaa311Transpose).
+//   * FXAA 3.11's end-of-edge test |lumaEnd| >= gradient/4 (and the sign of the nearer end's
+//     lumaEnd) compares a bilinear tap whose value can differ by ulps between the orientations
+//     (the four weights are summed in another order once both fractions are non-zero, which
+//     normalised coordinates of non-power-of-two sizes make common): a pixel whose exact tap
+//     value ties the threshold may stop its search at different steps. An exact model of the
+//     shader's decisions (Fxaa311Oracle) finds those ties.
+// So the rule tested: the outputs agree at every pixel, except possibly where an orientation
+// tie, an end-of-edge tie (3.11) or a rounding-boundary tie occurs; the counts are printed.
 #include <gtest/gtest.h>
 
 #include <algorithm>
