@@ -10,33 +10,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_util.h"
+
 namespace {
 namespace fs = std::filesystem;
+using aalab::clitest::Aalab;
+using aalab::clitest::CmdResult;
+using aalab::clitest::TempDir;
 
-struct CmdResult {
-  int code = -1;
-  std::string output;  // stdout + stderr
-};
 
-CmdResult Aalab(const std::string& args) {
-  const std::string cmd = std::string(AALAB_BINARY_DIR) + "/aalab " + args + " 2>&1";
-  CmdResult r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("aalab-cli-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 void ExpectFails(const std::string& args, const std::vector<std::string>& parts) {
   const CmdResult r = Aalab(args);

@@ -16,9 +16,8 @@ struct CmdResult {
   std::string output;  ///< stdout + stderr
 };
 
-/// Runs `aalab ARGS` from the build folder and captures everything it prints.
-inline CmdResult Aalab(const std::string& args) {
-  const std::string cmd = std::string(AALAB_BINARY_DIR) + "/aalab " + args + " 2>&1";
+/// Runs a shell command and captures its stdout (add "2>&1" to capture stderr too).
+inline CmdResult RunCommand(const std::string& cmd) {
   CmdResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
@@ -34,6 +33,11 @@ inline CmdResult Aalab(const std::string& args) {
     r.signal = WTERMSIG(status);
   }
   return r;
+}
+
+/// Runs `aalab ARGS` from the build folder and captures everything it prints.
+inline CmdResult Aalab(const std::string& args) {
+  return RunCommand(std::string(AALAB_BINARY_DIR) + "/aalab " + args + " 2>&1");
 }
 
 /// A fresh, empty folder under the system temp folder, unique to this process.

@@ -17,27 +17,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../cli/cli_util.h"
+
 namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kChromium = "/usr/bin/chromium";
+using aalab::clitest::CmdResult;
+using aalab::clitest::RunCommand;
 
-struct CmdResult {
-  int code = -1;
-  std::string output;
-};
 
-CmdResult RunCmd(const std::string& cmd) {
-  CmdResult r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 std::string ReadFile(const fs::path& p) {
   std::ifstream f(p);
@@ -66,7 +55,7 @@ TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
   const fs::path out = work / "run";
   fs::remove_all(work);
   fs::create_directories(work);
-  const CmdResult run = RunCmd(std::string(AALAB_BINARY_DIR) + "/aalab run --scenes wedges,circle --methods "
+  const CmdResult run = RunCommand(std::string(AALAB_BINARY_DIR) + "/aalab run --scenes wedges,circle --methods "
                             "none,ssaa-2x2,fxaa1-p3 --size 64x36 --ref-spp 4 --repeat 1 --debug-views --quiet --out " +
                             Quote(out.string()) + " 2>&1");
   ASSERT_EQ(run.code, 0) << run.output;
@@ -75,7 +64,7 @@ TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
 
   // 1. The self-test: every view, every row, every chart point, every gallery entry, every image.
   const fs::path dom_path = work / "dom.html", log_path = work / "chromium.log";
-  const CmdResult dump = RunCmd(Chromium(work / "profile-selftest", "--virtual-time-budget=30000 --dump-dom " +
+  const CmdResult dump = RunCommand(Chromium(work / "profile-selftest", "--virtual-time-budget=30000 --dump-dom " +
                                                                      Quote(url + "#selftest")) +
                              " > " + Quote(dom_path.string()) + " 2> " + Quote(log_path.string()));
   ASSERT_EQ(dump.code, 0) << "chromium failed; log: " << log_path << "\n" << ReadFile(log_path);
@@ -110,7 +99,7 @@ TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
   // 4. Screenshots of the suite overview and of a scene (charts, tables, gallery) for a human.
   for (const std::string view : {"suite", "scene-wedges"}) {
     const fs::path shot = work / ("screenshot-" + view + ".png");
-    const CmdResult r = RunCmd(Chromium(work / ("profile-" + view), "--virtual-time-budget=10000 --window-size=1400,2000 "
+    const CmdResult r = RunCommand(Chromium(work / ("profile-" + view), "--virtual-time-budget=10000 --window-size=1400,2000 "
                                                                  "--screenshot=" + Quote(shot.string()) + " " +
                                                                  Quote(url + "#" + view)) +
                             " 2>&1");
