@@ -83,6 +83,7 @@
 //     colour·(1−|o|), which draws tiny shifts fully saturated and the largest ones grey,
 //     discontinuous with the grey of "no shift"; we mix grey·(1−|o|) + colour·|o|, which
 //     matches the whitepaper's description (colour marks the direction of the shift).
+#include "methods/row_ops.h"
 #include "methods/fxaa1.h"
 
 #include <algorithm>
@@ -484,15 +485,6 @@ Image8 Fxaa1Reference(const Image8& in, const Fxaa1Params& p, const std::string&
 
 namespace {
 
-void CopyRowOpaque1(const uint8_t* src, uint8_t* dst, int w) {
-  static_assert(std::endian::native == std::endian::little, "RGBA8 word layout");
-  for (int x = 0; x < w; ++x) {
-    uint32_t v;
-    std::memcpy(&v, src + 4 * x, 4);
-    v |= 0xFF000000u;
-    std::memcpy(dst + 4 * x, &v, 4);
-  }
-}
 
 }  // namespace
 
@@ -532,7 +524,7 @@ Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_vi
     uint64_t exits = 0;
     for (int y = y0; y < y1; ++y) {
       uint8_t* orow = out.Row(y);
-      CopyRowOpaque1(in.Row(y), orow, width);
+      CopyRowOpaque(in.Row(y), orow, width);
       const float* ln = luma.data() + static_cast<size_t>(std::max(y - 1, 0)) * width;
       const float* lm = luma.data() + static_cast<size_t>(y) * width;
       const float* ls = luma.data() + static_cast<size_t>(std::min(y + 1, height - 1)) * width;

@@ -97,6 +97,7 @@
 //     Its "lumaCenter < lumaLocalAverage" equals 3.11's "lumaM - lumaNN·0.5 < 0" exactly.
 //     Orientation: its Down/Up/Left/Right are texel offsets (0,-1)/(0,1)/(-1,0)/(1,0), i.e.
 //     3.11's N/S/W/E, so its ">=" tie-breaks pick the same texels as 3.11.
+#include "methods/row_ops.h"
 #include "methods/fxaa311.h"
 
 #include <algorithm>
@@ -454,25 +455,12 @@ struct LumaPlane {
   }
   // The luma channel of BilinearSampler::SampleNormalized(s, t), operation for operation.
   [[gnu::always_inline]] float Bilinear(float s, float t) const {
-    const float u = s * static_cast<float>(w);
-    const float vv = t * static_cast<float>(h);
-    const float x = u - 0.5f;
-    const float y = vv - 0.5f;
-    const float x0f = std::floor(x);
-    const float y0f = std::floor(y);
-    const float fx = x - x0f;
-    const float fy = y - y0f;
-    const int x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(w)));
-    const int y0 = static_cast<int>(std::clamp(y0f, -1.0f, static_cast<float>(h)));
-    const float a = Texel(x0, y0);
-    const float b = Texel(x0 + 1, y0);
-    const float c = Texel(x0, y0 + 1);
-    const float d = Texel(x0 + 1, y0 + 1);
-    const float wa = (1.0f - fx) * (1.0f - fy);
-    const float wb = fx * (1.0f - fy);
-    const float wc = (1.0f - fx) * fy;
-    const float wd = fx * fy;
-    return a * wa + b * wb + c * wc + d * wd;
+    const BilinearFootprint f = BilinearAt(s * static_cast<float>(w), t * static_cast<float>(h), w, h);
+    const float a = Texel(f.x0, f.y0);
+    const float b = Texel(f.x0 + 1, f.y0);
+    const float c = Texel(f.x0, f.y0 + 1);
+    const float d = Texel(f.x0 + 1, f.y0 + 1);
+    return a * f.wa + b * f.wb + c * f.wc + d * f.wd;
   }
 };
 
@@ -842,16 +830,6 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, const Image8& s
   return taps;
 }
 
-// dst = src with alpha 255 (RGBA8, little-endian words: alpha is the high byte).
-void CopyRowOpaque(const uint8_t* src, uint8_t* dst, int w) {
-  static_assert(std::endian::native == std::endian::little, "RGBA8 word layout");
-  for (int x = 0; x < w; ++x) {
-    uint32_t v;
-    std::memcpy(&v, src + 4 * x, 4);
-    v |= 0xFF000000u;
-    std::memcpy(dst + 4 * x, &v, 4);
-  }
-}
 
 template <typename P>
 Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* stats) {

@@ -30,22 +30,12 @@ Float4 BilinearSampler::SampleNormalized(float s, float t) {
 
 Float4 BilinearSampler::Sample(float u, float v) {
   ++taps_;
-  const float x = u - 0.5f;
-  const float y = v - 0.5f;
-  const float x0f = std::floor(x);
-  const float y0f = std::floor(y);
-  const float fx = x - x0f;
-  const float fy = y - y0f;
-  const int x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(img_.Width())));
-  const int y0 = static_cast<int>(std::clamp(y0f, -1.0f, static_cast<float>(img_.Height())));
-  const Float4 a = Fetch(x0, y0);
-  const Float4 b = Fetch(x0 + 1, y0);
-  const Float4 c = Fetch(x0, y0 + 1);
-  const Float4 d = Fetch(x0 + 1, y0 + 1);
-  const float wa = (1.0f - fx) * (1.0f - fy);
-  const float wb = fx * (1.0f - fy);
-  const float wc = (1.0f - fx) * fy;
-  const float wd = fx * fy;
+  const BilinearFootprint f = BilinearAt(u, v, img_.Width(), img_.Height());
+  const Float4 a = Fetch(f.x0, f.y0);
+  const Float4 b = Fetch(f.x0 + 1, f.y0);
+  const Float4 c = Fetch(f.x0, f.y0 + 1);
+  const Float4 d = Fetch(f.x0 + 1, f.y0 + 1);
+  const float wa = f.wa, wb = f.wb, wc = f.wc, wd = f.wd;
   Float4 r;
   r.r = a.r * wa + b.r * wb + c.r * wc + d.r * wd;
   r.g = a.g * wa + b.g * wb + c.g * wc + d.g * wd;
@@ -57,22 +47,12 @@ Float4 BilinearSampler::Sample(float u, float v) {
 Float4 SampleBilinear(const ImageF& img, float u, float v) {
   AALAB_CHECK(!img.Empty(), "SampleBilinear needs a non-empty image");
   const int nc = img.Channels();
-  const float x = u - 0.5f;
-  const float y = v - 0.5f;
-  const float x0f = std::floor(x);
-  const float y0f = std::floor(y);
-  const float fx = x - x0f;
-  const float fy = y - y0f;
   const int w = img.Width();
   const int h = img.Height();
-  const int x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(w)));
-  const int y0 = static_cast<int>(std::clamp(y0f, -1.0f, static_cast<float>(h)));
-  const int xa = std::clamp(x0, 0, w - 1), xb = std::clamp(x0 + 1, 0, w - 1);
-  const int ya = std::clamp(y0, 0, h - 1), yb = std::clamp(y0 + 1, 0, h - 1);
-  const float wa = (1.0f - fx) * (1.0f - fy);
-  const float wb = fx * (1.0f - fy);
-  const float wc = (1.0f - fx) * fy;
-  const float wd = fx * fy;
+  const BilinearFootprint f = BilinearAt(u, v, w, h);
+  const int xa = std::clamp(f.x0, 0, w - 1), xb = std::clamp(f.x0 + 1, 0, w - 1);
+  const int ya = std::clamp(f.y0, 0, h - 1), yb = std::clamp(f.y0 + 1, 0, h - 1);
+  const float wa = f.wa, wb = f.wb, wc = f.wc, wd = f.wd;
   float out[4] = {0, 0, 0, 0};
   for (int c = 0; c < nc && c < 4; ++c) {
     out[c] = img.At(xa, ya, c) * wa + img.At(xb, ya, c) * wb + img.At(xa, yb, c) * wc +

@@ -1,6 +1,8 @@
 /// One emulation of GPU bilinear texture filtering, shared by every post filter.
 #pragma once
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "harness/core/image.h"
@@ -11,6 +13,33 @@ namespace aalab {
 struct Float4 {
   float r = 0, g = 0, b = 0, a = 0;
 };
+
+/// The footprint of one bilinear fetch at texture-space pixel coordinates (u, v): the
+/// top-left texel (x0, y0) of the 2×2 block (x0 in [-1, W], y0 in [-1, H]; the caller clamps
+/// each texel read to the edge) and the weights in summation order
+/// wa = (1-fx)(1-fy) for (x0, y0), wb = fx(1-fy) for (x0+1, y0), wc = (1-fx)fy for
+/// (x0, y0+1), wd = fx·fy for (x0+1, y0+1). The single definition every bilinear fetch in
+/// aalab uses (the sampler below, the float-image sampler, and the fast luma-plane paths).
+struct BilinearFootprint {
+  int x0 = 0, y0 = 0;
+  float wa = 0, wb = 0, wc = 0, wd = 0;
+};
+[[gnu::always_inline]] inline BilinearFootprint BilinearAt(float u, float v, int width, int height) {
+  const float x = u - 0.5f;
+  const float y = v - 0.5f;
+  const float x0f = std::floor(x);
+  const float y0f = std::floor(y);
+  const float fx = x - x0f;
+  const float fy = y - y0f;
+  BilinearFootprint f;
+  f.x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(width)));
+  f.y0 = static_cast<int>(std::clamp(y0f, -1.0f, static_cast<float>(height)));
+  f.wa = (1.0f - fx) * (1.0f - fy);
+  f.wb = fx * (1.0f - fy);
+  f.wc = (1.0f - fx) * fy;
+  f.wd = fx * fy;
+  return f;
+}
 
 /// Reads an 8-bit RGBA frame as a UNORM texture (k / 255) with bilinear filtering:
 /// texel centres at +0.5, clamp-to-edge addressing, float32 weights.
