@@ -4,10 +4,10 @@
 #include <optional>
 #include <string>
 
+#include "reports/html_report.h"  // HtmlEscape
+
 namespace aalab {
 
-/// Escapes &, <, >, " and ' for HTML text and attribute values.
-std::string HtmlEscape(const std::string& text);
 
 /// Fixed-point with `decimals` digits; "inf" / "-inf" for infinities, "nan" for NaN.
 std::string FormatFixed(double v, int decimals);

@@ -10,6 +10,7 @@
 
 #include "harness/cli/commands.h"
 #include "harness/core/error.h"
+#include "harness/core/params.h"
 #include "harness/io/image_io.h"
 #include "reports/compare.h"
 #include "reports/history.h"
@@ -38,18 +39,6 @@ Exit codes: 0 no regression; 1 regression; 2 could not compare (different settin
   schema, missing/extra rows, changed parameters, missing metrics, unreadable input, bad
   option values); 3 internal error; >= 100 command-line syntax errors.)";
 
-std::vector<std::string> SplitCommas(const std::string& text, const std::string& what) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (item.empty()) throw UserError(what + " '" + text + "' has an empty item");
-    out.push_back(item);
-  }
-  if (!text.empty() && text.back() == ',') throw UserError(what + " '" + text + "' ends with a comma");
-  return out;
-}
-
 std::string FolderOf(const std::string& path) {
   const fs::path p = fs::path(path).parent_path();
   return p.empty() ? std::string(".") : p.string();
@@ -65,7 +54,7 @@ CompareOptions BuildOptions(double max_drop_db, const std::string& metrics, cons
                             const std::string& time_increase, bool across) {
   CompareOptions o;
   o.max_drop_db = max_drop_db;
-  if (!metrics.empty()) o.metrics = SplitCommas(metrics, "--metrics");
+  if (!metrics.empty()) o.metrics = SplitCommaList(metrics, "--metrics");
   if (!metric_change.empty()) o.metric_change = ParseMetricChangeOption(metric_change);
   if (time_increase == "off") {
     o.check_time = false;

@@ -6,6 +6,7 @@
 
 #include "harness/cli/commands.h"
 #include "harness/core/error.h"
+#include "harness/core/params.h"
 #include "harness/run/runner.h"
 #include "harness/run/sweep.h"
 
@@ -13,18 +14,6 @@ namespace aalab {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::vector<std::string> SplitNames(const std::string& text, const std::string& what) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (item.empty()) throw UserError(what + " '" + text + "' has an empty item");
-    out.push_back(item);
-  }
-  if (!text.empty() && text.back() == ',') throw UserError(what + " '" + text + "' ends with a comma");
-  return out;
-}
 
 constexpr const char* kSweepNotes = R"(Each scene's reference and 1x frame are rendered once and reused for every grid point.
 Grid values go through the method's parameter table (unknown parameter or out-of-range value:
@@ -64,8 +53,8 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
   sw->callback([&commands, a] {
     commands.action = [a] {
       ParseSize(a->size, &a->s.width, &a->s.height);
-      a->s.scenes = SplitNames(a->scenes, "--scenes");
-      if (!a->objectives.empty()) a->s.objectives = SplitNames(a->objectives, "--objective");
+      a->s.scenes = SplitCommaList(a->scenes, "--scenes");
+      if (!a->objectives.empty()) a->s.objectives = SplitCommaList(a->objectives, "--objective");
       const SweepResult r = RunSweep(a->s);
       std::fputs(SweepSummaryText(r).c_str(), stdout);
       std::printf("wrote %s and %s\n", (fs::absolute(r.out_dir) / "sweep.json").string().c_str(),

@@ -19,6 +19,23 @@ std::string FormatNumber(double v) {
   return buf;
 }
 
+std::vector<std::string> SplitCommaList(const std::string& text, const std::string& what) {
+  std::vector<std::string> out;
+  if (text.empty()) return out;
+  size_t start = 0;
+  while (start <= text.size()) {
+    size_t comma = text.find(',', start);
+    if (comma == std::string::npos) comma = text.size();
+    if (comma == start) {
+      throw UserError(what + " '" + text + "' " +
+                      (start == text.size() && start > 0 ? "ends with a comma" : "has an empty item"));
+    }
+    out.push_back(text.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return out;
+}
+
 std::string JoinNames(const std::vector<std::string>& names) {
   std::string out;
   for (size_t i = 0; i < names.size(); ++i) {

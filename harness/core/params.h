@@ -74,6 +74,10 @@ ParamValues ResolveParams(const std::string& what, const std::vector<ParamDef>& 
 /// stays exact).
 std::string FormatNumber(double v);
 
+/// Splits "a,b,c" into items ("" gives none). An empty item or a trailing comma is a UserError naming
+/// `what` and the text.
+std::vector<std::string> SplitCommaList(const std::string& text, const std::string& what);
+
 /// Joins names with ", " (for "allowed: a, b, c" messages).
 std::string JoinNames(const std::vector<std::string>& names);
 

@@ -63,6 +63,14 @@ TEST(Params, ResolveErrorsListAllowed) {
   EXPECT_NE(e.find("takes no parameters"), std::string::npos);
 }
 
+TEST(Params, SplitCommaList) {
+  EXPECT_EQ(SplitCommaList("a,b,c", "--x"), (std::vector<std::string>{"a", "b", "c"}));
+  EXPECT_TRUE(SplitCommaList("", "--x").empty());
+  EXPECT_NE(ErrorOf([] { SplitCommaList("a,,b", "--x"); }).find("--x 'a,,b' has an empty item"), std::string::npos);
+  EXPECT_NE(ErrorOf([] { SplitCommaList(",a", "--x"); }).find("has an empty item"), std::string::npos);
+  EXPECT_NE(ErrorOf([] { SplitCommaList("a,", "--x"); }).find("ends with a comma"), std::string::npos);
+}
+
 TEST(Params, FormatNumberShortestRoundTrip) {
   EXPECT_EQ(FormatNumber(0.125), "0.125");
   EXPECT_EQ(FormatNumber(16), "16");
