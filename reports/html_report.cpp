@@ -393,7 +393,8 @@ std::string RenderHtmlReport(const Report& r) {
        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
        "<meta name=\"generator\" content=\"aalab " + Attr(ContextOf(r, "tool_version")) + "\">\n<title>aalab report — " +
        HtmlEscape(SettingOf(r, "suite")) + " " + HtmlEscape(SettingOf(r, "size")) + "</title>\n<style>\n";
-  h += html::kStyle;
+  h += "\n";
+  h += html::PageStyle();
   h += "</style>\n</head>\n<body>\n<a class=\"skip\" href=\"#main\">Skip to content</a>\n";
   Header(h, r);
   h += "<main id=\"main\">\n<section class=\"view\" id=\"view-suite\" data-view=\"suite\">\n<h2>Suite overview</h2>\n"
@@ -414,9 +415,7 @@ std::string RenderHtmlReport(const Report& r) {
        "</script>\n";
   h += "<script type=\"application/json\" id=\"aalab-meta\">" + JsonForScriptTag(MetaJson(r).dump()) +
        "</script>\n<script>\n";
-  h += html::kScriptCore;
-  h += html::kScriptCharts;
-  h += html::kScriptGallery;
+  h += html::PageScript();
   h += "</script>\n</body>\n</html>\n";
   return h;
 }

@@ -1,10 +1,5 @@
 // The HTML report's script, part 1: data, helpers, views, sortable tables, selection.
 // Plain ES2017 in the page, no libraries; everything it draws comes from the embedded JSON.
-#include "reports/html_assets.h"
-
-namespace aalab::html {
-
-const char* const kScriptCore = R"JS(
 'use strict';
 const AA = (function () {
   const SELFTEST = /selftest/.test(location.hash);
@@ -206,6 +201,3 @@ const AA = (function () {
            showTip, hideTip, makeSortable, sortTable, hooks, showView, sectionOf, goScene, select, init, errors,
            SELFTEST };
 })();
-)JS";
-
-}  // namespace aalab::html

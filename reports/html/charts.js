@@ -1,10 +1,5 @@
 // The HTML report's script, part 2: quality-vs-cost charts (inline SVG, log time axis, Pareto
 // front for the metric's direction) and the cost-of-accuracy tables.
-#include "reports/html_assets.h"
-
-namespace aalab::html {
-
-const char* const kScriptCharts = R"JS(
 (function () {
   const A = AA, el = A.el, sv = A.sv;
 
@@ -321,6 +316,3 @@ const char* const kScriptCharts = R"JS(
   A.collect = collect;
   A.paretoFront = paretoFront;
 })();
-)JS";
-
-}  // namespace aalab::html
