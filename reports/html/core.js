@@ -94,7 +94,8 @@ const AA = (function () {
   }
   function nullReason(row, name) {
     if (!row.metrics || !(name in row.metrics)) return 'not computed';
-    return (row.null_reasons && row.null_reasons[name]) || 'null';
+    const why = (row.null_reasons && row.null_reasons[name]) || 'null';
+    return why === 'empty mask' ? 'no edge pixels (empty edge mask)' : why;
   }
 
   // ---- tooltip (hover and keyboard focus) ----
