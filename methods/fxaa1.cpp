@@ -497,13 +497,13 @@ Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_vi
   if (in.Empty()) return out;
   const int height = in.Height();
   const int width = in.Width();
-  // Step 1 for every texel: FxaaLuma(rgb) with rgb = k/255 as the sampler reads it.
+  // Step 1 for every texel: FxaaLuma(rgb) with rgb = UnormToFloat(k) as the sampler reads it.
   // Tables of the two terms for every 8-bit value: the same floats the sampler path computes.
   static const auto tables = [] {
     std::array<std::array<float, 256>, 2> t{};
     for (int k = 0; k < 256; ++k) {
-      t[0][k] = static_cast<float>(k) / 255.0f;               // r
-      t[1][k] = (static_cast<float>(k) / 255.0f) * kLumaGreen;  // g · (0.587/0.299)
+      t[0][k] = UnormToFloat(static_cast<uint8_t>(k));               // r
+      t[1][k] = UnormToFloat(static_cast<uint8_t>(k)) * kLumaGreen;  // g · (0.587/0.299)
     }
     return t;
   }();

@@ -163,12 +163,18 @@ void ShadePixel(BilinearSampler& tex, const Image8& src, int x, int y, const Fxa
 
   float posMx = (static_cast<float>(x) + 0.5f) / static_cast<float>(src.Width());
   float posMy = (static_cast<float>(y) + 0.5f) / static_cast<float>(src.Height());
-  const Float4 rgbyM = tex.Texel(x, y);  // FxaaTexTop(tex, posM)
+  // The 3x3 taps as the shader writes them (see "Taps" above).
+  auto tap = [&](int dx, int dy) {
+    if (glsl) return tex.SampleNormalizedOffset(posMx, posMy, dx, dy);  // textureLodOffset
+    return tex.SampleNormalized(posMx + static_cast<float>(dx) * rcpX,  // texture2D(tex,
+                                posMy + static_cast<float>(dy) * rcpY);  //   posM + off·rcp)
+  };
+  const Float4 rgbyM = tap(0, 0);  // FxaaTexTop(tex, posM)
   const float lumaM = L(rgbyM);
-  float lumaS = L(tex.Texel(x, y + 1));  // FxaaTexOff(tex, posM, ( 0, 1), rcp)
-  float lumaE = L(tex.Texel(x + 1, y));  // ( 1, 0)
-  float lumaN = L(tex.Texel(x, y - 1));  // ( 0,-1)
-  float lumaW = L(tex.Texel(x - 1, y));  // (-1, 0)
+  float lumaS = L(tap(0, 1));   // FxaaTexOff(tex, posM, ( 0, 1), rcp)
+  float lumaE = L(tap(1, 0));   // ( 1, 0)
+  float lumaN = L(tap(0, -1));  // ( 0,-1)
+  float lumaW = L(tap(-1, 0));  // (-1, 0)
 
   const float maxSM = std::max(lumaS, lumaM);
   const float minSM = std::min(lumaS, lumaM);
@@ -182,8 +188,11 @@ void ShadePixel(BilinearSampler& tex, const Image8& src, int x, int y, const Fxa
   const float range = rangeMax - rangeMin;
   const float rangeMaxClamped = std::max(prm.edge_threshold_min, rangeMaxScaled);
   const bool earlyExit = range < rangeMaxClamped;
-  if (earlyExit) {
-    CopyPixel(src, x, y, out);
+  if (earlyExit) {  // return rgbyM
+    out[0] = StoreUnorm8(rgbyM.r);
+    out[1] = StoreUnorm8(rgbyM.g);
+    out[2] = StoreUnorm8(rgbyM.b);
+    out[3] = 255;
     return;
   }
   // Deviation (documented above): the shader would go on with subpixRcpRange = 1/0.
@@ -192,10 +201,10 @@ void ShadePixel(BilinearSampler& tex, const Image8& src, int x, int y, const Fxa
     return;
   }
 
-  const float lumaNW = L(tex.Texel(x - 1, y - 1));
-  const float lumaSE = L(tex.Texel(x + 1, y + 1));
-  const float lumaNE = L(tex.Texel(x + 1, y - 1));
-  const float lumaSW = L(tex.Texel(x - 1, y + 1));
+  const float lumaNW = L(tap(-1, -1));
+  const float lumaSE = L(tap(1, 1));
+  const float lumaNE = L(tap(1, -1));
+  const float lumaSW = L(tap(-1, 1));
 
   const float lumaNS = lumaN + lumaS;
   const float lumaWE = lumaW + lumaE;
@@ -317,9 +326,9 @@ void ShadePixel(BilinearSampler& tex, const Image8& src, int x, int y, const Fxa
   if (!horzSpan) posMx += pixelOffsetSubpix * lengthSign;
   if (horzSpan) posMy += pixelOffsetSubpix * lengthSign;
   const Float4 c = tex.SampleNormalized(posMx, posMy);
-  out[0] = QuantizeUnorm8(c.r);
-  out[1] = QuantizeUnorm8(c.g);
-  out[2] = QuantizeUnorm8(c.b);
+  out[0] = StoreUnorm8(c.r);  // the RGBA8 render target's float-to-UNORM conversion
+  out[1] = StoreUnorm8(c.g);
+  out[2] = StoreUnorm8(c.b);
   out[3] = 255;
 }
 
@@ -343,7 +352,7 @@ float Fxaa311TapLuma(const Float4& t, Fxaa311Params::Luma luma) {
     case Luma::kRec601:
     case Luma::kSqrtLuminance: return t.a;
     case Luma::kGreen: return t.g;
-    case Luma::kRec601Rgb: return (t.r * 0.299f + t.g * 0.587f) + t.b * 0.114f;
+    case Luma::kRec601Rgb: return t.r * 0.299f + (t.g * 0.587f + t.b * 0.114f);
   }
   return t.a;
 }
@@ -360,7 +369,7 @@ Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma) {
       if (luma == Luma::kRec601) {
         // Fxaa3_11.h: "color.a = dot(color.rgb, FxaaFloat3(0.299, 0.587, 0.114))" on the
         // sRGB-encoded (perceptual) colour.
-        const Float4 t{p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f, 0.0f};
+        const Float4 t{UnormToFloat(p[0]), UnormToFloat(p[1]), UnormToFloat(p[2]), 0.0f};
         l = Fxaa311TapLuma(t, Luma::kRec601Rgb);
       } else {
         // Tutorial: color.a = sqrt(Luminance(color.rgb)) with linear rgb.
@@ -369,7 +378,7 @@ Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma) {
         const float b = SrgbDecode8(p[2]);
         l = std::sqrt((r * 0.2126729f + g * 0.7151522f) + b * 0.0721750f);
       }
-      p[3] = QuantizeUnorm8(l);
+      p[3] = StoreUnorm8(l);  // the pre-pass writes an RGBA8 target
     }
   }
   return out;

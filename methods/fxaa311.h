@@ -58,7 +58,7 @@ Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma);
 
 /// The luma the shader reads from one tap of the frame Fxaa311LumaFrame prepared
 /// (FxaaLuma): alpha, green, or dot(rgb, (0.299, 0.587, 0.114)) evaluated as
-/// (r·0.299 + g·0.587) + b·0.114 in float32.
+/// r·0.299 + (g·0.587 + b·0.114) in float32 (the order llvmpipe evaluates GLSL dot()).
 float Fxaa311TapLuma(const Float4& tap, Fxaa311Params::Luma luma);
 
 /// FXAA 3.11 Quality on an 8-bit RGBA frame (sRGB-encoded values read as UNORM). Returns a

@@ -78,7 +78,7 @@ struct LumaPlane {
     const float b = Texel(f.x0 + 1, f.y0);
     const float c = Texel(f.x0, f.y0 + 1);
     const float d = Texel(f.x0 + 1, f.y0 + 1);
-    return a * f.wa + b * f.wb + c * f.wc + d * f.wd;
+    return BilinearBlend(a, b, c, d, f);
   }
 };
 
