@@ -43,21 +43,10 @@ using Order = Fxaa311Params::Order;
 
 namespace {
 
-// k / 255 as BilinearSampler::Fetch computes it (uint8 promoted, converted, divided).
-inline float Unorm(uint8_t k) { return static_cast<float>(k) / 255.0f; }
+// The texel value as BilinearSampler::Fetch reads it.
+inline float Unorm(uint8_t k) { return UnormToFloat(k); }
 inline float LumaValue(uint8_t k) { return Unorm(k); }
 inline float LumaValue(float v) { return v; }
-
-// QuantizeUnorm8 for values already known to lie in (0, 1): lround(w) for w = v·255 > 0 is
-// floor(w + 0.5), and w + 0.5 is exact in double (w < 256 has a 24-bit significand).
-inline uint8_t QuantizeInterior(float v) {
-  return static_cast<uint8_t>(static_cast<int>(static_cast<double>(v * 255.0f) + 0.5));
-}
-inline uint8_t QuantizeFast(float v) {
-  if (!(v > 0.0f)) return 0;
-  if (v >= 1.0f) return 255;
-  return QuantizeInterior(v);
-}
 
 // A luma plane: one value per pixel, row-major; P = uint8_t (value k means k/255) or float.
 template <typename P>
@@ -130,13 +119,13 @@ void BuildPlane(const Image8& in, Luma luma, LumaPlane<uint8_t>* plane) {
       if (luma == Luma::kGreen) {
         for (int x = 0; x < w; ++x) o[x] = p[4 * x + 1];
       } else if (luma == Luma::kRec601) {
-        // Fxaa311LumaFrame: QuantizeUnorm8((r·0.299 + g·0.587) + b·0.114), r = k/255.
+        // Fxaa311LumaFrame: StoreUnorm8(r·0.299 + (g·0.587 + b·0.114)), r = UnormToFloat.
         for (int x = 0; x < w; ++x) {
-          o[x] = QuantizeFast((rec.r[p[4 * x]] + rec.g[p[4 * x + 1]]) + rec.b[p[4 * x + 2]]);
+          o[x] = StoreUnorm8(rec.r[p[4 * x]] + (rec.g[p[4 * x + 1]] + rec.b[p[4 * x + 2]]));
         }
-      } else {  // kSqrtLuminance: QuantizeUnorm8(sqrt((R·0.2126729 + G·0.7151522) + B·0.0721750))
+      } else {  // kSqrtLuminance: StoreUnorm8(sqrt((R·0.2126729 + G·0.7151522) + B·0.0721750))
         for (int x = 0; x < w; ++x) {
-          o[x] = QuantizeFast(std::sqrt((sq.r[p[4 * x]] + sq.g[p[4 * x + 1]]) + sq.b[p[4 * x + 2]]));
+          o[x] = StoreUnorm8(std::sqrt((sq.r[p[4 * x]] + sq.g[p[4 * x + 1]]) + sq.b[p[4 * x + 2]]));
         }
       }
     }
@@ -154,7 +143,7 @@ void BuildPlane(const Image8& in, Luma, LumaPlane<float>* plane) {  // kRec601Rg
       float* o = plane->v.get() + static_cast<size_t>(y) * w;
       for (int x = 0; x < w; ++x) {
         const float r = Unorm(p[4 * x]), g = Unorm(p[4 * x + 1]), b = Unorm(p[4 * x + 2]);
-        o[x] = (r * 0.299f + g * 0.587f) + b * 0.114f;  // Fxaa311TapLuma(kRec601Rgb)
+        o[x] = r * 0.299f + (g * 0.587f + b * 0.114f);  // Fxaa311TapLuma(kRec601Rgb)
       }
     }
   });
@@ -195,12 +184,23 @@ int ContrastRow(const LumaPlane<P>& pl, int y, float thr, float thr_min, uint8_t
 // settles most pixels without the table).
 struct ExitTable {
   std::vector<uint8_t> edge;  // [max·256 + min] = 1 when the pixel goes on to the search
+  std::vector<uint8_t> near;  // [max·256 + min] = 1 when taps off the texel centres by up to
+                              // `margin` could flip the decision (see TapGrid)
   int safe = -1;              // max − min <= safe always exits
 };
 
-ExitTable MakeExitTable(float thr, float thr_min) {
+// True when the test range < max(thr_min, rangeMax·thr) on texel lumas is within `margin`
+// of flipping: taps that deviate by d from the texels move range by <= 2d and the clamped
+// threshold by <= d·thr, so margin = 3·deviation covers them.
+inline bool NearTie(float range_max, float range, float thr, float thr_min, float margin) {
+  const float clamped = std::max(thr_min, range_max * thr);
+  return std::fabs(range - clamped) <= margin;
+}
+
+ExitTable MakeExitTable(float thr, float thr_min, float margin) {
   ExitTable t;
   t.edge.assign(256 * 256, 0);
+  t.near.assign(256 * 256, 0);
   int safe = 255;
   for (int mx = 0; mx < 256; ++mx) {
     for (int mn = 0; mn <= mx; ++mn) {
@@ -209,6 +209,7 @@ ExitTable MakeExitTable(float thr, float thr_min) {
       const float clamped = std::max(thr_min, range_max * thr);
       const bool exit = range < clamped || range == 0.0f;
       t.edge[mx * 256 + mn] = exit ? 0 : 1;
+      t.near[mx * 256 + mn] = NearTie(range_max, range, thr, thr_min, margin) ? 1 : 0;
       if (!exit) safe = std::min(safe, mx - mn - 1);
     }
   }
@@ -259,38 +260,152 @@ int ContrastRowBytes(const LumaPlane<uint8_t>& pl, int y, const ExitTable& tab, 
   return count;
 }
 
-// The rgb of BilinearSampler::SampleNormalized(s, t) on `img`, operation for operation
-// (Sample's floor/clamp/weights, Fetch's clamp and k/255), without the alpha channel.
-inline void FinalTap(const Image8& img, float s, float t, float rgb[3]) {
+// The rgb of BilinearSampler::Sample's blend over footprint `f` on `img` (Fetch's clamp and
+// UnormToFloat, BilinearBlend), without the alpha channel.
+inline void BlendRgb(const Image8& img, const BilinearFootprint& f, float rgb[3]) {
   const int W = img.Width(), H = img.Height();
-  const float u = s * static_cast<float>(W);
-  const float v = t * static_cast<float>(H);
-  const float x = u - 0.5f;
-  const float y = v - 0.5f;
-  const float x0f = std::floor(x);
-  const float y0f = std::floor(y);
-  const float fx = x - x0f;
-  const float fy = y - y0f;
-  const int x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(W)));
-  const int y0 = static_cast<int>(std::clamp(y0f, -1.0f, static_cast<float>(H)));
-  const int xa = std::clamp(x0, 0, W - 1), xb = std::clamp(x0 + 1, 0, W - 1);
-  const int ya = std::clamp(y0, 0, H - 1), yb = std::clamp(y0 + 1, 0, H - 1);
+  const int xa = std::clamp(f.x0, 0, W - 1), xb = std::clamp(f.x0 + 1, 0, W - 1);
+  const int ya = std::clamp(f.y0, 0, H - 1), yb = std::clamp(f.y0 + 1, 0, H - 1);
   const uint8_t* a = img.Pixel(xa, ya);
   const uint8_t* b = img.Pixel(xb, ya);
   const uint8_t* c = img.Pixel(xa, yb);
   const uint8_t* d = img.Pixel(xb, yb);
-  const float wa = (1.0f - fx) * (1.0f - fy);
-  const float wb = fx * (1.0f - fy);
-  const float wc = (1.0f - fx) * fy;
-  const float wd = fx * fy;
-  for (int k = 0; k < 3; ++k) rgb[k] = Unorm(a[k]) * wa + Unorm(b[k]) * wb + Unorm(c[k]) * wc + Unorm(d[k]) * wd;
+  for (int k = 0; k < 3; ++k) rgb[k] = BilinearBlend(Unorm(a[k]), Unorm(b[k]), Unorm(c[k]), Unorm(d[k]), f);
+}
+
+// The rgb of BilinearSampler::SampleNormalized(s, t) on `img`.
+inline void FinalTap(const Image8& img, float s, float t, float rgb[3]) {
+  const int W = img.Width(), H = img.Height();
+  BlendRgb(img, BilinearAt(s * static_cast<float>(W), t * static_cast<float>(H), W, H), rgb);
+}
+
+// The footprints of a pixel's 3×3 taps along one axis (columns: x, rows: y). The shader
+// fetches them at pixel-centre coordinates plus offsets: texture2D(tex, posM + off·rcp)
+// in FXAA 3.11 (seed 004), textureLodOffset in seed 003. The coordinate is rounded to float
+// on the way, so a tap may land a hair off the texel centre (fraction ~1e-6, or ~1 − 1e-6
+// one texel back) and then filters in a bit of the neighbour: ~40% of the columns of a
+// 1920-wide frame. An axis is `exact` when every fraction is 0 (the taps are the texels).
+struct TapAxis {
+  int i[3] = {0, 0, 0};  // x0 (or y0) of offsets -1, 0, +1
+  float f[3] = {0, 0, 0};
+  bool exact = true;
+};
+
+struct TapGrid {
+  std::vector<TapAxis> cols, rows;
+  float deviation = 0.0f;  // bound on |tap luma − texel luma| over every tap of the frame
+};
+
+TapAxis MakeAxis(int p, int n, bool glsl) {
+  const float pos = (static_cast<float>(p) + 0.5f) / static_cast<float>(n);  // posM
+  const float rcp = 1.0f / static_cast<float>(n);
+  TapAxis a;
+  for (int d = -1; d <= 1; ++d) {
+    const float u = glsl ? pos * static_cast<float>(n) + static_cast<float>(d)
+                         : (pos + static_cast<float>(d) * rcp) * static_cast<float>(n);
+    const BilinearFootprint f = BilinearAt(u, 0.5f, n, 1);
+    a.i[d + 1] = f.x0;
+    a.f[d + 1] = f.fx;
+    a.exact = a.exact && f.fx == 0.0f;
+  }
+  return a;
+}
+
+TapGrid MakeTapGrid(int w, int h, bool glsl) {
+  TapGrid g;
+  float dev_x = 0.0f, dev_y = 0.0f;
+  g.cols.resize(static_cast<size_t>(w));
+  g.rows.resize(static_cast<size_t>(h));
+  for (int x = 0; x < w; ++x) {
+    g.cols[x] = MakeAxis(x, w, glsl);
+    for (float f : g.cols[x].f) dev_x = std::max(dev_x, std::min(f, 1.0f - f));
+  }
+  for (int y = 0; y < h; ++y) {
+    g.rows[y] = MakeAxis(y, h, glsl);
+    for (float f : g.rows[y].f) dev_y = std::max(dev_y, std::min(f, 1.0f - f));
+  }
+  // Lumas lie in [0, 1]: a lerp towards a neighbour by a fraction f (or back from one by
+  // 1 − f) moves the value by at most that fraction, plus a few float roundings.
+  g.deviation = dev_x + dev_y + 1e-6f;
+  return g;
+}
+
+// The luma of the tap at offset (dx, dy) of pixel (cx, ry), as ShadePixel fetches it: the
+// luma channel of the filtered prepared frame (alpha / green planes), or the luma of the
+// filtered rgb (rec601-rgb). Exact taps read the plane.
+template <typename P>
+[[gnu::always_inline]] inline float TapLuma(const LumaPlane<P>& pl, const Image8& src, const TapAxis& cx,
+                                            const TapAxis& ry, int x, int y, int dx, int dy, Luma luma) {
+  const float fx = cx.f[dx + 1], fy = ry.f[dy + 1];
+  if (fx == 0.0f && fy == 0.0f) return pl.Texel(cx.i[dx + 1], ry.i[dy + 1]);
+  BilinearFootprint f;
+  f.x0 = cx.i[dx + 1];
+  f.y0 = ry.i[dy + 1];
+  f.fx = fx;
+  f.fy = fy;
+  (void)x;
+  (void)y;
+  if constexpr (std::is_same_v<P, float>) {
+    float rgb[3];
+    BlendRgb(src, f, rgb);
+    return Fxaa311TapLuma(Float4{rgb[0], rgb[1], rgb[2], 0.0f}, luma);
+  } else {
+    (void)src;
+    (void)luma;
+    return BilinearBlend(pl.Texel(f.x0, f.y0), pl.Texel(f.x0 + 1, f.y0), pl.Texel(f.x0, f.y0 + 1),
+                         pl.Texel(f.x0 + 1, f.y0 + 1), f);
+  }
+}
+
+// The shader's early-exit test with the real taps, for pixels whose taps are not all
+// exact and whose texel lumas put the test within the grid's deviation of a tie: true
+// when the pixel goes on (passes the test and has range > 0).
+template <typename P>
+bool EdgeByTaps(const LumaPlane<P>& pl, const Image8& src, const TapGrid& g, int x, int y,
+                const Fxaa311Params& prm) {
+  const TapAxis& cx = g.cols[x];
+  const TapAxis& ry = g.rows[y];
+  auto L = [&](int dx, int dy) { return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma); };
+  const float lumaM = L(0, 0), lumaS = L(0, 1), lumaE = L(1, 0), lumaN = L(0, -1), lumaW = L(-1, 0);
+  const float rangeMax = std::max(std::max(lumaN, lumaW), std::max(lumaE, std::max(lumaS, lumaM)));
+  const float rangeMin = std::min(std::min(lumaN, lumaW), std::min(lumaE, std::min(lumaS, lumaM)));
+  const float range = rangeMax - rangeMin;
+  const float clamped = std::max(prm.edge_threshold_min, rangeMax * prm.edge_threshold);
+  return !(range < clamped) && range != 0.0f;
+}
+
+// Step 2, second half: pixels whose 5 taps are not all on texel centres. Their texel-luma
+// decision stands unless it is a near tie; near ties are decided with the real taps.
+template <typename P>
+void FixInexactRow(const LumaPlane<P>& pl, const Image8& src, const TapGrid& g, const ExitTable* tab,
+                   int y, const Fxaa311Params& prm, float margin, uint8_t* edge) {
+  const int w = pl.w;
+  const bool row_exact = g.rows[y].exact;
+  const P* rn = pl.Row(std::max(y - 1, 0));
+  const P* rm = pl.Row(y);
+  const P* rs = pl.Row(std::min(y + 1, pl.h - 1));
+  for (int x = 0; x < w; ++x) {
+    if (row_exact && g.cols[x].exact) continue;
+    const P n = rn[x], m = rm[x], s = rs[x], wv = rm[std::max(x - 1, 0)], e = rm[std::min(x + 1, w - 1)];
+    const P mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
+    const P mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
+    bool near;
+    if constexpr (std::is_same_v<P, uint8_t>) {
+      (void)margin;
+      near = tab->near[mx * 256 + mn] != 0;
+    } else {
+      (void)tab;
+      near = NearTie(mx, mx - mn, prm.edge_threshold, prm.edge_threshold_min, margin);
+    }
+    if (near) edge[x] = EdgeByTaps(pl, src, g, x, y, prm) ? 1 : 0;
+  }
 }
 
 // ShadePixel for a pixel that passed the early exit with range > 0, lumas from the plane.
 // Statement order and float expressions are ShadePixel's; returns the taps it took.
 template <typename P>
-uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, const Image8& src, int x, int y,
-                   const Fxaa311Params& prm, float rcpX, float rcpY, uint8_t* out) {
+uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler& tex, const Image8& src,
+                   int x, int y, const Fxaa311Params& prm, float rcpX, float rcpY, uint8_t* out) {
   const bool glsl = prm.order == Order::kSeed003Glsl;
   const bool rgb_taps = prm.luma == Luma::kRec601Rgb;  // bilinear lumas need filtered rgb
   const std::vector<float>& P_ = prm.steps;
@@ -301,19 +416,22 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, const Image8& s
   const int W = pl.w, H = pl.h;
   float posMx = (static_cast<float>(x) + 0.5f) / static_cast<float>(W);
   float posMy = (static_cast<float>(y) + 0.5f) / static_cast<float>(H);
-  const float lumaM = pl.Texel(x, y);
-  float lumaS = pl.Texel(x, y + 1);
-  float lumaE = pl.Texel(x + 1, y);
-  float lumaN = pl.Texel(x, y - 1);
-  float lumaW = pl.Texel(x - 1, y);
+  const TapAxis& cx = grid.cols[x];
+  const TapAxis& ry = grid.rows[y];
+  auto L = [&](int dx, int dy) { return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma); };
+  const float lumaM = L(0, 0);
+  float lumaS = L(0, 1);
+  float lumaE = L(1, 0);
+  float lumaN = L(0, -1);
+  float lumaW = L(-1, 0);
   const float rangeMax = std::max(std::max(lumaN, lumaW), std::max(lumaE, std::max(lumaS, lumaM)));
   const float rangeMin = std::min(std::min(lumaN, lumaW), std::min(lumaE, std::min(lumaS, lumaM)));
   const float range = rangeMax - rangeMin;
 
-  const float lumaNW = pl.Texel(x - 1, y - 1);
-  const float lumaSE = pl.Texel(x + 1, y + 1);
-  const float lumaNE = pl.Texel(x + 1, y - 1);
-  const float lumaSW = pl.Texel(x - 1, y + 1);
+  const float lumaNW = L(-1, -1);
+  const float lumaSE = L(1, 1);
+  const float lumaNE = L(1, -1);
+  const float lumaSW = L(-1, 1);
 
   const float lumaNS = lumaN + lumaS;
   const float lumaWE = lumaW + lumaE;
@@ -441,9 +559,9 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, const Image8& s
   float rgb[3];
   FinalTap(src, posMx, posMy, rgb);  // tex.SampleNormalized(posMx, posMy).rgb
   ++taps;
-  out[0] = QuantizeFast(rgb[0]);
-  out[1] = QuantizeFast(rgb[1]);
-  out[2] = QuantizeFast(rgb[2]);
+  out[0] = StoreUnorm8(rgb[0]);
+  out[1] = StoreUnorm8(rgb[1]);
+  out[2] = StoreUnorm8(rgb[2]);
   out[3] = 255;
   return taps;
 }
@@ -451,12 +569,21 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, const Image8& s
 
 template <typename P>
 Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* stats) {
+  const int w = in.Width();
+  const int h = in.Height();
+  const TapGrid grid = MakeTapGrid(w, h, params.order == Order::kSeed003Glsl);
+  // Early-exit pixels are written as a copy of the input: the shader returns its centre
+  // tap, whose stored bytes are the input's while 255·deviation stays well below 1/2, and
+  // near-tie detection needs the deviation far below one 8-bit step. Both hold up to
+  // ~16k pixels a side; beyond, the reference implementation runs.
+  if (255.0f * grid.deviation > 0.25f) return Fxaa311Reference(in, params, stats);
+  const float margin = 3.0f * grid.deviation;
   LumaPlane<P> plane;
   BuildPlane(in, params.luma, &plane);
   ExitTable exit_table;
-  if constexpr (std::is_same_v<P, uint8_t>) exit_table = MakeExitTable(params.edge_threshold, params.edge_threshold_min);
-  const int w = in.Width();
-  const int h = in.Height();
+  if constexpr (std::is_same_v<P, uint8_t>) {
+    exit_table = MakeExitTable(params.edge_threshold, params.edge_threshold_min, margin);
+  }
   const float rcpX = 1.0f / static_cast<float>(w);
   const float rcpY = 1.0f / static_cast<float>(h);
   Image8 out(w, h, 4);
@@ -471,12 +598,15 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
       // Every pixel first as the early exit writes it: input rgb, alpha 255.
       uint8_t* orow = out.Row(y);
       CopyRowOpaque(in.Row(y), orow, w);
-      int edges;
       if constexpr (std::is_same_v<P, uint8_t>) {
-        edges = ContrastRowBytes(plane, y, exit_table, edge.data());
+        ContrastRowBytes(plane, y, exit_table, edge.data());
+        FixInexactRow(plane, in, grid, &exit_table, y, params, margin, edge.data());
       } else {
-        edges = ContrastRow(plane, y, params.edge_threshold, params.edge_threshold_min, edge.data());
+        ContrastRow(plane, y, params.edge_threshold, params.edge_threshold_min, edge.data());
+        FixInexactRow(plane, in, grid, nullptr, y, params, margin, edge.data());
       }
+      int edges = 0;
+      for (int x = 0; x < w; ++x) edges += edge[x];
       chunk_taps += 5 * static_cast<uint64_t>(w - edges);
       if (edges == 0) continue;
       for (int x = 0; x < w; ++x) {
@@ -489,7 +619,7 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
           }
         }
         if (!edge[x]) continue;
-        chunk_taps += EdgePixel(plane, tex, in, x, y, params, rcpX, rcpY, orow + 4 * x);
+        chunk_taps += EdgePixel(plane, grid, tex, in, x, y, params, rcpX, rcpY, orow + 4 * x);
       }
     }
     taps[static_cast<size_t>(y0 / kGrain)] = chunk_taps;

@@ -83,7 +83,7 @@ void ExpectIdentical(const std::string& what, Ours ours, Theirs theirs) {
 
 void ExpectPresetIdentical(const std::string& what, const Fxaa311Params& p, int preset) {
   ExpectIdentical(
-      what, [&](const Image8& img) { return Fxaa311Reference(img, p, nullptr); },
+      what, [&](const Image8& img) { return Fxaa311(img, p, nullptr); },
       [&](const Image8& img) {
         return oracle::RunFxaa311Shader(Fxaa311LumaFrame(img, p.luma), preset, false, p.subpix,
                                         p.edge_threshold, p.edge_threshold_min);
@@ -117,7 +117,7 @@ TEST_F(FxaaOracle, Iter12IsSeed003Glsl) {
   p.luma = Fxaa311Params::Luma::kRec601Rgb;
   p.order = Fxaa311Params::Order::kSeed003Glsl;
   ExpectIdentical(
-      "fxaa-iter12", [&](const Image8& img) { return Fxaa311Reference(img, p, nullptr); },
+      "fxaa-iter12", [&](const Image8& img) { return Fxaa311(img, p, nullptr); },
       [&](const Image8& img) { return oracle::RunIter12Shader(img); });
 }
 

@@ -57,12 +57,18 @@ inline NamedFrame ThresholdFrame() {
   return {"threshold-steps-0..47", std::move(img)};
 }
 
-/// Every frame the oracle tests compare on.
+/// Every frame the oracle tests compare on: the synthetic frames, the adversarial ones, and
+/// 1x frames of eight library scenes at an odd size (101×67, small to keep llvmpipe quick).
 inline std::vector<NamedFrame> OracleFrames() {
   std::vector<NamedFrame> f = perf_test::SyntheticFrames();
   for (auto& s : SlopeFrames()) f.push_back(std::move(s));
   f.push_back(ThresholdFrame());
-  for (const auto& s : perf_test::SceneFrames()) f.push_back(s);
+  for (const char* name : {"wedges", "mesh", "checker-plane", "thin-wires", "detail-texture",
+                           "hard-near-horizontal", "hard-subpixel", "hard-dark"}) {
+    const Scene scene = LoadScene(name);
+    const Tracer tracer(scene);
+    f.push_back({name, RenderFrame(tracer, 101, 67, RenderSpec{}, 1, nullptr)});
+  }
   return f;
 }
 
