@@ -1,7 +1,7 @@
 // FXAA 1.0 — Timothy Lottes, NVIDIA whitepaper "FXAA" (v1.0, 25/01/11; seeds/002), presets 0-5.
 //
 // What it implements
-//   A single-pass post filter on the 8-bit LDR frame, read as UNORM (k/255 of the
+//   A single-pass post filter on the 8-bit LDR frame, read as UNORM (k·fl(1/255) of the
 //   sRGB-encoded values: whitepaper "Integration / Alias sRGB as UNORM"), written back as
 //   RGBA8 with round-to-nearest and alpha 255. Per pixel, following "Implementation /
 //   Algorithm Overview" steps 1-8:
@@ -49,7 +49,7 @@
 //                colour); no shift = grey
 //
 // Deviations from the GPU shader (all float32 unless said)
-//   - Bilinear weights use the exact float32 fraction (BilinearSampler); hardware uses 8 bits
+//   - Bilinear filtering uses the exact float32 fraction (BilinearSampler); hardware uses 8 bits
 //     of sub-texel precision. This only touches the final shifted fetch: every search fetch
 //     lies on a texel centre along the edge and halfway across it (fractions 0 and 0.5).
 //   - Positions are kept in texel units (pixel centre x+0.5, y+0.5) instead of normalised

@@ -20,7 +20,7 @@
 //   edge_threshold_min  [0..1]  0.0833  fxaaQualityEdgeThresholdMin (iter12: 0.0312)
 //   luma  {rec601|rec601-rgb|green|sqrt-luminance}
 //         rec601 = FXAA_GREEN_AS_LUMA 0 (dot(rgb,(0.299,0.587,0.114)) written to alpha at 8
-//         bits by a first pass); rec601-rgb = the same dot computed from each tap's rgb in
+//         bits by a first pass, GL store rounding); rec601-rgb = the same dot computed from each tap's rgb in
 //         float (seed 003); green = FXAA_GREEN_AS_LUMA 1; sqrt-luminance = the tutorial's
 //         sqrt(Luminance(linear rgb)) written to alpha at 8 bits.
 //         Fxaa3_11.h suggests edge_threshold_min near 0 with green luma ("colors that are
@@ -35,12 +35,15 @@
 //   seeds/003 (FXAA notes with a complete GLSL FXAA, ITERATIONS 12, QUALITY(q) macro).
 //
 // Fidelity and deviations (read with the shader open):
-//   * Taps. FxaaTexTop / FxaaTexOff (centre and the 8 neighbours) are exact texel reads
-//     (BilinearSampler::Texel): with integer offsets at the pixel centre a GPU returns the
-//     texel itself. The GLSL_120 fallback in seed 004 writes them as texture2D(pos + o*rcp);
-//     that differs only by float rounding of the coordinate (< 1e-6 texel), which the GPU's
-//     8-bit sub-texel precision removes. Search taps and the final tap are bilinear fetches
-//     at the shader's normalised coordinates (BilinearSampler::SampleNormalized).
+//   * Taps. Every tap is a bilinear fetch, as in the shader text we verify against. Seed 004's
+//     GLSL writes FxaaTexTop / FxaaTexOff as texture2D(tex, posM + vec2(off) * rcpFrame), so
+//     the centre and its 8 neighbours are fetched at normalised coordinates rounded to float;
+//     u·W − 0.5 then often lands ~1e-6 off the texel centre (about 40% of the columns of a
+//     1920-wide frame) and a float32 filter mixes in that much of the next texel. Seed 003
+//     uses textureLodOffset: the offset is added to u·W in float before −0.5 (llvmpipe's
+//     rule). Search taps and the final tap are fetches at the shader's coordinates.
+//     Filtering is BilinearSampler's (harness/core/sampler.h): llvmpipe's float32 path,
+//     bit for bit. A GPU's 8-bit sub-texel weights differ (see docs/fxaa-fidelity.md).
 //   * posM, the "{xy} = center of pixel" input, is ((x+0.5)/W, (y+0.5)/H) rounded to float;
 //     fxaaQualityRcpFrame is (1/W, 1/H) rounded to float. Every position update
 //     (posB, posN, posP, the final posM) is the shader's, in normalised coordinates.
@@ -65,9 +68,13 @@
 //     whose clamp is undefined in GLSL/HLSL). We return the input pixel there. With IEEE
 //     min/max the shader would blend M with a neighbour of equal luma; that differs from
 //     ours only when that neighbour has the same luma but another colour.
-//   * Output: the shader returns (filtered rgb, lumaM); we store rgb rounded to 8 bits
-//     (round to nearest, as a UNORM render target) and alpha 255. Early-exit pixels return
-//     the input rgb exactly.
+//   * Output: the shader returns (filtered rgb, lumaM) into an RGBA8 target; we store rgb with
+//     GL's float-to-UNORM conversion (StoreUnorm8: round to nearest, ties to even, as
+//     llvmpipe) and alpha 255. Early exit returns the centre tap rgbyM, stored the same way
+//     (it equals the input bytes: the tap is at most ~1e-6 off the texel).
+//   * Verified: tests/oracle runs seed 004's FXAA-interactive.fs and seed 003's GLSL on
+//     llvmpipe (float32 filtering, no FMA) and compares every preset byte for byte
+//     (docs/fxaa-fidelity.md). The luma pre-pass is ours; the oracle is given its alpha.
 //   * Colour space: taps read the sRGB-encoded 8-bit values as UNORM and filter them (DESIGN:
 //     post filters run on encoded values). The tutorial samples an sRGB texture, so its GPU
 //     filters rgb in linear light; its luma lives in alpha, which is never decoded.

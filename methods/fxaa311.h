@@ -52,7 +52,7 @@ Fxaa311Params::Luma ParseFxaa311Luma(const std::string& name);
 const std::vector<std::string>& Fxaa311LumaNames();
 
 /// The luma pre-pass: for kRec601 and kSqrtLuminance a copy of `in` (RGBA8) whose alpha
-/// holds the luma rounded to 8 bits (round-to-nearest UNORM store); for kGreen and
+/// holds the luma rounded to 8 bits (StoreUnorm8, GL's UNORM store); for kGreen and
 /// kRec601Rgb a plain copy (those modes read luma from rgb at each tap).
 Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma);
 

@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
 #include <sstream>
 
 #include "methods/fxaa311.h"
@@ -119,6 +122,47 @@ TEST_F(FxaaOracle, Iter12IsSeed003Glsl) {
   ExpectIdentical(
       "fxaa-iter12", [&](const Image8& img) { return Fxaa311(img, p, nullptr); },
       [&](const Image8& img) { return oracle::RunIter12Shader(img); });
+}
+
+// The extraction finds the shaders by their markers and says what it looked for when a
+// seeds folder lacks them (here: a folder with one unrelated text file).
+TEST(FxaaOracleSeeds, MissingShaderTextFailsWithItsMarkers) {
+  const std::string dir = ::testing::TempDir() + "/aalab_no_shader_seeds";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/000_unrelated.txt") << "no shader here\n#version 430 core\n";
+  const char* old = std::getenv("AALAB_SEEDS_DIR");
+  const std::string saved = old ? old : "";
+  setenv("AALAB_SEEDS_DIR", dir.c_str(), 1);
+  std::string e1, e2;
+  try {
+    oracle::Fxaa311InteractiveShader();
+  } catch (const std::runtime_error& e) {
+    e1 = e.what();
+  }
+  try {
+    oracle::Iter12Shader();
+  } catch (const std::runtime_error& e) {
+    e2 = e.what();
+  }
+  if (old) {
+    setenv("AALAB_SEEDS_DIR", saved.c_str(), 1);
+  } else {
+    unsetenv("AALAB_SEEDS_DIR");
+  }
+  EXPECT_NE(e1.find("WebGL Fragment Shader FXAA-interactive.fs"), std::string::npos) << e1;
+  EXPECT_NE(e1.find(dir), std::string::npos) << e1;
+  EXPECT_NE(e2.find("#define ITERATIONS 12"), std::string::npos) << e2;
+}
+
+// With the real seeds: the extracted texts are the complete shaders (start to end markers).
+TEST(FxaaOracleSeeds, ExtractedShadersAreComplete) {
+  if (!oracle::SeedsPresent()) GTEST_SKIP() << "needs " << oracle::SeedsDir() << " (../shared/seeds)";
+  const std::string fs = oracle::Fxaa311InteractiveShader();
+  EXPECT_EQ(fs.rfind("precision highp float;", 0), 0u);
+  EXPECT_NE(fs.find("return vec4(texture2D(tex, posM).xyz, lumaM);"), std::string::npos);
+  const std::string it = oracle::Iter12Shader();
+  EXPECT_EQ(it.rfind("#version 430 core", 0), 0u);
+  EXPECT_NE(it.find("FragColor = vec4(fxaa(),1);"), std::string::npos);
 }
 
 }  // namespace
