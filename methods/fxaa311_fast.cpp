@@ -149,117 +149,6 @@ void BuildPlane(const Image8& in, Luma, LumaPlane<float>* plane) {  // kRec601Rg
   });
 }
 
-// Step 2 for one row: edge[x] = 1 where the pixel passes the early exit and has range > 0.
-// max/min are exact, so their nesting does not matter; k -> k/255 is increasing, so the
-// max (min) of the lumas is the luma of the max (min) byte.
-template <typename P>
-int ContrastRow(const LumaPlane<P>& pl, int y, float thr, float thr_min, uint8_t* edge) {
-  const int w = pl.w;
-  const P* rn = pl.Row(std::max(y - 1, 0));
-  const P* rm = pl.Row(y);
-  const P* rs = pl.Row(std::min(y + 1, pl.h - 1));
-  auto test = [&](P n, P wv, P m, P e, P s) -> uint8_t {
-    const P mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
-    const P mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
-    const float range_max = LumaValue(mx);
-    const float range = range_max - LumaValue(mn);
-    const float clamped = std::max(thr_min, range_max * thr);
-    return (range < clamped || range == 0.0f) ? 0 : 1;
-  };
-  if (w == 1) {
-    edge[0] = test(rn[0], rm[0], rm[0], rm[0], rs[0]);
-  } else {
-    edge[0] = test(rn[0], rm[0], rm[0], rm[1], rs[0]);
-    for (int x = 1; x < w - 1; ++x) edge[x] = test(rn[x], rm[x - 1], rm[x], rm[x + 1], rs[x]);
-    edge[w - 1] = test(rn[w - 1], rm[w - 2], rm[w - 1], rm[w - 1], rs[w - 1]);
-  }
-  int count = 0;
-  for (int x = 0; x < w; ++x) count += edge[x];
-  return count;
-}
-
-// The early-exit decision for 8-bit lumas depends only on the (max, min) byte pair: a
-// 256×256 table evaluated with the shader's float expressions, plus the largest byte
-// difference `safe` for which every pair exits (so a vectorised max − min <= safe test
-// settles most pixels without the table).
-struct ExitTable {
-  std::vector<uint8_t> edge;  // [max·256 + min] = 1 when the pixel goes on to the search
-  std::vector<uint8_t> near;  // [max·256 + min] = 1 when taps off the texel centres by up to
-                              // `margin` could flip the decision (see TapGrid)
-  int safe = -1;              // max − min <= safe always exits
-};
-
-// True when the test range < max(thr_min, rangeMax·thr) on texel lumas is within `margin`
-// of flipping: taps that deviate by d from the texels move range by <= 2d and the clamped
-// threshold by <= d·thr, so margin = 3·deviation covers them.
-inline bool NearTie(float range_max, float range, float thr, float thr_min, float margin) {
-  const float clamped = std::max(thr_min, range_max * thr);
-  return std::fabs(range - clamped) <= margin;
-}
-
-ExitTable MakeExitTable(float thr, float thr_min, float margin) {
-  ExitTable t;
-  t.edge.assign(256 * 256, 0);
-  t.near.assign(256 * 256, 0);
-  int safe = 255;
-  for (int mx = 0; mx < 256; ++mx) {
-    for (int mn = 0; mn <= mx; ++mn) {
-      const float range_max = LumaValue(static_cast<uint8_t>(mx));
-      const float range = range_max - LumaValue(static_cast<uint8_t>(mn));
-      const float clamped = std::max(thr_min, range_max * thr);
-      const bool exit = range < clamped || range == 0.0f;
-      t.edge[mx * 256 + mn] = exit ? 0 : 1;
-      t.near[mx * 256 + mn] = NearTie(range_max, range, thr, thr_min, margin) ? 1 : 0;
-      if (!exit) safe = std::min(safe, mx - mn - 1);
-    }
-  }
-  t.safe = safe;
-  return t;
-}
-
-// Step 2 for one row of 8-bit lumas, through the table: returns the number of edge pixels.
-int ContrastRowBytes(const LumaPlane<uint8_t>& pl, int y, const ExitTable& tab, uint8_t* edge) {
-  const int w = pl.w;
-  const uint8_t* rn = pl.Row(std::max(y - 1, 0));
-  const uint8_t* rm = pl.Row(y);
-  const uint8_t* rs = pl.Row(std::min(y + 1, pl.h - 1));
-  auto exact = [&](uint8_t n, uint8_t wv, uint8_t m, uint8_t e, uint8_t s) -> uint8_t {
-    const uint8_t mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
-    const uint8_t mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
-    return tab.edge[mx * 256 + mn];
-  };
-  if (w <= 2) {
-    for (int x = 0; x < w; ++x) {
-      edge[x] = exact(rn[x], rm[std::max(x - 1, 0)], rm[x], rm[std::min(x + 1, w - 1)], rs[x]);
-    }
-  } else {
-    edge[0] = exact(rn[0], rm[0], rm[0], rm[1], rs[0]);
-    edge[w - 1] = exact(rn[w - 1], rm[w - 2], rm[w - 1], rm[w - 1], rs[w - 1]);
-    // Vectorisable: candidates where max − min exceeds the always-exit difference.
-    const uint8_t safe = static_cast<uint8_t>(std::max(tab.safe, 0));
-    const bool none_safe = tab.safe < 0;
-    for (int x = 1; x < w - 1; ++x) {
-      const uint8_t mx = std::max(std::max(rn[x], rm[x - 1]), std::max(rm[x], std::max(rm[x + 1], rs[x])));
-      const uint8_t mn = std::min(std::min(rn[x], rm[x - 1]), std::min(rm[x], std::min(rm[x + 1], rs[x])));
-      edge[x] = static_cast<uint8_t>(mx - mn) > safe || none_safe;
-    }
-    for (int x = 1; x < w - 1; ++x) {
-      if ((x & 7) == 0 && x + 8 <= w - 1) {  // skip 8 candidates at a time when none is set
-        uint64_t word;
-        std::memcpy(&word, edge + x, 8);
-        if (word == 0) {
-          x += 7;
-          continue;
-        }
-      }
-      if (edge[x]) edge[x] = exact(rn[x], rm[x - 1], rm[x], rm[x + 1], rs[x]);
-    }
-  }
-  int count = 0;
-  for (int x = 0; x < w; ++x) count += edge[x];
-  return count;
-}
-
 // The rgb of BilinearSampler::Sample's blend over footprint `f` on `img` (Fetch's clamp and
 // UnormToFloat, BilinearBlend), without the alpha channel.
 inline void BlendRgb(const Image8& img, const BilinearFootprint& f, float rgb[3]) {
@@ -374,31 +263,124 @@ bool EdgeByTaps(const LumaPlane<P>& pl, const Image8& src, const TapGrid& g, int
   return !(range < clamped) && range != 0.0f;
 }
 
-// Step 2, second half: pixels whose 5 taps are not all on texel centres. Their texel-luma
-// decision stands unless it is a near tie; near ties are decided with the real taps.
-template <typename P>
-void FixInexactRow(const LumaPlane<P>& pl, const Image8& src, const TapGrid& g, const ExitTable* tab,
-                   int y, const Fxaa311Params& prm, float margin, uint8_t* edge) {
+// Step 2 for one row: edge[x] = 1 where the pixel passes the early exit and has range > 0.
+// max/min are exact, so their nesting does not matter; k -> k/255 is increasing, so the
+// max (min) of the lumas is the luma of the max (min) byte.
+// True when the test range < max(thr_min, rangeMax·thr) on texel lumas is within `margin`
+// of flipping: taps that deviate by d from the texels move range by <= 2d and the clamped
+// threshold by <= d·thr, so margin = 3·deviation covers them.
+inline bool NearTie(float range_max, float range, float thr, float thr_min, float margin) {
+  const float clamped = std::max(thr_min, range_max * thr);
+  return std::fabs(range - clamped) <= margin;
+}
+
+// Step 2 for one row of float lumas (rec601-rgb): returns the number of edge pixels.
+// Pixels whose taps are off the texel centres and whose texel-luma test is a near tie
+// (NearTie) are decided with the real taps.
+int ContrastRow(const LumaPlane<float>& pl, const Image8& src, const TapGrid& g, int y,
+                const Fxaa311Params& prm, float margin, uint8_t* edge) {
+  const int w = pl.w;
+  const float thr = prm.edge_threshold, thr_min = prm.edge_threshold_min;
+  const bool row_exact = g.rows[y].exact;
+  const float* rn = pl.Row(std::max(y - 1, 0));
+  const float* rm = pl.Row(y);
+  const float* rs = pl.Row(std::min(y + 1, pl.h - 1));
+  for (int x = 0; x < w; ++x) {
+    const float n = rn[x], m = rm[x], s = rs[x], wv = rm[std::max(x - 1, 0)], e = rm[std::min(x + 1, w - 1)];
+    const float mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
+    const float mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
+    const float range = mx - mn;
+    const float clamped = std::max(thr_min, mx * thr);
+    if (!(row_exact && g.cols[x].exact) && NearTie(mx, range, thr, thr_min, margin)) {
+      edge[x] = EdgeByTaps(pl, src, g, x, y, prm) ? 1 : 0;
+    } else {
+      edge[x] = (range < clamped || range == 0.0f) ? 0 : 1;
+    }
+  }
+  int count = 0;
+  for (int x = 0; x < w; ++x) count += edge[x];
+  return count;
+}
+
+// The early-exit decision for 8-bit lumas depends only on the (max, min) byte pair: a
+// 256×256 table evaluated with the shader's float expressions, plus the largest byte
+// difference `safe` for which every pair exits (so a vectorised max − min <= safe test
+// settles most pixels without the table).
+struct ExitTable {
+  std::vector<uint8_t> edge;  // [max·256 + min] = 1 when the pixel goes on to the search
+  std::vector<uint8_t> near;  // [max·256 + min] = 1 when taps off the texel centres by up to
+                              // `margin` could flip the decision (see TapGrid)
+  int safe = -1;              // max − min <= safe always exits and is never a near tie
+};
+
+ExitTable MakeExitTable(float thr, float thr_min, float margin) {
+  ExitTable t;
+  t.edge.assign(256 * 256, 0);
+  t.near.assign(256 * 256, 0);
+  int safe = 255;
+  for (int mx = 0; mx < 256; ++mx) {
+    for (int mn = 0; mn <= mx; ++mn) {
+      const float range_max = LumaValue(static_cast<uint8_t>(mx));
+      const float range = range_max - LumaValue(static_cast<uint8_t>(mn));
+      const float clamped = std::max(thr_min, range_max * thr);
+      const bool exit = range < clamped || range == 0.0f;
+      t.edge[mx * 256 + mn] = exit ? 0 : 1;
+      t.near[mx * 256 + mn] = NearTie(range_max, range, thr, thr_min, margin) ? 1 : 0;
+      if (!exit || t.near[mx * 256 + mn]) safe = std::min(safe, mx - mn - 1);
+    }
+  }
+  t.safe = safe;
+  return t;
+}
+
+// Step 2 for one row of 8-bit lumas, through the table: returns the number of edge pixels.
+// Pixels whose taps are off the texel centres and whose byte pair is a near tie are decided
+// with the real taps (EdgeByTaps); near-tie pairs are always candidates (ExitTable::safe).
+int ContrastRowBytes(const LumaPlane<uint8_t>& pl, const Image8& src, const TapGrid& g, int y,
+                     const Fxaa311Params& prm, const ExitTable& tab, uint8_t* edge) {
   const int w = pl.w;
   const bool row_exact = g.rows[y].exact;
-  const P* rn = pl.Row(std::max(y - 1, 0));
-  const P* rm = pl.Row(y);
-  const P* rs = pl.Row(std::min(y + 1, pl.h - 1));
-  for (int x = 0; x < w; ++x) {
-    if (row_exact && g.cols[x].exact) continue;
-    const P n = rn[x], m = rm[x], s = rs[x], wv = rm[std::max(x - 1, 0)], e = rm[std::min(x + 1, w - 1)];
-    const P mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
-    const P mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
-    bool near;
-    if constexpr (std::is_same_v<P, uint8_t>) {
-      (void)margin;
-      near = tab->near[mx * 256 + mn] != 0;
-    } else {
-      (void)tab;
-      near = NearTie(mx, mx - mn, prm.edge_threshold, prm.edge_threshold_min, margin);
+  const uint8_t* rn = pl.Row(std::max(y - 1, 0));
+  const uint8_t* rm = pl.Row(y);
+  const uint8_t* rs = pl.Row(std::min(y + 1, pl.h - 1));
+  auto exact = [&](int x, uint8_t n, uint8_t wv, uint8_t m, uint8_t e, uint8_t s) -> uint8_t {
+    const uint8_t mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
+    const uint8_t mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
+    if (tab.near[mx * 256 + mn] && !(row_exact && g.cols[x].exact)) {
+      return EdgeByTaps(pl, src, g, x, y, prm) ? 1 : 0;
     }
-    if (near) edge[x] = EdgeByTaps(pl, src, g, x, y, prm) ? 1 : 0;
+    return tab.edge[mx * 256 + mn];
+  };
+  if (w <= 2) {
+    for (int x = 0; x < w; ++x) {
+      edge[x] = exact(x, rn[x], rm[std::max(x - 1, 0)], rm[x], rm[std::min(x + 1, w - 1)], rs[x]);
+    }
+  } else {
+    edge[0] = exact(0, rn[0], rm[0], rm[0], rm[1], rs[0]);
+    edge[w - 1] = exact(w - 1, rn[w - 1], rm[w - 2], rm[w - 1], rm[w - 1], rs[w - 1]);
+    // Vectorisable: candidates where max − min exceeds the always-exit difference.
+    const uint8_t safe = static_cast<uint8_t>(std::max(tab.safe, 0));
+    const bool none_safe = tab.safe < 0;
+    for (int x = 1; x < w - 1; ++x) {
+      const uint8_t mx = std::max(std::max(rn[x], rm[x - 1]), std::max(rm[x], std::max(rm[x + 1], rs[x])));
+      const uint8_t mn = std::min(std::min(rn[x], rm[x - 1]), std::min(rm[x], std::min(rm[x + 1], rs[x])));
+      edge[x] = static_cast<uint8_t>(mx - mn) > safe || none_safe;
+    }
+    for (int x = 1; x < w - 1; ++x) {
+      if ((x & 7) == 0 && x + 8 <= w - 1) {  // skip 8 candidates at a time when none is set
+        uint64_t word;
+        std::memcpy(&word, edge + x, 8);
+        if (word == 0) {
+          x += 7;
+          continue;
+        }
+      }
+      if (edge[x]) edge[x] = exact(x, rn[x], rm[x - 1], rm[x], rm[x + 1], rs[x]);
+    }
   }
+  int count = 0;
+  for (int x = 0; x < w; ++x) count += edge[x];
+  return count;
 }
 
 // ShadePixel for a pixel that passed the early exit with range > 0, lumas from the plane.
@@ -598,15 +580,12 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
       // Every pixel first as the early exit writes it: input rgb, alpha 255.
       uint8_t* orow = out.Row(y);
       CopyRowOpaque(in.Row(y), orow, w);
+      int edges;
       if constexpr (std::is_same_v<P, uint8_t>) {
-        ContrastRowBytes(plane, y, exit_table, edge.data());
-        FixInexactRow(plane, in, grid, &exit_table, y, params, margin, edge.data());
+        edges = ContrastRowBytes(plane, in, grid, y, params, exit_table, edge.data());
       } else {
-        ContrastRow(plane, y, params.edge_threshold, params.edge_threshold_min, edge.data());
-        FixInexactRow(plane, in, grid, nullptr, y, params, margin, edge.data());
+        edges = ContrastRow(plane, in, grid, y, params, margin, edge.data());
       }
-      int edges = 0;
-      for (int x = 0; x < w; ++x) edges += edge[x];
       chunk_taps += 5 * static_cast<uint64_t>(w - edges);
       if (edges == 0) continue;
       for (int x = 0; x < w; ++x) {
