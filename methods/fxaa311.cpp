@@ -55,7 +55,7 @@
 //     (strict); horzSpan = edgeHorz >= edgeVert; pairN = |gradientN| >= |gradientS|;
 //     doneN/doneP = |lumaEnd| >= gradientScaled; directionN = dstN < dstP (a tie takes P,
 //     but a tie also gives pixelOffset = 0.5 - dst/(2·dst) = 0, so it never shows).
-//     These rules decide float-equal values. Lumas k/255 are not dyadic, so sums that tie
+//     These rules decide float-equal values. Lumas k·fl(1/255) are not dyadic, so sums that tie
 //     in exact arithmetic often differ in the last bit and rounding decides; that is why
 //     the statement order is kept (seed 003's order of the edgeHorz/edgeVert sums decides
 //     ~1% of the pixels of a noise image differently; see the tests).

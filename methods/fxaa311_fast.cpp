@@ -50,7 +50,7 @@ namespace {
 using namespace fxaa311_internal;
 
 // Per-channel products of the luma dot, one table per weight: entry k is the product the
-// reference computes for channel value k (k/255·w, or SrgbDecode8(k)·w), so the sums below
+// reference computes for channel value k (UnormToFloat(k)·w, or SrgbDecode8(k)·w), so the sums
 // add exactly the same floats in the same order.
 struct LumaTables {
   float r[256], g[256], b[256];
