@@ -123,7 +123,7 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   row.spec = plan.spec;
   row.params = plan.params.Ordered();
   row.samples_per_pixel = plan.render.SamplesPerPixel();
-  const bool shared = plan.render.pattern == SamplePattern::kCenter && plan.render.scale == 1.0;
+  const bool shared = plan.render.IsPlain1x();
   Image8 frame;
   TraceCounters counters;
   if (shared) {
