@@ -99,7 +99,8 @@ struct MsaaScratch {
   std::vector<glm::vec3> org, dir, corg, cdir;
   std::vector<float> tnear, tfar, ctnear, ctfar;
   std::vector<Hit> hits, chits, layer_hits;
-  std::vector<int> sample_frag, pixel_head, pending, next, shade_index;
+  std::vector<int> sample_frag, pixel_head, pending, next, shade_index, covered_px, centre_of;
+  std::vector<SamplePos> cpos;
   std::vector<Fragment> frags;
   std::vector<Hit> shade_hits;
   std::vector<glm::vec3> shade_org, shade_dir;
@@ -144,22 +145,41 @@ void Tracer::TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos,
   Hit* hits = Sized(S.hits, n_all);
   ClosestVisibleHits(im, sc, alpha_per_sample, org, dir, count, tnear, tfar, hits, S.layers, local);
 
-  // Pixel-centre rays (shading rays, not coverage): their closest hit, no alpha test.
+  // Pixel-centre rays (shading rays, not coverage): their closest hit, no alpha test; only
+  // for pixels where some sample sees a surface (nothing is shaded in the others). Packed:
+  // centre k is pixel covered_px[k]; centre_of[p] = k (-1: none).
+  std::vector<int>& covered_px = S.covered_px;
+  covered_px.clear();
+  int* centre_of = Sized(S.centre_of, n_px);
+  SamplePos* cpos = Sized(S.cpos, n_px);
+  for (int p = 0; p < pixels; ++p) {
+    centre_of[p] = -1;
+    for (int s = 0; s < N; ++s) {
+      if (hits[p * N + s].shape >= 0) {
+        centre_of[p] = static_cast<int>(covered_px.size());
+        cpos[covered_px.size()] = centre_pos[p];
+        covered_px.push_back(p);
+        break;
+      }
+    }
+  }
+  const int n_centre = static_cast<int>(covered_px.size());
   glm::vec3* corg = Sized(S.corg, n_px);
   glm::vec3* cdir = Sized(S.cdir, n_px);
   float* ctnear = Sized(S.ctnear, n_px);
   float* ctfar = Sized(S.ctfar, n_px);
-  CameraRays(im, sc.camera, centre_pos, pixels, width, height, corg, cdir);
-  std::fill(ctnear, ctnear + pixels, 0.0f);
-  std::fill(ctfar, ctfar + pixels, inf);
   Hit* chits = Sized(S.chits, n_px);
-  IntersectRays(im.scene, corg, cdir, ctnear, ctfar, nullptr, pixels, chits, true);
-  local.primary_rays += static_cast<uint64_t>(pixels);
+  CameraRays(im, sc.camera, cpos, n_centre, width, height, corg, cdir);
+  std::fill(ctnear, ctnear + n_centre, 0.0f);
+  std::fill(ctfar, ctfar + n_centre, inf);
+  IntersectRays(im.scene, corg, cdir, ctnear, ctfar, nullptr, n_centre, chits, true);
+  local.primary_rays += static_cast<uint64_t>(n_centre);
 
   // The shading point of a new fragment f of pixel p (see the file comment).
   auto place_shading_point = [&](Fragment& f, int p) {
     const Shape& shape = sc.shapes[f.shape];
     const bool at_centre = msaa.shading == MsaaShading::kCenter || f.mask == full_mask;
+    p = centre_of[p];  // a pixel with a fragment has a centre ray
     if (at_centre) {
       const Hit& ch = chits[p];
       if (ch.shape == f.shape && ch.prim == f.prim && BackSurface(shape, ch, cdir[p]) == f.back) {

@@ -79,7 +79,7 @@ TEST(Msaa, StraightEdgeIsKOverNOfTheStandardPositions) {
     const Image8 img = Render(white, W, H, m, &c);
     const Image8 hot_display = Render(hot, W, H, m);
     const Image8 hot_hdr = Render(hot, W, H, m + ":resolve=hdr-linear");
-    int partial = 0;
+    int partial = 0, touched = 0;
     for (int y = 0; y < H; ++y) {
       for (int x = 0; x < W; ++x) {
         int k = 0;
@@ -88,6 +88,7 @@ TEST(Msaa, StraightEdgeIsKOverNOfTheStandardPositions) {
           if (wy < kSlope * wx + kOffset) ++k;
         }
         partial += k > 0 && k < n;
+        touched += k > 0;
         const double f = static_cast<double>(k) / n;
         for (int ch = 0; ch < 3; ++ch) {
           ASSERT_EQ(img.At(x, y, ch), Expected8(f)) << m << " pixel " << x << "," << y << " k=" << k;
@@ -99,15 +100,11 @@ TEST(Msaa, StraightEdgeIsKOverNOfTheStandardPositions) {
       }
     }
     EXPECT_GT(partial, W / 2) << "the edge must cross pixels";
-    // One coverage ray per sample; one shading per pixel that sees the triangle (its only
-    // primitive); one pixel-centre shading ray per pixel.
+    // One coverage ray per sample; one shading, and one pixel-centre shading ray, per pixel
+    // where some sample sees the triangle (its only primitive).
     EXPECT_EQ(c.coverage_rays, static_cast<uint64_t>(W * H * n));
-    EXPECT_EQ(c.primary_rays, static_cast<uint64_t>(W * H * (n + 1)));
-    uint64_t seen = 0;
-    for (int y = 0; y < H; ++y) {
-      for (int x = 0; x < W; ++x) seen += img.At(x, y, 0) > 0;
-    }
-    EXPECT_EQ(c.shading_evals, seen) << m;
+    EXPECT_EQ(c.primary_rays, static_cast<uint64_t>(W * H * n + touched));
+    EXPECT_EQ(c.shading_evals, static_cast<uint64_t>(touched)) << m;
   }
 }
 
