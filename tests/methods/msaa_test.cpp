@@ -10,6 +10,7 @@
 
 #include "harness/core/color.h"
 #include "harness/core/error.h"
+#include "harness/core/parallel.h"
 #include "methods/registry.h"
 #include "metrics/metric.h"
 #include "scenes/library.h"
@@ -238,6 +239,67 @@ TEST(Msaa, AlphaTestPerSampleDiffersFromPerShadeOnlyOnCutoutEdges) {
     }
     EXPECT_GT(edges, 2 * H) << m;
   }
+}
+
+TEST(Msaa, CenterExtrapolatesAndCentroidTakesTheFirstCoveredSample) {
+  // A textured quad whose left edge is the vertical line px = 4 + e, stripes of period 1 px
+  // along x: t = 1 (green) where frac(x_world − e) < duty, else red. In pixel 4, msaa-4x covers
+  // the samples with x offset > e; `center` shades at the centre (extrapolated when 0.5 < e),
+  // `centroid` at the first covered sample in index order (not all four are covered).
+  const int W = 8, H = 4;
+  const auto pos = VulkanPositions(4);
+  struct Case {
+    double e, duty;
+  };
+  for (const Case c : {Case{0.3, 0.15}, Case{0.6, 0.5}}) {
+    const std::string mat = R"({"m": {"shading": "unlit", "texture": {"pattern": "stripes", "scale": 1, "duty": )" +
+                            std::to_string(c.duty) + R"(, "color_a": [1,0,0], "color_b": [0,1,0]}}})";
+    const std::string quad = R"([{"shape": "quad", "size": [2000, 100], "material": "m", "transform": {"translate": [)" +
+                             std::to_string(1000 + c.e) + R"(, 0, 0]}}])";
+    const Scene scene = OrthoPixelScene(W, H, R"(["unlit", "textures"])", mat, quad);
+    auto green = [&](double x_offset) {  // texture at x offset in pixel 4 (x_world = offset)
+      const double d = x_offset - c.e;
+      return d - std::floor(d) < c.duty;
+    };
+    int k = 0, first = -1;
+    for (int s = 0; s < 4; ++s) {
+      if (pos[s].first > c.e) {
+        ++k;
+        if (first < 0) first = s;
+      }
+    }
+    ASSERT_GT(k, 0);
+    ASSERT_LT(k, 4);
+    const Image8 center = Render(scene, W, H, "msaa-4x");
+    const Image8 centroid = Render(scene, W, H, "msaa-4x:shading=centroid");
+    const bool g_center = green(0.5), g_centroid = green(pos[first].first);
+    EXPECT_NE(g_center, g_centroid) << "the case must tell the two apart";
+    const uint8_t cover = Expected8(k / 4.0);
+    for (int y = 0; y < H; ++y) {
+      EXPECT_EQ(center.At(4, y, 0), g_center ? 0 : cover) << c.e;
+      EXPECT_EQ(center.At(4, y, 1), g_center ? cover : 0) << c.e;
+      EXPECT_EQ(centroid.At(4, y, 0), g_centroid ? 0 : cover) << c.e;
+      EXPECT_EQ(centroid.At(4, y, 1), g_centroid ? cover : 0) << c.e;
+      for (int x = 5; x < W; ++x) EXPECT_EQ(center.At(x, y, 1), centroid.At(x, y, 1)) << "fully covered: both at the centre";
+    }
+  }
+}
+
+TEST(Msaa, SameBitsAndCountersAtAnyThreadCount) {
+  const Scene scene = LoadScene("shadow-stipple");
+  const Tracer tracer(scene);
+  const RenderSpec spec = MakeMethod("msaa-8x:shading=centroid").render;
+  TraceCounters c1, c2;
+  SetThreadCount(1);
+  const Image8 a = RenderFrame(tracer, 45, 26, spec, 1, &c1);
+  SetThreadCount(2);
+  const Image8 b = RenderFrame(tracer, 45, 26, spec, 1, &c2);
+  SetThreadCount(0);
+  EXPECT_TRUE(a == b);
+  EXPECT_EQ(c1.shading_evals, c2.shading_evals);
+  EXPECT_EQ(c1.shadow_rays, c2.shadow_rays);
+  EXPECT_EQ(c1.primary_rays, c2.primary_rays);
+  EXPECT_GT(c1.shadow_rays, 0u);
 }
 
 TEST(Msaa, BadParametersAreErrorsThatListTheChoices) {
