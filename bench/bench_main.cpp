@@ -369,7 +369,12 @@ int Main(int argc, char** argv) {
   auto samples = std::make_shared<std::vector<SampleResult>>(static_cast<size_t>(FW) * FH * 4);
   {
     const Tracer tracer(resolve_scene);
-    const auto offs = RenderSpec{SamplePattern::kOrderedGrid, 2, 1, 1.0}.FixedOffsets();
+    const auto offs = [] {  // named fields: RenderSpec grows a member per render-time family
+      RenderSpec r;
+      r.pattern = SamplePattern::kOrderedGrid;
+      r.grid = 2;
+      return r.FixedOffsets();
+    }();
     ParallelForChunks(FH, 8, [&](int y0, int y1) {
       std::vector<SamplePos> pos(static_cast<size_t>(FW) * 4);
       for (int y = y0; y < y1; ++y) {
