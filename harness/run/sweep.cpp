@@ -307,7 +307,7 @@ SweepResult RunSweep(const SweepSettings& s) {
   for (auto& source : scenes) {
     const std::string name = source.Name();
     const auto prepared = PrepareSource(std::move(source), s.width, s.height, ref_grid, s.seed, s.repeat);
-    ++res.reference_renders;
+    if (prepared->tracer) ++res.reference_renders;  // an image-scene view renders nothing
     report.scenes.push_back(prepared->info);
     Progress(s.quiet, ++done, total, name + " reference", clock);
     for (size_t p = 0; p < plans.size(); ++p) {

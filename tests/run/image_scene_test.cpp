@@ -284,6 +284,43 @@ TEST(ImageScene, EdgeDetectorsByHand) {
   EXPECT_EQ(EdgesFromGradient(ImageF(5, 4, 3, 0.5f)), ImageF(5, 4, 1));
 }
 
+TEST(ImageScene, DepthMaskAndAViewWithoutEdges) {
+  const fs::path dir = TempDir("depth");
+  // 8x6, odd content: left half at depth 10, right half at 20 (a 100 % jump between columns
+  // 3 and 4) → raw edges in columns 3 and 4, dilated to 2..5.
+  Image8 frame(8, 6, 4, 255);
+  ImageF depth(8, 6, 1, 10.0f);
+  for (int y = 0; y < 6; ++y) {
+    for (int x = 4; x < 8; ++x) {
+      depth.At(x, y, 0) = 20.0f;
+      frame.At(x, y, 0) = frame.At(x, y, 1) = frame.At(x, y, 2) = 40;
+    }
+  }
+  WriteImage8((dir / "frame.png").string(), frame);
+  WriteImage8((dir / "flat.png").string(), Image8(7, 5, 4, 90));
+  WriteImageF((dir / "ref.exr").string(), Decoded(ToFloat(frame, 3)));
+  WriteImageF((dir / "depth.exr").string(), depth);
+  WriteText(dir / "m.json", R"({"aalab_image_scene": 1, "views": [
+    {"name": "step", "frame": "frame.png", "reference": "ref.exr", "depth": "depth.exr"},
+    {"name": "flat", "frame": "flat.png", "reference": "flat.png"}]})");
+  const std::vector<ImageView> views = LoadImageScene((dir / "m.json").string());
+  EXPECT_EQ(views[0].edge_mask_source.rfind("geometry from depth", 0), 0u) << views[0].edge_mask_source;
+  for (int x = 0; x < 8; ++x) {
+    EXPECT_EQ(views[0].edge_mask_raw.At(x, 2, 0), (x == 3 || x == 4) ? 1.0f : 0.0f) << x;
+    EXPECT_EQ(views[0].edge_mask.At(x, 2, 0), (x >= 2 && x <= 5) ? 1.0f : 0.0f) << x;
+  }
+  // The flat view: an 8-bit display-encoded reference, no edges at all, so the edge metrics are
+  // null (with the metric's reason) and the run still succeeds.
+  const Report r = RunSuite(Settings({(dir / "m.json").string()}, dir / "out"));
+  EXPECT_EQ(r.scenes[1].edge_pixel_fraction, 0.0);
+  EXPECT_NE(r.scenes[1].reference_note.find("8-bit integer"), std::string::npos) << r.scenes[1].reference_note;
+  const auto flat = Metrics(Row(r, "flat", "fxaa311-p12"));
+  EXPECT_FALSE(flat.at("edge_psnr_db").value);
+  EXPECT_FALSE(flat.at("edge_psnr_db").null_reason.empty());
+  EXPECT_FALSE(flat.at("psnr_db").value);  // identical to its reference: infinite PSNR, null
+  fs::remove_all(dir);
+}
+
 /// Writes a valid view's files into `dir` (frame 8x6, 8-bit; reference EXR; 16-bit frame and
 /// others for the bad cases).
 void WriteSmallViewFiles(const fs::path& dir) {
@@ -376,6 +413,7 @@ TEST(ImageScene, SweepTunesAPostFilterAndSuggestsAPreset) {
   s.out_dir = (dir / "sweep").string();
   const SweepResult r = RunSweep(s);
   ASSERT_EQ(r.points.size(), 3u);
+  EXPECT_EQ(r.reference_renders, 0);  // nothing rendered: the view brings its reference
   EXPECT_EQ(r.suggested_preset.rfind("fxaa311-p12:edge_threshold=", 0), 0u) << r.suggested_preset;
   EXPECT_NE(SweepSummaryText(r).find("suggested preset: " + r.suggested_preset), std::string::npos);
   // A renderer-side method cannot be swept on an image scene.
