@@ -253,36 +253,63 @@ bool IsImageSceneManifest(const std::string& path) {
   return doc.is_object() && (doc.contains("aalab_image_scene") || doc.contains("views"));
 }
 
-std::vector<ImageView> LoadImageScene(const std::string& manifest_path) {
+namespace {
+
+/// A manifest's top level, validated; views are read one at a time (LoadView).
+struct Manifest {
+  std::string path;
+  nlohmann::json doc;
+  size_t views = 0;
+  std::string description;
+};
+
+Manifest ReadManifest(const std::string& manifest_path) {
+  Manifest m;
+  m.path = manifest_path;
   const std::string origin = "image scene '" + manifest_path + "'";
   if (!fs::is_regular_file(manifest_path)) throw UserError(origin + " does not exist or is not a file");
-  nlohmann::json doc;
   try {
-    doc = nlohmann::json::parse(ReadText(manifest_path));
+    m.doc = nlohmann::json::parse(ReadText(manifest_path));
   } catch (const nlohmann::json::exception& e) {
     throw UserError(origin + ": not valid JSON: " + e.what());
   }
-  const JsonField root(doc, origin, "");
+  const JsonField root(m.doc, origin, "");
   root.RequireObject({"aalab_image_scene", "description", "views"});
   if (!root.Has("aalab_image_scene")) {
     root.Fail("missing \"aalab_image_scene\": 1 (the manifest format version this build reads)");
   }
   root.Child("aalab_image_scene").Integer(kImageSceneVersion, kImageSceneVersion);
   const JsonField views = root.Child("views");
-  const size_t n = views.ArraySize();
-  if (n == 0) views.Fail("no views (give at least one)");
-  if (n > kMaxViews) views.Fail(std::to_string(n) + " views; at most " + std::to_string(kMaxViews) + " per manifest");
-  const std::string description = root.StringOr("description", "");
-  const fs::path base = fs::path(manifest_path).parent_path();
-  std::vector<ImageView> out;
-  for (size_t i = 0; i < n; ++i) {
-    ImageView v = ParseView(views.At(i), base, manifest_path);
-    for (const auto& o : out) {
-      if (o.name == v.name) views.At(i).Child("name").Fail("view '" + v.name + "' is listed twice");
-    }
-    if (v.description.empty()) v.description = description.empty() ? "a view of " + manifest_path : description;
-    out.push_back(std::move(v));
+  m.views = views.ArraySize();
+  if (m.views == 0) views.Fail("no views (give at least one)");
+  if (m.views > kMaxViews) {
+    views.Fail(std::to_string(m.views) + " views; at most " + std::to_string(kMaxViews) + " per manifest");
   }
+  m.description = root.StringOr("description", "");
+  return m;
+}
+
+/// Reads view `index` of a manifest (every image), checking its name against the views before it.
+ImageView LoadView(const Manifest& m, size_t index) {
+  const JsonField views = JsonField(m.doc, "image scene '" + m.path + "'", "").Child("views");
+  ImageView v = ParseView(views.At(index), fs::path(m.path).parent_path(), m.path);
+  for (size_t i = 0; i < index; ++i) {
+    const nlohmann::json& other = m.doc.at("views").at(i);
+    if (other.is_object() && other.contains("name") && other.at("name") == v.name) {
+      views.At(index).Child("name").Fail("view '" + v.name + "' is listed twice");
+    }
+  }
+  if (v.description.empty()) v.description = m.description.empty() ? "a view of " + m.path : m.description;
+  v.index = index;
+  return v;
+}
+
+}  // namespace
+
+std::vector<ImageView> LoadImageScene(const std::string& manifest_path) {
+  const Manifest m = ReadManifest(manifest_path);
+  std::vector<ImageView> out;
+  for (size_t i = 0; i < m.views; ++i) out.push_back(LoadView(m, i));
   return out;
 }
 
@@ -294,7 +321,17 @@ std::vector<SceneSource> LoadSceneSources(const std::vector<std::string>& names)
   for (const auto& n : names) {
     std::vector<SceneSource> added;
     if (IsImageSceneManifest(n)) {
-      for (auto& v : LoadImageScene(n)) added.push_back({nullptr, std::make_unique<ImageView>(std::move(v))});
+      // Every view is read and validated now, before any work, but only its name is kept:
+      // PrepareSource reads the images again, so a run holds one view's pixels at a time.
+      const Manifest m = ReadManifest(n);
+      for (size_t i = 0; i < m.views; ++i) {
+        const ImageView full = LoadView(m, i);
+        auto light = std::make_unique<ImageView>();
+        light->name = full.name;
+        light->manifest = full.manifest;
+        light->index = i;
+        added.push_back({nullptr, std::move(light)});
+      }
     } else {
       for (auto& s : LoadScenes({n})) added.push_back({std::move(s), nullptr});
     }
@@ -311,7 +348,11 @@ std::vector<SceneSource> LoadSceneSources(const std::vector<std::string>& names)
 std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int height, int grid, uint64_t seed,
                                              int repeat) {
   if (source.scene) return PrepareScene(std::move(source.scene), width, height, grid, seed, repeat);
-  ImageView& v = *source.view;
+  ImageView v = LoadView(ReadManifest(source.view->manifest), source.view->index);
+  if (v.name != source.view->name) {
+    throw UserError("image scene '" + v.manifest + "' changed during the run (view " + std::to_string(v.index) +
+                    " was '" + source.view->name + "', now '" + v.name + "')");
+  }
   const int W = v.frame.Width(), H = v.frame.Height();
   auto p = std::make_unique<PreparedScene>();
   SceneResult& sr = p->info;

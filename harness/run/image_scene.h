@@ -21,6 +21,7 @@ struct ImageView {
   std::string name;         ///< lowercase-kebab, unique in the run
   std::string description;
   std::string manifest;     ///< the manifest's path, as given
+  size_t index = 0;         ///< position in the manifest's "views"
   Image8 frame;             ///< the 1x frame (RGBA8, alpha 255)
   ImageF reference;         ///< sRGB-encoded float RGB, not quantised (what Reference::image holds)
   std::string reference_note;  ///< how the reference file was read
@@ -44,7 +45,9 @@ std::vector<ImageView> LoadImageScene(const std::string& manifest_path);
 /// One entry of `--scenes`: a scene the tracer renders, or a view of an image scene.
 struct SceneSource {
   std::unique_ptr<Scene> scene;        ///< set for a rendered scene
-  std::unique_ptr<ImageView> view;     ///< set for an image-scene view
+  /// Set for an image-scene view: its name, manifest and index only (validated, pixels not
+  /// kept); PrepareSource reads the images again, so a run holds one view's pixels at a time.
+  std::unique_ptr<ImageView> view;
   const std::string& Name() const;
 };
 
@@ -52,7 +55,8 @@ struct SceneSource {
 /// LoadImageScene (each view one source, in manifest order). Names must be unique across all.
 std::vector<SceneSource> LoadSceneSources(const std::vector<std::string>& names);
 
-/// PrepareScene for a rendered scene; for a view, a PreparedScene without scene or tracer:
+/// PrepareScene for a rendered scene; for a view (read again from its manifest; UserError if
+/// the file changed since LoadSceneSources), a PreparedScene without scene or tracer:
 /// the view's frame as the 1x frame (render time unknown: 0, no cost counters), its
 /// reference and edge mask, crops as PrepareScene picks them, and no noise floor (a user's
 /// reference has no independent halves; the report gives the reason). `width`, `height`,
