@@ -230,8 +230,9 @@ ImageView ParseView(const JsonField& v, const fs::path& base, const std::string&
       }
       const ImageF d = EdgesFromDepth(FirstChannels(depth.image.pixels, 1));
       view.edge_mask_raw = has_ids ? UnionMask(view.edge_mask_raw, d) : d;
-      how += std::string(has_ids ? " or " : "") + "depth ('" + depth.rel + "': a 4-neighbour's depth differs by more than " +
-             ShortNumber(kDepthEdgeRelativeJump * 100.0f) + " % of the nearer one)";
+      how += std::string(has_ids ? " or " : "") + "depth ('" + depth.rel +
+             "': a 4-neighbour's depth differs by more than " + ShortNumber(kDepthEdgeRelativeJump * 100.0f) +
+             " % of the nearer one)";
     }
     view.edge_mask = DilateMask(view.edge_mask_raw);
     view.edge_mask_source = "geometry from " + how + "; dilated by 1 px";
@@ -398,11 +399,15 @@ ResultRow NotApplicableRow(const PreparedScene& p, const MethodPlan& plan) {
   row.render_width = p.info.width;
   row.render_height = p.info.height;
   row.not_applicable = "needs the renderer (it renders its own frame";
-  if (plan.render.SamplesPerPixel() > 1) row.not_applicable += ", " + std::to_string(plan.render.SamplesPerPixel()) + " samples per pixel";
+  if (plan.render.SamplesPerPixel() > 1) {
+    row.not_applicable += ", " + std::to_string(plan.render.SamplesPerPixel()) + " samples per pixel";
+  }
   if (plan.render.scale != 1.0) row.not_applicable += ", at scale " + FormatNumber(plan.render.scale);
   row.not_applicable += "); image scene '" + p.info.source + "' has only the 1x frame";
   for (const MetricEntry& m : MetricRegistry()) {
-    for (const std::string& name : m.outputs) row.metrics.push_back({name, std::nullopt, "not applicable: " + row.not_applicable});
+    for (const std::string& name : m.outputs) {
+      row.metrics.push_back({name, std::nullopt, "not applicable: " + row.not_applicable});
+    }
   }
   return row;
 }
