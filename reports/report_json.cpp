@@ -85,6 +85,10 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
                       {"primary_rays_per_px", Num(s.ref_primary_rays_per_px)},
                       {"shadow_rays_per_px", Num(s.ref_shadow_rays_per_px)},
                       {"texture_lookups_per_px", Num(s.ref_texture_lookups_per_px)}};
+    if (!s.noise_floor_null_reason.empty()) j["reference"]["noise_floor_null_reason"] = s.noise_floor_null_reason;
+    if (!s.reference_note.empty()) j["reference"]["note"] = s.reference_note;
+    j["kind"] = s.kind;
+    j["edge_mask_source"] = s.edge_mask_source;
     j["bvh_build_ms"] = Num(s.bvh_build_ms);
     j["edge_pixel_fraction"] = Num(s.edge_pixel_fraction);
     Json im = Json::object();
@@ -130,6 +134,7 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
     Json im = Json::object();
     for (const auto& [k, v] : row.images) im[k] = v;
     j["images"] = im;
+    if (!row.not_applicable.empty()) j["not_applicable"] = row.not_applicable;
     rows.push_back(j);
   }
   doc["rows"] = rows;
@@ -166,6 +171,11 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       s.ref_primary_rays_per_px = ref.at("primary_rays_per_px").get<double>();
       s.ref_shadow_rays_per_px = ref.at("shadow_rays_per_px").get<double>();
       s.ref_texture_lookups_per_px = ref.at("texture_lookups_per_px").get<double>();
+      // Optional fields (added after schema 1 first shipped; older reports lack them).
+      if (ref.contains("noise_floor_null_reason")) s.noise_floor_null_reason = ref.at("noise_floor_null_reason").get<std::string>();
+      if (ref.contains("note")) s.reference_note = ref.at("note").get<std::string>();
+      if (j.contains("kind")) s.kind = j.at("kind").get<std::string>();
+      if (j.contains("edge_mask_source")) s.edge_mask_source = j.at("edge_mask_source").get<std::string>();
       s.bvh_build_ms = j.at("bvh_build_ms").get<double>();
       s.edge_pixel_fraction = j.at("edge_pixel_fraction").get<double>();
       for (auto it = j.at("images").begin(); it != j.at("images").end(); ++it) {
@@ -210,6 +220,7 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       for (auto it = j.at("images").begin(); it != j.at("images").end(); ++it) {
         row.images[it.key()] = it.value().get<std::string>();
       }
+      if (j.contains("not_applicable")) row.not_applicable = j.at("not_applicable").get<std::string>();
       r.rows.push_back(row);
     }
   } catch (const nlohmann::json::exception& e) {

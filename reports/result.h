@@ -42,6 +42,9 @@ struct ResultRow {
   std::vector<MetricResult> metrics;
   std::string output_hash;  ///< FNV-1a 64 of the output's RGBA8 bytes, hex
   std::map<std::string, std::string> images;  ///< role → path relative to the report folder
+  /// Non-empty when the method cannot run on this scene (a renderer-side method on an image
+  /// scene): why. Such a row has every metric null with this reason, no timings, no images.
+  std::string not_applicable;
 };
 
 /// Per-scene facts: the reference and its noise floor.
@@ -57,6 +60,14 @@ struct SceneResult {
   std::map<std::string, std::string> images;
   /// Zoom windows [x, y, w, h] where `none` is furthest from the reference on edges.
   std::vector<std::array<int, 4>> crops;
+  /// "rendered": a scene the tracer renders; "image": a view of an image scene (a user's own
+  /// 1x frame and reference, harness/run/image_scene.h).
+  std::string kind = "rendered";
+  /// How the edge mask was made (the report shows it).
+  std::string edge_mask_source = "geometry: the reference's samples see more than one surface, a shadow boundary "
+                                 "or an alpha cut-out; dilated by 1 px";
+  std::string reference_note;           ///< how an image scene's reference file was read ("" otherwise)
+  std::string noise_floor_null_reason;  ///< why ref_floor_psnr_db is null, when it is ("" otherwise)
 };
 
 /// A whole run.

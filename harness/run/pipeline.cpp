@@ -5,6 +5,7 @@
 #include "harness/core/error.h"
 #include "harness/core/params.h"
 #include "harness/core/timer.h"
+#include "harness/run/image_scene.h"
 #include "harness/run/runner.h"
 #include "metrics/crops.h"
 #include "metrics/metric.h"
@@ -114,6 +115,7 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
 }
 
 MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t seed, int repeat) {
+  if (!p.tracer && !RunsOnImageScenes(plan)) return MethodOutput{NotApplicableRow(p, plan), {}, {}, {}, {}};
   const int W = p.info.width, H = p.info.height;
   const double px = static_cast<double>(W) * H;
   MethodOutput out;

@@ -16,6 +16,7 @@
 #include "methods/registry.h"
 #include "reports/html_report.h"
 #include "reports/report_json.h"
+#include "harness/run/image_scene.h"
 #include "harness/run/pipeline.h"
 #include "scenes/library.h"
 #include "scenes/render.h"
@@ -91,7 +92,7 @@ Report RunSuite(const RunSettings& s) {
   if (s.repeat < 1 || s.repeat > 1000) throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
   const int grid = ReferenceGridForSpp(s.ref_spp);
   const std::vector<std::string> scene_names = s.scenes.empty() ? SuiteScenes(s.suite) : s.scenes;
-  std::vector<std::unique_ptr<Scene>> scenes = LoadScenes(scene_names);
+  std::vector<SceneSource> scenes = LoadSceneSources(scene_names);
   const std::vector<std::string> method_specs = s.methods.empty() ? DefaultMethods() : s.methods;
   const std::vector<MethodPlan> plans = ResolveMethods(method_specs);
   if (s.out_dir.empty()) throw UserError("--out must not be empty");
@@ -130,11 +131,11 @@ Report RunSuite(const RunSettings& s) {
 
   const int W = s.width, H = s.height;
   Progress progress(static_cast<int>(scenes.size() * (plans.size() + 1)), s.quiet);
-  for (auto& scene_ptr : scenes) {
-    const std::string name = scene_ptr->name;
+  for (auto& source : scenes) {
+    const std::string name = source.Name();
     const std::string rel_dir = "images/" + name;
     fs::create_directories(tmp / rel_dir);
-    const auto prepared = PrepareScene(std::move(scene_ptr), W, H, grid, s.seed, s.repeat);
+    const auto prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat);
     SceneResult sr = prepared->info;
     const Reference& ref = prepared->ref;
     WriteImageF((tmp / rel_dir / "reference.exr").string(), DecodeToLinear(ref.image));
@@ -148,6 +149,11 @@ Report RunSuite(const RunSettings& s) {
     for (const MethodPlan& plan : plans) {
       MethodOutput mo = RunMethod(*prepared, plan, s.seed, s.repeat);
       ResultRow& row = mo.row;
+      if (!row.not_applicable.empty()) {  // a renderer-side method on an image scene: no images
+        report.rows.push_back(std::move(row));
+        progress.Step(name + " " + plan.spec + " (not applicable)");
+        continue;
+      }
       if (s.debug_views && plan.post) {
         for (const auto& view : plan.debug_views) {
           PostOptions opt;
