@@ -1,12 +1,14 @@
 // MSAA bench: what one shading per primitive saves. msaa-4x against ssaa-rgss — the same
 // four standard positions, so the same coverage — on every library scene: shading
 // evaluations, rays and texture lookups per pixel (hardware-independent) and the render time
-// (this implementation on this machine). Where shading dominates (shadow rays in
-// shadow-stipple, Blinn-Phong in specular-spheres) MSAA must cost clearly less.
+// (this implementation on this machine). The time saved follows the shading's share of the
+// cost: largest where every shade traces a shadow ray (shadow-stipple); where shading is free
+// (unlit scenes) the emulation's centre rays and sample grouping make MSAA the slower one.
+// Measured ratios: docs/msaa.md.
 //
 // Timing: one untimed warm-up render, then `reps` timed renders (steady clock, all worker
-// threads; and process CPU time, less exposed to other load); median, min and max. Standalone: aalab_bench_msaa [WxH] [reps] [scene,...]
-// (bench_msaa_main.cpp).
+// threads; and process CPU time, less exposed to other load); median, min and max.
+// Standalone: aalab_bench_msaa [WxH] [reps] [scene,...] (bench_msaa_main.cpp).
 #include "bench/bench_msaa.h"
 
 #include <algorithm>

@@ -274,6 +274,8 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
        "type=\"button\">Rays/px <span class=\"unit\">primary + shadow</span></button></th>"
        "<th scope=\"col\" title=\"Texture (colour and alpha pattern) evaluations per output pixel\"><button "
        "type=\"button\">Tex lookups/px</button></th>"
+       "<th scope=\"col\" title=\"Surface shading evaluations per output pixel: one per sample that hits a surface, "
+       "one per primitive and pixel for MSAA\"><button type=\"button\">Shades/px</button></th>"
        "<th scope=\"col\" title=\"Post-filter texture fetches per output pixel (edge search included)\"><button "
        "type=\"button\">Taps/px</button></th></tr></thead>\n<tbody>\n";
   std::map<std::string, std::string> first_with_hash;
@@ -327,6 +329,8 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
          FmtCount(row.primary_rays_per_px) + " + " + FmtCount(row.shadow_rays_per_px) + "</td>";
     h += "<td class=\"num\" data-v=\"" + Key(row.texture_lookups_per_px) + "\">" +
          FmtCount(row.texture_lookups_per_px) + "</td>";
+    h += "<td class=\"num\" data-v=\"" + Key(row.shading_evals_per_px) + "\">" +
+         FmtCount(row.shading_evals_per_px) + "</td>";
     h += "<td class=\"num\" data-v=\"" + Key(row.taps_per_px) + "\">" + FmtCount(row.taps_per_px) + "</td></tr>\n";
   }
   h += "</tbody></table></div>\n";
@@ -383,8 +387,8 @@ void Methodology(std::string& h, const Report& r) {
   h += "<li><b>CPU time is not GPU cost.</b> These are the times of this implementation: an Embree CPU ray "
        "tracer and a CPU emulation of GPU texture filtering. On a GPU the balance differs (rasterisation "
        "instead of rays, hardware texture filtering), so a time ratio here does not predict a GPU frame time. "
-       "The hardware-independent counters — rays/px (primary + shadow), texture lookups/px, taps/px (post-"
-       "filter fetches) — are the portable measure of work.</li>\n</ul>\n</section>\n";
+       "The hardware-independent counters — rays/px (primary + shadow), texture lookups/px, shades/px, taps/px "
+       "(post-filter fetches) — are the portable measure of work.</li>\n</ul>\n</section>\n";
 }
 
 void ContextSection(std::string& h, const Report& r) {

@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "harness/core/color.h"
-#include "harness/core/edge_mask.h"
 #include "harness/core/error.h"
 #include "harness/core/hash.h"
 #include "harness/core/parallel.h"
@@ -115,25 +114,25 @@ void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Pla
   }
 }
 
-/// Per-thread buffers of RenderMsaaFrame, reused from tile to tile.
+/// Per-thread buffers of TraceMsaaTiles, reused from tile to tile.
 struct MsaaTileScratch {
   std::vector<SamplePos> pos, centres;
   std::vector<SampleResult> res;
   std::vector<uint32_t> evals;
 };
 
-/// MSAA frame: tiles in parallel, one Tracer::TraceMsaa call per tile (its pixels row-major,
-/// each with N samples at the standard positions), counters merged in tile order.
-Image8 RenderMsaaFrame(const Tracer& tracer, int width, int height, const MsaaSpec& msaa, TraceCounters* counters,
-                       FrameStats* stats) {
+/// MSAA: tiles in parallel, one Tracer::TraceMsaa call per tile (its pixels row-major, each
+/// with N samples at the standard positions), then `resolve(x, y, samples, N)` per pixel;
+/// counters merged in tile order; `stats` (when not null) gets the shading evaluations.
+template <typename Resolve>
+void TraceMsaaTiles(const Tracer& tracer, int width, int height, const MsaaSpec& msaa, const Resolve& resolve,
+                    TraceCounters* counters, FrameStats* stats) {
   AALAB_CHECK(width > 0 && height > 0, "render size must be positive");
-  const Display& display = tracer.GetScene().display;
   const int spp = msaa.samples;
   std::vector<std::pair<float, float>> offsets;  // in [0, 1)² from the pixel's corner
   for (const SampleOffset16& o : StandardSamplePositions(spp)) {
     offsets.emplace_back(static_cast<float>(8 + o.x) / 16.0f, static_cast<float>(8 + o.y) / 16.0f);
   }
-  Image8 out(width, height, 4, 255);
   if (stats) stats->shading_evals = ImageF(width, height, 1);
   const int tiles_x = (width + kTile - 1) / kTile;
   const int tiles_y = (height + kTile - 1) / kTile;
@@ -167,12 +166,7 @@ Image8 RenderMsaaFrame(const Tracer& tracer, int width, int height, const MsaaSp
       int k = 0;
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x, ++k) {
-          const SampleResult* r = scratch.res.data() + static_cast<size_t>(k) * spp;
-          if (msaa.resolve == MsaaResolve::kHdrLinear) {
-            ResolveHdrLinearPixel(display, r, spp, out.Pixel(x, y));
-          } else {
-            ResolveBoxPixel(display, r, spp, out.Pixel(x, y));
-          }
+          resolve(x, y, scratch.res.data() + static_cast<size_t>(k) * spp, spp);
           if (stats) stats->shading_evals.At(x, y, 0) = static_cast<float>(scratch.evals[static_cast<size_t>(k)]);
         }
       }
@@ -181,14 +175,18 @@ Image8 RenderMsaaFrame(const Tracer& tracer, int width, int height, const MsaaSp
   if (counters) {
     for (const auto& c : per_tile) *counters += c;
   }
-  return out;
 }
 
-/// Traces the samples of a method frame (the render spec's pattern and jitter) and calls
-/// `resolve(x, y, samples, spp)` for each pixel: what RenderFrame and RenderFrameLinear share.
+/// Traces the samples of a method frame (the render spec's pattern and jitter, or MSAA) and
+/// calls `resolve(x, y, samples, spp)` for each pixel: what RenderFrame and RenderFrameLinear
+/// share.
 template <typename Resolve>
 void TraceFrameSamples(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
-                       const Resolve& resolve, TraceCounters* counters) {
+                       const Resolve& resolve, TraceCounters* counters, FrameStats* stats) {
+  if (spec.msaa.On()) {
+    TraceMsaaTiles(tracer, width, height, spec.msaa, resolve, counters, stats);
+    return;
+  }
   const int spp = spec.SamplesPerPixel();
   std::vector<std::pair<float, float>> fixed;
   if (spec.pattern != SamplePattern::kJitter && spec.pattern != SamplePattern::kStratified) {
@@ -227,22 +225,32 @@ void TraceFrameSamples(const Tracer& tracer, int width, int height, const Render
 
 Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
                    TraceCounters* counters, FrameStats* stats) {
-  if (spec.msaa.On()) return RenderMsaaFrame(tracer, width, height, spec.msaa, counters, stats);
   const Display& display = tracer.GetScene().display;
   Image8 out(width, height, 4, 255);
+  const bool hdr_linear = spec.msaa.On() && spec.msaa.resolve == MsaaResolve::kHdrLinear;
   auto resolve = [&](int x, int y, const SampleResult* r, int count) {
-    ResolveBoxPixel(display, r, count, out.Pixel(x, y));
+    if (hdr_linear) {
+      ResolveHdrLinearPixel(display, r, count, out.Pixel(x, y));
+    } else {
+      ResolveBoxPixel(display, r, count, out.Pixel(x, y));
+    }
   };
-  TraceFrameSamples(tracer, width, height, spec, seed, resolve, counters);
+  TraceFrameSamples(tracer, width, height, spec, seed, resolve, counters, stats);
   return out;
 }
 
 ImageF RenderFrameLinear(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
                          TraceCounters* counters) {
-  AALAB_CHECK(!spec.msaa.On(), "RenderFrameLinear resolves sample patterns only, not MSAA");
   const Display& display = tracer.GetScene().display;
   ImageF out(width, height, 3);
+  const bool hdr_linear = spec.msaa.On() && spec.msaa.resolve == MsaaResolve::kHdrLinear;
   auto resolve = [&](int x, int y, const SampleResult* r, int count) {
+    if (hdr_linear) {
+      float d[3];
+      HdrLinearResolve(display, r, count, d);
+      for (int c = 0; c < 3; ++c) out.At(x, y, c) = d[c];
+      return;
+    }
     double sum[3] = {0, 0, 0};
     for (int s = 0; s < count; ++s) {
       float d[3];
@@ -251,7 +259,7 @@ ImageF RenderFrameLinear(const Tracer& tracer, int width, int height, const Rend
     }
     for (int c = 0; c < 3; ++c) out.At(x, y, c) = static_cast<float>(sum[c] / count);
   };
-  TraceFrameSamples(tracer, width, height, spec, seed, resolve, counters);
+  TraceFrameSamples(tracer, width, height, spec, seed, resolve, counters, nullptr);
   return out;
 }
 
@@ -308,7 +316,23 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
   RenderTiles(tracer, width, height, spp, place, resolve, counters);
 
   // Dilate the mask by 1 px (3×3 neighbourhood, clamped at the border).
-  ref.edge_mask = DilateMask(ref.edge_mask_raw);
+  ref.edge_mask = ImageF(width, height, 1);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      float v = 0.0f;
+      for (int dy = -1; dy <= 1 && v == 0.0f; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx < 0 || yy < 0 || xx >= width || yy >= height) continue;
+          if (ref.edge_mask_raw.At(xx, yy, 0) > 0.5f) {
+            v = 1.0f;
+            break;
+          }
+        }
+      }
+      ref.edge_mask.At(x, y, 0) = v;
+    }
+  }
   return ref;
 }
 

@@ -42,17 +42,23 @@ struct FrameStats {
   ImageF shading_evals;  ///< MSAA only: shading evaluations of each pixel (1 channel)
 };
 
-/// The MSAA resolve of one pixel with resolve=hdr-linear: box average of the samples'
-/// scene-linear radiance (double sums in sample order), then the display transform once,
-/// sRGB encode, round to 8 bits into p[0..2] (the naive resolve of an HDR render target).
-inline void ResolveHdrLinearPixel(const Display& display, const SampleResult* r, int count, uint8_t* p) {
+/// MSAA's resolve=hdr-linear of one pixel, display-linear: box average of the samples'
+/// scene-linear radiance (double sums in sample order), then the display transform once (the
+/// naive resolve of an HDR render target), into d[0..2].
+inline void HdrLinearResolve(const Display& display, const SampleResult* r, int count, float d[3]) {
   double sum[3] = {0, 0, 0};
   for (int s = 0; s < count; ++s) {
     for (int c = 0; c < 3; ++c) sum[c] += r[s].rgb[c];
   }
-  float mean[3], d[3];
+  float mean[3];
   for (int c = 0; c < 3; ++c) mean[c] = static_cast<float>(sum[c] / count);
   DisplayLinearInline(display, mean, d);
+}
+
+/// HdrLinearResolve, sRGB-encoded and rounded to 8 bits into p[0..2].
+inline void ResolveHdrLinearPixel(const Display& display, const SampleResult* r, int count, uint8_t* p) {
+  float d[3];
+  HdrLinearResolve(display, r, count, d);
   for (int c = 0; c < 3; ++c) p[c] = QuantizeUnorm8(SrgbEncode(d[c]));
 }
 
@@ -68,8 +74,9 @@ Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec
 
 /// The float resolve of RenderFrame: the same samples (pattern, jitter, seed), each through the
 /// display transform and box-averaged in linear light (double sums in sample order), written
-/// as display-linear RGB float in [0, 1] — neither sRGB-encoded nor quantised. RenderFrame's
-/// pixel is QuantizeUnorm8(SrgbEncode(this pixel)).
+/// as display-linear RGB float in [0, 1] — neither sRGB-encoded nor quantised (MSAA with
+/// resolve=hdr-linear: HdrLinearResolve). RenderFrame's pixel is
+/// QuantizeUnorm8(SrgbEncode(this pixel)).
 ImageF RenderFrameLinear(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
                          TraceCounters* counters);
 

@@ -133,7 +133,8 @@
     if (scope === 'scene') {
       const r = p.rows[0], c = r.cost;
       lines.push('rays/px ' + A.fmtSig(c.primary_rays_per_px) + ' + ' + A.fmtSig(c.shadow_rays_per_px) +
-                 ' · tex/px ' + A.fmtSig(c.texture_lookups_per_px) + ' · taps/px ' + A.fmtSig(c.taps_per_px));
+                 ' · tex/px ' + A.fmtSig(c.texture_lookups_per_px) + ' · shades/px ' + A.fmtSig(c.shading_evals_per_px) +
+                 ' · taps/px ' + A.fmtSig(c.taps_per_px));
     }
     lines.push(onFront ? 'on the Pareto front' : dom ? 'dominated by ' + dom.spec + ' (as fast or faster, as good or better)' : '');
     return lines.filter(Boolean).join('\n');

@@ -254,8 +254,8 @@ TEST(Msaa, CenterExtrapolatesAndCentroidTakesTheFirstCoveredSample) {
   for (const Case c : {Case{0.3, 0.15}, Case{0.6, 0.5}}) {
     const std::string mat = R"({"m": {"shading": "unlit", "texture": {"pattern": "stripes", "scale": 1, "duty": )" +
                             std::to_string(c.duty) + R"(, "color_a": [1,0,0], "color_b": [0,1,0]}}})";
-    const std::string quad = R"([{"shape": "quad", "size": [2000, 100], "material": "m", "transform": {"translate": [)" +
-                             std::to_string(1000 + c.e) + R"(, 0, 0]}}])";
+    const std::string quad = R"([{"shape": "quad", "size": [2000, 100], "material": "m",)"
+                             R"( "transform": {"translate": [)" + std::to_string(1000 + c.e) + R"(, 0, 0]}}])";
     const Scene scene = OrthoPixelScene(W, H, R"(["unlit", "textures"])", mat, quad);
     auto green = [&](double x_offset) {  // texture at x offset in pixel 4 (x_world = offset)
       const double d = x_offset - c.e;
@@ -280,7 +280,9 @@ TEST(Msaa, CenterExtrapolatesAndCentroidTakesTheFirstCoveredSample) {
       EXPECT_EQ(center.At(4, y, 1), g_center ? cover : 0) << c.e;
       EXPECT_EQ(centroid.At(4, y, 0), g_centroid ? 0 : cover) << c.e;
       EXPECT_EQ(centroid.At(4, y, 1), g_centroid ? cover : 0) << c.e;
-      for (int x = 5; x < W; ++x) EXPECT_EQ(center.At(x, y, 1), centroid.At(x, y, 1)) << "fully covered: both at the centre";
+      for (int x = 5; x < W; ++x) {
+        EXPECT_EQ(center.At(x, y, 1), centroid.At(x, y, 1)) << "fully covered: both shade at the centre";
+      }
     }
   }
 }
