@@ -15,6 +15,7 @@ const std::vector<MethodEntry>& MethodRegistry() {
     add(SupersampleMethods());
     add(Fxaa1Methods());
     add(Fxaa311Methods());
+    add(SmaaMethods());
     add(RenderScaleMethods());
     return all;
   }();

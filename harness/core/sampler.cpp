@@ -5,7 +5,7 @@
 
 namespace aalab {
 
-BilinearSampler::BilinearSampler(const Image8& img) : img_(img) {
+BilinearSampler::BilinearSampler(const Image8& img, SubTexel mode) : img_(img), mode_(mode) {
   AALAB_CHECK(img.Channels() == 4, "BilinearSampler needs an RGBA8 frame");
   AALAB_CHECK(!img.Empty(), "BilinearSampler needs a non-empty frame");
 }
@@ -30,7 +30,7 @@ Float4 BilinearSampler::SampleNormalized(float s, float t) {
 
 Float4 BilinearSampler::Sample(float u, float v) {
   ++taps_;
-  const BilinearFootprint f = BilinearAt(u, v, img_.Width(), img_.Height());
+  const BilinearFootprint f = BilinearAt(u, v, img_.Width(), img_.Height(), mode_);
   const Float4 a = Fetch(f.x0, f.y0);
   const Float4 b = Fetch(f.x0 + 1, f.y0);
   const Float4 c = Fetch(f.x0, f.y0 + 1);

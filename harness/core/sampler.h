@@ -24,13 +24,30 @@ struct BilinearFootprint {
   int x0 = 0, y0 = 0;
   float wa = 0, wb = 0, wc = 0, wd = 0;
 };
-[[gnu::always_inline]] inline BilinearFootprint BilinearAt(float u, float v, int width, int height) {
+
+/// Precision of the bilinear fraction (fx, fy).
+///   kExact:  the float32 fraction as computed (the default; what every filter used so far).
+///   kFixed8: the fraction rounded to 8 bits of sub-texel precision, round to nearest with
+///            ties to even (fx := nearbyint(fx·256)/256, which may give 1: then the whole
+///            weight goes to the second texel). Direct3D 10+ requires at least 8 bits of
+///            sub-texel precision; GPUs filter with such fixed-point fractions, so a
+///            coordinate that misses a texel centre or a quarter position by a float
+///            rounding error (< 1/512 texel) returns exactly what the exact position would.
+///            SMAA relies on that (methods/smaa.cpp, docs/smaa.md).
+enum class SubTexel { kExact, kFixed8 };
+
+[[gnu::always_inline]] inline BilinearFootprint BilinearAt(float u, float v, int width, int height,
+                                                           SubTexel mode = SubTexel::kExact) {
   const float x = u - 0.5f;
   const float y = v - 0.5f;
   const float x0f = std::floor(x);
   const float y0f = std::floor(y);
-  const float fx = x - x0f;
-  const float fy = y - y0f;
+  float fx = x - x0f;
+  float fy = y - y0f;
+  if (mode == SubTexel::kFixed8) {
+    fx = std::nearbyint(fx * 256.0f) * (1.0f / 256.0f);
+    fy = std::nearbyint(fy * 256.0f) * (1.0f / 256.0f);
+  }
   BilinearFootprint f;
   f.x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(width)));
   f.y0 = static_cast<int>(std::clamp(y0f, -1.0f, static_cast<float>(height)));
@@ -45,12 +62,13 @@ struct BilinearFootprint {
 /// texel centres at +0.5, clamp-to-edge addressing, float32 weights.
 ///
 /// Deviation from GPUs (documented): hardware quantises the bilinear fraction to 8 bits of
-/// sub-texel precision; this sampler uses the exact float32 fraction. Weights are
+/// sub-texel precision; this sampler uses the exact float32 fraction unless constructed with
+/// SubTexel::kFixed8 (which SMAA uses). Weights are
 /// (1-fx)(1-fy), fx(1-fy), (1-fx)fy, fx·fy and the four products are summed in that order.
 /// Every call counts one tap in the sampler's counter (fetches, not texels).
 class BilinearSampler {
  public:
-  explicit BilinearSampler(const Image8& img);
+  explicit BilinearSampler(const Image8& img, SubTexel mode = SubTexel::kExact);
   /// Sample at texture-space pixel coordinates (u, v) in pixels: the centre of texel (x, y)
   /// is (x + 0.5, y + 0.5).
   Float4 Sample(float u, float v);
@@ -68,6 +86,7 @@ class BilinearSampler {
  private:
   Float4 Fetch(int x, int y) const;
   const Image8& img_;
+  SubTexel mode_ = SubTexel::kExact;
   uint64_t taps_ = 0;
 };
 
