@@ -47,12 +47,12 @@ class SamplerEdges {
 };
 
 // SMAABlendingWeightCalculationPS with its search, area and corner functions, for one
-// pixel. E: an edge reader as above; area/search: BilinearSampler on SmaaAreaTexture() and
-// SmaaSearchTexture() (normalised coordinates, as the shader passes them).
-template <class E>
+// pixel. E: an edge reader as above; T: BilinearSampler (or a reader with the same
+// SampleNormalized, operation for operation) on SmaaAreaTexture() and SmaaSearchTexture().
+template <class E, class T = BilinearSampler>
 class WeightsShader {
  public:
-  WeightsShader(E& edges, BilinearSampler& area, BilinearSampler& search, const SmaaParams& p, const Frame& f)
+  WeightsShader(E& edges, T& area, T& search, const SmaaParams& p, const Frame& f)
       : edges_(edges), area_(area), search_(search), p_(p), f_(f) {}
 
   // Returns the four weights (r, g, b, a) of pixel (x, y), before the 8-bit store.
@@ -319,15 +319,17 @@ class WeightsShader {
   }
 
   E& edges_;
-  BilinearSampler& area_;
-  BilinearSampler& search_;
+  T& area_;
+  T& search_;
   const SmaaParams& p_;
   const Frame& f_;
 };
 
 // SMAANeighborhoodBlendingPS for pixel (x, y): blend = the RGBA8 blend texture, color = the
-// input frame, both through BilinearSampler. Writes rgb rounded to 8 bits and alpha 255.
-inline void BlendPixel(BilinearSampler& blend, BilinearSampler& color, const Frame& f, int x, int y, uint8_t* out) {
+// input frame, both through BilinearSampler (or a reader with the same SampleNormalized).
+// Writes rgb rounded to 8 bits and alpha 255.
+template <class T>
+void BlendPixel(T& blend, T& color, const Frame& f, int x, int y, uint8_t* out) {
   const F2 tc = f.Texcoord(x, y);
   const float ox = f.rx * 1.0f + tc.x, oy = f.ry * 0.0f + tc.y;  // SMAANeighborhoodBlendingVS
   const float oz = f.rx * 0.0f + tc.x, ow = f.ry * 1.0f + tc.y;
