@@ -291,8 +291,10 @@ Image8 SmaaReference(const Image8& in, const SmaaParams& params, const std::stri
   if (in.Empty()) return in;
   uint64_t taps = 0;
   const Image8 edges = EdgesRef(in, params, &taps);
+  if (view == 1 && stats) stats->taps += taps;  // a debug view counts the passes it ran
   if (view == 1) return smaa_detail::EdgesView(edges);
   const Image8 blend = WeightsRef(edges, params, &taps);
+  if (view == 2 && stats) stats->taps += taps;
   if (view == 2) return smaa_detail::WeightsView(blend);
   Image8 out = BlendRef(in, blend, params, &taps);
   if (stats) stats->taps += taps;

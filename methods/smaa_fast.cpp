@@ -3,25 +3,31 @@
 // Same shader as SmaaReference in methods/smaa.cpp — same float operations in the same
 // order, same fetches, same 8-bit textures — organised for a CPU. Parameters, sources and
 // deviations are documented at the top of methods/smaa.cpp.
-//   Pass 1: lumas (or UNORM values) from 256-entry product tables, one plane per frame, so
-//     each pixel's expressions read floats instead of going through the sampler; point
-//     samples at texel centres are exact texel reads in both paths.
-//   Pass 2: only pixels with an edge byte in their 3×3 neighbourhood run the shader: any
-//     other pixel's first fetch (the edge texture at its own centre; its bilinear footprint
-//     lies in that 3×3 block because the coordinate misses the centre by far less than half
-//     a texel) returns (0, 0), so its weights are 0 after one fetch. The shader itself is
-//     the one definition in smaa_shader.h, reading the edge texture through PlaneEdges
-//     (BilinearSampler's footprint, clamp, k/255 and weighted sum for the r and g channels
-//     only, in the same order).
-//   Pass 3: only pixels with a non-zero blend byte in rows y−1..y+2, columns x−1..x+2 (the
-//     footprints of the three blend fetches) run BlendPixel; the others see a = 0 and
-//     return the colour fetched at their own centre, which rounds back to the input bytes:
-//     its weights put at most a few float ulps (exact mode), or nothing (8-bit mode), on
-//     another texel, far below the 0.5/255 that would change the 8-bit result. The guard
-//     below keeps that argument's bound (coordinate error < 1/512 texel) to frames up to
-//     8192 pixels wide and high; larger frames run BlendPixel everywhere.
+//   Pass 1: a vectorised byte prefilter settles most pixels: when every rgb byte differs
+//     from the left and top neighbour by at most m, with m/255 + 1e-5 < threshold, both
+//     deltas are below the threshold (lumas and colour deltas are within 2e-6 of the exact
+//     byte arithmetic) and the shader discards the pixel. The others run EdgePixel's
+//     expressions with lumas from per-channel product tables. The edge texture is one byte
+//     per pixel (bit 0 = r, bit 1 = g) plus a flag per row.
+//   Pass 2: only candidate pixels run the shader (the one definition in smaa_shader.h,
+//     reading the edge bytes through PlaneEdges: BilinearSampler's footprint, clamp and
+//     weighted sums, texel values 0 or 1, for r and g). A non-candidate's first fetch (the
+//     edge texture at its own centre) returns (0, 0), so its weights are 0 after one fetch.
+//     Candidates: with 8-bit sub-texel fetches on frames up to 8192 pixels a side, the pixel
+//     itself has an edge bit (the own-centre coordinate misses the centre by < 1/1024
+//     texel, which the 8-bit fraction rounds away, so the fetch returns the own texel);
+//     otherwise any edge bit in its 3×3 block (the fetch's footprint lies there).
+//   Pass 3: a row is first copied (input rgb, alpha 255); only candidate pixels run
+//     BlendPixel. Candidates: with 8-bit fetches (≤ 8192 px) pixels whose own.r, own.b,
+//     right.a or bottom.g is non-zero (the three blend fetches hit those texels exactly);
+//     otherwise any non-zero blend byte in the fetches' footprints (rows y−1..y+2, columns
+//     x−1..x+2). A non-candidate sees a = 0 and returns the colour fetched at its own
+//     centre, which rounds back to its input bytes (its weights put at most ~1e-7 on
+//     another texel, far below the 0.5/255 that would change the 8-bit result); above 8192
+//     px every pixel runs BlendPixel.
+//   InlineSampler is BilinearSampler::SampleNormalized operation for operation, inline.
 // Tap counts equal the reference's. tests/perf/smaa_fast_test.cpp compares this path with
-// SmaaReference bit for bit, taps included, at 1 and 2 threads.
+// SmaaReference bit for bit, taps and debug views included, at 1 and 2 threads.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -412,6 +418,7 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
   edges.e.resize(in.PixelCount());
   edges.row_any.resize(static_cast<size_t>(in.Height()));
   EdgesFast(in, params, &edges, &taps);
+  if (view == 1 && stats) stats->taps += taps;  // a debug view counts the passes it ran
   if (view == 1) return smaa_detail::EdgesView(EdgeTextureOf(edges));
   BlendTex blend;
   blend.tex = Image8(in.Width(), in.Height(), 4, 0);
@@ -420,6 +427,7 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
   if (!precise) blend.nz.assign(in.PixelCount(), 0);  // only the footprint test of BlendFlags reads it
   blend.row_any.assign(static_cast<size_t>(in.Height()), 0);
   WeightsFast(edges, params, &blend, &taps);
+  if (view == 2 && stats) stats->taps += taps;
   if (view == 2) return smaa_detail::WeightsView(blend.tex);
   Image8 out = BlendFast(in, blend, params, &taps);
   if (stats) stats->taps += taps;

@@ -266,7 +266,10 @@ TEST(SmaaBlending, ExactSubTexelLeaksSpuriousWeights) {
   p.subtexel = SubTexel::kExact;
   Smaa(in, p, "", &exact);
   EXPECT_GT(exact.taps, fixed.taps);
-  // At a power-of-two size the coordinates are exact and both modes agree, taps included.
+  // At a power-of-two size the edge-texture coordinates are exact: on this frame (straight
+  // full-height edges: no crossing edges, area 0 whatever the fraction) both modes agree,
+  // taps included. (Elsewhere the modes can still differ at power-of-two sizes: the area
+  // texture is 160×560 and its √d lookups interpolate with the fraction.)
   Image8 pow2 = Gray(256, 16, 30);
   for (int y = 0; y < 16; ++y) {
     for (int x = 0; x < 256; ++x) SetGray(pow2, x, y, ((x / 7) % 2) ? 220 : 30);
