@@ -390,12 +390,24 @@ Image8 BlendFast(const Image8& in, const BlendTex& blend, const SmaaParams& p, u
         continue;
       }
       if (shortcut) BlendFlags(blend, precise, y, col.data(), flags.data());
+      const uint8_t* own = blend.tex.Row(y);
+      const uint8_t* below = blend.tex.Row(std::min(y + 1, h - 1));
       for (int x = 0; x < w; ++x) {
         if (!flags[static_cast<size_t>(x)]) {
           copied += 4;
           continue;
         }
-        smaa_detail::BlendPixel(bs, cs, f, x, y, dst + 4 * x);
+        if (precise) {
+          // The three blend fetches hit texel centres exactly (BlendFlags): their values are
+          // the bytes / 255, as the weighted sums with weights 0 and 1 return them.
+          const int xr = std::min(x + 1, w - 1);
+          const float a[4] = {static_cast<float>(own[4 * xr + 3]) / 255.0f, static_cast<float>(below[4 * x + 1]) / 255.0f,
+                              static_cast<float>(own[4 * x + 2]) / 255.0f, static_cast<float>(own[4 * x]) / 255.0f};
+          copied += 3;
+          smaa_detail::BlendWithWeights(a, cs, f, x, y, dst + 4 * x);
+        } else {
+          smaa_detail::BlendPixel(bs, cs, f, x, y, dst + 4 * x);
+        }
       }
     }
     t[static_cast<size_t>(y0 / kGrain)] = copied + bs.Taps() + cs.Taps();

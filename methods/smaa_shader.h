@@ -325,20 +325,13 @@ class WeightsShader {
   const Frame& f_;
 };
 
-// SMAANeighborhoodBlendingPS for pixel (x, y): blend = the RGBA8 blend texture, color = the
-// input frame, both through BilinearSampler (or a reader with the same SampleNormalized).
-// Writes rgb rounded to 8 bits and alpha 255.
+// SMAANeighborhoodBlendingPS for pixel (x, y) from its four weights a = (right.a,
+// bottom.g, own.b, own.r) as the shader fetches them (BlendPixel below): color = the input
+// frame through BilinearSampler (or a reader with the same SampleNormalized). Writes rgb
+// rounded to 8 bits and alpha 255.
 template <class T>
-void BlendPixel(T& blend, T& color, const Frame& f, int x, int y, uint8_t* out) {
+void BlendWithWeights(const float a[4], T& color, const Frame& f, int x, int y, uint8_t* out) {
   const F2 tc = f.Texcoord(x, y);
-  const float ox = f.rx * 1.0f + tc.x, oy = f.ry * 0.0f + tc.y;  // SMAANeighborhoodBlendingVS
-  const float oz = f.rx * 0.0f + tc.x, ow = f.ry * 1.0f + tc.y;
-  float a[4];
-  a[0] = blend.SampleNormalized(ox, oy).a;  // right
-  a[1] = blend.SampleNormalized(oz, ow).g;  // bottom pixel's top edge
-  const Float4 own = blend.SampleNormalized(tc.x, tc.y);
-  a[3] = own.r;
-  a[2] = own.b;
   Float4 c;
   if (((a[0] + a[1]) + a[2]) + a[3] < 1e-5f) {
     c = color.SampleNormalized(tc.x, tc.y);
@@ -365,6 +358,22 @@ void BlendPixel(T& blend, T& color, const Frame& f, int x, int y, uint8_t* out) 
   out[1] = QuantizeUnorm8(c.g);
   out[2] = QuantizeUnorm8(c.b);
   out[3] = 255;
+}
+
+// The whole pixel shader: the three blend-texture fetches (SMAANeighborhoodBlendingVS's
+// offsets), then BlendWithWeights. blend = the RGBA8 blend texture.
+template <class T>
+void BlendPixel(T& blend, T& color, const Frame& f, int x, int y, uint8_t* out) {
+  const F2 tc = f.Texcoord(x, y);
+  const float ox = f.rx * 1.0f + tc.x, oy = f.ry * 0.0f + tc.y;
+  const float oz = f.rx * 0.0f + tc.x, ow = f.ry * 1.0f + tc.y;
+  float a[4];
+  a[0] = blend.SampleNormalized(ox, oy).a;  // right
+  a[1] = blend.SampleNormalized(oz, ow).g;  // bottom pixel's top edge
+  const Float4 own = blend.SampleNormalized(tc.x, tc.y);
+  a[3] = own.r;
+  a[2] = own.b;
+  BlendWithWeights(a, color, f, x, y, out);
 }
 
 }  // namespace aalab::smaa_detail
