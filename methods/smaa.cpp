@@ -2,7 +2,7 @@
 //
 // Implements Jimenez, Echevarria, Sousa, Gutierrez, "SMAA: Enhanced Subpixel Morphological
 // Antialiasing" (Eurographics 2012) as its public reference implementation SMAA.hlsl
-// (iryoku/smaa, v2.8) computes it, statement by statement in float32:
+// (iryoku/smaa, read at commit 71c806a) computes it, statement by statement in float32:
 //   1. edge detection (SMAALumaEdgeDetectionPS or SMAAColorEdgeDetectionPS): threshold, then
 //      local contrast adaptation; the edge texture is an 8-bit RG render target;
 //   2. blending weight calculation (SMAABlendingWeightCalculationPS): diagonal patterns
