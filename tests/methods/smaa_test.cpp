@@ -282,6 +282,58 @@ TEST(SmaaBlending, ExactSubTexelLeaksSpuriousWeights) {
   EXPECT_EQ(a.taps, b.taps);
 }
 
+// ---------------------------------------------------------------- symmetry
+
+Image8 Transposed(const Image8& a) {
+  Image8 b(a.Height(), a.Width(), 4);
+  for (int y = 0; y < a.Height(); ++y) {
+    for (int x = 0; x < a.Width(); ++x) {
+      for (int c = 0; c < 4; ++c) b.Pixel(y, x)[c] = a.Pixel(x, y)[c];
+    }
+  }
+  return b;
+}
+
+Image8 Flipped(const Image8& a) {
+  Image8 b(a.Width(), a.Height(), 4);
+  for (int y = 0; y < a.Height(); ++y) {
+    for (int x = 0; x < a.Width(); ++x) {
+      for (int c = 0; c < 4; ++c) b.Pixel(x, a.Height() - 1 - y)[c] = a.Pixel(x, y)[c];
+    }
+  }
+  return b;
+}
+
+TEST(SmaaSymmetry, CommutesWithTransposeButNotWithAVerticalFlip) {
+  // SMAA's orthogonal processing treats rows and columns alike (the pseudo-gather offsets,
+  // searches, crossing edges and corner tests swap x and y), so with diagonals off, on
+  // power-of-two frames (exact coordinates both ways), filtering the transposed image gives
+  // the transposed result bit for bit: a typo in one orientation's code would break this.
+  // Diagonal detection is not symmetric by design: the reference runs it only at pixels
+  // with a top edge and stores its weights in the top-edge slots (r, g).
+  // A vertical flip is not a symmetry either ("top" is the row above, as in Direct3D).
+  Image8 img = Gray(64, 32, 20);
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      const bool in = (x - 30) * (x - 30) + (y - 17) * (y - 17) < 150 || (3 * x + 7 * y) % 97 < 20 || (x > 50 && y > 20);
+      SetGray(img, x, y, in ? 230 : 20);
+    }
+  }
+  int flip_differs = 0;
+  for (const char* preset : {"low", "medium", "high", "ultra"}) {
+    for (auto det : {SmaaParams::Detection::kLuma, SmaaParams::Detection::kColor}) {
+      SmaaParams p = SmaaPreset(preset);
+      p.detection = det;
+      p.diag = false;
+      const Image8 direct = Smaa(img, p, "", nullptr);
+      EXPECT_NE(direct, img) << preset;
+      EXPECT_EQ(Transposed(Smaa(Transposed(img), p, "", nullptr)), direct) << preset;
+      flip_differs += Flipped(Smaa(Flipped(img), p, "", nullptr)) != direct;
+    }
+  }
+  EXPECT_GT(flip_differs, 0);
+}
+
 // ---------------------------------------------------------------- user paths
 
 TEST(Smaa, FlatFrameIsIdentityAndOddSizesWork) {
