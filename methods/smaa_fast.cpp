@@ -153,7 +153,6 @@ void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t
       const uint8_t* rtt = in.Row(std::max(y - 2, 0));
       const uint8_t* rb = in.Row(std::min(y + 1, h - 1));
       uint8_t* out = plane->e.data() + static_cast<size_t>(y) * w;
-      std::fill(out, out + w, 0);
       CandidateRow(r0, rt, w, safe, tmp.data(), cand.data());
       uint64_t kept = 0;
       uint8_t any = 0;
@@ -427,7 +426,7 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
   EdgePlane edges;
   edges.w = in.Width();
   edges.h = in.Height();
-  edges.e.resize(in.PixelCount());
+  edges.e.assign(in.PixelCount(), 0);  // pixels the prefilter settles keep 0
   edges.row_any.resize(static_cast<size_t>(in.Height()));
   EdgesFast(in, params, &edges, &taps);
   if (view == 1 && stats) stats->taps += taps;  // a debug view counts the passes it ran
