@@ -45,6 +45,7 @@
 #include "harness/core/color.h"
 #include "harness/core/parallel.h"
 #include "harness/io/image_io.h"
+#include "bench/bench_smaa.h"
 #include "methods/fxaa1.h"
 #include "methods/fxaa311.h"
 #include "methods/rescale.h"
@@ -320,6 +321,7 @@ int Main(int argc, char** argv) {
                      [iter12](const Image8& f, PostStats* s) { return Fxaa311Reference(f, iter12, s); }});
   }
   if (cfg.quick) posts.erase(posts.begin() + 1, posts.begin() + 6);  // keep fxaa1-p0 only
+  for (auto& c : bench::SmaaPostCases()) posts.push_back({c.name, c.fast, c.ref});  // bench/bench_smaa.cpp
 
   // Bit-identity: every optimised filter against its reference on both frames (2 threads).
   std::fprintf(stderr, "checking optimised filters against their references...\n");
@@ -846,6 +848,7 @@ int Main(int argc, char** argv) {
          "worst " + pn + " " + Fmt("%.2f×", pw) + "; the 2-thread runs got " + Fmt("%.2f", Stats{pc}.Median()) + " cores",
          pw >= 1.8);
   }
+  bench::SmaaGoals([&](const std::string& k) { return get(k).Median(); }, goal);  // bench/bench_smaa.cpp
   if (per_mpix_1080 > 0) {
     goal("suite time linear in pixel count within 15% (wall s per Mpix vs 1080p's, 2 threads)", Fmt("worst deviation %.0f%%", 100 * linear_worst),
          linear_worst <= 0.15);

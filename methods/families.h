@@ -20,6 +20,10 @@ std::vector<MethodEntry> Fxaa1Methods();
 /// `fxaa-high`, `fxaa-iter12` (methods/fxaa311.cpp).
 std::vector<MethodEntry> Fxaa311Methods();
 
+/// `smaa-low`, `smaa-medium`, `smaa-high`, `smaa-ultra`: SMAA 1x with the reference's
+/// presets (methods/smaa.cpp).
+std::vector<MethodEntry> SmaaMethods();
+
 /// `scale43`, `scale43-fxaa-high`: render scale with bilinear / bicubic rescale
 /// (methods/render_scale.cpp).
 std::vector<MethodEntry> RenderScaleMethods();

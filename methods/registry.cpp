@@ -16,6 +16,7 @@ const std::vector<MethodEntry>& MethodRegistry() {
     add(MsaaMethods());
     add(Fxaa1Methods());
     add(Fxaa311Methods());
+    add(SmaaMethods());
     add(RenderScaleMethods());
     return all;
   }();

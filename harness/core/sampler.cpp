@@ -5,7 +5,7 @@
 
 namespace aalab {
 
-BilinearSampler::BilinearSampler(const Image8& img) : img_(img) {
+BilinearSampler::BilinearSampler(const Image8& img, SubTexel mode) : img_(img), mode_(mode) {
   AALAB_CHECK(img.Channels() == 4, "BilinearSampler needs an RGBA8 frame");
   AALAB_CHECK(!img.Empty(), "BilinearSampler needs a non-empty frame");
 }
@@ -34,7 +34,7 @@ Float4 BilinearSampler::SampleNormalizedOffset(float s, float t, int dx, int dy)
 }
 
 Float4 BilinearSampler::Sample(float u, float v) {
-  return Blend(BilinearAt(u, v, img_.Width(), img_.Height()));
+  return Blend(BilinearAt(u, v, img_.Width(), img_.Height(), mode_));
 }
 
 Float4 BilinearSampler::Blend(const BilinearFootprint& f) {

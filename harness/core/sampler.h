@@ -44,14 +44,36 @@ struct BilinearFootprint {
   int x0 = 0, y0 = 0;
   float fx = 0, fy = 0;
 };
-[[gnu::always_inline]] inline BilinearFootprint BilinearAt(float u, float v, int width, int height) {
+/// Precision of the bilinear fraction (fx, fy).
+///   kExact:  the float32 fraction as computed (the default; what FXAA, rescale and the GL
+///            oracle's float path use).
+///   kFixed8: the fraction rounded to 8 bits of sub-texel precision, round to nearest with
+///            ties to even (fx := nearbyint(fx·256)/256). A fraction that rounds to 1 moves
+///            the footprint one texel on with fraction 0, so the whole weight goes to the
+///            second texel exactly. Direct3D 10+ requires at least 8 bits of sub-texel
+///            precision and GPUs filter with such fixed-point fractions, so a coordinate that
+///            misses a texel centre or a quarter position by a float rounding error
+///            (< 1/512 texel) returns exactly what the exact position would. SMAA relies on
+///            that (methods/smaa.cpp, docs/smaa.md).
+enum class SubTexel { kExact, kFixed8 };
+
+[[gnu::always_inline]] inline BilinearFootprint BilinearAt(float u, float v, int width, int height,
+                                                           SubTexel mode = SubTexel::kExact) {
   const float x = u - 0.5f;
   const float y = v - 0.5f;
-  const float x0f = std::floor(x);
-  const float y0f = std::floor(y);
+  float x0f = std::floor(x);
+  float y0f = std::floor(y);
+  float fx = x - x0f;
+  float fy = y - y0f;
+  if (mode == SubTexel::kFixed8) {
+    fx = std::nearbyint(fx * 256.0f) * (1.0f / 256.0f);
+    fy = std::nearbyint(fy * 256.0f) * (1.0f / 256.0f);
+    if (fx == 1.0f) { x0f += 1.0f; fx = 0.0f; }
+    if (fy == 1.0f) { y0f += 1.0f; fy = 0.0f; }
+  }
   BilinearFootprint f;
-  f.fx = x - x0f;
-  f.fy = y - y0f;
+  f.fx = fx;
+  f.fy = fy;
   f.x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(width)));
   f.y0 = static_cast<int>(std::clamp(y0f, -1.0f, static_cast<float>(height)));
   return f;
@@ -73,10 +95,11 @@ struct BilinearFootprint {
 ///
 /// Deviation from GPUs (documented): hardware quantises the bilinear fraction to 8 bits of
 /// sub-texel precision (so does llvmpipe's default RGBA8 path); this sampler uses the exact
-/// float32 fraction. Every call counts one tap in the sampler's counter (fetches, not texels).
+/// float32 fraction unless constructed with SubTexel::kFixed8 (which SMAA uses). Every call
+/// counts one tap in the sampler's counter (fetches, not texels).
 class BilinearSampler {
  public:
-  explicit BilinearSampler(const Image8& img);
+  explicit BilinearSampler(const Image8& img, SubTexel mode = SubTexel::kExact);
   /// Sample at texture-space pixel coordinates (u, v) in pixels: the centre of texel (x, y)
   /// is (x + 0.5, y + 0.5).
   Float4 Sample(float u, float v);
@@ -99,6 +122,7 @@ class BilinearSampler {
   Float4 Fetch(int x, int y) const;
   Float4 Blend(const BilinearFootprint& f);
   const Image8& img_;
+  SubTexel mode_ = SubTexel::kExact;
   uint64_t taps_ = 0;
 };
 

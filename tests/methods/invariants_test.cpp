@@ -157,20 +157,24 @@ std::vector<std::string> PostOnlyMethods() {
 
 TEST(FxaaInvariants, EveryPostFilterIsTheIdentityOnAConstantImage) {
   const auto names = PostOnlyMethods();
-  int fxaa1 = 0, fxaa311 = 0;
+  int fxaa1 = 0, fxaa311 = 0, smaa = 0;
   for (const auto& n : names) {
     fxaa1 += n.rfind("fxaa1-", 0) == 0;
     fxaa311 += n.rfind("fxaa", 0) == 0 && n.rfind("fxaa1-", 0) != 0;
+    smaa += n.rfind("smaa-", 0) == 0;
   }
   EXPECT_EQ(fxaa1, 6);     // fxaa1-p0 .. p5
   EXPECT_GE(fxaa311, 21);  // 17 quality presets, tutorial low/medium/high, iter12
-  EXPECT_EQ(fxaa1 + fxaa311, static_cast<int>(names.size())) << "a post filter that is not FXAA: add it here";
+  EXPECT_EQ(smaa, 4);      // smaa-low .. smaa-ultra
+  EXPECT_EQ(fxaa1 + fxaa311 + smaa, static_cast<int>(names.size())) << "a post filter that is not FXAA or SMAA: add it here";
   const std::vector<std::array<uint8_t, 3>> colours = {
       {0, 0, 0}, {255, 255, 255}, {128, 128, 128}, {12, 200, 77}, {1, 254, 3}, {255, 0, 255}};
   const std::vector<std::pair<int, int>> sizes = {{1, 1}, {2, 2}, {1, 9}, {9, 1}, {3, 3}, {13, 7}};
   for (const auto& n : names) {
-    // Defaults, and with both edge thresholds 0 so that no pixel takes the early exit.
-    for (const std::string& spec : {n, n + ":edge_threshold=0,edge_threshold_min=0"}) {
+    // Defaults, and with both edge thresholds 0 so that no pixel takes the early exit (SMAA:
+    // threshold 0 marks every pixel's left and top edges).
+    const std::string zero = n.rfind("smaa-", 0) == 0 ? ":threshold=0" : ":edge_threshold=0,edge_threshold_min=0";
+    for (const std::string& spec : {n, n + zero}) {
       const MethodPlan plan = MakeMethod(spec);
       for (const auto& c : colours) {
         for (const auto& [w, h] : sizes) {
@@ -454,6 +458,9 @@ TEST(FxaaInvariants, Fxaa311CommutesWithTransposeExceptAtTies) {
   } n;
   for (const auto& name : PostOnlyMethods()) {
     if (name.rfind("fxaa1-", 0) == 0) continue;
+    // SMAA: only its orthogonal part commutes with transposition (its diagonal weights go to
+    // the top-edge slots only); tests/methods/smaa_test.cpp checks that part.
+    if (name.rfind("smaa-", 0) == 0) continue;
     ++methods;
     const MethodPlan plan = MakeMethod(name);
     for (int kind = 0; kind < 3; ++kind) {
