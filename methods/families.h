@@ -20,4 +20,8 @@ std::vector<MethodEntry> Fxaa311Methods();
 /// (methods/render_scale.cpp).
 std::vector<MethodEntry> RenderScaleMethods();
 
+/// `aaa`, `aaa-length`, `aaa-fwidth`, `aaa-smoothstep`, `aaa-sqrt2`, `aaa-inside`,
+/// `aaa-fwidth-inside`, `aaa-3d`: analytical AA presets (methods/aaa.cpp).
+std::vector<MethodEntry> AaaMethods();
+
 }  // namespace aalab

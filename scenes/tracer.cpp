@@ -515,6 +515,7 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
     SampleResult& r = out[i];
     r.surface = hits[i].shape;
     r.shadowed = blocked[i];
+    r.t = hits[i].t;
     glm::vec3 c = sc.background;
     if (hits[i].shape >= 0) {
       const Material& m = sc.materials[sc.shapes[hits[i].shape].material];

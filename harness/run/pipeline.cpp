@@ -11,6 +11,8 @@
 #include "metrics/metrics.h"
 #include "methods/registry.h"
 #include "methods/rescale.h"
+#include "scenes/analytic.h"
+#include "scenes/exact_reference.h"
 #include "scenes/library.h"
 
 namespace aalab {
@@ -67,8 +69,20 @@ std::vector<MethodPlan> ResolveMethods(const std::vector<std::string>& specs) {
   return plans;
 }
 
+bool CheckReferenceKind(const std::string& kind, const std::vector<std::unique_ptr<Scene>>& scenes) {
+  if (kind != "sampled" && kind != "exact") {
+    throw UserError("--reference '" + kind + "' is not allowed (allowed: sampled, exact)");
+  }
+  if (kind == "sampled") return false;
+  for (const auto& s : scenes) {
+    const std::string why = ExactReferenceRefusal(*s);
+    if (!why.empty()) throw UserError("scene '" + s->name + "' cannot have --reference exact: " + why);
+  }
+  return true;
+}
+
 std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W, int H, int grid, uint64_t seed,
-                                            int repeat) {
+                                            int repeat, bool exact_reference) {
   auto p = std::make_unique<PreparedScene>();
   p->scene = std::move(scene);
   const Scene& sc = *p->scene;
@@ -80,7 +94,8 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
   sr.effects = sc.EffectNames();
   sr.width = W;
   sr.height = H;
-  sr.ref_spp = grid * grid;
+  sr.ref_spp = exact_reference ? 0 : grid * grid;
+  sr.ref_exact = exact_reference;
 
   Stopwatch bvh_clock;
   p->tracer = std::make_unique<Tracer>(sc);
@@ -88,7 +103,8 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
 
   Stopwatch ref_clock;
   TraceCounters ref_counters;
-  p->ref = RenderReference(*p->tracer, W, H, grid, seed, &ref_counters);
+  p->ref = exact_reference ? RenderExactReference(sc, W, H)
+                           : RenderReference(*p->tracer, W, H, grid, seed, &ref_counters);
   sr.reference_ms = ref_clock.ElapsedMs();
   sr.ref_primary_rays_per_px = static_cast<double>(ref_counters.primary_rays) / px;
   sr.ref_shadow_rays_per_px = static_cast<double>(ref_counters.shadow_rays) / px;
@@ -123,7 +139,8 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   row.spec = plan.spec;
   row.params = plan.params.Ordered();
   row.samples_per_pixel = plan.render.SamplesPerPixel();
-  const bool shared = plan.render.pattern == SamplePattern::kCenter && plan.render.scale == 1.0;
+  const bool shared =
+      plan.render.pattern == SamplePattern::kCenter && plan.render.scale == 1.0 && !plan.render.aaa.enabled;
   Image8 frame;
   TraceCounters counters;
   if (shared) {
@@ -140,7 +157,17 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
     row.render_height = rh;
     row.render = TimeRepeats(repeat, [&] {
       TraceCounters c;
-      frame = RenderFrame(*p.tracer, rw, rh, plan.render, seed, &c);
+      if (plan.render.aaa.enabled) {
+        AnalyticCounters ac;
+        frame = RenderAnalyticFrame(*p.tracer, rw, rh, plan.render.aaa, &c, &ac);
+        row.analytic_edge_share =
+            ac.edge_pixels ? std::optional<double>(static_cast<double>(ac.analytic_edge_pixels) / ac.edge_pixels)
+                           : std::nullopt;
+        row.analytic_pixels_per_px = static_cast<double>(ac.analytic_pixels) / (static_cast<double>(rw) * rh);
+        row.distance_evals_per_px = static_cast<double>(ac.distance_evals) / (static_cast<double>(rw) * rh);
+      } else {
+        frame = RenderFrame(*p.tracer, rw, rh, plan.render, seed, &c);
+      }
       counters = c;
     });
   }

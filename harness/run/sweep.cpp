@@ -261,6 +261,7 @@ SweepResult RunSweep(const SweepSettings& s) {
     }
   }
   std::vector<std::unique_ptr<Scene>> scenes = LoadScenes(s.scenes);
+  const bool exact = CheckReferenceKind(s.reference, scenes);
 
   if (s.out_dir.empty()) throw UserError("--out must not be empty");
   const fs::path out(s.out_dir);
@@ -285,7 +286,7 @@ SweepResult RunSweep(const SweepSettings& s) {
                      {"grid", grid_text},
                      {"objectives", JoinNames(res.objectives)},
                      {"size", std::to_string(s.width) + "x" + std::to_string(s.height)},
-                     {"ref_spp", std::to_string(s.ref_spp)},
+                     {"ref_spp", exact ? std::string("exact") : std::to_string(s.ref_spp)},
                      {"seed", std::to_string(s.seed)},
                      {"threads", std::to_string(ThreadCount())},
                      {"repeat", std::to_string(s.repeat)},
@@ -298,7 +299,7 @@ SweepResult RunSweep(const SweepSettings& s) {
   report.rows.reserve(scenes.size() * plans.size());
   for (auto& scene_ptr : scenes) {
     const std::string name = scene_ptr->name;
-    const auto prepared = PrepareScene(std::move(scene_ptr), s.width, s.height, ref_grid, s.seed, s.repeat);
+    const auto prepared = PrepareScene(std::move(scene_ptr), s.width, s.height, ref_grid, s.seed, s.repeat, exact);
     ++res.reference_renders;
     report.scenes.push_back(prepared->info);
     Progress(s.quiet, ++done, total, name + " reference", clock);
