@@ -37,9 +37,10 @@ struct ResultRow {
   Timing render, post, resample, total;
   // Cost counters, per output pixel.
   double primary_rays_per_px = 0, shadow_rays_per_px = 0, texture_lookups_per_px = 0, taps_per_px = 0;
-  // Analytical AA (aaa methods only): share of the 1x frame's edge pixels whose outline got
-  // a fractional analytic alpha (null: not an aaa method, or no edge pixels), pixels with a
-  // fractional alpha per pixel, signed-distance evaluations per pixel.
+  // Analytical AA (aaa methods only): share of the 1x frame's edge pixels (centre-sample
+  // surface differs from a 4-neighbour's) within one pixel size of an analytic outline, i.e.
+  // whose coverage came from the distance (null: not an aaa method, or no edge pixels);
+  // pixels with a fractional alpha per pixel; signed-distance evaluations per pixel.
   std::optional<double> analytic_edge_share;
   double analytic_pixels_per_px = 0, distance_evals_per_px = 0;
   std::vector<MetricResult> metrics;

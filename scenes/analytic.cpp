@@ -275,6 +275,7 @@ Image8 RenderAnalyticFrame(const Tracer& tracer, int width, int height, const An
   Image8 out(width, height, 4, 255);
   std::vector<int32_t> surface(static_cast<size_t>(width) * height, -1);
   std::vector<uint8_t> fractional(static_cast<size_t>(width) * height, 0);
+  std::vector<uint8_t> near_outline(static_cast<size_t>(width) * height, 0);
   const int tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile;
   const int tiles = tiles_x * tiles_y;
   std::vector<TraceCounters> per_tile(static_cast<size_t>(tiles));
@@ -304,7 +305,7 @@ Image8 RenderAnalyticFrame(const Tracer& tracer, int width, int height, const An
           surface[pix] = res[k].surface;
           const std::vector<int>& cand = bins[static_cast<size_t>(y / kBin) * bx + x / kBin];
           layers.clear();
-          bool agree = true, frac = false;
+          bool agree = true, frac = false, near = false;
           if (!cand.empty()) {
             DVec o, dir;
             cam.Ray(x + 0.5, y + 0.5, &o, &dir);
@@ -319,6 +320,7 @@ Image8 RenderAnalyticFrame(const Tracer& tracer, int width, int height, const An
               double alpha;
               if (p > 0.0 && std::isfinite(p)) {
                 alpha = AaaAlpha(spec, d.v, p, a.p_object);
+                if (std::fabs(d.v) < p) near = true;
               } else {
                 alpha = d.v <= 0.0 ? 1.0 : 0.0;  // no gradient (ray through the centre line): point sample
               }
@@ -328,6 +330,7 @@ Image8 RenderAnalyticFrame(const Tracer& tracer, int width, int height, const An
             }
           }
           fractional[pix] = frac ? 1 : 0;
+          near_outline[pix] = near ? 1 : 0;
           if (agree) {
             ResolveBoxPixel(sc.display, &res[k], 1, out.Pixel(x, y));  // the `none` pixel, same bits
             continue;
@@ -370,7 +373,7 @@ Image8 RenderAnalyticFrame(const Tracer& tracer, int width, int height, const An
                         (y > 0 && surface[i - static_cast<size_t>(width)] != s) ||
                         (y + 1 < height && surface[i + static_cast<size_t>(width)] != s);
       ac.edge_pixels += edge ? 1 : 0;
-      ac.analytic_edge_pixels += (edge && fractional[i]) ? 1 : 0;
+      ac.analytic_edge_pixels += (edge && near_outline[i]) ? 1 : 0;
       ac.analytic_pixels += fractional[i];
     }
   }

@@ -30,7 +30,8 @@ double AaaAlpha(const AnalyticSpec& spec, double d, double p, double p_object);
 /// Counters of one analytic render.
 struct AnalyticCounters {
   uint64_t edge_pixels = 0;           ///< pixels whose centre sample's surface differs from a 4-neighbour's
-  uint64_t analytic_edge_pixels = 0;  ///< ... of those, pixels where an outline got a fractional alpha
+  uint64_t analytic_edge_pixels = 0;  ///< ... of those, pixels within one pixel size of an analytic
+                                      ///< outline (|d| < px): their coverage came from the distance
   uint64_t analytic_pixels = 0;       ///< all pixels where an outline got a fractional alpha
   uint64_t distance_evals = 0;        ///< signed-distance evaluations (shape × pixel)
 };
