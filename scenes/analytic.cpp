@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "harness/core/color.h"
@@ -256,7 +257,9 @@ Image8 RenderAnalyticFrame(const Tracer& tracer, int width, int height, const An
     analytic_of[i] = static_cast<int>(shapes.size());
     shapes.push_back(a);
   }
-  const Tracer behind(behind_scene);
+  // Built only when something can be composited (a scene without analytic shapes renders as
+  // `none` and never traces behind).
+  const std::unique_ptr<Tracer> behind = shapes.empty() ? nullptr : std::make_unique<Tracer>(behind_scene);
   // Screen bins of analytic shapes (in shape order).
   const int bx = (width + kBin - 1) / kBin, by = (height + kBin - 1) / kBin;
   std::vector<std::vector<int>> bins(static_cast<size_t>(bx) * by);
@@ -345,7 +348,7 @@ Image8 RenderAnalyticFrame(const Tracer& tracer, int width, int height, const An
       }
       if (slow_pos.empty()) continue;
       slow_res.assign(slow_pos.size(), SampleResult{});
-      behind.Trace(slow_pos.data(), static_cast<int>(slow_pos.size()), width, height, slow_res.data(),
+      behind->Trace(slow_pos.data(), static_cast<int>(slow_pos.size()), width, height, slow_res.data(),
                    &per_tile[static_cast<size_t>(t)]);
       for (size_t s = 0; s < slow_pos.size(); ++s) {
         const SampleResult& b = slow_res[s];

@@ -406,6 +406,42 @@ Reference RenderExactReference(const Scene& scene, int width, int height) {
   return ref;
 }
 
+std::vector<DiskProbe> DiskProbes(const Scene& scene, int width, int height, const ImageF& ref) {
+  std::vector<DiskProbe> out;
+  const FlatScene fs = Flatten(scene, width, height);
+  if (!fs.refusal.empty()) return out;
+  for (const FlatShape& s : fs.shapes) {
+    if (s.kind != FlatKind::kDisk) continue;
+    DiskProbe p;
+    p.x0 = static_cast<int>(std::floor(s.a.x - s.r - 2.0));
+    p.y0 = static_cast<int>(std::floor(s.a.y - s.r - 2.0));
+    p.x1 = static_cast<int>(std::ceil(s.a.x + s.r + 2.0));
+    p.y1 = static_cast<int>(std::ceil(s.a.y + s.r + 2.0));
+    if (p.x0 < 0 || p.y0 < 0 || p.x1 > width || p.y1 > height) continue;
+    bool isolated = true;
+    for (const FlatShape& t : fs.shapes) {
+      if (&t == &s || t.x1 <= p.x0 || t.x0 >= p.x1 || t.y1 <= p.y0 || t.y0 >= p.y1) continue;
+      if (Curved(t) || t.zmin <= s.zmax) isolated = false;  // another outline, or something in front
+    }
+    if (!isolated) continue;
+    const float* o = &ref.At(p.x0, p.y0, 0);
+    for (int y = p.y0; y < p.y1 && isolated; ++y) {
+      for (int x = p.x0; x < p.x1; ++x) {
+        if (std::hypot(x + 0.5 - s.a.x, y + 0.5 - s.a.y) <= s.r + 1.5) continue;
+        for (int c = 0; c < 3; ++c) isolated = isolated && ref.At(x, y, c) == o[c];
+      }
+    }
+    if (!isolated) continue;
+    p.radius_px = s.r;
+    p.area_px = M_PI * s.r * s.r;
+    const glm::vec3 col = scene.materials[static_cast<size_t>(scene.shapes[static_cast<size_t>(s.shape)].material)].color;
+    p.inside = DisplayLinear(scene.display, {col.x, col.y, col.z});
+    for (int c = 0; c < 3; ++c) p.outside[static_cast<size_t>(c)] = SrgbDecode(o[c]);
+    out.push_back(p);
+  }
+  return out;
+}
+
 std::vector<double> ExactVisibleAreas(const Scene& scene, int width, int height) {
   const FlatScene fs = FlattenOrThrow(scene, width, height);
   // Per-row sums (rows run in parallel), merged in row order: deterministic.

@@ -16,6 +16,7 @@
 ///    in front over the whole overlap);
 ///  - at most kMaxExactPrimitives shapes after splitting meshes into triangles.
 #pragma once
+#include <array>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,19 @@ std::string ExactReferenceRefusal(const Scene& scene);
 /// coverage, dilated by 1 px like the sampled reference's; grid = 0. Throws UserError with
 /// the refusal when the scene does not qualify. Deterministic at any thread count.
 Reference RenderExactReference(const Scene& scene, int width, int height);
+
+/// An isolated flat disk (or sphere) for the area-bias metric: its window [x0, x1) × [y0, y1)
+/// holds the whole disk plus 2 px, no other curved shape and nothing in front of it, and
+/// every window pixel farther than r + 1.5 px from the centre has one colour in `ref`.
+struct DiskProbe {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  double radius_px = 0, area_px = 0;
+  std::array<float, 3> inside{}, outside{};  ///< display-linear colours
+};
+
+/// The isolated disks of a qualifying scene (none when it does not qualify), checked against
+/// the reference image `ref` (sRGB-encoded) of the same size.
+std::vector<DiskProbe> DiskProbes(const Scene& scene, int width, int height, const ImageF& ref);
 
 /// The exact visible area (in pixel² units) of every shape over the whole frame, and of the
 /// background as the last entry: what the image's coverages sum to. For tests and self-checks.

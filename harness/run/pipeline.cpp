@@ -122,6 +122,20 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
   });
   p->none_f = ToFloat(p->frame1x, 3);
   p->flip_reference = flip::PrepareReference(p->ref.image, kFlipDefaultPpd);
+  for (const DiskProbe& d : DiskProbes(sc, W, H, p->ref.image)) {
+    CoverageProbe c;
+    c.x0 = d.x0;
+    c.y0 = d.y0;
+    c.x1 = d.x1;
+    c.y1 = d.y1;
+    c.radius_px = d.radius_px;
+    c.area_px = d.area_px;
+    for (int k = 0; k < 3; ++k) {
+      c.inside[k] = d.inside[static_cast<size_t>(k)];
+      c.outside[k] = d.outside[static_cast<size_t>(k)];
+    }
+    p->coverage_probes.push_back(c);
+  }
   const int crop_size = std::max(8, std::min(32, std::min(W, H) / 4));
   for (const auto& c : PickCrops(CropScore(p->none_f, p->ref.image, &p->ref.edge_mask), crop_size, 4)) {
     sr.crops.push_back({c.x, c.y, c.w, c.h});
@@ -214,6 +228,7 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   in.reference = &p.ref.image;
   in.edge_mask = &p.ref.edge_mask;
   in.none_image = &p.none_f;
+  in.coverage_probes = &p.coverage_probes;
   in.flip_values = &flip_values;
   for (const auto& v : ComputeAllMetrics(in)) row.metrics.push_back({v.name, v.value, v.null_reason});
   // Heatmaps: per-pixel |error| (mean over RGB, viridis, full scale 0.25) and FLIP (magma,

@@ -9,6 +9,7 @@
 #include "harness/core/image.h"
 #include "methods/method.h"
 #include "metrics/flip.h"
+#include "metrics/metric.h"
 #include "reports/result.h"
 #include "scenes/render.h"
 #include "scenes/scene.h"
@@ -28,6 +29,8 @@ struct PreparedScene {
   SceneResult info;           ///< what the report says about the scene (images filled by the caller)
   /// The reference's half of LDR-FLIP, computed once and shared by every method's score.
   std::shared_ptr<const flip::ReferenceSide> flip_reference;
+  /// Isolated flat disks for the area-bias metrics (empty for scenes that are not flat).
+  std::vector<CoverageProbe> coverage_probes;
 };
 
 /// Loads and validates scenes by name or path; duplicates are an error.
