@@ -51,6 +51,7 @@
 #include "scenes/library.h"
 #include "scenes/render.h"
 #include "scenes/tracer.h"
+#include "bench/bench_aaa.h"
 
 namespace aalab {
 namespace {
@@ -740,6 +741,11 @@ int Main(int argc, char** argv) {
     }
   }
 
+  {  // analytical AA (bench/bench_aaa.cpp)
+    std::string aaa_table;
+    for (auto& f : BenchAnalyticAa(cfg.reps, &aaa_table)) figures.push_back(f);
+    tab << aaa_table;
+  }
   line("");
   line("## Suite — wall time of `aalab run --suite " + suite_name + " --ref-spp " + std::to_string(suite_spp) +
        " --repeat 1` with 7 methods (" + suite_methods + ")");

@@ -14,7 +14,7 @@
 //                       join the last bin)
 // Null when the scene has no probe (or none in the bin). Expected values, derived in
 // docs/analytic-aa.md: a 1 px linear ramp centred on the outline adds π/12 ≈ 0.26 px² per
-// disk; a ramp inside the outline loses ≈ πR px². Sums in double in probe and row order.
+// disk; a ramp inside the outline loses πR − π/3 px². Sums in double in probe and row order.
 #include <cmath>
 
 #include "harness/core/color.h"
