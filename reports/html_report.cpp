@@ -242,7 +242,7 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
   h += "<div class=\"table-wrap\"><table class=\"metrics sortable\" id=\"table-" + Int(index) + "\" data-scene=\"" +
        Attr(s.name) + "\">\n<caption>Every method on <b>" + HtmlEscape(s.name) + "</b> against the reference (" +
        (s.ref_exact ? std::string("exact") : Int(s.ref_spp) + " spp") + "; noise floor ";
-  h += s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db) : std::string("none");
+  h += s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db) : std::string(s.ref_exact ? "infinite" : "none");
   h += "). <span class=\"warn\">⚠</span> marks a PSNR within " + Printf("%.0f", kNearFloorDb) +
        " dB of the floor. Click or press Enter on a column header to sort.</caption>\n<thead><tr>"
        "<th scope=\"col\" data-type=\"text\"><button type=\"button\">Method</button></th>";
