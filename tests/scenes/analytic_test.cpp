@@ -120,6 +120,40 @@ TEST(Aaa, RenderedDiskAgainstTheExactReference) {
   EXPECT_EQ(RenderAnalyticFrame(tracer, w, h, spec, nullptr, nullptr).Data(), img.Data());
 }
 
+TEST(Aaa, PerspectiveSphereMatchesSupersamplingWithinTheRampBound) {
+  // A perspective camera: the distance gradient comes through the normalised ray direction.
+  // Against 16×16 ordered supersampling the centred ramp stays within the 45° half-plane
+  // bound (3 − 2√2)/4 plus the 16×16 grid's own coverage error (≤ 1/32 on a straight edge)
+  // and 8-bit rounding; `none` does not (it is off by up to a whole pixel's coverage).
+  std::string json = MakeScene(R"(["unlit"])", R"({"m": {"shading": "unlit", "color": [1,1,1]}})",
+                               R"([{"shape": "sphere", "radius": 0.9, "transform": {"translate": [0.4,-0.2,1]},
+                                    "material": "m"}])");
+  json.replace(json.find("\"orthographic\""), 14, "\"perspective\"");
+  json.replace(json.find("\"height\": 4"), 11, "\"fov_y\": 40");
+  const Scene sc = ParseText(json);
+  const int w = 120, h = 80;
+  const Tracer tracer(sc);
+  AnalyticSpec spec;
+  spec.enabled = true;
+  spec.pixel_size = AaaPixelSize::kLength;  // exercises the exact gradient through the camera
+  const Image8 aaa = RenderAnalyticFrame(tracer, w, h, spec, nullptr, nullptr);
+  RenderSpec ss;
+  ss.pattern = SamplePattern::kOrderedGrid;
+  ss.grid = 16;
+  const Image8 truth = RenderFrame(tracer, w, h, ss, 1, nullptr);
+  const Image8 none = RenderFrame(tracer, w, h, RenderSpec{}, 1, nullptr);
+  double max_aaa = 0, max_none = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const double t = SrgbDecode(truth.Pixel(x, y)[0] / 255.0f);
+      max_aaa = std::max(max_aaa, std::fabs(SrgbDecode(aaa.Pixel(x, y)[0] / 255.0f) - t));
+      max_none = std::max(max_none, std::fabs(SrgbDecode(none.Pixel(x, y)[0] / 255.0f) - t));
+    }
+  }
+  EXPECT_LT(max_aaa, (3.0 - 2.0 * std::sqrt(2.0)) / 4.0 + 1.0 / 32.0 + 0.006);
+  EXPECT_GT(max_none, 0.3);
+}
+
 TEST(Aaa, TrianglesStayAsNoneRendersThem) {
   // A quad only: no analytic shape, so the frame equals the 1x frame bit for bit.
   const Scene sc = ParseText(MakeScene(R"(["unlit"])", R"({"m": {"shading": "unlit", "color": [1,0.5,0.2]}})",
