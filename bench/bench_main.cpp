@@ -54,6 +54,7 @@
 #include "scenes/library.h"
 #include "scenes/render.h"
 #include "scenes/tracer.h"
+#include "bench/bench_aaa.h"
 
 namespace aalab {
 namespace {
@@ -243,8 +244,13 @@ int Main(int argc, char** argv) {
     else if (a == "--aalab") cfg.aalab_bin = next();
     else if (a == "--reps") cfg.reps = std::stoi(next());
     else if (a == "--quick") cfg.quick = true;
-    else {
-      std::fprintf(stderr, "usage: aalab_bench [--json FILE] [--aalab BIN] [--reps N] [--quick]\n");
+    else if (a == "--only-aaa") {  // bench/bench_aaa.cpp's figures alone, printed as markdown
+      std::string table;
+      const auto figs = BenchAnalyticAa(i + 1 < argc ? std::stoi(argv[++i]) : 5, &table);
+      std::printf("%s\n%s\n", table.c_str(), Json(figs).dump(1).c_str());
+      return 0;
+    } else {
+      std::fprintf(stderr, "usage: aalab_bench [--json FILE] [--aalab BIN] [--reps N] [--quick] | --only-aaa [REPS]\n");
       return 1;
     }
   }
@@ -408,9 +414,9 @@ int Main(int argc, char** argv) {
           for (int x = 0; x < FW; ++x) {
             uint32_t acc = 0;
             for (int s = 0; s < 4; ++s) {
-              uint32_t v[5];
-              std::memcpy(v, &r[4 * x + s], sizeof(SampleResult));
-              acc ^= v[0] ^ v[1] ^ v[2] ^ v[3] ^ v[4];
+              uint32_t v[sizeof(SampleResult) / 4];  // every word of the sample
+              std::memcpy(v, &r[4 * x + s], sizeof(v));
+              for (uint32_t w : v) acc ^= w;
             }
             std::memcpy(d + 4 * x, &acc, 4);
           }
@@ -749,6 +755,11 @@ int Main(int argc, char** argv) {
     }
   }
 
+  {  // analytical AA (bench/bench_aaa.cpp)
+    std::string aaa_table;
+    for (auto& f : BenchAnalyticAa(cfg.reps, &aaa_table)) figures.push_back(f);
+    tab << aaa_table;
+  }
   line("");
   line("## Suite — wall time of `aalab run --suite " + suite_name + " --ref-spp " + std::to_string(suite_spp) +
        " --repeat 1` with 7 methods (" + suite_methods + ")");

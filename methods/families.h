@@ -28,4 +28,8 @@ std::vector<MethodEntry> SmaaMethods();
 /// (methods/render_scale.cpp).
 std::vector<MethodEntry> RenderScaleMethods();
 
+/// `aaa`, `aaa-length`, `aaa-fwidth`, `aaa-smoothstep`, `aaa-sqrt2`, `aaa-inside`,
+/// `aaa-fwidth-inside`, `aaa-3d`: analytical AA presets (methods/aaa.cpp).
+std::vector<MethodEntry> AaaMethods();
+
 }  // namespace aalab

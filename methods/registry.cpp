@@ -18,6 +18,7 @@ const std::vector<MethodEntry>& MethodRegistry() {
     add(Fxaa311Methods());
     add(SmaaMethods());
     add(RenderScaleMethods());
+    add(AaaMethods());
     return all;
   }();
   return table;

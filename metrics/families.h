@@ -17,5 +17,8 @@ std::vector<MetricEntry> SsimMetrics();
 std::vector<MetricEntry> FlipMetrics();
 /// `abs_error` (metrics/error_stats.cpp): abs_err_p50, abs_err_p95, abs_err_p99, abs_err_max.
 std::vector<MetricEntry> AbsErrorMetrics();
+/// `coverage_bias` (metrics/coverage_bias.cpp): area_bias_px2, area_bias_abs_rel and
+/// area_bias_rel_r* per radius bin. Needs MetricInput::coverage_probes.
+std::vector<MetricEntry> CoverageBiasMetrics();
 
 }  // namespace aalab

@@ -9,6 +9,16 @@
 
 namespace aalab {
 
+/// One isolated flat disk for the signed coverage (area bias) metric: a window that holds the
+/// whole disk and, outside it, one uniform colour; the disk's colour and that colour in
+/// display-linear light; its exact area and radius in pixels. Built from the scene
+/// (scenes/exact_reference.h DiskProbes) by the runner.
+struct CoverageProbe {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< window [x0, x1) × [y0, y1)
+  double radius_px = 0, area_px = 0;
+  float inside[3] = {0, 0, 0}, outside[3] = {0, 0, 0};
+};
+
 /// Inputs shared by all metrics. `image` and `reference` are sRGB-encoded float RGB of the
 /// same size; `edge_mask` (optional, same size, 1 channel, 0 or 1) marks geometric edges.
 struct MetricInput {
@@ -19,6 +29,8 @@ struct MetricInput {
   /// Optional: flip::ErrorValues(*reference, *image, kFlipDefaultPpd), already computed by
   /// the caller (the runner also needs it for the FLIP heatmap). Same values either way.
   const std::vector<double>* flip_values = nullptr;
+  /// Optional: isolated flat disks for the area-bias metrics (metrics/coverage_bias.cpp).
+  const std::vector<CoverageProbe>* coverage_probes = nullptr;
 };
 
 /// One named value. `value` empty means "not defined" (JSON null), with `null_reason`.

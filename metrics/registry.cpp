@@ -19,6 +19,7 @@ const std::vector<MetricEntry>& MetricRegistry() {
     add(SsimMetrics());
     add(FlipMetrics());
     add(AbsErrorMetrics());
+    add(CoverageBiasMetrics());
     return all;
   }();
   return table;

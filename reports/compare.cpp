@@ -35,6 +35,7 @@ constexpr DirectionRule kDirections[] = {
     {"edge_error_removed", Better::kHigher}, {"mse", Better::kLower},
     {"edge_rmse", Better::kLower},         {"*_psnr_db", Better::kHigher},
     {"flip_*", Better::kLower},            {"abs_err_*", Better::kLower},
+    {"area_bias_abs_rel", Better::kLower},
 };
 
 bool Matches(const std::string& pattern, const std::string& name) {

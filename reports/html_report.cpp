@@ -221,13 +221,16 @@ void SceneFacts(std::string& h, const SceneResult& s) {
     h += "</dl>\n";
     return;
   }
-  fact("reference", Int(s.ref_spp) + " spp, " + FmtMs(s.reference_ms) + " ms, " +
+  if (s.ref_exact) {
+    fact("reference", "exact: closed-form pixel coverage (double), " + FmtMs(s.reference_ms) + " ms");
+  } else fact("reference", Int(s.ref_spp) + " spp, " + FmtMs(s.reference_ms) + " ms, " +
                         FmtCount(s.ref_primary_rays_per_px) + " + " + FmtCount(s.ref_shadow_rays_per_px) +
                         " rays/px, " + FmtCount(s.ref_texture_lookups_per_px) + " texture lookups/px");
   fact("noise floor",
        s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db) + " (halves " +
                                  Printf("%.2f dB", s.ref_halves_psnr_db ? *s.ref_halves_psnr_db : 0.0) + " + 6.02 dB)"
-                           : std::string("none: the two half-references are identical (nothing to converge)"));
+                           : std::string(s.ref_exact ? "infinite: the exact reference has no sampling noise"
+                                                     : "none: the two half-references are identical (nothing to converge)"));
   fact("edge pixels", Printf("%.2f %%", 100.0 * s.edge_pixel_fraction));
   fact("edge mask", HtmlEscape(s.edge_mask_source));
   fact("BVH build", FmtMs(s.bvh_build_ms) + " ms (once per scene, not in method times)");
@@ -249,9 +252,10 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
   const std::vector<std::string> metrics = MetricNames(r.rows, &s.name);
   h += "<div class=\"table-wrap\"><table class=\"metrics sortable\" id=\"table-" + Int(index) + "\" data-scene=\"" +
        Attr(s.name) + "\">\n<caption>Every method on <b>" + HtmlEscape(s.name) + "</b> against the reference (" +
-       (s.kind == "image" ? std::string("the user's own") : Int(s.ref_spp) + " spp") + "; noise floor ";
+       (s.kind == "image" ? std::string("the user's own") : s.ref_exact ? std::string("exact") : Int(s.ref_spp) + " spp") +
+       "; noise floor ";
   h += s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db)
-                           : std::string(s.kind == "image" ? "unknown" : "none");
+                           : std::string(s.kind == "image" ? "unknown" : s.ref_exact ? "infinite" : "none");
   h += "). <span class=\"warn\">⚠</span> marks a PSNR within " + Printf("%.0f", kNearFloorDb) +
        " dB of the floor. Click or press Enter on a column header to sort.</caption>\n<thead><tr>"
        "<th scope=\"col\" data-type=\"text\"><button type=\"button\">Method</button></th>";

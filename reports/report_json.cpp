@@ -78,7 +78,8 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
     j["effects"] = s.effects;
     j["width"] = s.width;
     j["height"] = s.height;
-    j["reference"] = {{"spp", s.ref_spp},
+    j["reference"] = {{"kind", s.ref_exact ? "exact" : "sampled"},
+                      {"spp", s.ref_spp},
                       {"time_ms", Num(s.reference_ms)},
                       {"halves_psnr_db", Opt(s.ref_halves_psnr_db)},
                       {"noise_floor_psnr_db", Opt(s.ref_floor_psnr_db)},
@@ -130,6 +131,11 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
                  {"taps_per_px", Num(row.taps_per_px)},
                  {"coverage_rays_per_px", Num(row.coverage_rays_per_px)},
                  {"shading_evals_per_px", Num(row.shading_evals_per_px)}};
+    if (row.method.rfind("aaa", 0) == 0) {
+      j["cost"]["analytic_edge_share"] = Opt(row.analytic_edge_share);
+      j["cost"]["analytic_pixels_per_px"] = Num(row.analytic_pixels_per_px);
+      j["cost"]["distance_evals_per_px"] = Num(row.distance_evals_per_px);
+    }
     j["output_hash"] = row.output_hash;
     Json im = Json::object();
     for (const auto& [k, v] : row.images) im[k] = v;
@@ -165,6 +171,7 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       s.height = j.at("height").get<int>();
       const auto& ref = j.at("reference");
       s.ref_spp = ref.at("spp").get<int>();
+      s.ref_exact = ref.value("kind", std::string("sampled")) == "exact";
       s.reference_ms = ref.at("time_ms").get<double>();
       s.ref_halves_psnr_db = OptFrom(ref.at("halves_psnr_db"));
       s.ref_floor_psnr_db = OptFrom(ref.at("noise_floor_psnr_db"));
@@ -214,8 +221,14 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       row.shadow_rays_per_px = c.at("shadow_rays_per_px").get<double>();
       row.texture_lookups_per_px = c.at("texture_lookups_per_px").get<double>();
       row.taps_per_px = c.at("taps_per_px").get<double>();
-      row.coverage_rays_per_px = c.at("coverage_rays_per_px").get<double>();
-      row.shading_evals_per_px = c.at("shading_evals_per_px").get<double>();
+      // Added with MSAA: reports written before it lack them (read as 0).
+      row.coverage_rays_per_px = c.value("coverage_rays_per_px", 0.0);
+      row.shading_evals_per_px = c.value("shading_evals_per_px", 0.0);
+      if (c.contains("analytic_edge_share")) {
+        row.analytic_edge_share = OptFrom(c.at("analytic_edge_share"));
+        row.analytic_pixels_per_px = c.at("analytic_pixels_per_px").get<double>();
+        row.distance_evals_per_px = c.at("distance_evals_per_px").get<double>();
+      }
       row.output_hash = j.at("output_hash").get<std::string>();
       for (auto it = j.at("images").begin(); it != j.at("images").end(); ++it) {
         row.images[it.key()] = it.value().get<std::string>();

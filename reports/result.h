@@ -39,6 +39,12 @@ struct ResultRow {
   double primary_rays_per_px = 0, shadow_rays_per_px = 0, texture_lookups_per_px = 0, taps_per_px = 0;
   double coverage_rays_per_px = 0;  ///< camera rays that decide visibility at a sample position
   double shading_evals_per_px = 0;  ///< surface shading evaluations (MSAA: one per primitive and pixel)
+  // Analytical AA (aaa methods only): share of the 1x frame's edge pixels (centre-sample
+  // surface differs from a 4-neighbour's) within one pixel size of an analytic outline, i.e.
+  // whose coverage came from the distance (null: not an aaa method, or no edge pixels);
+  // pixels with a fractional alpha per pixel; signed-distance evaluations per pixel.
+  std::optional<double> analytic_edge_share;
+  double analytic_pixels_per_px = 0, distance_evals_per_px = 0;
   std::vector<MetricResult> metrics;
   std::string output_hash;  ///< FNV-1a 64 of the output's RGBA8 bytes, hex
   std::map<std::string, std::string> images;  ///< role → path relative to the report folder
@@ -52,7 +58,8 @@ struct SceneResult {
   std::string name, description, source;
   std::vector<std::string> effects;
   int width = 0, height = 0;
-  int ref_spp = 0;
+  int ref_spp = 0;     ///< 0 for the exact reference
+  bool ref_exact = false;  ///< closed-form exact reference (scenes/exact_reference.h)
   double bvh_build_ms = 0, reference_ms = 0;
   std::optional<double> ref_halves_psnr_db, ref_floor_psnr_db;
   double ref_primary_rays_per_px = 0, ref_shadow_rays_per_px = 0, ref_texture_lookups_per_px = 0;

@@ -4,6 +4,7 @@
 /// once per primitive and pixel (TraceMsaa).
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "harness/core/render_spec.h"
@@ -38,6 +39,7 @@ struct SampleResult {
   float rgb[3] = {0, 0, 0};  ///< scene-linear radiance
   int32_t surface = -1;      ///< index of the shape seen (-1: background)
   uint32_t shadowed = 0;     ///< bit i: shadow-casting light i is blocked at this sample
+  float t = std::numeric_limits<float>::infinity();  ///< ray distance to the surface seen (+inf: background)
 };
 
 /// Camera sample position on a width × height image plane, in continuous pixel coordinates

@@ -167,6 +167,7 @@ void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* h
     SampleResult& r = out[i];
     r.surface = hits[i].shape;
     r.shadowed = blocked[i];
+    r.t = hits[i].t;
     glm::vec3 c = sc.background;
     if (hits[i].shape >= 0) {
       ++local.shading_evals;

@@ -138,6 +138,9 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   run->add_option("--methods", *run_methods, "comma-separated method specs, e.g. none,fxaa311-p39:subpix=0.5 (default: every registered method's default)");
   run->add_option("--size", *run_size, "output size WxH")->capture_default_str();
   run->add_option("--ref-spp", rs->ref_spp, "reference samples per pixel: n*n, n even (4, 16, 64, 256, 1024)")->capture_default_str();
+  run->add_option("--reference", rs->reference,
+                  "sampled (--ref-spp stratified samples) or exact (closed-form coverage; flat unlit orthographic scenes)")
+      ->capture_default_str();
   run->add_option("--seed", rs->seed, "jitter seed")->capture_default_str();
   run->add_option("--threads", rs->threads, "worker threads (0 = all hardware threads)")->capture_default_str();
   run->add_option("--repeat", rs->repeat, "timed repeats after one warm-up")->capture_default_str();

@@ -45,6 +45,9 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
   sw->add_option("--size", a->size, "output size WxH")->capture_default_str();
   sw->add_option("--ref-spp", a->s.ref_spp, "reference samples per pixel: n*n, n even (4, 16, 64, 256, 1024)")
       ->capture_default_str();
+  sw->add_option("--reference", a->s.reference,
+                 "sampled (--ref-spp stratified samples) or exact (closed-form coverage; flat unlit orthographic scenes)")
+      ->capture_default_str();
   sw->add_option("--seed", a->s.seed, "jitter seed")->capture_default_str();
   sw->add_option("--repeat", a->s.repeat, "timed repeats after one warm-up")->capture_default_str();
   sw->add_option("--threads", a->s.threads, "worker threads (0 = all hardware threads)")->capture_default_str();

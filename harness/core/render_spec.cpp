@@ -28,7 +28,9 @@ const std::vector<SampleOffset16>& StandardSamplePositions(int n) {
   throw InternalError("no standard sample positions for " + std::to_string(n) + " samples");
 }
 
-bool RenderSpec::IsPlain1x() const { return pattern == SamplePattern::kCenter && scale == 1.0 && !msaa.On(); }
+bool RenderSpec::IsPlain1x() const {
+  return pattern == SamplePattern::kCenter && scale == 1.0 && !msaa.On() && !aaa.enabled;
+}
 
 int RenderSpec::SamplesPerPixel() const {
   if (msaa.On()) return msaa.samples;

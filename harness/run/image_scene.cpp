@@ -346,9 +346,26 @@ std::vector<SceneSource> LoadSceneSources(const std::vector<std::string>& names)
   return out;
 }
 
+bool CheckReferenceKind(const std::string& kind, const std::vector<SceneSource>& sources) {
+  std::vector<const Scene*> scenes;
+  for (const auto& src : sources) {
+    if (src.scene) scenes.push_back(src.scene.get());
+  }
+  const bool exact = CheckReferenceKind(kind, scenes);  // validates `kind` and the rendered scenes
+  for (const auto& src : sources) {
+    if (exact && src.view) {
+      throw UserError("scene '" + src.Name() + "' cannot have --reference exact: it is a view of image scene '" +
+                      src.view->manifest + "', whose reference is the file the manifest names");
+    }
+  }
+  return exact;
+}
+
 std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int height, int grid, uint64_t seed,
-                                             int repeat) {
-  if (source.scene) return PrepareScene(std::move(source.scene), width, height, grid, seed, repeat);
+                                             int repeat, bool exact_reference) {
+  if (source.scene) {
+    return PrepareScene(std::move(source.scene), width, height, grid, seed, repeat, exact_reference);
+  }
   ImageView v = LoadView(ReadManifest(source.view->manifest), source.view->index);
   if (v.name != source.view->name) {
     throw UserError("image scene '" + v.manifest + "' changed during the run (view " + std::to_string(v.index) +

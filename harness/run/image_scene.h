@@ -62,7 +62,11 @@ std::vector<SceneSource> LoadSceneSources(const std::vector<std::string>& names)
 /// reference has no independent halves; the report gives the reason). `width`, `height`,
 /// `grid` and `seed` apply to rendered scenes only.
 std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int height, int grid, uint64_t seed,
-                                             int repeat);
+                                             int repeat, bool exact_reference = false);
+
+/// CheckReferenceKind over sources: `--reference exact` applies to rendered flat scenes only,
+/// so an image-scene view (whose reference is the user's file) is refused with its name.
+bool CheckReferenceKind(const std::string& kind, const std::vector<SceneSource>& sources);
 
 /// True when the plan needs nothing but the 1x frame: `none` and the post-only methods
 /// (MethodPlan::IsPostOnly). Everything else needs the renderer.

@@ -12,6 +12,8 @@
 #include "metrics/metrics.h"
 #include "methods/registry.h"
 #include "methods/rescale.h"
+#include "scenes/analytic.h"
+#include "scenes/exact_reference.h"
 #include "scenes/library.h"
 
 namespace aalab {
@@ -68,8 +70,20 @@ std::vector<MethodPlan> ResolveMethods(const std::vector<std::string>& specs) {
   return plans;
 }
 
+bool CheckReferenceKind(const std::string& kind, const std::vector<const Scene*>& scenes) {
+  if (kind != "sampled" && kind != "exact") {
+    throw UserError("--reference '" + kind + "' is not allowed (allowed: sampled, exact)");
+  }
+  if (kind == "sampled") return false;
+  for (const auto& s : scenes) {
+    const std::string why = ExactReferenceRefusal(*s);
+    if (!why.empty()) throw UserError("scene '" + s->name + "' cannot have --reference exact: " + why);
+  }
+  return true;
+}
+
 std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W, int H, int grid, uint64_t seed,
-                                            int repeat) {
+                                            int repeat, bool exact_reference) {
   auto p = std::make_unique<PreparedScene>();
   p->scene = std::move(scene);
   const Scene& sc = *p->scene;
@@ -81,7 +95,8 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
   sr.effects = sc.EffectNames();
   sr.width = W;
   sr.height = H;
-  sr.ref_spp = grid * grid;
+  sr.ref_spp = exact_reference ? 0 : grid * grid;
+  sr.ref_exact = exact_reference;
 
   Stopwatch bvh_clock;
   p->tracer = std::make_unique<Tracer>(sc);
@@ -89,7 +104,8 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
 
   Stopwatch ref_clock;
   TraceCounters ref_counters;
-  p->ref = RenderReference(*p->tracer, W, H, grid, seed, &ref_counters);
+  p->ref = exact_reference ? RenderExactReference(sc, W, H)
+                           : RenderReference(*p->tracer, W, H, grid, seed, &ref_counters);
   sr.reference_ms = ref_clock.ElapsedMs();
   sr.ref_primary_rays_per_px = static_cast<double>(ref_counters.primary_rays) / px;
   sr.ref_shadow_rays_per_px = static_cast<double>(ref_counters.shadow_rays) / px;
@@ -107,6 +123,20 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
   });
   p->none_f = ToFloat(p->frame1x, 3);
   p->flip_reference = flip::PrepareReference(p->ref.image, kFlipDefaultPpd);
+  for (const DiskProbe& d : DiskProbes(sc, W, H, p->ref.image)) {
+    CoverageProbe c;
+    c.x0 = d.x0;
+    c.y0 = d.y0;
+    c.x1 = d.x1;
+    c.y1 = d.y1;
+    c.radius_px = d.radius_px;
+    c.area_px = d.area_px;
+    for (int k = 0; k < 3; ++k) {
+      c.inside[k] = d.inside[static_cast<size_t>(k)];
+      c.outside[k] = d.outside[static_cast<size_t>(k)];
+    }
+    p->coverage_probes.push_back(c);
+  }
   const int crop_size = std::max(8, std::min(32, std::min(W, H) / 4));
   for (const auto& c : PickCrops(CropScore(p->none_f, p->ref.image, &p->ref.edge_mask), crop_size, 4)) {
     sr.crops.push_back({c.x, c.y, c.w, c.h});
@@ -142,7 +172,17 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
     row.render_height = rh;
     row.render = TimeRepeats(repeat, [&] {
       TraceCounters c;
-      frame = RenderFrame(*p.tracer, rw, rh, plan.render, seed, &c);
+      if (plan.render.aaa.enabled) {
+        AnalyticCounters ac;
+        frame = RenderAnalyticFrame(*p.tracer, rw, rh, plan.render.aaa, &c, &ac);
+        row.analytic_edge_share =
+            ac.edge_pixels ? std::optional<double>(static_cast<double>(ac.analytic_edge_pixels) / ac.edge_pixels)
+                           : std::nullopt;
+        row.analytic_pixels_per_px = static_cast<double>(ac.analytic_pixels) / (static_cast<double>(rw) * rh);
+        row.distance_evals_per_px = static_cast<double>(ac.distance_evals) / (static_cast<double>(rw) * rh);
+      } else {
+        frame = RenderFrame(*p.tracer, rw, rh, plan.render, seed, &c);
+      }
       counters = c;
     });
   }
@@ -191,6 +231,7 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   in.reference = &p.ref.image;
   in.edge_mask = &p.ref.edge_mask;
   in.none_image = &p.none_f;
+  in.coverage_probes = &p.coverage_probes;
   in.flip_values = &flip_values;
   for (const auto& v : ComputeAllMetrics(in)) row.metrics.push_back({v.name, v.value, v.null_reason});
   // Heatmaps: per-pixel |error| (mean over RGB, viridis, full scale 0.25) and FLIP (magma,

@@ -9,6 +9,7 @@
 #include "harness/core/image.h"
 #include "methods/method.h"
 #include "metrics/flip.h"
+#include "metrics/metric.h"
 #include "reports/result.h"
 #include "scenes/render.h"
 #include "scenes/scene.h"
@@ -28,6 +29,8 @@ struct PreparedScene {
   SceneResult info;           ///< what the report says about the scene (images filled by the caller)
   /// The reference's half of LDR-FLIP, computed once and shared by every method's score.
   std::shared_ptr<const flip::ReferenceSide> flip_reference;
+  /// Isolated flat disks for the area-bias metrics (empty for scenes that are not flat).
+  std::vector<CoverageProbe> coverage_probes;
 };
 
 /// Loads and validates scenes by name or path; duplicates are an error.
@@ -36,10 +39,16 @@ std::vector<std::unique_ptr<Scene>> LoadScenes(const std::vector<std::string>& n
 /// Resolves method specs; duplicates (same canonical spec) are an error.
 std::vector<MethodPlan> ResolveMethods(const std::vector<std::string>& specs);
 
-/// Builds the BVH, renders the reference (grid × grid spp) and the timed 1x frame, computes
-/// the noise floor and the crop windows.
+/// Builds the BVH, renders the reference (grid × grid spp, or the closed-form exact reference
+/// when `exact_reference`: scenes/exact_reference.h) and the timed 1x frame, computes the
+/// noise floor (null for the exact reference) and the crop windows.
 std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int width, int height, int grid,
-                                            uint64_t seed, int repeat);
+                                            uint64_t seed, int repeat, bool exact_reference = false);
+
+/// Checks the --reference choice ("sampled" or "exact") and, for "exact", that every scene
+/// qualifies; throws UserError naming the scene and the disqualifying field. Returns true for
+/// "exact".
+bool CheckReferenceKind(const std::string& kind, const std::vector<const Scene*>& scenes);
 
 /// What one method produced on a prepared scene.
 struct MethodOutput {

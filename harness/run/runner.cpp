@@ -93,6 +93,7 @@ Report RunSuite(const RunSettings& s) {
   const int grid = ReferenceGridForSpp(s.ref_spp);
   const std::vector<std::string> scene_names = s.scenes.empty() ? SuiteScenes(s.suite) : s.scenes;
   std::vector<SceneSource> scenes = LoadSceneSources(scene_names);
+  const bool exact = CheckReferenceKind(s.reference, scenes);
   const std::vector<std::string> method_specs = s.methods.empty() ? DefaultMethods() : s.methods;
   const std::vector<MethodPlan> plans = ResolveMethods(method_specs);
   if (s.out_dir.empty()) throw UserError("--out must not be empty");
@@ -122,7 +123,7 @@ Report RunSuite(const RunSettings& s) {
                      {"scenes", JoinNames(scene_names)},
                      {"methods", JoinNames(method_specs)},
                      {"size", std::to_string(s.width) + "x" + std::to_string(s.height)},
-                     {"ref_spp", std::to_string(s.ref_spp)},
+                     {"ref_spp", exact ? std::string("exact") : std::to_string(s.ref_spp)},
                      {"seed", std::to_string(s.seed)},
                      {"threads", std::to_string(ThreadCount())},
                      {"repeat", std::to_string(s.repeat)},
@@ -135,7 +136,7 @@ Report RunSuite(const RunSettings& s) {
     const std::string name = source.Name();
     const std::string rel_dir = "images/" + name;
     fs::create_directories(tmp / rel_dir);
-    const auto prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat);
+    const auto prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat, exact);
     SceneResult sr = prepared->info;
     const Reference& ref = prepared->ref;
     WriteImageF((tmp / rel_dir / "reference.exr").string(), DecodeToLinear(ref.image));

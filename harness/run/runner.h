@@ -16,6 +16,7 @@ struct RunSettings {
   std::vector<std::string> methods;  ///< empty: the default method list
   int width = 960, height = 540;
   int ref_spp = 256;
+  std::string reference = "sampled";  ///< "sampled" (ref_spp stratified samples) or "exact"
   uint64_t seed = 1;
   int threads = 0;  ///< 0: all hardware threads
   int repeat = 3;   ///< timed repeats after one warm-up

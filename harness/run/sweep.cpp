@@ -262,6 +262,7 @@ SweepResult RunSweep(const SweepSettings& s) {
     }
   }
   std::vector<SceneSource> scenes = LoadSceneSources(s.scenes);
+  const bool exact = CheckReferenceKind(s.reference, scenes);
   for (const auto& src : scenes) {
     if (src.view && !RunsOnImageScenes(plans.front())) {
       throw UserError("sweep: method '" + s.method + "' needs the renderer, and scene '" + src.Name() +
@@ -293,7 +294,7 @@ SweepResult RunSweep(const SweepSettings& s) {
                      {"grid", grid_text},
                      {"objectives", JoinNames(res.objectives)},
                      {"size", std::to_string(s.width) + "x" + std::to_string(s.height)},
-                     {"ref_spp", std::to_string(s.ref_spp)},
+                     {"ref_spp", exact ? std::string("exact") : std::to_string(s.ref_spp)},
                      {"seed", std::to_string(s.seed)},
                      {"threads", std::to_string(ThreadCount())},
                      {"repeat", std::to_string(s.repeat)},
@@ -306,7 +307,7 @@ SweepResult RunSweep(const SweepSettings& s) {
   report.rows.reserve(scenes.size() * plans.size());
   for (auto& source : scenes) {
     const std::string name = source.Name();
-    const auto prepared = PrepareSource(std::move(source), s.width, s.height, ref_grid, s.seed, s.repeat);
+    const auto prepared = PrepareSource(std::move(source), s.width, s.height, ref_grid, s.seed, s.repeat, exact);
     if (prepared->tracer) ++res.reference_renders;  // an image-scene view renders nothing
     report.scenes.push_back(prepared->info);
     Progress(s.quiet, ++done, total, name + " reference", clock);

@@ -25,6 +25,7 @@ struct SweepSettings {
   std::vector<std::string> objectives;  ///< empty: edge_psnr_db when a metric produces it, else psnr_db
   int width = 960, height = 540;
   int ref_spp = 256;
+  std::string reference = "sampled";  ///< "sampled" or "exact" (as `run --reference`)
   uint64_t seed = 1;
   int repeat = 3;
   int threads = 0;
