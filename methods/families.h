@@ -20,4 +20,8 @@ std::vector<MethodEntry> Fxaa311Methods();
 /// (methods/render_scale.cpp).
 std::vector<MethodEntry> RenderScaleMethods();
 
+/// `taa`: temporal anti-aliasing with Halton(2,3) jitter, exact reprojection, YCoCg
+/// variance clipping and an exponential blend (methods/taa.cpp).
+std::vector<MethodEntry> TaaMethods();
+
 }  // namespace aalab

@@ -16,6 +16,7 @@ const std::vector<MethodEntry>& MethodRegistry() {
     add(Fxaa1Methods());
     add(Fxaa311Methods());
     add(RenderScaleMethods());
+    add(TaaMethods());
     return all;
   }();
   return table;

@@ -40,6 +40,10 @@ struct ResultRow {
   std::vector<MetricResult> metrics;
   std::string output_hash;  ///< FNV-1a 64 of the output's RGBA8 bytes, hex
   std::map<std::string, std::string> images;  ///< role → path relative to the report folder
+  /// Motion runs (--frames > 1) only: per-frame series (name → one value per frame, null
+  /// where undefined) and the output PNG of every frame. Empty for still runs.
+  std::vector<std::pair<std::string, std::vector<std::optional<double>>>> frame_series;
+  std::vector<std::string> frame_images;
 };
 
 /// Per-scene facts: the reference and its noise floor.
@@ -55,6 +59,13 @@ struct SceneResult {
   std::map<std::string, std::string> images;
   /// Zoom windows [x, y, w, h] where `none` is furthest from the reference on edges.
   std::vector<std::array<int, 4>> crops;
+  /// Motion runs (--frames > 1): the frame count, whether the scene moves, the reference PNG
+  /// of every frame and the sequence's totals (the fields above describe the last frame).
+  int frames = 1;
+  bool moves = false;
+  std::vector<std::string> frame_images;
+  double sequence_scene_ms = 0;      ///< building the scene at each frame + its BVH, summed
+  double sequence_reference_ms = 0;  ///< the references of all frames, summed
 };
 
 /// A whole run.

@@ -515,6 +515,12 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
     SampleResult& r = out[i];
     r.surface = hits[i].shape;
     r.shadowed = blocked[i];
+    if (hits[i].shape >= 0) {
+      const glm::vec3 p = org[i] + dir[i] * hits[i].t;
+      r.position[0] = p.x;
+      r.position[1] = p.y;
+      r.position[2] = p.z;
+    }
     glm::vec3 c = sc.background;
     if (hits[i].shape >= 0) {
       const Material& m = sc.materials[sc.shapes[hits[i].shape].material];

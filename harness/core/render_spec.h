@@ -14,6 +14,26 @@ enum class SamplePattern {
   kStratified,   ///< n × n strata, one jittered sample in each (the reference's pattern)
 };
 
+/// Per-frame sub-pixel jitter of a one-sample-per-pixel render (TAA). Off when `samples` is
+/// 0. The method states the sequence; the offset of a given frame is per-frame data the
+/// runner computes (FrameJitterAt) and passes to the renderer.
+struct JitterSpec {
+  int samples = 0;  ///< Halton(2,3) points cycled through (0: no jitter)
+};
+
+/// The sub-pixel offset of one frame's sample from the pixel centre, in pixels, in [−0.5, 0.5).
+struct FrameJitter {
+  float x = 0.0f, y = 0.0f;
+};
+
+/// Halton(2,3) jitter of frame `frame` (≥ 0): the points of indices 1..samples cycled
+/// ((frame mod samples) + 1; index 0 is the degenerate (0, 0)), minus 0.5 — the convention of
+/// Playdead's FrustumJitter and Unity URP. Zero offset when spec.samples == 0.
+FrameJitter FrameJitterAt(const JitterSpec& spec, int frame);
+
+/// The radical inverse of `index` in `base` (the Halton sequence's coordinate), exact in double.
+double RadicalInverse(int base, int index);
+
 /// The render a method asks for. Samples are tonemapped each, averaged in linear light with
 /// a box filter over the pixel, sRGB-encoded and stored as RGBA8 (alpha 255).
 struct RenderSpec {
@@ -21,6 +41,7 @@ struct RenderSpec {
   int grid = 1;        ///< n for kOrderedGrid / kStratified
   int spp = 1;         ///< samples per pixel for kJitter (derived for the others)
   double scale = 1.0;  ///< render size = round(scale · W) × round(scale · H)
+  JitterSpec jitter;   ///< TAA: per-frame jitter of the kCenter sample (off by default)
 
   /// Samples per pixel this pattern takes.
   int SamplesPerPixel() const;

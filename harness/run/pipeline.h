@@ -28,6 +28,10 @@ struct PreparedScene {
   SceneResult info;           ///< what the report says about the scene (images filled by the caller)
   /// The reference's half of LDR-FLIP, computed once and shared by every method's score.
   std::shared_ptr<const flip::ReferenceSide> flip_reference;
+  /// The sequence this frame belongs to: the scene with its animation (for motion vectors)
+  /// and the frame's index. A still run: the scene itself, frame 0.
+  std::shared_ptr<const Scene> sequence_scene;
+  int frame = 0;
 };
 
 /// Loads and validates scenes by name or path; duplicates are an error.
@@ -55,7 +59,12 @@ inline constexpr float kErrorHeatmapMax = 0.25f;
 
 /// Renders (or reuses the 1x frame), post-filters and rescales as the plan says, timing each
 /// stage (one warm-up + `repeat` runs), and scores the output against the reference.
-MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat);
+/// A method with memory (plan.make_state) carries `*state` from frame to frame: RunMethod
+/// creates it when empty and advances it by one frame; state == nullptr runs a fresh
+/// sequence of one frame. Jittered renders (plan.render.jitter) use the prepared frame's
+/// index for the jitter and, from frame 1 on, pass exact motion vectors to the state.
+MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat,
+                       std::unique_ptr<TemporalState>* state = nullptr);
 
 /// Runs `body` once untimed, then `repeat` times timed (wall clock).
 Timing TimeRepeats(int repeat, const std::function<void()>& body);

@@ -1,0 +1,246 @@
+// Temporal anti-aliasing (TAA): one jittered sample per pixel and frame, accumulated over
+// frames in a history that is reprojected with exact motion vectors, rectified against the
+// current frame's neighbourhood and blended exponentially.
+//
+// Implements `taa`, per frame t (pixel centre c, this frame's linear colour C(c)):
+//   1. render: one sample at c + j_t, j_t = Halton(2,3) of index (t mod samples) + 1, minus
+//      0.5 (Playdead INSIDE FrustumJitter "Halton_2_3_X16"; Unity URP; index 0 is skipped:
+//      it is the degenerate (0, 0) point) — the render request's JitterSpec, the offset is
+//      per-frame data (harness/core/render_spec.h);
+//   2. reproject: the history (linear display RGB, float — never 8-bit) is fetched bilinearly
+//      (texel centres at +0.5, clamp to edge) at the previous position of c, which the runner
+//      computes exactly from the known motion (scenes/motion_render.h); no previous position
+//      (off-screen, first frame, point behind the camera) → no history, output = C(c);
+//   3. rectify in YCoCg (Karis 2014): over the 3×3 neighbourhood of C (clamped at the
+//      border), `clip=variance`: the box μ ± γσ (Salvi 2016) intersected with the min/max
+//      box; `clip=minmax`: the min/max box (Karis 2014 "clamp" neighbourhood); `clip=none`:
+//      no rectification (the plain accumulation the convergence bound in
+//      tests/methods/taa_test.cpp is derived for). The history is clipped toward the box
+//      centre along the line to it (Playdead's clip_aabb "optimized" form; Bevy), extents
+//      + 1e-8 so a flat neighbourhood does not divide by zero (Playdead's FLT_EPS);
+//   4. blend: out = H' + α·(C − H') (exponential moving average), written to the history
+//      and, sRGB-encoded and quantised, to the 8-bit output.
+//
+// Parameters:
+//   samples  [1..256]  default 16   Halton(2,3) points cycled (Playdead X16, Filament
+//                                   HALTON_23_X16; UE4 r.TemporalAASamples = 8)
+//   alpha    [0.01..1] default 0.1  weight of the current frame (Unity URP frameInfluence
+//                                   0.1, Bevy 0.1, Salvi 2016 "typically 10%"; UE4 0.04,
+//                                   Filament 0.12). 1 = no accumulation.
+//   clip     {variance|minmax|none} default variance
+//   gamma    [0.25..4] default 1    variance box half-width in σ (Salvi 2016; Filament and
+//                                   Bevy 1.0; URP 0.9, HDRP/MSAAFilter 1.5)
+//
+// Simplifications, stated: the current colour is the jittered sample itself (no Gaussian
+// "unjitter" reconstruction as in UE4; the EMA of uniformly jittered samples converges to the
+// pixel's box average, which is the reference's filter); no velocity dilation (motion is
+// exact per pixel; background pixels keep zero motion since the background is uniform); no
+// Karis inverse-luma weights (colours are display-referred in [0, 1] already); bilinear
+// history (Playdead's default), not Catmull-Rom; no sharpening; no motion-dependent alpha.
+// Sources: B. Karis, "High Quality Temporal Supersampling", SIGGRAPH 2014 Advances;
+// M. Salvi, "An Excursion in Temporal Supersampling", GDC 2016; L. J. F. Pedersen, "Temporal
+// Reprojection Anti-Aliasing in INSIDE", GDC 2016 (playdeadgames/temporal);
+// ../shared/notes/temporal-and-taa.md collects the defaults above with their sources.
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "harness/core/color.h"
+#include "harness/core/error.h"
+#include "harness/core/parallel.h"
+#include "methods/families.h"
+
+namespace aalab {
+
+namespace {
+
+enum class Clip { kVariance, kMinMax, kNone };
+
+struct TaaParams {
+  float alpha = 0.1f;
+  float gamma = 1.0f;
+  Clip clip = Clip::kVariance;
+};
+
+struct Ycc {
+  float y, co, cg;
+};
+
+inline Ycc ToYCoCg(const float* rgb) {
+  return {0.25f * rgb[0] + 0.5f * rgb[1] + 0.25f * rgb[2], 0.5f * rgb[0] - 0.5f * rgb[2],
+          -0.25f * rgb[0] + 0.5f * rgb[1] - 0.25f * rgb[2]};
+}
+
+inline void FromYCoCg(Ycc v, float* rgb) {
+  const float t = v.y - v.cg;
+  rgb[0] = t + v.co;
+  rgb[1] = v.y + v.cg;
+  rgb[2] = t - v.co;
+}
+
+/// Moves `h` toward the centre of [lo, hi] until it lies inside the box (component-wise
+/// box in YCoCg), along the line to the centre.
+inline Ycc ClipToBox(Ycc h, const float* lo, const float* hi) {
+  const float hv[3] = {h.y, h.co, h.cg};
+  float centre[3], v[3], m = 0.0f;
+  for (int c = 0; c < 3; ++c) {
+    centre[c] = 0.5f * (hi[c] + lo[c]);
+    const float ext = 0.5f * (hi[c] - lo[c]) + 1e-8f;
+    v[c] = hv[c] - centre[c];
+    m = std::max(m, std::fabs(v[c] / ext));
+  }
+  if (m <= 1.0f) return h;
+  return {centre[0] + v[0] / m, centre[1] + v[1] / m, centre[2] + v[2] / m};
+}
+
+class TaaState : public TemporalState {
+ public:
+  explicit TaaState(TaaParams p) : p_(p) {
+    for (int i = 0; i < 256; ++i) decode_[static_cast<size_t>(i)] = SrgbDecode8(static_cast<uint8_t>(i));
+  }
+
+  std::unique_ptr<TemporalState> Clone() const override { return std::make_unique<TaaState>(*this); }
+
+  Image8 Step(const TemporalInput& in, PostStats* stats) override {
+    AALAB_CHECK(in.frame != nullptr, "TAA needs a frame");
+    const Image8& f = *in.frame;
+    const int W = f.Width(), H = f.Height();
+    const size_t n = static_cast<size_t>(W) * static_cast<size_t>(H);
+    // Current frame: linear RGB and YCoCg.
+    std::vector<float> cur(3 * n);
+    std::vector<Ycc> ycc(n);
+    ParallelFor(H, [&](int y) {
+      for (int x = 0; x < W; ++x) {
+        const size_t i = static_cast<size_t>(y) * W + x;
+        const uint8_t* px = f.Pixel(x, y);
+        for (int c = 0; c < 3; ++c) cur[3 * i + c] = decode_[px[c]];
+        ycc[i] = ToYCoCg(&cur[3 * i]);
+      }
+    });
+    const bool have_history = !history_.empty() && hist_w_ == W && hist_h_ == H && in.previous &&
+                              in.previous->size() == 2 * n;
+    std::vector<float> next(3 * n);
+    ParallelFor(H, [&](int y) {
+      for (int x = 0; x < W; ++x) {
+        const size_t i = static_cast<size_t>(y) * W + x;
+        float* out = &next[3 * i];
+        const float* c = &cur[3 * i];
+        const float px = have_history ? (*in.previous)[2 * i] : 0.0f;
+        const float py = have_history ? (*in.previous)[2 * i + 1] : 0.0f;
+        if (!have_history || !(px >= 0.0f && px <= static_cast<float>(W) && py >= 0.0f && py <= static_cast<float>(H))) {
+          std::copy(c, c + 3, out);
+          continue;
+        }
+        float h[3];
+        FetchHistory(px, py, h);
+        Ycc hy = ToYCoCg(h);
+        if (p_.clip != Clip::kNone) hy = Rectify(hy, x, y, W, H, ycc);
+        const Ycc cy = ycc[i];
+        const Ycc o{hy.y + p_.alpha * (cy.y - hy.y), hy.co + p_.alpha * (cy.co - hy.co),
+                    hy.cg + p_.alpha * (cy.cg - hy.cg)};
+        FromYCoCg(o, out);
+        for (int k = 0; k < 3; ++k) out[k] = std::clamp(out[k], 0.0f, 1.0f);
+      }
+    });
+    history_ = std::move(next);
+    hist_w_ = W;
+    hist_h_ = H;
+    Image8 result(W, H, 4, 255);
+    ParallelFor(H, [&](int y) {
+      for (int x = 0; x < W; ++x) {
+        const size_t i = static_cast<size_t>(y) * W + x;
+        uint8_t* p = result.Pixel(x, y);
+        for (int c = 0; c < 3; ++c) p[c] = QuantizeUnorm8(SrgbEncode(history_[3 * i + c]));
+      }
+    });
+    if (stats) stats->taps += static_cast<uint64_t>(n) * (have_history ? 13u : 1u);  // 9 neighbours + 4 history texels
+    return result;
+  }
+
+ private:
+  /// Bilinear fetch of the history at continuous pixel position (px, py), clamp to edge.
+  void FetchHistory(float px, float py, float* out) const {
+    const float fx = px - 0.5f, fy = py - 0.5f;
+    const float x0f = std::floor(fx), y0f = std::floor(fy);
+    const float tx = fx - x0f, ty = fy - y0f;
+    const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
+    auto at = [&](int x, int y, int c) {
+      x = std::clamp(x, 0, hist_w_ - 1);
+      y = std::clamp(y, 0, hist_h_ - 1);
+      return history_[3 * (static_cast<size_t>(y) * hist_w_ + x) + c];
+    };
+    for (int c = 0; c < 3; ++c) {
+      const float top = at(x0, y0, c) + tx * (at(x0 + 1, y0, c) - at(x0, y0, c));
+      const float bot = at(x0, y0 + 1, c) + tx * (at(x0 + 1, y0 + 1, c) - at(x0, y0 + 1, c));
+      out[c] = top + ty * (bot - top);
+    }
+  }
+
+  /// Clips the history into the box of the 3×3 neighbourhood of (x, y) in YCoCg.
+  Ycc Rectify(Ycc h, int x, int y, int W, int H, const std::vector<Ycc>& ycc) const {
+    float mn[3] = {1e30f, 1e30f, 1e30f}, mx[3] = {-1e30f, -1e30f, -1e30f};
+    float m1[3] = {0, 0, 0}, m2[3] = {0, 0, 0};
+    for (int dy = -1; dy <= 1; ++dy) {
+      const int yy = std::clamp(y + dy, 0, H - 1);
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int xx = std::clamp(x + dx, 0, W - 1);
+        const Ycc v = ycc[static_cast<size_t>(yy) * W + xx];
+        const float a[3] = {v.y, v.co, v.cg};
+        for (int c = 0; c < 3; ++c) {
+          mn[c] = std::min(mn[c], a[c]);
+          mx[c] = std::max(mx[c], a[c]);
+          m1[c] += a[c];
+          m2[c] += a[c] * a[c];
+        }
+      }
+    }
+    if (p_.clip == Clip::kVariance) {
+      for (int c = 0; c < 3; ++c) {
+        const float mu = m1[c] / 9.0f;
+        const float sigma = std::sqrt(std::fabs(m2[c] / 9.0f - mu * mu));
+        mn[c] = std::max(mn[c], mu - p_.gamma * sigma);
+        mx[c] = std::min(mx[c], mu + p_.gamma * sigma);
+      }
+    }
+    return ClipToBox(h, mn, mx);
+  }
+
+  TaaParams p_;
+  std::array<float, 256> decode_{};
+  std::vector<float> history_;  ///< linear display RGB, 3 floats per pixel
+  int hist_w_ = 0, hist_h_ = 0;
+};
+
+Clip ParseClip(const std::string& name) {
+  if (name == "variance") return Clip::kVariance;
+  if (name == "minmax") return Clip::kMinMax;
+  if (name == "none") return Clip::kNone;
+  throw UserError("unknown clip '" + name + "' (allowed: variance, minmax, none)");
+}
+
+}  // namespace
+
+std::vector<MethodEntry> TaaMethods() {
+  std::vector<MethodEntry> out;
+  out.push_back(
+      {"taa",
+       "temporal AA: Halton(2,3) jitter, exact reprojection, YCoCg variance clip, exponential blend (needs --frames > 1 to accumulate)",
+       {IntParam("samples", 16, 1, 256, "Halton(2,3) jitter points cycled (indices 1..samples)"),
+        FloatParam("alpha", 0.1, 0.01, 1.0, "weight of the current frame in the exponential blend"),
+        ChoiceParam("clip", "variance", {"variance", "minmax", "none"},
+                    "history rectification against the 3x3 neighbourhood in YCoCg"),
+        FloatParam("gamma", 1.0, 0.25, 4.0, "variance box half-width in standard deviations (clip=variance)")},
+       [](const ParamValues& p) {
+         MethodPlan plan;
+         plan.render.jitter.samples = p.Int("samples");
+         TaaParams tp;
+         tp.alpha = static_cast<float>(p.Number("alpha"));
+         tp.gamma = static_cast<float>(p.Number("gamma"));
+         tp.clip = ParseClip(p.Choice("clip"));
+         plan.make_state = [tp] { return std::unique_ptr<TemporalState>(std::make_unique<TaaState>(tp)); };
+         return plan;
+       }});
+  return out;
+}
+
+}  // namespace aalab
