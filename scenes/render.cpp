@@ -114,11 +114,11 @@ void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Pla
   }
 }
 
-}  // namespace
-
-Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
-                   TraceCounters* counters) {
-  const Display& display = tracer.GetScene().display;
+/// Traces the samples of a method frame (the render spec's pattern and jitter) and calls
+/// `resolve(x, y, samples, spp)` for each pixel: what RenderFrame and RenderFrameLinear share.
+template <typename Resolve>
+void TraceFrameSamples(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
+                       const Resolve& resolve, TraceCounters* counters) {
   const int spp = spec.SamplesPerPixel();
   std::vector<std::pair<float, float>> fixed;
   if (spec.pattern != SamplePattern::kJitter && spec.pattern != SamplePattern::kStratified) {
@@ -150,11 +150,36 @@ Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec
         for (int s = 0; s < spp; ++s) out_pos[s] = SamplePos{fx + fixed[s].first, fy + fixed[s].second};
     }
   };
+  RenderTiles(tracer, width, height, spp, place, resolve, counters);
+}
+
+}  // namespace
+
+Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
+                   TraceCounters* counters) {
+  const Display& display = tracer.GetScene().display;
   Image8 out(width, height, 4, 255);
   auto resolve = [&](int x, int y, const SampleResult* r, int count) {
     ResolveBoxPixel(display, r, count, out.Pixel(x, y));
   };
-  RenderTiles(tracer, width, height, spp, place, resolve, counters);
+  TraceFrameSamples(tracer, width, height, spec, seed, resolve, counters);
+  return out;
+}
+
+ImageF RenderFrameLinear(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
+                         TraceCounters* counters) {
+  const Display& display = tracer.GetScene().display;
+  ImageF out(width, height, 3);
+  auto resolve = [&](int x, int y, const SampleResult* r, int count) {
+    double sum[3] = {0, 0, 0};
+    for (int s = 0; s < count; ++s) {
+      float d[3];
+      DisplayLinearInline(display, r[s].rgb, d);
+      for (int c = 0; c < 3; ++c) sum[c] += d[c];
+    }
+    for (int c = 0; c < 3; ++c) out.At(x, y, c) = static_cast<float>(sum[c] / count);
+  };
+  TraceFrameSamples(tracer, width, height, spec, seed, resolve, counters);
   return out;
 }
 

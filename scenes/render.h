@@ -45,6 +45,13 @@ inline void ResolveBoxPixel(const Display& display, const SampleResult* r, int c
 Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
                    TraceCounters* counters);
 
+/// The float resolve of RenderFrame: the same samples (pattern, jitter, seed), each through the
+/// display transform and box-averaged in linear light (double sums in sample order), written
+/// as display-linear RGB float in [0, 1] — neither sRGB-encoded nor quantised. RenderFrame's
+/// pixel is QuantizeUnorm8(SrgbEncode(this pixel)).
+ImageF RenderFrameLinear(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
+                         TraceCounters* counters);
+
 /// The supersampled ground truth.
 struct Reference {
   ImageF image;      ///< sRGB-encoded RGB float (not quantised), all n×n samples
