@@ -57,7 +57,7 @@ std::vector<MetricValue> TemporalError::Values() const {
   if (mean > 0.0) {
     out.push_back({"temporal_psnr_db", 10.0 * std::log10(1.0 / mean), ""});
   } else {
-    out.push_back({"temporal_psnr_db", std::nullopt, "the error image never changes between frames (no flicker): infinite"});
+    out.push_back({"temporal_psnr_db", std::nullopt, "identical"});  // Δe ≡ 0: infinite, as PSNR
   }
   if (edge_count_ > 0) {
     out.push_back({"temporal_edge_rmse", std::sqrt(edge_sum_sq_ / static_cast<double>(edge_count_)), ""});

@@ -55,6 +55,18 @@ TEST(MotionCli, TemporalErrorOfStillAndMovingEdges) {
   EXPECT_EQ(seq["frames"], 6);
   EXPECT_EQ(seq["moves"], true);
   EXPECT_EQ(seq["reference_frames"].size(), 6u);
+  // compare: a motion report compares its temporal error by default, and only with a
+  // report of the same sequence length.
+  const std::string report = (dir / "out" / "report.json").string();
+  const auto same = Aalab("compare " + report + " " + report);
+  EXPECT_EQ(same.code, 0) << same.output;
+  EXPECT_NE(same.output.find("temporal_rmse"), std::string::npos) << same.output;
+  const auto shorter = Aalab("run --scenes motion-pan --methods none --frames 2 --size 96x54 --ref-spp 16 --repeat 1 "
+                             "--quiet --out " + (dir / "short").string());
+  ASSERT_EQ(shorter.code, 0) << shorter.output;
+  const auto mixed = Aalab("compare " + report + " " + (dir / "short" / "report.json").string());
+  EXPECT_EQ(mixed.code, 2) << mixed.output;
+  EXPECT_NE(mixed.output.find("setting 'frames' differs: baseline 6, current 2"), std::string::npos) << mixed.output;
   fs::remove_all(dir);
 }
 
