@@ -40,6 +40,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "bench/bench_taa.h"
 #include "harness/core/color.h"
 #include "harness/core/parallel.h"
 #include "harness/io/image_io.h"
@@ -399,9 +400,10 @@ int Main(int argc, char** argv) {
           for (int x = 0; x < FW; ++x) {
             uint32_t acc = 0;
             for (int s = 0; s < 4; ++s) {
-              uint32_t v[5];
+              constexpr size_t kWords = sizeof(SampleResult) / 4;
+              uint32_t v[kWords];
               std::memcpy(v, &r[4 * x + s], sizeof(SampleResult));
-              acc ^= v[0] ^ v[1] ^ v[2] ^ v[3] ^ v[4];
+              for (size_t k = 0; k < kWords; ++k) acc ^= v[k];
             }
             std::memcpy(d + 4 * x, &acc, 4);
           }
@@ -740,6 +742,12 @@ int Main(int argc, char** argv) {
     }
   }
 
+  {  // TAA vs fxaa311-p39 (bench/bench_taa.cpp)
+    const TaaBench taa = RunTaaBench(cfg.reps, 2);
+    line("");
+    for (const auto& l : taa.lines) line(l);
+    for (const auto& f : taa.figures) figures.push_back(f);
+  }
   line("");
   line("## Suite — wall time of `aalab run --suite " + suite_name + " --ref-spp " + std::to_string(suite_spp) +
        " --repeat 1` with 7 methods (" + suite_methods + ")");

@@ -44,11 +44,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 
 #include "harness/core/color.h"
 #include "harness/core/error.h"
 #include "harness/core/parallel.h"
 #include "methods/families.h"
+#include "methods/taa.h"
 
 namespace aalab {
 
@@ -93,6 +95,67 @@ inline Ycc ClipToBox(Ycc h, const float* lo, const float* hi) {
   return {centre[0] + v[0] / m, centre[1] + v[1] / m, centre[2] + v[2] / m};
 }
 
+/// QuantizeUnorm8(SrgbEncode(v)) for v in [0, 1], bit for bit, without a pow per channel:
+/// the function is non-decreasing in v, so code k starts at the smallest float where it is
+/// reached; those 255 thresholds are found by bisection over the float bit patterns of
+/// [0, 1] (ordered like the values) and a lookup is a binary search (8 comparisons).
+/// tests/motion/taa_test.cpp checks it against the direct formula on a dense grid.
+class Encode8 {
+ public:
+  Encode8() {
+    for (int k = 1; k < 256; ++k) {
+      uint32_t lo = 0, hi = 0x3f800000u;  // bit patterns of 0.0f and 1.0f
+      while (lo < hi) {
+        const uint32_t mid = lo + (hi - lo) / 2;
+        if (Direct(FromBits(mid)) >= k) {
+          hi = mid;
+        } else {
+          lo = mid + 1;
+        }
+      }
+      start_[static_cast<size_t>(k - 1)] = FromBits(lo);
+    }
+    // A first guess per 1/kBuckets of [0, 1]: the code at the bucket's lower end (a lower
+    // bound for every value in it, the function being non-decreasing).
+    for (int b = 0; b < kBuckets; ++b) {
+      const float v = static_cast<float>(b) / kBuckets;
+      guess_[static_cast<size_t>(b)] = static_cast<uint8_t>(std::upper_bound(start_.begin(), start_.end(), v) - start_.begin());
+    }
+  }
+  /// v in [0, 1] (NaN excluded). The guess is at most a code or two low (sRGB's steepest
+  /// slope, 12.92·255 codes per unit, spans < 1 code per bucket); step up to the exact code.
+  uint8_t operator()(float v) const {
+    int b = static_cast<int>(v * kBuckets);
+    b = std::clamp(b, 0, kBuckets - 1);
+    while (b > 0 && static_cast<float>(b) / kBuckets > v) --b;  // float rounding of v·kBuckets
+    int code = guess_[static_cast<size_t>(b)];
+    while (code < 255 && v >= start_[static_cast<size_t>(code)]) ++code;
+    return static_cast<uint8_t>(code);
+  }
+  static int Direct(float v) { return QuantizeUnorm8(SrgbEncode(v)); }
+
+ private:
+  static float FromBits(uint32_t b) {
+    float f;
+    std::memcpy(&f, &b, sizeof f);
+    return f;
+  }
+  static constexpr int kBuckets = 4096;
+  std::array<float, 255> start_{};  ///< start_[k − 1]: smallest float whose code is ≥ k
+  std::array<uint8_t, kBuckets> guess_{};
+};
+
+const Encode8& Encoder() {
+  static const Encode8 e;
+  return e;
+}
+
+}  // namespace
+
+uint8_t EncodeSrgb8(float v) { return Encoder()(v); }
+
+namespace {
+
 class TaaState : public TemporalState {
  public:
   explicit TaaState(TaaParams p) : p_(p) {
@@ -106,53 +169,49 @@ class TaaState : public TemporalState {
     const Image8& f = *in.frame;
     const int W = f.Width(), H = f.Height();
     const size_t n = static_cast<size_t>(W) * static_cast<size_t>(H);
-    // Current frame: linear RGB and YCoCg.
-    std::vector<float> cur(3 * n);
-    std::vector<Ycc> ycc(n);
+    // Current frame: linear RGB and YCoCg (buffers reused from frame to frame).
+    cur_.resize(3 * n);
+    ycc_.resize(n);
     ParallelFor(H, [&](int y) {
       for (int x = 0; x < W; ++x) {
         const size_t i = static_cast<size_t>(y) * W + x;
         const uint8_t* px = f.Pixel(x, y);
-        for (int c = 0; c < 3; ++c) cur[3 * i + c] = decode_[px[c]];
-        ycc[i] = ToYCoCg(&cur[3 * i]);
+        for (int c = 0; c < 3; ++c) cur_[3 * i + c] = decode_[px[c]];
+        ycc_[i] = ToYCoCg(&cur_[3 * i]);
       }
     });
     const bool have_history = !history_.empty() && hist_w_ == W && hist_h_ == H && in.previous &&
                               in.previous->size() == 2 * n;
-    std::vector<float> next(3 * n);
+    next_.resize(3 * n);
+    Image8 result(W, H, 4, 255);
+    const Encode8& encode = Encoder();
     ParallelFor(H, [&](int y) {
+      uint8_t* row = result.Pixel(0, y);
       for (int x = 0; x < W; ++x) {
         const size_t i = static_cast<size_t>(y) * W + x;
-        float* out = &next[3 * i];
-        const float* c = &cur[3 * i];
+        float* out = &next_[3 * i];
+        const float* c = &cur_[3 * i];
         const float px = have_history ? (*in.previous)[2 * i] : 0.0f;
         const float py = have_history ? (*in.previous)[2 * i + 1] : 0.0f;
         if (!have_history || !(px >= 0.0f && px <= static_cast<float>(W) && py >= 0.0f && py <= static_cast<float>(H))) {
           std::copy(c, c + 3, out);
-          continue;
+        } else {
+          float h[3];
+          FetchHistory(px, py, h);
+          Ycc hy = ToYCoCg(h);
+          if (p_.clip != Clip::kNone) hy = Rectify(hy, x, y, W, H, ycc_);
+          const Ycc cy = ycc_[i];
+          const Ycc o{hy.y + p_.alpha * (cy.y - hy.y), hy.co + p_.alpha * (cy.co - hy.co),
+                      hy.cg + p_.alpha * (cy.cg - hy.cg)};
+          FromYCoCg(o, out);
+          for (int k = 0; k < 3; ++k) out[k] = std::clamp(out[k], 0.0f, 1.0f);
         }
-        float h[3];
-        FetchHistory(px, py, h);
-        Ycc hy = ToYCoCg(h);
-        if (p_.clip != Clip::kNone) hy = Rectify(hy, x, y, W, H, ycc);
-        const Ycc cy = ycc[i];
-        const Ycc o{hy.y + p_.alpha * (cy.y - hy.y), hy.co + p_.alpha * (cy.co - hy.co),
-                    hy.cg + p_.alpha * (cy.cg - hy.cg)};
-        FromYCoCg(o, out);
-        for (int k = 0; k < 3; ++k) out[k] = std::clamp(out[k], 0.0f, 1.0f);
+        for (int k = 0; k < 3; ++k) row[4 * x + k] = encode(out[k]);
       }
     });
-    history_ = std::move(next);
+    history_.swap(next_);
     hist_w_ = W;
     hist_h_ = H;
-    Image8 result(W, H, 4, 255);
-    ParallelFor(H, [&](int y) {
-      for (int x = 0; x < W; ++x) {
-        const size_t i = static_cast<size_t>(y) * W + x;
-        uint8_t* p = result.Pixel(x, y);
-        for (int c = 0; c < 3; ++c) p[c] = QuantizeUnorm8(SrgbEncode(history_[3 * i + c]));
-      }
-    });
     if (stats) stats->taps += static_cast<uint64_t>(n) * (have_history ? 13u : 1u);  // 9 neighbours + 4 history texels
     return result;
   }
@@ -209,6 +268,9 @@ class TaaState : public TemporalState {
   std::array<float, 256> decode_{};
   std::vector<float> history_;  ///< linear display RGB, 3 floats per pixel
   int hist_w_ = 0, hist_h_ = 0;
+  // Per-frame working buffers (not state: reused only to avoid reallocating every frame).
+  std::vector<float> cur_, next_;
+  std::vector<Ycc> ycc_;
 };
 
 Clip ParseClip(const std::string& name) {

@@ -13,10 +13,12 @@
 // finite number of edge pixels (~100) and the reference's own error (256 spp).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "harness/core/color.h"
 #include "methods/registry.h"
+#include "methods/taa.h"
 #include "scenes/motion_render.h"
 #include "scenes/render.h"
 #include "../scenes/scene_test_util.h"
@@ -95,6 +97,26 @@ TEST(Taa, DefaultClippingStillConverges) {
   std::printf("taa (variance clip), 64 frames: edge MSE ratio to none %.4f\n", r.taa_mse / r.none_mse);
   EXPECT_LT(r.taa_mse, 0.5 * r.none_mse) << r.taa_mse << " vs none " << r.none_mse;
   EXPECT_TRUE(r.interior_exact);
+}
+
+}  // namespace
+}  // namespace aalab
+
+namespace aalab {
+namespace {
+
+TEST(Taa, FastEncodeIsTheDirectEncodeBitForBit) {
+  // 2^22 + 1 evenly spaced values over [0, 1] and the 64 floats around every code boundary.
+  constexpr int kSteps = 1 << 22;
+  for (int i = 0; i <= kSteps; ++i) {
+    const float v = static_cast<float>(i) / kSteps;
+    ASSERT_EQ(EncodeSrgb8(v), QuantizeUnorm8(SrgbEncode(v))) << v;
+  }
+  for (int k = 1; k < 256; ++k) {
+    float v = SrgbDecode((static_cast<float>(k) - 0.5f) / 255.0f);  // near the boundary of code k
+    for (int d = 0; d < 32; ++d) v = std::nextafter(v, 0.0f);
+    for (int d = 0; d < 64; ++d, v = std::nextafter(v, 1.0f)) ASSERT_EQ(EncodeSrgb8(v), QuantizeUnorm8(SrgbEncode(v))) << v;
+  }
 }
 
 }  // namespace
