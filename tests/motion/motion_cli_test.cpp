@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <nlohmann/json.hpp>
 
@@ -55,6 +56,11 @@ TEST(MotionCli, TemporalErrorOfStillAndMovingEdges) {
   EXPECT_EQ(seq["frames"], 6);
   EXPECT_EQ(seq["moves"], true);
   EXPECT_EQ(seq["reference_frames"].size(), 6u);
+  // The page has a player per scene (reports/html/player.js draws it from the JSON).
+  std::ifstream page(dir / "out" / "index.html");
+  const std::string html((std::istreambuf_iterator<char>(page)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("class=\"player-host\" data-scene=\"motion-pan\""), std::string::npos);
+  EXPECT_NE(html.find("aalab-stop"), std::string::npos);  // the player script is embedded
   // compare: a motion report compares its temporal error by default, and only with a
   // report of the same sequence length.
   const std::string report = (dir / "out" / "report.json").string();
