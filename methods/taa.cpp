@@ -223,14 +223,15 @@ class TaaState : public TemporalState {
     const float x0f = std::floor(fx), y0f = std::floor(fy);
     const float tx = fx - x0f, ty = fy - y0f;
     const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
-    auto at = [&](int x, int y, int c) {
-      x = std::clamp(x, 0, hist_w_ - 1);
-      y = std::clamp(y, 0, hist_h_ - 1);
-      return history_[3 * (static_cast<size_t>(y) * hist_w_ + x) + c];
-    };
+    // Clamp to edge once per fetch (the four texels), then the same lerps per channel.
+    const int xa = std::clamp(x0, 0, hist_w_ - 1), xb = std::clamp(x0 + 1, 0, hist_w_ - 1);
+    const int ya = std::clamp(y0, 0, hist_h_ - 1), yb = std::clamp(y0 + 1, 0, hist_h_ - 1);
+    const float* r0 = &history_[3 * static_cast<size_t>(ya) * hist_w_];
+    const float* r1 = &history_[3 * static_cast<size_t>(yb) * hist_w_];
+    const float *a = r0 + 3 * xa, *b = r0 + 3 * xb, *c0 = r1 + 3 * xa, *d = r1 + 3 * xb;
     for (int c = 0; c < 3; ++c) {
-      const float top = at(x0, y0, c) + tx * (at(x0 + 1, y0, c) - at(x0, y0, c));
-      const float bot = at(x0, y0 + 1, c) + tx * (at(x0 + 1, y0 + 1, c) - at(x0, y0 + 1, c));
+      const float top = a[c] + tx * (b[c] - a[c]);
+      const float bot = c0[c] + tx * (d[c] - c0[c]);
       out[c] = top + ty * (bot - top);
     }
   }
@@ -239,11 +240,11 @@ class TaaState : public TemporalState {
   Ycc Rectify(Ycc h, int x, int y, int W, int H, const std::vector<Ycc>& ycc) const {
     float mn[3] = {1e30f, 1e30f, 1e30f}, mx[3] = {-1e30f, -1e30f, -1e30f};
     float m1[3] = {0, 0, 0}, m2[3] = {0, 0, 0};
+    const int xs[3] = {std::max(x - 1, 0), x, std::min(x + 1, W - 1)};  // clamped once
     for (int dy = -1; dy <= 1; ++dy) {
-      const int yy = std::clamp(y + dy, 0, H - 1);
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int xx = std::clamp(x + dx, 0, W - 1);
-        const Ycc v = ycc[static_cast<size_t>(yy) * W + xx];
+      const Ycc* row = &ycc[static_cast<size_t>(std::clamp(y + dy, 0, H - 1)) * W];
+      for (int dx = 0; dx < 3; ++dx) {
+        const Ycc v = row[xs[dx]];
         const float a[3] = {v.y, v.co, v.cg};
         for (int c = 0; c < 3; ++c) {
           mn[c] = std::min(mn[c], a[c]);
