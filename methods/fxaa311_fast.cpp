@@ -420,8 +420,8 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
   const TapGrid grid = MakeTapGrid(w, h, params.order == Order::kSeed003Glsl);
   // Early-exit pixels are written as a copy of the input: the shader returns its centre
   // tap, whose stored bytes are the input's while 255·deviation stays well below 1/2, and
-  // near-tie detection needs the deviation far below one 8-bit step. Both hold up to
-  // ~16k pixels a side; beyond, the reference implementation runs.
+  // near-tie detection needs the deviation far below one 8-bit step. Both hold up to about
+  // 10000 pixels a side (the deviation grows with the size); beyond, the reference runs.
   if (255.0f * grid.deviation > 0.25f) return Fxaa311Reference(in, params, stats);
   const float margin = 3.0f * grid.deviation;
   LumaPlane<P> plane;

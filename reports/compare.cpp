@@ -553,7 +553,11 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
         m.changed = true;
       }
     }
-    if (!m.bit_identical) m.changed = true;
+    // A row not applicable in both reports (a renderer-side method on an image scene) has no
+    // output to differ.
+    const bool both_na = !base.rows[m.base_index].not_applicable.empty() &&
+                         !cur.rows[m.current_index].not_applicable.empty();
+    if (!m.bit_identical && !both_na) m.changed = true;
   }
   for (const auto& l : res.lines) {
     if (l.verdict == Verdict::kRegression) ++res.regressions;

@@ -211,6 +211,16 @@ void SceneFacts(std::string& h, const SceneResult& s) {
     for (const auto& x : s.effects) e += (e.empty() ? "" : ", ") + HtmlEscape(x);
     return e;
   }());
+  if (s.kind == "image") {  // a user's own frames (docs/own-frames.md): no renderer, no noise floor
+    fact("1x frame", "the user's own 8-bit frame; render time and cost unknown (0 here)");
+    fact("reference", HtmlEscape(s.reference_note));
+    fact("noise floor", HtmlEscape(s.noise_floor_null_reason));
+    fact("edge pixels", Printf("%.2f %%", 100.0 * s.edge_pixel_fraction));
+    fact("edge mask", HtmlEscape(s.edge_mask_source));
+    fact("image scene", "<code>" + HtmlEscape(s.source) + "</code>");
+    h += "</dl>\n";
+    return;
+  }
   fact("reference", Int(s.ref_spp) + " spp, " + FmtMs(s.reference_ms) + " ms, " +
                         FmtCount(s.ref_primary_rays_per_px) + " + " + FmtCount(s.ref_shadow_rays_per_px) +
                         " rays/px, " + FmtCount(s.ref_texture_lookups_per_px) + " texture lookups/px");
@@ -219,6 +229,7 @@ void SceneFacts(std::string& h, const SceneResult& s) {
                                  Printf("%.2f dB", s.ref_halves_psnr_db ? *s.ref_halves_psnr_db : 0.0) + " + 6.02 dB)"
                            : std::string("none: the two half-references are identical (nothing to converge)"));
   fact("edge pixels", Printf("%.2f %%", 100.0 * s.edge_pixel_fraction));
+  fact("edge mask", HtmlEscape(s.edge_mask_source));
   fact("BVH build", FmtMs(s.bvh_build_ms) + " ms (once per scene, not in method times)");
   fact("scene file", "<code>" + HtmlEscape(s.source) + "</code>");
   h += "</dl>\n";
@@ -238,8 +249,9 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
   const std::vector<std::string> metrics = MetricNames(r.rows, &s.name);
   h += "<div class=\"table-wrap\"><table class=\"metrics sortable\" id=\"table-" + Int(index) + "\" data-scene=\"" +
        Attr(s.name) + "\">\n<caption>Every method on <b>" + HtmlEscape(s.name) + "</b> against the reference (" +
-       Int(s.ref_spp) + " spp; noise floor ";
-  h += s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db) : std::string("none");
+       (s.kind == "image" ? std::string("the user's own") : Int(s.ref_spp) + " spp") + "; noise floor ";
+  h += s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db)
+                           : std::string(s.kind == "image" ? "unknown" : "none");
   h += "). <span class=\"warn\">⚠</span> marks a PSNR within " + Printf("%.0f", kNearFloorDb) +
        " dB of the floor. Click or press Enter on a column header to sort.</caption>\n<thead><tr>"
        "<th scope=\"col\" data-type=\"text\"><button type=\"button\">Method</button></th>";
@@ -275,6 +287,9 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
            Int(row.render_width) + "×" + Int(row.render_height) + "</small>";
     }
     if (row.samples_per_pixel > 1) h += " <small>" + Int(row.samples_per_pixel) + " spp</small>";
+    if (!row.not_applicable.empty()) {
+      h += " <small class=\"na\" title=\"" + Attr(row.not_applicable) + "\">not applicable</small>";
+    }
     if (!row.output_hash.empty()) {
       const auto [it, inserted] = first_with_hash.emplace(row.output_hash, row.spec);
       if (!inserted) {
@@ -301,9 +316,13 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
                          " + resample " + FmtMs(row.resample.median_ms) + " ms (medians of " +
                          Int(static_cast<long>(row.total.samples_ms.size())) + " timed runs)";
     if (row.render_shared) stages += "; the render is the 1x frame shared with none (timed once, for none)";
-    h += "<td class=\"num time\" data-v=\"" + Key(row.total.median_ms) + "\" title=\"" + Attr(stages) + "\">" +
-         FmtMs(row.total.median_ms) + " <span class=\"range\">[" + FmtMs(row.total.min_ms) + "–" +
-         FmtMs(row.total.max_ms) + "]</span></td>";
+    if (!row.not_applicable.empty()) {
+      h += "<td class=\"num time null\" title=\"" + Attr("not applicable: " + row.not_applicable) + "\">—</td>";
+    } else {
+      h += "<td class=\"num time\" data-v=\"" + Key(row.total.median_ms) + "\" title=\"" + Attr(stages) + "\">" +
+           FmtMs(row.total.median_ms) + " <span class=\"range\">[" + FmtMs(row.total.min_ms) + "–" +
+           FmtMs(row.total.max_ms) + "]</span></td>";
+    }
     h += "<td class=\"num\" data-v=\"" + Key(row.primary_rays_per_px + row.shadow_rays_per_px) + "\">" +
          FmtCount(row.primary_rays_per_px) + " + " + FmtCount(row.shadow_rays_per_px) + "</td>";
     h += "<td class=\"num\" data-v=\"" + Key(row.texture_lookups_per_px) + "\">" +

@@ -85,6 +85,10 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
                       {"primary_rays_per_px", Num(s.ref_primary_rays_per_px)},
                       {"shadow_rays_per_px", Num(s.ref_shadow_rays_per_px)},
                       {"texture_lookups_per_px", Num(s.ref_texture_lookups_per_px)}};
+    if (!s.noise_floor_null_reason.empty()) j["reference"]["noise_floor_null_reason"] = s.noise_floor_null_reason;
+    if (!s.reference_note.empty()) j["reference"]["note"] = s.reference_note;
+    j["kind"] = s.kind;
+    j["edge_mask_source"] = s.edge_mask_source;
     j["bvh_build_ms"] = Num(s.bvh_build_ms);
     j["edge_pixel_fraction"] = Num(s.edge_pixel_fraction);
     Json im = Json::object();
@@ -130,11 +134,14 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
     j["cost"] = {{"primary_rays_per_px", Num(row.primary_rays_per_px)},
                  {"shadow_rays_per_px", Num(row.shadow_rays_per_px)},
                  {"texture_lookups_per_px", Num(row.texture_lookups_per_px)},
-                 {"taps_per_px", Num(row.taps_per_px)}};
+                 {"taps_per_px", Num(row.taps_per_px)},
+                 {"coverage_rays_per_px", Num(row.coverage_rays_per_px)},
+                 {"shading_evals_per_px", Num(row.shading_evals_per_px)}};
     j["output_hash"] = row.output_hash;
     Json im = Json::object();
     for (const auto& [k, v] : row.images) im[k] = v;
     j["images"] = im;
+    if (!row.not_applicable.empty()) j["not_applicable"] = row.not_applicable;
     if (!row.frame_images.empty() || !row.frame_series.empty()) {
       Json series = Json::object();
       for (const auto& [name, values] : row.frame_series) {
@@ -180,6 +187,11 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       s.ref_primary_rays_per_px = ref.at("primary_rays_per_px").get<double>();
       s.ref_shadow_rays_per_px = ref.at("shadow_rays_per_px").get<double>();
       s.ref_texture_lookups_per_px = ref.at("texture_lookups_per_px").get<double>();
+      // Optional fields (added after schema 1 first shipped; older reports lack them).
+      if (ref.contains("noise_floor_null_reason")) s.noise_floor_null_reason = ref.at("noise_floor_null_reason").get<std::string>();
+      if (ref.contains("note")) s.reference_note = ref.at("note").get<std::string>();
+      if (j.contains("kind")) s.kind = j.at("kind").get<std::string>();
+      if (j.contains("edge_mask_source")) s.edge_mask_source = j.at("edge_mask_source").get<std::string>();
       s.bvh_build_ms = j.at("bvh_build_ms").get<double>();
       s.edge_pixel_fraction = j.at("edge_pixel_fraction").get<double>();
       for (auto it = j.at("images").begin(); it != j.at("images").end(); ++it) {
@@ -226,10 +238,13 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       row.shadow_rays_per_px = c.at("shadow_rays_per_px").get<double>();
       row.texture_lookups_per_px = c.at("texture_lookups_per_px").get<double>();
       row.taps_per_px = c.at("taps_per_px").get<double>();
+      row.coverage_rays_per_px = c.at("coverage_rays_per_px").get<double>();
+      row.shading_evals_per_px = c.at("shading_evals_per_px").get<double>();
       row.output_hash = j.at("output_hash").get<std::string>();
       for (auto it = j.at("images").begin(); it != j.at("images").end(); ++it) {
         row.images[it.key()] = it.value().get<std::string>();
       }
+      if (j.contains("not_applicable")) row.not_applicable = j.at("not_applicable").get<std::string>();
       if (j.contains("frames")) {
         const auto& fr = j.at("frames");
         for (auto it = fr.at("series").begin(); it != fr.at("series").end(); ++it) {

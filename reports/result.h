@@ -37,6 +37,8 @@ struct ResultRow {
   Timing render, post, resample, total;
   // Cost counters, per output pixel.
   double primary_rays_per_px = 0, shadow_rays_per_px = 0, texture_lookups_per_px = 0, taps_per_px = 0;
+  double coverage_rays_per_px = 0;  ///< camera rays that decide visibility at a sample position
+  double shading_evals_per_px = 0;  ///< surface shading evaluations (MSAA: one per primitive and pixel)
   std::vector<MetricResult> metrics;
   std::string output_hash;  ///< FNV-1a 64 of the output's RGBA8 bytes, hex
   std::map<std::string, std::string> images;  ///< role → path relative to the report folder
@@ -44,6 +46,9 @@ struct ResultRow {
   /// where undefined) and the output PNG of every frame. Empty for still runs.
   std::vector<std::pair<std::string, std::vector<std::optional<double>>>> frame_series;
   std::vector<std::string> frame_images;
+  /// Non-empty when the method cannot run on this scene (a renderer-side method on an image
+  /// scene): why. Such a row has every metric null with this reason, no timings, no images.
+  std::string not_applicable;
 };
 
 /// Per-scene facts: the reference and its noise floor.
@@ -66,6 +71,14 @@ struct SceneResult {
   std::vector<std::string> frame_images;
   double sequence_scene_ms = 0;      ///< building the scene at each frame + its BVH, summed
   double sequence_reference_ms = 0;  ///< the references of all frames, summed
+  /// "rendered": a scene the tracer renders; "image": a view of an image scene (a user's own
+  /// 1x frame and reference, harness/run/image_scene.h).
+  std::string kind = "rendered";
+  /// How the edge mask was made (the report shows it).
+  std::string edge_mask_source = "geometry: the reference's samples see more than one surface, a shadow boundary "
+                                 "or an alpha cut-out; dilated by 1 px";
+  std::string reference_note;           ///< how an image scene's reference file was read ("" otherwise)
+  std::string noise_floor_null_reason;  ///< why ref_floor_psnr_db is null, when it is ("" otherwise)
 };
 
 /// A whole run.

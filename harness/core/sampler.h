@@ -26,7 +26,10 @@ struct Float4 {
 [[gnu::always_inline]] inline uint8_t StoreUnorm8(float v) {
   if (!(v > 0.0f)) return 0;
   if (v >= 1.0f) return 255;
-  return static_cast<uint8_t>(std::nearbyint(v * 255.0f));  // default rounding: ties to even
+  // v·255 in (0, 255): adding and removing 2^23 rounds it to an integer, ties to even (the
+  // default rounding mode; no fast-math, so the sum is not folded away). = nearbyint.
+  const float w = v * 255.0f;
+  return static_cast<uint8_t>((w + 8388608.0f) - 8388608.0f);
 }
 
 /// One linear interpolation step of the filter: a + w·(b − a), two roundings, no FMA.

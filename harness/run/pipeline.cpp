@@ -5,6 +5,7 @@
 #include "harness/core/error.h"
 #include "harness/core/params.h"
 #include "harness/core/timer.h"
+#include "harness/run/image_scene.h"
 #include "harness/run/runner.h"
 #include "metrics/crops.h"
 #include "metrics/metric.h"
@@ -116,6 +117,7 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
 
 MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t seed, int repeat,
                        std::unique_ptr<TemporalState>* state) {
+  if (!p.tracer && !RunsOnImageScenes(plan)) return MethodOutput{NotApplicableRow(p, plan), {}, {}, {}, {}};
   const int W = p.info.width, H = p.info.height;
   const double px = static_cast<double>(W) * H;
   MethodOutput out;
@@ -126,7 +128,7 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   row.params = plan.params.Ordered();
   row.samples_per_pixel = plan.render.SamplesPerPixel();
   const bool jittered = plan.render.jitter.samples > 0;
-  const bool shared = plan.render.pattern == SamplePattern::kCenter && plan.render.scale == 1.0 && !jittered;
+  const bool shared = plan.render.IsPlain1x();  // false for jittered renders
   Image8 frame;
   TraceCounters counters;
   std::vector<float> previous;  // motion vectors of a jittered render (frame >= 1)
@@ -227,6 +229,8 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   row.primary_rays_per_px = static_cast<double>(counters.primary_rays) / px;
   row.shadow_rays_per_px = static_cast<double>(counters.shadow_rays) / px;
   row.texture_lookups_per_px = static_cast<double>(counters.texture_lookups) / px;
+  row.coverage_rays_per_px = static_cast<double>(counters.coverage_rays) / px;
+  row.shading_evals_per_px = static_cast<double>(counters.shading_evals) / px;
   row.taps_per_px = static_cast<double>(post_stats.taps + rescale_stats.taps) / px;
   row.output_hash = HashBytes(frame.Data().data(), frame.Data().size());
 

@@ -16,6 +16,7 @@
 #include "methods/registry.h"
 #include "reports/html_report.h"
 #include "reports/report_json.h"
+#include "harness/run/image_scene.h"
 #include "harness/run/pipeline.h"
 #include "harness/run/sequence.h"
 #include "scenes/library.h"
@@ -93,10 +94,12 @@ Report RunSuite(const RunSettings& s) {
   if (s.repeat < 1 || s.repeat > 1000) throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
   const int grid = ReferenceGridForSpp(s.ref_spp);
   const std::vector<std::string> scene_names = s.scenes.empty() ? SuiteScenes(s.suite) : s.scenes;
-  std::vector<std::unique_ptr<Scene>> scenes = LoadScenes(scene_names);
-  for (const auto& sc : scenes) CheckSequenceLength(*sc, s.frames);
   if (s.frames < 1 || s.frames > kMaxFrames) {
     throw UserError("--frames " + std::to_string(s.frames) + " is out of range (1.." + std::to_string(kMaxFrames) + ")");
+  }
+  std::vector<SceneSource> scenes = LoadSceneSources(scene_names);
+  for (const auto& src : scenes) {
+    if (src.scene) CheckSequenceLength(*src.scene, s.frames);
   }
   std::vector<std::string> method_specs = s.methods.empty() ? DefaultMethods() : s.methods;
   if (s.methods.empty() && s.frames == 1) {
@@ -143,13 +146,14 @@ Report RunSuite(const RunSettings& s) {
   const int W = s.width, H = s.height;
   const int F = s.frames;
   Progress progress(static_cast<int>(scenes.size() * (plans.size() + 1)) * F, s.quiet);
-  for (auto& scene_ptr : scenes) {
-    const std::string name = scene_ptr->name;
+  for (auto& source : scenes) {
+    const std::string name = source.Name();
     const std::string rel_dir = "images/" + name;
     fs::create_directories(tmp / rel_dir);
     // A sequence per (scene, method): methods with memory keep their state from frame to
-    // frame; a still run is a sequence of one frame.
-    const std::shared_ptr<const Scene> sequence(std::move(scene_ptr));
+    // frame; a still run is a sequence of one frame. Image-scene views are still scenes.
+    const std::shared_ptr<const Scene> sequence(std::move(source.scene));
+    const bool moves = sequence && sequence->animation.Moves();
     std::vector<std::unique_ptr<TemporalState>> states(plans.size());
     std::vector<SequenceTrack> tracks(plans.size());
     std::unique_ptr<PreparedScene> prepared;
@@ -160,13 +164,19 @@ Report RunSuite(const RunSettings& s) {
       const bool last = k == F - 1;
       const std::string tag = F > 1 ? ".f" + std::to_string(k) : "";
       // A moving scene is built, traced and referenced anew at every frame; a still one once.
-      if (!prepared || sequence->animation.Moves()) {
+      if (!prepared || moves) {
         Stopwatch build;
-        auto frame_scene = std::make_unique<Scene>(sequence->animation.Moves() ? SceneAtFrame(*sequence, k) : *sequence);
-        const double scene_build_ms = build.ElapsedMs();
-        prepared = PrepareScene(std::move(frame_scene), W, H, grid, s.seed, s.repeat);
+        if (moves) {
+          auto frame_scene = std::make_unique<Scene>(SceneAtFrame(*sequence, k));
+          const double scene_build_ms = build.ElapsedMs();
+          prepared = PrepareScene(std::move(frame_scene), W, H, grid, s.seed, s.repeat);
+          scene_ms += scene_build_ms;
+        } else {
+          if (sequence) source.scene = std::make_unique<Scene>(*sequence);
+          prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat);
+        }
         prepared->sequence_scene = sequence;
-        scene_ms += scene_build_ms + prepared->info.bvh_build_ms;
+        scene_ms += prepared->info.bvh_build_ms;
         reference_ms += prepared->info.reference_ms;
       }
       prepared->frame = k;
@@ -190,6 +200,12 @@ Report RunSuite(const RunSettings& s) {
       for (size_t m = 0; m < plans.size(); ++m) {
         const MethodPlan& plan = plans[m];
         MethodOutput mo = RunMethod(*prepared, plan, s.seed, s.repeat, &states[m]);
+        ResultRow& row = mo.row;
+        if (!row.not_applicable.empty()) {  // a renderer-side method on an image scene: no images
+          if (last) report.rows.push_back(std::move(row));
+          progress.Step(name + tag + " " + plan.spec + " (not applicable)");
+          continue;
+        }
         const std::string base = rel_dir + "/" + FileSafe(plan.spec);
         if (F > 1) {
           const std::string rel = base + tag + ".png";
@@ -198,7 +214,6 @@ Report RunSuite(const RunSettings& s) {
         }
         progress.Step(name + tag + " " + plan.spec);
         if (!last) continue;
-        ResultRow& row = mo.row;
         if (s.debug_views && plan.post) {
           for (const auto& view : plan.debug_views) {
             PostOptions opt;
@@ -222,7 +237,7 @@ Report RunSuite(const RunSettings& s) {
     states.clear();
     if (F > 1) {
       sr.frames = F;
-      sr.moves = sequence->animation.Moves();
+      sr.moves = moves;
       sr.frame_images = reference_frames;
       sr.sequence_scene_ms = scene_ms;
       sr.sequence_reference_ms = reference_ms;

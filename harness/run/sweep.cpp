@@ -19,6 +19,7 @@
 #include "harness/core/params.h"
 #include "harness/core/timer.h"
 #include "harness/io/image_io.h"
+#include "harness/run/image_scene.h"
 #include "harness/run/pipeline.h"
 #include "harness/run/runner.h"
 #include "methods/registry.h"
@@ -266,7 +267,14 @@ SweepResult RunSweep(const SweepSettings& s) {
       if (res.objectives[j] == o) throw UserError("--objective: metric '" + o + "' is listed twice");
     }
   }
-  std::vector<std::unique_ptr<Scene>> scenes = LoadScenes(s.scenes);
+  std::vector<SceneSource> scenes = LoadSceneSources(s.scenes);
+  for (const auto& src : scenes) {
+    if (src.view && !RunsOnImageScenes(plans.front())) {
+      throw UserError("sweep: method '" + s.method + "' needs the renderer, and scene '" + src.Name() +
+                      "' is a view of image scene '" + src.view->manifest +
+                      "' (only the 1x frame): sweep a post filter (FXAA, SMAA, ...) on image scenes");
+    }
+  }
 
   if (s.out_dir.empty()) throw UserError("--out must not be empty");
   const fs::path out(s.out_dir);
@@ -302,10 +310,10 @@ SweepResult RunSweep(const SweepSettings& s) {
   Stopwatch clock;
   std::vector<std::vector<const ResultRow*>> per_point(plans.size());
   report.rows.reserve(scenes.size() * plans.size());
-  for (auto& scene_ptr : scenes) {
-    const std::string name = scene_ptr->name;
-    const auto prepared = PrepareScene(std::move(scene_ptr), s.width, s.height, ref_grid, s.seed, s.repeat);
-    ++res.reference_renders;
+  for (auto& source : scenes) {
+    const std::string name = source.Name();
+    const auto prepared = PrepareSource(std::move(source), s.width, s.height, ref_grid, s.seed, s.repeat);
+    if (prepared->tracer) ++res.reference_renders;  // an image-scene view renders nothing
     report.scenes.push_back(prepared->info);
     Progress(s.quiet, ++done, total, name + " reference", clock);
     for (size_t p = 0; p < plans.size(); ++p) {

@@ -78,7 +78,7 @@ struct SweepResult {
   std::vector<GridAxis> axes;
   std::vector<std::string> objectives;
   std::string objective_note;         ///< set when the default objective fell back to psnr_db
-  int reference_renders = 0;          ///< PrepareScene calls (one per scene)
+  int reference_renders = 0;          ///< PrepareScene calls (one per rendered scene; image-scene views render none)
   std::vector<SweepPoint> points;
   std::vector<size_t> pareto_front;   ///< indices into points, by time
   std::map<std::string, size_t> best; ///< objective → best point (absent when all are null)

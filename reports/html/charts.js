@@ -6,23 +6,34 @@
   /// Points of a scope. Scene: one per row. Suite: for each method, the mean quality and the
   /// mean of the median times over the scenes where every method has a value of the metric
   /// (the same scenes for every method, so the means compare like with like); the scenes left
-  /// out, with why, are in `left` and shown under the chart and the table.
+  /// out, with why, are in `left` and shown under the chart and the table. A method that is not
+  /// applicable on any scene of the run (a renderer-side method in a run of image scenes only)
+  /// is left out of the suite means instead of emptying them; one not applicable on some
+  /// scenes leaves those scenes out, like any other missing value.
   function collect(scope, sceneName, metric) {
     const pts = [], unplotted = [], left = [];
     const label = A.metricInfo(metric).label;
     if (scope === 'scene') {
       for (const r of A.rowsByScene.get(sceneName) || []) {
         const q = A.metricValue(r, metric), t = r.timing.total;
-        const p = { spec: r.spec, q, t: t.median_ms, tmin: t.min_ms, tmax: t.max_ms, rows: [r] };
-        if (q === null) unplotted.push({ p, why: label + ' is null (' + A.nullReason(r, metric) + ')' });
+        const p = r.not_applicable ? { spec: r.spec, q: null, t: null, tmin: null, tmax: null, rows: [r] }
+                                   : { spec: r.spec, q, t: t.median_ms, tmin: t.min_ms, tmax: t.max_ms, rows: [r] };
+        if (r.not_applicable) unplotted.push({ p, why: 'not applicable: ' + r.not_applicable });
+        else if (q === null) unplotted.push({ p, why: label + ' is null (' + A.nullReason(r, metric) + ')' });
         else if (!(t.median_ms > 0)) unplotted.push({ p, why: 'its time is 0 ms, which a log axis cannot show' });
         else pts.push(p);
       }
     } else {
       const used = [];
+      const naEverywhere = new Map();  // spec → reason, for methods not applicable on every scene
+      for (const spec of A.specs) {
+        const rs = A.scenes.map(s => (A.rowsByScene.get(s.name) || []).find(r => r.spec === spec));
+        if (rs.length && rs.every(r => r && r.not_applicable)) naEverywhere.set(spec, rs[0].not_applicable);
+      }
+      const specs = A.specs.filter(spec => !naEverywhere.has(spec));
       for (const s of A.scenes) {
-        const rows = A.rowsByScene.get(s.name) || [];
-        const missing = A.specs.filter(spec => !rows.some(r => r.spec === spec));
+        const rows = (A.rowsByScene.get(s.name) || []).filter(r => !naEverywhere.has(r.spec));
+        const missing = specs.filter(spec => !rows.some(r => r.spec === spec));
         const bad = rows.filter(r => A.metricValue(r, metric) === null);
         if (missing.length) left.push({ scene: s.name, why: 'not run with ' + missing.join(', ') });
         else if (bad.length) {
@@ -32,6 +43,11 @@
         } else used.push(s.name);
       }
       for (const spec of A.specs) {
+        if (naEverywhere.has(spec)) {
+          unplotted.push({ p: { spec, q: null, t: null, tmin: null, tmax: null, rows: [] },
+            why: 'not applicable on any scene of this run: ' + naEverywhere.get(spec) });
+          continue;
+        }
         const rows = used.map(n => A.rowsByScene.get(n).find(r => r.spec === spec));
         const mean = f => rows.reduce((s, r) => s + f(r), 0) / rows.length;
         const p = { spec, q: null, t: rows.length ? mean(r => r.timing.total.median_ms) : null, tmin: null, tmax: null, rows };

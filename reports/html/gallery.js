@@ -23,7 +23,8 @@
     const scene = A.sceneByName.get(host.dataset.scene);
     const specs = (A.rowsByScene.get(scene.name) || []).map(r => r.spec);
     if (!specs.length) { host.replaceChildren(el('p', { class: 'note', text: 'No rows for this scene.' })); return; }
-    if (!specs.includes(state.spec)) state.spec = specs.find(s => s !== 'none') || specs[0];
+    const applicable = s => { const r = rowOf(scene.name, s); return r && !r.not_applicable; };
+    if (!specs.includes(state.spec)) state.spec = specs.find(s => s !== 'none' && applicable(s)) || specs[0];
     const idx = A.scenes.indexOf(scene), n = A.scenes.length;
     const g = el('div', { class: 'gallery', tabindex: '0', role: 'region',
       'aria-label': 'Gallery of ' + scene.name + '. Left and right arrows switch methods, up and down switch scenes.' });
@@ -84,6 +85,10 @@
 
   function renderSummary() {
     const r = rowOf(G.scene.name, state.spec), s = G.scene;
+    if (r.not_applicable) {
+      G.parts.summary.replaceChildren(el('b', { class: 'method', text: r.spec }), ': not applicable — ' + r.not_applicable);
+      return;
+    }
     const bits = [];
     for (const name of Object.keys(r.metrics || {})) {
       const v = A.metricValue(r, name), i = A.metricInfo(name);
@@ -102,7 +107,7 @@
     const aPath = outputOf(s.name, state.spec);
     const useNone = state.compare === 'none' && outputOf(s.name, 'none');
     const bPath = useNone ? outputOf(s.name, 'none') : s.images.reference_png;
-    const bName = useNone ? 'none' : 'reference (' + s.reference.spp + ' spp)';
+    const bName = useNone ? 'none' : s.kind === 'image' ? 'reference (the user\'s)' : 'reference (' + s.reference.spp + ' spp)';
     if (!aPath || !bPath) {
       G.parts.ab.replaceChildren(el('p', { class: 'note', text: 'No ' + (!aPath ? 'output image for ' + state.spec : 'image to compare with') + ' in this report.' }));
       G.parts.links.replaceChildren();
@@ -178,7 +183,7 @@
     const s = G.scene, r = rowOf(s.name, state.spec), images = (r && r.images) || {};
     const maps = Object.keys(images).filter(k => k !== 'output' && !k.startsWith('debug_'));
     const figs = maps.map(k => figure(images[k], roleLabel(k) + ' — ' + r.spec, s.width, s.height, false));
-    if (s.images.edge_mask) figs.push(figure(s.images.edge_mask, 'Edge mask (white = geometric edge; ' + (100 * s.edge_pixel_fraction).toFixed(1) + '% of pixels)', s.width, s.height, false));
+    if (s.images.edge_mask) figs.push(figure(s.images.edge_mask, 'Edge mask (white = edge; ' + (100 * s.edge_pixel_fraction).toFixed(1) + '% of pixels; ' + (s.edge_mask_source || 'geometric') + ')', s.width, s.height, false));
     if (!maps.length) figs.unshift(el('p', { class: 'note', text: 'No error heatmaps for ' + state.spec + ' in this report.' }));
     G.parts.maps.replaceChildren(...figs);
     const dbg = Object.keys(images).filter(k => k.startsWith('debug_'));

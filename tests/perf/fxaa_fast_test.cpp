@@ -96,6 +96,22 @@ TEST(FastPath, Fxaa311EqualsReferenceOnEveryFrameAndSetting) {
   }
 }
 
+// Off-centre 3x3 taps: the fast path decides near-tie early exits with the real taps and
+// falls back to the reference when a frame is so wide or tall that the taps' deviation from
+// the texel centres nears an 8-bit step (10000 wide: just below; 40000: above). Noise strips,
+// a preset, the tutorial's luma, iter12 and the threshold-0 settings (every pixel an edge).
+TEST(FastPath, Fxaa311EqualsReferenceOnVeryWideAndTallFrames) {
+  uint64_t seed = 99;
+  for (auto [w, h] : std::vector<std::pair<int, int>>{{10000, 2}, {2, 10000}, {40000, 1}, {1, 40000}}) {
+    Image8 img(w, h, 4);
+    for (auto& b : img.Data()) b = static_cast<uint8_t>((perf_test::NextRandom(seed) & 0x3f) * 4);
+    for (const auto& [name, p] : Fxaa311Settings()) {
+      if (name != "p12" && name != "tutorial-high" && name != "iter12" && name.find("thr0") == std::string::npos) continue;
+      ExpectFxaa311Same(img, p, name + " noise " + std::to_string(w) + "x" + std::to_string(h));
+    }
+  }
+}
+
 TEST(FastPath, Fxaa311EqualsReferenceAtOneAndTwoThreads) {
   Fxaa311Params p;
   p.steps = Fxaa311PresetSteps(39);

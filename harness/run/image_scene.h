@@ -1,0 +1,75 @@
+/// Image scenes: a user's own frames as scenes (docs/own-frames.md). A JSON manifest
+/// ({"aalab_image_scene": 1, "views": [...]}) lists views; each view is the renderer's 1x frame
+/// (8-bit, display-encoded), a reference (scene-linear EXR through the view's display transform,
+/// or an 8/16-bit display-encoded PNG/TIFF) and optionally depth, object ids or a ready edge
+/// mask. A view runs like a scene for every method that needs only the 1x frame (`none` and
+/// the post filters); the others get a "not applicable" row.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "harness/core/color.h"
+#include "harness/core/image.h"
+#include "harness/run/pipeline.h"
+
+namespace aalab {
+
+/// One view of an image scene, read and validated.
+struct ImageView {
+  std::string name;         ///< lowercase-kebab, unique in the run
+  std::string description;
+  std::string manifest;     ///< the manifest's path, as given
+  size_t index = 0;         ///< position in the manifest's "views"
+  Image8 frame;             ///< the 1x frame (RGBA8, alpha 255)
+  ImageF reference;         ///< sRGB-encoded float RGB, not quantised (what Reference::image holds)
+  std::string reference_note;  ///< how the reference file was read
+  ImageF edge_mask_raw;     ///< the mask before dilation (the given mask when one was given)
+  ImageF edge_mask;         ///< the mask the edge metrics use
+  std::string edge_mask_source;  ///< how the mask was made, for the report
+};
+
+/// Whether `path` names an image-scene manifest: a readable JSON file whose top level is an
+/// object with "aalab_image_scene" or "views". Anything else (a scene file, a library name,
+/// a file that is not JSON) is false and goes to the scene loader, which reports its errors.
+bool IsImageSceneManifest(const std::string& path);
+
+/// Reads a manifest and every image it names (paths relative to the manifest's folder).
+/// Throws UserError with one message naming the manifest, the JSON path and what is allowed
+/// for: unknown fields, a missing or wrong "aalab_image_scene" (must be 1), no views, a bad or
+/// duplicate view name, missing/unreadable images, wrong file type or bit depth, sizes that
+/// differ, out-of-range depth, a mask that is not 0/255, conflicting edge sources.
+std::vector<ImageView> LoadImageScene(const std::string& manifest_path);
+
+/// One entry of `--scenes`: a scene the tracer renders, or a view of an image scene.
+struct SceneSource {
+  std::unique_ptr<Scene> scene;        ///< set for a rendered scene
+  /// Set for an image-scene view: its name, manifest and index only (validated, pixels not
+  /// kept); PrepareSource reads the images again, so a run holds one view's pixels at a time.
+  std::unique_ptr<ImageView> view;
+  const std::string& Name() const;
+};
+
+/// Loads every name: library names and scene files through LoadScenes, manifests through
+/// LoadImageScene (each view one source, in manifest order). Names must be unique across all.
+std::vector<SceneSource> LoadSceneSources(const std::vector<std::string>& names);
+
+/// PrepareScene for a rendered scene; for a view (read again from its manifest; UserError if
+/// the file changed since LoadSceneSources), a PreparedScene without scene or tracer:
+/// the view's frame as the 1x frame (render time unknown: 0, no cost counters), its
+/// reference and edge mask, crops as PrepareScene picks them, and no noise floor (a user's
+/// reference has no independent halves; the report gives the reason). `width`, `height`,
+/// `grid` and `seed` apply to rendered scenes only.
+std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int height, int grid, uint64_t seed,
+                                             int repeat);
+
+/// True when the plan needs nothing but the 1x frame: `none` and the post-only methods
+/// (MethodPlan::IsPostOnly). Everything else needs the renderer.
+bool RunsOnImageScenes(const MethodPlan& plan);
+
+/// The row of a method that cannot run on an image-scene view: every metric null with the
+/// reason, no timings (empty), no images, `not_applicable` set.
+ResultRow NotApplicableRow(const PreparedScene& prepared, const MethodPlan& plan);
+
+}  // namespace aalab
