@@ -42,6 +42,7 @@
 #include <unistd.h>
 
 #include "bench/bench_msaa.h"
+#include "bench/bench_taa.h"
 #include "harness/core/color.h"
 #include "harness/core/parallel.h"
 #include "harness/io/image_io.h"
@@ -759,6 +760,11 @@ int Main(int argc, char** argv) {
     std::string aaa_table;
     for (auto& f : BenchAnalyticAa(cfg.reps, &aaa_table)) figures.push_back(f);
     tab << aaa_table;
+  {  // TAA vs fxaa311-p39 (bench/bench_taa.cpp)
+    const TaaBench taa = RunTaaBench(cfg.reps, 2);
+    line("");
+    for (const auto& l : taa.lines) line(l);
+    for (const auto& f : taa.figures) figures.push_back(f);
   }
   line("");
   line("## Suite — wall time of `aalab run --suite " + suite_name + " --ref-spp " + std::to_string(suite_spp) +

@@ -31,5 +31,8 @@ std::vector<MethodEntry> RenderScaleMethods();
 /// `aaa`, `aaa-length`, `aaa-fwidth`, `aaa-smoothstep`, `aaa-sqrt2`, `aaa-inside`,
 /// `aaa-fwidth-inside`, `aaa-3d`: analytical AA presets (methods/aaa.cpp).
 std::vector<MethodEntry> AaaMethods();
+/// `taa`: temporal anti-aliasing with Halton(2,3) jitter, exact reprojection, YCoCg
+/// variance clipping and an exponential blend (methods/taa.cpp).
+std::vector<MethodEntry> TaaMethods();
 
 }  // namespace aalab

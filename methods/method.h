@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,30 @@ struct PostStats {
 /// A post filter: 8-bit RGBA frame in, 8-bit RGBA frame out, same size.
 using PostFilter = std::function<Image8(const Image8& in, const PostOptions& options, PostStats* stats)>;
 
+/// One frame's inputs to a method with memory (TAA), all data: the frame as rendered (with
+/// the frame's jitter) and, from the second frame on, where each pixel's centre was in the
+/// previous frame (exact motion vectors computed by the runner from the known motion).
+struct TemporalInput {
+  const Image8* frame = nullptr;
+  /// Per pixel, row-major, x then y: the previous frame's continuous pixel position of this
+  /// pixel's centre (centres at +0.5); NaN where there is no history. Empty on frame 0.
+  const std::vector<float>* previous = nullptr;
+  int frame_index = 0;
+};
+
+/// Per-sequence state of a temporal method. The runner creates one per (scene, method)
+/// sequence from MethodPlan::make_state, feeds it the frames in order and drops it after.
+class TemporalState {
+ public:
+  virtual ~TemporalState() = default;
+  /// Consumes one frame and returns the method's output for it (same size, RGBA8).
+  virtual Image8 Step(const TemporalInput& in, PostStats* stats) = 0;
+  /// A copy (the runner times Step on copies, so warm-up and repeats never advance the sequence twice).
+  virtual std::unique_ptr<TemporalState> Clone() const = 0;
+};
+
+using TemporalFactory = std::function<std::unique_ptr<TemporalState>()>;
+
 /// How the rendered/post-filtered frame is brought back to the output size.
 enum class Rescale { kNone, kBilinear, kBicubic };
 
@@ -38,6 +63,9 @@ struct MethodPlan {
   PostFilter post;           ///< empty when the method has no post filter
   std::vector<std::string> debug_views;  ///< views `post` supports ("" excluded)
   Rescale rescale = Rescale::kNone;
+  /// Methods with memory (TAA): makes the per-sequence state; empty for memoryless methods.
+  /// The state's Step replaces the post filter stage.
+  TemporalFactory make_state;
 
   /// True when the method works on a finished 1x frame alone (usable by `aalab apply`).
   bool IsPostOnly() const {

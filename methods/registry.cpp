@@ -19,6 +19,7 @@ const std::vector<MethodEntry>& MethodRegistry() {
     add(SmaaMethods());
     add(RenderScaleMethods());
     add(AaaMethods());
+    add(TaaMethods());
     return all;
   }();
   return table;

@@ -33,7 +33,8 @@ constexpr DirectionRule kDirections[] = {
     {"psnr_db", Better::kHigher},          {"edge_psnr_db", Better::kHigher},
     {"interior_psnr_db", Better::kHigher}, {"ssim", Better::kHigher},
     {"edge_error_removed", Better::kHigher}, {"mse", Better::kLower},
-    {"edge_rmse", Better::kLower},         {"*_psnr_db", Better::kHigher},
+    {"edge_rmse", Better::kLower},         {"temporal_rmse", Better::kLower},
+    {"temporal_edge_rmse", Better::kLower}, {"*_psnr_db", Better::kHigher},
     {"flip_*", Better::kLower},            {"abs_err_*", Better::kLower},
     {"area_bias_abs_rel", Better::kLower},
 };
@@ -304,6 +305,16 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
                                    " (reports are comparable only when size, ref_spp and seed agree)");
     }
   }
+  // Motion runs: the frame count (absent = 1, a still run) must agree too.
+  {
+    const std::string fa = SettingValue(base, "frames"), fb = SettingValue(cur, "frames");
+    if ((fa.empty() ? "1" : fa) != (fb.empty() ? "1" : fb)) {
+      res.cannot_compare.push_back("setting 'frames' differs: baseline " + (fa.empty() ? std::string("1") : fa) +
+                                   ", current " + (fb.empty() ? std::string("1") : fb) +
+                                   " (pooled and temporal metrics depend on the sequence length)");
+    }
+  }
+
   if (base.rows.empty()) res.cannot_compare.push_back("the baseline report has no rows");
   if (cur.rows.empty()) res.cannot_compare.push_back("the current report has no rows");
   if (!res.cannot_compare.empty()) return res;
@@ -320,6 +331,10 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
                             " report does not have it in every row (default metrics: edge_psnr_db and psnr_db when "
                             "both reports have them, else psnr_db)");
       }
+    }
+    // Motion runs (--frames > 1): the temporal error too, when both reports have it.
+    if (HasMetricEverywhere(base, "temporal_rmse") && HasMetricEverywhere(cur, "temporal_rmse")) {
+      res.metrics.push_back("temporal_rmse");
     }
   } else {
     res.metrics = o.metrics;
@@ -430,8 +445,12 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
       } else {
         auto t = o.metric_change.find(metric);
         if (t == o.metric_change.end()) t = o.metric_change.find("*");
-        AALAB_CHECK(t != o.metric_change.end(), "validated options must give every non-dB metric a tolerance");
-        tol = t->second;
+        if (t == o.metric_change.end() && metric == "temporal_rmse") {
+          tol = Threshold{0.05, true};  // compared by default in motion runs: 5% of the baseline
+        } else {
+          AALAB_CHECK(t != o.metric_change.end(), "validated options must give every non-dB metric a tolerance");
+          tol = t->second;
+        }
         l.threshold = (better == Better::kHigher ? "-" : "+") + tol.Text();
       }
       const bool same_value = (l.base == l.current) && (l.base_null == l.current_null);

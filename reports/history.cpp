@@ -98,7 +98,7 @@ HistoryEntry EntryFromJson(const Json& j, const std::string& where) {
 }  // namespace
 
 const std::vector<std::string>& HistorySeriesKeys() {
-  static const std::vector<std::string> keys = {"size", "ref_spp", "seed", "scenes", "methods"};
+  static const std::vector<std::string> keys = {"size", "ref_spp", "seed", "scenes", "methods", "frames"};
   return keys;
 }
 
@@ -420,6 +420,15 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
     }
     std::vector<std::string> metrics = has_edge ? std::vector<std::string>{"edge_psnr_db", "psnr_db"}
                                                 : std::vector<std::string>{"psnr_db"};
+    bool has_temporal = true;  // motion runs (--frames > 1): the temporal error too
+    for (const auto* e : es) {
+      for (const auto& r : e->report.rows) {
+        bool found = false;
+        for (const auto& m : r.metrics) found = found || (m.name == "temporal_rmse" && m.value);
+        has_temporal = has_temporal && found;
+      }
+    }
+    if (has_temporal) metrics.push_back("temporal_rmse");
     CompareOptions opt = options;
     opt.metrics = metrics;
     opt.metric_change.clear();
@@ -494,7 +503,7 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
               found = true;
               if (m.value) {
                 p.value = *m.value;
-                p.tooltip += FormatFixed(*m.value, 3) + " dB";
+                p.tooltip += FormatFixed(*m.value, 3) + (q.size() > 3 && q.compare(q.size() - 3, 3, "_db") == 0 ? " dB" : "");
               } else if (m.null_reason == "identical") {
                 p.value = std::numeric_limits<double>::infinity();
                 p.tooltip += "infinite (identical)";

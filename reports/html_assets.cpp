@@ -39,6 +39,13 @@ MetricInfo DescribeMetric(const std::string& name) {
       {"abs_err_p95", {"|err| p95", "", -1, "95th percentile of the per-pixel absolute error."}},
       {"abs_err_p99", {"|err| p99", "", -1, "99th percentile of the per-pixel absolute error."}},
       {"abs_err_max", {"|err| max", "", -1, "Largest per-pixel absolute error."}},
+      {"temporal_rmse",
+       {"Temporal RMSE", "", -1,
+        "RMS over pixels and frame pairs of the change of the error image (method − reference) from frame to frame: "
+        "flicker and crawl the reference does not have (0..1, --frames > 1)."}},
+      {"temporal_psnr_db", {"Temporal PSNR", "dB", +1, "10·log10(1 / temporal MSE): the temporal RMSE as a PSNR."}},
+      {"temporal_edge_rmse",
+       {"Temporal edge RMSE", "", -1, "The temporal RMSE over the edge masks of both frames of each pair."}},
   };
   const auto it = kKnown.find(name);
   if (it != kKnown.end()) return it->second;

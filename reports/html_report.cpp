@@ -349,6 +349,11 @@ void SceneSection(std::string& h, const Report& r, const SceneResult& s, int ind
   QualityCostBlock(h, "scene", &s.name);
   h += "<h3>All metrics</h3>\n";
   SceneTable(h, r, s, index);
+  if (s.frames > 1) {  // the motion player (reports/html/player.js)
+    h += "<h3>Motion: " + Int(s.frames) + " frames</h3>\n<div class=\"player-host\" data-scene=\"" + Attr(s.name) +
+         "\"><noscript><p class=\"note\">The player needs JavaScript; the frames are listed in report.json "
+         "(scenes[].sequence.reference_frames, rows[].frames.images).</p></noscript></div>\n";
+  }
   h += "<h3>Gallery</h3>\n<div class=\"gallery-host\" data-scene=\"" + Attr(s.name) +
        "\"><noscript><p class=\"note\">The gallery needs JavaScript. Images: ";
   for (const auto& [role, path] : s.images) {

@@ -98,6 +98,13 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
     Json crops = Json::array();
     for (const auto& c : s.crops) crops.push_back({c[0], c[1], c[2], c[3]});
     j["crops"] = crops;
+    if (s.frames > 1) {
+      j["sequence"] = {{"frames", s.frames},
+                       {"moves", s.moves},
+                       {"scene_and_bvh_ms", Num(s.sequence_scene_ms)},
+                       {"reference_ms", Num(s.sequence_reference_ms)},
+                       {"reference_frames", s.frame_images}};
+    }
     scenes.push_back(j);
   }
   doc["scenes"] = scenes;
@@ -141,6 +148,15 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
     for (const auto& [k, v] : row.images) im[k] = v;
     j["images"] = im;
     if (!row.not_applicable.empty()) j["not_applicable"] = row.not_applicable;
+    if (!row.frame_images.empty() || !row.frame_series.empty()) {
+      Json series = Json::object();
+      for (const auto& [name, values] : row.frame_series) {
+        Json a = Json::array();
+        for (const auto& v : values) a.push_back(Opt(v));
+        series[name] = a;
+      }
+      j["frames"] = {{"series", series}, {"images", row.frame_images}};
+    }
     rows.push_back(j);
   }
   doc["rows"] = rows;
@@ -189,6 +205,14 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
         s.images[it.key()] = it.value().get<std::string>();
       }
       for (const auto& c : j.at("crops")) s.crops.push_back(c.get<std::array<int, 4>>());
+      if (j.contains("sequence")) {
+        const auto& q = j.at("sequence");
+        s.frames = q.at("frames").get<int>();
+        s.moves = q.at("moves").get<bool>();
+        s.sequence_scene_ms = q.at("scene_and_bvh_ms").get<double>();
+        s.sequence_reference_ms = q.at("reference_ms").get<double>();
+        s.frame_images = q.at("reference_frames").get<std::vector<std::string>>();
+      }
       r.scenes.push_back(s);
     }
     for (const auto& j : doc.at("rows")) {
@@ -234,6 +258,15 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
         row.images[it.key()] = it.value().get<std::string>();
       }
       if (j.contains("not_applicable")) row.not_applicable = j.at("not_applicable").get<std::string>();
+      if (j.contains("frames")) {
+        const auto& fr = j.at("frames");
+        for (auto it = fr.at("series").begin(); it != fr.at("series").end(); ++it) {
+          std::vector<std::optional<double>> values;
+          for (const auto& v : it.value()) values.push_back(OptFrom(v));
+          row.frame_series.emplace_back(it.key(), std::move(values));
+        }
+        row.frame_images = fr.at("images").get<std::vector<std::string>>();
+      }
       r.rows.push_back(row);
     }
   } catch (const nlohmann::json::exception& e) {

@@ -48,6 +48,10 @@ struct ResultRow {
   std::vector<MetricResult> metrics;
   std::string output_hash;  ///< FNV-1a 64 of the output's RGBA8 bytes, hex
   std::map<std::string, std::string> images;  ///< role → path relative to the report folder
+  /// Motion runs (--frames > 1) only: per-frame series (name → one value per frame, null
+  /// where undefined) and the output PNG of every frame. Empty for still runs.
+  std::vector<std::pair<std::string, std::vector<std::optional<double>>>> frame_series;
+  std::vector<std::string> frame_images;
   /// Non-empty when the method cannot run on this scene (a renderer-side method on an image
   /// scene): why. Such a row has every metric null with this reason, no timings, no images.
   std::string not_applicable;
@@ -67,6 +71,13 @@ struct SceneResult {
   std::map<std::string, std::string> images;
   /// Zoom windows [x, y, w, h] where `none` is furthest from the reference on edges.
   std::vector<std::array<int, 4>> crops;
+  /// Motion runs (--frames > 1): the frame count, whether the scene moves, the reference PNG
+  /// of every frame and the sequence's totals (the fields above describe the last frame).
+  int frames = 1;
+  bool moves = false;
+  std::vector<std::string> frame_images;
+  double sequence_scene_ms = 0;      ///< building the scene at each frame + its BVH, summed
+  double sequence_reference_ms = 0;  ///< the references of all frames, summed
   /// "rendered": a scene the tracer renders; "image": a view of an image scene (a user's own
   /// 1x frame and reference, harness/run/image_scene.h).
   std::string kind = "rendered";

@@ -91,6 +91,41 @@ struct Shape {
   glm::vec3 tangent{1.0f, 0.0f, 0.0f};
   // kCapsule / kCylinder: segment from p0 to p1 with `radius`
   glm::vec3 p0{0.0f}, p1{0.0f};
+  /// Index into Scene::animation.objects of this shape's motion (-1: the shape is still).
+  int motion = -1;
+};
+
+/// One keyframe of an object's motion: a transform applied after the object's own
+/// `transform`, about the motion's pivot (scenes/README.md "Animation").
+struct MotionKey {
+  double frame = 0.0;           ///< sequence time in frames, within [0, Animation::frames − 1]
+  glm::vec3 translate{0.0f};
+  glm::vec3 rotate_deg{0.0f};   ///< about X, then Y, then Z, around the pivot
+  float scale = 1.0f;           ///< uniform (analytic shapes stay exact)
+};
+
+/// One keyframe of the camera's motion, relative to the scene's `camera`.
+struct CameraKey {
+  double frame = 0.0;
+  glm::vec3 offset{0.0f};  ///< added to both position and look_at (a pan / dolly)
+  float roll_deg = 0.0f;   ///< rotation of `up` about the view direction
+  float zoom = 1.0f;       ///< divides tan(fov_y / 2) (perspective) or height (orthographic)
+};
+
+/// The keyframes of one moving object, linearly interpolated between keys (held before
+/// the first and after the last).
+struct ObjectMotion {
+  glm::vec3 pivot{0.0f};  ///< world-space point the rotation and scale are about
+  std::vector<MotionKey> keys;
+};
+
+/// A scene's motion over a sequence of frames. frames == 0: a still scene (any number of
+/// frames shows the same image).
+struct Animation {
+  int frames = 0;                       ///< length of the declared sequence, 2..100000
+  std::vector<CameraKey> camera;        ///< empty: the camera is still
+  std::vector<ObjectMotion> objects;    ///< referenced by Shape::motion
+  bool Moves() const { return frames > 0; }
 };
 
 struct Scene {
@@ -105,6 +140,8 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Light> lights;
   std::vector<Shape> shapes;
+  Animation animation;  ///< motion over time; shapes and camera above are the base pose
+                        ///< it applies to (SceneAtFrame in scenes/motion.h)
 
   bool Has(Effect e) const { return effects[static_cast<int>(e)]; }
   /// Names of the declared effects, in enum order.

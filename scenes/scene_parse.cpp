@@ -1,4 +1,5 @@
 // Scene files: JSON → Scene, with validation. Every field is documented in scenes/README.md.
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include "harness/core/error.h"
 #include "harness/core/params.h"
 #include "scenes/json_fields.h"
+#include "scenes/motion_parse.h"
 #include "scenes/scene.h"
 #include "scenes/shapes.h"
 
@@ -148,7 +150,7 @@ glm::mat4 ParseTransform(const JsonField& f) {
 Shape ParseShape(const JsonField& f, const std::string& base_dir) {
   const std::string kind = f.Child("shape").Choice(
       {"quad", "plane", "polygon", "box", "disk", "sphere", "capsule", "cylinder", "mesh", "triangles"});
-  const std::set<std::string> common = {"shape", "material", "transform", "name"};
+  const std::set<std::string> common = {"shape", "material", "transform", "name", "motion"};
   auto allow = [&](std::set<std::string> extra) {
     extra.insert(common.begin(), common.end());
     f.RequireObject(extra);
@@ -252,7 +254,7 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
   }
   const JsonField root(doc, origin, "");
   root.RequireObject({"name", "description", "effects", "camera", "display", "background", "ambient",
-                      "materials", "lights", "objects"});
+                      "materials", "lights", "objects", "animation"});
   Scene s;
   s.name = root.Child("name").String();
   for (char c : s.name) {
@@ -300,6 +302,8 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
     for (size_t i = 0; i < lights.ArraySize(); ++i) s.lights.push_back(ParseLight(lights.At(i)));
   }
 
+  if (root.Has("animation")) s.animation = ParseAnimation(root.Child("animation"));
+
   const JsonField objs = root.Child("objects");
   if (objs.ArraySize() == 0) objs.Fail("a scene needs at least one object");
   std::vector<bool> mat_used(s.materials.size(), false);
@@ -323,7 +327,20 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
       o.Fail("the " + shape.source + "'s radius times the transform's scale is " + FormatNumber(shape.radius) +
              ", outside single precision (radius x scale must lie in [1.2e-38, 3.4e38])");
     }
+    if (o.Has("motion")) {
+      const ObjectMotion motion = ParseObjectMotion(o.Child("motion"), s.animation.frames);
+      float smin = 1.0f;
+      for (const MotionKey& k : motion.keys) smin = std::min(smin, k.scale);
+      if (shape.kind != ShapeKind::kTriangles && !(shape.radius * smin >= FLT_MIN)) {
+        o.Child("motion").Fail("the " + shape.source + "'s radius times the smallest motion scale underflows single precision");
+      }
+      shape.motion = static_cast<int>(s.animation.objects.size());
+      s.animation.objects.push_back(motion);
+    }
     s.shapes.push_back(std::move(shape));
+  }
+  if (root.Has("animation") && s.animation.camera.empty() && s.animation.objects.empty()) {
+    root.Child("animation").Fail("an animation that moves nothing: give camera keys or an object 'motion'");
   }
 
   // Effects: content needs its effects declared, and every declared effect must be used —

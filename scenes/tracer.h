@@ -40,6 +40,7 @@ struct SampleResult {
   int32_t surface = -1;      ///< index of the shape seen (-1: background)
   uint32_t shadowed = 0;     ///< bit i: shadow-casting light i is blocked at this sample
   float t = std::numeric_limits<float>::infinity();  ///< ray distance to the surface seen (+inf: background)
+  float position[3] = {0, 0, 0};  ///< world-space hit point (origin + t·dir; 0 for background)
 };
 
 /// Camera sample position on a width × height image plane, in continuous pixel coordinates

@@ -168,6 +168,12 @@ void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* h
     r.surface = hits[i].shape;
     r.shadowed = blocked[i];
     r.t = hits[i].t;
+    if (hits[i].shape >= 0) {  // the hit point, for exact motion vectors (scenes/motion_render.h)
+      const glm::vec3 p = org[i] + dir[i] * hits[i].t;
+      r.position[0] = p.x;
+      r.position[1] = p.y;
+      r.position[2] = p.z;
+    }
     glm::vec3 c = sc.background;
     if (hits[i].shape >= 0) {
       ++local.shading_evals;

@@ -144,6 +144,9 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   run->add_option("--seed", rs->seed, "jitter seed")->capture_default_str();
   run->add_option("--threads", rs->threads, "worker threads (0 = all hardware threads)")->capture_default_str();
   run->add_option("--repeat", rs->repeat, "timed repeats after one warm-up")->capture_default_str();
+  run->add_option("--frames", rs->frames,
+                  "frames per scene (1..100000; 1 = a still frame; moving scenes allow up to their animation.frames)")
+      ->capture_default_str();
   run->add_option("--out", rs->out_dir, "output folder")->capture_default_str();
   run->add_flag("--debug-views", rs->debug_views, "also save each post filter's debug views");
   run->add_flag("--quiet", rs->quiet, "no progress on stderr");

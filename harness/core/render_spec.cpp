@@ -29,7 +29,7 @@ const std::vector<SampleOffset16>& StandardSamplePositions(int n) {
 }
 
 bool RenderSpec::IsPlain1x() const {
-  return pattern == SamplePattern::kCenter && scale == 1.0 && !msaa.On() && !aaa.enabled;
+  return pattern == SamplePattern::kCenter && scale == 1.0 && !msaa.On() && !aaa.enabled && jitter.samples == 0;
 }
 
 int RenderSpec::SamplesPerPixel() const {
@@ -63,6 +63,23 @@ std::vector<std::pair<float, float>> RenderSpec::FixedOffsets() const {
     case SamplePattern::kStratified: break;
   }
   throw InternalError("FixedOffsets called on a jittered pattern");
+}
+
+double RadicalInverse(int base, int index) {
+  AALAB_CHECK(base >= 2 && index >= 0, "radical inverse needs base >= 2 and index >= 0");
+  double inv = 1.0 / base, f = inv, r = 0.0;
+  for (int i = index; i > 0; i /= base) {
+    r += f * (i % base);
+    f *= inv;
+  }
+  return r;
+}
+
+FrameJitter FrameJitterAt(const JitterSpec& spec, int frame) {
+  if (spec.samples <= 0) return {};
+  AALAB_CHECK(frame >= 0, "frame index must be >= 0");
+  const int index = frame % spec.samples + 1;
+  return {static_cast<float>(RadicalInverse(2, index) - 0.5), static_cast<float>(RadicalInverse(3, index) - 0.5)};
 }
 
 }  // namespace aalab

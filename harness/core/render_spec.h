@@ -14,6 +14,25 @@ enum class SamplePattern {
   kStratified,   ///< n × n strata, one jittered sample in each (the reference's pattern)
 };
 
+/// Per-frame sub-pixel jitter of a one-sample-per-pixel render (TAA). Off when `samples` is
+/// 0. The method states the sequence; the offset of a given frame is per-frame data the
+/// runner computes (FrameJitterAt) and passes to the renderer.
+struct JitterSpec {
+  int samples = 0;  ///< Halton(2,3) points cycled through (0: no jitter)
+};
+
+/// The sub-pixel offset of one frame's sample from the pixel centre, in pixels, in [−0.5, 0.5).
+struct FrameJitter {
+  float x = 0.0f, y = 0.0f;
+};
+
+/// Halton(2,3) jitter of frame `frame` (≥ 0): the points of indices 1..samples cycled
+/// ((frame mod samples) + 1; index 0 is the degenerate (0, 0)), minus 0.5 — the convention of
+/// Playdead's FrustumJitter and Unity URP. Zero offset when spec.samples == 0.
+FrameJitter FrameJitterAt(const JitterSpec& spec, int frame);
+
+/// The radical inverse of `index` in `base` (the Halton sequence's coordinate), exact in double.
+double RadicalInverse(int base, int index);
 /// Where MSAA evaluates the one shading of a primitive in a pixel.
 enum class MsaaShading {
   kCenter,    ///< the pixel centre on the primitive (attributes extrapolated past its edge)
@@ -80,10 +99,12 @@ struct RenderSpec {
   double scale = 1.0;  ///< render size = round(scale · W) × round(scale · H)
   MsaaSpec msaa;       ///< MSAA (off by default); when on it replaces `pattern`
   AnalyticSpec aaa;    ///< analytical AA (off unless aaa.enabled); uses the kCenter pattern
+  JitterSpec jitter;   ///< TAA: per-frame jitter of the kCenter sample (off by default)
 
   /// Samples per pixel this pattern takes (MSAA: coverage samples).
   int SamplesPerPixel() const;
-  /// True when this is the plain 1x frame (one centre sample, scale 1, no render-time AA):
+  /// True when this is the plain 1x frame (one centre sample, scale 1, no render-time AA: no
+  /// MSAA, no TAA jitter):
   /// the frame `none` renders, which post filters share.
   bool IsPlain1x() const;
   /// Sample offsets inside the pixel, in [0, 1)², for patterns that do not jitter.

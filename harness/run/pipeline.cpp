@@ -15,6 +15,7 @@
 #include "scenes/analytic.h"
 #include "scenes/exact_reference.h"
 #include "scenes/library.h"
+#include "scenes/motion_render.h"
 
 namespace aalab {
 
@@ -144,7 +145,8 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
   return p;
 }
 
-MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t seed, int repeat) {
+MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t seed, int repeat,
+                       std::unique_ptr<TemporalState>* state) {
   if (!p.tracer && !RunsOnImageScenes(plan)) return MethodOutput{NotApplicableRow(p, plan), {}, {}, {}, {}};
   const int W = p.info.width, H = p.info.height;
   const double px = static_cast<double>(W) * H;
@@ -155,10 +157,34 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   row.spec = plan.spec;
   row.params = plan.params.Ordered();
   row.samples_per_pixel = plan.render.SamplesPerPixel();
-  const bool shared = plan.render.IsPlain1x();
+  const bool jittered = plan.render.jitter.samples > 0;
+  const bool shared = plan.render.IsPlain1x();  // false for jittered renders
   Image8 frame;
   TraceCounters counters;
-  if (shared) {
+  std::vector<float> previous;  // motion vectors of a jittered render (frame >= 1)
+  if (jittered) {
+    AALAB_CHECK(plan.render.pattern == SamplePattern::kCenter && plan.render.scale == 1.0,
+                "jitter applies to a 1x one-sample render");
+    const FrameJitter jitter = FrameJitterAt(plan.render.jitter, p.frame);
+    row.render_width = W;
+    row.render_height = H;
+    // The render stage includes the motion vectors (a rasterizer writes its velocity buffer
+    // while it renders).
+    row.render = TimeRepeats(repeat, [&] {
+      TraceCounters c;
+      SurfaceFrame sf = RenderSurfaceFrame(*p.tracer, W, H, jitter, &c);
+      if (p.frame > 0 && p.sequence_scene) {
+        const std::vector<glm::vec2> prev = PreviousPositions(*p.sequence_scene, p.frame, sf, jitter);
+        previous.resize(2 * prev.size());
+        for (size_t i = 0; i < prev.size(); ++i) {
+          previous[2 * i] = prev[i].x;
+          previous[2 * i + 1] = prev[i].y;
+        }
+      }
+      frame = std::move(sf.image);
+      counters = c;
+    });
+  } else if (shared) {
     frame = p.frame1x;
     counters = p.counters1x;
     row.render = p.render1x;
@@ -187,7 +213,31 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
     });
   }
   PostStats post_stats;
-  if (plan.post) {
+  if (plan.make_state) {
+    // The temporal step runs on copies of the state (warm-up and repeats must not advance
+    // the sequence more than once); the last copy becomes the state of the next frame.
+    std::unique_ptr<TemporalState> local;
+    std::unique_ptr<TemporalState>& st = state ? *state : local;
+    if (!st) st = plan.make_state();
+    TemporalInput tin;
+    tin.frame = &frame;
+    tin.previous = previous.empty() ? nullptr : &previous;
+    tin.frame_index = p.frame;
+    Image8 filtered;
+    std::unique_ptr<TemporalState> advanced;
+    for (int r = 0; r <= repeat; ++r) {  // r = 0: the untimed warm-up, as TimeRepeats
+      advanced = st->Clone();  // the copy is not part of the method's cost
+      PostStats ps;
+      Stopwatch w;
+      filtered = advanced->Step(tin, &ps);
+      if (r > 0) row.post.samples_ms.push_back(w.ElapsedMs());
+      post_stats = ps;
+    }
+    row.post.Summarize();
+    st = std::move(advanced);
+    out.input = std::move(frame);
+    frame = std::move(filtered);
+  } else if (plan.post) {
     Image8 filtered;
     row.post = TimeRepeats(repeat, [&] {
       PostStats st;

@@ -31,6 +31,10 @@ struct PreparedScene {
   std::shared_ptr<const flip::ReferenceSide> flip_reference;
   /// Isolated flat disks for the area-bias metrics (empty for scenes that are not flat).
   std::vector<CoverageProbe> coverage_probes;
+  /// The sequence this frame belongs to: the scene with its animation (for motion vectors)
+  /// and the frame's index. A still run: the scene itself, frame 0.
+  std::shared_ptr<const Scene> sequence_scene;
+  int frame = 0;
 };
 
 /// Loads and validates scenes by name or path; duplicates are an error.
@@ -64,7 +68,12 @@ inline constexpr float kErrorHeatmapMax = 0.25f;
 
 /// Renders (or reuses the 1x frame), post-filters and rescales as the plan says, timing each
 /// stage (one warm-up + `repeat` runs), and scores the output against the reference.
-MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat);
+/// A method with memory (plan.make_state) carries `*state` from frame to frame: RunMethod
+/// creates it when empty and advances it by one frame; state == nullptr runs a fresh
+/// sequence of one frame. Jittered renders (plan.render.jitter) use the prepared frame's
+/// index for the jitter and, from frame 1 on, pass exact motion vectors to the state.
+MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat,
+                       std::unique_ptr<TemporalState>* state = nullptr);
 
 /// Runs `body` once untimed, then `repeat` times timed (wall clock).
 Timing TimeRepeats(int repeat, const std::function<void()>& body);

@@ -18,7 +18,9 @@
 #include "reports/report_json.h"
 #include "harness/run/image_scene.h"
 #include "harness/run/pipeline.h"
+#include "harness/run/sequence.h"
 #include "scenes/library.h"
+#include "scenes/motion.h"
 #include "scenes/render.h"
 #include "scenes/tracer.h"
 
@@ -92,9 +94,20 @@ Report RunSuite(const RunSettings& s) {
   if (s.repeat < 1 || s.repeat > 1000) throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
   const int grid = ReferenceGridForSpp(s.ref_spp);
   const std::vector<std::string> scene_names = s.scenes.empty() ? SuiteScenes(s.suite) : s.scenes;
+  if (s.frames < 1 || s.frames > kMaxFrames) {
+    throw UserError("--frames " + std::to_string(s.frames) + " is out of range (1.." + std::to_string(kMaxFrames) + ")");
+  }
   std::vector<SceneSource> scenes = LoadSceneSources(scene_names);
   const bool exact = CheckReferenceKind(s.reference, scenes);
-  const std::vector<std::string> method_specs = s.methods.empty() ? DefaultMethods() : s.methods;
+  for (const auto& src : scenes) {
+    if (src.scene) CheckSequenceLength(*src.scene, s.frames);
+  }
+  std::vector<std::string> method_specs = s.methods.empty() ? DefaultMethods() : s.methods;
+  if (s.methods.empty() && s.frames == 1) {
+    // Methods with memory need a sequence: a still run's default list leaves them out (a
+    // still run is unchanged by their existence); name them with --methods to see frame 0.
+    std::erase_if(method_specs, [](const std::string& m) { return static_cast<bool>(MakeMethod(m).make_state); });
+  }
   const std::vector<MethodPlan> plans = ResolveMethods(method_specs);
   if (s.out_dir.empty()) throw UserError("--out must not be empty");
   const fs::path out(s.out_dir);
@@ -129,50 +142,106 @@ Report RunSuite(const RunSettings& s) {
                      {"repeat", std::to_string(s.repeat)},
                      {"warmup", "1"},
                      {"debug_views", s.debug_views ? "true" : "false"}};
+  if (s.frames > 1) report.settings.emplace_back("frames", std::to_string(s.frames));
 
   const int W = s.width, H = s.height;
-  Progress progress(static_cast<int>(scenes.size() * (plans.size() + 1)), s.quiet);
+  const int F = s.frames;
+  Progress progress(static_cast<int>(scenes.size() * (plans.size() + 1)) * F, s.quiet);
   for (auto& source : scenes) {
     const std::string name = source.Name();
     const std::string rel_dir = "images/" + name;
     fs::create_directories(tmp / rel_dir);
-    const auto prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat, exact);
-    SceneResult sr = prepared->info;
-    const Reference& ref = prepared->ref;
-    WriteImageF((tmp / rel_dir / "reference.exr").string(), DecodeToLinear(ref.image));
-    WriteImage8((tmp / rel_dir / "reference.png").string(), ToUnorm8(ref.image));
-    WriteImage8((tmp / rel_dir / "edge_mask.png").string(), ToUnorm8(ref.edge_mask));
-    sr.images = {{"reference_exr", rel_dir + "/reference.exr"},
-                 {"reference_png", rel_dir + "/reference.png"},
-                 {"edge_mask", rel_dir + "/edge_mask.png"}};
-    progress.Step(name + " reference");
-
-    for (const MethodPlan& plan : plans) {
-      MethodOutput mo = RunMethod(*prepared, plan, s.seed, s.repeat);
-      ResultRow& row = mo.row;
-      if (!row.not_applicable.empty()) {  // a renderer-side method on an image scene: no images
-        report.rows.push_back(std::move(row));
-        progress.Step(name + " " + plan.spec + " (not applicable)");
-        continue;
-      }
-      if (s.debug_views && plan.post) {
-        for (const auto& view : plan.debug_views) {
-          PostOptions opt;
-          opt.debug_view = view;
-          const std::string rel = rel_dir + "/" + FileSafe(plan.spec) + ".debug-" + view + ".png";
-          WriteImage8((tmp / rel).string(), plan.post(mo.input, opt, nullptr));
-          row.images["debug_" + view] = rel;
+    // A sequence per (scene, method): methods with memory keep their state from frame to
+    // frame; a still run is a sequence of one frame. Image-scene views are still scenes.
+    const std::shared_ptr<const Scene> sequence(std::move(source.scene));
+    const bool moves = sequence && sequence->animation.Moves();
+    std::vector<std::unique_ptr<TemporalState>> states(plans.size());
+    std::vector<SequenceTrack> tracks(plans.size());
+    std::unique_ptr<PreparedScene> prepared;
+    SceneResult sr;
+    std::vector<std::string> reference_frames;
+    double scene_ms = 0, reference_ms = 0;
+    for (int k = 0; k < F; ++k) {
+      const bool last = k == F - 1;
+      const std::string tag = F > 1 ? ".f" + std::to_string(k) : "";
+      // A moving scene is built, traced and referenced anew at every frame; a still one once.
+      if (!prepared || moves) {
+        Stopwatch build;
+        if (moves) {
+          auto frame_scene = std::make_unique<Scene>(SceneAtFrame(*sequence, k));
+          const double scene_build_ms = build.ElapsedMs();
+          prepared = PrepareScene(std::move(frame_scene), W, H, grid, s.seed, s.repeat, exact);
+          scene_ms += scene_build_ms;
+        } else {
+          if (sequence) source.scene = std::make_unique<Scene>(*sequence);
+          prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat, exact);
         }
+        prepared->sequence_scene = sequence;
+        scene_ms += prepared->info.bvh_build_ms;
+        reference_ms += prepared->info.reference_ms;
       }
-      const std::string base = rel_dir + "/" + FileSafe(plan.spec);
-      WriteImage8((tmp / (base + ".png")).string(), mo.output);
-      WriteImage8((tmp / (base + ".error.png")).string(), mo.error_heatmap);
-      WriteImage8((tmp / (base + ".flip.png")).string(), mo.flip_heatmap);
-      row.images["output"] = base + ".png";
-      row.images["error_heatmap"] = base + ".error.png";
-      row.images["flip_heatmap"] = base + ".flip.png";
-      report.rows.push_back(std::move(row));
-      progress.Step(name + " " + plan.spec);
+      prepared->frame = k;
+      const Reference& ref = prepared->ref;
+      if (F > 1) {
+        const std::string rel = rel_dir + "/reference" + tag + ".png";
+        WriteImage8((tmp / rel).string(), ToUnorm8(ref.image));
+        reference_frames.push_back(rel);
+      }
+      if (last) {
+        sr = prepared->info;
+        WriteImageF((tmp / rel_dir / "reference.exr").string(), DecodeToLinear(ref.image));
+        WriteImage8((tmp / rel_dir / "reference.png").string(), ToUnorm8(ref.image));
+        WriteImage8((tmp / rel_dir / "edge_mask.png").string(), ToUnorm8(ref.edge_mask));
+        sr.images = {{"reference_exr", rel_dir + "/reference.exr"},
+                     {"reference_png", rel_dir + "/reference.png"},
+                     {"edge_mask", rel_dir + "/edge_mask.png"}};
+      }
+      progress.Step(name + tag + " reference");
+
+      for (size_t m = 0; m < plans.size(); ++m) {
+        const MethodPlan& plan = plans[m];
+        MethodOutput mo = RunMethod(*prepared, plan, s.seed, s.repeat, &states[m]);
+        ResultRow& row = mo.row;
+        if (!row.not_applicable.empty()) {  // a renderer-side method on an image scene: no images
+          if (last) report.rows.push_back(std::move(row));
+          progress.Step(name + tag + " " + plan.spec + " (not applicable)");
+          continue;
+        }
+        const std::string base = rel_dir + "/" + FileSafe(plan.spec);
+        if (F > 1) {
+          const std::string rel = base + tag + ".png";
+          WriteImage8((tmp / rel).string(), mo.output);
+          tracks[m].AddFrame(mo, *prepared, rel);
+        }
+        progress.Step(name + tag + " " + plan.spec);
+        if (!last) continue;
+        if (s.debug_views && plan.post) {
+          for (const auto& view : plan.debug_views) {
+            PostOptions opt;
+            opt.debug_view = view;
+            const std::string rel = rel_dir + "/" + FileSafe(plan.spec) + ".debug-" + view + ".png";
+            WriteImage8((tmp / rel).string(), plan.post(mo.input, opt, nullptr));
+            row.images["debug_" + view] = rel;
+          }
+        }
+        WriteImage8((tmp / (base + ".png")).string(), mo.output);
+        WriteImage8((tmp / (base + ".error.png")).string(), mo.error_heatmap);
+        WriteImage8((tmp / (base + ".flip.png")).string(), mo.flip_heatmap);
+        row.images["output"] = base + ".png";
+        row.images["error_heatmap"] = base + ".error.png";
+        row.images["flip_heatmap"] = base + ".flip.png";
+        if (F > 1) tracks[m].Finish(&row);
+        report.rows.push_back(std::move(row));
+      }
+    }
+    // The per-sequence states end with their sequence.
+    states.clear();
+    if (F > 1) {
+      sr.frames = F;
+      sr.moves = moves;
+      sr.frame_images = reference_frames;
+      sr.sequence_scene_ms = scene_ms;
+      sr.sequence_reference_ms = reference_ms;
     }
     report.scenes.push_back(std::move(sr));
   }

@@ -23,6 +23,7 @@ struct RunSettings {
   std::string out_dir = "out";
   bool debug_views = false;
   bool quiet = false;  ///< no progress on stderr
+  int frames = 1;      ///< sequence length (1..kMaxFrames; 1 = a still run, as before)
 };
 
 /// The methods `aalab run` uses when --methods is not given.

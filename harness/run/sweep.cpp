@@ -233,6 +233,12 @@ SweepResult RunSweep(const SweepSettings& s) {
   if (s.method.empty()) throw UserError("give the method to tune with --method NAME (see aalab list methods)");
   SweepResult res;
   res.method = MakeMethod(s.method).name;
+  if (MakeMethod(s.method).make_state) {
+    // A sweep scores one still frame per point; a method with memory only shows its quality
+    // over a sequence.
+    throw UserError("method '" + res.method + "' accumulates over frames, and sweep scores single frames: compare its " +
+                    "variants with aalab run --frames N --methods " + res.method + ":...,...");
+  }
   res.axes = ParseGrid(s.grid, s.method);
   const std::vector<std::string> specs = ExpandGrid(s.method, &res.axes);
   const std::vector<MethodPlan> plans = ResolveMethods(specs);

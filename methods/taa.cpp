@@ -1,0 +1,309 @@
+// Temporal anti-aliasing (TAA): one jittered sample per pixel and frame, accumulated over
+// frames in a history that is reprojected with exact motion vectors, rectified against the
+// current frame's neighbourhood and blended exponentially.
+//
+// Implements `taa`, per frame t (pixel centre c, this frame's linear colour C(c)):
+//   1. render: one sample at c + j_t, j_t = Halton(2,3) of index (t mod samples) + 1, minus
+//      0.5 (Playdead INSIDE FrustumJitter "Halton_2_3_X16"; Unity URP; index 0 is skipped:
+//      it is the degenerate (0, 0) point) — the render request's JitterSpec, the offset is
+//      per-frame data (harness/core/render_spec.h);
+//   2. reproject: the history (linear display RGB, float — never 8-bit) is fetched bilinearly
+//      (texel centres at +0.5, clamp to edge) at the previous position of c, which the runner
+//      computes exactly from the known motion (scenes/motion_render.h); no previous position
+//      (off-screen, first frame, point behind the camera) → no history, output = C(c);
+//   3. rectify in YCoCg (Karis 2014): over the 3×3 neighbourhood of C (clamped at the
+//      border), `clip=variance`: the box μ ± γσ (Salvi 2016) intersected with the min/max
+//      box; `clip=minmax`: the min/max box (Karis 2014 "clamp" neighbourhood); `clip=none`:
+//      no rectification (the plain accumulation the convergence bound in
+//      tests/methods/taa_test.cpp is derived for). The history is clipped toward the box
+//      centre along the line to it (Playdead's clip_aabb "optimized" form; Bevy), extents
+//      + 1e-8 so a flat neighbourhood does not divide by zero (Playdead's FLT_EPS);
+//   4. blend: out = H' + α·(C − H') (exponential moving average), written to the history
+//      and, sRGB-encoded and quantised, to the 8-bit output.
+//
+// Parameters:
+//   samples  [1..256]  default 16   Halton(2,3) points cycled (Playdead X16, Filament
+//                                   HALTON_23_X16; UE4 r.TemporalAASamples = 8)
+//   alpha    [0.01..1] default 0.1  weight of the current frame (Unity URP frameInfluence
+//                                   0.1, Bevy 0.1, Salvi 2016 "typically 10%"; UE4 0.04,
+//                                   Filament 0.12). 1 = no accumulation.
+//   clip     {variance|minmax|none} default variance
+//   gamma    [0.25..4] default 1    variance box half-width in σ (Salvi 2016; Filament and
+//                                   Bevy 1.0; URP 0.9, HDRP/MSAAFilter 1.5)
+//
+// Simplifications, stated: the current colour is the jittered sample itself (no Gaussian
+// "unjitter" reconstruction as in UE4; the EMA of uniformly jittered samples converges to the
+// pixel's box average, which is the reference's filter); no velocity dilation (motion is
+// exact per pixel; background pixels keep zero motion since the background is uniform); no
+// Karis inverse-luma weights (colours are display-referred in [0, 1] already); bilinear
+// history (Playdead's default), not Catmull-Rom; no sharpening; no motion-dependent alpha.
+// Sources: B. Karis, "High Quality Temporal Supersampling", SIGGRAPH 2014 Advances;
+// M. Salvi, "An Excursion in Temporal Supersampling", GDC 2016; L. J. F. Pedersen, "Temporal
+// Reprojection Anti-Aliasing in INSIDE", GDC 2016 (playdeadgames/temporal);
+// ../shared/notes/temporal-and-taa.md collects the defaults above with their sources.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+
+#include "harness/core/color.h"
+#include "harness/core/error.h"
+#include "harness/core/parallel.h"
+#include "methods/families.h"
+#include "methods/taa.h"
+
+namespace aalab {
+
+namespace {
+
+enum class Clip { kVariance, kMinMax, kNone };
+
+struct TaaParams {
+  float alpha = 0.1f;
+  float gamma = 1.0f;
+  Clip clip = Clip::kVariance;
+};
+
+struct Ycc {
+  float y, co, cg;
+};
+
+inline Ycc ToYCoCg(const float* rgb) {
+  return {0.25f * rgb[0] + 0.5f * rgb[1] + 0.25f * rgb[2], 0.5f * rgb[0] - 0.5f * rgb[2],
+          -0.25f * rgb[0] + 0.5f * rgb[1] - 0.25f * rgb[2]};
+}
+
+inline void FromYCoCg(Ycc v, float* rgb) {
+  const float t = v.y - v.cg;
+  rgb[0] = t + v.co;
+  rgb[1] = v.y + v.cg;
+  rgb[2] = t - v.co;
+}
+
+/// Moves `h` toward the centre of [lo, hi] until it lies inside the box (component-wise
+/// box in YCoCg), along the line to the centre.
+inline Ycc ClipToBox(Ycc h, const float* lo, const float* hi) {
+  const float hv[3] = {h.y, h.co, h.cg};
+  float centre[3], v[3], m = 0.0f;
+  for (int c = 0; c < 3; ++c) {
+    centre[c] = 0.5f * (hi[c] + lo[c]);
+    const float ext = 0.5f * (hi[c] - lo[c]) + 1e-8f;
+    v[c] = hv[c] - centre[c];
+    m = std::max(m, std::fabs(v[c] / ext));
+  }
+  if (m <= 1.0f) return h;
+  return {centre[0] + v[0] / m, centre[1] + v[1] / m, centre[2] + v[2] / m};
+}
+
+/// QuantizeUnorm8(SrgbEncode(v)) for v in [0, 1], bit for bit, without a pow per channel:
+/// the function is non-decreasing in v, so code k starts at the smallest float where it is
+/// reached; those 255 thresholds are found by bisection over the float bit patterns of
+/// [0, 1] (ordered like the values) and a lookup is a binary search (8 comparisons).
+/// tests/motion/taa_test.cpp checks it against the direct formula on a dense grid.
+class Encode8 {
+ public:
+  Encode8() {
+    for (int k = 1; k < 256; ++k) {
+      uint32_t lo = 0, hi = 0x3f800000u;  // bit patterns of 0.0f and 1.0f
+      while (lo < hi) {
+        const uint32_t mid = lo + (hi - lo) / 2;
+        if (Direct(FromBits(mid)) >= k) {
+          hi = mid;
+        } else {
+          lo = mid + 1;
+        }
+      }
+      start_[static_cast<size_t>(k - 1)] = FromBits(lo);
+    }
+    // A first guess per 1/kBuckets of [0, 1]: the code at the bucket's lower end (a lower
+    // bound for every value in it, the function being non-decreasing).
+    for (int b = 0; b < kBuckets; ++b) {
+      const float v = static_cast<float>(b) / kBuckets;
+      guess_[static_cast<size_t>(b)] = static_cast<uint8_t>(std::upper_bound(start_.begin(), start_.end(), v) - start_.begin());
+    }
+  }
+  /// v in [0, 1] (NaN excluded). The guess is at most a code or two low (sRGB's steepest
+  /// slope, 12.92·255 codes per unit, spans < 1 code per bucket); step up to the exact code.
+  uint8_t operator()(float v) const {
+    int b = static_cast<int>(v * kBuckets);
+    b = std::clamp(b, 0, kBuckets - 1);
+    while (b > 0 && static_cast<float>(b) / kBuckets > v) --b;  // float rounding of v·kBuckets
+    int code = guess_[static_cast<size_t>(b)];
+    while (code < 255 && v >= start_[static_cast<size_t>(code)]) ++code;
+    return static_cast<uint8_t>(code);
+  }
+  static int Direct(float v) { return QuantizeUnorm8(SrgbEncode(v)); }
+
+ private:
+  static float FromBits(uint32_t b) {
+    float f;
+    std::memcpy(&f, &b, sizeof f);
+    return f;
+  }
+  static constexpr int kBuckets = 4096;
+  std::array<float, 255> start_{};  ///< start_[k − 1]: smallest float whose code is ≥ k
+  std::array<uint8_t, kBuckets> guess_{};
+};
+
+const Encode8& Encoder() {
+  static const Encode8 e;
+  return e;
+}
+
+}  // namespace
+
+uint8_t EncodeSrgb8(float v) { return Encoder()(v); }
+
+namespace {
+
+class TaaState : public TemporalState {
+ public:
+  explicit TaaState(TaaParams p) : p_(p) {
+    for (int i = 0; i < 256; ++i) decode_[static_cast<size_t>(i)] = SrgbDecode8(static_cast<uint8_t>(i));
+  }
+
+  std::unique_ptr<TemporalState> Clone() const override { return std::make_unique<TaaState>(*this); }
+
+  Image8 Step(const TemporalInput& in, PostStats* stats) override {
+    AALAB_CHECK(in.frame != nullptr, "TAA needs a frame");
+    const Image8& f = *in.frame;
+    const int W = f.Width(), H = f.Height();
+    const size_t n = static_cast<size_t>(W) * static_cast<size_t>(H);
+    // Current frame: linear RGB and YCoCg (buffers reused from frame to frame).
+    cur_.resize(3 * n);
+    ycc_.resize(n);
+    ParallelFor(H, [&](int y) {
+      for (int x = 0; x < W; ++x) {
+        const size_t i = static_cast<size_t>(y) * W + x;
+        const uint8_t* px = f.Pixel(x, y);
+        for (int c = 0; c < 3; ++c) cur_[3 * i + c] = decode_[px[c]];
+        ycc_[i] = ToYCoCg(&cur_[3 * i]);
+      }
+    });
+    const bool have_history = !history_.empty() && hist_w_ == W && hist_h_ == H && in.previous &&
+                              in.previous->size() == 2 * n;
+    next_.resize(3 * n);
+    Image8 result(W, H, 4, 255);
+    const Encode8& encode = Encoder();
+    ParallelFor(H, [&](int y) {
+      uint8_t* row = result.Pixel(0, y);
+      for (int x = 0; x < W; ++x) {
+        const size_t i = static_cast<size_t>(y) * W + x;
+        float* out = &next_[3 * i];
+        const float* c = &cur_[3 * i];
+        const float px = have_history ? (*in.previous)[2 * i] : 0.0f;
+        const float py = have_history ? (*in.previous)[2 * i + 1] : 0.0f;
+        if (!have_history || !(px >= 0.0f && px <= static_cast<float>(W) && py >= 0.0f && py <= static_cast<float>(H))) {
+          std::copy(c, c + 3, out);
+        } else {
+          float h[3];
+          FetchHistory(px, py, h);
+          Ycc hy = ToYCoCg(h);
+          if (p_.clip != Clip::kNone) hy = Rectify(hy, x, y, W, H, ycc_);
+          const Ycc cy = ycc_[i];
+          const Ycc o{hy.y + p_.alpha * (cy.y - hy.y), hy.co + p_.alpha * (cy.co - hy.co),
+                      hy.cg + p_.alpha * (cy.cg - hy.cg)};
+          FromYCoCg(o, out);
+          for (int k = 0; k < 3; ++k) out[k] = std::clamp(out[k], 0.0f, 1.0f);
+        }
+        for (int k = 0; k < 3; ++k) row[4 * x + k] = encode(out[k]);
+      }
+    });
+    history_.swap(next_);
+    hist_w_ = W;
+    hist_h_ = H;
+    if (stats) stats->taps += static_cast<uint64_t>(n) * (have_history ? 13u : 1u);  // 9 neighbours + 4 history texels
+    return result;
+  }
+
+ private:
+  /// Bilinear fetch of the history at continuous pixel position (px, py), clamp to edge.
+  void FetchHistory(float px, float py, float* out) const {
+    const float fx = px - 0.5f, fy = py - 0.5f;
+    const float x0f = std::floor(fx), y0f = std::floor(fy);
+    const float tx = fx - x0f, ty = fy - y0f;
+    const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
+    // Clamp to edge once per fetch (the four texels), then the same lerps per channel.
+    const int xa = std::clamp(x0, 0, hist_w_ - 1), xb = std::clamp(x0 + 1, 0, hist_w_ - 1);
+    const int ya = std::clamp(y0, 0, hist_h_ - 1), yb = std::clamp(y0 + 1, 0, hist_h_ - 1);
+    const float* r0 = &history_[3 * static_cast<size_t>(ya) * hist_w_];
+    const float* r1 = &history_[3 * static_cast<size_t>(yb) * hist_w_];
+    const float *a = r0 + 3 * xa, *b = r0 + 3 * xb, *c0 = r1 + 3 * xa, *d = r1 + 3 * xb;
+    for (int c = 0; c < 3; ++c) {
+      const float top = a[c] + tx * (b[c] - a[c]);
+      const float bot = c0[c] + tx * (d[c] - c0[c]);
+      out[c] = top + ty * (bot - top);
+    }
+  }
+
+  /// Clips the history into the box of the 3×3 neighbourhood of (x, y) in YCoCg.
+  Ycc Rectify(Ycc h, int x, int y, int W, int H, const std::vector<Ycc>& ycc) const {
+    float mn[3] = {1e30f, 1e30f, 1e30f}, mx[3] = {-1e30f, -1e30f, -1e30f};
+    float m1[3] = {0, 0, 0}, m2[3] = {0, 0, 0};
+    const int xs[3] = {std::max(x - 1, 0), x, std::min(x + 1, W - 1)};  // clamped once
+    for (int dy = -1; dy <= 1; ++dy) {
+      const Ycc* row = &ycc[static_cast<size_t>(std::clamp(y + dy, 0, H - 1)) * W];
+      for (int dx = 0; dx < 3; ++dx) {
+        const Ycc v = row[xs[dx]];
+        const float a[3] = {v.y, v.co, v.cg};
+        for (int c = 0; c < 3; ++c) {
+          mn[c] = std::min(mn[c], a[c]);
+          mx[c] = std::max(mx[c], a[c]);
+          m1[c] += a[c];
+          m2[c] += a[c] * a[c];
+        }
+      }
+    }
+    if (p_.clip == Clip::kVariance) {
+      for (int c = 0; c < 3; ++c) {
+        const float mu = m1[c] / 9.0f;
+        const float sigma = std::sqrt(std::fabs(m2[c] / 9.0f - mu * mu));
+        mn[c] = std::max(mn[c], mu - p_.gamma * sigma);
+        mx[c] = std::min(mx[c], mu + p_.gamma * sigma);
+      }
+    }
+    return ClipToBox(h, mn, mx);
+  }
+
+  TaaParams p_;
+  std::array<float, 256> decode_{};
+  std::vector<float> history_;  ///< linear display RGB, 3 floats per pixel
+  int hist_w_ = 0, hist_h_ = 0;
+  // Per-frame working buffers (not state: reused only to avoid reallocating every frame).
+  std::vector<float> cur_, next_;
+  std::vector<Ycc> ycc_;
+};
+
+Clip ParseClip(const std::string& name) {
+  if (name == "variance") return Clip::kVariance;
+  if (name == "minmax") return Clip::kMinMax;
+  if (name == "none") return Clip::kNone;
+  throw UserError("unknown clip '" + name + "' (allowed: variance, minmax, none)");
+}
+
+}  // namespace
+
+std::vector<MethodEntry> TaaMethods() {
+  std::vector<MethodEntry> out;
+  out.push_back(
+      {"taa",
+       "temporal AA: Halton(2,3) jitter, exact reprojection, YCoCg variance clip, exponential blend (needs --frames > 1 to accumulate)",
+       {IntParam("samples", 16, 1, 256, "Halton(2,3) jitter points cycled (indices 1..samples)"),
+        FloatParam("alpha", 0.1, 0.01, 1.0, "weight of the current frame in the exponential blend"),
+        ChoiceParam("clip", "variance", {"variance", "minmax", "none"},
+                    "history rectification against the 3x3 neighbourhood in YCoCg"),
+        FloatParam("gamma", 1.0, 0.25, 4.0, "variance box half-width in standard deviations (clip=variance)")},
+       [](const ParamValues& p) {
+         MethodPlan plan;
+         plan.render.jitter.samples = p.Int("samples");
+         TaaParams tp;
+         tp.alpha = static_cast<float>(p.Number("alpha"));
+         tp.gamma = static_cast<float>(p.Number("gamma"));
+         tp.clip = ParseClip(p.Choice("clip"));
+         plan.make_state = [tp] { return std::unique_ptr<TemporalState>(std::make_unique<TaaState>(tp)); };
+         return plan;
+       }});
+  return out;
+}
+
+}  // namespace aalab
