@@ -20,7 +20,9 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-run: build
+# `make run` builds only the aalab binary (not the test executables) before running it.
+run: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target aalab
 	@./$(BUILD)/aalab run --out $(OUT) $(RUN_ARGS)
 
 test: build

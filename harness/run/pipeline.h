@@ -2,11 +2,13 @@
 /// reference, the shared 1x frame) and any number of methods then run against it.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "harness/core/image.h"
+#include "harness/run/stage_clock.h"
 #include "methods/method.h"
 #include "metrics/flip.h"
 #include "reports/result.h"
@@ -28,6 +30,15 @@ struct PreparedScene {
   SceneResult info;           ///< what the report says about the scene (images filled by the caller)
   /// The reference's half of LDR-FLIP, computed once and shared by every method's score.
   std::shared_ptr<const flip::ReferenceSide> flip_reference;
+  /// Scores already computed on this scene, by output hash: a method whose output is
+  /// bit-identical to an earlier method's (e.g. SSAA on a texel-aligned texture) gets the same
+  /// metrics and FLIP map without computing them again. Filled by RunMethod (not thread-safe:
+  /// methods of one scene run one after another).
+  struct Scored {
+    std::vector<MetricResult> metrics;
+    std::vector<uint8_t> flip_grey;
+  };
+  mutable std::map<std::string, Scored> scored_by_hash;
 };
 
 /// Loads and validates scenes by name or path; duplicates are an error.
@@ -37,25 +48,29 @@ std::vector<std::unique_ptr<Scene>> LoadScenes(const std::vector<std::string>& n
 std::vector<MethodPlan> ResolveMethods(const std::vector<std::string>& specs);
 
 /// Builds the BVH, renders the reference (grid × grid spp) and the timed 1x frame, computes
-/// the noise floor and the crop windows.
+/// the noise floor and the crop windows. With a `clock`, charges the BVH and the reference to
+/// "references" and the 1x frame (warm-up and timed repeats) to "method_renders_filters".
 std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int width, int height, int grid,
-                                            uint64_t seed, int repeat);
+                                            uint64_t seed, int repeat, StageClock* clock = nullptr);
 
 /// What one method produced on a prepared scene.
 struct MethodOutput {
   ResultRow row;  ///< metrics, timing, cost and hash filled; `images` left to the caller
   Image8 input;   ///< the frame the post filter saw (for debug views); empty without a post filter
   Image8 output;  ///< the final frame at the output size
-  Image8 error_heatmap;  ///< |output − reference| (mean over RGB), viridis, 0 → kErrorHeatmapMax
-  Image8 flip_heatmap;   ///< LDR-FLIP map, magma, 0 → 1
+  /// The LDR-FLIP map quantised to 8 bits, round(255 · value), width × height bytes: the page
+  /// colours it (magma, 0 → 1). The absolute-error heatmap is drawn by the page from the
+  /// output and reference PNGs (|output − reference|, mean over RGB, full scale
+  /// kErrorHeatmapMax), so it is not stored.
+  std::vector<uint8_t> flip_grey;
 };
 
-/// Full scale of the absolute-error heatmap (sRGB-encoded units): errors ≥ 0.25 saturate.
-inline constexpr float kErrorHeatmapMax = 0.25f;
-
 /// Renders (or reuses the 1x frame), post-filters and rescales as the plan says, timing each
-/// stage (one warm-up + `repeat` runs), and scores the output against the reference.
-MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat);
+/// stage (one warm-up + `repeat` runs), and scores the output against the reference. With a
+/// `clock`, charges rendering and filtering to "method_renders_filters" and scoring to
+/// "metrics".
+MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat,
+                       StageClock* clock = nullptr);
 
 /// Runs `body` once untimed, then `repeat` times timed (wall clock).
 Timing TimeRepeats(int repeat, const std::function<void()>& body);

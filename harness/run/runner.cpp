@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 
 #include "harness/core/color.h"
@@ -17,6 +18,7 @@
 #include "reports/html_report.h"
 #include "reports/report_json.h"
 #include "harness/run/pipeline.h"
+#include "harness/run/stage_clock.h"
 #include "scenes/library.h"
 #include "scenes/render.h"
 #include "scenes/tracer.h"
@@ -86,6 +88,8 @@ ImageF DecodeToLinear(const ImageF& encoded) {
 }  // namespace
 
 Report RunSuite(const RunSettings& s) {
+  StageClock clock;
+  clock.Enter("load_scenes");
   SetThreadCount(s.threads);
   // Validate every input before any work.
   if (s.repeat < 1 || s.repeat > 1000) throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
@@ -134,44 +138,56 @@ Report RunSuite(const RunSettings& s) {
     const std::string name = scene_ptr->name;
     const std::string rel_dir = "images/" + name;
     fs::create_directories(tmp / rel_dir);
-    const auto prepared = PrepareScene(std::move(scene_ptr), W, H, grid, s.seed, s.repeat);
+    const auto prepared = PrepareScene(std::move(scene_ptr), W, H, grid, s.seed, s.repeat, &clock);
     SceneResult sr = prepared->info;
     const Reference& ref = prepared->ref;
-    WriteImageF((tmp / rel_dir / "reference.exr").string(), DecodeToLinear(ref.image));
-    WriteImage8((tmp / rel_dir / "reference.png").string(), ToUnorm8(ref.image));
-    WriteImage8((tmp / rel_dir / "edge_mask.png").string(), ToUnorm8(ref.edge_mask));
+    // Image files are independent: a scene's are queued and written in parallel at its end.
+    std::vector<std::function<void()>> writes;
+    writes.push_back([&tmp, &rel_dir, &ref] {
+      WriteImageF((tmp / rel_dir / "reference.exr").string(), DecodeToLinear(ref.image));
+    });
+    writes.push_back([&tmp, &rel_dir, &ref] { WriteImage8((tmp / rel_dir / "reference.png").string(), ToUnorm8(ref.image)); });
+    writes.push_back([&tmp, &rel_dir, &ref] { WriteImage8((tmp / rel_dir / "edge_mask.png").string(), ToUnorm8(ref.edge_mask)); });
     sr.images = {{"reference_exr", rel_dir + "/reference.exr"},
                  {"reference_png", rel_dir + "/reference.png"},
                  {"edge_mask", rel_dir + "/edge_mask.png"}};
     progress.Step(name + " reference");
 
+    std::map<std::string, std::string> file_of_hash;  // a bit-identical output is stored once
     for (const MethodPlan& plan : plans) {
-      MethodOutput mo = RunMethod(*prepared, plan, s.seed, s.repeat);
-      ResultRow& row = mo.row;
+      auto mo = std::make_shared<MethodOutput>(RunMethod(*prepared, plan, s.seed, s.repeat, &clock));
+      ResultRow& row = mo->row;
+      clock.Enter("image_writing");
       if (s.debug_views && plan.post) {
         for (const auto& view : plan.debug_views) {
           PostOptions opt;
           opt.debug_view = view;
           const std::string rel = rel_dir + "/" + FileSafe(plan.spec) + ".debug-" + view + ".png";
-          WriteImage8((tmp / rel).string(), plan.post(mo.input, opt, nullptr));
+          WriteImage8((tmp / rel).string(), plan.post(mo->input, opt, nullptr));
           row.images["debug_" + view] = rel;
         }
       }
-      const std::string base = rel_dir + "/" + FileSafe(plan.spec);
-      WriteImage8((tmp / (base + ".png")).string(), mo.output);
-      WriteImage8((tmp / (base + ".error.png")).string(), mo.error_heatmap);
-      WriteImage8((tmp / (base + ".flip.png")).string(), mo.flip_heatmap);
+      const auto [it, fresh] = file_of_hash.emplace(row.output_hash, rel_dir + "/" + FileSafe(plan.spec));
+      const std::string base = it->second;
+      if (fresh) {
+        writes.push_back([&tmp, base, mo] { WriteImage8((tmp / (base + ".png")).string(), mo->output); });
+        writes.push_back([&tmp, base, mo, W, H] { WriteGrey8((tmp / (base + ".flip.png")).string(), W, H, mo->flip_grey); });
+      }
       row.images["output"] = base + ".png";
-      row.images["error_heatmap"] = base + ".error.png";
-      row.images["flip_heatmap"] = base + ".flip.png";
-      report.rows.push_back(std::move(row));
+      row.images["flip_map"] = base + ".flip.png";
+      report.rows.push_back(row);
       progress.Step(name + " " + plan.spec);
     }
+    clock.Enter("image_writing");
+    ParallelFor(static_cast<int>(writes.size()), [&](int i) { writes[static_cast<size_t>(i)](); });
     report.scenes.push_back(std::move(sr));
   }
 
+  clock.Enter("html");
+  const std::string html = RenderHtmlReport(report);
+  WriteTextFile((tmp / "index.html").string(), html);
+  report.time_breakdown = clock.Finish();  // writing report.json itself is the only time not in it
   WriteTextFile((tmp / "report.json").string(), ReportToJson(report).dump(2) + "\n");
-  WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(report));
   fs::remove_all(out);
   fs::rename(tmp, out);
   cleanup.armed = false;
