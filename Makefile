@@ -33,7 +33,7 @@ bench: configure
 	@./$(BUILD)/bench/aalab_bench --json bench.json $(BENCH_ARGS)
 
 # AddressSanitizer + UndefinedBehaviorSanitizer: every test, then the hard suite through the
-# CLI (not part of `make test`; see README "Hard cases and robustness").
+# CLI (not part of `make test`; see docs/hard-cases.md).
 test-asan: deps
 	@bash scripts/test-asan.sh
 

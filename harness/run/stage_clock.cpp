@@ -13,7 +13,7 @@ double ProcessCpuMs() {
   return ms(u.ru_utime) + ms(u.ru_stime);
 }
 
-StageClock::StageClock() : start_cpu_ms_(ProcessCpuMs()) { last_cpu_ms_ = start_cpu_ms_; }
+StageClock::StageClock() : last_cpu_ms_(ProcessCpuMs()) {}
 
 void StageClock::Charge() {
   const double wall = wall_.ElapsedMs(), cpu = ProcessCpuMs();
@@ -42,7 +42,12 @@ std::vector<StageTime> StageClock::Finish() {
   Charge();
   current_.clear();
   std::vector<StageTime> out = stages_;
-  out.push_back({"total", last_wall_ms_, last_cpu_ms_ - start_cpu_ms_});
+  StageTime total{"total", 0, 0};
+  for (const auto& s : stages_) {
+    total.wall_ms += s.wall_ms;
+    total.cpu_ms += s.cpu_ms;
+  }
+  out.push_back(total);
   return out;
 }
 

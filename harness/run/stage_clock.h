@@ -18,7 +18,8 @@ class StageClock {
   /// Charges the time since the last Enter() (or construction) to the current stage, then
   /// makes `stage` current.
   void Enter(const std::string& stage);
-  /// Closes the current stage; returns every stage in the order first entered, then "total".
+  /// Closes the current stage; returns every stage in the order first entered, then "total"
+  /// (their sum: time before the first Enter() belongs to no stage).
   std::vector<StageTime> Finish();
 
  private:
@@ -26,7 +27,7 @@ class StageClock {
   std::vector<StageTime> stages_;
   std::string current_;
   Stopwatch wall_;
-  double last_wall_ms_ = 0, last_cpu_ms_ = 0, start_cpu_ms_ = 0;
+  double last_wall_ms_ = 0, last_cpu_ms_ = 0;
 };
 
 /// CPU time of this process so far (user + system, every thread), in milliseconds.
