@@ -167,6 +167,7 @@ Report RunSuite(const RunSettings& s) {
           row.images["debug_" + view] = rel;
         }
       }
+      mo->input = Image8();  // only the output and FLIP map wait for the scene's writes
       const auto [it, fresh] = file_of_hash.emplace(row.output_hash, rel_dir + "/" + FileSafe(plan.spec));
       const std::string base = it->second;
       if (fresh) {
