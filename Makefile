@@ -20,7 +20,9 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-run: build
+# `make run` builds only the aalab binary (not the test executables) before running it.
+run: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target aalab
 	@./$(BUILD)/aalab run --out $(OUT) $(RUN_ARGS)
 
 test: build
@@ -31,7 +33,7 @@ bench: configure
 	@./$(BUILD)/bench/aalab_bench --json bench.json $(BENCH_ARGS)
 
 # AddressSanitizer + UndefinedBehaviorSanitizer: every test, then the hard suite through the
-# CLI (not part of `make test`; see README "Hard cases and robustness").
+# CLI (not part of `make test`; see docs/hard-cases.md).
 test-asan: deps
 	@bash scripts/test-asan.sh
 

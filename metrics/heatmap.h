@@ -7,6 +7,10 @@
 
 namespace aalab {
 
+/// Full scale of the absolute-error heatmap of the report (sRGB-encoded units): errors ≥ 0.25
+/// saturate. The report's page draws that map itself from the output and reference PNGs.
+inline constexpr float kErrorHeatmapMax = 0.25f;
+
 /// Perceptually uniform colormaps of matplotlib (van der Walt & Smith, CC0), 256 entries.
 enum class Colormap { kViridis, kMagma };
 

@@ -1,5 +1,5 @@
-// Regression comparison of two reports. The rules are in compare.h and README
-// "Regression tracking and tuning"; exit codes as OpenImageIO's idiff (0 pass, 1 fail,
+// Regression comparison of two reports. The rules are in compare.h and
+// docs/regression.md; exit codes as OpenImageIO's idiff (0 pass, 1 fail,
 // 2 could not compare).
 #include "reports/compare.h"
 

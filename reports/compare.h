@@ -1,7 +1,7 @@
 /// Regression comparison of two reports (`aalab compare`), shared by `aalab history`.
 ///
 /// Pure functions: no I/O except what the caller does with the results. The rules (also in
-/// `aalab compare --help` and README "Regression tracking and tuning"):
+/// `aalab compare --help` and docs/regression.md):
 ///
 /// - Reports are comparable when schema_version and the settings `size`, `ref_spp` and `seed`
 ///   agree. Otherwise nothing is compared (exit 2).

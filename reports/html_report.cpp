@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/core/color.h"
+#include "metrics/heatmap.h"
 #include "reports/html_assets.h"
 #include "reports/report_json.h"
 
@@ -166,6 +168,18 @@ Json MetaJson(const Report& r) {
   meta["axis"] = axis;
   meta["default_axis"] = def.empty() ? Json(nullptr) : Json(def);
   meta["near_floor_db"] = kNearFloorDb;
+  // The page colours its heatmaps with the same tables as metrics/heatmap.cpp.
+  Json maps = Json::object();
+  for (const Colormap cm : {Colormap::kViridis, Colormap::kMagma}) {
+    Json lut = Json::array();
+    for (int k = 0; k < 256; ++k) {
+      const auto e = ColormapEntry(cm, k);
+      lut.push_back({QuantizeUnorm8(e[0]), QuantizeUnorm8(e[1]), QuantizeUnorm8(e[2])});
+    }
+    maps[ColormapName(cm)] = lut;
+  }
+  meta["colormaps"] = maps;
+  meta["error_heatmap_max"] = kErrorHeatmapMax;
   return meta;
 }
 

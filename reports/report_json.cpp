@@ -160,6 +160,13 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
     rows.push_back(j);
   }
   doc["rows"] = rows;
+  if (!r.time_breakdown.empty()) {
+    Json stages = Json::array();
+    for (const auto& t : r.time_breakdown) {
+      stages.push_back({{"stage", t.stage}, {"wall_ms", Num(t.wall_ms)}, {"cpu_ms", Num(t.cpu_ms)}});
+    }
+    doc["time_breakdown"] = stages;
+  }
   return doc;
 }
 
@@ -268,6 +275,12 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
         row.frame_images = fr.at("images").get<std::vector<std::string>>();
       }
       r.rows.push_back(row);
+    }
+    if (doc.contains("time_breakdown")) {  // optional: absent in older reports
+      for (const auto& j : doc.at("time_breakdown")) {
+        r.time_breakdown.push_back({j.at("stage").get<std::string>(), j.at("wall_ms").get<double>(),
+                                    j.at("cpu_ms").get<double>()});
+      }
     }
   } catch (const nlohmann::json::exception& e) {
     throw UserError(origin + ": not an aalab report (" + std::string(e.what()) + ")");

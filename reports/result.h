@@ -88,6 +88,13 @@ struct SceneResult {
   std::string noise_floor_null_reason;  ///< why ref_floor_psnr_db is null, when it is ("" otherwise)
 };
 
+/// Where a run's time went: one stage's wall-clock time and the process's CPU time (user +
+/// system, all threads) while in it. A stage is entered many times; these are the sums.
+struct StageTime {
+  std::string stage;
+  double wall_ms = 0, cpu_ms = 0;
+};
+
 /// A whole run.
 struct Report {
   int schema_version = 1;
@@ -95,6 +102,9 @@ struct Report {
   std::vector<std::pair<std::string, std::string>> settings;  ///< run settings, as given
   std::vector<SceneResult> scenes;
   std::vector<ResultRow> rows;
+  /// `aalab run`'s stages in the order first entered, then "total" (empty in reports written
+  /// before it existed, and from commands that do not time their stages).
+  std::vector<StageTime> time_breakdown;
 };
 
 }  // namespace aalab

@@ -14,6 +14,7 @@
 #include "metrics/metric.h"
 #include "methods/registry.h"
 #include "scenes/library.h"
+#include "harness/run/stage_clock.h"
 #include "scenes/render.h"
 
 namespace aalab {
@@ -156,6 +157,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       if (!run_scenes->empty()) rs->scenes = SplitList(*run_scenes);
       if (!run_methods->empty()) rs->methods = SplitList(*run_methods);
       const Report report = RunSuite(*rs);
+      std::printf("%s", FormatTimeBreakdown(report.time_breakdown).c_str());
       std::printf("wrote %zu results for %zu scenes\nhtml:   %s\nreport: %s\n", report.rows.size(), report.scenes.size(),
                   (fs::absolute(rs->out_dir) / "index.html").string().c_str(),
                   (fs::absolute(rs->out_dir) / "report.json").string().c_str());

@@ -1,7 +1,9 @@
 /// Image files through OpenImageIO. Writes are atomic: a temporary file beside the target is
 /// renamed into place, so a failed write never leaves a half-written result.
 #pragma once
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "harness/core/image.h"
 
@@ -27,9 +29,22 @@ LoadedImage ReadImage(const std::string& path, size_t max_pixels = 1ull << 28);
 /// refused with a message pointing at the float path.
 Image8 ReadImage8(const std::string& path);
 
+/// libpng's row filters for a PNG: kAdaptive lets libpng pick per row, kNone stores rows
+/// unfiltered (smaller for noise-like images).
+enum class PngFilter { kAdaptive, kNone };
+
+/// kNone when more than half of the pixels differ from their left neighbour (noise-like),
+/// else kAdaptive. `data` is w×h pixels of nc interleaved 8-bit channels.
+PngFilter ChoosePngFilter(const uint8_t* data, int w, int h, int nc);
+
 /// Writes an RGBA8 frame as RGB (PNG/JPEG/TIFF by extension); alpha is dropped unless
-/// `keep_alpha`. Throws UserError when the path is not writable or the extension unknown.
+/// `keep_alpha`. A PNG's row filter is ChoosePngFilter's (lossless either way). Throws
+/// UserError when the path is not writable or the extension unknown.
 void WriteImage8(const std::string& path, const Image8& img, bool keep_alpha = false);
+
+/// Writes a one-channel 8-bit image (`data`: width×height bytes, row-major), e.g. a metric
+/// map quantised to 0..255 for the page to colour. Same errors as WriteImage8.
+void WriteGrey8(const std::string& path, int width, int height, const std::vector<uint8_t>& data);
 
 /// Writes a float image (EXR as half-free float32; PNG etc. quantised to 8 bits).
 void WriteImageF(const std::string& path, const ImageF& img);

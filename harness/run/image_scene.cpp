@@ -362,10 +362,11 @@ bool CheckReferenceKind(const std::string& kind, const std::vector<SceneSource>&
 }
 
 std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int height, int grid, uint64_t seed,
-                                             int repeat, bool exact_reference) {
+                                             int repeat, bool exact_reference, StageClock* clock) {
   if (source.scene) {
-    return PrepareScene(std::move(source.scene), width, height, grid, seed, repeat, exact_reference);
+    return PrepareScene(std::move(source.scene), width, height, grid, seed, repeat, exact_reference, clock);
   }
+  if (clock) clock->Enter("references");  // reading the view's images
   ImageView v = LoadView(ReadManifest(source.view->manifest), source.view->index);
   if (v.name != source.view->name) {
     throw UserError("image scene '" + v.manifest + "' changed during the run (view " + std::to_string(v.index) +

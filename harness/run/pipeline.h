@@ -2,11 +2,13 @@
 /// reference, the shared 1x frame) and any number of methods then run against it.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "harness/core/image.h"
+#include "harness/run/stage_clock.h"
 #include "methods/method.h"
 #include "metrics/flip.h"
 #include "metrics/metric.h"
@@ -35,6 +37,15 @@ struct PreparedScene {
   /// and the frame's index. A still run: the scene itself, frame 0.
   std::shared_ptr<const Scene> sequence_scene;
   int frame = 0;
+  /// Scores already computed on this scene, by output hash: a method whose output is
+  /// bit-identical to an earlier method's (e.g. SSAA on a texel-aligned texture) gets the same
+  /// metrics and FLIP map without computing them again. Filled by RunMethod (not thread-safe:
+  /// methods of one scene run one after another).
+  struct Scored {
+    std::vector<MetricResult> metrics;
+    std::vector<uint8_t> flip_grey;
+  };
+  mutable std::map<std::string, Scored> scored_by_hash;
 };
 
 /// Loads and validates scenes by name or path; duplicates are an error.
@@ -45,9 +56,12 @@ std::vector<MethodPlan> ResolveMethods(const std::vector<std::string>& specs);
 
 /// Builds the BVH, renders the reference (grid × grid spp, or the closed-form exact reference
 /// when `exact_reference`: scenes/exact_reference.h) and the timed 1x frame, computes the
-/// noise floor (null for the exact reference) and the crop windows.
+/// noise floor (null for the exact reference) and the crop windows. With a `clock`, charges
+/// the BVH and the reference to "references" and the 1x frame (warm-up and timed repeats) to
+/// "method_renders_filters".
 std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int width, int height, int grid,
-                                            uint64_t seed, int repeat, bool exact_reference = false);
+                                            uint64_t seed, int repeat, bool exact_reference = false,
+                                            StageClock* clock = nullptr);
 
 /// Checks the --reference choice ("sampled" or "exact") and, for "exact", that every scene
 /// qualifies; throws UserError naming the scene and the disqualifying field. Returns true for
@@ -59,21 +73,23 @@ struct MethodOutput {
   ResultRow row;  ///< metrics, timing, cost and hash filled; `images` left to the caller
   Image8 input;   ///< the frame the post filter saw (for debug views); empty without a post filter
   Image8 output;  ///< the final frame at the output size
-  Image8 error_heatmap;  ///< |output − reference| (mean over RGB), viridis, 0 → kErrorHeatmapMax
-  Image8 flip_heatmap;   ///< LDR-FLIP map, magma, 0 → 1
+  /// The LDR-FLIP map quantised to 8 bits, round(255 · value), width × height bytes: the page
+  /// colours it (magma, 0 → 1). The absolute-error heatmap is drawn by the page from the
+  /// output and reference PNGs (|output − reference|, mean over RGB, full scale
+  /// kErrorHeatmapMax), so it is not stored.
+  std::vector<uint8_t> flip_grey;
 };
-
-/// Full scale of the absolute-error heatmap (sRGB-encoded units): errors ≥ 0.25 saturate.
-inline constexpr float kErrorHeatmapMax = 0.25f;
 
 /// Renders (or reuses the 1x frame), post-filters and rescales as the plan says, timing each
 /// stage (one warm-up + `repeat` runs), and scores the output against the reference.
 /// A method with memory (plan.make_state) carries `*state` from frame to frame: RunMethod
 /// creates it when empty and advances it by one frame; state == nullptr runs a fresh
 /// sequence of one frame. Jittered renders (plan.render.jitter) use the prepared frame's
-/// index for the jitter and, from frame 1 on, pass exact motion vectors to the state.
+/// index for the jitter and, from frame 1 on, pass exact motion vectors to the state. With a
+/// `clock`, charges rendering and filtering to "method_renders_filters" and scoring to
+/// "metrics".
 MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat,
-                       std::unique_ptr<TemporalState>* state = nullptr);
+                       std::unique_ptr<TemporalState>* state = nullptr, StageClock* clock = nullptr);
 
 /// Runs `body` once untimed, then `repeat` times timed (wall clock).
 Timing TimeRepeats(int repeat, const std::function<void()>& body);

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 
 #include "harness/core/color.h"
@@ -19,6 +20,7 @@
 #include "harness/run/image_scene.h"
 #include "harness/run/pipeline.h"
 #include "harness/run/sequence.h"
+#include "harness/run/stage_clock.h"
 #include "scenes/library.h"
 #include "scenes/motion.h"
 #include "scenes/render.h"
@@ -89,6 +91,8 @@ ImageF DecodeToLinear(const ImageF& encoded) {
 }  // namespace
 
 Report RunSuite(const RunSettings& s) {
+  StageClock clock;
+  clock.Enter("load_scenes");
   SetThreadCount(s.threads);
   // Validate every input before any work.
   if (s.repeat < 1 || s.repeat > 1000) throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
@@ -161,6 +165,10 @@ Report RunSuite(const RunSettings& s) {
     SceneResult sr;
     std::vector<std::string> reference_frames;
     double scene_ms = 0, reference_ms = 0;
+    // The last frame's image files are independent: queued and written in parallel at the
+    // scene's end; a bit-identical output is stored once.
+    std::vector<std::function<void()>> writes;
+    std::map<std::string, std::string> file_of_hash;
     for (int k = 0; k < F; ++k) {
       const bool last = k == F - 1;
       const std::string tag = F > 1 ? ".f" + std::to_string(k) : "";
@@ -168,13 +176,14 @@ Report RunSuite(const RunSettings& s) {
       if (!prepared || moves) {
         Stopwatch build;
         if (moves) {
+          clock.Enter("references");
           auto frame_scene = std::make_unique<Scene>(SceneAtFrame(*sequence, k));
           const double scene_build_ms = build.ElapsedMs();
-          prepared = PrepareScene(std::move(frame_scene), W, H, grid, s.seed, s.repeat, exact);
+          prepared = PrepareScene(std::move(frame_scene), W, H, grid, s.seed, s.repeat, exact, &clock);
           scene_ms += scene_build_ms;
         } else {
           if (sequence) source.scene = std::make_unique<Scene>(*sequence);
-          prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat, exact);
+          prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat, exact, &clock);
         }
         prepared->sequence_scene = sequence;
         scene_ms += prepared->info.bvh_build_ms;
@@ -182,36 +191,40 @@ Report RunSuite(const RunSettings& s) {
       }
       prepared->frame = k;
       const Reference& ref = prepared->ref;
+      clock.Enter("image_writing");
       if (F > 1) {
         const std::string rel = rel_dir + "/reference" + tag + ".png";
         WriteImage8((tmp / rel).string(), ToUnorm8(ref.image));
         reference_frames.push_back(rel);
       }
-      if (last) {
+      if (last) {  // `prepared` (and so `ref`) lives until the scene's writes are done
         sr = prepared->info;
-        WriteImageF((tmp / rel_dir / "reference.exr").string(), DecodeToLinear(ref.image));
-        WriteImage8((tmp / rel_dir / "reference.png").string(), ToUnorm8(ref.image));
-        WriteImage8((tmp / rel_dir / "edge_mask.png").string(), ToUnorm8(ref.edge_mask));
+        writes.push_back([&tmp, &rel_dir, &ref] {
+          WriteImageF((tmp / rel_dir / "reference.exr").string(), DecodeToLinear(ref.image));
+        });
+        writes.push_back([&tmp, &rel_dir, &ref] { WriteImage8((tmp / rel_dir / "reference.png").string(), ToUnorm8(ref.image)); });
+        writes.push_back([&tmp, &rel_dir, &ref] { WriteImage8((tmp / rel_dir / "edge_mask.png").string(), ToUnorm8(ref.edge_mask)); });
         sr.images = {{"reference_exr", rel_dir + "/reference.exr"},
                      {"reference_png", rel_dir + "/reference.png"},
                      {"edge_mask", rel_dir + "/edge_mask.png"}};
       }
       progress.Step(name + tag + " reference");
 
+      const int fw = prepared->info.width, fh = prepared->info.height;  // a view's own size
       for (size_t m = 0; m < plans.size(); ++m) {
         const MethodPlan& plan = plans[m];
-        MethodOutput mo = RunMethod(*prepared, plan, s.seed, s.repeat, &states[m]);
-        ResultRow& row = mo.row;
+        auto mo = std::make_shared<MethodOutput>(RunMethod(*prepared, plan, s.seed, s.repeat, &states[m], &clock));
+        ResultRow& row = mo->row;
         if (!row.not_applicable.empty()) {  // a renderer-side method on an image scene: no images
           if (last) report.rows.push_back(std::move(row));
           progress.Step(name + tag + " " + plan.spec + " (not applicable)");
           continue;
         }
-        const std::string base = rel_dir + "/" + FileSafe(plan.spec);
+        clock.Enter("image_writing");
         if (F > 1) {
-          const std::string rel = base + tag + ".png";
-          WriteImage8((tmp / rel).string(), mo.output);
-          tracks[m].AddFrame(mo, *prepared, rel);
+          const std::string rel = rel_dir + "/" + FileSafe(plan.spec) + tag + ".png";
+          WriteImage8((tmp / rel).string(), mo->output);
+          tracks[m].AddFrame(*mo, *prepared, rel);
         }
         progress.Step(name + tag + " " + plan.spec);
         if (!last) continue;
@@ -220,18 +233,21 @@ Report RunSuite(const RunSettings& s) {
             PostOptions opt;
             opt.debug_view = view;
             const std::string rel = rel_dir + "/" + FileSafe(plan.spec) + ".debug-" + view + ".png";
-            WriteImage8((tmp / rel).string(), plan.post(mo.input, opt, nullptr));
+            WriteImage8((tmp / rel).string(), plan.post(mo->input, opt, nullptr));
             row.images["debug_" + view] = rel;
           }
         }
-        WriteImage8((tmp / (base + ".png")).string(), mo.output);
-        WriteImage8((tmp / (base + ".error.png")).string(), mo.error_heatmap);
-        WriteImage8((tmp / (base + ".flip.png")).string(), mo.flip_heatmap);
+        mo->input = Image8();  // only the output and FLIP map wait for the scene's writes
+        const auto [it, fresh] = file_of_hash.emplace(row.output_hash, rel_dir + "/" + FileSafe(plan.spec));
+        const std::string base = it->second;
+        if (fresh) {
+          writes.push_back([&tmp, base, mo] { WriteImage8((tmp / (base + ".png")).string(), mo->output); });
+          writes.push_back([&tmp, base, mo, fw, fh] { WriteGrey8((tmp / (base + ".flip.png")).string(), fw, fh, mo->flip_grey); });
+        }
         row.images["output"] = base + ".png";
-        row.images["error_heatmap"] = base + ".error.png";
-        row.images["flip_heatmap"] = base + ".flip.png";
+        row.images["flip_map"] = base + ".flip.png";
         if (F > 1) tracks[m].Finish(&row);
-        report.rows.push_back(std::move(row));
+        report.rows.push_back(row);
       }
     }
     // The per-sequence states end with their sequence.
@@ -243,11 +259,16 @@ Report RunSuite(const RunSettings& s) {
       sr.sequence_scene_ms = scene_ms;
       sr.sequence_reference_ms = reference_ms;
     }
+    clock.Enter("image_writing");
+    ParallelFor(static_cast<int>(writes.size()), [&](int i) { writes[static_cast<size_t>(i)](); });
     report.scenes.push_back(std::move(sr));
   }
 
+  clock.Enter("html");
+  const std::string html = RenderHtmlReport(report);
+  WriteTextFile((tmp / "index.html").string(), html);
+  report.time_breakdown = clock.Finish();  // writing report.json itself is the only time not in it
   WriteTextFile((tmp / "report.json").string(), ReportToJson(report).dump(2) + "\n");
-  WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(report));
   fs::remove_all(out);
   fs::rename(tmp, out);
   cleanup.armed = false;

@@ -1,6 +1,6 @@
 // Preset tuning: one method over a parameter grid, references rendered once per scene.
 // Rules (objective means, Pareto front, heatmap aggregation, tie-break) in sweep.h and
-// README "Regression tracking and tuning".
+// docs/regression.md.
 #include "harness/run/sweep.h"
 
 #include <algorithm>

@@ -179,12 +179,43 @@
       el('figcaption', { text: caption }));
   }
 
+  /// The page colours its heatmaps itself (SVG filters, applied with CSS): the absolute-error
+  /// map is |output − reference| of the two PNGs (a `difference` blend), mean over RGB, full
+  /// scale META.error_heatmap_max, through viridis; the FLIP map is stored as 8-bit grey and
+  /// goes through magma. Tables are the colormaps of metrics/heatmap.cpp (META.colormaps).
+  function ensureFilters() {
+    if (document.getElementById('aalab-filters')) return;
+    const table = name => ['R', 'G', 'B'].map((c, i) => A.sv('feFunc' + c, { type: 'table',
+      tableValues: A.META.colormaps[name].map(e => (e[i] / 255).toFixed(4)).join(' ') }));
+    const k = (1 / (3 * A.META.error_heatmap_max)).toFixed(6), row = k + ' ' + k + ' ' + k + ' 0 0 ';
+    document.body.append(A.sv('svg', { id: 'aalab-filters', width: '0', height: '0', 'aria-hidden': 'true',
+      style: 'position:absolute;width:0;height:0;overflow:hidden' },
+      A.sv('filter', { id: 'aalab-magma', 'color-interpolation-filters': 'sRGB' }, A.sv('feComponentTransfer', {}, ...table('magma'))),
+      A.sv('filter', { id: 'aalab-abs-error', 'color-interpolation-filters': 'sRGB' },
+        A.sv('feColorMatrix', { type: 'matrix', values: row + row + row + '0 0 0 1 0' }),
+        A.sv('feComponentTransfer', {}, ...table('viridis')))));
+  }
+  /// A heatmap drawn by the page: `layers` (image paths) stacked, each later one blended with
+  /// `difference`, the stack through the SVG filter `filter`; clicking opens `link`.
+  function heatFigure(layers, filter, link, caption, W, H) {
+    ensureFilters();
+    const stack = el('div', { class: 'heat', style: 'aspect-ratio:' + W + '/' + H + ';width:' + W + 'px;max-width:100%;filter:url(#' + filter + ')' },
+      ...layers.map((p, i) => el('img', { src: A.imgUrl(p), loading: 'lazy', alt: i ? caption : '', width: W, height: H, class: i ? 'diff' : null })));
+    return el('figure', {}, el('a', { href: A.imgUrl(link), title: 'opens ' + link }, stack), el('figcaption', { text: caption }));
+  }
+
   function renderMaps() {
     const s = G.scene, r = rowOf(s.name, state.spec), images = (r && r.images) || {};
-    const maps = Object.keys(images).filter(k => k !== 'output' && !k.startsWith('debug_'));
-    const figs = maps.map(k => figure(images[k], roleLabel(k) + ' — ' + r.spec, s.width, s.height, false));
+    const figs = [];
+    if (images.output && s.images.reference_png) {
+      figs.push(heatFigure([s.images.reference_png, images.output], 'aalab-abs-error', images.output,
+        'Absolute error |output − reference| (mean over RGB; viridis, 0 → ≥ ' + A.META.error_heatmap_max + ' sRGB-encoded units) — ' + r.spec, s.width, s.height));
+    }
+    if (images.flip_map) {
+      figs.push(heatFigure([images.flip_map], 'aalab-magma', images.flip_map, 'LDR-FLIP map (magma, 0 → 1) — ' + r.spec, s.width, s.height));
+    }
     if (s.images.edge_mask) figs.push(figure(s.images.edge_mask, 'Edge mask (white = edge; ' + (100 * s.edge_pixel_fraction).toFixed(1) + '% of pixels; ' + (s.edge_mask_source || 'geometric') + ')', s.width, s.height, false));
-    if (!maps.length) figs.unshift(el('p', { class: 'note', text: 'No error heatmaps for ' + state.spec + ' in this report.' }));
+    if (!figs.length || !r) figs.unshift(el('p', { class: 'note', text: 'No error heatmaps for ' + state.spec + ' in this report.' }));
     G.parts.maps.replaceChildren(...figs);
     const dbg = Object.keys(images).filter(k => k.startsWith('debug_'));
     if (dbg.length) G.parts.debug.replaceChildren(...dbg.map(k => figure(images[k], roleLabel(k) + ' — ' + r.spec, s.width, s.height, true)));

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -88,6 +89,30 @@ TEST(Cli, RunWritesReportCoveringTheMatrix) {
     EXPECT_TRUE(fs::exists(out / row["images"]["output"].get<std::string>()));
   }
   EXPECT_EQ(doc["rows"][2]["spec"], "ssaa-jitter:spp=4");
+  // Where the time went: printed and stored, every stage once, in the order first entered, and
+  // the stages split the run's time with no gap (they sum to "total").
+  EXPECT_NE(r.output.find("time breakdown"), std::string::npos) << r.output;
+  std::vector<std::string> stages;
+  double wall = 0, cpu = 0;
+  for (const auto& t : doc["time_breakdown"]) {
+    stages.push_back(t["stage"].get<std::string>());
+    EXPECT_GE(t["wall_ms"].get<double>(), 0.0);
+    EXPECT_GE(t["cpu_ms"].get<double>(), 0.0);
+    if (stages.back() == "total") {
+      EXPECT_NEAR(t["wall_ms"].get<double>(), wall, 1e-3);  // JSON keeps microseconds
+      EXPECT_NEAR(t["cpu_ms"].get<double>(), cpu, 1e-3);
+    } else {
+      wall += t["wall_ms"].get<double>();
+      cpu += t["cpu_ms"].get<double>();
+    }
+  }
+  EXPECT_EQ(stages, (std::vector<std::string>{"load_scenes", "references", "method_renders_filters", "metrics",
+                                              "image_writing", "html", "total"}));
+  // Every row has its output and FLIP map; the error heatmap is drawn by the page, not stored.
+  for (const auto& row : doc["rows"]) {
+    EXPECT_TRUE(fs::exists(out / row["images"]["flip_map"].get<std::string>()));
+    EXPECT_FALSE(row["images"].contains("error_heatmap"));
+  }
   // A second run replaces the folder (it holds a report.json).
   EXPECT_EQ(Aalab("run --scenes wedges --methods none --size 16x9 --ref-spp 4 --repeat 1 --quiet --out " + out.string()).code, 0);
   // A folder that is not an aalab report is never replaced.
