@@ -91,7 +91,7 @@ ImageF DecodeToLinear(const ImageF& encoded) {
 }  // namespace
 
 Report RunSuite(const RunSettings& s) {
-  StageClock clock;
+  StageClock clock({"load_scenes", "references", "method_renders_filters", "metrics", "image_writing", "html"});
   clock.Enter("load_scenes");
   SetThreadCount(s.threads);
   // Validate every input before any work.

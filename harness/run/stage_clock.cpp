@@ -13,7 +13,9 @@ double ProcessCpuMs() {
   return ms(u.ru_utime) + ms(u.ru_stime);
 }
 
-StageClock::StageClock() : last_cpu_ms_(ProcessCpuMs()) {}
+StageClock::StageClock(std::vector<std::string> order) : last_cpu_ms_(ProcessCpuMs()) {
+  for (auto& s : order) stages_.push_back({std::move(s), 0, 0});
+}
 
 void StageClock::Charge() {
   const double wall = wall_.ElapsedMs(), cpu = ProcessCpuMs();

@@ -14,11 +14,15 @@ namespace aalab {
 /// parallel sections, never inside one.
 class StageClock {
  public:
-  StageClock();
+  /// `order`: stages listed here are reported first, in this order (with zero time when
+  /// never entered), so the report's layout does not depend on which stage a run enters
+  /// first; any other stage follows in the order first entered.
+  explicit StageClock(std::vector<std::string> order = {});
   /// Charges the time since the last Enter() (or construction) to the current stage, then
   /// makes `stage` current.
   void Enter(const std::string& stage);
-  /// Closes the current stage; returns every stage in the order first entered, then "total"
+  /// Closes the current stage; returns every stage (the constructor's order, then the order
+  /// first entered), then "total"
   /// (their sum: time before the first Enter() belongs to no stage).
   std::vector<StageTime> Finish();
 
