@@ -10,6 +10,7 @@
 //   metrics        ms per 1080p pair; side by side with scikit-image (SSIM, PSNR) and
 //                  OpenImageIO's idiff when installed, timed the same way.
 //   suite          wall time of `aalab run` at three sizes and at 1 vs 2 threads.
+//   msaa           msaa-4x vs ssaa-rgss per library scene (bench/bench_msaa.cpp).
 //
 // Timing: Google Benchmark runs each figure (wall clock, UseRealTime) as `repetitions`
 // repetitions after one untimed warm-up call; every figure reports the median, min and max
@@ -40,6 +41,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "bench/bench_msaa.h"
 #include "harness/core/color.h"
 #include "harness/core/parallel.h"
 #include "harness/io/image_io.h"
@@ -367,7 +369,12 @@ int Main(int argc, char** argv) {
   auto samples = std::make_shared<std::vector<SampleResult>>(static_cast<size_t>(FW) * FH * 4);
   {
     const Tracer tracer(resolve_scene);
-    const auto offs = RenderSpec{SamplePattern::kOrderedGrid, 2, 1, 1.0}.FixedOffsets();
+    const auto offs = [] {  // named fields: RenderSpec grows a member per render-time family
+      RenderSpec r;
+      r.pattern = SamplePattern::kOrderedGrid;
+      r.grid = 2;
+      return r.FixedOffsets();
+    }();
     ParallelForChunks(FH, 8, [&](int y0, int y1) {
       std::vector<SamplePos> pos(static_cast<size_t>(FW) * 4);
       for (int y = y0; y < y1; ++y) {
@@ -776,6 +783,7 @@ int Main(int argc, char** argv) {
                        {"methods", suite_methods}, {"ref_spp", suite_spp}});
   }
 
+  AppendMsaaBench(cfg.quick, tab, report);  // bench/bench_msaa.cpp
   // ---------------------------------------------------------------- goals
   line("");
   line("## Goals");

@@ -10,6 +10,10 @@ namespace aalab {
 /// `none`, `ssaa-2x2`, `ssaa-4x4`, `ssaa-rgss`, `ssaa-jitter` (methods/supersample.cpp).
 std::vector<MethodEntry> SupersampleMethods();
 
+/// `msaa-2x`, `msaa-4x`, `msaa-8x`, `msaa-16x`: coverage samples at the standard positions,
+/// one shading per primitive and pixel (methods/msaa.cpp).
+std::vector<MethodEntry> MsaaMethods();
+
 /// `fxaa1-p0` … `fxaa1-p5`: FXAA 1.0 whitepaper presets (methods/fxaa1.cpp).
 std::vector<MethodEntry> Fxaa1Methods();
 /// `fxaa311-p10` .. `-p15`, `-p20` .. `-p29`, `-p39`, `fxaa-low`, `fxaa-medium`,

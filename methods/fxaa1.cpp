@@ -1,7 +1,7 @@
 // FXAA 1.0 — Timothy Lottes, NVIDIA whitepaper "FXAA" (v1.0, 25/01/11; seeds/002), presets 0-5.
 //
 // What it implements
-//   A single-pass post filter on the 8-bit LDR frame, read as UNORM (k/255 of the
+//   A single-pass post filter on the 8-bit LDR frame, read as UNORM (k·fl(1/255) of the
 //   sRGB-encoded values: whitepaper "Integration / Alias sRGB as UNORM"), written back as
 //   RGBA8 with round-to-nearest and alpha 255. Per pixel, following "Implementation /
 //   Algorithm Overview" steps 1-8:
@@ -49,7 +49,7 @@
 //                colour); no shift = grey
 //
 // Deviations from the GPU shader (all float32 unless said)
-//   - Bilinear weights use the exact float32 fraction (BilinearSampler); hardware uses 8 bits
+//   - Bilinear filtering uses the exact float32 fraction (BilinearSampler); hardware uses 8 bits
 //     of sub-texel precision. This only touches the final shifted fetch: every search fetch
 //     lies on a texel centre along the edge and halfway across it (fractions 0 and 0.5).
 //   - Positions are kept in texel units (pixel centre x+0.5, y+0.5) instead of normalised
@@ -497,13 +497,13 @@ Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_vi
   if (in.Empty()) return out;
   const int height = in.Height();
   const int width = in.Width();
-  // Step 1 for every texel: FxaaLuma(rgb) with rgb = k/255 as the sampler reads it.
+  // Step 1 for every texel: FxaaLuma(rgb) with rgb = UnormToFloat(k) as the sampler reads it.
   // Tables of the two terms for every 8-bit value: the same floats the sampler path computes.
   static const auto tables = [] {
     std::array<std::array<float, 256>, 2> t{};
     for (int k = 0; k < 256; ++k) {
-      t[0][k] = static_cast<float>(k) / 255.0f;               // r
-      t[1][k] = (static_cast<float>(k) / 255.0f) * kLumaGreen;  // g · (0.587/0.299)
+      t[0][k] = UnormToFloat(static_cast<uint8_t>(k));               // r
+      t[1][k] = UnormToFloat(static_cast<uint8_t>(k)) * kLumaGreen;  // g · (0.587/0.299)
     }
     return t;
   }();

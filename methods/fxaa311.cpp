@@ -20,7 +20,7 @@
 //   edge_threshold_min  [0..1]  0.0833  fxaaQualityEdgeThresholdMin (iter12: 0.0312)
 //   luma  {rec601|rec601-rgb|green|sqrt-luminance}
 //         rec601 = FXAA_GREEN_AS_LUMA 0 (dot(rgb,(0.299,0.587,0.114)) written to alpha at 8
-//         bits by a first pass); rec601-rgb = the same dot computed from each tap's rgb in
+//         bits by a first pass, GL store rounding); rec601-rgb = the same dot computed from each tap's rgb in
 //         float (seed 003); green = FXAA_GREEN_AS_LUMA 1; sqrt-luminance = the tutorial's
 //         sqrt(Luminance(linear rgb)) written to alpha at 8 bits.
 //         Fxaa3_11.h suggests edge_threshold_min near 0 with green luma ("colors that are
@@ -35,12 +35,15 @@
 //   seeds/003 (FXAA notes with a complete GLSL FXAA, ITERATIONS 12, QUALITY(q) macro).
 //
 // Fidelity and deviations (read with the shader open):
-//   * Taps. FxaaTexTop / FxaaTexOff (centre and the 8 neighbours) are exact texel reads
-//     (BilinearSampler::Texel): with integer offsets at the pixel centre a GPU returns the
-//     texel itself. The GLSL_120 fallback in seed 004 writes them as texture2D(pos + o*rcp);
-//     that differs only by float rounding of the coordinate (< 1e-6 texel), which the GPU's
-//     8-bit sub-texel precision removes. Search taps and the final tap are bilinear fetches
-//     at the shader's normalised coordinates (BilinearSampler::SampleNormalized).
+//   * Taps. Every tap is a bilinear fetch, as in the shader text we verify against. Seed 004's
+//     GLSL writes FxaaTexTop / FxaaTexOff as texture2D(tex, posM + vec2(off) * rcpFrame), so
+//     the centre and its 8 neighbours are fetched at normalised coordinates rounded to float;
+//     u·W − 0.5 then often lands ~1e-6 off the texel centre (about 40% of the columns of a
+//     1920-wide frame) and a float32 filter mixes in that much of the next texel. Seed 003
+//     uses textureLodOffset: the offset is added to u·W in float before −0.5 (llvmpipe's
+//     rule). Search taps and the final tap are fetches at the shader's coordinates.
+//     Filtering is BilinearSampler's (harness/core/sampler.h): llvmpipe's float32 path,
+//     bit for bit. A GPU's 8-bit sub-texel weights differ (see docs/fxaa-fidelity.md).
 //   * posM, the "{xy} = center of pixel" input, is ((x+0.5)/W, (y+0.5)/H) rounded to float;
 //     fxaaQualityRcpFrame is (1/W, 1/H) rounded to float. Every position update
 //     (posB, posN, posP, the final posM) is the shader's, in normalised coordinates.
@@ -52,7 +55,7 @@
 //     (strict); horzSpan = edgeHorz >= edgeVert; pairN = |gradientN| >= |gradientS|;
 //     doneN/doneP = |lumaEnd| >= gradientScaled; directionN = dstN < dstP (a tie takes P,
 //     but a tie also gives pixelOffset = 0.5 - dst/(2·dst) = 0, so it never shows).
-//     These rules decide float-equal values. Lumas k/255 are not dyadic, so sums that tie
+//     These rules decide float-equal values. Lumas k·fl(1/255) are not dyadic, so sums that tie
 //     in exact arithmetic often differ in the last bit and rounding decides; that is why
 //     the statement order is kept (seed 003's order of the edgeHorz/edgeVert sums decides
 //     ~1% of the pixels of a noise image differently; see the tests).
@@ -65,9 +68,13 @@
 //     whose clamp is undefined in GLSL/HLSL). We return the input pixel there. With IEEE
 //     min/max the shader would blend M with a neighbour of equal luma; that differs from
 //     ours only when that neighbour has the same luma but another colour.
-//   * Output: the shader returns (filtered rgb, lumaM); we store rgb rounded to 8 bits
-//     (round to nearest, as a UNORM render target) and alpha 255. Early-exit pixels return
-//     the input rgb exactly.
+//   * Output: the shader returns (filtered rgb, lumaM) into an RGBA8 target; we store rgb with
+//     GL's float-to-UNORM conversion (StoreUnorm8: round to nearest, ties to even, as
+//     llvmpipe) and alpha 255. Early exit returns the centre tap rgbyM, stored the same way
+//     (it equals the input bytes: the tap is at most ~1e-6 off the texel).
+//   * Verified: tests/oracle runs seed 004's FXAA-interactive.fs and seed 003's GLSL on
+//     llvmpipe (float32 filtering, no FMA) and compares every preset byte for byte
+//     (docs/fxaa-fidelity.md). The luma pre-pass is ours; the oracle is given its alpha.
 //   * Colour space: taps read the sRGB-encoded 8-bit values as UNORM and filter them (DESIGN:
 //     post filters run on encoded values). The tutorial samples an sRGB texture, so its GPU
 //     filters rgb in linear light; its luma lives in alpha, which is never decoded.
@@ -163,12 +170,18 @@ void ShadePixel(BilinearSampler& tex, const Image8& src, int x, int y, const Fxa
 
   float posMx = (static_cast<float>(x) + 0.5f) / static_cast<float>(src.Width());
   float posMy = (static_cast<float>(y) + 0.5f) / static_cast<float>(src.Height());
-  const Float4 rgbyM = tex.Texel(x, y);  // FxaaTexTop(tex, posM)
+  // The 3x3 taps as the shader writes them (see "Taps" above).
+  auto tap = [&](int dx, int dy) {
+    if (glsl) return tex.SampleNormalizedOffset(posMx, posMy, dx, dy);  // textureLodOffset
+    return tex.SampleNormalized(posMx + static_cast<float>(dx) * rcpX,  // texture2D(tex,
+                                posMy + static_cast<float>(dy) * rcpY);  //   posM + off·rcp)
+  };
+  const Float4 rgbyM = tap(0, 0);  // FxaaTexTop(tex, posM)
   const float lumaM = L(rgbyM);
-  float lumaS = L(tex.Texel(x, y + 1));  // FxaaTexOff(tex, posM, ( 0, 1), rcp)
-  float lumaE = L(tex.Texel(x + 1, y));  // ( 1, 0)
-  float lumaN = L(tex.Texel(x, y - 1));  // ( 0,-1)
-  float lumaW = L(tex.Texel(x - 1, y));  // (-1, 0)
+  float lumaS = L(tap(0, 1));   // FxaaTexOff(tex, posM, ( 0, 1), rcp)
+  float lumaE = L(tap(1, 0));   // ( 1, 0)
+  float lumaN = L(tap(0, -1));  // ( 0,-1)
+  float lumaW = L(tap(-1, 0));  // (-1, 0)
 
   const float maxSM = std::max(lumaS, lumaM);
   const float minSM = std::min(lumaS, lumaM);
@@ -182,8 +195,11 @@ void ShadePixel(BilinearSampler& tex, const Image8& src, int x, int y, const Fxa
   const float range = rangeMax - rangeMin;
   const float rangeMaxClamped = std::max(prm.edge_threshold_min, rangeMaxScaled);
   const bool earlyExit = range < rangeMaxClamped;
-  if (earlyExit) {
-    CopyPixel(src, x, y, out);
+  if (earlyExit) {  // return rgbyM
+    out[0] = StoreUnorm8(rgbyM.r);
+    out[1] = StoreUnorm8(rgbyM.g);
+    out[2] = StoreUnorm8(rgbyM.b);
+    out[3] = 255;
     return;
   }
   // Deviation (documented above): the shader would go on with subpixRcpRange = 1/0.
@@ -192,10 +208,10 @@ void ShadePixel(BilinearSampler& tex, const Image8& src, int x, int y, const Fxa
     return;
   }
 
-  const float lumaNW = L(tex.Texel(x - 1, y - 1));
-  const float lumaSE = L(tex.Texel(x + 1, y + 1));
-  const float lumaNE = L(tex.Texel(x + 1, y - 1));
-  const float lumaSW = L(tex.Texel(x - 1, y + 1));
+  const float lumaNW = L(tap(-1, -1));
+  const float lumaSE = L(tap(1, 1));
+  const float lumaNE = L(tap(1, -1));
+  const float lumaSW = L(tap(-1, 1));
 
   const float lumaNS = lumaN + lumaS;
   const float lumaWE = lumaW + lumaE;
@@ -317,9 +333,9 @@ void ShadePixel(BilinearSampler& tex, const Image8& src, int x, int y, const Fxa
   if (!horzSpan) posMx += pixelOffsetSubpix * lengthSign;
   if (horzSpan) posMy += pixelOffsetSubpix * lengthSign;
   const Float4 c = tex.SampleNormalized(posMx, posMy);
-  out[0] = QuantizeUnorm8(c.r);
-  out[1] = QuantizeUnorm8(c.g);
-  out[2] = QuantizeUnorm8(c.b);
+  out[0] = StoreUnorm8(c.r);  // the RGBA8 render target's float-to-UNORM conversion
+  out[1] = StoreUnorm8(c.g);
+  out[2] = StoreUnorm8(c.b);
   out[3] = 255;
 }
 
@@ -343,7 +359,7 @@ float Fxaa311TapLuma(const Float4& t, Fxaa311Params::Luma luma) {
     case Luma::kRec601:
     case Luma::kSqrtLuminance: return t.a;
     case Luma::kGreen: return t.g;
-    case Luma::kRec601Rgb: return (t.r * 0.299f + t.g * 0.587f) + t.b * 0.114f;
+    case Luma::kRec601Rgb: return t.r * 0.299f + (t.g * 0.587f + t.b * 0.114f);
   }
   return t.a;
 }
@@ -360,7 +376,7 @@ Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma) {
       if (luma == Luma::kRec601) {
         // Fxaa3_11.h: "color.a = dot(color.rgb, FxaaFloat3(0.299, 0.587, 0.114))" on the
         // sRGB-encoded (perceptual) colour.
-        const Float4 t{p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f, 0.0f};
+        const Float4 t{UnormToFloat(p[0]), UnormToFloat(p[1]), UnormToFloat(p[2]), 0.0f};
         l = Fxaa311TapLuma(t, Luma::kRec601Rgb);
       } else {
         // Tutorial: color.a = sqrt(Luminance(color.rgb)) with linear rgb.
@@ -369,7 +385,7 @@ Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma) {
         const float b = SrgbDecode8(p[2]);
         l = std::sqrt((r * 0.2126729f + g * 0.7151522f) + b * 0.0721750f);
       }
-      p[3] = QuantizeUnorm8(l);
+      p[3] = StoreUnorm8(l);  // the pre-pass writes an RGBA8 target
     }
   }
   return out;

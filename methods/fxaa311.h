@@ -52,13 +52,13 @@ Fxaa311Params::Luma ParseFxaa311Luma(const std::string& name);
 const std::vector<std::string>& Fxaa311LumaNames();
 
 /// The luma pre-pass: for kRec601 and kSqrtLuminance a copy of `in` (RGBA8) whose alpha
-/// holds the luma rounded to 8 bits (round-to-nearest UNORM store); for kGreen and
+/// holds the luma rounded to 8 bits (StoreUnorm8, GL's UNORM store); for kGreen and
 /// kRec601Rgb a plain copy (those modes read luma from rgb at each tap).
 Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma);
 
 /// The luma the shader reads from one tap of the frame Fxaa311LumaFrame prepared
 /// (FxaaLuma): alpha, green, or dot(rgb, (0.299, 0.587, 0.114)) evaluated as
-/// (r·0.299 + g·0.587) + b·0.114 in float32.
+/// r·0.299 + (g·0.587 + b·0.114) in float32 (the order llvmpipe evaluates GLSL dot()).
 float Fxaa311TapLuma(const Float4& tap, Fxaa311Params::Luma luma);
 
 /// FXAA 3.11 Quality on an 8-bit RGBA frame (sRGB-encoded values read as UNORM). Returns a

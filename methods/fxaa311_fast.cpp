@@ -15,6 +15,7 @@
 #include "harness/core/error.h"
 #include "harness/core/parallel.h"
 #include "methods/fxaa311.h"
+#include "methods/fxaa311_plane.h"
 #include "methods/row_ops.h"
 
 namespace aalab {
@@ -37,53 +38,19 @@ using Order = Fxaa311Params::Order;
 //      written as a copy, so only edge pixels are touched again.
 //   3. Only edge pixels run the rest of the shader (EdgePixel below: ShadePixel's
 //      statements from the corner fetches on, with the same luma values).
+// The 3x3 taps are fetched where the shader fetches them, a hair off the texel centres in
+// many columns and rows (methods/fxaa311_plane.h, TapGrid): step 2 decides those pixels from
+// texel lumas unless the test is within the taps' deviation of a tie, and then with the real
+// taps; step 3 filters them like the reference.
 // Tap counts are those of the reference: 5 for a pixel that exits, 9 + search + final
 // for an edge pixel. Tests compare this path with Fxaa311Reference bit for bit on real
-// and adversarial frames (tests/methods/fxaa_fast_test.cpp).
+// and adversarial frames (tests/perf/fxaa_fast_test.cpp).
 
 namespace {
-
-// k / 255 as BilinearSampler::Fetch computes it (uint8 promoted, converted, divided).
-inline float Unorm(uint8_t k) { return static_cast<float>(k) / 255.0f; }
-inline float LumaValue(uint8_t k) { return Unorm(k); }
-inline float LumaValue(float v) { return v; }
-
-// QuantizeUnorm8 for values already known to lie in (0, 1): lround(w) for w = v·255 > 0 is
-// floor(w + 0.5), and w + 0.5 is exact in double (w < 256 has a 24-bit significand).
-inline uint8_t QuantizeInterior(float v) {
-  return static_cast<uint8_t>(static_cast<int>(static_cast<double>(v * 255.0f) + 0.5));
-}
-inline uint8_t QuantizeFast(float v) {
-  if (!(v > 0.0f)) return 0;
-  if (v >= 1.0f) return 255;
-  return QuantizeInterior(v);
-}
-
-// A luma plane: one value per pixel, row-major; P = uint8_t (value k means k/255) or float.
-template <typename P>
-struct LumaPlane {
-  int w = 0, h = 0;
-  std::unique_ptr<P[]> v;  // w·h values, left uninitialised until BuildPlane writes them
-  const P* Row(int y) const { return v.get() + static_cast<size_t>(y) * w; }
-  // Texel read with clamp-to-edge (BilinearSampler::Fetch), as a luma.
-  [[gnu::always_inline]] float Texel(int x, int y) const {
-    x = std::clamp(x, 0, w - 1);
-    y = std::clamp(y, 0, h - 1);
-    return LumaValue(v[static_cast<size_t>(y) * w + x]);
-  }
-  // The luma channel of BilinearSampler::SampleNormalized(s, t), operation for operation.
-  [[gnu::always_inline]] float Bilinear(float s, float t) const {
-    const BilinearFootprint f = BilinearAt(s * static_cast<float>(w), t * static_cast<float>(h), w, h);
-    const float a = Texel(f.x0, f.y0);
-    const float b = Texel(f.x0 + 1, f.y0);
-    const float c = Texel(f.x0, f.y0 + 1);
-    const float d = Texel(f.x0 + 1, f.y0 + 1);
-    return a * f.wa + b * f.wb + c * f.wc + d * f.wd;
-  }
-};
+using namespace fxaa311_internal;
 
 // Per-channel products of the luma dot, one table per weight: entry k is the product the
-// reference computes for channel value k (k/255·w, or SrgbDecode8(k)·w), so the sums below
+// reference computes for channel value k (UnormToFloat(k)·w, or SrgbDecode8(k)·w), so the sums
 // add exactly the same floats in the same order.
 struct LumaTables {
   float r[256], g[256], b[256];
@@ -130,13 +97,13 @@ void BuildPlane(const Image8& in, Luma luma, LumaPlane<uint8_t>* plane) {
       if (luma == Luma::kGreen) {
         for (int x = 0; x < w; ++x) o[x] = p[4 * x + 1];
       } else if (luma == Luma::kRec601) {
-        // Fxaa311LumaFrame: QuantizeUnorm8((r·0.299 + g·0.587) + b·0.114), r = k/255.
+        // Fxaa311LumaFrame: StoreUnorm8(r·0.299 + (g·0.587 + b·0.114)), r = UnormToFloat.
         for (int x = 0; x < w; ++x) {
-          o[x] = QuantizeFast((rec.r[p[4 * x]] + rec.g[p[4 * x + 1]]) + rec.b[p[4 * x + 2]]);
+          o[x] = StoreUnorm8(rec.r[p[4 * x]] + (rec.g[p[4 * x + 1]] + rec.b[p[4 * x + 2]]));
         }
-      } else {  // kSqrtLuminance: QuantizeUnorm8(sqrt((R·0.2126729 + G·0.7151522) + B·0.0721750))
+      } else {  // kSqrtLuminance: StoreUnorm8(sqrt((R·0.2126729 + G·0.7151522) + B·0.0721750))
         for (int x = 0; x < w; ++x) {
-          o[x] = QuantizeFast(std::sqrt((sq.r[p[4 * x]] + sq.g[p[4 * x + 1]]) + sq.b[p[4 * x + 2]]));
+          o[x] = StoreUnorm8(std::sqrt((sq.r[p[4 * x]] + sq.g[p[4 * x + 1]]) + sq.b[p[4 * x + 2]]));
         }
       }
     }
@@ -154,35 +121,45 @@ void BuildPlane(const Image8& in, Luma, LumaPlane<float>* plane) {  // kRec601Rg
       float* o = plane->v.get() + static_cast<size_t>(y) * w;
       for (int x = 0; x < w; ++x) {
         const float r = Unorm(p[4 * x]), g = Unorm(p[4 * x + 1]), b = Unorm(p[4 * x + 2]);
-        o[x] = (r * 0.299f + g * 0.587f) + b * 0.114f;  // Fxaa311TapLuma(kRec601Rgb)
+        o[x] = r * 0.299f + (g * 0.587f + b * 0.114f);  // Fxaa311TapLuma(kRec601Rgb)
       }
     }
   });
 }
 
-// Step 2 for one row: edge[x] = 1 where the pixel passes the early exit and has range > 0.
-// max/min are exact, so their nesting does not matter; k -> k/255 is increasing, so the
-// max (min) of the lumas is the luma of the max (min) byte.
-template <typename P>
-int ContrastRow(const LumaPlane<P>& pl, int y, float thr, float thr_min, uint8_t* edge) {
+// Step 2: edge[x] = 1 where the pixel passes the early exit and has range > 0. max/min are
+// exact, so their nesting does not matter; k -> UnormToFloat(k) is increasing, so the max
+// (min) of the lumas is the luma of the max (min) byte.
+// True when the test range < max(thr_min, rangeMax·thr) on texel lumas is within `margin`
+// of flipping: taps that deviate by d from the texels move range by <= 2d and the clamped
+// threshold by <= d·thr, so margin = 3·deviation covers them.
+inline bool NearTie(float range_max, float range, float thr, float thr_min, float margin) {
+  const float clamped = std::max(thr_min, range_max * thr);
+  return std::fabs(range - clamped) <= margin;
+}
+
+// Step 2 for one row of float lumas (rec601-rgb): returns the number of edge pixels.
+// Pixels whose taps are off the texel centres and whose texel-luma test is a near tie
+// (NearTie) are decided with the real taps.
+int ContrastRow(const LumaPlane<float>& pl, const Image8& src, const TapGrid& g, int y,
+                const Fxaa311Params& prm, float margin, uint8_t* edge) {
   const int w = pl.w;
-  const P* rn = pl.Row(std::max(y - 1, 0));
-  const P* rm = pl.Row(y);
-  const P* rs = pl.Row(std::min(y + 1, pl.h - 1));
-  auto test = [&](P n, P wv, P m, P e, P s) -> uint8_t {
-    const P mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
-    const P mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
-    const float range_max = LumaValue(mx);
-    const float range = range_max - LumaValue(mn);
-    const float clamped = std::max(thr_min, range_max * thr);
-    return (range < clamped || range == 0.0f) ? 0 : 1;
-  };
-  if (w == 1) {
-    edge[0] = test(rn[0], rm[0], rm[0], rm[0], rs[0]);
-  } else {
-    edge[0] = test(rn[0], rm[0], rm[0], rm[1], rs[0]);
-    for (int x = 1; x < w - 1; ++x) edge[x] = test(rn[x], rm[x - 1], rm[x], rm[x + 1], rs[x]);
-    edge[w - 1] = test(rn[w - 1], rm[w - 2], rm[w - 1], rm[w - 1], rs[w - 1]);
+  const float thr = prm.edge_threshold, thr_min = prm.edge_threshold_min;
+  const bool row_exact = g.rows[y].exact;
+  const float* rn = pl.Row(std::max(y - 1, 0));
+  const float* rm = pl.Row(y);
+  const float* rs = pl.Row(std::min(y + 1, pl.h - 1));
+  for (int x = 0; x < w; ++x) {
+    const float n = rn[x], m = rm[x], s = rs[x], wv = rm[std::max(x - 1, 0)], e = rm[std::min(x + 1, w - 1)];
+    const float mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
+    const float mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
+    const float range = mx - mn;
+    const float clamped = std::max(thr_min, mx * thr);
+    if (!(row_exact && g.cols[x].exact) && NearTie(mx, range, thr, thr_min, margin)) {
+      edge[x] = EdgeByTaps(pl, src, g, x, y, prm) ? 1 : 0;
+    } else {
+      edge[x] = (range < clamped || range == 0.0f) ? 0 : 1;
+    }
   }
   int count = 0;
   for (int x = 0; x < w; ++x) count += edge[x];
@@ -195,12 +172,15 @@ int ContrastRow(const LumaPlane<P>& pl, int y, float thr, float thr_min, uint8_t
 // settles most pixels without the table).
 struct ExitTable {
   std::vector<uint8_t> edge;  // [max·256 + min] = 1 when the pixel goes on to the search
-  int safe = -1;              // max − min <= safe always exits
+  std::vector<uint8_t> near;  // [max·256 + min] = 1 when taps off the texel centres by up to
+                              // `margin` could flip the decision (see TapGrid)
+  int safe = -1;              // max − min <= safe always exits and is never a near tie
 };
 
-ExitTable MakeExitTable(float thr, float thr_min) {
+ExitTable MakeExitTable(float thr, float thr_min, float margin) {
   ExitTable t;
   t.edge.assign(256 * 256, 0);
+  t.near.assign(256 * 256, 0);
   int safe = 255;
   for (int mx = 0; mx < 256; ++mx) {
     for (int mn = 0; mn <= mx; ++mn) {
@@ -209,7 +189,8 @@ ExitTable MakeExitTable(float thr, float thr_min) {
       const float clamped = std::max(thr_min, range_max * thr);
       const bool exit = range < clamped || range == 0.0f;
       t.edge[mx * 256 + mn] = exit ? 0 : 1;
-      if (!exit) safe = std::min(safe, mx - mn - 1);
+      t.near[mx * 256 + mn] = NearTie(range_max, range, thr, thr_min, margin) ? 1 : 0;
+      if (!exit || t.near[mx * 256 + mn]) safe = std::min(safe, mx - mn - 1);
     }
   }
   t.safe = safe;
@@ -217,23 +198,30 @@ ExitTable MakeExitTable(float thr, float thr_min) {
 }
 
 // Step 2 for one row of 8-bit lumas, through the table: returns the number of edge pixels.
-int ContrastRowBytes(const LumaPlane<uint8_t>& pl, int y, const ExitTable& tab, uint8_t* edge) {
+// Pixels whose taps are off the texel centres and whose byte pair is a near tie are decided
+// with the real taps (EdgeByTaps); near-tie pairs are always candidates (ExitTable::safe).
+int ContrastRowBytes(const LumaPlane<uint8_t>& pl, const Image8& src, const TapGrid& g, int y,
+                     const Fxaa311Params& prm, const ExitTable& tab, uint8_t* edge) {
   const int w = pl.w;
+  const bool row_exact = g.rows[y].exact;
   const uint8_t* rn = pl.Row(std::max(y - 1, 0));
   const uint8_t* rm = pl.Row(y);
   const uint8_t* rs = pl.Row(std::min(y + 1, pl.h - 1));
-  auto exact = [&](uint8_t n, uint8_t wv, uint8_t m, uint8_t e, uint8_t s) -> uint8_t {
+  auto exact = [&](int x, uint8_t n, uint8_t wv, uint8_t m, uint8_t e, uint8_t s) -> uint8_t {
     const uint8_t mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
     const uint8_t mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
+    if (tab.near[mx * 256 + mn] && !(row_exact && g.cols[x].exact)) {
+      return EdgeByTaps(pl, src, g, x, y, prm) ? 1 : 0;
+    }
     return tab.edge[mx * 256 + mn];
   };
   if (w <= 2) {
     for (int x = 0; x < w; ++x) {
-      edge[x] = exact(rn[x], rm[std::max(x - 1, 0)], rm[x], rm[std::min(x + 1, w - 1)], rs[x]);
+      edge[x] = exact(x, rn[x], rm[std::max(x - 1, 0)], rm[x], rm[std::min(x + 1, w - 1)], rs[x]);
     }
   } else {
-    edge[0] = exact(rn[0], rm[0], rm[0], rm[1], rs[0]);
-    edge[w - 1] = exact(rn[w - 1], rm[w - 2], rm[w - 1], rm[w - 1], rs[w - 1]);
+    edge[0] = exact(0, rn[0], rm[0], rm[0], rm[1], rs[0]);
+    edge[w - 1] = exact(w - 1, rn[w - 1], rm[w - 2], rm[w - 1], rm[w - 1], rs[w - 1]);
     // Vectorisable: candidates where max − min exceeds the always-exit difference.
     const uint8_t safe = static_cast<uint8_t>(std::max(tab.safe, 0));
     const bool none_safe = tab.safe < 0;
@@ -251,7 +239,7 @@ int ContrastRowBytes(const LumaPlane<uint8_t>& pl, int y, const ExitTable& tab, 
           continue;
         }
       }
-      if (edge[x]) edge[x] = exact(rn[x], rm[x - 1], rm[x], rm[x + 1], rs[x]);
+      if (edge[x]) edge[x] = exact(x, rn[x], rm[x - 1], rm[x], rm[x + 1], rs[x]);
     }
   }
   int count = 0;
@@ -259,38 +247,11 @@ int ContrastRowBytes(const LumaPlane<uint8_t>& pl, int y, const ExitTable& tab, 
   return count;
 }
 
-// The rgb of BilinearSampler::SampleNormalized(s, t) on `img`, operation for operation
-// (Sample's floor/clamp/weights, Fetch's clamp and k/255), without the alpha channel.
-inline void FinalTap(const Image8& img, float s, float t, float rgb[3]) {
-  const int W = img.Width(), H = img.Height();
-  const float u = s * static_cast<float>(W);
-  const float v = t * static_cast<float>(H);
-  const float x = u - 0.5f;
-  const float y = v - 0.5f;
-  const float x0f = std::floor(x);
-  const float y0f = std::floor(y);
-  const float fx = x - x0f;
-  const float fy = y - y0f;
-  const int x0 = static_cast<int>(std::clamp(x0f, -1.0f, static_cast<float>(W)));
-  const int y0 = static_cast<int>(std::clamp(y0f, -1.0f, static_cast<float>(H)));
-  const int xa = std::clamp(x0, 0, W - 1), xb = std::clamp(x0 + 1, 0, W - 1);
-  const int ya = std::clamp(y0, 0, H - 1), yb = std::clamp(y0 + 1, 0, H - 1);
-  const uint8_t* a = img.Pixel(xa, ya);
-  const uint8_t* b = img.Pixel(xb, ya);
-  const uint8_t* c = img.Pixel(xa, yb);
-  const uint8_t* d = img.Pixel(xb, yb);
-  const float wa = (1.0f - fx) * (1.0f - fy);
-  const float wb = fx * (1.0f - fy);
-  const float wc = (1.0f - fx) * fy;
-  const float wd = fx * fy;
-  for (int k = 0; k < 3; ++k) rgb[k] = Unorm(a[k]) * wa + Unorm(b[k]) * wb + Unorm(c[k]) * wc + Unorm(d[k]) * wd;
-}
-
 // ShadePixel for a pixel that passed the early exit with range > 0, lumas from the plane.
 // Statement order and float expressions are ShadePixel's; returns the taps it took.
 template <typename P>
-uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, const Image8& src, int x, int y,
-                   const Fxaa311Params& prm, float rcpX, float rcpY, uint8_t* out) {
+uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler& tex, const Image8& src,
+                   int x, int y, const Fxaa311Params& prm, float rcpX, float rcpY, uint8_t* out) {
   const bool glsl = prm.order == Order::kSeed003Glsl;
   const bool rgb_taps = prm.luma == Luma::kRec601Rgb;  // bilinear lumas need filtered rgb
   const std::vector<float>& P_ = prm.steps;
@@ -301,19 +262,22 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, const Image8& s
   const int W = pl.w, H = pl.h;
   float posMx = (static_cast<float>(x) + 0.5f) / static_cast<float>(W);
   float posMy = (static_cast<float>(y) + 0.5f) / static_cast<float>(H);
-  const float lumaM = pl.Texel(x, y);
-  float lumaS = pl.Texel(x, y + 1);
-  float lumaE = pl.Texel(x + 1, y);
-  float lumaN = pl.Texel(x, y - 1);
-  float lumaW = pl.Texel(x - 1, y);
+  const TapAxis& cx = grid.cols[x];
+  const TapAxis& ry = grid.rows[y];
+  auto L = [&](int dx, int dy) { return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma); };
+  const float lumaM = L(0, 0);
+  float lumaS = L(0, 1);
+  float lumaE = L(1, 0);
+  float lumaN = L(0, -1);
+  float lumaW = L(-1, 0);
   const float rangeMax = std::max(std::max(lumaN, lumaW), std::max(lumaE, std::max(lumaS, lumaM)));
   const float rangeMin = std::min(std::min(lumaN, lumaW), std::min(lumaE, std::min(lumaS, lumaM)));
   const float range = rangeMax - rangeMin;
 
-  const float lumaNW = pl.Texel(x - 1, y - 1);
-  const float lumaSE = pl.Texel(x + 1, y + 1);
-  const float lumaNE = pl.Texel(x + 1, y - 1);
-  const float lumaSW = pl.Texel(x - 1, y + 1);
+  const float lumaNW = L(-1, -1);
+  const float lumaSE = L(1, 1);
+  const float lumaNE = L(1, -1);
+  const float lumaSW = L(-1, 1);
 
   const float lumaNS = lumaN + lumaS;
   const float lumaWE = lumaW + lumaE;
@@ -441,9 +405,9 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, const Image8& s
   float rgb[3];
   FinalTap(src, posMx, posMy, rgb);  // tex.SampleNormalized(posMx, posMy).rgb
   ++taps;
-  out[0] = QuantizeFast(rgb[0]);
-  out[1] = QuantizeFast(rgb[1]);
-  out[2] = QuantizeFast(rgb[2]);
+  out[0] = StoreUnorm8(rgb[0]);
+  out[1] = StoreUnorm8(rgb[1]);
+  out[2] = StoreUnorm8(rgb[2]);
   out[3] = 255;
   return taps;
 }
@@ -451,12 +415,21 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, BilinearSampler& tex, const Image8& s
 
 template <typename P>
 Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* stats) {
+  const int w = in.Width();
+  const int h = in.Height();
+  const TapGrid grid = MakeTapGrid(w, h, params.order == Order::kSeed003Glsl);
+  // Early-exit pixels are written as a copy of the input: the shader returns its centre
+  // tap, whose stored bytes are the input's while 255·deviation stays well below 1/2, and
+  // near-tie detection needs the deviation far below one 8-bit step. Both hold up to
+  // ~16k pixels a side; beyond, the reference implementation runs.
+  if (255.0f * grid.deviation > 0.25f) return Fxaa311Reference(in, params, stats);
+  const float margin = 3.0f * grid.deviation;
   LumaPlane<P> plane;
   BuildPlane(in, params.luma, &plane);
   ExitTable exit_table;
-  if constexpr (std::is_same_v<P, uint8_t>) exit_table = MakeExitTable(params.edge_threshold, params.edge_threshold_min);
-  const int w = in.Width();
-  const int h = in.Height();
+  if constexpr (std::is_same_v<P, uint8_t>) {
+    exit_table = MakeExitTable(params.edge_threshold, params.edge_threshold_min, margin);
+  }
   const float rcpX = 1.0f / static_cast<float>(w);
   const float rcpY = 1.0f / static_cast<float>(h);
   Image8 out(w, h, 4);
@@ -473,9 +446,9 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
       CopyRowOpaque(in.Row(y), orow, w);
       int edges;
       if constexpr (std::is_same_v<P, uint8_t>) {
-        edges = ContrastRowBytes(plane, y, exit_table, edge.data());
+        edges = ContrastRowBytes(plane, in, grid, y, params, exit_table, edge.data());
       } else {
-        edges = ContrastRow(plane, y, params.edge_threshold, params.edge_threshold_min, edge.data());
+        edges = ContrastRow(plane, in, grid, y, params, margin, edge.data());
       }
       chunk_taps += 5 * static_cast<uint64_t>(w - edges);
       if (edges == 0) continue;
@@ -489,7 +462,7 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
           }
         }
         if (!edge[x]) continue;
-        chunk_taps += EdgePixel(plane, tex, in, x, y, params, rcpX, rcpY, orow + 4 * x);
+        chunk_taps += EdgePixel(plane, grid, tex, in, x, y, params, rcpX, rcpY, orow + 4 * x);
       }
     }
     taps[static_cast<size_t>(y0 / kGrain)] = chunk_taps;

@@ -41,8 +41,7 @@ struct MethodPlan {
 
   /// True when the method works on a finished 1x frame alone (usable by `aalab apply`).
   bool IsPostOnly() const {
-    return post && render.pattern == SamplePattern::kCenter && render.scale == 1.0 &&
-           rescale == Rescale::kNone;
+    return post && render.IsPlain1x() && rescale == Rescale::kNone;
   }
 };
 

@@ -13,6 +13,7 @@ const std::vector<MethodEntry>& MethodRegistry() {
     };
     // One line per family file, in listing order.
     add(SupersampleMethods());
+    add(MsaaMethods());
     add(Fxaa1Methods());
     add(Fxaa311Methods());
     add(RenderScaleMethods());

@@ -158,7 +158,7 @@ Tap1 MakeTap(float u, int n) {
 const float* UnormTable() {
   static const auto table = [] {
     std::array<float, 256> t{};
-    for (int k = 0; k < 256; ++k) t[k] = static_cast<float>(k) / 255.0f;
+    for (int k = 0; k < 256; ++k) t[k] = UnormToFloat(static_cast<uint8_t>(k));
     return t;
   }();
   return table.data();
@@ -171,11 +171,10 @@ inline void Bilerp(const Image8& in, const float* u8, const Tap1& tx, const Tap1
   const uint8_t* b = in.Pixel(tx.i1, ty.i0);
   const uint8_t* c = in.Pixel(tx.i0, ty.i1);
   const uint8_t* d = in.Pixel(tx.i1, ty.i1);
-  const float wa = (1.0f - fx) * (1.0f - fy);
-  const float wb = fx * (1.0f - fy);
-  const float wc = (1.0f - fx) * fy;
-  const float wd = fx * fy;
-  for (int k = 0; k < 3; ++k) out[k] = u8[a[k]] * wa + u8[b[k]] * wb + u8[c[k]] * wc + u8[d[k]] * wd;
+  BilinearFootprint f;
+  f.fx = fx;
+  f.fy = fy;
+  for (int k = 0; k < 3; ++k) out[k] = BilinearBlend(u8[a[k]], u8[b[k]], u8[c[k]], u8[d[k]], f);
 }
 
 inline uint8_t Quantize(float v) {  // QuantizeUnorm8: lround(v·255) = floor(v·255 + 0.5) in double

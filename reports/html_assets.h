@@ -1,19 +1,33 @@
 /// Inline assets of the HTML report (internal to reports/): the stylesheet and the script,
 /// as raw strings, and what the page knows about metrics (labels, units, direction).
 #pragma once
+#include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace aalab::html {
 
-/// The page's stylesheet (inlined in <style>).
-extern const char* const kStyle;
+/// One file of reports/html/ embedded into the binary at build time (reports/CMakeLists.txt
+/// lists them; reports/html/embed_assets.cmake generates the table).
+struct EmbeddedAsset {
+  const char* name;  ///< file name under reports/html/ ("core.js")
+  const char* data;  ///< its bytes, NUL-terminated
+  std::size_t size;  ///< byte count without the NUL
+};
+extern const EmbeddedAsset kEmbeddedAssets[];
+extern const std::size_t kEmbeddedAssetCount;
 
-/// The page's script, in parts concatenated in this order into one inline <script>: shared
-/// helpers and views, the charts and cost tables, the gallery and the self-test.
-extern const char* const kScriptCore;
-extern const char* const kScriptCharts;
-extern const char* const kScriptGallery;
+/// The bytes of the embedded file `name`; throws std::logic_error when no such file was
+/// embedded (a build error, not user input).
+std::string_view Asset(std::string_view name);
+
+/// The page's stylesheet (style.css, inlined in <style>).
+std::string_view PageStyle();
+
+/// The page's script: every embedded `.js` file in the order of reports/CMakeLists.txt, each
+/// preceded by a newline, concatenated into one inline <script>.
+std::string PageScript();
 
 /// What the page says about a metric.
 struct MetricInfo {

@@ -396,15 +396,17 @@ std::string RenderHtmlReport(const Report& r) {
        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
        "<meta name=\"generator\" content=\"aalab " + Attr(ContextOf(r, "tool_version")) + "\">\n<title>aalab report — " +
        HtmlEscape(SettingOf(r, "suite")) + " " + HtmlEscape(SettingOf(r, "size")) + "</title>\n<style>\n";
-  h += html::kStyle;
+  h += "\n";
+  h += html::PageStyle();
   h += "</style>\n</head>\n<body>\n<a class=\"skip\" href=\"#main\">Skip to content</a>\n";
   Header(h, r);
   h += "<main id=\"main\">\n<section class=\"view\" id=\"view-suite\" data-view=\"suite\">\n<h2>Suite overview</h2>\n"
        "<p class=\"desc\">Each method's quality and time averaged over the " +
        Int(static_cast<long>(r.scenes.size())) +
-       " scenes (arithmetic mean of the per-scene scores and of the per-scene median times; a method is "
-       "plotted only when it has a value on every scene). Per-scene details, tables and the gallery are in "
-       "the scene tabs.</p>\n";
+       " scenes (arithmetic mean of the per-scene scores and of the per-scene median times, taken over the "
+       "scenes where every method has a value of the chosen metric, so that every method is averaged over the "
+       "same scenes; the scenes left out and why are listed with the chart). Per-scene details, tables and the "
+       "gallery are in the scene tabs.</p>\n";
   QualityCostBlock(h, "suite", nullptr);
   h += html::GpuSummary(r);
   h += "</section>\n";
@@ -418,9 +420,7 @@ std::string RenderHtmlReport(const Report& r) {
        "</script>\n";
   h += "<script type=\"application/json\" id=\"aalab-meta\">" + JsonForScriptTag(MetaJson(r).dump()) +
        "</script>\n<script>\n";
-  h += html::kScriptCore;
-  h += html::kScriptCharts;
-  h += html::kScriptGallery;
+  h += html::PageScript();
   h += "</script>\n</body>\n</html>\n";
   return h;
 }

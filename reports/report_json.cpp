@@ -168,7 +168,9 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
     j["cost"] = {{"primary_rays_per_px", Num(row.primary_rays_per_px)},
                  {"shadow_rays_per_px", Num(row.shadow_rays_per_px)},
                  {"texture_lookups_per_px", Num(row.texture_lookups_per_px)},
-                 {"taps_per_px", Num(row.taps_per_px)}};
+                 {"taps_per_px", Num(row.taps_per_px)},
+                 {"coverage_rays_per_px", Num(row.coverage_rays_per_px)},
+                 {"shading_evals_per_px", Num(row.shading_evals_per_px)}};
     j["output_hash"] = row.output_hash;
     Json im = Json::object();
     for (const auto& [k, v] : row.images) im[k] = v;
@@ -248,6 +250,8 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       row.shadow_rays_per_px = c.at("shadow_rays_per_px").get<double>();
       row.texture_lookups_per_px = c.at("texture_lookups_per_px").get<double>();
       row.taps_per_px = c.at("taps_per_px").get<double>();
+      row.coverage_rays_per_px = c.at("coverage_rays_per_px").get<double>();
+      row.shading_evals_per_px = c.at("shading_evals_per_px").get<double>();
       row.output_hash = j.at("output_hash").get<std::string>();
       for (auto it = j.at("images").begin(); it != j.at("images").end(); ++it) {
         row.images[it.key()] = it.value().get<std::string>();

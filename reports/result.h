@@ -55,6 +55,8 @@ struct ResultRow {
   Timing render, post, resample, total;
   // Cost counters, per output pixel.
   double primary_rays_per_px = 0, shadow_rays_per_px = 0, texture_lookups_per_px = 0, taps_per_px = 0;
+  double coverage_rays_per_px = 0;  ///< camera rays that decide visibility at a sample position
+  double shading_evals_per_px = 0;  ///< surface shading evaluations (MSAA: one per primitive and pixel)
   std::vector<MetricResult> metrics;
   std::string output_hash;  ///< FNV-1a 64 of the output's RGBA8 bytes, hex
   std::map<std::string, std::string> images;  ///< role → path relative to the report folder

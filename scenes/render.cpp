@@ -114,11 +114,80 @@ void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Pla
   }
 }
 
-}  // namespace
+/// Per-thread buffers of RenderMsaaFrame, reused from tile to tile.
+struct MsaaTileScratch {
+  std::vector<SamplePos> pos, centres;
+  std::vector<SampleResult> res;
+  std::vector<uint32_t> evals;
+};
 
-Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
-                   TraceCounters* counters) {
+/// MSAA frame: tiles in parallel, one Tracer::TraceMsaa call per tile (its pixels row-major,
+/// each with N samples at the standard positions), counters merged in tile order.
+Image8 RenderMsaaFrame(const Tracer& tracer, int width, int height, const MsaaSpec& msaa, TraceCounters* counters,
+                       FrameStats* stats) {
+  AALAB_CHECK(width > 0 && height > 0, "render size must be positive");
   const Display& display = tracer.GetScene().display;
+  const int spp = msaa.samples;
+  std::vector<std::pair<float, float>> offsets;  // in [0, 1)² from the pixel's corner
+  for (const SampleOffset16& o : StandardSamplePositions(spp)) {
+    offsets.emplace_back(static_cast<float>(8 + o.x) / 16.0f, static_cast<float>(8 + o.y) / 16.0f);
+  }
+  Image8 out(width, height, 4, 255);
+  if (stats) stats->shading_evals = ImageF(width, height, 1);
+  const int tiles_x = (width + kTile - 1) / kTile;
+  const int tiles_y = (height + kTile - 1) / kTile;
+  const int tiles = tiles_x * tiles_y;
+  std::vector<TraceCounters> per_tile(static_cast<size_t>(tiles));
+  ParallelForChunks(tiles, 1, [&](int begin, int end) {
+    thread_local MsaaTileScratch scratch;
+    const size_t max_px = static_cast<size_t>(kTile) * kTile;
+    if (scratch.pos.size() < max_px * static_cast<size_t>(spp)) {
+      scratch.pos.resize(max_px * static_cast<size_t>(spp));
+      scratch.res.resize(max_px * static_cast<size_t>(spp));
+    }
+    if (scratch.centres.size() < max_px) {
+      scratch.centres.resize(max_px);
+      scratch.evals.resize(max_px);
+    }
+    for (int t = begin; t < end; ++t) {
+      const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
+      const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
+      int n = 0;
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x, ++n) {
+          const float fx = static_cast<float>(x), fy = static_cast<float>(y);
+          scratch.centres[static_cast<size_t>(n)] = SamplePos{fx + 0.5f, fy + 0.5f};
+          SamplePos* p = scratch.pos.data() + static_cast<size_t>(n) * spp;
+          for (int s = 0; s < spp; ++s) p[s] = SamplePos{fx + offsets[s].first, fy + offsets[s].second};
+        }
+      }
+      tracer.TraceMsaa(scratch.pos.data(), scratch.centres.data(), n, msaa, width, height, scratch.res.data(),
+                       scratch.evals.data(), &per_tile[t]);
+      int k = 0;
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x, ++k) {
+          const SampleResult* r = scratch.res.data() + static_cast<size_t>(k) * spp;
+          if (msaa.resolve == MsaaResolve::kHdrLinear) {
+            ResolveHdrLinearPixel(display, r, spp, out.Pixel(x, y));
+          } else {
+            ResolveBoxPixel(display, r, spp, out.Pixel(x, y));
+          }
+          if (stats) stats->shading_evals.At(x, y, 0) = static_cast<float>(scratch.evals[static_cast<size_t>(k)]);
+        }
+      }
+    }
+  });
+  if (counters) {
+    for (const auto& c : per_tile) *counters += c;
+  }
+  return out;
+}
+
+/// Traces the samples of a method frame (the render spec's pattern and jitter) and calls
+/// `resolve(x, y, samples, spp)` for each pixel: what RenderFrame and RenderFrameLinear share.
+template <typename Resolve>
+void TraceFrameSamples(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
+                       const Resolve& resolve, TraceCounters* counters) {
   const int spp = spec.SamplesPerPixel();
   std::vector<std::pair<float, float>> fixed;
   if (spec.pattern != SamplePattern::kJitter && spec.pattern != SamplePattern::kStratified) {
@@ -150,11 +219,38 @@ Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec
         for (int s = 0; s < spp; ++s) out_pos[s] = SamplePos{fx + fixed[s].first, fy + fixed[s].second};
     }
   };
+  RenderTiles(tracer, width, height, spp, place, resolve, counters);
+}
+
+}  // namespace
+
+Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
+                   TraceCounters* counters, FrameStats* stats) {
+  if (spec.msaa.On()) return RenderMsaaFrame(tracer, width, height, spec.msaa, counters, stats);
+  const Display& display = tracer.GetScene().display;
   Image8 out(width, height, 4, 255);
   auto resolve = [&](int x, int y, const SampleResult* r, int count) {
     ResolveBoxPixel(display, r, count, out.Pixel(x, y));
   };
-  RenderTiles(tracer, width, height, spp, place, resolve, counters);
+  TraceFrameSamples(tracer, width, height, spec, seed, resolve, counters);
+  return out;
+}
+
+ImageF RenderFrameLinear(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
+                         TraceCounters* counters) {
+  AALAB_CHECK(!spec.msaa.On(), "RenderFrameLinear resolves sample patterns only, not MSAA");
+  const Display& display = tracer.GetScene().display;
+  ImageF out(width, height, 3);
+  auto resolve = [&](int x, int y, const SampleResult* r, int count) {
+    double sum[3] = {0, 0, 0};
+    for (int s = 0; s < count; ++s) {
+      float d[3];
+      DisplayLinearInline(display, r[s].rgb, d);
+      for (int c = 0; c < 3; ++c) sum[c] += d[c];
+    }
+    for (int c = 0; c < 3; ++c) out.At(x, y, c) = static_cast<float>(sum[c] / count);
+  };
+  TraceFrameSamples(tracer, width, height, spec, seed, resolve, counters);
   return out;
 }
 

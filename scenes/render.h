@@ -37,13 +37,41 @@ inline void ResolveBoxPixel(const Display& display, const SampleResult* r, int c
   for (int c = 0; c < 3; ++c) p[c] = QuantizeUnorm8(SrgbEncode(static_cast<float>(sum[c] / count)));
 }
 
+/// Per-pixel cost maps a frame render can also return.
+struct FrameStats {
+  ImageF shading_evals;  ///< MSAA only: shading evaluations of each pixel (1 channel)
+};
+
+/// The MSAA resolve of one pixel with resolve=hdr-linear: box average of the samples'
+/// scene-linear radiance (double sums in sample order), then the display transform once,
+/// sRGB encode, round to 8 bits into p[0..2] (the naive resolve of an HDR render target).
+inline void ResolveHdrLinearPixel(const Display& display, const SampleResult* r, int count, uint8_t* p) {
+  double sum[3] = {0, 0, 0};
+  for (int s = 0; s < count; ++s) {
+    for (int c = 0; c < 3; ++c) sum[c] += r[s].rgb[c];
+  }
+  float mean[3], d[3];
+  for (int c = 0; c < 3; ++c) mean[c] = static_cast<float>(sum[c] / count);
+  DisplayLinearInline(display, mean, d);
+  for (int c = 0; c < 3; ++c) p[c] = QuantizeUnorm8(SrgbEncode(d[c]));
+}
+
 /// Renders a method frame of width × height with the render spec's sample pattern: each
 /// sample goes through the scene's display transform, samples are box-averaged in linear
 /// light, sRGB-encoded and quantised to RGBA8 (alpha 255). `spec.scale` is ignored here (the
 /// caller picks the size). Jitter is a hash of (pixel, sample index, seed): bit-identical at
-/// any thread count.
+/// any thread count. With `spec.msaa` on: Tracer::TraceMsaa at the standard sample
+/// positions, resolved as `spec.msaa.resolve` says; `stats` (when not null) then receives
+/// the per-pixel shading evaluations.
 Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
-                   TraceCounters* counters);
+                   TraceCounters* counters, FrameStats* stats = nullptr);
+
+/// The float resolve of RenderFrame: the same samples (pattern, jitter, seed), each through the
+/// display transform and box-averaged in linear light (double sums in sample order), written
+/// as display-linear RGB float in [0, 1] — neither sRGB-encoded nor quantised. RenderFrame's
+/// pixel is QuantizeUnorm8(SrgbEncode(this pixel)).
+ImageF RenderFrameLinear(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
+                         TraceCounters* counters);
 
 /// The supersampled ground truth.
 struct Reference {

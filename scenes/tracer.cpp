@@ -1,5 +1,6 @@
-// Embree tracer: BVH build, 16-wide packet traversal, alpha-test continuation, shadow rays,
-// and shading composed from the scene's declared effects only.
+// Embree tracer: BVH build, camera rays, 16-wide packet traversal and alpha-test
+// continuation; Tracer::Trace shades every camera sample (tracer_shade.cpp shades, and
+// tracer_msaa.cpp holds MSAA's coverage/shading split).
 //
 // Rays are traced in packets of 16 (rtcIntersect16 / rtcOccluded16). Alpha cut-outs are
 // handled by continuing the ray past a rejected hit (a new packet round), not by an Embree
@@ -7,36 +8,22 @@
 // BVH's traversal order), so counters and images are identical at any thread count.
 #include "scenes/tracer.h"
 
-#include <embree3/rtcore.h>
-
-#include <algorithm>
 #include <cmath>
-#include <limits>
-#include <string>
-#include <vector>
 
 #include "harness/core/error.h"
 #include "harness/core/parallel.h"
+#include "scenes/tracer_internal.h"
 
 namespace aalab {
 
-namespace {
+using namespace tracer_detail;
 
-constexpr int kPacket = 16;
-constexpr int kMaxAlphaLayers = 256;  // continuation rounds through cut-outs before giving up
+namespace {
 
 void DeviceError(void* user, RTCError code, const char* str) {
   auto* msg = static_cast<std::string*>(user);
   *msg = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (str ? str : "");
 }
-
-struct Hit {
-  float t = std::numeric_limits<float>::infinity();
-  int shape = -1;
-  unsigned prim = 0;
-  float u = 0, v = 0;
-  glm::vec3 ng{0.0f};
-};
 
 }  // namespace
 
@@ -65,20 +52,6 @@ float EvaluatePattern(const Texture& tex, glm::vec2 uv) {
   }
   return 0.0f;
 }
-
-struct Tracer::Impl {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  std::string error;
-  bool any_alpha = false;
-  // camera basis
-  glm::vec3 origin{0.0f}, forward{0.0f}, right{0.0f}, up{0.0f};
-
-  ~Impl() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
-};
 
 Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()) {
   Impl& im = *impl_;
@@ -170,13 +143,7 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
 
 Tracer::~Tracer() = default;
 
-namespace {
-
-/// Closest hits for n rays, in 16-wide packets. Ray k of the batch is ray idx[k] of the
-/// arrays (idx == nullptr: ray k itself); hits[k] receives its hit. Rays with tnear >= tfar
-/// are skipped. The packets hold the same rays, in the same lanes, whether or not an index
-/// list is used, so the result never depends on how the caller stores its rays.
-void IntersectRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear,
+void tracer_detail::IntersectRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear,
                    const float* tfar, const int* idx, int n, Hit* hits, bool coherent) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
@@ -225,70 +192,6 @@ void IntersectRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, c
   }
 }
 
-/// Surface attributes at a hit.
-struct Surface {
-  glm::vec3 p{0.0f};
-  glm::vec3 n{0.0f};   // shading normal, facing the ray
-  glm::vec3 ng{0.0f};  // geometric normal, facing the ray
-  glm::vec2 uv{0.0f};
-};
-
-Surface SurfaceAt(const Scene& scene, const Hit& h, glm::vec3 org, glm::vec3 dir) {
-  const Shape& s = scene.shapes[h.shape];
-  Surface out;
-  out.p = org + dir * h.t;
-  glm::vec3 ng = h.ng;
-  glm::vec3 n = ng;
-  switch (s.kind) {
-    case ShapeKind::kTriangles: {
-      const glm::uvec3 tri = s.triangles[h.prim];
-      const float w = 1.0f - h.u - h.v;
-      out.uv = s.uvs[tri.x] * w + s.uvs[tri.y] * h.u + s.uvs[tri.z] * h.v;
-      if (!s.normals.empty()) n = s.normals[tri.x] * w + s.normals[tri.y] * h.u + s.normals[tri.z] * h.v;
-      break;
-    }
-    case ShapeKind::kSphere: {
-      const glm::vec3 d = out.p - s.center;
-      const float len = glm::length(d);
-      const glm::vec3 q = len > 0.0f ? d / len : glm::vec3(0, 1, 0);
-      out.uv = {std::atan2(q.z, q.x) * 0.15915494f + 0.5f, std::acos(std::clamp(q.y, -1.0f, 1.0f)) * 0.31830989f};
-      out.uv *= 2.0f * 3.14159265f * s.radius;  // uv in world units along the surface
-      break;
-    }
-    case ShapeKind::kDisk: {
-      const glm::vec3 d = out.p - s.center;
-      const glm::vec3 b = glm::cross(s.normal, s.tangent);
-      out.uv = {glm::dot(d, s.tangent), glm::dot(d, b)};
-      break;
-    }
-    case ShapeKind::kCapsule:
-    case ShapeKind::kCylinder: {
-      const glm::vec3 axis = s.p1 - s.p0;
-      out.uv = {h.u * glm::length(axis), 0.0f};
-      break;
-    }
-  }
-  auto safe_normalize = [](glm::vec3 v, glm::vec3 fallback) {
-    const float len = glm::length(v);
-    return (len > 0.0f && std::isfinite(len)) ? v / len : fallback;
-  };
-  ng = safe_normalize(ng, -dir);
-  n = safe_normalize(n, ng);
-  if (glm::dot(ng, dir) > 0.0f) ng = -ng;
-  if (glm::dot(n, dir) > 0.0f) n = -n;
-  out.ng = ng;
-  out.n = n;
-  return out;
-}
-
-/// Offset for secondary rays: relative to the magnitude of the position (float spacing).
-float RayEpsilon(glm::vec3 p) {
-  const float m = std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
-  return 1e-4f + m * 1e-6f;
-}
-
-}  // namespace
-
 namespace {
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
@@ -318,26 +221,80 @@ void PerspectiveRays(const SamplePos* pos, int count, float width, float height,
   }
 }
 
+}  // namespace
+
+void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width,
+                               int height, glm::vec3* org, glm::vec3* dir) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const float half_h = cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f)
+                                                            : cam.height * 0.5f;
+  if (cam.type == CameraType::kPerspective) {
+    PerspectiveRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
+                    im.forward, im.right, im.up, org, dir);
+  } else {
+    for (int i = 0; i < count; ++i) {
+      const float nx = 2.0f * pos[i].x / static_cast<float>(width) - 1.0f;
+      const float ny = 1.0f - 2.0f * pos[i].y / static_cast<float>(height);
+      const glm::vec3 offset = im.right * (nx * half_h * aspect) + im.up * (ny * half_h);
+      org[i] = im.origin + offset;
+      dir[i] = im.forward;
+    }
+  }
+}
+
+void tracer_detail::ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org,
+                                       const glm::vec3* dir, int count, float* tnear, float* tfar, Hit* hits,
+                                       LayerScratch& ls, TraceCounters& local) {
+  // Layer 0 holds every ray in order: trace straight into `hits` (same packets as a copy).
+  IntersectRays(im.scene, org, dir, tnear, tfar, nullptr, count, hits, true);
+  local.primary_rays += static_cast<uint64_t>(count);
+  local.coverage_rays += static_cast<uint64_t>(count);
+  if (!alpha) return;
+  std::vector<int>& active = ls.active;
+  std::vector<int>& next = ls.next;
+  active.clear();
+  // Layer 0's rejected hits, then further layers through the cut-outs.
+  auto alpha_pass = [&](int layer, int n, const int* who, const Hit* h) {
+    next.clear();
+    for (int k = 0; k < n; ++k) {
+      const int i = who ? who[k] : k;
+      const Hit hk = h[k];  // h may alias hits (layer 0)
+      hits[i] = hk;
+      if (hk.shape < 0) continue;
+      const Material& m = sc.materials[sc.shapes[hk.shape].material];
+      if (!m.alpha) continue;
+      const Surface srf = SurfaceAt(sc, hk, org[i], dir[i]);
+      ++local.texture_lookups;
+      if (EvaluatePattern(*m.alpha, srf.uv) >= m.alpha_cutoff) continue;
+      // Rejected: continue just past this hit.
+      hits[i] = Hit{};
+      tnear[i] = ContinuePast(hk.t);
+      if (layer + 1 < kMaxAlphaLayers) next.push_back(i);
+    }
+    active.swap(next);
+  };
+  alpha_pass(0, count, nullptr, hits);
+  for (int layer = 1; !active.empty(); ++layer) {
+    const int n = static_cast<int>(active.size());
+    Hit* h = Sized(ls.layer_hits, static_cast<size_t>(n));
+    IntersectRays(im.scene, org, dir, tnear, tfar, active.data(), n, h, false);
+    local.primary_rays += static_cast<uint64_t>(n);
+    local.coverage_rays += static_cast<uint64_t>(n);
+    alpha_pass(layer, n, active.data(), h);
+  }
+}
+
+namespace {
+
 /// Per-thread working memory of Trace, reused from call to call: a call allocates nothing
 /// once its thread has seen a batch of that size (vectors only grow).
 struct TraceScratch {
   std::vector<glm::vec3> org, dir;
   std::vector<float> tnear, tfar;
-  std::vector<Hit> hits, layer_hits;
-  std::vector<int> active, next;
-  std::vector<Surface> surf;
-  std::vector<uint32_t> blocked;
-  // shadow rays
-  std::vector<int> who_sample, who_light;
-  std::vector<glm::vec3> so, sd;
-  std::vector<float> stn, stf;
+  std::vector<Hit> hits;
+  LayerScratch layers;
+  ShadeScratch shade;
 };
-
-template <typename T>
-T* Sized(std::vector<T>& v, size_t n) {
-  if (v.size() < n) v.resize(n);
-  return v.data();
-}
 
 }  // namespace
 
@@ -345,7 +302,6 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
                    TraceCounters* counters) const {
   const Impl& im = *impl_;
   const Scene& sc = scene_;
-  const float inf = std::numeric_limits<float>::infinity();
   TraceCounters local;
   local.samples = static_cast<uint64_t>(count);
   if (count <= 0) {
@@ -361,203 +317,17 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
   glm::vec3* dir = Sized(S.dir, n_all);
   float* tnear = Sized(S.tnear, n_all);
   float* tfar = Sized(S.tfar, n_all);
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const Camera& cam = sc.camera;
-  const float half_h = cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f)
-                                                            : cam.height * 0.5f;
-  if (cam.type == CameraType::kPerspective) {
-    PerspectiveRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
-                    im.forward, im.right, im.up, org, dir);
-  } else {
-    for (int i = 0; i < count; ++i) {
-      const float nx = 2.0f * pos[i].x / static_cast<float>(width) - 1.0f;
-      const float ny = 1.0f - 2.0f * pos[i].y / static_cast<float>(height);
-      const glm::vec3 offset = im.right * (nx * half_h * aspect) + im.up * (ny * half_h);
-      org[i] = im.origin + offset;
-      dir[i] = im.forward;
-    }
-  }
-  for (int i = 0; i < count; ++i) {
-    tnear[i] = 0.0f;
-    tfar[i] = inf;
-  }
+  CameraRays(im, sc.camera, pos, count, width, height, org, dir);
+  std::fill(tnear, tnear + count, 0.0f);
+  std::fill(tfar, tfar + count, std::numeric_limits<float>::infinity());
 
   // 2. Closest hits, continuing through alpha cut-outs (only with `alpha_test`).
   Hit* hits = Sized(S.hits, n_all);
   const bool alpha = sc.Has(Effect::kAlphaTest) && im.any_alpha;
-  // Layer 0 holds every ray in order: trace straight into `hits` (same packets as a copy).
-  IntersectRays(im.scene, org, dir, tnear, tfar, nullptr, count, hits, true);
-  local.primary_rays += static_cast<uint64_t>(count);
-  if (alpha) {
-    std::vector<int>& active = S.active;
-    std::vector<int>& next = S.next;
-    active.clear();
-    // Layer 0's rejected hits, then further layers through the cut-outs.
-    auto alpha_pass = [&](int layer, int n, const int* who, const Hit* h) {
-      next.clear();
-      for (int k = 0; k < n; ++k) {
-        const int i = who ? who[k] : k;
-        const Hit hk = h[k];  // h may alias hits (layer 0)
-        hits[i] = hk;
-        if (hk.shape < 0) continue;
-        const Material& m = sc.materials[sc.shapes[hk.shape].material];
-        if (!m.alpha) continue;
-        const Surface srf = SurfaceAt(sc, hk, org[i], dir[i]);
-        ++local.texture_lookups;
-        if (EvaluatePattern(*m.alpha, srf.uv) >= m.alpha_cutoff) continue;
-        // Rejected: continue just past this hit.
-        hits[i] = Hit{};
-        tnear[i] = hk.t + std::max(hk.t * 2e-6f, 1e-6f);
-        if (layer + 1 < kMaxAlphaLayers) next.push_back(i);
-      }
-      active.swap(next);
-    };
-    alpha_pass(0, count, nullptr, hits);
-    for (int layer = 1; !active.empty(); ++layer) {
-      const int n = static_cast<int>(active.size());
-      Hit* h = Sized(S.layer_hits, static_cast<size_t>(n));
-      IntersectRays(im.scene, org, dir, tnear, tfar, active.data(), n, h, false);
-      local.primary_rays += static_cast<uint64_t>(n);
-      alpha_pass(layer, n, active.data(), h);
-    }
-  }
+  ClosestVisibleHits(im, sc, alpha, org, dir, count, tnear, tfar, hits, S.layers, local);
 
-  // 3. Surfaces and shadow rays (only with `shadows`, only for shadow-casting lights).
-  const bool lambert = sc.Has(Effect::kLambert);
-  const bool shadows = sc.Has(Effect::kShadows);
-  const bool specular = sc.Has(Effect::kSpecular);
-  const bool textures = sc.Has(Effect::kTextures);
-  // Surface attributes feed only lighting, shadows and textures: unlit untextured scenes
-  // never read them, so they are not computed there.
-  Surface* surf = Sized(S.surf, n_all);
-  if (lambert || shadows || textures) {
-    for (int i = 0; i < count; ++i) {
-      if (hits[i].shape >= 0) surf[i] = SurfaceAt(sc, hits[i], org[i], dir[i]);
-    }
-  }
-  uint32_t* blocked = Sized(S.blocked, n_all);
-  std::fill(blocked, blocked + count, 0u);
-  if (shadows) {
-    std::vector<int>& who_sample = S.who_sample;
-    std::vector<int>& who_light = S.who_light;
-    std::vector<glm::vec3>& so = S.so;
-    std::vector<glm::vec3>& sd = S.sd;
-    std::vector<float>& stn = S.stn;
-    std::vector<float>& stf = S.stf;
-    who_sample.clear();
-    who_light.clear();
-    so.clear();
-    sd.clear();
-    stn.clear();
-    stf.clear();
-    for (int i = 0; i < count; ++i) {
-      if (hits[i].shape < 0) continue;
-      if (sc.materials[sc.shapes[hits[i].shape].material].shading != Shading::kLambert) continue;
-      for (size_t l = 0; l < sc.lights.size() && l < 32; ++l) {
-        const Light& light = sc.lights[l];
-        if (!light.shadows) continue;
-        glm::vec3 L;
-        float dist;
-        if (light.type == LightType::kDirectional) {
-          L = -light.direction;
-          dist = inf;
-        } else {
-          L = light.position - surf[i].p;
-          dist = glm::length(L);
-          if (!(dist > 0.0f)) continue;
-          L /= dist;
-        }
-        if (glm::dot(surf[i].ng, L) <= 0.0f && glm::dot(surf[i].n, L) <= 0.0f) continue;
-        const float eps = RayEpsilon(surf[i].p);
-        const glm::vec3 side = glm::dot(surf[i].ng, L) > 0.0f ? surf[i].ng : -surf[i].ng;
-        so.push_back(surf[i].p + side * eps);
-        sd.push_back(L);
-        stn.push_back(0.0f);
-        stf.push_back(light.type == LightType::kDirectional ? inf : dist * (1.0f - 1e-5f));
-        who_sample.push_back(i);
-        who_light.push_back(static_cast<int>(l));
-      }
-    }
-    // Any hit that survives the alpha test blocks the light.
-    std::vector<int>& act = S.active;
-    std::vector<int>& next = S.next;
-    act.resize(so.size());
-    for (size_t k = 0; k < so.size(); ++k) act[k] = static_cast<int>(k);
-    for (int layer = 0; !act.empty() && layer < kMaxAlphaLayers; ++layer) {
-      const int n = static_cast<int>(act.size());
-      Hit* h = Sized(S.layer_hits, static_cast<size_t>(n));
-      // Layer 0 traces every shadow ray in order (no index list needed).
-      IntersectRays(im.scene, so.data(), sd.data(), stn.data(), stf.data(), layer == 0 ? nullptr : act.data(), n,
-                    h, false);
-      local.shadow_rays += static_cast<uint64_t>(n);
-      next.clear();
-      for (int k = 0; k < n; ++k) {
-        const int r = act[k];
-        if (h[k].shape < 0) continue;
-        const Material& m = sc.materials[sc.shapes[h[k].shape].material];
-        if (alpha && m.alpha) {
-          const Surface srf = SurfaceAt(sc, h[k], so[r], sd[r]);
-          ++local.texture_lookups;
-          if (EvaluatePattern(*m.alpha, srf.uv) < m.alpha_cutoff) {
-            stn[r] = h[k].t + std::max(h[k].t * 2e-6f, 1e-6f);
-            next.push_back(r);
-            continue;
-          }
-        }
-        blocked[who_sample[r]] |= 1u << who_light[r];
-      }
-      act.swap(next);
-    }
-  }
-
-  // 4. Shading.
-  for (int i = 0; i < count; ++i) {
-    SampleResult& r = out[i];
-    r.surface = hits[i].shape;
-    r.shadowed = blocked[i];
-    glm::vec3 c = sc.background;
-    if (hits[i].shape >= 0) {
-      const Material& m = sc.materials[sc.shapes[hits[i].shape].material];
-      glm::vec3 base = m.color;
-      if (textures && m.texture) {
-        ++local.texture_lookups;
-        const float t = EvaluatePattern(*m.texture, surf[i].uv);
-        base = m.texture->color_a + (m.texture->color_b - m.texture->color_a) * t;
-      }
-      if (m.shading == Shading::kUnlit || !lambert) {
-        c = base;
-      } else {
-        c = sc.ambient * base;
-        for (size_t l = 0; l < sc.lights.size(); ++l) {
-          const Light& light = sc.lights[l];
-          glm::vec3 L;
-          float falloff = 1.0f;
-          if (light.type == LightType::kDirectional) {
-            L = -light.direction;
-          } else {
-            L = light.position - surf[i].p;
-            const float d2 = glm::dot(L, L);
-            if (!(d2 > 0.0f)) continue;
-            L /= std::sqrt(d2);
-            falloff = 1.0f / d2;
-          }
-          const float ndotl = glm::dot(surf[i].n, L);
-          if (ndotl <= 0.0f) continue;
-          if (l < 32 && (blocked[i] >> l) & 1u) continue;
-          const glm::vec3 e = light.color * (light.intensity * falloff);
-          c += base * e * ndotl;
-          if (specular && m.specular != glm::vec3(0.0f)) {
-            const glm::vec3 hv = glm::normalize(L - dir[i]);
-            const float nh = std::max(0.0f, glm::dot(surf[i].n, hv));
-            c += m.specular * e * std::pow(nh, m.shininess);
-          }
-        }
-      }
-    }
-    r.rgb[0] = c.x;
-    r.rgb[1] = c.y;
-    r.rgb[2] = c.z;
-  }
+  // 3. One shading per sample.
+  ShadeHits(im, sc, alpha, hits, org, dir, count, S.shade, out, local);
   if (counters) *counters += local;
 }
 

@@ -1,10 +1,12 @@
 /// The Embree tracer: one BVH per scene, built once and shared by every method; traces camera
 /// samples at arbitrary continuous pixel positions at any resolution, in 16-wide packets, and
-/// shades them with exactly the effects the scene declares.
+/// shades them with exactly the effects the scene declares: per sample (Trace) or, for MSAA,
+/// once per primitive and pixel (TraceMsaa).
 #pragma once
 #include <cstdint>
 #include <memory>
 
+#include "harness/core/render_spec.h"
 #include "scenes/scene.h"
 
 namespace aalab {
@@ -15,12 +17,18 @@ struct TraceCounters {
   uint64_t primary_rays = 0;     ///< camera rays, including continuations through alpha cut-outs
   uint64_t shadow_rays = 0;      ///< shadow rays (only with the `shadows` effect)
   uint64_t texture_lookups = 0;  ///< colour-texture and alpha-pattern evaluations
+  uint64_t coverage_rays = 0;    ///< camera rays that decide visibility at a sample position (with
+                                 ///< continuations); MSAA's shading rays at pixel centres are not
+  uint64_t shading_evals = 0;    ///< surface shading evaluations (background samples cost none;
+                                 ///< MSAA: one per primitive and pixel, discarded ones included)
 
   TraceCounters& operator+=(const TraceCounters& o) {
     samples += o.samples;
     primary_rays += o.primary_rays;
     shadow_rays += o.shadow_rays;
     texture_lookups += o.texture_lookups;
+    coverage_rays += o.coverage_rays;
+    shading_evals += o.shading_evals;
     return *this;
   }
 };
@@ -51,6 +59,17 @@ class Tracer {
   void Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out,
              TraceCounters* counters) const;
 
+  /// MSAA (docs/msaa.md): traces `pixels` pixels of `msaa.samples` = N coverage samples each
+  /// (sample_pos[p·N + s], sample index order) with one visibility ray per sample, then
+  /// shades each distinct primitive a pixel's samples see once, at the shading point
+  /// `msaa.shading` picks (centre_pos[p] is pixel p's centre), and gives that colour to all
+  /// of the primitive's samples in out[p·N + s]. With `msaa.alpha_test` kShade a primitive
+  /// whose alpha test fails at its shading point is discarded from all its samples, which
+  /// then see what lies behind it. shading_evals[p] (when not null) receives pixel p's
+  /// number of shading evaluations. Thread-safe; results depend only on the inputs.
+  void TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos, int pixels, const MsaaSpec& msaa,
+                 int width, int height, SampleResult* out, uint32_t* shading_evals, TraceCounters* counters) const;
+
   const Scene& GetScene() const { return scene_; }
 
   /// The limit the benchmark measures tracing against: a bare Embree loop over the camera
@@ -60,8 +79,10 @@ class Tracer {
   /// of rays that hit something (so the work cannot be optimised away).
   uint64_t BareTrace(int width, int height, int grid) const;
 
- private:
+  /// The Embree state; opaque outside the tracer's files (scenes/tracer_internal.h).
   struct Impl;
+
+ private:
   const Scene& scene_;
   std::unique_ptr<Impl> impl_;
 };

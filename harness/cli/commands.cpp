@@ -93,7 +93,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   render->add_option("--spp", ra->spp, "samples per pixel: 1 (pixel centre) or n*n stratified")->capture_default_str();
   render->add_option("--seed", ra->seed, "jitter seed")->capture_default_str();
   render->add_option("--threads", ra->threads, "worker threads (0 = all)")->capture_default_str();
-  render->add_option("--out", ra->out, "output file: .exr (display-linear float) or .png (sRGB 8-bit)")->required();
+  render->add_option("--out", ra->out, "output file: .exr (display-linear float resolve, not quantised) or .png (sRGB 8-bit)")->required();
   render->callback([&commands, ra] {
     commands.action = [ra] {
       int w = 0, h = 0;
@@ -114,13 +114,10 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
         spec.grid = n;
       }
       TraceCounters counters;
-      const Image8 frame = RenderFrame(tracer, w, h, spec, ra->seed, &counters);
       if (ext == ".png") {
-        WriteImage8(ra->out, frame);
-      } else {
-        ImageF lin = ToFloat(frame, 3);
-        for (float& v : lin.Data()) v = SrgbDecode(v);
-        WriteImageF(ra->out, lin);
+        WriteImage8(ra->out, RenderFrame(tracer, w, h, spec, ra->seed, &counters));
+      } else {  // the float resolve of the same samples, before sRGB encoding and quantisation
+        WriteImageF(ra->out, RenderFrameLinear(tracer, w, h, spec, ra->seed, &counters));
       }
       std::printf("wrote %s (%dx%d, %d spp; %.2f primary rays/px, %.2f shadow rays/px, %.2f texture lookups/px)\n",
                   ra->out.c_str(), w, h, ra->spp, static_cast<double>(counters.primary_rays) / (w * h),

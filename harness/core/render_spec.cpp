@@ -1,10 +1,37 @@
 #include "harness/core/render_spec.h"
 
+#include <string>
+
 #include "harness/core/error.h"
 
 namespace aalab {
 
+const std::vector<SampleOffset16>& StandardSamplePositions(int n) {
+  // D3D11.3 functional spec §19.2.4 (pattern figures with 1/16 px coordinates) = Vulkan
+  // "Standard sample locations" (there in [0,1]² from the upper-left corner: (x + 8) / 16).
+  static const std::vector<SampleOffset16> k1 = {{0, 0}};
+  static const std::vector<SampleOffset16> k2 = {{4, 4}, {-4, -4}};
+  static const std::vector<SampleOffset16> k4 = {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}};
+  static const std::vector<SampleOffset16> k8 = {{1, -3}, {-1, 3}, {5, 1},  {-3, -5},
+                                                 {-5, 5}, {-7, -1}, {3, 7}, {7, -7}};
+  static const std::vector<SampleOffset16> k16 = {{1, 1},  {-1, -3}, {-3, 2}, {4, -1}, {-5, -2}, {2, 5},
+                                                  {5, 3},  {3, -5},  {-2, 6}, {0, -7}, {-4, -6}, {-6, 4},
+                                                  {-8, 0}, {7, -4},  {6, 7},  {-7, -8}};
+  switch (n) {
+    case 1: return k1;
+    case 2: return k2;
+    case 4: return k4;
+    case 8: return k8;
+    case 16: return k16;
+    default: break;
+  }
+  throw InternalError("no standard sample positions for " + std::to_string(n) + " samples");
+}
+
+bool RenderSpec::IsPlain1x() const { return pattern == SamplePattern::kCenter && scale == 1.0 && !msaa.On(); }
+
 int RenderSpec::SamplesPerPixel() const {
+  if (msaa.On()) return msaa.samples;
   switch (pattern) {
     case SamplePattern::kCenter: return 1;
     case SamplePattern::kOrderedGrid:

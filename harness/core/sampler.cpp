@@ -14,7 +14,7 @@ Float4 BilinearSampler::Fetch(int x, int y) const {
   x = std::clamp(x, 0, img_.Width() - 1);
   y = std::clamp(y, 0, img_.Height() - 1);
   const uint8_t* p = img_.Pixel(x, y);
-  return Float4{p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f, p[3] / 255.0f};
+  return Float4{UnormToFloat(p[0]), UnormToFloat(p[1]), UnormToFloat(p[2]), UnormToFloat(p[3])};
 }
 
 Float4 BilinearSampler::Texel(int x, int y) {
@@ -28,19 +28,26 @@ Float4 BilinearSampler::SampleNormalized(float s, float t) {
   return Sample(u, v);
 }
 
+Float4 BilinearSampler::SampleNormalizedOffset(float s, float t, int dx, int dy) {
+  return Sample(s * static_cast<float>(img_.Width()) + static_cast<float>(dx),
+                t * static_cast<float>(img_.Height()) + static_cast<float>(dy));
+}
+
 Float4 BilinearSampler::Sample(float u, float v) {
+  return Blend(BilinearAt(u, v, img_.Width(), img_.Height()));
+}
+
+Float4 BilinearSampler::Blend(const BilinearFootprint& f) {
   ++taps_;
-  const BilinearFootprint f = BilinearAt(u, v, img_.Width(), img_.Height());
   const Float4 a = Fetch(f.x0, f.y0);
   const Float4 b = Fetch(f.x0 + 1, f.y0);
   const Float4 c = Fetch(f.x0, f.y0 + 1);
   const Float4 d = Fetch(f.x0 + 1, f.y0 + 1);
-  const float wa = f.wa, wb = f.wb, wc = f.wc, wd = f.wd;
   Float4 r;
-  r.r = a.r * wa + b.r * wb + c.r * wc + d.r * wd;
-  r.g = a.g * wa + b.g * wb + c.g * wc + d.g * wd;
-  r.b = a.b * wa + b.b * wb + c.b * wc + d.b * wd;
-  r.a = a.a * wa + b.a * wb + c.a * wc + d.a * wd;
+  r.r = BilinearBlend(a.r, b.r, c.r, d.r, f);
+  r.g = BilinearBlend(a.g, b.g, c.g, d.g, f);
+  r.b = BilinearBlend(a.b, b.b, c.b, d.b, f);
+  r.a = BilinearBlend(a.a, b.a, c.a, d.a, f);
   return r;
 }
 
@@ -52,11 +59,10 @@ Float4 SampleBilinear(const ImageF& img, float u, float v) {
   const BilinearFootprint f = BilinearAt(u, v, w, h);
   const int xa = std::clamp(f.x0, 0, w - 1), xb = std::clamp(f.x0 + 1, 0, w - 1);
   const int ya = std::clamp(f.y0, 0, h - 1), yb = std::clamp(f.y0 + 1, 0, h - 1);
-  const float wa = f.wa, wb = f.wb, wc = f.wc, wd = f.wd;
   float out[4] = {0, 0, 0, 0};
   for (int c = 0; c < nc && c < 4; ++c) {
-    out[c] = img.At(xa, ya, c) * wa + img.At(xb, ya, c) * wb + img.At(xa, yb, c) * wc +
-             img.At(xb, yb, c) * wd;
+    out[c] = BilinearBlend(img.At(xa, ya, c), img.At(xb, ya, c), img.At(xa, yb, c),
+                           img.At(xb, yb, c), f);
   }
   return Float4{out[0], out[1], out[2], out[3]};
 }

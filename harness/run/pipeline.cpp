@@ -123,7 +123,7 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   row.spec = plan.spec;
   row.params = plan.params.Ordered();
   row.samples_per_pixel = plan.render.SamplesPerPixel();
-  const bool shared = plan.render.pattern == SamplePattern::kCenter && plan.render.scale == 1.0;
+  const bool shared = plan.render.IsPlain1x();
   Image8 frame;
   TraceCounters counters;
   if (shared) {
@@ -177,6 +177,8 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   row.primary_rays_per_px = static_cast<double>(counters.primary_rays) / px;
   row.shadow_rays_per_px = static_cast<double>(counters.shadow_rays) / px;
   row.texture_lookups_per_px = static_cast<double>(counters.texture_lookups) / px;
+  row.coverage_rays_per_px = static_cast<double>(counters.coverage_rays) / px;
+  row.shading_evals_per_px = static_cast<double>(counters.shading_evals) / px;
   row.taps_per_px = static_cast<double>(post_stats.taps + rescale_stats.taps) / px;
   row.output_hash = HashBytes(frame.Data().data(), frame.Data().size());
 

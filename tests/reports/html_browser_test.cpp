@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -108,6 +109,53 @@ TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
     EXPECT_GT(fs::file_size(shot), 20000u) << shot << " looks empty";
     std::printf("screenshot: %s\n", shot.c_str());
   }
+}
+
+// The first screen of `make run`: the default suite (every default method, a scene without
+// edges among them), tiny. The suite chart must plot one point per method for the default
+// quality axis, and say which scene its means leave out and why.
+TEST(HtmlBrowser, DefaultSuiteOverviewHasOnePointPerMethod) {
+  if (!fs::exists(kChromium)) GTEST_SKIP() << "SKIPPED: " << kChromium << " is not installed.";
+  const fs::path work = fs::path(AALAB_BINARY_DIR) / "html_browser_suite_test";
+  const fs::path out = work / "run";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  const CmdResult run = RunCommand(std::string(AALAB_BINARY_DIR) +
+                                   "/aalab run --suite default --size 48x27 --ref-spp 4 --repeat 1 --quiet --out " +
+                                   Quote(out.string()) + " 2>&1");
+  ASSERT_EQ(run.code, 0) << run.output;
+  const auto report = nlohmann::json::parse(ReadFile(out / "report.json"));
+  std::set<std::string> specs, scenes;
+  for (const auto& row : report["rows"]) {
+    specs.insert(row["spec"].get<std::string>());
+    scenes.insert(row["scene"].get<std::string>());
+  }
+  ASSERT_TRUE(scenes.count("detail-texture")) << "the default suite should hold the scene without edges";
+
+  const fs::path dom_path = work / "dom.html", log_path = work / "chromium.log";
+  const std::string url = "file://" + fs::absolute(out / "index.html").string() + "#suite";
+  const CmdResult dump = RunCommand(Chromium(work / "profile", "--virtual-time-budget=10000 --dump-dom " + Quote(url)) +
+                                    " > " + Quote(dom_path.string()) + " 2> " + Quote(log_path.string()));
+  ASSERT_EQ(dump.code, 0) << "chromium failed; log: " << log_path << "\n" << ReadFile(log_path);
+  const std::string dom = ReadFile(dom_path);
+  const size_t begin = dom.find("id=\"view-suite\"");
+  ASSERT_NE(begin, std::string::npos) << "no suite view; DOM in " << dom_path;
+  const size_t end = dom.find("<section", begin);
+  const std::string suite = dom.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+  const size_t chart_end = suite.find("</svg>");
+  ASSERT_NE(chart_end, std::string::npos) << "the suite view has no chart; DOM in " << dom_path;
+  std::set<std::string> plotted;
+  const std::regex point("<g class=\"pt [^\"]*\"[^>]* data-spec=\"([^\"]+)\"");
+  const std::string chart = suite.substr(0, chart_end);
+  for (auto it = std::sregex_iterator(chart.begin(), chart.end(), point); it != std::sregex_iterator(); ++it) {
+    EXPECT_TRUE(plotted.insert((*it)[1]).second) << "two points for " << (*it)[1];
+  }
+  EXPECT_EQ(plotted, specs) << "the suite chart should have one point per method";
+  EXPECT_EQ(suite.find("No method has a value"), std::string::npos);
+  // The means leave out detail-texture (no edge pixels, so no Edge PSNR) and say so.
+  const std::string note = "Suite means over " + std::to_string(scenes.size() - 1) + " of " + std::to_string(scenes.size()) +
+                           " scenes — left out (not every method has a value there): detail-texture: ";
+  EXPECT_NE(suite.find(note), std::string::npos) << "no note naming the scene left out; DOM in " << dom_path;
 }
 
 }  // namespace

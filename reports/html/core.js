@@ -1,10 +1,5 @@
 // The HTML report's script, part 1: data, helpers, views, sortable tables, selection.
 // Plain ES2017 in the page, no libraries; everything it draws comes from the embedded JSON.
-#include "reports/html_assets.h"
-
-namespace aalab::html {
-
-const char* const kScriptCore = R"JS(
 'use strict';
 const AA = (function () {
   const SELFTEST = /selftest/.test(location.hash);
@@ -99,7 +94,8 @@ const AA = (function () {
   }
   function nullReason(row, name) {
     if (!row.metrics || !(name in row.metrics)) return 'not computed';
-    return (row.null_reasons && row.null_reasons[name]) || 'null';
+    const why = (row.null_reasons && row.null_reasons[name]) || 'null';
+    return why === 'empty mask' ? 'no edge pixels (empty edge mask)' : why;
   }
 
   // ---- tooltip (hover and keyboard focus) ----
@@ -206,6 +202,3 @@ const AA = (function () {
            showTip, hideTip, makeSortable, sortTable, hooks, showView, sectionOf, goScene, select, init, errors,
            SELFTEST };
 })();
-)JS";
-
-}  // namespace aalab::html

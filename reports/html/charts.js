@@ -1,17 +1,14 @@
 // The HTML report's script, part 2: quality-vs-cost charts (inline SVG, log time axis, Pareto
 // front for the metric's direction) and the cost-of-accuracy tables.
-#include "reports/html_assets.h"
-
-namespace aalab::html {
-
-const char* const kScriptCharts = R"JS(
 (function () {
   const A = AA, el = A.el, sv = A.sv;
 
-  /// Points of a scope. Scene: one per row. Suite: mean over scenes of the quality and of the
-  /// median time, only for methods with a value on every scene.
+  /// Points of a scope. Scene: one per row. Suite: for each method, the mean quality and the
+  /// mean of the median times over the scenes where every method has a value of the metric
+  /// (the same scenes for every method, so the means compare like with like); the scenes left
+  /// out, with why, are in `left` and shown under the chart and the table.
   function collect(scope, sceneName, metric) {
-    const pts = [], unplotted = [];
+    const pts = [], unplotted = [], left = [];
     const label = A.metricInfo(metric).label;
     if (scope === 'scene') {
       for (const r of A.rowsByScene.get(sceneName) || []) {
@@ -22,14 +19,23 @@ const char* const kScriptCharts = R"JS(
         else pts.push(p);
       }
     } else {
-      const n = A.scenes.length;
+      const used = [];
+      for (const s of A.scenes) {
+        const rows = A.rowsByScene.get(s.name) || [];
+        const missing = A.specs.filter(spec => !rows.some(r => r.spec === spec));
+        const bad = rows.filter(r => A.metricValue(r, metric) === null);
+        if (missing.length) left.push({ scene: s.name, why: 'not run with ' + missing.join(', ') });
+        else if (bad.length) {
+          const reasons = [...new Set(bad.map(r => A.nullReason(r, metric)))];
+          left.push({ scene: s.name, why: reasons.join('; ') +
+            (bad.length < rows.length ? ' (' + bad.map(r => r.spec).join(', ') + ')' : '') });
+        } else used.push(s.name);
+      }
       for (const spec of A.specs) {
-        const rows = A.DATA.rows.filter(r => r.spec === spec);
+        const rows = used.map(n => A.rowsByScene.get(n).find(r => r.spec === spec));
         const mean = f => rows.reduce((s, r) => s + f(r), 0) / rows.length;
-        const p = { spec, q: null, t: mean(r => r.timing.total.median_ms), tmin: null, tmax: null, rows };
-        const bad = rows.find(r => A.metricValue(r, metric) === null);
-        if (rows.length < n) unplotted.push({ p, why: 'not run on ' + (n - rows.length) + ' of ' + n + ' scenes' });
-        else if (bad) unplotted.push({ p, why: label + ' is null on ' + bad.scene + ' (' + A.nullReason(bad, metric) + '), so its mean is undefined' });
+        const p = { spec, q: null, t: rows.length ? mean(r => r.timing.total.median_ms) : null, tmin: null, tmax: null, rows };
+        if (!rows.length) unplotted.push({ p, why: 'no scene where every method has a value of ' + label });
         else {
           p.q = mean(r => A.metricValue(r, metric));
           if (p.t > 0) pts.push(p); else unplotted.push({ p, why: 'its time is 0 ms, which a log axis cannot show' });
@@ -38,7 +44,16 @@ const char* const kScriptCharts = R"JS(
     }
     const order = new Map(A.specs.map((s, i) => [s, i]));
     const all = pts.concat(unplotted.map(u => u.p)).sort((a, b) => order.get(a.spec) - order.get(b.spec));
-    return { pts, unplotted, all };
+    return { pts, unplotted, all, left };
+  }
+
+  /// "Mean over 8 of 9 scenes — left out: detail-texture (no edge pixels)." for the suite.
+  function scopeNote(data) {
+    const n = A.scenes.length, k = n - data.left.length;
+    const text = 'Suite means over ' + (data.left.length ? k + ' of ' + n : 'all ' + n) + ' scenes' +
+      (data.left.length ? ' — left out (not every method has a value there): ' +
+        data.left.map(l => l.scene + ': ' + l.why).join('; ') : '') + '.';
+    return el('p', { class: 'note scope-note', text });
   }
 
   /// The Pareto front: no other point is at least as fast and at least as good (better = +1:
@@ -110,6 +125,7 @@ const char* const kScriptCharts = R"JS(
 
   function drawChart(box, scope, sceneName, metric, data) {
     const info = A.metricInfo(metric), better = info.better, pts = data.pts;
+    if (scope === 'suite') box.append(scopeNote(data));
     if (!pts.length) {
       box.append(el('p', { class: 'note', text: 'No method has a value of ' + info.label + ' to plot here.' }));
       return;
@@ -237,7 +253,7 @@ const char* const kScriptCharts = R"JS(
         (scope === 'suite' ? ' (mean over the scenes it ran on)' : '') + ', CUDA events; not CPU time');
     };
     const table = el('table', { class: 'cost sortable' },
-      el('caption', {}, 'Cost of accuracy' + (scope === 'suite' ? ' (suite means)' : '') + ': what each method gains over ',
+      el('caption', {}, 'Cost of accuracy' + (scope === 'suite' ? ' (suite means over ' + (A.scenes.length - data.left.length) + ' of ' + A.scenes.length + ' scenes)' : '') + ': what each method gains over ',
         el('code', { text: 'none' }), ' in ' + info.label + ' and what it adds in time.'),
       el('thead', {}, el('tr', {},
         th('Method', { 'data-type': 'text' }),
@@ -294,6 +310,7 @@ const char* const kScriptCharts = R"JS(
     A.makeSortable(table);
     A.sortTable(table, 3);  // by time, fastest first
     box.append(el('div', { class: 'table-wrap' }, table));
+    if (scope === 'suite' && data.left.length) box.append(scopeNote(data));
     box.append(el('p', { class: 'note' }, better > 0
       ? 'Gain = quality − none\'s quality; '
       : 'Gain = none\'s ' + info.label + ' − this method\'s (lower is better, so a positive gain means less error); ',
@@ -337,6 +354,3 @@ const char* const kScriptCharts = R"JS(
   A.collect = collect;
   A.paretoFront = paretoFront;
 })();
-)JS";
-
-}  // namespace aalab::html

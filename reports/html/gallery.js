@@ -1,11 +1,6 @@
 // The HTML report's script, part 3: the gallery (A/B slider against the reference or `none`,
 // zoomed crops of every method, heatmaps, edge mask, debug views; arrow-key navigation), the
 // self-test behind `#selftest`, and the start-up call.
-#include "reports/html_assets.h"
-
-namespace aalab::html {
-
-const char* const kScriptGallery = R"JS(
 (function () {
   const A = AA, el = A.el, state = A.state;
   let G = null;  // the one gallery that exists: { host, scene, specs, parts }
@@ -270,6 +265,3 @@ const char* const kScriptGallery = R"JS(
   };
 })();
 AA.init();
-)JS";
-
-}  // namespace aalab::html

@@ -1,0 +1,216 @@
+// Shading of a list of hits: surface attributes, shadow rays (through alpha cut-outs) and
+// the scene's declared effects only. Tracer::Trace shades every camera sample with it,
+// Tracer::TraceMsaa one shading point per primitive and pixel.
+#include <cmath>
+
+#include "scenes/tracer_internal.h"
+
+namespace aalab::tracer_detail {
+
+namespace {
+
+/// Offset for secondary rays: relative to the magnitude of the position (float spacing).
+float RayEpsilon(glm::vec3 p) {
+  const float m = std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
+  return 1e-4f + m * 1e-6f;
+}
+
+/// Shadow rays from every lambert hit to every shadow-casting light; sets blocked[i] bit l
+/// when light l is blocked at hit i. Any hit that survives the alpha test blocks the light.
+void ShadowRays(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* hits, int n, ShadeScratch& S,
+                TraceCounters& local) {
+  const float inf = std::numeric_limits<float>::infinity();
+  const Surface* surf = S.surf.data();
+  uint32_t* blocked = S.blocked.data();
+  std::vector<int>& who_sample = S.who_sample;
+  std::vector<int>& who_light = S.who_light;
+  std::vector<glm::vec3>& so = S.so;
+  std::vector<glm::vec3>& sd = S.sd;
+  std::vector<float>& stn = S.stn;
+  std::vector<float>& stf = S.stf;
+  who_sample.clear();
+  who_light.clear();
+  so.clear();
+  sd.clear();
+  stn.clear();
+  stf.clear();
+  for (int i = 0; i < n; ++i) {
+    if (hits[i].shape < 0) continue;
+    if (sc.materials[sc.shapes[hits[i].shape].material].shading != Shading::kLambert) continue;
+    for (size_t l = 0; l < sc.lights.size() && l < 32; ++l) {
+      const Light& light = sc.lights[l];
+      if (!light.shadows) continue;
+      glm::vec3 L;
+      float dist;
+      if (light.type == LightType::kDirectional) {
+        L = -light.direction;
+        dist = inf;
+      } else {
+        L = light.position - surf[i].p;
+        dist = glm::length(L);
+        if (!(dist > 0.0f)) continue;
+        L /= dist;
+      }
+      if (glm::dot(surf[i].ng, L) <= 0.0f && glm::dot(surf[i].n, L) <= 0.0f) continue;
+      const float eps = RayEpsilon(surf[i].p);
+      const glm::vec3 side = glm::dot(surf[i].ng, L) > 0.0f ? surf[i].ng : -surf[i].ng;
+      so.push_back(surf[i].p + side * eps);
+      sd.push_back(L);
+      stn.push_back(0.0f);
+      stf.push_back(light.type == LightType::kDirectional ? inf : dist * (1.0f - 1e-5f));
+      who_sample.push_back(i);
+      who_light.push_back(static_cast<int>(l));
+    }
+  }
+  std::vector<int>& act = S.layers.active;
+  std::vector<int>& next = S.layers.next;
+  act.resize(so.size());
+  for (size_t k = 0; k < so.size(); ++k) act[k] = static_cast<int>(k);
+  for (int layer = 0; !act.empty() && layer < kMaxAlphaLayers; ++layer) {
+    const int m = static_cast<int>(act.size());
+    Hit* h = Sized(S.layers.layer_hits, static_cast<size_t>(m));
+    // Layer 0 traces every shadow ray in order (no index list needed).
+    IntersectRays(im.scene, so.data(), sd.data(), stn.data(), stf.data(), layer == 0 ? nullptr : act.data(), m, h,
+                  false);
+    local.shadow_rays += static_cast<uint64_t>(m);
+    next.clear();
+    for (int k = 0; k < m; ++k) {
+      const int r = act[k];
+      if (h[k].shape < 0) continue;
+      const Material& mat = sc.materials[sc.shapes[h[k].shape].material];
+      if (alpha && mat.alpha) {
+        const Surface srf = SurfaceAt(sc, h[k], so[r], sd[r]);
+        ++local.texture_lookups;
+        if (EvaluatePattern(*mat.alpha, srf.uv) < mat.alpha_cutoff) {
+          stn[r] = ContinuePast(h[k].t);
+          next.push_back(r);
+          continue;
+        }
+      }
+      blocked[who_sample[r]] |= 1u << who_light[r];
+    }
+    act.swap(next);
+  }
+}
+
+}  // namespace
+
+Surface SurfaceAt(const Scene& scene, const Hit& h, glm::vec3 org, glm::vec3 dir) {
+  const Shape& s = scene.shapes[h.shape];
+  Surface out;
+  out.p = org + dir * h.t;
+  glm::vec3 ng = h.ng;
+  glm::vec3 n = ng;
+  switch (s.kind) {
+    case ShapeKind::kTriangles: {
+      const glm::uvec3 tri = s.triangles[h.prim];
+      const float w = 1.0f - h.u - h.v;
+      out.uv = s.uvs[tri.x] * w + s.uvs[tri.y] * h.u + s.uvs[tri.z] * h.v;
+      if (!s.normals.empty()) n = s.normals[tri.x] * w + s.normals[tri.y] * h.u + s.normals[tri.z] * h.v;
+      break;
+    }
+    case ShapeKind::kSphere: {
+      const glm::vec3 d = out.p - s.center;
+      const float len = glm::length(d);
+      const glm::vec3 q = len > 0.0f ? d / len : glm::vec3(0, 1, 0);
+      out.uv = {std::atan2(q.z, q.x) * 0.15915494f + 0.5f, std::acos(std::clamp(q.y, -1.0f, 1.0f)) * 0.31830989f};
+      out.uv *= 2.0f * 3.14159265f * s.radius;  // uv in world units along the surface
+      break;
+    }
+    case ShapeKind::kDisk: {
+      const glm::vec3 d = out.p - s.center;
+      const glm::vec3 b = glm::cross(s.normal, s.tangent);
+      out.uv = {glm::dot(d, s.tangent), glm::dot(d, b)};
+      break;
+    }
+    case ShapeKind::kCapsule:
+    case ShapeKind::kCylinder: {
+      const glm::vec3 axis = s.p1 - s.p0;
+      out.uv = {h.u * glm::length(axis), 0.0f};
+      break;
+    }
+  }
+  auto safe_normalize = [](glm::vec3 v, glm::vec3 fallback) {
+    const float len = glm::length(v);
+    return (len > 0.0f && std::isfinite(len)) ? v / len : fallback;
+  };
+  ng = safe_normalize(ng, -dir);
+  n = safe_normalize(n, ng);
+  if (glm::dot(ng, dir) > 0.0f) ng = -ng;
+  if (glm::dot(n, dir) > 0.0f) n = -n;
+  out.ng = ng;
+  out.n = n;
+  return out;
+}
+
+void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* hits, const glm::vec3* org,
+               const glm::vec3* dir, int n, ShadeScratch& S, SampleResult* out, TraceCounters& local) {
+  const bool lambert = sc.Has(Effect::kLambert);
+  const bool shadows = sc.Has(Effect::kShadows);
+  const bool specular = sc.Has(Effect::kSpecular);
+  const bool textures = sc.Has(Effect::kTextures);
+  const size_t n_all = static_cast<size_t>(n);
+  // Surface attributes feed only lighting, shadows and textures: unlit untextured scenes
+  // never read them, so they are not computed there.
+  Surface* surf = Sized(S.surf, n_all);
+  if (lambert || shadows || textures) {
+    for (int i = 0; i < n; ++i) {
+      if (hits[i].shape >= 0) surf[i] = SurfaceAt(sc, hits[i], org[i], dir[i]);
+    }
+  }
+  uint32_t* blocked = Sized(S.blocked, n_all);
+  std::fill(blocked, blocked + n, 0u);
+  // Shadow rays only with `shadows`, only for shadow-casting lights.
+  if (shadows) ShadowRays(im, sc, alpha, hits, n, S, local);
+
+  for (int i = 0; i < n; ++i) {
+    SampleResult& r = out[i];
+    r.surface = hits[i].shape;
+    r.shadowed = blocked[i];
+    glm::vec3 c = sc.background;
+    if (hits[i].shape >= 0) {
+      ++local.shading_evals;
+      const Material& m = sc.materials[sc.shapes[hits[i].shape].material];
+      glm::vec3 base = m.color;
+      if (textures && m.texture) {
+        ++local.texture_lookups;
+        const float t = EvaluatePattern(*m.texture, surf[i].uv);
+        base = m.texture->color_a + (m.texture->color_b - m.texture->color_a) * t;
+      }
+      if (m.shading == Shading::kUnlit || !lambert) {
+        c = base;
+      } else {
+        c = sc.ambient * base;
+        for (size_t l = 0; l < sc.lights.size(); ++l) {
+          const Light& light = sc.lights[l];
+          glm::vec3 L;
+          float falloff = 1.0f;
+          if (light.type == LightType::kDirectional) {
+            L = -light.direction;
+          } else {
+            L = light.position - surf[i].p;
+            const float d2 = glm::dot(L, L);
+            if (!(d2 > 0.0f)) continue;
+            L /= std::sqrt(d2);
+            falloff = 1.0f / d2;
+          }
+          const float ndotl = glm::dot(surf[i].n, L);
+          if (ndotl <= 0.0f) continue;
+          if (l < 32 && (blocked[i] >> l) & 1u) continue;
+          const glm::vec3 e = light.color * (light.intensity * falloff);
+          c += base * e * ndotl;
+          if (specular && m.specular != glm::vec3(0.0f)) {
+            const glm::vec3 hv = glm::normalize(L - dir[i]);
+            const float nh = std::max(0.0f, glm::dot(surf[i].n, hv));
+            c += m.specular * e * std::pow(nh, m.shininess);
+          }
+        }
+      }
+    }
+    r.rgb[0] = c.x;
+    r.rgb[1] = c.y;
+    r.rgb[2] = c.z;
+  }
+}
+
+}  // namespace aalab::tracer_detail
