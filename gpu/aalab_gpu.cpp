@@ -420,9 +420,10 @@ int Main(int argc, char** argv) {
   std::printf("texture filter probe: %d distinct values over %d fractions; max error vs float fraction %.4f, "
               "vs fraction rounded to 1/256 %.4f, truncated %.4f (8-bit levels)\n",
               probe.distinct_values, probe.samples, probe.err_float, probe.err_round256, probe.err_trunc256);
-  std::printf("point fetches: %d of 256 UNORM8 values differ from k/255.0f; half-texel fetches: %d of %d pairs (a, b) "
-              "differ from a/255*0.5 + b/255*0.5 in float32, largest difference %.3g\n",
-              probe.unorm_mismatches, probe.half_mismatches, probe.half_pairs, probe.half_max_err);
+  std::printf("point fetches: %d of 256 UNORM8 values differ from k/255.0f, %d from the CPU's k*fl(1/255); "
+              "half-texel fetches: %d of %d pairs (a, b) differ from the CPU sampler, largest difference %.3g\n",
+              probe.unorm_mismatches, probe.unorm_mismatches_cpu, probe.half_mismatches, probe.half_pairs,
+              probe.half_max_err);
 
   // SrgbDecode8's table on the device, for the sqrt-luminance pre-pass.
   float decode_host[256];
@@ -576,6 +577,7 @@ int Main(int argc, char** argv) {
       << ", \"max_err_fraction_rounded_1_256\": " << N(probe.err_round256)
       << ", \"max_err_fraction_truncated_1_256\": " << N(probe.err_trunc256)
       << ", \"unorm8_point_fetch_mismatches\": " << probe.unorm_mismatches
+      << ", \"unorm8_point_fetch_mismatches_vs_cpu\": " << probe.unorm_mismatches_cpu
       << ", \"half_texel_pairs\": " << probe.half_pairs << ", \"half_texel_mismatches\": " << probe.half_mismatches
       << ", \"half_texel_max_err\": " << N(probe.half_max_err) << "},\n";
     j << "  \"results\": [\n";

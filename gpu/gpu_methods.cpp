@@ -160,7 +160,7 @@ void GpuPipeline::Upload(const Image8& frame) {
 void GpuPipeline::Run(const GpuMethod& m, cudaStream_t stream, bool software_filter) {
   const cuda::GpuFrame* src = in_.get();
   if (m.prepass) {
-    cuda::LaunchLumaPrepass(*src, *luma_, m.f3.luma, decode_, stream);
+    cuda::LaunchLumaPrepass(*src, *luma_, m.f3.luma, decode_, stream, software_filter);
     src = luma_.get();
   }
   cuda::GpuFrame* fxaa_dst = m.rescale != Rescale::kNone ? mid_.get() : out_.get();

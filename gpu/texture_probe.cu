@@ -5,6 +5,7 @@
 #include <set>
 #include <vector>
 
+#include "harness/core/sampler.h"
 #include "methods/cuda/post_filters_cuda.h"
 
 namespace aalab {
@@ -74,12 +75,14 @@ TextureProbe ProbeTextureFilter() {
   cudaFree(dp);
   for (int b = 0; b < 256; ++b) {
     if (hp[b] != static_cast<float>(b) / 255.0f) ++p.unorm_mismatches;
+    if (hp[b] != UnormToFloat(static_cast<uint8_t>(b))) ++p.unorm_mismatches_cpu;
   }
   for (int a = 0; a < 256; ++a) {
     for (int b = 0; b < 256; ++b) {
-      // BilinearSampler::Sample at fraction (0.5, 0): wa = wb = 0.5, wc = wd = 0.
-      const float fa = static_cast<float>(a) / 255.0f, fb = static_cast<float>(b) / 255.0f;
-      const float cpu = fa * 0.5f + fb * 0.5f + fa * 0.0f + fb * 0.0f;
+      // BilinearSampler::Sample at fractions (0.5, 0): BilinearBlend = lerp(lerp(a, b, 0.5),
+      // lerp(a', b', 0.5), 0) = a + 0.5·(b − a), texels UnormToFloat.
+      const float fa = UnormToFloat(static_cast<uint8_t>(a)), fb = UnormToFloat(static_cast<uint8_t>(b));
+      const float cpu = FilterLerp(fa, fb, 0.5f);
       const float gpu = hh[a * 256 + b];
       ++p.half_pairs;
       if (gpu != cpu) ++p.half_mismatches;

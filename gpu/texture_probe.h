@@ -13,8 +13,9 @@ struct TextureProbe {
   double err_trunc256 = 0;    ///< max |GPU − lerp with the fraction truncated to 1/256|
   int distinct_values = 0;    ///< distinct filtered values seen between texels 0 and 255
   int unorm_mismatches = 0;   ///< point fetches of k = 0..255 whose float is not k / 255.0f
+  int unorm_mismatches_cpu = 0;  ///< ... whose float is not the CPU's UnormToFloat(k) = k·fl(1/255)
   int half_pairs = 0;         ///< texel pairs (a, b) fetched halfway between their centres
-  int half_mismatches = 0;    ///< of those, results that are not a/255·0.5 + b/255·0.5 (float32)
+  int half_mismatches = 0;    ///< of those, results that differ from the CPU sampler's (float32)
   double half_max_err = 0;    ///< their largest |difference| (float units, not levels)
 };
 

@@ -6,6 +6,8 @@
 //   N/W/M/E/S and the corners   point fetches at texel centres (exact, clamp-to-edge);
 //   search and the final fetch  bilinear fetches in texel coordinates (linear_px view).
 // Where the results can differ from the CPU (reported per method by the gpu tool):
+//   - Texel values: the texture unit returns k/255 correctly rounded, the CPU k·fl(1/255)
+//     (llvmpipe's conversion); they differ in the last bit for 126 of the 256 codes.
 //   - The texture unit filters with 8-bit fixed-point weights (1/256 steps); the CPU uses the
 //     float32 fraction. Search fetches sit at fractions 0 and 1/2 (exact in 8 bits), so only
 //     the rounding of the filtered sum can differ there; the final fetch at the sub-pixel
@@ -50,11 +52,11 @@ __global__ void Fxaa1Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin,
   const int x = blockIdx.x * blockDim.x + threadIdx.x;
   const int y = blockIdx.y * blockDim.y + threadIdx.y;
   if (x >= w || y >= h) return;
-  const float4 cn = TexelAt(pt, x, y - 1);
-  const float4 cw = TexelAt(pt, x - 1, y);
-  const float4 cm = TexelAt(pt, x, y);
-  const float4 ce = TexelAt(pt, x + 1, y);
-  const float4 cs = TexelAt(pt, x, y + 1);
+  const float4 cn = Texel<kSoft>(pt, x, y - 1);
+  const float4 cw = Texel<kSoft>(pt, x - 1, y);
+  const float4 cm = Texel<kSoft>(pt, x, y);
+  const float4 ce = Texel<kSoft>(pt, x + 1, y);
+  const float4 cs = Texel<kSoft>(pt, x, y + 1);
   const float ln = Luma(cn), lw = Luma(cw), lm = Luma(cm), le = Luma(ce), ls = Luma(cs);
   // LocalContrastExit.
   const float range_min = fminf(lm, fminf(fminf(ln, lw), fminf(ls, le)));
@@ -71,10 +73,10 @@ __global__ void Fxaa1Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin,
   const float trim_scale = 1.0f / (1.0f - p.subpix_trim);
   const float blend_l = fminf(p.subpix_cap, fmaxf(0.0f, ratio - p.subpix_trim) * trim_scale);
   // Corners and Lowpass.
-  const float4 cnw = TexelAt(pt, x - 1, y - 1);
-  const float4 cne = TexelAt(pt, x + 1, y - 1);
-  const float4 csw = TexelAt(pt, x - 1, y + 1);
-  const float4 cse = TexelAt(pt, x + 1, y + 1);
+  const float4 cnw = Texel<kSoft>(pt, x - 1, y - 1);
+  const float4 cne = Texel<kSoft>(pt, x + 1, y - 1);
+  const float4 csw = Texel<kSoft>(pt, x - 1, y + 1);
+  const float4 cse = Texel<kSoft>(pt, x + 1, y + 1);
   float3 rgb_l;
   if (p.subpix_faster) {
     const float3 s = Add(Add(Add(Add(Rgb(cn), Rgb(cw)), Rgb(ce)), Rgb(cs)), Rgb(cm));

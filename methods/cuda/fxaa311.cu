@@ -3,12 +3,16 @@
 // -ffp-contract=off), one thread per pixel; the step table and the luma source are
 // arguments (Fxaa311Args), filled from the CPU side's tables by the caller.
 //
-// Fetches go through the texture units:
-//   FxaaTexTop / FxaaTexOff (M and the 8 neighbours)  point fetches at texel centres;
-//   search taps and the final tap                      bilinear, normalised coordinates
-//                                                      (linear_norm view), as the shader's
-//                                                      FxaaTexTop(tex, posN) etc.
-// Where the results can differ from the CPU (reported per method by the gpu tool): the
+// Fetches go through the texture units, every one bilinear as in the shader text:
+//   FxaaTexTop / FxaaTexOff (M and the 8 neighbours)  texture2D(tex, posM + off·rcp) in
+//                                                      normalised coordinates (linear_norm);
+//                                                      fxaa-iter12: textureLodOffset, i.e. a
+//                                                      fetch at posM·size + off (linear_px);
+//   search taps and the final tap                      normalised coordinates, as the shader.
+// Outputs are stored as an RGBA8 render target stores them (StoreUnorm8, ties to even).
+// Where the results can differ from the CPU (reported per method by the gpu tool): texel
+// values (the texture unit's k/255 against the CPU's k·fl(1/255), the last bit of 126 codes),
+// and the
 // texture unit converts the normalised coordinate to texel space and filters with 8-bit
 // fixed-point weights (1/256 of a texel), the CPU with the float32 fraction. Search taps sit
 // at half-texel positions across the edge, so their weights are exact; the final tap's
@@ -25,14 +29,14 @@ __device__ __forceinline__ float TapLuma(const float4& t, LumaSource luma) {
     case LumaSource::kRec601:
     case LumaSource::kSqrtLuminance: return t.w;
     case LumaSource::kGreen: return t.y;
-    case LumaSource::kRec601Rgb: return (t.x * 0.299f + t.y * 0.587f) + t.z * 0.114f;
+    case LumaSource::kRec601Rgb: return t.x * 0.299f + (t.y * 0.587f + t.z * 0.114f);
   }
   return t.w;
 }
 
 template <bool kSoft>
-__global__ void Fxaa311Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin,
-                                                     cudaSurfaceObject_t out, int w, int h, Fxaa311Args prm) {
+__global__ void Fxaa311Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin, cudaTextureObject_t lin_px,
+                              cudaSurfaceObject_t out, int w, int h, Fxaa311Args prm) {
   const int x = blockIdx.x * blockDim.x + threadIdx.x;
   const int y = blockIdx.y * blockDim.y + threadIdx.y;
   if (x >= w || y >= h) return;
@@ -43,12 +47,23 @@ __global__ void Fxaa311Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin,
 
   float posMx = (static_cast<float>(x) + 0.5f) / static_cast<float>(w);
   float posMy = (static_cast<float>(y) + 0.5f) / static_cast<float>(h);
-  const float4 rgbyM = TexelAt(pt, x, y);
+  // The 3x3 taps as the shader writes them (methods/fxaa311.cpp "Taps"): texture2D(tex,
+  // posM + off·rcp) in normalised coordinates, or textureLodOffset (seed 003) = a fetch at
+  // posM·size + off in texel coordinates.
+  auto tap = [&](int dx, int dy) {
+    if (glsl) {
+      return BilinearPx<kSoft>(lin_px, pt, posMx * static_cast<float>(w) + static_cast<float>(dx),
+                               posMy * static_cast<float>(h) + static_cast<float>(dy), w, h);
+    }
+    return BilinearNorm<kSoft>(lin, pt, posMx + static_cast<float>(dx) * rcpX, posMy + static_cast<float>(dy) * rcpY,
+                               w, h);
+  };
+  const float4 rgbyM = tap(0, 0);
   const float lumaM = TapLuma(rgbyM, lm);
-  float lumaS = TapLuma(TexelAt(pt, x, y + 1), lm);
-  float lumaE = TapLuma(TexelAt(pt, x + 1, y), lm);
-  float lumaN = TapLuma(TexelAt(pt, x, y - 1), lm);
-  float lumaW = TapLuma(TexelAt(pt, x - 1, y), lm);
+  float lumaS = TapLuma(tap(0, 1), lm);
+  float lumaE = TapLuma(tap(1, 0), lm);
+  float lumaN = TapLuma(tap(0, -1), lm);
+  float lumaW = TapLuma(tap(-1, 0), lm);
 
   const float maxSM = fmaxf(lumaS, lumaM);
   const float minSM = fminf(lumaS, lumaM);
@@ -61,16 +76,20 @@ __global__ void Fxaa311Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin,
   const float rangeMaxScaled = rangeMax * prm.edge_threshold;
   const float range = rangeMax - rangeMin;
   const float rangeMaxClamped = fmaxf(prm.edge_threshold_min, rangeMaxScaled);
-  // Early exit, and the CPU's guard for range = 0 (no 1/0): the input pixel.
-  if (range < rangeMaxClamped || range == 0.0f) {
-    WriteRgb(out, x, y, rgbyM.x, rgbyM.y, rgbyM.z);
+  if (range < rangeMaxClamped) {  // return rgbyM
+    StoreRgb(out, x, y, rgbyM.x, rgbyM.y, rgbyM.z);
+    return;
+  }
+  if (range == 0.0f) {  // the CPU's guard (no 1/0): the input pixel
+    const float4 in = TexelAt(pt, x, y);
+    WriteRgb(out, x, y, in.x, in.y, in.z);
     return;
   }
 
-  const float lumaNW = TapLuma(TexelAt(pt, x - 1, y - 1), lm);
-  const float lumaSE = TapLuma(TexelAt(pt, x + 1, y + 1), lm);
-  const float lumaNE = TapLuma(TexelAt(pt, x + 1, y - 1), lm);
-  const float lumaSW = TapLuma(TexelAt(pt, x - 1, y + 1), lm);
+  const float lumaNW = TapLuma(tap(-1, -1), lm);
+  const float lumaSE = TapLuma(tap(1, 1), lm);
+  const float lumaNE = TapLuma(tap(1, -1), lm);
+  const float lumaSW = TapLuma(tap(-1, 1), lm);
 
   const float lumaNS = lumaN + lumaS;
   const float lumaWE = lumaW + lumaE;
@@ -184,7 +203,7 @@ __global__ void Fxaa311Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin,
   if (!horzSpan) posMx += pixelOffsetSubpix * lengthSign;
   if (horzSpan) posMy += pixelOffsetSubpix * lengthSign;
   const float4 c = BilinearNorm<kSoft>(lin, pt, posMx, posMy, w, h);
-  WriteRgb(out, x, y, c.x, c.y, c.z);
+  StoreRgb(out, x, y, c.x, c.y, c.z);
 }
 
 }  // namespace
@@ -193,10 +212,10 @@ void LaunchFxaa311(const GpuFrame& in, GpuFrame& out, const Fxaa311Args& args, c
                    bool software_filter) {
   if (software_filter) {
     Fxaa311Kernel<true><<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(
-        in.Point(), in.LinearNorm(), out.Surface(), in.Width(), in.Height(), args);
+        in.Point(), in.LinearNorm(), in.LinearPx(), out.Surface(), in.Width(), in.Height(), args);
   } else {
     Fxaa311Kernel<false><<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(
-        in.Point(), in.LinearNorm(), out.Surface(), in.Width(), in.Height(), args);
+        in.Point(), in.LinearNorm(), in.LinearPx(), out.Surface(), in.Width(), in.Height(), args);
   }
 }
 

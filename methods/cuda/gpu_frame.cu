@@ -86,23 +86,24 @@ __global__ void CopyLinearKernel(const uint4* __restrict__ in, uint4* __restrict
   }
 }
 
-// Fxaa311LumaFrame on the GPU: same expressions, alpha = QuantizeUnorm8(luma).
+// Fxaa311LumaFrame on the GPU: same expressions, alpha = StoreUnorm8(luma) (an RGBA8 target).
+template <bool kSoft>
 __global__ void LumaKernel(cudaTextureObject_t in, cudaSurfaceObject_t out, int w, int h, int sqrt_luminance,
                            const float* __restrict__ decode) {
   const int x = blockIdx.x * blockDim.x + threadIdx.x;
   const int y = blockIdx.y * blockDim.y + threadIdx.y;
   if (x >= w || y >= h) return;
-  const float4 c = TexelAt(in, x, y);
+  const float4 c = Texel<kSoft>(in, x, y);
   float l;
   if (!sqrt_luminance) {
-    l = (c.x * 0.299f + c.y * 0.587f) + c.z * 0.114f;  // Fxaa311TapLuma(kRec601Rgb)
+    l = c.x * 0.299f + (c.y * 0.587f + c.z * 0.114f);  // Fxaa311TapLuma(kRec601Rgb)
   } else {
     const float r = decode[QuantizeUnorm8(c.x)];
     const float g = decode[QuantizeUnorm8(c.y)];
     const float b = decode[QuantizeUnorm8(c.z)];
     l = sqrtf((r * 0.2126729f + g * 0.7151522f) + b * 0.0721750f);
   }
-  surf2Dwrite(make_uchar4(QuantizeUnorm8(c.x), QuantizeUnorm8(c.y), QuantizeUnorm8(c.z), QuantizeUnorm8(l)), out,
+  surf2Dwrite(make_uchar4(QuantizeUnorm8(c.x), QuantizeUnorm8(c.y), QuantizeUnorm8(c.z), StoreUnorm8(l)), out,
               x * 4, y);
 }
 
@@ -121,12 +122,18 @@ void LaunchCopyLinear(const void* in, void* out, size_t bytes, cudaStream_t stre
 }
 
 void LaunchLumaPrepass(const GpuFrame& in, GpuFrame& out, LumaSource luma, const float* srgb_decode,
-                       cudaStream_t stream) {
+                       cudaStream_t stream, bool software_filter) {
   if (luma != LumaSource::kRec601 && luma != LumaSource::kSqrtLuminance) {
     throw std::runtime_error("LaunchLumaPrepass: this luma source has no pre-pass");
   }
-  LumaKernel<<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(
-      in.Point(), out.Surface(), in.Width(), in.Height(), luma == LumaSource::kSqrtLuminance ? 1 : 0, srgb_decode);
+  const int sq = luma == LumaSource::kSqrtLuminance ? 1 : 0;
+  if (software_filter) {
+    LumaKernel<true><<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(in.Point(), out.Surface(), in.Width(),
+                                                                               in.Height(), sq, srgb_decode);
+  } else {
+    LumaKernel<false><<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(in.Point(), out.Surface(), in.Width(),
+                                                                                in.Height(), sq, srgb_decode);
+  }
 }
 
 }  // namespace aalab::cuda

@@ -76,10 +76,11 @@ void LaunchCopyLinear(const void* in, void* out, size_t bytes, cudaStream_t stre
 
 /// The luma pre-pass of Fxaa311LumaFrame: out = in with alpha = 8-bit luma, for kRec601
 /// (dot(rgb, 0.299/0.587/0.114) of the encoded values) and kSqrtLuminance (sqrt of linear
-/// luminance; `srgb_decode` is a device table of SrgbDecode8's 256 values). Other sources
+/// luminance; `srgb_decode` is a device table of SrgbDecode8's 256 values), alpha stored
+/// with StoreUnorm8. software_filter: texel values as the CPU reads them. Other sources
 /// need no pre-pass (the caller does not launch it).
 void LaunchLumaPrepass(const GpuFrame& in, GpuFrame& out, LumaSource luma, const float* srgb_decode,
-                       cudaStream_t stream);
+                       cudaStream_t stream, bool software_filter = false);
 
 /// FXAA 1.0 normal output (no debug views) of `in` into `out` (same size).
 /// software_filter = true replaces every bilinear fetch by the CPU's float32 bilinear from
