@@ -344,10 +344,10 @@ bool AllOpaque(const Image8& img) {
 // The floor under which the hardware path's identical share fails --check. The exactness of
 // the port is checked by the software-filter variant (must be bit-identical); the hardware
 // path differs wherever the texture unit's 1/256 weights move a filtered value (measured on
-// the H100, docs/gpu.md: at least 0.83 on the default suite's frames, 0.56 on noise). The
+// the H100, docs/gpu.md: at least 0.82 on the default suite's frames, 0.51 on noise). The
 // floors sit below those, to catch a wrong texture view or coordinate convention, which
 // changes most edge pixels.
-double IdenticalFloor(const std::string& scene) { return scene == "noise" ? 0.50 : 0.75; }
+double IdenticalFloor(const std::string& scene) { return scene == "noise" ? 0.40 : 0.75; }
 
 std::string Sh(const std::string& cmd) {
   std::string out;
