@@ -7,7 +7,7 @@ RUN_ARGS  ?=
 CMAKE_FLAGS ?=
 BENCH_ARGS ?=
 
-.PHONY: all deps configure build run test bench clean test-asan fuzz
+.PHONY: all deps configure build run test bench clean test-asan fuzz test-gpu
 
 all: build
 
@@ -41,5 +41,16 @@ test-asan: deps
 fuzz: deps
 	@bash scripts/fuzz.sh
 
+# The CUDA twins of the post filters against the CPU methods, on a machine with an NVIDIA GPU
+# and the CUDA toolkit (nothing else: gpu/ builds stand-alone). Synthetic frames always;
+# GPU_FRAMES=DIR (from `aalab export-frames`) adds real frames. See docs/gpu.md.
+BUILD_GPU ?= build-gpu
+GPU_FRAMES ?=
+test-gpu:
+	@cmake -S gpu -B $(BUILD_GPU) -DCMAKE_BUILD_TYPE=Release > $(BUILD_GPU).configure.log 2>&1 || { cat $(BUILD_GPU).configure.log; exit 1; }
+	@cmake --build $(BUILD_GPU) -j $(JOBS)
+	@./$(BUILD_GPU)/aalab_gpu --self-test --no-timing --check
+	@if [ -n "$(GPU_FRAMES)" ]; then ./$(BUILD_GPU)/aalab_gpu --frames $(GPU_FRAMES) --no-timing --check; fi
+
 clean:
-	rm -rf $(BUILD) $(BUILD).configure.log build-asan build-asan.configure.log build-fuzz build-fuzz.configure.log
+	rm -rf $(BUILD) $(BUILD).configure.log $(BUILD_GPU) $(BUILD_GPU).configure.log build-asan build-asan.configure.log build-fuzz build-fuzz.configure.log

@@ -1,4 +1,5 @@
 #include "reports/html_report.h"
+#include "reports/html_gpu.h"
 #include "reports/html_stability.h"
 
 #include <algorithm>
@@ -288,6 +289,7 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
   h += "<th scope=\"col\" title=\"Wall time per frame of the timed stages (render + post + resample), median "
        "[min–max] over the timed runs. See the timing methodology.\"><button type=\"button\">Time ms "
        "<span class=\"unit\">median [min–max]</span></button></th>"
+       + html::GpuHeader(r) +
        "<th scope=\"col\" title=\"Camera rays + shadow rays per output pixel (hardware-independent)\"><button "
        "type=\"button\">Rays/px <span class=\"unit\">primary + shadow</span></button></th>"
        "<th scope=\"col\" title=\"Texture (colour and alpha pattern) evaluations per output pixel\"><button "
@@ -343,6 +345,7 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
            FmtMs(row.total.median_ms) + " <span class=\"range\">[" + FmtMs(row.total.min_ms) + "–" +
            FmtMs(row.total.max_ms) + "]</span></td>";
     }
+    if (html::AnyGpu(r)) h += html::GpuCell(row);
     h += "<td class=\"num\" data-v=\"" + Key(row.primary_rays_per_px + row.shadow_rays_per_px) + "\">" +
          FmtCount(row.primary_rays_per_px) + " + " + FmtCount(row.shadow_rays_per_px) + "</td>";
     h += "<td class=\"num\" data-v=\"" + Key(row.texture_lookups_per_px) + "\">" +
@@ -451,6 +454,7 @@ std::string RenderHtmlReport(const Report& r) {
        "same scenes; the scenes left out and why are listed with the chart). Per-scene details, tables and the "
        "gallery are in the scene tabs.</p>\n";
   QualityCostBlock(h, "suite", nullptr);
+  h += html::GpuSummary(r);
   h += "</section>\n";
   for (size_t i = 0; i < r.scenes.size(); ++i) SceneSection(h, r, r.scenes[i], static_cast<int>(i));
   Methodology(h, r);

@@ -58,6 +58,51 @@ std::optional<double> OptFrom(const nlohmann::ordered_json& j) {
   return j.get<double>();
 }
 
+// A row's optional `gpu` block (reports/gpu_timings.h).
+Json GpuJson(const GpuTiming& g) {
+  Json j;
+  j["device"] = g.device;
+  j["driver"] = g.driver;
+  j["cuda_runtime"] = g.cuda_runtime;
+  j["measured_utc"] = g.measured_utc;
+  j["kernels"] = g.kernels;
+  Json sizes = Json::object();
+  for (const auto& s : g.sizes) {
+    sizes[s.size] = {{"median_ms", Num(s.median_ms)},
+                     {"min_ms", Num(s.min_ms)},
+                     {"max_ms", Num(s.max_ms)},
+                     {"copy_ms", Num(s.copy_ms)},
+                     {"ratio_to_copy", Num(s.ratio_to_copy)},
+                     {"identical_share", Opt(s.identical_share)},
+                     {"max_diff", s.max_diff ? Json(*s.max_diff) : Json(nullptr)}};
+  }
+  j["sizes"] = sizes;
+  return j;
+}
+
+GpuTiming GpuFrom(const nlohmann::ordered_json& j) {
+  GpuTiming g;
+  g.device = j.at("device").get<std::string>();
+  g.driver = j.at("driver").get<std::string>();
+  g.cuda_runtime = j.at("cuda_runtime").get<std::string>();
+  g.measured_utc = j.at("measured_utc").get<std::string>();
+  g.kernels = j.at("kernels").get<std::string>();
+  for (auto it = j.at("sizes").begin(); it != j.at("sizes").end(); ++it) {
+    GpuTimingAt s;
+    s.size = it.key();
+    const auto& v = it.value();
+    s.median_ms = v.at("median_ms").get<double>();
+    s.min_ms = v.at("min_ms").get<double>();
+    s.max_ms = v.at("max_ms").get<double>();
+    s.copy_ms = v.at("copy_ms").get<double>();
+    s.ratio_to_copy = v.at("ratio_to_copy").get<double>();
+    s.identical_share = OptFrom(v.at("identical_share"));
+    if (!v.at("max_diff").is_null()) s.max_diff = v.at("max_diff").get<int>();
+    g.sizes.push_back(s);
+  }
+  return g;
+}
+
 }  // namespace
 
 nlohmann::ordered_json ReportToJson(const Report& r) {
@@ -157,6 +202,7 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
       }
       j["frames"] = {{"series", series}, {"images", row.frame_images}};
     }
+    if (row.gpu) j["gpu"] = GpuJson(*row.gpu);
     rows.push_back(j);
   }
   doc["rows"] = rows;
@@ -274,6 +320,7 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
         }
         row.frame_images = fr.at("images").get<std::vector<std::string>>();
       }
+      if (j.contains("gpu")) row.gpu = GpuFrom(j.at("gpu"));
       r.rows.push_back(row);
     }
     if (doc.contains("time_breakdown")) {  // optional: absent in older reports

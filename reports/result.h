@@ -25,6 +25,24 @@ struct MetricResult {
   std::string null_reason;
 };
 
+/// A row's post filter timed on a GPU by its CUDA twin (gpu/aalab_gpu, docs/gpu.md), at one
+/// frame size of the same scene: CUDA events, median/min/max over the timed launches.
+struct GpuTimingAt {
+  std::string size;  ///< "1920x1080"
+  double median_ms = 0, min_ms = 0, max_ms = 0;
+  double copy_ms = 0;        ///< the copy floor's median in the same run, same size
+  double ratio_to_copy = 0;  ///< median_ms / copy_ms
+  std::optional<double> identical_share;  ///< share of pixels equal to the CPU output
+  std::optional<int> max_diff;            ///< largest rgb difference to the CPU output, 8-bit levels
+};
+
+/// The GPU block of a row: where and when it was measured, and the timings per size.
+struct GpuTiming {
+  std::string device, driver, cuda_runtime, measured_utc;
+  std::string kernels;  ///< the kernels launched, in order
+  std::vector<GpuTimingAt> sizes;
+};
+
 /// One scene × method result.
 struct ResultRow {
   std::string scene;
@@ -55,6 +73,7 @@ struct ResultRow {
   /// Non-empty when the method cannot run on this scene (a renderer-side method on an image
   /// scene): why. Such a row has every metric null with this reason, no timings, no images.
   std::string not_applicable;
+  std::optional<GpuTiming> gpu;  ///< set by `aalab merge-gpu` / `run --gpu-timings`
 };
 
 /// Per-scene facts: the reference and its noise floor.

@@ -229,6 +229,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   RegisterMetricsCommand(app, commands);
   RegisterCompareCommands(app, commands);
   RegisterSweepCommands(app, commands);
+  RegisterGpuCommands(app, commands);
 }
 
 }  // namespace aalab

@@ -24,4 +24,7 @@ void RegisterCompareCommands(CLI::App& app, Commands& commands);
 /// Adds `sweep` (sweep_commands.cpp).
 void RegisterSweepCommands(CLI::App& app, Commands& commands);
 
+/// Adds `export-frames` and `merge-gpu` (gpu_commands.cpp; docs/gpu.md).
+void RegisterGpuCommands(CLI::App& app, Commands& commands);
+
 }  // namespace aalab

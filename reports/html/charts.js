@@ -255,6 +255,20 @@
     const base = data.all.find(p => p.spec === 'none') || null;
     const front = new Set(paretoFront(data.pts, better).map(p => p.spec));
     const th = (label, attrs, title) => el('th', Object.assign({ scope: 'col', title }, attrs || {}), el('button', { type: 'button' }, label));
+    // GPU timings (aalab merge-gpu, docs/gpu.md): one column when any row carries them.
+    const hasGpu = A.DATA.rows.some(r => r.gpu);
+    const gpuSizes = hasGpu ? [...new Set(A.DATA.rows.filter(r => r.gpu).flatMap(r => Object.keys(r.gpu.sizes)))] : [];
+    const gpuCell = (p) => {
+      const timed = (p.rows || []).filter(r => r.gpu);
+      if (!timed.length) return dash('no GPU timing for this method (only the post filters with a CUDA twin have one)');
+      const mean = size => { const v = timed.map(r => r.gpu.sizes[size]).filter(Boolean).map(t => t.median_ms);
+                             return v.length ? v.reduce((a, b) => a + b, 0) / v.length : null; };
+      const ms = gpuSizes.map(mean);
+      const g = timed[0].gpu;
+      return num(ms[0] === null ? -1 : ms[0], ms.map(v => v === null ? '—' : A.fmtMs(v)).join(' / '),
+        g.device + ', driver ' + g.driver + ', ' + g.kernels + ': median ms per frame at ' + gpuSizes.join(' / ') +
+        (scope === 'suite' ? ' (mean over the scenes it ran on)' : '') + ', CUDA events; not CPU time');
+    };
     const table = el('table', { class: 'cost sortable' },
       el('caption', {}, 'Cost of accuracy' + (scope === 'suite' ? ' (suite means over ' + (A.scenes.length - data.left.length) + ' of ' + A.scenes.length + ' scenes)' : '') + ': what each method gains over ',
         el('code', { text: 'none' }), ' in ' + info.label + ' and what it adds in time.'),
@@ -264,6 +278,7 @@
         th('Gain ' + gainUnit, { 'data-first': 'descending' }, better > 0 ? 'quality − none\'s quality' : 'none\'s value − this value (positive = less error)'),
         th('Time ms', {}, scope === 'suite' ? 'mean over scenes of the median time per frame' : 'median time per frame'),
         th('Added ms', {}, 'time − none\'s time'),
+        ...(hasGpu ? [th('GPU ms ' + gpuSizes.join(' / '), {}, 'the post filter\'s CUDA twin on a GPU (aalab merge-gpu): median ms at each size')] : []),
         th(gainUnit + '/ms', { 'data-first': 'descending' }, 'gain ÷ time added, only when time added > 0'),
         th('Front', { 'data-first': 'descending' }, 'on the Pareto front of the chart'))));
     const body = el('tbody');
@@ -295,6 +310,7 @@
                   ' ms): within this run\'s timing noise' : null);
         tr.append(td);
       }
+      if (hasGpu) tr.append(gpuCell(p));
       if (p === base) tr.append(dash('the baseline: no gain, no time added'));
       else if (!base || p.q === null || base.q === null || dt === null) tr.append(dash('no gain or no time to divide'));
       else if (dt <= 0) tr.append(dash('time added is ' + A.fmtMs(dt) + ' ms (≤ 0): not measurably slower than none in this run, so a gain per ms is undefined (no division by zero or by a negative time)'));

@@ -1,0 +1,634 @@
+// aalab_gpu — the post filters' CUDA twins, timed and checked on a GPU (docs/gpu.md).
+//
+// Reads the frames `aalab export-frames` wrote (DIR/frames.tsv + binary PPMs), runs every
+// method's kernels on them, and writes one JSON file:
+//   timing    CUDA events around each launch (chain of kernels), `--warmup` untimed launches,
+//             then `--repeat` timed ones: median / min / max in ms. Clocks are not locked:
+//             the GPU runs at whatever boost clock it chooses (nvidia-smi readings before and
+//             after are recorded). The frames stay resident between launches, so a 1080p
+//             frame (8 MB in + 8 MB out) is served from the 50 MB L2 of an H100, as a frame
+//             just rendered would be; 4K is partly L2-resident.
+//   floor     two copy kernels of the same frame at the output size, in the same run: through
+//             the texture path (point fetch + surface write, what the filters use) and as
+//             plain 16-byte loads/stores of a linear buffer. Each method's ratio is its median
+//             over the texture-path copy's median.
+//   fidelity  each GPU output against the CPU method (the same registry code aalab runs,
+//             built into this tool) on the same frame: share of pixels whose rgb is
+//             identical, largest difference in 8-bit levels, pixels that differ. Every output
+//             is poisoned before the check run and must have alpha 255 everywhere afterwards;
+//             a second GPU run must give the same bytes. The same kernels with every bilinear
+//             fetch done in float32 from point fetches (the CPU's arithmetic, "software
+//             filter") must match the CPU bit for bit: what differs is the texture unit's.
+// `--self-test` runs the same on synthetic frames (noise, hard-edged shapes, odd sizes)
+// without files; `--check` makes the exit status 1 when a check fails (make test-gpu).
+// Exit status: 0 ok, 1 a failed check or bad input, 3 a CUDA or internal error.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gpu/gpu_methods.h"
+#include "harness/io/ppm.h"
+#include "gpu/texture_probe.h"
+#include "harness/core/color.h"
+#include "harness/core/error.h"
+#include "harness/core/params.h"
+
+namespace aalab {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Options {
+  std::string frames_dir, json_path, outputs_dir, outputs_scene;
+  std::vector<std::string> methods;
+  int warmup = 20, repeat = 200;
+  bool self_test = false, check = false, timing = true;
+};
+
+struct Stats {
+  double median = 0, min = 0, max = 0;
+};
+
+struct Fidelity {
+  double identical_share = 0;
+  double within1_share = 0;  // pixels whose rgb differs by at most one 8-bit level
+  int max_diff = 0;
+  long long differing = 0;
+  double mean_abs_diff = 0;  // over all pixels and rgb channels, in 8-bit levels
+};
+
+struct Entry {
+  std::string scene, size, spec, kernels;
+  bool timed = false;
+  Stats t, pass;  // pass: FXAA pass alone for pre-pass methods (pass.median 0 otherwise)
+  double ratio = 0, ratio_linear = 0;  // over the texture-path copy / the linear copy
+  bool has_fidelity = false;
+  Fidelity fid;
+  bool has_soft = false;
+  Fidelity soft;  // the software-filter variant (CPU bilinear arithmetic) against the CPU
+  bool deterministic = true, all_written = true;
+};
+
+Entry MakeEntry(const std::string& scene, const std::string& size, const std::string& spec,
+                const std::string& kernels) {
+  Entry e;
+  e.scene = scene;
+  e.size = size;
+  e.spec = spec;
+  e.kernels = kernels;
+  return e;
+}
+
+// "a,b:x=1,y=2,c": a comma followed by key=value continues the current spec.
+std::vector<std::string> SplitSpecs(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item.empty()) throw UserError("--methods: empty item in '" + text + "'");
+    if (!out.empty() && out.back().find(':') != std::string::npos && item.find('=') != std::string::npos &&
+        item.find(':') == std::string::npos) {
+      out.back() += "," + item;
+    } else {
+      out.push_back(item);
+    }
+  }
+  return out;
+}
+
+int ParseInt(const std::string& flag, const std::string& v, int lo, int hi) {
+  size_t used = 0;
+  int n = 0;
+  try {
+    n = std::stoi(v, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != v.size() || n < lo || n > hi) {
+    throw UserError(flag + " '" + v + "' must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+  }
+  return n;
+}
+
+Options ParseArgs(int argc, char** argv) {
+  Options o;
+  auto value = [&](int& i, const std::string& flag) -> std::string {
+    if (i + 1 >= argc) throw UserError(flag + " needs a value");
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--frames") o.frames_dir = value(i, a);
+    else if (a == "--json") o.json_path = value(i, a);
+    else if (a == "--outputs") o.outputs_dir = value(i, a);
+    else if (a == "--outputs-scene") o.outputs_scene = value(i, a);
+    else if (a == "--methods") o.methods = SplitSpecs(value(i, a));
+    else if (a == "--warmup") o.warmup = ParseInt(a, value(i, a), 0, 100000);
+    else if (a == "--repeat") o.repeat = ParseInt(a, value(i, a), 1, 100000);
+    else if (a == "--self-test") o.self_test = true;
+    else if (a == "--check") o.check = true;
+    else if (a == "--no-timing") o.timing = false;
+    else if (a == "--help" || a == "-h") {
+      std::printf(
+          "usage: aalab_gpu (--frames DIR | --self-test) [--json FILE] [--methods SPECS] [--repeat N]\n"
+          "                 [--warmup N] [--no-timing] [--check] [--outputs DIR --outputs-scene NAME]\n"
+          "  --frames DIR     frames written by `aalab export-frames` (DIR/frames.tsv)\n"
+          "  --self-test      synthetic frames (noise, shapes, odd sizes) instead of files\n"
+          "  --json FILE      write timings and fidelity as JSON (aalab merge-gpu reads it)\n"
+          "  --methods SPECS  comma-separated method specs (default: every post filter with a CUDA twin)\n"
+          "  --repeat N       timed launches per method (default 200), after --warmup N (default 20)\n"
+          "  --no-timing      fidelity checks only\n"
+          "  --check          exit 1 when a check fails (copy not exact, output not written, GPU\n"
+          "                   runs differ, identical share under the per-method floor)\n"
+          "  --outputs DIR    write the GPU outputs on one frame as PPM; --outputs-scene SCENE-WxH names it\n");
+      std::exit(0);
+    } else {
+      throw UserError("unknown argument '" + a + "' (see --help)");
+    }
+  }
+  if (o.self_test == !o.frames_dir.empty()) throw UserError("give exactly one of --frames DIR or --self-test");
+  if (!o.outputs_dir.empty() && o.outputs_scene.empty()) throw UserError("--outputs needs --outputs-scene SCENE-WxH");
+  if (o.methods.empty()) o.methods = DefaultGpuMethodSpecs();
+  return o;
+}
+
+// ---------------------------------------------------------------------------------------
+// Frames.
+
+struct FrameSet {
+  std::string scene;
+  int width = 0, height = 0;  // output size
+  Image8 frame1x;
+  Image8 scaled;  // empty when not exported
+};
+
+std::vector<FrameSet> ReadManifest(const std::string& dir) {
+  const std::string path = (fs::path(dir) / "frames.tsv").string();
+  std::ifstream in(path);
+  if (!in) throw UserError("'" + path + "' cannot be read (write it with `aalab export-frames --out " + dir + "`)");
+  std::vector<FrameSet> sets;
+  std::string line;
+  int lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    std::string field;
+    while (std::getline(ss, field, '\t')) f.push_back(field);
+    const std::string where = path + ":" + std::to_string(lineno);
+    if (f.size() != 5) throw UserError(where + ": expected 5 tab-separated fields (scene, role, width, height, file)");
+    if (f[1] != "1x" && f[1] != "scaled") throw UserError(where + ": role '" + f[1] + "' (allowed: 1x, scaled)");
+    const int w = ParseInt(where + " width", f[2], 1, 65536);
+    const int h = ParseInt(where + " height", f[3], 1, 65536);
+    FrameSet* set = nullptr;
+    for (auto& s : sets) {
+      if (s.scene == f[0] && s.width == w && s.height == h) set = &s;
+    }
+    if (!set) {
+      sets.push_back(FrameSet{f[0], w, h, {}, {}});
+      set = &sets.back();
+    }
+    Image8 img = ReadPpm((fs::path(dir) / f[4]).string());
+    if (f[1] == "1x") {
+      if (img.Width() != w || img.Height() != h) throw UserError(where + ": '" + f[4] + "' is not " + f[2] + "x" + f[3]);
+      set->frame1x = std::move(img);
+    } else {
+      set->scaled = std::move(img);
+    }
+  }
+  for (const auto& s : sets) {
+    if (s.frame1x.Empty()) throw UserError(path + ": scene '" + s.scene + "' has no 1x frame");
+  }
+  if (sets.empty()) throw UserError(path + ": no frames");
+  return sets;
+}
+
+uint32_t Mix(uint32_t v) {
+  v ^= v >> 16;
+  v *= 0x7feb352dU;
+  v ^= v >> 15;
+  v *= 0x846ca68bU;
+  v ^= v >> 16;
+  return v;
+}
+
+// Noise: every pixel an independent hash; the worst case for FXAA (edges everywhere).
+Image8 NoiseFrame(int w, int h) {
+  Image8 img(w, h, 4, 255);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const uint32_t r = Mix(static_cast<uint32_t>(y * 65537 + x) * 2654435761u);
+      uint8_t* p = img.Pixel(x, y);
+      p[0] = r & 255;
+      p[1] = (r >> 8) & 255;
+      p[2] = (r >> 16) & 255;
+    }
+  }
+  return img;
+}
+
+// Hard-edged shapes on a gradient: a disc, a slanted half-plane, thin lines, as rendered
+// 1 spp (each pixel takes the colour at its centre). Sizes scale with the frame.
+Image8 ShapesFrame(int w, int h) {
+  Image8 img(w, h, 4, 255);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const double u = (x + 0.5) / w, v = (y + 0.5) / h;
+      double r = 0.2 + 0.3 * u, g = 0.25 + 0.2 * v, b = 0.4;
+      if ((u - 0.35) * (u - 0.35) * w * w + (v - 0.5) * (v - 0.5) * h * h < 0.09 * h * h) r = 0.95, g = 0.85, b = 0.1;
+      if (v > 0.1 + 0.23 * u && v < 0.16 + 0.23 * u) r = 0.05, g = 0.05, b = 0.05;
+      if (u > 0.6 && (v - 0.9 + 0.6 * (u - 0.6)) > 0) r = 0.1, g = 0.7, b = 0.3;
+      if (std::fmod(u * 7.3, 1.0) < 0.4 / w * 7.3 && v < 0.4) r = g = b = 1.0;
+      uint8_t* p = img.Pixel(x, y);
+      p[0] = QuantizeUnorm8(static_cast<float>(r));
+      p[1] = QuantizeUnorm8(static_cast<float>(g));
+      p[2] = QuantizeUnorm8(static_cast<float>(b));
+    }
+  }
+  return img;
+}
+
+std::vector<FrameSet> SelfTestFrames() {
+  std::vector<FrameSet> sets;
+  // Odd sizes; the scaled frames are round(4/3 · size), as scale43 renders them.
+  auto add = [&](const std::string& name, Image8 (*make)(int, int), int w, int h) {
+    const int sw = static_cast<int>(std::lround(4.0 / 3.0 * w));
+    const int sh = static_cast<int>(std::lround(4.0 / 3.0 * h));
+    sets.push_back(FrameSet{name, w, h, make(w, h), make(sw, sh)});
+  };
+  add("noise", NoiseFrame, 97, 61);
+  add("shapes", ShapesFrame, 331, 187);
+  add("shapes-1row", ShapesFrame, 64, 1);
+  return sets;
+}
+
+// ---------------------------------------------------------------------------------------
+// Measuring.
+
+Stats Summarize(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  Stats s;
+  s.min = v.front();
+  s.max = v.back();
+  const size_t n = v.size();
+  s.median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  return s;
+}
+
+Stats TimeLaunches(const std::function<void()>& launch, const Options& o, cudaStream_t stream) {
+  for (int i = 0; i < o.warmup; ++i) launch();
+  std::vector<cudaEvent_t> ev(2 * static_cast<size_t>(o.repeat));
+  for (auto& e : ev) cuda::Check(cudaEventCreate(&e), "cudaEventCreate");
+  for (int i = 0; i < o.repeat; ++i) {
+    cuda::Check(cudaEventRecord(ev[2 * i], stream), "cudaEventRecord");
+    launch();
+    cuda::Check(cudaEventRecord(ev[2 * i + 1], stream), "cudaEventRecord");
+  }
+  cuda::Check(cudaStreamSynchronize(stream), "timed launches");
+  cuda::Check(cudaGetLastError(), "timed launches");
+  std::vector<double> ms;
+  for (int i = 0; i < o.repeat; ++i) {
+    float t = 0;
+    cuda::Check(cudaEventElapsedTime(&t, ev[2 * i], ev[2 * i + 1]), "cudaEventElapsedTime");
+    ms.push_back(t);
+  }
+  for (auto& e : ev) cudaEventDestroy(e);
+  return Summarize(ms);
+}
+
+Fidelity Compare(const Image8& gpu, const Image8& cpu) {
+  AALAB_CHECK(gpu.Width() == cpu.Width() && gpu.Height() == cpu.Height(), "Compare: sizes differ");
+  Fidelity f;
+  long long same = 0, within1 = 0;
+  double sum = 0;
+  const size_t n = static_cast<size_t>(gpu.Width()) * gpu.Height();
+  for (size_t i = 0; i < n; ++i) {
+    const uint8_t* a = gpu.Data().data() + 4 * i;
+    const uint8_t* b = cpu.Data().data() + 4 * i;
+    int d = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int dc = std::abs(static_cast<int>(a[c]) - static_cast<int>(b[c]));
+      d = std::max(d, dc);
+      sum += dc;
+    }
+    if (d == 0) ++same;
+    if (d <= 1) ++within1;
+    f.max_diff = std::max(f.max_diff, d);
+  }
+  f.differing = static_cast<long long>(n) - same;
+  f.identical_share = static_cast<double>(same) / static_cast<double>(n);
+  f.within1_share = static_cast<double>(within1) / static_cast<double>(n);
+  f.mean_abs_diff = sum / (3.0 * static_cast<double>(n));
+  return f;
+}
+
+bool AllOpaque(const Image8& img) {
+  for (size_t i = 3; i < img.Data().size(); i += 4) {
+    if (img.Data()[i] != 255) return false;
+  }
+  return true;
+}
+
+// The floor under which the hardware path's identical share fails --check. The exactness of
+// the port is checked by the software-filter variant (must be bit-identical); the hardware
+// path differs wherever the texture unit's 1/256 weights move a filtered value (measured on
+// the H100, docs/gpu.md: at least 0.82 on the default suite's frames, 0.51 on noise). The
+// floors sit below those, to catch a wrong texture view or coordinate convention, which
+// changes most edge pixels.
+double IdenticalFloor(const std::string& scene) { return scene == "noise" ? 0.40 : 0.75; }
+
+std::string Sh(const std::string& cmd) {
+  std::string out;
+  if (FILE* p = popen(cmd.c_str(), "r")) {
+    char buf[256];
+    while (std::fgets(buf, sizeof buf, p)) out += buf;
+    pclose(p);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+  return out.empty() ? "unknown" : out;
+}
+
+std::string NowUtc() {
+  const std::time_t t = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+// ---------------------------------------------------------------------------------------
+// JSON (hand-written: the tool needs only the C++ standard library).
+
+std::string Q(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\', o += c;
+    else if (static_cast<unsigned char>(c) < 0x20) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\u%04x", c);
+      o += b;
+    } else o += c;
+  }
+  return o + "\"";
+}
+
+std::string N(double v) {
+  if (!std::isfinite(v)) return "null";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+std::string StatsJson(const Stats& s) {
+  return "{\"median_ms\": " + N(s.median) + ", \"min_ms\": " + N(s.min) + ", \"max_ms\": " + N(s.max) + "}";
+}
+
+// ---------------------------------------------------------------------------------------
+
+int Main(int argc, char** argv) {
+  const Options o = ParseArgs(argc, argv);
+  std::vector<GpuMethod> methods;
+  for (const auto& s : o.methods) methods.push_back(ResolveGpuMethod(s));
+  const std::vector<FrameSet> sets = o.self_test ? SelfTestFrames() : ReadManifest(o.frames_dir);
+
+  cudaDeviceProp prop{};
+  cuda::Check(cudaGetDeviceProperties(&prop, 0), "cudaGetDeviceProperties");
+  int driver = 0, runtime = 0;
+  cudaDriverGetVersion(&driver);
+  cudaRuntimeGetVersion(&runtime);
+  const std::string smi_query =
+      "nvidia-smi --query-gpu=driver_version,clocks.sm,clocks.max.sm,clocks.mem,temperature.gpu,power.draw "
+      "--format=csv,noheader 2>/dev/null";
+  const std::string smi_before = Sh(smi_query);
+  const std::string nvidia_driver = Sh("nvidia-smi --query-gpu=driver_version --format=csv,noheader 2>/dev/null");
+  std::printf("device: %s (sm_%d%d, %d SMs, L2 %d MB), driver %s, CUDA driver API %d, runtime %d\n", prop.name,
+              prop.major, prop.minor, prop.multiProcessorCount, prop.l2CacheSize >> 20, nvidia_driver.c_str(), driver,
+              runtime);
+
+  const TextureProbe probe = ProbeTextureFilter();
+  std::printf("texture filter probe: %d distinct values over %d fractions; max error vs float fraction %.4f, "
+              "vs fraction rounded to 1/256 %.4f, truncated %.4f (8-bit levels)\n",
+              probe.distinct_values, probe.samples, probe.err_float, probe.err_round256, probe.err_trunc256);
+  std::printf("point fetches: %d of 256 UNORM8 values differ from k/255.0f, %d from the CPU's k*fl(1/255); "
+              "half-texel fetches: %d of %d pairs (a, b) differ from the CPU sampler, largest difference %.3g\n",
+              probe.unorm_mismatches, probe.unorm_mismatches_cpu, probe.half_mismatches, probe.half_pairs,
+              probe.half_max_err);
+
+  // SrgbDecode8's table on the device, for the sqrt-luminance pre-pass.
+  float decode_host[256];
+  for (int k = 0; k < 256; ++k) decode_host[k] = SrgbDecode8(static_cast<uint8_t>(k));
+  float* decode = nullptr;
+  cuda::Check(cudaMalloc(reinterpret_cast<void**>(&decode), sizeof decode_host), "cudaMalloc");
+  cuda::Check(cudaMemcpy(decode, decode_host, sizeof decode_host, cudaMemcpyHostToDevice), "upload");
+  cudaStream_t stream;
+  cuda::Check(cudaStreamCreate(&stream), "cudaStreamCreate");
+
+  std::vector<Entry> entries;
+  int failures = 0;
+  auto fail = [&](const std::string& what) {
+    ++failures;
+    std::printf("CHECK FAILED: %s\n", what.c_str());
+  };
+  if (!o.outputs_dir.empty()) fs::create_directories(o.outputs_dir);
+
+  for (const FrameSet& fs_ : sets) {
+    const std::string size = std::to_string(fs_.width) + "x" + std::to_string(fs_.height);
+    GpuPipeline p1(fs_.width, fs_.height, fs_.width, fs_.height, decode);
+    p1.Upload(fs_.frame1x);
+    std::unique_ptr<GpuPipeline> ps;
+    if (!fs_.scaled.Empty()) {
+      ps = std::make_unique<GpuPipeline>(fs_.scaled.Width(), fs_.scaled.Height(), fs_.width, fs_.height, decode);
+      ps->Upload(fs_.scaled);
+    }
+    // The copy floors, and the texture-path copy's exactness.
+    Entry copy = MakeEntry(fs_.scene, size, "copy", "copy (point fetch + surface write)");
+    Entry copy_lin = MakeEntry(fs_.scene, size, "copy-linear", "copy (16-byte global loads/stores)");
+    p1.PoisonOutput();
+    p1.RunCopyTexture(stream);
+    cuda::Check(cudaStreamSynchronize(stream), "copy");
+    copy.has_fidelity = true;
+    copy.fid = Compare(p1.Output(), fs_.frame1x);
+    if (copy.fid.differing != 0) fail(fs_.scene + " " + size + ": texture-path copy is not exact");
+    if (o.timing) {
+      copy.timed = copy_lin.timed = true;
+      copy.t = TimeLaunches([&] { p1.RunCopyTexture(stream); }, o, stream);
+      copy_lin.t = TimeLaunches([&] { p1.RunCopyLinear(stream); }, o, stream);
+      copy.ratio = 1.0;
+      copy_lin.ratio = copy_lin.t.median / copy.t.median;
+    }
+    entries.push_back(copy);
+    entries.push_back(copy_lin);
+    const double floor_ms = copy.t.median;
+    const double floor_linear_ms = copy_lin.t.median;
+    copy.ratio_linear = copy.t.median / floor_linear_ms;
+    copy_lin.ratio_linear = 1.0;
+    entries[entries.size() - 2].ratio_linear = copy.ratio_linear;
+    entries[entries.size() - 1].ratio_linear = 1.0;
+
+    for (const GpuMethod& m : methods) {
+      GpuPipeline* p = m.scaled_input ? ps.get() : &p1;
+      if (!p) continue;  // no scaled frame exported for this scene and size
+      const Image8& input = m.scaled_input ? fs_.scaled : fs_.frame1x;
+      if (m.scaled_input) {
+        const int rw = std::max(1, static_cast<int>(std::lround(m.plan.render.scale * fs_.width)));
+        const int rh = std::max(1, static_cast<int>(std::lround(m.plan.render.scale * fs_.height)));
+        if (rw != input.Width() || rh != input.Height()) {
+          throw UserError(fs_.scene + " " + size + ": the scaled frame is " + std::to_string(input.Width()) + "x" +
+                          std::to_string(input.Height()) + " but '" + m.spec + "' renders at " + std::to_string(rw) +
+                          "x" + std::to_string(rh));
+        }
+      }
+      Entry e = MakeEntry(fs_.scene, size, m.spec, m.kernels);
+      p->PoisonOutput();
+      p->Run(m, stream);
+      cuda::Check(cudaStreamSynchronize(stream), m.spec.c_str());
+      cuda::Check(cudaGetLastError(), m.spec.c_str());
+      const Image8 gpu = p->Output();
+      p->PoisonOutput();
+      p->Run(m, stream);
+      cuda::Check(cudaStreamSynchronize(stream), m.spec.c_str());
+      const Image8 gpu2 = p->Output();
+      e.all_written = AllOpaque(gpu);
+      e.deterministic = gpu.Data() == gpu2.Data();
+      const Image8 cpu = CpuOutput(m, input, fs_.width, fs_.height);
+      e.has_fidelity = true;
+      e.fid = Compare(gpu, cpu);
+      p->PoisonOutput();
+      p->Run(m, stream, /*software_filter=*/true);
+      cuda::Check(cudaStreamSynchronize(stream), m.spec.c_str());
+      e.has_soft = true;
+      e.soft = Compare(p->Output(), cpu);
+      const std::string what = fs_.scene + " " + size + " " + m.spec;
+      if (!e.all_written) fail(what + ": output pixels left unwritten");
+      if (!e.deterministic) fail(what + ": two GPU runs differ");
+      if (e.soft.differing != 0) {
+        fail(what + ": the software-filter variant differs from the CPU on " + std::to_string(e.soft.differing) +
+             " pixels (max diff " + std::to_string(e.soft.max_diff) + ")");
+      }
+      if (e.fid.identical_share < IdenticalFloor(fs_.scene)) {
+        fail(what + ": identical share " + N(e.fid.identical_share) + " < " + N(IdenticalFloor(fs_.scene)));
+      }
+      if (!o.outputs_dir.empty() && fs_.scene + "-" + size == o.outputs_scene) {
+        std::string file = fs_.scene + "-" + size + "-" + m.spec + ".ppm";
+        for (char& c : file) {
+          if (c == ':' || c == '=' || c == ',') c = '_';
+        }
+        WritePpm((fs::path(o.outputs_dir) / file).string(), gpu);
+      }
+      if (o.timing) {
+        e.timed = true;
+        e.t = TimeLaunches([&] { p->Run(m, stream); }, o, stream);
+        e.ratio = e.t.median / floor_ms;
+        e.ratio_linear = e.t.median / floor_linear_ms;
+        if (m.prepass && !m.scaled_input) e.pass = TimeLaunches([&] { p->RunPassOnly(m, stream); }, o, stream);
+      }
+      std::printf("%-16s %-10s %-34s identical %7.3f%% (sw filter %7.3f%%) <=1 %7.3f%% max %3d  %s\n",
+                  fs_.scene.c_str(), size.c_str(), m.spec.c_str(), 100.0 * e.fid.identical_share,
+                  100.0 * e.soft.identical_share, 100.0 * e.fid.within1_share, e.fid.max_diff,
+                  e.timed ? (N(e.t.median) + " ms (" + N(e.ratio) + "x copy)").c_str() : "");
+      entries.push_back(e);
+    }
+    if (o.timing) {
+      // The texture-path copy again after the methods: a drift of the clock (or another load on
+      // the GPU) during this frame's measurements shows as a difference to "copy".
+      Entry after = MakeEntry(fs_.scene, size, "copy-after", "copy (point fetch + surface write), after the methods");
+      after.timed = true;
+      after.t = TimeLaunches([&] { p1.RunCopyTexture(stream); }, o, stream);
+      after.ratio = after.t.median / floor_ms;
+      after.ratio_linear = after.t.median / floor_linear_ms;
+      entries.push_back(after);
+    }
+  }
+  const std::string smi_after = Sh(smi_query);
+
+  if (!o.json_path.empty()) {
+    std::ostringstream j;
+    j << "{\n  \"schema\": \"aalab-gpu-timings\",\n  \"schema_version\": 1,\n";
+    j << "  \"generated_utc\": " << Q(NowUtc()) << ",\n";
+    j << "  \"device\": {\"name\": " << Q(prop.name) << ", \"compute_capability\": "
+      << Q(std::to_string(prop.major) + "." + std::to_string(prop.minor)) << ", \"multiprocessors\": "
+      << prop.multiProcessorCount << ", \"l2_bytes\": " << prop.l2CacheSize << ", \"memory_bytes\": "
+      << prop.totalGlobalMem << "},\n";
+    j << "  \"driver\": " << Q(nvidia_driver) << ",\n";
+    j << "  \"cuda_driver_api\": " << Q(std::to_string(driver / 1000) + "." + std::to_string(driver % 1000 / 10))
+      << ",\n  \"cuda_runtime\": " << Q(std::to_string(runtime / 1000) + "." + std::to_string(runtime % 1000 / 10))
+      << ",\n";
+    j << "  \"nvidia_smi_before\": " << Q(smi_before) << ",\n  \"nvidia_smi_after\": " << Q(smi_after) << ",\n";
+    j << "  \"nvidia_smi_fields\": \"driver_version, clocks.sm, clocks.max.sm, clocks.mem, temperature.gpu, "
+         "power.draw\",\n";
+    j << "  \"timing\": {\"method\": \"CUDA events recorded around each launch (all kernels of the method), on one "
+         "stream, after untimed warm-up launches; median/min/max over the timed launches\", \"warmup\": "
+      << o.warmup << ", \"repeat\": " << o.repeat
+      << ", \"clocks\": \"not locked: the GPU boosts as it likes; nvidia_smi_before/after record the clocks\", "
+         "\"floor\": \"copy\"},\n";
+    j << "  \"texture_probe\": {\"samples\": " << probe.samples << ", \"distinct_values\": " << probe.distinct_values
+      << ", \"max_err_float_fraction\": " << N(probe.err_float)
+      << ", \"max_err_fraction_rounded_1_256\": " << N(probe.err_round256)
+      << ", \"max_err_fraction_truncated_1_256\": " << N(probe.err_trunc256)
+      << ", \"unorm8_point_fetch_mismatches\": " << probe.unorm_mismatches
+      << ", \"unorm8_point_fetch_mismatches_vs_cpu\": " << probe.unorm_mismatches_cpu
+      << ", \"half_texel_pairs\": " << probe.half_pairs << ", \"half_texel_mismatches\": " << probe.half_mismatches
+      << ", \"half_texel_max_err\": " << N(probe.half_max_err) << "},\n";
+    j << "  \"results\": [\n";
+    for (size_t i = 0; i < entries.size(); ++i) {
+      const Entry& e = entries[i];
+      j << "    {\"scene\": " << Q(e.scene) << ", \"size\": " << Q(e.size) << ", \"method\": " << Q(e.spec)
+        << ", \"kernels\": " << Q(e.kernels);
+      if (e.timed) {
+        j << ", \"median_ms\": " << N(e.t.median) << ", \"min_ms\": " << N(e.t.min) << ", \"max_ms\": " << N(e.t.max)
+          << ", \"ratio_to_copy\": " << N(e.ratio) << ", \"ratio_to_copy_linear\": " << N(e.ratio_linear);
+        if (e.pass.median > 0) j << ", \"pass_only\": " << StatsJson(e.pass);
+      }
+      if (e.has_fidelity) {
+        j << ", \"fidelity\": {\"identical_share\": " << N(e.fid.identical_share) << ", \"max_diff\": " << e.fid.max_diff
+          << ", \"within_1_share\": " << N(e.fid.within1_share) << ", \"differing_pixels\": " << e.fid.differing
+          << ", \"mean_abs_diff\": " << N(e.fid.mean_abs_diff)
+          << ", \"deterministic\": " << (e.deterministic ? "true" : "false") << "}";
+      }
+      if (e.has_soft) {
+        j << ", \"fidelity_software_filter\": {\"identical_share\": " << N(e.soft.identical_share)
+          << ", \"max_diff\": " << e.soft.max_diff << ", \"differing_pixels\": " << e.soft.differing << "}";
+      }
+      j << "}" << (i + 1 < entries.size() ? "," : "") << "\n";
+    }
+    j << "  ]\n}\n";
+    const std::string tmp = o.json_path + ".tmp";
+    {
+      std::ofstream f(tmp);
+      f << j.str();
+      if (!f) throw UserError("'" + o.json_path + "' cannot be written");
+    }
+    fs::rename(tmp, o.json_path);
+    std::printf("wrote %s (%zu results)\n", o.json_path.c_str(), entries.size());
+  }
+  cudaFree(decode);
+  cudaStreamDestroy(stream);
+  if (failures > 0) std::printf("%d check(s) failed\n", failures);
+  return o.check && failures > 0 ? 1 : 0;
+}
+
+}  // namespace
+}  // namespace aalab
+
+int main(int argc, char** argv) {
+  try {
+    return aalab::Main(argc, argv);
+  } catch (const aalab::UserError& e) {
+    std::fprintf(stderr, "aalab_gpu: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "aalab_gpu: internal error: %s\n", e.what());
+    return 3;
+  }
+}

@@ -1,0 +1,129 @@
+// `aalab export-frames` and `aalab merge-gpu`: the CPU side of the GPU timings (docs/gpu.md).
+// export-frames renders the frames the post filters see, for the stand-alone GPU tool
+// (gpu/aalab_gpu), which needs no Embree; merge-gpu attaches that tool's JSON to a report.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "harness/cli/commands.h"
+#include "harness/core/error.h"
+#include "harness/core/params.h"
+#include "harness/core/parallel.h"
+#include "harness/io/image_io.h"
+#include "harness/io/ppm.h"
+#include "harness/run/pipeline.h"
+#include "harness/run/runner.h"
+#include "methods/registry.h"
+#include "reports/gpu_timings.h"
+#include "reports/html_report.h"
+#include "reports/report_json.h"
+#include "scenes/library.h"
+#include "scenes/render.h"
+
+namespace aalab {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ExportArgs {
+  std::string suite = "default", scenes, sizes = "1920x1080,3840x2160", out;
+  uint64_t seed = 1;
+  int threads = 0;
+  bool no_scaled = false;
+};
+
+// Writes DIR/<scene>-<W>x<H>.ppm (the 1x frame every post-only method filters, rendered as
+// `aalab run` renders it: one sample at each pixel centre, same seed) and, unless
+// --no-scaled, DIR/<scene>-<W>x<H>-scaled.ppm (the frame scale43 renders before its
+// rescale), listed in DIR/frames.tsv. Everything goes to DIR.partial first.
+int ExportFrames(const ExportArgs& a) {
+  SetThreadCount(a.threads);
+  std::vector<std::pair<int, int>> sizes;
+  for (const auto& s : SplitCommaList(a.sizes, "--sizes")) {
+    int w = 0, h = 0;
+    ParseSize(s, &w, &h);
+    sizes.emplace_back(w, h);
+  }
+  if (sizes.empty()) throw UserError("--sizes is empty (give e.g. 1920x1080,3840x2160)");
+  const std::vector<std::string> names = a.scenes.empty() ? SuiteScenes(a.suite) : SplitCommaList(a.scenes, "--scenes");
+  std::vector<std::unique_ptr<Scene>> scenes = LoadScenes(names);
+  const fs::path out(a.out);
+  if (fs::exists(out) && (!fs::is_directory(out) || (!fs::is_empty(out) && !fs::exists(out / "frames.tsv")))) {
+    throw UserError("--out '" + a.out + "' exists and is not a frames folder (no frames.tsv); refusing to replace it");
+  }
+  const fs::path tmp = out.string() + ".partial";
+  fs::remove_all(tmp);
+  fs::create_directories(tmp);
+  try {
+    // The render request of scale43 at its defaults: the scaled frame is what it renders.
+    const RenderSpec scaled = MakeMethod("scale43").render;
+    std::ostringstream tsv;
+    tsv << "# aalab export-frames: scene, role (1x | scaled), output width, output height, file (binary PPM)\n";
+    for (const auto& scene : scenes) {
+      const Tracer tracer(*scene);
+      for (const auto& [w, h] : sizes) {
+        const std::string base = scene->name + "-" + std::to_string(w) + "x" + std::to_string(h);
+        WritePpm((tmp / (base + ".ppm")).string(), RenderFrame(tracer, w, h, RenderSpec{}, a.seed, nullptr));
+        tsv << scene->name << "\t1x\t" << w << "\t" << h << "\t" << base << ".ppm\n";
+        if (!a.no_scaled) {
+          const int rw = std::max(1, static_cast<int>(std::lround(scaled.scale * w)));
+          const int rh = std::max(1, static_cast<int>(std::lround(scaled.scale * h)));
+          WritePpm((tmp / (base + "-scaled.ppm")).string(), RenderFrame(tracer, rw, rh, scaled, a.seed, nullptr));
+          tsv << scene->name << "\tscaled\t" << w << "\t" << h << "\t" << base << "-scaled.ppm\n";
+        }
+        std::fprintf(stderr, "exported %s\n", base.c_str());
+      }
+    }
+    WriteTextFile((tmp / "frames.tsv").string(), tsv.str());
+  } catch (...) {
+    fs::remove_all(tmp);
+    throw;
+  }
+  fs::remove_all(out);
+  fs::rename(tmp, out);
+  std::printf("wrote %zu scene(s) x %zu size(s) to %s (frames.tsv)\n", scenes.size(), sizes.size(), a.out.c_str());
+  return 0;
+}
+
+int MergeGpu(const std::string& dir, const std::string& gpu_json) {
+  const fs::path report_path = fs::path(dir) / "report.json";
+  Report report = ReadReportFile(report_path.string());
+  const GpuTimingsFile gpu = ReadGpuTimingsFile(gpu_json);
+  const int matched = MergeGpuTimings(report, gpu);
+  if (matched == 0) {
+    throw UserError("'" + gpu_json + "' has timings for none of the report's rows (rows are matched by scene and "
+                    "method spec; the GPU file covers scenes " + JoinNames(gpu.Scenes()) + ")");
+  }
+  WriteTextFile(report_path.string(), ReportToJson(report).dump(2) + "\n");
+  WriteTextFile((fs::path(dir) / "index.html").string(), RenderHtmlReport(report));
+  std::printf("merged GPU timings (%s, driver %s) into %d of %zu rows of %s\n", gpu.device.c_str(), gpu.driver.c_str(),
+              matched, report.rows.size(), report_path.string().c_str());
+  return 0;
+}
+
+}  // namespace
+
+void RegisterGpuCommands(CLI::App& app, Commands& commands) {
+  auto* ex = app.add_subcommand("export-frames",
+                                "render the 1x (and render-scale) frames of scenes as PPM for the GPU tool (docs/gpu.md)");
+  auto ea = std::make_shared<ExportArgs>();
+  ex->add_option("--suite", ea->suite, "suite name (see aalab list scenes)")->capture_default_str();
+  ex->add_option("--scenes", ea->scenes, "comma-separated scene names or files (overrides --suite)");
+  ex->add_option("--sizes", ea->sizes, "comma-separated output sizes WxH")->capture_default_str();
+  ex->add_option("--seed", ea->seed, "jitter seed (as aalab run)")->capture_default_str();
+  ex->add_option("--threads", ea->threads, "worker threads (0 = all)")->capture_default_str();
+  ex->add_flag("--no-scaled", ea->no_scaled, "skip the frames rendered at scale43's render scale");
+  ex->add_option("--out", ea->out, "output folder (frames.tsv + PPM files)")->required();
+  ex->callback([&commands, ea] { commands.action = [ea] { return ExportFrames(*ea); }; });
+
+  auto* mg = app.add_subcommand("merge-gpu", "attach aalab_gpu's timings (JSON) to a report's rows and redraw its page");
+  auto dir = std::make_shared<std::string>();
+  auto file = std::make_shared<std::string>();
+  mg->add_option("report_dir", *dir, "report folder (holds report.json)")->required();
+  mg->add_option("gpu_json", *file, "JSON written by aalab_gpu --json")->required();
+  mg->callback([&commands, dir, file] { commands.action = [dir, file] { return MergeGpu(*dir, *file); }; });
+}
+
+}  // namespace aalab

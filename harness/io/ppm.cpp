@@ -1,0 +1,92 @@
+#include "harness/io/ppm.h"
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "harness/core/error.h"
+
+namespace aalab {
+namespace {
+
+// Next header token: skips whitespace and '#' comments.
+std::string Token(std::istream& in) {
+  std::string tok;
+  int c = in.get();
+  while (c != EOF) {
+    if (c == '#') {
+      while (c != EOF && c != '\n') c = in.get();
+    } else if (!std::isspace(c)) {
+      break;
+    }
+    c = in.get();
+  }
+  while (c != EOF && !std::isspace(c)) {
+    tok.push_back(static_cast<char>(c));
+    c = in.get();
+  }
+  return tok;  // the single whitespace after the last token is consumed
+}
+
+int Number(std::istream& in, const std::string& path, const char* what) {
+  const std::string t = Token(in);
+  if (t.empty() || t.size() > 6 || t.find_first_not_of("0123456789") != std::string::npos) {
+    throw UserError("'" + path + "': bad PPM header (" + what + " '" + t + "'; expected a number)");
+  }
+  return std::stoi(t);
+}
+
+}  // namespace
+
+Image8 ReadPpm(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UserError("'" + path + "' cannot be read");
+  if (Token(in) != "P6") throw UserError("'" + path + "' is not a binary PPM (P6)");
+  const int w = Number(in, path, "width");
+  const int h = Number(in, path, "height");
+  const int maxval = Number(in, path, "maxval");
+  if (w < 1 || h < 1 || w > 65536 || h > 65536) {
+    throw UserError("'" + path + "': size " + std::to_string(w) + "x" + std::to_string(h) +
+                    " is out of range (1..65536 per side)");
+  }
+  if (maxval != 255) throw UserError("'" + path + "': maxval " + std::to_string(maxval) + " (only 255 is allowed)");
+  std::vector<uint8_t> rgb(static_cast<size_t>(w) * h * 3);
+  in.read(reinterpret_cast<char*>(rgb.data()), static_cast<std::streamsize>(rgb.size()));
+  if (in.gcount() != static_cast<std::streamsize>(rgb.size())) {
+    throw UserError("'" + path + "': pixel data is truncated");
+  }
+  Image8 img(w, h, 4, 255);
+  for (size_t i = 0, n = static_cast<size_t>(w) * h; i < n; ++i) {
+    uint8_t* p = img.Data().data() + 4 * i;
+    p[0] = rgb[3 * i];
+    p[1] = rgb[3 * i + 1];
+    p[2] = rgb[3 * i + 2];
+  }
+  return img;
+}
+
+void WritePpm(const std::string& path, const Image8& img) {
+  AALAB_CHECK(img.Channels() == 4, "WritePpm needs an RGBA8 frame");
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw UserError("'" + path + "' cannot be written");
+    out << "P6\n" << img.Width() << " " << img.Height() << "\n255\n";
+    std::vector<uint8_t> rgb(static_cast<size_t>(img.Width()) * img.Height() * 3);
+    for (size_t i = 0, n = static_cast<size_t>(img.Width()) * img.Height(); i < n; ++i) {
+      const uint8_t* p = img.Data().data() + 4 * i;
+      rgb[3 * i] = p[0];
+      rgb[3 * i + 1] = p[1];
+      rgb[3 * i + 2] = p[2];
+    }
+    out.write(reinterpret_cast<const char*>(rgb.data()), static_cast<std::streamsize>(rgb.size()));
+    if (!out) throw UserError("'" + path + "': write failed");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw UserError("'" + path + "' cannot be written: " + ec.message());
+}
+
+}  // namespace aalab

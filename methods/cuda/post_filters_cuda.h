@@ -1,0 +1,104 @@
+/// CUDA twins of the post filters (methods/fxaa1.cpp, fxaa311.cpp, rescale.cpp): the same
+/// per-pixel float32 arithmetic, with every fetch going through the GPU's texture units
+/// (cudaTextureObject on a uchar4 cudaArray: hardware clamp-to-edge and bilinear filtering)
+/// and every output written through a surface, as a render target. Built only where CMake
+/// finds a CUDA compiler. Parameters come from the CPU side's registry and preset tables
+/// (Fxaa1Preset, Fxaa311PresetSteps, FxaaTutorialSteps): this file holds no copies of them.
+/// See methods/cuda/post_kernels.cu for the kernels and their deviations from the CPU code.
+#pragma once
+#include <cuda_runtime_api.h>
+
+#include <cstdint>
+
+namespace aalab::cuda {
+
+/// An RGBA8 frame resident on the GPU: a cudaArray (block-linear, like a render target)
+/// with a surface for writes and three texture views of it. All three use clamp-to-edge
+/// addressing and return k/255 floats (cudaReadModeNormalizedFloat):
+///   point       point sampling, unnormalised coordinates: exact texel reads at (x+0.5, y+0.5)
+///               (FxaaTexTop / FxaaTexOff / texelFetch);
+///   linear_px   bilinear filtering, unnormalised coordinates (texel centre at x+0.5);
+///   linear_norm bilinear filtering, normalised coordinates in [0, 1] (GL's texture()).
+class GpuFrame {
+ public:
+  /// Allocates a width × height RGBA8 frame. Throws std::runtime_error on a CUDA error.
+  GpuFrame(int width, int height);
+  ~GpuFrame();
+  GpuFrame(const GpuFrame&) = delete;
+  GpuFrame& operator=(const GpuFrame&) = delete;
+  /// Copies width·height·4 bytes (row-major RGBA8) to the GPU.
+  void Upload(const uint8_t* rgba);
+  /// Copies the frame back into width·height·4 bytes.
+  void Download(uint8_t* rgba) const;
+  int Width() const { return width_; }
+  int Height() const { return height_; }
+  cudaTextureObject_t Point() const { return point_; }
+  cudaTextureObject_t LinearPx() const { return linear_px_; }
+  cudaTextureObject_t LinearNorm() const { return linear_norm_; }
+  cudaSurfaceObject_t Surface() const { return surface_; }
+
+ private:
+  int width_ = 0, height_ = 0;
+  cudaArray_t array_ = nullptr;
+  cudaTextureObject_t point_ = 0, linear_px_ = 0, linear_norm_ = 0;
+  cudaSurfaceObject_t surface_ = 0;
+};
+
+/// FXAA 1.0 parameters as Fxaa1Params (methods/fxaa1.h), flattened for a kernel argument.
+struct Fxaa1Args {
+  float edge_threshold, edge_threshold_min;
+  int search_steps, search_acceleration;
+  float search_threshold, subpix_cap, subpix_trim;
+  int subpix_faster;
+};
+
+/// Largest FXAA 3.11 step table the kernel takes (preset 39 and fxaa-high have 12).
+inline constexpr int kMaxFxaaSteps = 16;
+
+/// Where FXAA 3.11 reads luma (Fxaa311Params::Luma, same order).
+enum class LumaSource : int { kRec601 = 0, kRec601Rgb = 1, kGreen = 2, kSqrtLuminance = 3 };
+
+/// FXAA 3.11 parameters as Fxaa311Params (methods/fxaa311.h), flattened.
+struct Fxaa311Args {
+  float steps[kMaxFxaaSteps];
+  int step_count;
+  float subpix, edge_threshold, edge_threshold_min;
+  LumaSource luma;
+  int seed003_order;  ///< 1 = Order::kSeed003Glsl (fxaa-iter12), 0 = Order::kFxaa311
+};
+
+/// Copies `in` to `out` through the texture path (point fetch + surface write): the floor
+/// every filter above is measured against (same reads and writes, no arithmetic).
+void LaunchCopyTexture(const GpuFrame& in, GpuFrame& out, cudaStream_t stream);
+/// Copies `bytes` bytes between linear device buffers with 16-byte loads and stores: the
+/// memory-bandwidth floor without the texture path. `bytes` must be a multiple of 16.
+void LaunchCopyLinear(const void* in, void* out, size_t bytes, cudaStream_t stream);
+
+/// The luma pre-pass of Fxaa311LumaFrame: out = in with alpha = 8-bit luma, for kRec601
+/// (dot(rgb, 0.299/0.587/0.114) of the encoded values) and kSqrtLuminance (sqrt of linear
+/// luminance; `srgb_decode` is a device table of SrgbDecode8's 256 values), alpha stored
+/// with StoreUnorm8. software_filter: texel values as the CPU reads them. Other sources
+/// need no pre-pass (the caller does not launch it).
+void LaunchLumaPrepass(const GpuFrame& in, GpuFrame& out, LumaSource luma, const float* srgb_decode,
+                       cudaStream_t stream, bool software_filter = false);
+
+/// FXAA 1.0 normal output (no debug views) of `in` into `out` (same size).
+/// software_filter = true replaces every bilinear fetch by the CPU's float32 bilinear from
+/// four point fetches (here and below): a check that the port is exact, not for timing.
+void LaunchFxaa1(const GpuFrame& in, GpuFrame& out, const Fxaa1Args& args, cudaStream_t stream,
+                 bool software_filter = false);
+
+/// One FXAA 3.11 Quality pass of `in` (luma already in alpha where the source needs the
+/// pre-pass) into `out` (same size).
+void LaunchFxaa311(const GpuFrame& in, GpuFrame& out, const Fxaa311Args& args, cudaStream_t stream,
+                   bool software_filter = false);
+
+/// RescaleFrame (methods/rescale.h) of `in` to out's size: bicubic = false gives one
+/// bilinear tap at normalised coordinates, true the B-spline from four bilinear taps.
+void LaunchRescale(const GpuFrame& in, GpuFrame& out, bool bicubic, cudaStream_t stream,
+                   bool software_filter = false);
+
+/// Throws std::runtime_error naming `what` when `err` is not cudaSuccess.
+void Check(cudaError_t err, const char* what);
+
+}  // namespace aalab::cuda

@@ -1,0 +1,120 @@
+// The CPU side of the GPU timings through the CLI: `aalab export-frames` writes the frames a
+// run's post filters see, and `aalab merge-gpu` attaches aalab_gpu's JSON to a report.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "harness/io/image_io.h"
+#include "harness/io/ppm.h"
+#include "tests/cli/cli_util.h"
+
+namespace aalab {
+namespace {
+
+namespace fs = std::filesystem;
+using clitest::Aalab;
+using clitest::TempDir;
+
+std::string ReadText(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+// One small run shared by the tests: 33×17 (odd), wedges, none + two post filters.
+const fs::path& RunDir() {
+  static const fs::path dir = [] {
+    const fs::path d = TempDir("gpu-cli") / "run";
+    const auto r = Aalab("run --scenes wedges --methods none,fxaa1-p3,fxaa311-p39 --size 33x17 --ref-spp 4 "
+                         "--repeat 1 --quiet --out " + d.string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    return d;
+  }();
+  return dir;
+}
+
+TEST(ExportFrames, WritesTheRunsFrameAndTheRenderScaleFrame) {
+  const fs::path out = TempDir("gpu-export") / "frames";
+  const auto r = Aalab("export-frames --scenes wedges --sizes 33x17 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string tsv = ReadText(out / "frames.tsv");
+  EXPECT_NE(tsv.find("wedges\t1x\t33\t17\twedges-33x17.ppm\n"), std::string::npos) << tsv;
+  EXPECT_NE(tsv.find("wedges\tscaled\t33\t17\twedges-33x17-scaled.ppm\n"), std::string::npos) << tsv;
+  const Image8 frame = ReadPpm((out / "wedges-33x17.ppm").string());
+  // scale43 renders at round(4/3 · size): 33 → 44, 17 → 22.67 → 23.
+  const Image8 scaled = ReadPpm((out / "wedges-33x17-scaled.ppm").string());
+  EXPECT_EQ(scaled.Width(), 44);
+  EXPECT_EQ(scaled.Height(), 23);
+  // The 1x frame is the `none` output of `aalab run` at the same size and seed, byte for byte.
+  const auto report = nlohmann::json::parse(ReadText(RunDir() / "report.json"));
+  std::string none_png;
+  for (const auto& row : report.at("rows")) {
+    if (row.at("method") == "none") none_png = row.at("images").at("output").get<std::string>();
+  }
+  ASSERT_FALSE(none_png.empty());
+  const Image8 none = ReadImage8((RunDir() / none_png).string());
+  ASSERT_EQ(frame.Width(), 33);
+  ASSERT_EQ(frame.Height(), 17);
+  EXPECT_EQ(frame.Data(), none.Data());
+}
+
+TEST(ExportFrames, BadSizeIsAnErrorAndLeavesNothing) {
+  const fs::path out = TempDir("gpu-export-bad") / "frames";
+  const auto r = Aalab("export-frames --scenes wedges --sizes 33x0 --out " + out.string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("33x0"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(out.string() + ".partial"));
+}
+
+TEST(MergeGpu, AddsBlocksToMatchingRowsAndRedrawsThePage) {
+  const fs::path dir = TempDir("gpu-merge") / "run";
+  fs::copy(RunDir(), dir, fs::copy_options::recursive);
+  const fs::path gpu = dir.parent_path() / "gpu.json";
+  std::ofstream(gpu) << R"({"schema": "aalab-gpu-timings", "schema_version": 1,
+    "generated_utc": "2026-11-22T20:00:00Z", "device": {"name": "NVIDIA H100 80GB HBM3"},
+    "driver": "580.159.04", "cuda_runtime": "13.0", "results": [
+    {"scene": "wedges", "size": "1920x1080", "method": "copy", "kernels": "copy",
+     "median_ms": 0.016, "min_ms": 0.015, "max_ms": 0.017, "ratio_to_copy": 1},
+    {"scene": "wedges", "size": "1920x1080", "method": "fxaa311-p39", "kernels": "luma-rec601 + fxaa311",
+     "median_ms": 0.052, "min_ms": 0.051, "max_ms": 0.06, "ratio_to_copy": 3.25,
+     "fidelity": {"identical_share": 0.9991, "max_diff": 12}}]})";
+  const auto r = Aalab("merge-gpu " + dir.string() + " " + gpu.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("into 1 of 3 rows"), std::string::npos) << r.output;
+  const auto report = nlohmann::json::parse(ReadText(dir / "report.json"));
+  int blocks = 0;
+  for (const auto& row : report.at("rows")) {
+    if (!row.contains("gpu")) continue;
+    ++blocks;
+    EXPECT_EQ(row.at("method"), "fxaa311-p39");
+    EXPECT_EQ(row.at("gpu").at("device"), "NVIDIA H100 80GB HBM3");
+    EXPECT_DOUBLE_EQ(row.at("gpu").at("sizes").at("1920x1080").at("median_ms").get<double>(), 0.052);
+    EXPECT_DOUBLE_EQ(row.at("gpu").at("sizes").at("1920x1080").at("copy_ms").get<double>(), 0.016);
+  }
+  EXPECT_EQ(blocks, 1);
+  EXPECT_NE(ReadText(dir / "index.html").find("NVIDIA H100 80GB HBM3"), std::string::npos);
+}
+
+TEST(MergeGpu, FileMatchingNoRowIsAnErrorAndChangesNothing) {
+  const fs::path dir = TempDir("gpu-merge-none") / "run";
+  fs::copy(RunDir(), dir, fs::copy_options::recursive);
+  const std::string before = ReadText(dir / "report.json");
+  const fs::path gpu = dir.parent_path() / "gpu.json";
+  std::ofstream(gpu) << R"({"schema": "aalab-gpu-timings", "schema_version": 1, "generated_utc": "x",
+    "device": {"name": "G"}, "driver": "1", "cuda_runtime": "13.0", "results": [
+    {"scene": "circle", "size": "8x8", "method": "fxaa1-p3", "kernels": "fxaa1",
+     "median_ms": 1, "min_ms": 1, "max_ms": 1, "ratio_to_copy": 1}]})";
+  const auto r = Aalab("merge-gpu " + dir.string() + " " + gpu.string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("none of the report's rows"), std::string::npos) << r.output;
+  EXPECT_EQ(ReadText(dir / "report.json"), before);
+}
+
+}  // namespace
+}  // namespace aalab

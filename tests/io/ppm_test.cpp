@@ -1,0 +1,77 @@
+// Binary PPM frames (harness/io/ppm.h): the exchange format with the GPU tool.
+#include "harness/io/ppm.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "harness/core/error.h"
+
+namespace aalab {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path Tmp(const std::string& name) { return fs::temp_directory_path() / ("aalab-ppm-" + name); }
+
+void WriteBytes(const fs::path& p, const std::string& bytes) {
+  std::ofstream f(p, std::ios::binary);
+  f << bytes;
+}
+
+TEST(Ppm, RoundTripOddSizeKeepsRgbAndSetsAlpha) {
+  Image8 img(3, 2, 4, 0);
+  for (size_t i = 0; i < img.Data().size(); ++i) img.Data()[i] = static_cast<uint8_t>(i * 37);
+  const fs::path p = Tmp("rt.ppm");
+  WritePpm(p.string(), img);
+  // Header "P6\n3 2\n255\n" (11 bytes) + 3·2·3 bytes of rgb.
+  EXPECT_EQ(fs::file_size(p), 11u + 18u);
+  const Image8 back = ReadPpm(p.string());
+  ASSERT_EQ(back.Width(), 3);
+  ASSERT_EQ(back.Height(), 2);
+  for (int y = 0; y < 2; ++y) {
+    for (int x = 0; x < 3; ++x) {
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(back.At(x, y, c), img.At(x, y, c));
+      EXPECT_EQ(back.At(x, y, 3), 255);
+    }
+  }
+  fs::remove(p);
+}
+
+TEST(Ppm, HeaderCommentsAreSkipped) {
+  const fs::path p = Tmp("comment.ppm");
+  WriteBytes(p, std::string("P6\n# made by hand\n1 1\n255\n") + std::string("\x0a\x14\x1e", 3));
+  const Image8 img = ReadPpm(p.string());
+  EXPECT_EQ(img.At(0, 0, 0), 10);
+  EXPECT_EQ(img.At(0, 0, 1), 20);
+  EXPECT_EQ(img.At(0, 0, 2), 30);
+  fs::remove(p);
+}
+
+TEST(Ppm, BadFilesAreUserErrorsNamingThePath) {
+  const fs::path p = Tmp("bad.ppm");
+  const std::pair<std::string, std::string> cases[] = {
+      {"P3\n1 1\n255\n0 0 0\n", "not a binary PPM"},
+      {"P6\n2 2\n65535\n", "maxval 65535"},
+      {"P6\n2 x\n255\n", "bad PPM header"},
+      {"P6\n0 2\n255\n", "out of range"},
+      {std::string("P6\n2 1\n255\n") + std::string(5, '\0'), "truncated"},
+  };
+  for (const auto& [bytes, message] : cases) {
+    WriteBytes(p, bytes);
+    try {
+      ReadPpm(p.string());
+      FAIL() << "accepted: " << message;
+    } catch (const UserError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos) << e.what();
+    }
+  }
+  fs::remove(p);
+  EXPECT_THROW(ReadPpm(p.string()), UserError);  // missing file
+}
+
+}  // namespace
+}  // namespace aalab
