@@ -1,0 +1,17 @@
+# The CPU method sources, relative to methods/: one list for aalab::methods (methods/CMakeLists.txt)
+# and for the stand-alone GPU tool's copy of the CPU methods (gpu/CMakeLists.txt).
+set(AALAB_METHOD_SOURCES
+  registry.cpp
+  supersample.cpp
+  msaa.cpp
+  fxaa1.cpp
+  fxaa311.cpp
+  fxaa311_fast.cpp
+  smaa.cpp
+  smaa_fast.cpp
+  smaa_textures.cpp
+  rescale.cpp
+  render_scale.cpp
+  aaa.cpp
+  taa.cpp
+)
