@@ -136,7 +136,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   auto run_size = std::make_shared<std::string>("960x540");
   run->add_option("--suite", rs->suite, "suite name (see aalab list scenes)")->capture_default_str();
   run->add_option("--scenes", *run_scenes, "comma-separated library scene names or scene file paths (overrides --suite)");
-  run->add_option("--methods", *run_methods, "comma-separated method specs, e.g. none,fxaa311-p39:subpix=0.5 (default: every registered method's default)");
+  run->add_option("--methods", *run_methods, "comma-separated method specs, e.g. none,fxaa311-p39:subpix=0.5 (default: one or two of each family; 'all': every registered method)");
   run->add_option("--size", *run_size, "output size WxH")->capture_default_str();
   run->add_option("--ref-spp", rs->ref_spp, "reference samples per pixel: n*n, n even (4, 16, 64, 256, 1024)")->capture_default_str();
   run->add_option("--reference", rs->reference,

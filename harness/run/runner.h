@@ -26,7 +26,8 @@ struct RunSettings {
   int frames = 1;      ///< sequence length (1..kMaxFrames; 1 = a still run, as before)
 };
 
-/// The methods `aalab run` uses when --methods is not given.
+/// The methods `aalab run` uses when --methods is not given: one or two of each family
+/// (`--methods all`: every registered method).
 std::vector<std::string> DefaultMethods();
 
 /// Parses "WxH" (1..16384 each, at most 64 Mpx); UserError otherwise.
