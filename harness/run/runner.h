@@ -15,11 +15,11 @@ struct RunSettings {
   std::vector<std::string> scenes;   ///< overrides the suite when non-empty (names or paths)
   std::vector<std::string> methods;  ///< empty: the default method list
   int width = 960, height = 540;
-  int ref_spp = 256;
+  int ref_spp = 64;   ///< the default run's budget (README "How long"); 256+ for publication
   std::string reference = "sampled";  ///< "sampled" (ref_spp stratified samples) or "exact"
   uint64_t seed = 1;
   int threads = 0;  ///< 0: all hardware threads
-  int repeat = 3;   ///< timed repeats after one warm-up
+  int repeat = 2;   ///< timed repeats after one warm-up
   std::string out_dir = "out";
   bool debug_views = false;
   bool quiet = false;  ///< no progress on stderr
