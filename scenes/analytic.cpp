@@ -67,13 +67,11 @@ struct CameraRays {
   glm::dvec3 origin, fwd, right, up;
   double half_h = 1, aspect = 1, w = 1, h = 1;
   CameraRays(const Camera& cam, int width, int height) {
-    const glm::vec3 f = glm::normalize(cam.look_at - cam.position);
-    const glm::vec3 r = glm::normalize(glm::cross(f, cam.up));
-    const glm::vec3 u = glm::cross(r, f);
+    const CameraBasis b = CameraBasisOf(cam);
     origin = cam.position;
-    fwd = f;
-    right = r;
-    up = u;
+    fwd = b.forward;
+    right = b.right;
+    up = b.up;
     persp = cam.type == CameraType::kPerspective;
     half_h = persp ? std::tan(glm::radians(static_cast<double>(cam.fov_y_deg)) * 0.5) : 0.5 * cam.height;
     w = width;

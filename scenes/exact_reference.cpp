@@ -49,13 +49,11 @@ struct OrthoProjection {
   double sx = 0, sy = 0, w = 0, h = 0;  // px per world unit; frame size
   OrthoProjection(const Camera& cam, int width, int height) {
     // Same float basis as the tracer, then widened.
-    const glm::vec3 f = glm::normalize(cam.look_at - cam.position);
-    const glm::vec3 r = glm::normalize(glm::cross(f, cam.up));
-    const glm::vec3 u = glm::cross(r, f);
+    const CameraBasis b = CameraBasisOf(cam);
     origin = cam.position;
-    fwd = f;
-    right = r;
-    up = u;
+    fwd = b.forward;
+    right = b.right;
+    up = b.up;
     w = width;
     h = height;
     const double half_h = 0.5 * static_cast<double>(cam.height);

@@ -148,6 +148,15 @@ struct Scene {
   std::vector<std::string> EffectNames() const;
 };
 
+/// The camera's orthonormal basis as the tracer builds its rays, in float and in this order:
+/// forward = normalize(look_at − position), right = normalize(forward × up),
+/// up' = right × forward. Everything that must agree with the tracer's rays bit for bit
+/// (the analytic coverage, the exact reference) starts from this one definition.
+struct CameraBasis {
+  glm::vec3 forward, right, up;
+};
+CameraBasis CameraBasisOf(const Camera& cam);
+
 /// Parses and validates a scene file. Every error is a UserError naming the file, the JSON
 /// path (e.g. /objects/3/radius), the bad value and what is allowed. Mesh paths are relative
 /// to the scene file's folder.

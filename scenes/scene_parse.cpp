@@ -29,6 +29,14 @@ const char* EffectName(Effect e) {
   return "?";
 }
 
+CameraBasis CameraBasisOf(const Camera& cam) {
+  CameraBasis b;
+  b.forward = glm::normalize(cam.look_at - cam.position);
+  b.right = glm::normalize(glm::cross(b.forward, cam.up));
+  b.up = glm::cross(b.right, b.forward);
+  return b;
+}
+
 std::vector<std::string> Scene::EffectNames() const {
   std::vector<std::string> out;
   for (int i = 0; i < kEffectCount; ++i) {

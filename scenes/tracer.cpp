@@ -135,10 +135,11 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
   if (!im.error.empty()) throw InternalError("building the BVH failed: " + im.error);
 
   const Camera& c = scene.camera;
+  const CameraBasis basis = CameraBasisOf(c);
   im.origin = c.position;
-  im.forward = glm::normalize(c.look_at - c.position);
-  im.right = glm::normalize(glm::cross(im.forward, c.up));
-  im.up = glm::cross(im.right, im.forward);
+  im.forward = basis.forward;
+  im.right = basis.right;
+  im.up = basis.up;
 }
 
 Tracer::~Tracer() = default;
