@@ -17,6 +17,7 @@
 #include <cmath>
 
 #include "harness/core/color.h"
+#include "harness/core/edge_mask.h"
 #include "harness/core/error.h"
 #include "harness/core/parallel.h"
 #include "scenes/analytic_geometry.h"
@@ -388,19 +389,7 @@ Reference RenderExactReference(const Scene& scene, int width, int height) {
   });
   ref.half_a = ref.image;
   ref.half_b = ref.image;
-  ref.edge_mask = ImageF(width, height, 1);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      float v = 0.0f;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int xx = x + dx, yy = y + dy;
-          if (xx >= 0 && yy >= 0 && xx < width && yy < height && ref.edge_mask_raw.At(xx, yy, 0) > 0.5f) v = 1.0f;
-        }
-      }
-      ref.edge_mask.At(x, y, 0) = v;
-    }
-  }
+  ref.edge_mask = DilateMask(ref.edge_mask_raw);
   return ref;
 }
 

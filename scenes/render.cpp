@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "harness/core/color.h"
+#include "harness/core/edge_mask.h"
 #include "harness/core/error.h"
 #include "harness/core/hash.h"
 #include "harness/core/parallel.h"
@@ -315,24 +316,7 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
   };
   RenderTiles(tracer, width, height, spp, place, resolve, counters);
 
-  // Dilate the mask by 1 px (3×3 neighbourhood, clamped at the border).
-  ref.edge_mask = ImageF(width, height, 1);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      float v = 0.0f;
-      for (int dy = -1; dy <= 1 && v == 0.0f; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int xx = x + dx, yy = y + dy;
-          if (xx < 0 || yy < 0 || xx >= width || yy >= height) continue;
-          if (ref.edge_mask_raw.At(xx, yy, 0) > 0.5f) {
-            v = 1.0f;
-            break;
-          }
-        }
-      }
-      ref.edge_mask.At(x, y, 0) = v;
-    }
-  }
+  ref.edge_mask = DilateMask(ref.edge_mask_raw);  // 1 px, 3×3 neighbourhood, clamped at the border
   return ref;
 }
 
