@@ -1,6 +1,7 @@
 // Analytical-AA bench figures (bench/bench_aaa.h): aaa render time vs none on sdf-circles
 // (the goal: within 1.5x) and the exact reference of a 1080p flat scene vs a 256-spp
 // sampled reference (goal: no slower). Both at the bench's default thread count.
+#include "bench/bench_stats.h"
 #include "bench/bench_aaa.h"
 
 #include <algorithm>
@@ -21,18 +22,8 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-struct Times {
-  std::vector<double> ms;
-  double Median() const {
-    std::vector<double> s = ms;
-    std::sort(s.begin(), s.end());
-    const size_t n = s.size();
-    return n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-  }
-  Json ToJson() const {
-    return {{"median", Median()}, {"min", *std::min_element(ms.begin(), ms.end())},
-            {"max", *std::max_element(ms.begin(), ms.end())}, {"samples", ms}};
-  }
+struct Times : SampleStats {  // samples in ms
+  Json ToJson() const { return {{"median", Median()}, {"min", Min()}, {"max", Max()}, {"samples", samples}}; }
 };
 
 Times Time(int reps, const std::function<void()>& body) {
@@ -41,7 +32,7 @@ Times Time(int reps, const std::function<void()>& body) {
   for (int i = 0; i < reps; ++i) {
     const auto a = std::chrono::steady_clock::now();
     body();
-    t.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count());
+    t.samples.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count());
   }
   return t;
 }

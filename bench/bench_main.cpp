@@ -41,6 +41,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "bench/bench_stats.h"
 #include "bench/bench_msaa.h"
 #include "bench/bench_taa.h"
 #include "harness/core/color.h"
@@ -82,17 +83,7 @@ struct Settings {
 // ------------------------------------------------------------------------------------------
 // Collecting Google Benchmark repetitions.
 
-struct Stats {
-  std::vector<double> samples;  // seconds per operation, one per repetition
-  double Median() const {
-    std::vector<double> s = samples;
-    std::sort(s.begin(), s.end());
-    const size_t n = s.size();
-    return n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-  }
-  double Min() const { return *std::min_element(samples.begin(), samples.end()); }
-  double Max() const { return *std::max_element(samples.begin(), samples.end()); }
-};
+using Stats = SampleStats;  // samples: seconds per operation, one per repetition
 
 std::map<std::string, Stats>& Collected() {
   static std::map<std::string, Stats> m;
@@ -760,6 +751,7 @@ int Main(int argc, char** argv) {
     std::string aaa_table;
     for (auto& f : BenchAnalyticAa(cfg.reps, &aaa_table)) figures.push_back(f);
     tab << aaa_table;
+  }
   {  // TAA vs fxaa311-p39 (bench/bench_taa.cpp)
     const TaaBench taa = RunTaaBench(cfg.reps, 2);
     line("");

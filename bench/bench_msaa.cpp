@@ -9,6 +9,7 @@
 // Timing: one untimed warm-up render, then `reps` timed renders (steady clock, all worker
 // threads; and process CPU time, less exposed to other load); median, min and max.
 // Standalone: aalab_bench_msaa [WxH] [reps] [scene,...] (bench_msaa_main.cpp).
+#include "bench/bench_stats.h"
 #include "bench/bench_msaa.h"
 
 #include <algorithm>
@@ -26,12 +27,6 @@ namespace aalab {
 
 namespace {
 
-double MedianOf(std::vector<double> s) {
-  std::sort(s.begin(), s.end());
-  const size_t n = s.size();
-  return n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-}
-
 /// Process CPU time (all threads), ms: less exposed than wall time to other load on a shared
 /// machine.
 double CpuMs() {
@@ -42,9 +37,9 @@ double CpuMs() {
 
 struct Figure {
   TraceCounters counters;
-  std::vector<double> ms, cpu_ms;  // one per repetition
-  double Median() const { return MedianOf(ms); }
-  double CpuMedian() const { return MedianOf(cpu_ms); }
+  SampleStats wall, cpu;  // ms, one per repetition
+  double Median() const { return wall.Median(); }
+  double CpuMedian() const { return cpu.Median(); }
 };
 
 Figure Measure(const Tracer& tracer, int w, int h, const RenderSpec& spec, int reps) {
@@ -54,8 +49,8 @@ Figure Measure(const Tracer& tracer, int w, int h, const RenderSpec& spec, int r
     const double c0 = CpuMs();
     const auto t0 = std::chrono::steady_clock::now();
     const Image8 img = RenderFrame(tracer, w, h, spec, 1, nullptr);
-    f.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    f.cpu_ms.push_back(CpuMs() - c0);
+    f.wall.samples.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    f.cpu.samples.push_back(CpuMs() - c0);
     if (img.Width() != w) std::abort();  // keeps the render observable
   }
   return f;
@@ -88,8 +83,8 @@ MsaaBenchResult RunMsaaBench(int width, int height, int reps, const std::vector<
     const Figure s = Measure(tracer, width, height, ssaa, reps);
     auto per = [px](uint64_t v) { return static_cast<double>(v) / px; };
     auto range = [](const Figure& f) {
-      return Fmt("%.1f", f.Median()) + " (" + Fmt("%.1f", *std::min_element(f.ms.begin(), f.ms.end())) + "–" +
-             Fmt("%.1f", *std::max_element(f.ms.begin(), f.ms.end())) + ")";
+      return Fmt("%.1f", f.Median()) + " (" + Fmt("%.1f", f.wall.Min()) + "–" +
+             Fmt("%.1f", f.wall.Max()) + ")";
     };
     const double eval_ratio = per(s.counters.shading_evals) > 0
                                   ? per(m.counters.shading_evals) / per(s.counters.shading_evals)
@@ -112,9 +107,9 @@ MsaaBenchResult RunMsaaBench(int width, int height, int reps, const std::vector<
                                     {"primary_rays_per_px", per(f.counters.primary_rays)},
                                     {"shadow_rays_per_px", per(f.counters.shadow_rays)},
                                     {"texture_lookups_per_px", per(f.counters.texture_lookups)},
-                                    {"render_ms", f.ms},
+                                    {"render_ms", f.wall.samples},
                                     {"render_ms_median", f.Median()},
-                                    {"render_cpu_ms", f.cpu_ms},
+                                    {"render_cpu_ms", f.cpu.samples},
                                     {"render_cpu_ms_median", f.CpuMedian()}};
     };
     out.json.push_back({{"scene", name},

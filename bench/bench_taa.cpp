@@ -1,5 +1,6 @@
 // TAA per-frame cost vs fxaa311-p39 at 1080p (issue #16's goal: within 2×). Called from
 // bench/bench_main.cpp (`make bench`) and from aalab_bench_taa (this figure alone).
+#include "bench/bench_stats.h"
 #include "bench/bench_taa.h"
 
 #include <algorithm>
@@ -19,17 +20,7 @@ namespace aalab {
 
 namespace {
 
-struct Times {
-  std::vector<double> ms;
-  double Median() const {
-    std::vector<double> s = ms;
-    std::sort(s.begin(), s.end());
-    const size_t n = s.size();
-    return n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-  }
-  double Min() const { return *std::min_element(ms.begin(), ms.end()); }
-  double Max() const { return *std::max_element(ms.begin(), ms.end()); }
-};
+using Times = SampleStats;  // samples in ms
 
 /// One untimed warm-up, then `reps` timed calls; `prepare` runs before each call, untimed.
 Times Time(int reps, const std::function<void()>& prepare, const std::function<void()>& body) {
@@ -39,7 +30,7 @@ Times Time(int reps, const std::function<void()>& prepare, const std::function<v
     const auto a = std::chrono::steady_clock::now();
     body();
     const auto b = std::chrono::steady_clock::now();
-    if (r > 0) t.ms.push_back(std::chrono::duration<double, std::milli>(b - a).count());
+    if (r > 0) t.samples.push_back(std::chrono::duration<double, std::milli>(b - a).count());
   }
   return t;
 }
@@ -101,7 +92,7 @@ TaaBench RunTaaBench(int reps, int threads) {
                     Fmt(mv_t.Max()) + ") | " + Fmt(mv_t.Median() / fxaa_t.Median()) + " |");
   auto fig = [&](const std::string& name, const Times& t) {
     b.figures.push_back({{"group", "taa"}, {"name", name}, {"frame", "motion-pan 1920x1080 frame 1"}, {"threads", threads},
-                         {"unit", "ms"}, {"median", t.Median()}, {"min", t.Min()}, {"max", t.Max()}, {"samples", t.ms}});
+                         {"unit", "ms"}, {"median", t.Median()}, {"min", t.Min()}, {"max", t.Max()}, {"samples", t.samples}});
   };
   fig("taa-step", taa_t);
   fig("fxaa311-p39", fxaa_t);
