@@ -114,6 +114,13 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
   Json settings = Json::object();
   for (const auto& [k, v] : r.settings) settings[k] = v;
   doc["settings"] = settings;
+  if (r.shard) {
+    doc["shard"] = {{"index", r.shard->index},
+                    {"count", r.shard->count},
+                    {"unit", r.shard->unit},
+                    {"total_units", r.shard->total_units},
+                    {"units", r.shard->units}};
+  }
   Json scenes = Json::array();
   for (const auto& s : r.scenes) {
     Json j;
@@ -229,6 +236,16 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
     }
     for (auto it = doc.at("settings").begin(); it != doc.at("settings").end(); ++it) {
       r.settings.emplace_back(it.key(), it.value().get<std::string>());
+    }
+    if (doc.contains("shard")) {  // a shard's partial report (`--shard K/N`)
+      const auto& j = doc.at("shard");
+      ShardInfo sh;
+      sh.index = j.at("index").get<int>();
+      sh.count = j.at("count").get<int>();
+      sh.unit = j.at("unit").get<std::string>();
+      sh.total_units = j.at("total_units").get<int>();
+      sh.units = j.at("units").get<std::vector<std::string>>();
+      r.shard = sh;
     }
     for (const auto& j : doc.at("scenes")) {
       SceneResult s;

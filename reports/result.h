@@ -114,6 +114,15 @@ struct StageTime {
   double wall_ms = 0, cpu_ms = 0;
 };
 
+/// The share of the work a partial report holds: written by `run --shard K/N` and
+/// `sweep --shard K/N`, read by `aalab merge` (harness/run/shard.h). Absent in whole reports.
+struct ShardInfo {
+  int index = 0, count = 0;       ///< shard K of N
+  std::string unit;               ///< what was split: "scene" or "grid point"
+  int total_units = 0;            ///< the units of the whole run
+  std::vector<std::string> units; ///< this shard's units, in the run's order
+};
+
 /// A whole run.
 struct Report {
   int schema_version = 1;
@@ -124,6 +133,7 @@ struct Report {
   /// `aalab run`'s stages in the order first entered, then "total" (empty in reports written
   /// before it existed, and from commands that do not time their stages).
   std::vector<StageTime> time_breakdown;
+  std::optional<ShardInfo> shard;  ///< set in a shard's partial report only
 };
 
 }  // namespace aalab

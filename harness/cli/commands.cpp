@@ -11,6 +11,7 @@
 #include "harness/core/parallel.h"
 #include "harness/io/image_io.h"
 #include "harness/run/runner.h"
+#include "harness/run/shard.h"
 #include "metrics/metric.h"
 #include "methods/registry.h"
 #include "scenes/library.h"
@@ -151,12 +152,36 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   run->add_option("--out", rs->out_dir, "output folder")->capture_default_str();
   run->add_flag("--debug-views", rs->debug_views, "also save each post filter's debug views");
   run->add_flag("--quiet", rs->quiet, "no progress on stderr");
-  run->callback([&commands, rs, run_scenes, run_methods, run_size] {
-    commands.action = [rs, run_scenes, run_methods, run_size] {
+  auto run_shard = std::make_shared<std::string>();
+  run->add_option("--shard", *run_shard,
+                  "K/N: run shard K (0..N-1) of N, its share of the scenes, as a partial report for 'aalab merge' "
+                  "(docs/cluster.md)");
+  run->add_option("--ref-cache", rs->ref_cache,
+                  "folder of cached references shared by shards and runs: read when present, written when rendered");
+  run->add_flag("--references-only", rs->references_only,
+                "only render this shard's share of the references into --ref-cache (scenes, and frames of moving "
+                "scenes); write no report");
+  run->callback([&commands, rs, run_scenes, run_methods, run_size, run_shard] {
+    commands.action = [rs, run_scenes, run_methods, run_size, run_shard] {
       ParseSize(*run_size, &rs->width, &rs->height);
       if (!run_scenes->empty()) rs->scenes = SplitList(*run_scenes);
       if (!run_methods->empty()) rs->methods = SplitList(*run_methods);
+      if (!run_shard->empty()) rs->shard = ParseShard(*run_shard);
+      if (rs->references_only) {
+        int cached = 0;
+        const int rendered = RenderReferencesOnly(*rs, &cached);
+        std::printf("references: %d rendered, %d already cached, in %s\n", rendered, cached,
+                    fs::absolute(rs->ref_cache).string().c_str());
+        return 0;
+      }
       const Report report = RunSuite(*rs);
+      if (report.shard) {
+        std::printf("%s", FormatTimeBreakdown(report.time_breakdown).c_str());
+        std::printf("shard %d/%d: %zu of %d scenes, %zu results\npartial report: %s (merge the shards with aalab merge)\n",
+                    report.shard->index, report.shard->count, report.scenes.size(), report.shard->total_units,
+                    report.rows.size(), (fs::absolute(rs->out_dir) / "report.json").string().c_str());
+        return 0;
+      }
       std::printf("%s", FormatTimeBreakdown(report.time_breakdown).c_str());
       std::printf("wrote %zu results for %zu scenes\nhtml:   %s\nreport: %s\n", report.rows.size(), report.scenes.size(),
                   (fs::absolute(rs->out_dir) / "index.html").string().c_str(),
@@ -230,6 +255,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   RegisterCompareCommands(app, commands);
   RegisterSweepCommands(app, commands);
   RegisterGpuCommands(app, commands);
+  RegisterClusterCommands(app, commands);
 }
 
 }  // namespace aalab

@@ -27,4 +27,8 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands);
 /// Adds `export-frames` and `merge-gpu` (gpu_commands.cpp; docs/gpu.md).
 void RegisterGpuCommands(CLI::App& app, Commands& commands);
 
+/// Adds `merge` and `same-results` (cluster_commands.cpp; docs/cluster.md). `same-results`
+/// exits 0 same, 1 different, 2 could not compare.
+void RegisterClusterCommands(CLI::App& app, Commands& commands);
+
 }  // namespace aalab

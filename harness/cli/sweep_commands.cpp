@@ -30,7 +30,7 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
   auto* sw = app.add_subcommand("sweep", "tune one method over a parameter grid; prints the best setting and a preset line");
   struct Args {
     SweepSettings s;
-    std::string scenes, size = "960x540", objectives;
+    std::string scenes, size = "960x540", objectives, shard;
   };
   auto a = std::make_shared<Args>();
   sw->add_option("--scenes", a->scenes, "comma-separated library scene names or scene file paths")->required();
@@ -52,13 +52,27 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
   sw->add_option("--repeat", a->s.repeat, "timed repeats after one warm-up")->capture_default_str();
   sw->add_option("--threads", a->s.threads, "worker threads (0 = all hardware threads)")->capture_default_str();
   sw->add_flag("--quiet", a->s.quiet, "no progress on stderr");
+  sw->add_option("--shard", a->shard,
+                 "K/N: run shard K (0..N-1) of N, its share of the grid points on every scene, for 'aalab merge' "
+                 "(docs/cluster.md)");
+  sw->add_option("--ref-cache", a->s.ref_cache,
+                 "folder of cached references shared by shards and runs: read when present, written when rendered");
   sw->footer(kSweepNotes);
   sw->callback([&commands, a] {
     commands.action = [a] {
       ParseSize(a->size, &a->s.width, &a->s.height);
       a->s.scenes = SplitCommaList(a->scenes, "--scenes");
       if (!a->objectives.empty()) a->s.objectives = SplitCommaList(a->objectives, "--objective");
+      if (!a->shard.empty()) a->s.shard = ParseShard(a->shard);
       const SweepResult r = RunSweep(a->s);
+      if (r.report.shard) {
+        std::printf("sweep shard %d/%d: %zu of %d grid points on %zu scenes\npartial sweep: %s (merge the shards with "
+                    "aalab merge)\n",
+                    r.report.shard->index, r.report.shard->count, r.report.shard->units.size(),
+                    r.report.shard->total_units, r.report.scenes.size(),
+                    (fs::absolute(r.out_dir) / "sweep.json").string().c_str());
+        return 0;
+      }
       std::fputs(SweepSummaryText(r).c_str(), stdout);
       std::printf("wrote %s and %s\n", (fs::absolute(r.out_dir) / "sweep.json").string().c_str(),
                   (fs::absolute(r.out_dir) / "index.html").string().c_str());

@@ -362,9 +362,10 @@ bool CheckReferenceKind(const std::string& kind, const std::vector<SceneSource>&
 }
 
 std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int height, int grid, uint64_t seed,
-                                             int repeat, bool exact_reference, StageClock* clock) {
+                                             int repeat, bool exact_reference, StageClock* clock,
+                                             const ReferenceCache* cache) {
   if (source.scene) {
-    return PrepareScene(std::move(source.scene), width, height, grid, seed, repeat, exact_reference, clock);
+    return PrepareScene(std::move(source.scene), width, height, grid, seed, repeat, exact_reference, clock, cache);
   }
   if (clock) clock->Enter("references");  // reading the view's images
   ImageView v = LoadView(ReadManifest(source.view->manifest), source.view->index);

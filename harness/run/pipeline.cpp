@@ -85,7 +85,8 @@ bool CheckReferenceKind(const std::string& kind, const std::vector<const Scene*>
 }
 
 std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W, int H, int grid, uint64_t seed,
-                                            int repeat, bool exact_reference, StageClock* clock) {
+                                            int repeat, bool exact_reference, StageClock* clock,
+                                            const ReferenceCache* cache) {
   if (clock) clock->Enter("references");
   auto p = std::make_unique<PreparedScene>();
   p->scene = std::move(scene);
@@ -105,14 +106,12 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
   p->tracer = std::make_unique<Tracer>(sc);
   sr.bvh_build_ms = bvh_clock.ElapsedMs();
 
-  Stopwatch ref_clock;
-  TraceCounters ref_counters;
-  p->ref = exact_reference ? RenderExactReference(sc, W, H)
-                           : RenderReference(*p->tracer, W, H, grid, seed, &ref_counters);
-  sr.reference_ms = ref_clock.ElapsedMs();
-  sr.ref_primary_rays_per_px = static_cast<double>(ref_counters.primary_rays) / px;
-  sr.ref_shadow_rays_per_px = static_cast<double>(ref_counters.shadow_rays) / px;
-  sr.ref_texture_lookups_per_px = static_cast<double>(ref_counters.texture_lookups) / px;
+  CachedReference cr = ObtainReference(sc, *p->tracer, W, H, grid, seed, exact_reference, cache, nullptr);
+  p->ref = std::move(cr.ref);
+  sr.reference_ms = cr.render_ms;
+  sr.ref_primary_rays_per_px = static_cast<double>(cr.primary_rays) / px;
+  sr.ref_shadow_rays_per_px = static_cast<double>(cr.shadow_rays) / px;
+  sr.ref_texture_lookups_per_px = static_cast<double>(cr.texture_lookups) / px;
   sr.ref_halves_psnr_db = PsnrFromMse(MeanSquaredError(p->ref.half_a, p->ref.half_b).mse);
   if (sr.ref_halves_psnr_db) sr.ref_floor_psnr_db = *sr.ref_halves_psnr_db + 10.0 * std::log10(4.0);
   size_t edge_px = 0;

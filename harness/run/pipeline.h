@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "harness/core/image.h"
+#include "harness/run/reference_cache.h"
 #include "harness/run/stage_clock.h"
 #include "methods/method.h"
 #include "metrics/flip.h"
@@ -58,10 +59,12 @@ std::vector<MethodPlan> ResolveMethods(const std::vector<std::string>& specs);
 /// when `exact_reference`: scenes/exact_reference.h) and the timed 1x frame, computes the
 /// noise floor (null for the exact reference) and the crop windows. With a `clock`, charges
 /// the BVH and the reference to "references" and the 1x frame (warm-up and timed repeats) to
-/// "method_renders_filters".
+/// "method_renders_filters". With a `cache`, the reference is read from it when present and
+/// stored in it when rendered (harness/run/reference_cache.h); `info.reference_ms` is then the
+/// time the render took when the entry was made.
 std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int width, int height, int grid,
                                             uint64_t seed, int repeat, bool exact_reference = false,
-                                            StageClock* clock = nullptr);
+                                            StageClock* clock = nullptr, const ReferenceCache* cache = nullptr);
 
 /// Checks the --reference choice ("sampled" or "exact") and, for "exact", that every scene
 /// qualifies; throws UserError naming the scene and the disqualifying field. Returns true for

@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "harness/core/color.h"
 #include "harness/core/error.h"
@@ -19,6 +20,7 @@
 #include "reports/report_json.h"
 #include "harness/run/image_scene.h"
 #include "harness/run/pipeline.h"
+#include "harness/run/reference_cache.h"
 #include "harness/run/sequence.h"
 #include "harness/run/stage_clock.h"
 #include "scenes/library.h"
@@ -108,6 +110,21 @@ Report RunSuite(const RunSettings& s) {
   for (const auto& src : scenes) {
     if (src.scene) CheckSequenceLength(*src.scene, s.frames);
   }
+  std::optional<ReferenceCache> cache;
+  if (!s.ref_cache.empty()) cache.emplace(s.ref_cache);
+  // A shard keeps its share of the scenes (whole sequences: a method's memory and the
+  // temporal metrics chain a sequence's frames); the settings still describe the whole run.
+  std::optional<ShardInfo> shard_info;
+  if (s.shard.Active()) {
+    ShardInfo info{s.shard.index, s.shard.count, "scene", static_cast<int>(scenes.size()), {}};
+    std::vector<SceneSource> mine;
+    for (size_t i : ShardShare(scenes.size(), s.shard)) {
+      info.units.push_back(scenes[i].Name());
+      mine.push_back(std::move(scenes[i]));
+    }
+    scenes = std::move(mine);
+    shard_info = info;
+  }
   const bool all = s.methods.size() == 1 && s.methods[0] == "all";
   std::vector<std::string> method_specs = s.methods.empty() ? DefaultMethods() : all ? MethodNames() : s.methods;
   if ((s.methods.empty() || all) && s.frames == 1) {
@@ -150,6 +167,7 @@ Report RunSuite(const RunSettings& s) {
                      {"warmup", "1"},
                      {"debug_views", s.debug_views ? "true" : "false"}};
   if (s.frames > 1) report.settings.emplace_back("frames", std::to_string(s.frames));
+  report.shard = shard_info;
 
   const int W = s.width, H = s.height;
   const int F = s.frames;
@@ -182,11 +200,13 @@ Report RunSuite(const RunSettings& s) {
           clock.Enter("references");
           auto frame_scene = std::make_unique<Scene>(SceneAtFrame(*sequence, k));
           const double scene_build_ms = build.ElapsedMs();
-          prepared = PrepareScene(std::move(frame_scene), W, H, grid, s.seed, s.repeat, exact, &clock);
+          prepared = PrepareScene(std::move(frame_scene), W, H, grid, s.seed, s.repeat, exact, &clock,
+                                  cache ? &*cache : nullptr);
           scene_ms += scene_build_ms;
         } else {
           if (sequence) source.scene = std::make_unique<Scene>(*sequence);
-          prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat, exact, &clock);
+          prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat, exact, &clock,
+                                   cache ? &*cache : nullptr);
         }
         prepared->sequence_scene = sequence;
         scene_ms += prepared->info.bvh_build_ms;
@@ -268,14 +288,60 @@ Report RunSuite(const RunSettings& s) {
   }
 
   clock.Enter("html");
-  const std::string html = RenderHtmlReport(report);
-  WriteTextFile((tmp / "index.html").string(), html);
+  // A shard's page shows its own scenes; one without scenes (N above the scene count) has
+  // nothing to show, and `aalab merge` writes the page of the whole run.
+  if (!report.scenes.empty()) WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(report));
   report.time_breakdown = clock.Finish();  // writing report.json itself is the only time not in it
   WriteTextFile((tmp / "report.json").string(), ReportToJson(report).dump(2) + "\n");
   fs::remove_all(out);
   fs::rename(tmp, out);
   cleanup.armed = false;
   return report;
+}
+
+int RenderReferencesOnly(const RunSettings& s, int* cached) {
+  SetThreadCount(s.threads);
+  if (s.ref_cache.empty()) throw UserError("--references-only needs --ref-cache DIR (the folder the shards share)");
+  const int grid = ReferenceGridForSpp(s.ref_spp);
+  if (s.frames < 1 || s.frames > kMaxFrames) {
+    throw UserError("--frames " + std::to_string(s.frames) + " is out of range (1.." + std::to_string(kMaxFrames) + ")");
+  }
+  const std::vector<std::string> scene_names = s.scenes.empty() ? SuiteScenes(s.suite) : s.scenes;
+  std::vector<SceneSource> sources = LoadSceneSources(scene_names);
+  const bool exact = CheckReferenceKind(s.reference, sources);
+  for (const auto& src : sources) {
+    if (src.scene) CheckSequenceLength(*src.scene, s.frames);
+  }
+  const ReferenceCache cache(s.ref_cache);
+  // The units: every reference the run renders, in run order (a moving scene: one per frame,
+  // as RunSuite builds them; a still scene: one).
+  struct Unit {
+    const Scene* scene;
+    int frame;  ///< -1: the scene as it is (a still scene)
+  };
+  std::vector<Unit> units;
+  for (const auto& src : sources) {
+    if (!src.scene) continue;
+    if (src.scene->animation.Moves()) {
+      for (int k = 0; k < s.frames; ++k) units.push_back({src.scene.get(), k});
+    } else {
+      units.push_back({src.scene.get(), -1});
+    }
+  }
+  int rendered = 0, found = 0;
+  const std::vector<size_t> share = ShardShare(units.size(), s.shard);
+  Progress progress(static_cast<int>(share.size()), s.quiet);
+  for (size_t i : share) {
+    const Unit& u = units[i];
+    const Scene scene = u.frame >= 0 ? SceneAtFrame(*u.scene, u.frame) : *u.scene;
+    const Tracer tracer(scene);
+    bool hit = false;
+    ObtainReference(scene, tracer, s.width, s.height, grid, s.seed, exact, &cache, &hit);
+    (hit ? found : rendered) += 1;
+    progress.Step(scene.name + (u.frame >= 0 ? ".f" + std::to_string(u.frame) : "") + (hit ? " (cached)" : " reference"));
+  }
+  if (cached) *cached = found;
+  return rendered;
 }
 
 }  // namespace aalab

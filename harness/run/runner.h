@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/run/shard.h"
 #include "reports/result.h"
 
 namespace aalab {
@@ -24,6 +25,9 @@ struct RunSettings {
   bool debug_views = false;
   bool quiet = false;  ///< no progress on stderr
   int frames = 1;      ///< sequence length (1..kMaxFrames; 1 = a still run, as before)
+  ShardSpec shard;           ///< --shard K/N: this process's share of the scenes (docs/cluster.md)
+  std::string ref_cache;     ///< --ref-cache DIR: read/write references there ("" = none)
+  bool references_only = false;  ///< --references-only: fill the cache, write no report
 };
 
 /// The methods `aalab run` uses when --methods is not given: one or two of each family
@@ -37,6 +41,13 @@ void ParseSize(const std::string& text, int* width, int* height);
 /// folder that replaces DIR only when everything succeeded: a failed run leaves no partial
 /// report. Returns the report.
 Report RunSuite(const RunSettings& settings);
+
+/// `run --references-only`: renders this shard's share of the references into the cache
+/// (settings.ref_cache, required) and writes no report. The units are every reference the
+/// run needs, in run order: one per rendered scene, one per frame of a moving scene in a
+/// motion run (image-scene views need none). Entries already cached are skipped. Returns the
+/// number rendered; `*cached` gets the number found in the cache.
+int RenderReferencesOnly(const RunSettings& settings, int* cached = nullptr);
 
 /// Facts for the report's context block (tool version, git commit, build type, library
 /// versions, machine, threads).

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -21,6 +22,7 @@
 #include "harness/io/image_io.h"
 #include "harness/run/image_scene.h"
 #include "harness/run/pipeline.h"
+#include "harness/run/reference_cache.h"
 #include "harness/run/runner.h"
 #include "methods/registry.h"
 #include "metrics/metric.h"
@@ -306,27 +308,62 @@ SweepResult RunSweep(const SweepSettings& s) {
                      {"repeat", std::to_string(s.repeat)},
                      {"warmup", "1"}};
 
-  const int total = static_cast<int>(scenes.size() * (plans.size() + 1));
+  // A shard runs its share of the grid points on every scene (each scene's reference once,
+  // from the cache when there); the summary is the merge's (harness/run/merge.h).
+  const std::vector<size_t> share = ShardShare(plans.size(), s.shard);
+  if (s.shard.Active()) {
+    ShardInfo info{s.shard.index, s.shard.count, "grid point", static_cast<int>(plans.size()), {}};
+    for (size_t p : share) info.units.push_back(plans[p].spec);
+    report.shard = info;
+  }
+  std::optional<ReferenceCache> cache;
+  if (!s.ref_cache.empty()) cache.emplace(s.ref_cache);
+  const int total = static_cast<int>(scenes.size() * (share.size() + 1));
   int done = 0;
   Stopwatch clock;
-  std::vector<std::vector<const ResultRow*>> per_point(plans.size());
-  report.rows.reserve(scenes.size() * plans.size());
+  report.rows.reserve(scenes.size() * share.size());
   for (auto& source : scenes) {
     const std::string name = source.Name();
-    const auto prepared = PrepareSource(std::move(source), s.width, s.height, ref_grid, s.seed, s.repeat, exact);
+    const auto prepared = PrepareSource(std::move(source), s.width, s.height, ref_grid, s.seed, s.repeat, exact,
+                                        nullptr, cache ? &*cache : nullptr);
     if (prepared->tracer) ++res.reference_renders;  // an image-scene view renders nothing
     report.scenes.push_back(prepared->info);
     Progress(s.quiet, ++done, total, name + " reference", clock);
-    for (size_t p = 0; p < plans.size(); ++p) {
+    for (size_t p : share) {
       MethodOutput mo = RunMethod(*prepared, plans[p], s.seed, s.repeat);
       report.rows.push_back(std::move(mo.row));
       res.row_point.push_back(p);
       Progress(s.quiet, ++done, total, name + " " + plans[p].spec, clock);
     }
   }
-  for (size_t i = 0; i < report.rows.size(); ++i) per_point[res.row_point[i]].push_back(&report.rows[i]);
+  res.specs = specs;
+  res.base_spec = s.method;
+  const fs::path tmp = out.string() + ".partial";
+  fs::remove_all(tmp);
+  fs::create_directories(tmp);
+  if (s.shard.Active()) {
+    // A shard's sweep.json holds its rows; the summary and the page are written by the merge.
+    WriteTextFile((tmp / "sweep.json").string(), SweepToJson(res).dump(2) + "\n");
+  } else {
+    SummarizeSweep(&res, plans);
+    WriteTextFile((tmp / "sweep.json").string(), SweepToJson(res).dump(2) + "\n");
+    WriteTextFile((tmp / "index.html").string(), SweepHtml(res));
+  }
+  fs::remove_all(out);
+  fs::rename(tmp, out);
+  return res;
+}
 
-  // Summaries.
+void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
+  SweepResult& res = *result;
+  const Report& report = res.report;
+  std::vector<std::vector<const ResultRow*>> per_point(plans.size());
+  AALAB_CHECK(res.row_point.size() == report.rows.size(), "a point per row");
+  for (size_t i = 0; i < report.rows.size(); ++i) per_point.at(res.row_point[i]).push_back(&report.rows[i]);
+  res.points.clear();
+  res.best.clear();
+  res.best_ties.clear();
+  res.suggested_preset.clear();
   for (size_t p = 0; p < plans.size(); ++p) {
     SweepPoint pt;
     pt.spec = plans[p].spec;
@@ -371,70 +408,6 @@ SweepResult RunSweep(const SweepSettings& s) {
     }
   }
   if (res.best.count(primary)) res.suggested_preset = res.points[res.best.at(primary)].spec;
-
-  // sweep.json: the summary, then scenes and rows in the report schema (plus each row's point).
-  using Json = nlohmann::ordered_json;
-  const Json rep = ReportToJson(report);
-  Json j;
-  j["sweep_version"] = 1;
-  j["context"] = rep["context"];
-  j["settings"] = rep["settings"];
-  j["method"] = res.method;
-  j["base_spec"] = s.method;
-  Json axes = Json::array();
-  for (const auto& a : res.axes) axes.push_back({{"name", a.name}, {"values", a.values}});
-  j["axes"] = axes;
-  j["objectives"] = res.objectives;
-  j["reference_renders"] = res.reference_renders;
-  auto mean_json = [](const ObjectiveMean& m) {
-    Json x;
-    x["mean"] = m.mean && std::isfinite(*m.mean) ? Json(*m.mean) : Json(nullptr);
-    if (!m.mean || !std::isfinite(*m.mean)) {
-      x["null_reason"] = m.mean ? "infinite: " + m.null_reason : m.null_reason;
-    }
-    return x;
-  };
-  Json points = Json::array();
-  for (size_t p = 0; p < res.points.size(); ++p) {
-    const auto& pt = res.points[p];
-    Json x;
-    x["index"] = p;
-    Json ov = Json::object();
-    for (const auto& [k, v] : pt.overrides) ov[k] = v;
-    x["overrides"] = ov;
-    x["spec"] = pt.spec;
-    Json obj = Json::object();
-    for (const auto& o : res.objectives) obj[o] = mean_json(pt.objectives.at(o));
-    x["objectives"] = obj;
-    x["mean_time_ms"] = pt.mean_time_ms;
-    x["pareto"] = pt.pareto;
-    points.push_back(x);
-  }
-  j["points"] = points;
-  j["pareto_front"] = res.pareto_front;
-  Json best = Json::object();
-  for (const auto& [o, p] : res.best) {
-    Json b = mean_json(res.points[p].objectives.at(o));
-    b["point"] = p;
-    b["spec"] = res.points[p].spec;
-    b["ties"] = res.best_ties.at(o);
-    best[o] = b;
-  }
-  j["best"] = best;
-  j["suggested_preset"] = res.suggested_preset.empty() ? Json(nullptr) : Json(res.suggested_preset);
-  j["scenes"] = rep["scenes"];
-  Json rows = rep["rows"];
-  for (size_t i = 0; i < rows.size(); ++i) rows[i]["point"] = res.row_point[i];
-  j["rows"] = rows;
-
-  const fs::path tmp = out.string() + ".partial";
-  fs::remove_all(tmp);
-  fs::create_directories(tmp);
-  WriteTextFile((tmp / "sweep.json").string(), j.dump(2) + "\n");
-  WriteTextFile((tmp / "index.html").string(), SweepHtml(res));
-  fs::remove_all(out);
-  fs::rename(tmp, out);
-  return res;
 }
 
 std::string SweepSummaryText(const SweepResult& r) {

@@ -10,6 +10,10 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "harness/run/shard.h"
+#include "methods/method.h"
 #include "reports/compare.h"
 #include "reports/result.h"
 
@@ -31,6 +35,8 @@ struct SweepSettings {
   int threads = 0;
   std::string out_dir = "sweep";
   bool quiet = false;
+  ShardSpec shard;        ///< --shard K/N: this process's share of the grid points (docs/cluster.md)
+  std::string ref_cache;  ///< --ref-cache DIR: shared reference cache ("" = none)
 };
 
 /// One swept parameter and its values (canonical text, as the method resolves them).
@@ -85,14 +91,27 @@ struct SweepResult {
   std::map<std::string, size_t> best; ///< objective → best point (absent when all are null)
   std::map<std::string, int> best_ties;  ///< objective → other points with the same best mean
   std::string suggested_preset;       ///< spec of the best point of the first objective
-  Report report;                      ///< context, settings, scenes, rows (scene-major)
+  Report report;                      ///< context, settings, scenes, rows (scene-major); a shard's block
   std::vector<size_t> row_point;      ///< point index of each report row
+  std::vector<std::string> specs;     ///< every grid point's spec, in grid order
+  std::string base_spec;              ///< --method as given
   std::string out_dir;
 };
 
 /// Runs the sweep (validating every input before any rendering), writes DIR/sweep.json and
 /// DIR/index.html through DIR.partial (a non-empty DIR without sweep.json is never replaced).
+/// A shard (settings.shard) runs its share of the points on every scene and writes a
+/// sweep.json with its rows and a "shard" block but no summary (points, best, Pareto front)
+/// and no page: `aalab merge` writes those for the whole grid.
 SweepResult RunSweep(const SweepSettings& settings);
+
+/// Fills points, the Pareto front, best and suggested preset from result->report.rows and
+/// row_point; `plans[p]` is grid point p (its spec and parameters).
+void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans);
+
+/// sweep.json: the summary (absent for a shard), then scenes and rows in the report schema,
+/// each row with its point, plus "specs" and, for a shard, its "shard" block.
+nlohmann::ordered_json SweepToJson(const SweepResult& result);
 
 /// Mean of per-scene values of `metric` for one point (rules in ObjectiveMean).
 ObjectiveMean MeanOverScenes(const std::vector<const ResultRow*>& rows, const std::string& metric);

@@ -1,0 +1,149 @@
+// `aalab same-results` (harness/run/same_results.h).
+#include "harness/run/same_results.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "harness/core/error.h"
+
+namespace aalab {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+Json ReadJson(const fs::path& path) {
+  std::ifstream f(path);
+  if (!f) throw UserError("same-results: '" + path.string() + "' cannot be read");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  try {
+    return Json::parse(ss.str());
+  } catch (const Json::parse_error& e) {
+    throw UserError("same-results: '" + path.string() + "' is not valid JSON: " + e.what());
+  }
+}
+
+void Erase(Json& j, const char* key) {
+  if (j.is_object()) j.erase(key);
+}
+
+/// Every image path a report document links (scene and row images, frame images).
+std::vector<std::string> LinkedImages(const Json& doc) {
+  std::vector<std::string> files;
+  auto strings = [&files](const Json& j) {
+    if (j.is_object()) {
+      for (const auto& v : j) {
+        if (v.is_string()) files.push_back(v.get<std::string>());
+      }
+    } else if (j.is_array()) {
+      for (const auto& v : j) {
+        if (v.is_string()) files.push_back(v.get<std::string>());
+      }
+    }
+  };
+  for (const char* list : {"scenes", "rows"}) {
+    if (!doc.contains(list)) continue;
+    for (const auto& item : doc.at(list)) {
+      if (item.contains("images")) strings(item.at("images"));
+      if (item.contains("sequence") && item.at("sequence").contains("reference_frames")) {
+        strings(item.at("sequence").at("reference_frames"));
+      }
+      if (item.contains("frames") && item.at("frames").is_object() && item.at("frames").contains("images")) {
+        strings(item.at("frames").at("images"));
+      }
+    }
+  }
+  return files;
+}
+
+bool SameBytes(const fs::path& a, const fs::path& b) {
+  std::ifstream fa(a, std::ios::binary), fb(b, std::ios::binary);
+  if (!fa || !fb) return false;
+  const std::string da((std::istreambuf_iterator<char>(fa)), std::istreambuf_iterator<char>());
+  const std::string db((std::istreambuf_iterator<char>(fb)), std::istreambuf_iterator<char>());
+  return da == db;
+}
+
+}  // namespace
+
+Json WithoutTimings(Json doc) {
+  Erase(doc, "context");
+  Erase(doc, "time_breakdown");
+  Erase(doc, "shard");
+  if (doc.contains("settings")) Erase(doc["settings"], "threads");
+  if (doc.contains("scenes")) {
+    for (auto& s : doc["scenes"]) {
+      Erase(s, "bvh_build_ms");
+      if (s.contains("reference")) Erase(s["reference"], "time_ms");
+      if (s.contains("sequence")) {
+        Erase(s["sequence"], "scene_and_bvh_ms");
+        Erase(s["sequence"], "reference_ms");
+      }
+    }
+  }
+  if (doc.contains("rows")) {
+    for (auto& r : doc["rows"]) {
+      Erase(r, "timing");
+      Erase(r, "gpu");
+    }
+  }
+  if (doc.contains("points")) {  // a sweep
+    for (auto& p : doc["points"]) {
+      Erase(p, "mean_time_ms");
+      Erase(p, "pareto");
+    }
+    Erase(doc, "pareto_front");
+  }
+  return doc;
+}
+
+SameResults CompareResultFolders(const std::string& a, const std::string& b, size_t max_listed) {
+  auto report_of = [](const std::string& dir) {
+    const fs::path d(dir);
+    if (fs::is_regular_file(d / "report.json")) return d / "report.json";
+    if (fs::is_regular_file(d / "sweep.json")) return d / "sweep.json";
+    throw UserError("same-results: '" + dir + "' holds neither report.json nor sweep.json");
+  };
+  const fs::path ra = report_of(a), rb = report_of(b);
+  if (ra.filename() != rb.filename()) {
+    throw UserError("same-results: '" + a + "' holds a " + ra.filename().string() + " and '" + b + "' a " +
+                    rb.filename().string() + ": a run and a sweep cannot be compared");
+  }
+  const Json da = ReadJson(ra), db = ReadJson(rb);
+  SameResults out;
+  auto differ = [&](const std::string& line) {
+    out.same = false;
+    if (out.differences.size() < max_listed) out.differences.push_back(line);
+  };
+  const Json na = WithoutTimings(da), nb = WithoutTimings(db);
+  if (na != nb) {
+    // RFC 6902 patch from A to B: each operation names a JSON path that differs.
+    for (const auto& op : Json::diff(na, nb)) {
+      std::string line = ra.filename().string() + " " + op.at("path").get<std::string>() + ": ";
+      const std::string kind = op.at("op").get<std::string>();
+      if (kind == "remove") {
+        line += "only in A";
+      } else {
+        const std::string value = op.at("value").dump();
+        line += (kind == "add" ? "only in B: " : "B has ") + (value.size() > 120 ? value.substr(0, 117) + "..." : value);
+      }
+      differ(line);
+    }
+  }
+  for (const auto& rel : LinkedImages(da)) {
+    const fs::path fa = fs::path(a) / rel, fb = fs::path(b) / rel;
+    if (!fs::is_regular_file(fa)) {
+      differ(rel + ": missing in A");
+    } else if (!fs::is_regular_file(fb)) {
+      differ(rel + ": missing in B");
+    } else if (!SameBytes(fa, fb)) {
+      differ(rel + ": the bytes differ");
+    }
+  }
+  return out;
+}
+
+}  // namespace aalab

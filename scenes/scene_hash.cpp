@@ -1,0 +1,138 @@
+// Scene content fingerprint (scenes/scene_hash.h): a visitor over every field in declaration
+// order. A field added to a scene struct must be added here too (scene_hash_test checks that
+// each existing field changes the hash).
+#include "scenes/scene_hash.h"
+
+#include <cstring>
+#include <string>
+#include <type_traits>
+
+namespace aalab {
+
+namespace {
+
+class Hasher {
+ public:
+  void Bytes(const void* data, size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < size; ++i) {
+      h_ ^= p[i];
+      h_ *= 0x100000001b3ULL;
+    }
+  }
+  template <typename T>
+  void Pod(const T& v) {
+    static_assert(std::is_arithmetic_v<T> || std::is_enum_v<T>);
+    Bytes(&v, sizeof v);
+  }
+  void F(float v) { Pod(v); }
+  void D(double v) { Pod(v); }
+  void I(int64_t v) { Pod(v); }
+  void B(bool v) { I(v ? 1 : 0); }
+  void S(const std::string& s) {
+    I(static_cast<int64_t>(s.size()));  // length first: ("ab","c") differs from ("a","bc")
+    Bytes(s.data(), s.size());
+  }
+  void V2(const glm::vec2& v) { F(v.x), F(v.y); }
+  void V3(const glm::vec3& v) { F(v.x), F(v.y), F(v.z); }
+  uint64_t Value() const { return h_; }
+
+ private:
+  uint64_t h_ = 0xcbf29ce484222325ULL;
+};
+
+void HashTexture(Hasher& h, const std::optional<Texture>& t) {
+  h.B(t.has_value());
+  if (!t) return;
+  h.I(static_cast<int64_t>(t->pattern));
+  h.F(t->scale);
+  h.F(t->angle_deg);
+  h.F(t->duty);
+  h.I(t->seed);
+  h.V3(t->color_a);
+  h.V3(t->color_b);
+}
+
+}  // namespace
+
+uint64_t SceneContentHash(const Scene& s) {
+  Hasher h;
+  h.S("aalab-scene-v1");
+  h.S(s.name);
+  h.I(kEffectCount);
+  for (bool e : s.effects) h.B(e);
+  h.I(static_cast<int64_t>(s.camera.type));
+  h.V3(s.camera.position);
+  h.V3(s.camera.look_at);
+  h.V3(s.camera.up);
+  h.F(s.camera.fov_y_deg);
+  h.F(s.camera.height);
+  h.F(s.display.exposure);
+  h.I(static_cast<int64_t>(s.display.tonemap));
+  h.V3(s.background);
+  h.V3(s.ambient);
+  h.I(static_cast<int64_t>(s.materials.size()));
+  for (const Material& m : s.materials) {
+    h.S(m.name);
+    h.I(static_cast<int64_t>(m.shading));
+    h.V3(m.color);
+    HashTexture(h, m.texture);
+    h.V3(m.specular);
+    h.F(m.shininess);
+    HashTexture(h, m.alpha);
+    h.F(m.alpha_cutoff);
+  }
+  h.I(static_cast<int64_t>(s.lights.size()));
+  for (const Light& l : s.lights) {
+    h.I(static_cast<int64_t>(l.type));
+    h.V3(l.direction);
+    h.V3(l.position);
+    h.V3(l.color);
+    h.F(l.intensity);
+    h.B(l.shadows);
+  }
+  h.I(static_cast<int64_t>(s.shapes.size()));
+  for (const Shape& sh : s.shapes) {
+    h.I(static_cast<int64_t>(sh.kind));
+    h.S(sh.source);
+    h.I(sh.material);
+    h.I(static_cast<int64_t>(sh.positions.size()));
+    for (const auto& p : sh.positions) h.V3(p);
+    h.I(static_cast<int64_t>(sh.normals.size()));
+    for (const auto& n : sh.normals) h.V3(n);
+    h.I(static_cast<int64_t>(sh.uvs.size()));
+    for (const auto& uv : sh.uvs) h.V2(uv);
+    h.I(static_cast<int64_t>(sh.triangles.size()));
+    for (const auto& t : sh.triangles) h.I(t.x), h.I(t.y), h.I(t.z);
+    h.V3(sh.center);
+    h.F(sh.radius);
+    h.V3(sh.normal);
+    h.V3(sh.tangent);
+    h.V3(sh.p0);
+    h.V3(sh.p1);
+    h.I(sh.motion);
+  }
+  const Animation& a = s.animation;
+  h.I(a.frames);
+  h.I(static_cast<int64_t>(a.camera.size()));
+  for (const CameraKey& k : a.camera) {
+    h.D(k.frame);
+    h.V3(k.offset);
+    h.F(k.roll_deg);
+    h.F(k.zoom);
+  }
+  h.I(static_cast<int64_t>(a.objects.size()));
+  for (const ObjectMotion& o : a.objects) {
+    h.V3(o.pivot);
+    h.I(static_cast<int64_t>(o.keys.size()));
+    for (const MotionKey& k : o.keys) {
+      h.D(k.frame);
+      h.V3(k.translate);
+      h.V3(k.rotate_deg);
+      h.F(k.scale);
+    }
+  }
+  return h.Value();
+}
+
+}  // namespace aalab
