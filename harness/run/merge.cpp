@@ -260,7 +260,10 @@ MergeResult MergeRunFolders(const std::vector<std::string>& dirs, const std::str
     fs::create_directories((tmp / rel).parent_path());
     fs::copy_file(src, tmp / rel, fs::copy_options::overwrite_existing);
   }
-  WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(merged));
+  // The page as a single run writes it: rendered before the time breakdown exists.
+  Report page = merged;
+  page.time_breakdown.clear();
+  WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(page));
   WriteTextFile((tmp / "report.json").string(), ReportToJson(merged).dump(2) + "\n");
   fs::remove_all(out);
   fs::rename(tmp, out);
