@@ -31,6 +31,7 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
   struct Args {
     SweepSettings s;
     std::string scenes, size = "960x540", objectives, shard;
+    bool references_only = false;
   };
   auto a = std::make_shared<Args>();
   sw->add_option("--scenes", a->scenes, "comma-separated library scene names or scene file paths")->required();
@@ -57,6 +58,8 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
                  "(docs/cluster.md)");
   sw->add_option("--ref-cache", a->s.ref_cache,
                  "folder of cached references shared by shards and runs: read when present, written when rendered");
+  sw->add_flag("--references-only", a->references_only,
+               "only render this shard's share of the scenes' references into --ref-cache; write no sweep");
   sw->footer(kSweepNotes);
   sw->callback([&commands, a] {
     commands.action = [a] {
@@ -64,6 +67,13 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
       a->s.scenes = SplitCommaList(a->scenes, "--scenes");
       if (!a->objectives.empty()) a->s.objectives = SplitCommaList(a->objectives, "--objective");
       if (!a->shard.empty()) a->s.shard = ParseShard(a->shard);
+      if (a->references_only) {
+        int cached = 0;
+        const int rendered = RenderSweepReferences(a->s, &cached);
+        std::printf("references: %d rendered, %d already cached, in %s\n", rendered, cached,
+                    fs::absolute(a->s.ref_cache).string().c_str());
+        return 0;
+      }
       const SweepResult r = RunSweep(a->s);
       if (r.report.shard) {
         std::printf("sweep shard %d/%d: %zu of %d grid points on %zu scenes\npartial sweep: %s (merge the shards with "

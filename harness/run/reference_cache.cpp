@@ -19,7 +19,6 @@
 #include "build_info.h"
 #include "harness/core/error.h"
 #include "harness/core/timer.h"
-#include "harness/run/runner.h"
 #include "scenes/exact_reference.h"
 #include "scenes/scene_hash.h"
 
@@ -61,8 +60,9 @@ const std::string& ExecutableHash() {
 class Writer {
  public:
   void Raw(const void* p, size_t n) {
-    const auto* c = static_cast<const char*>(p);
-    bytes_.insert(bytes_.end(), c, c + n);
+    const size_t at = bytes_.size();
+    bytes_.resize(at + n);
+    if (n > 0) std::memcpy(bytes_.data() + at, p, n);
   }
   template <typename T>
   void Pod(T v) { Raw(&v, sizeof v); }

@@ -105,6 +105,12 @@ struct SweepResult {
 /// and no page: `aalab merge` writes those for the whole grid.
 SweepResult RunSweep(const SweepSettings& settings);
 
+/// `sweep --references-only`: this shard's share of the scenes' references into the cache, as
+/// `run --references-only` with the same scenes, size, samples, seed and reference kind (a
+/// sweep's references are a still run's: the same cache keys). Returns the number rendered;
+/// `*cached` gets the number already cached.
+int RenderSweepReferences(const SweepSettings& settings, int* cached = nullptr);
+
 /// Fills points, the Pareto front, best and suggested preset from result->report.rows and
 /// row_point; `plans[p]` is grid point p (its spec and parameters).
 void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans);

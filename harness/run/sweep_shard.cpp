@@ -12,6 +12,7 @@
 #include "harness/io/image_io.h"
 #include "harness/run/merge_internal.h"
 #include "harness/run/pipeline.h"
+#include "harness/run/runner.h"
 #include "harness/run/sweep.h"
 #include "reports/report_json.h"
 
@@ -86,6 +87,22 @@ Json SweepToJson(const SweepResult& res) {
   j["rows"] = rows;
 
   return j;
+}
+
+int RenderSweepReferences(const SweepSettings& s, int* cached) {
+  if (s.scenes.empty()) throw UserError("give the scenes to sweep with --scenes a,b (see aalab list scenes)");
+  RunSettings rs;
+  rs.scenes = s.scenes;
+  rs.width = s.width;
+  rs.height = s.height;
+  rs.ref_spp = s.ref_spp;
+  rs.reference = s.reference;
+  rs.seed = s.seed;
+  rs.threads = s.threads;
+  rs.quiet = s.quiet;
+  rs.shard = s.shard;
+  rs.ref_cache = s.ref_cache;
+  return RenderReferencesOnly(rs, cached);
 }
 
 namespace {

@@ -334,6 +334,15 @@ TEST(ShardedSweep, MergedSweepEqualsSingleSweep) {
     return s;
   };
   const SweepResult single = RunSweep(settings(dir / "single"));
+  // The references first (one per scene, over 2 shards), then the points: the cache holds 2.
+  for (int k = 0; k < 2; ++k) {
+    SweepSettings s = settings(dir / "unused");
+    s.shard = {k, 2};
+    s.ref_cache = (dir / "cache").string();
+    int cached = -1;
+    EXPECT_EQ(RenderSweepReferences(s, &cached), 1);
+    EXPECT_EQ(cached, 0);
+  }
   std::vector<std::string> shard_dirs;
   for (int k = 0; k < 4; ++k) {
     SweepSettings s = settings(dir / ("s" + std::to_string(k)));
@@ -344,6 +353,9 @@ TEST(ShardedSweep, MergedSweepEqualsSingleSweep) {
     EXPECT_FALSE(fs::exists(dir / ("s" + std::to_string(k)) / "index.html")) << "a shard writes no summary page";
     shard_dirs.push_back(s.out_dir);
   }
+  size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(dir / "cache")) entries += e.path().extension() == ".ref" ? 1 : 0;
+  EXPECT_EQ(entries, 2u) << "the sweep shards found both references cached";
   const MergeResult mr = MergeShards(shard_dirs, (dir / "merged").string());
   EXPECT_EQ(mr.kind, "sweep");
   EXPECT_EQ(mr.rows, 12u);
