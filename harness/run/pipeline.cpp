@@ -112,7 +112,7 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
   sr.ref_primary_rays_per_px = static_cast<double>(cr.primary_rays) / px;
   sr.ref_shadow_rays_per_px = static_cast<double>(cr.shadow_rays) / px;
   sr.ref_texture_lookups_per_px = static_cast<double>(cr.texture_lookups) / px;
-  sr.ref_halves_psnr_db = PsnrFromMse(MeanSquaredError(p->ref.half_a, p->ref.half_b).mse);
+  sr.ref_halves_psnr_db = PsnrFromMse(cr.halves_mse);
   if (sr.ref_halves_psnr_db) sr.ref_floor_psnr_db = *sr.ref_halves_psnr_db + 10.0 * std::log10(4.0);
   size_t edge_px = 0;
   for (float v : p->ref.edge_mask.Data()) edge_px += v > 0.5f ? 1 : 0;

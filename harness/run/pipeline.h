@@ -61,7 +61,8 @@ std::vector<MethodPlan> ResolveMethods(const std::vector<std::string>& specs);
 /// the BVH and the reference to "references" and the 1x frame (warm-up and timed repeats) to
 /// "method_renders_filters". With a `cache`, the reference is read from it when present and
 /// stored in it when rendered (harness/run/reference_cache.h); `info.reference_ms` is then the
-/// time the render took when the entry was made.
+/// time the render took when the entry was made, and `ref.half_a`/`half_b` are empty (the
+/// noise floor comes from the halves' stored MSE).
 std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int width, int height, int grid,
                                             uint64_t seed, int repeat, bool exact_reference = false,
                                             StageClock* clock = nullptr, const ReferenceCache* cache = nullptr);

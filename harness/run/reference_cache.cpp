@@ -1,8 +1,9 @@
 // The reference cache (harness/run/reference_cache.h). File layout, native byte order (the
 // key text names the program, and a program runs on one byte order):
 //   "AALABREF" | u32 version (1) | u32 key length | key text
-//   | 5 images (reference, half A, half B, edge mask, raw edge mask): i32 w, h, c, w·h·c f32
-//   | i32 grid | u64 primary, shadow, texture-lookup counters | f64 render ms
+//   | 3 images (reference, edge mask, raw edge mask): i32 w, h, c, w·h·c f32
+//   | i32 grid | f64 MSE of the halves | u64 primary, shadow, texture-lookup counters
+//   | f64 render ms
 //   | u64 FNV-1a 64 of every byte before it
 #include "harness/run/reference_cache.h"
 
@@ -19,6 +20,7 @@
 #include "build_info.h"
 #include "harness/core/error.h"
 #include "harness/core/timer.h"
+#include "metrics/metric.h"
 #include "scenes/exact_reference.h"
 #include "scenes/scene_hash.h"
 
@@ -162,11 +164,10 @@ std::optional<CachedReference> ReferenceCache::Load(const std::string& key) cons
   if (stored_key != key) r.Fail("it holds another reference (key '" + stored_key + "')");
   CachedReference e;
   e.ref.image = r.Img();
-  e.ref.half_a = r.Img();
-  e.ref.half_b = r.Img();
   e.ref.edge_mask = r.Img();
   e.ref.edge_mask_raw = r.Img();
   e.ref.grid = r.Pod<int32_t>();
+  e.halves_mse = r.Pod<double>();
   e.primary_rays = r.Pod<uint64_t>();
   e.shadow_rays = r.Pod<uint64_t>();
   e.texture_lookups = r.Pod<uint64_t>();
@@ -181,8 +182,9 @@ void ReferenceCache::Store(const std::string& key, const CachedReference& e) con
   w.Pod<uint32_t>(kVersion);
   w.Pod<uint32_t>(static_cast<uint32_t>(key.size()));
   w.Raw(key.data(), key.size());
-  for (const ImageF* im : {&e.ref.image, &e.ref.half_a, &e.ref.half_b, &e.ref.edge_mask, &e.ref.edge_mask_raw}) w.Img(*im);
+  for (const ImageF* im : {&e.ref.image, &e.ref.edge_mask, &e.ref.edge_mask_raw}) w.Img(*im);
   w.Pod<int32_t>(e.ref.grid);
+  w.Pod<double>(e.halves_mse);
   w.Pod<uint64_t>(e.primary_rays);
   w.Pod<uint64_t>(e.shadow_rays);
   w.Pod<uint64_t>(e.texture_lookups);
@@ -227,6 +229,7 @@ CachedReference ObtainReference(const Scene& scene, const Tracer& tracer, int W,
   TraceCounters c;
   e.ref = exact ? RenderExactReference(scene, W, H) : RenderReference(tracer, W, H, grid, seed, &c);
   e.render_ms = clock.ElapsedMs();
+  e.halves_mse = MeanSquaredError(e.ref.half_a, e.ref.half_b).mse;
   e.primary_rays = c.primary_rays;
   e.shadow_rays = c.shadow_rays;
   e.texture_lookups = c.texture_lookups;

@@ -20,10 +20,13 @@
 
 namespace aalab {
 
-/// What a cache entry holds: the reference (image, halves, edge masks, grid), the cost
-/// counters of rendering it, and how long the render took when it was made.
+/// What a cache entry holds: the reference (image, edge masks, grid) and the mean squared
+/// difference of its two independent halves (all the noise floor needs: the halves themselves
+/// are not stored, so `ref.half_a`/`half_b` are empty when read from the cache), the cost
+/// counters of rendering it, and how long the render took when it was made. 20 bytes a pixel.
 struct CachedReference {
   Reference ref;
+  double halves_mse = 0;  ///< MeanSquaredError(half_a, half_b).mse
   uint64_t primary_rays = 0, shadow_rays = 0, texture_lookups = 0;
   double render_ms = 0;
 };

@@ -21,6 +21,7 @@
 #include "harness/run/runner.h"
 #include "harness/run/same_results.h"
 #include "harness/run/shard.h"
+#include "metrics/metric.h"
 #include "harness/run/sweep.h"
 #include "reports/html_report.h"
 #include "reports/report_json.h"
@@ -140,8 +141,7 @@ TEST(ReferenceCache, StoresAndReadsBackBitForBitAndChecksWhatItReads) {
   EXPECT_TRUE(hit);
   for (const CachedReference* r : {&first, &again}) {
     EXPECT_TRUE(SameImage(r->ref.image, direct.ref.image));
-    EXPECT_TRUE(SameImage(r->ref.half_a, direct.ref.half_a));
-    EXPECT_TRUE(SameImage(r->ref.half_b, direct.ref.half_b));
+    EXPECT_EQ(r->halves_mse, MeanSquaredError(direct.ref.half_a, direct.ref.half_b).mse);
     EXPECT_TRUE(SameImage(r->ref.edge_mask, direct.ref.edge_mask));
     EXPECT_TRUE(SameImage(r->ref.edge_mask_raw, direct.ref.edge_mask_raw));
     EXPECT_EQ(r->ref.grid, 4);
@@ -149,6 +149,12 @@ TEST(ReferenceCache, StoresAndReadsBackBitForBitAndChecksWhatItReads) {
     EXPECT_EQ(r->primary_rays, 37u * 23u * 16u) << "16 camera rays per pixel (no alpha cut-outs in wedges)";
   }
   EXPECT_EQ(again.render_ms, first.render_ms) << "a hit reports the time the render took when it was made";
+  EXPECT_GT(direct.halves_mse, 0.0) << "4x4 samples on edges: the halves differ";
+  EXPECT_TRUE(again.ref.half_a.Data().empty()) << "the halves are not stored";
+  // The entry: 3 float images (RGB, two masks) = 20 bytes a pixel, plus a header under 1 KB.
+  const auto size = fs::file_size(cache.PathOf(ReferenceCache::Key(scene, 37, 23, 4, 7, false)));
+  EXPECT_GE(size, 37u * 23u * 20u);
+  EXPECT_LT(size, 37u * 23u * 20u + 1024u);
   // Every input of the key changes it.
   const std::string key = ReferenceCache::Key(scene, 37, 23, 4, 7, false);
   std::set<std::string> keys = {key, ReferenceCache::Key(scene, 38, 23, 4, 7, false),
