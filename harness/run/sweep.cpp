@@ -323,6 +323,7 @@ SweepResult RunSweep(const SweepSettings& s) {
   Stopwatch clock;
   report.rows.reserve(scenes.size() * share.size());
   for (auto& source : scenes) {
+    if (share.empty()) break;  // a shard beyond the grid's points: nothing to render
     const std::string name = source.Name();
     const auto prepared = PrepareSource(std::move(source), s.width, s.height, ref_grid, s.seed, s.repeat, exact,
                                         nullptr, cache ? &*cache : nullptr);

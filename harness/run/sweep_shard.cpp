@@ -155,6 +155,11 @@ MergeResult MergeSweepFolders(const std::vector<std::string>& dirs, const std::s
   for (const auto& s : shards) reports.push_back(&s.report);
   const auto order = CheckShardSet(reports, dirs);
   const Json& d0 = shards[0].doc;
+  // Shard 0 holds point 0, so it ran every scene: its scene records are the merged ones.
+  size_t zero = 0;
+  for (size_t i = 0; i < shards.size(); ++i) {
+    if (shards[i].report.shard->index == 0) zero = i;
+  }
   for (size_t i = 0; i < shards.size(); ++i) {
     const Json& d = shards[i].doc;
     if (shards[i].report.shard->unit != "grid point") {
@@ -169,9 +174,11 @@ MergeResult MergeSweepFolders(const std::vector<std::string>& dirs, const std::s
     // Every shard ran every scene; its rows are scene-major over its points.
     std::vector<std::string> names, names0;
     for (const auto& sc : shards[i].report.scenes) names.push_back(sc.name);
-    for (const auto& sc : shards[0].report.scenes) names0.push_back(sc.name);
-    if (names != names0) throw UserError("merge: '" + dirs[i] + "' and '" + dirs[0] + "' hold different scenes");
+    for (const auto& sc : shards[zero].report.scenes) names0.push_back(sc.name);
     const size_t mine = shards[i].report.shard->units.size();
+    if (mine > 0 && names != names0) {  // a shard without points renders no scene
+      throw UserError("merge: '" + dirs[i] + "' and '" + dirs[0] + "' hold different scenes");
+    }
     if (shards[i].report.rows.size() != names.size() * mine) {
       throw UserError("merge: '" + dirs[i] + "' holds " + std::to_string(shards[i].report.rows.size()) +
                       " rows where its " + std::to_string(mine) + " point(s) on " + std::to_string(names.size()) +
@@ -185,14 +192,10 @@ MergeResult MergeSweepFolders(const std::vector<std::string>& dirs, const std::s
   res.objectives = d0.at("objectives").get<std::vector<std::string>>();
   res.specs = d0.at("specs").get<std::vector<std::string>>();
   res.objective_note = d0.value("objective_note", std::string());
-  res.reference_renders = d0.at("reference_renders").get<int>();
+  res.reference_renders = shards[zero].doc.at("reference_renders").get<int>();
   if (res.specs.size() != order.size()) {
     throw UserError("merge: the shards' grid has " + std::to_string(res.specs.size()) + " points but the split counts " +
                     std::to_string(order.size()));
-  }
-  size_t zero = 0;
-  for (size_t i = 0; i < shards.size(); ++i) {
-    if (shards[i].report.shard->index == 0) zero = i;
   }
   Report& m = res.report;
   m.context = shards[zero].report.context;

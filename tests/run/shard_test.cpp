@@ -350,12 +350,13 @@ TEST(ShardedSweep, MergedSweepEqualsSingleSweep) {
     EXPECT_EQ(cached, 0);
   }
   std::vector<std::string> shard_dirs;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 7; ++k) {  // 7 shards for 6 points: shard 6 has none
     SweepSettings s = settings(dir / ("s" + std::to_string(k)));
-    s.shard = {k, 4};
+    s.shard = {k, 7};
     s.ref_cache = (dir / "cache").string();
     const SweepResult r = RunSweep(s);
-    EXPECT_EQ(r.report.rows.size(), 2 * ShardShare(6, {k, 4}).size());
+    EXPECT_EQ(r.report.rows.size(), 2 * ShardShare(6, {k, 7}).size());
+    EXPECT_EQ(r.report.scenes.size(), k < 6 ? 2u : 0u) << "a shard without points renders nothing";
     EXPECT_FALSE(fs::exists(dir / ("s" + std::to_string(k)) / "index.html")) << "a shard writes no summary page";
     shard_dirs.push_back(s.out_dir);
   }
