@@ -14,6 +14,7 @@
 #include "harness/core/error.h"
 #include "harness/io/image_io.h"
 #include "harness/run/merge_internal.h"
+#include "harness/run/out_folder.h"
 #include "harness/run/shard.h"
 #include "reports/html_report.h"
 #include "reports/report_json.h"
@@ -201,19 +202,6 @@ Report MergeRunReports(const std::vector<Report>& reports, const std::vector<std
 
 namespace {
 
-/// The output folder's guard: a non-empty folder without a report is never replaced.
-fs::path PrepareOut(const std::string& out_dir, const char* report_file) {
-  if (out_dir.empty()) throw UserError("--out must not be empty");
-  const fs::path out(out_dir);
-  if (fs::exists(out)) {
-    if (!fs::is_directory(out)) throw UserError("--out '" + out_dir + "' exists and is not a folder");
-    if (!fs::is_empty(out) && !fs::exists(out / report_file)) {
-      throw UserError("--out '" + out_dir + "' is a non-empty folder without a " + report_file + "; refusing to replace it");
-    }
-  }
-  return out;
-}
-
 /// Every image a report links, relative to its folder.
 std::vector<std::string> ImagesOf(const Report& r) {
   std::vector<std::string> files;
@@ -244,17 +232,8 @@ MergeResult MergeRunFolders(const std::vector<std::string>& dirs, const std::str
       if (planned.insert(rel).second) copies.emplace_back(src, rel);
     }
   }
-  const fs::path out = PrepareOut(out_dir, "report.json");
-  const fs::path tmp = out.string() + ".partial";
-  fs::remove_all(tmp);
-  struct RemovePartial {
-    fs::path dir;
-    bool armed = true;
-    ~RemovePartial() {
-      std::error_code ec;
-      if (armed) fs::remove_all(dir, ec);
-    }
-  } cleanup{tmp};
+  OutFolder out(out_dir, "report.json");
+  const fs::path tmp = out.Begin();
   fs::create_directories(tmp / "images");
   for (const auto& [src, rel] : copies) {
     fs::create_directories((tmp / rel).parent_path());
@@ -265,9 +244,7 @@ MergeResult MergeRunFolders(const std::vector<std::string>& dirs, const std::str
   page.time_breakdown.clear();
   WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(page));
   WriteTextFile((tmp / "report.json").string(), ReportToJson(merged).dump(2) + "\n");
-  fs::remove_all(out);
-  fs::rename(tmp, out);
-  cleanup.armed = false;
+  out.Commit();
   return MergeResult{"run", reports[0].shard->count, merged.scenes.size(), merged.rows.size(), out_dir};
 }
 

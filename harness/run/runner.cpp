@@ -19,6 +19,7 @@
 #include "reports/html_report.h"
 #include "reports/report_json.h"
 #include "harness/run/image_scene.h"
+#include "harness/run/out_folder.h"
 #include "harness/run/pipeline.h"
 #include "harness/run/reference_cache.h"
 #include "harness/run/sequence.h"
@@ -133,26 +134,10 @@ Report RunSuite(const RunSettings& s) {
     std::erase_if(method_specs, [](const std::string& m) { return static_cast<bool>(MakeMethod(m).make_state); });
   }
   const std::vector<MethodPlan> plans = ResolveMethods(method_specs);
-  if (s.out_dir.empty()) throw UserError("--out must not be empty");
-  const fs::path out(s.out_dir);
-  if (fs::exists(out)) {
-    if (!fs::is_directory(out)) throw UserError("--out '" + s.out_dir + "' exists and is not a folder");
-    if (!fs::is_empty(out) && !fs::exists(out / "report.json")) {
-      throw UserError("--out '" + s.out_dir + "' is a non-empty folder without a report.json; refusing to replace it");
-    }
-  }
-  const fs::path tmp = out.string() + ".partial";
-  fs::remove_all(tmp);
-  fs::create_directories(tmp / "images");
   // A run that fails half-way (an exception from any stage) removes its partial output.
-  struct RemovePartial {
-    fs::path dir;
-    bool armed = true;
-    ~RemovePartial() {
-      std::error_code ec;
-      if (armed) fs::remove_all(dir, ec);
-    }
-  } cleanup{tmp};
+  OutFolder out(s.out_dir, "report.json");
+  const fs::path tmp = out.Begin();
+  fs::create_directories(tmp / "images");
 
   Report report;
   for (const auto& [k, v] : ContextFacts()) report.context[k] = v;
@@ -293,9 +278,7 @@ Report RunSuite(const RunSettings& s) {
   if (!report.scenes.empty()) WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(report));
   report.time_breakdown = clock.Finish();  // writing report.json itself is the only time not in it
   WriteTextFile((tmp / "report.json").string(), ReportToJson(report).dump(2) + "\n");
-  fs::remove_all(out);
-  fs::rename(tmp, out);
-  cleanup.armed = false;
+  out.Commit();
   return report;
 }
 

@@ -21,6 +21,7 @@
 #include "harness/core/timer.h"
 #include "harness/io/image_io.h"
 #include "harness/run/image_scene.h"
+#include "harness/run/out_folder.h"
 #include "harness/run/pipeline.h"
 #include "harness/run/reference_cache.h"
 #include "harness/run/runner.h"
@@ -279,14 +280,7 @@ SweepResult RunSweep(const SweepSettings& s) {
     }
   }
 
-  if (s.out_dir.empty()) throw UserError("--out must not be empty");
-  const fs::path out(s.out_dir);
-  if (fs::exists(out)) {
-    if (!fs::is_directory(out)) throw UserError("--out '" + s.out_dir + "' exists and is not a folder");
-    if (!fs::is_empty(out) && !fs::exists(out / "sweep.json")) {
-      throw UserError("--out '" + s.out_dir + "' is a non-empty folder without a sweep.json; refusing to replace it");
-    }
-  }
+  OutFolder out(s.out_dir, "sweep.json");
   res.out_dir = s.out_dir;
 
   Report& report = res.report;
@@ -339,9 +333,7 @@ SweepResult RunSweep(const SweepSettings& s) {
   }
   res.specs = specs;
   res.base_spec = s.method;
-  const fs::path tmp = out.string() + ".partial";
-  fs::remove_all(tmp);
-  fs::create_directories(tmp);
+  const fs::path tmp = out.Begin();
   if (s.shard.Active()) {
     // A shard's sweep.json holds its rows; the summary and the page are written by the merge.
     WriteTextFile((tmp / "sweep.json").string(), SweepToJson(res).dump(2) + "\n");
@@ -350,8 +342,7 @@ SweepResult RunSweep(const SweepSettings& s) {
     WriteTextFile((tmp / "sweep.json").string(), SweepToJson(res).dump(2) + "\n");
     WriteTextFile((tmp / "index.html").string(), SweepHtml(res));
   }
-  fs::remove_all(out);
-  fs::rename(tmp, out);
+  out.Commit();
   return res;
 }
 

@@ -11,6 +11,7 @@
 #include "harness/core/error.h"
 #include "harness/io/image_io.h"
 #include "harness/run/merge_internal.h"
+#include "harness/run/out_folder.h"
 #include "harness/run/pipeline.h"
 #include "harness/run/runner.h"
 #include "harness/run/sweep.h"
@@ -216,22 +217,12 @@ MergeResult MergeSweepFolders(const std::vector<std::string>& dirs, const std::s
     }
   }
   SummarizeSweep(&res, ResolveMethods(res.specs));
-  if (out_dir.empty()) throw UserError("--out must not be empty");
-  const fs::path out(out_dir);
-  if (fs::exists(out)) {
-    if (!fs::is_directory(out)) throw UserError("--out '" + out_dir + "' exists and is not a folder");
-    if (!fs::is_empty(out) && !fs::exists(out / "sweep.json")) {
-      throw UserError("--out '" + out_dir + "' is a non-empty folder without a sweep.json; refusing to replace it");
-    }
-  }
+  OutFolder out(out_dir, "sweep.json");
   res.out_dir = out_dir;
-  const fs::path tmp = out.string() + ".partial";
-  fs::remove_all(tmp);
-  fs::create_directories(tmp);
+  const fs::path tmp = out.Begin();
   WriteTextFile((tmp / "sweep.json").string(), SweepToJson(res).dump(2) + "\n");
   WriteTextFile((tmp / "index.html").string(), SweepHtml(res));
-  fs::remove_all(out);
-  fs::rename(tmp, out);
+  out.Commit();
   return MergeResult{"sweep", shards[0].report.shard->count, m.scenes.size(), m.rows.size(), out_dir};
 }
 
