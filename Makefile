@@ -7,7 +7,7 @@ RUN_ARGS  ?=
 CMAKE_FLAGS ?=
 BENCH_ARGS ?=
 
-.PHONY: all deps configure build run test bench clean test-asan fuzz test-gpu
+.PHONY: all deps configure build run test bench clean test-asan fuzz test-gpu test-slurm
 
 all: build
 
@@ -40,6 +40,12 @@ test-asan: deps
 # libFuzzer targets (clang), FUZZ_SECONDS per target (default 60).
 fuzz: deps
 	@bash scripts/fuzz.sh
+
+# A real one-node Slurm cluster (munge, slurmctld, slurmd from Debian; needs root): the recipe of
+# docs/cluster.md (job array of shards + dependent merge) against single-process runs, then it
+# stops what it started. Not part of `make test` (it installs and starts daemons).
+test-slurm: configure
+	@BUILD=$(BUILD) JOBS=$(JOBS) bash scripts/test-slurm.sh
 
 # The CUDA twins of the post filters against the CPU methods, on a machine with an NVIDIA GPU
 # and the CUDA toolkit (nothing else: gpu/ builds stand-alone). Synthetic frames always;

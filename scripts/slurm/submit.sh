@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Submits an aalab run or sweep to Slurm as a job array of N shards plus a merge job that runs
+# once every shard has succeeded (docs/cluster.md):
+#
+#   submit.sh [-n N] [--references-first] WORK run   [aalab run options...]
+#   submit.sh [-n N] WORK sweep [aalab sweep options...]
+#
+#   -n N                number of shards (array tasks), default 4
+#   --references-first  run: first a job array that renders the references into the cache
+#                       (`aalab run --references-only`), then the shard array after it
+#   WORK                a fresh folder on a filesystem every node sees: the shards go to
+#                       WORK/shards/K, the merged report to WORK/merged, job logs to WORK/logs
+#
+# Environment: AALAB (the binary, default `aalab` on PATH of the nodes), AALAB_REF_CACHE (the
+# reference cache, default WORK/cache; share it between runs), AALAB_SBATCH_ARGS (extra sbatch
+# options for every job, e.g. "--partition=cpu --time=02:00:00 --cpus-per-task=16"); sbatch's
+# own SBATCH_* variables apply too. Prints the job ids as NAME=ID lines (also in WORK/jobs.txt).
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+die() { echo "submit.sh: $*" >&2; exit 2; }
+usage="usage: submit.sh [-n N] [--references-first] WORK run|sweep [aalab options...]"
+
+shards=4 refs_first=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    -n) [ $# -ge 2 ] || die "-n needs a value"; shards=$2; shift 2 ;;
+    --references-first) refs_first=1; shift ;;
+    -h | --help) echo "$usage"; exit 0 ;;
+    -*) die "unknown option '$1' ($usage)" ;;
+    *) break ;;
+  esac
+done
+[ $# -ge 2 ] || die "$usage"
+[[ "$shards" =~ ^[1-9][0-9]*$ ]] || die "-n must be a positive integer, got '$shards'"
+work=$1 mode=$2
+shift 2
+case "$mode" in
+  run) ;;
+  sweep) [ $refs_first -eq 0 ] || die "--references-first applies to run only (a sweep renders each scene's reference once per shard)" ;;
+  *) die "the mode must be run or sweep, got '$mode' ($usage)" ;;
+esac
+command -v sbatch >/dev/null 2>&1 || die "sbatch not found: run this on a Slurm login node"
+mkdir -p "$work"
+work=$(cd "$work" && pwd)
+for d in shards merged; do
+  [ ! -e "$work/$d" ] || die "'$work/$d' exists: use a fresh WORK folder (share the reference cache between runs with AALAB_REF_CACHE)"
+done
+mkdir -p "$work/logs" "${AALAB_REF_CACHE:-$work/cache}"
+
+# shellcheck disable=SC2206  # AALAB_SBATCH_ARGS is a list of options, split on spaces
+extra=(${AALAB_SBATCH_ARGS:-})
+last=$((shards - 1))
+dep=()
+: > "$work/jobs.txt"
+record() { echo "$1=$2" | tee -a "$work/jobs.txt"; }
+
+if [ $refs_first -eq 1 ]; then
+  refs=$(sbatch --parsable "${extra[@]}" --array="0-$last" --job-name=aalab-refs \
+    --output="$work/logs/%x-%A_%a.out" "$here/aalab-array.sbatch" "$shards" "$work" references "$@")
+  refs=${refs%%;*}
+  record references_job "$refs"
+  dep=(--dependency="afterok:$refs")
+fi
+array=$(sbatch --parsable "${extra[@]}" "${dep[@]}" --array="0-$last" \
+  --output="$work/logs/%x-%A_%a.out" "$here/aalab-array.sbatch" "$shards" "$work" "$mode" "$@")
+array=${array%%;*}
+record array_job "$array"
+merge=$(sbatch --parsable "${extra[@]}" --dependency="afterok:$array" \
+  --output="$work/logs/%x-%j.out" "$here/aalab-merge.sbatch" "$shards" "$work")
+merge=${merge%%;*}
+record merge_job "$merge"
+echo "submit.sh: $shards shards -> $work/shards, merged report -> $work/merged (logs: $work/logs)" >&2
