@@ -256,7 +256,7 @@ run_case() {
   local t_slurm
   t_slurm=$(since "$t")
   if "$AALAB_BIN" same-results "$work-single" "$work/merged"; then
-    say "PASS $name: $SHARDS shards merged through Slurm == single $kind (single $t_single s; submit to merged $t_slurm s, jobs ${ids[*]})"
+    say "PASS $name: $SHARDS shards merged through Slurm == single $kind (single $t_single s; submit to merged $t_slurm s; jobs ${ids[*]}; $(find "$work/cache" -name '*.ref' | wc -l) cached references)"
   else
     fail "$name: the merged $kind differs from the single-process $kind"
   fi

@@ -3,11 +3,12 @@
 # once every shard has succeeded (docs/cluster.md):
 #
 #   submit.sh [-n N] [--references-first] WORK run   [aalab run options...]
-#   submit.sh [-n N] WORK sweep [aalab sweep options...]
+#   submit.sh [-n N] [--references-first] WORK sweep [aalab sweep options...]
 #
 #   -n N                number of shards (array tasks), default 4
-#   --references-first  run: first a job array that renders the references into the cache
-#                       (`aalab run --references-only`), then the shard array after it
+#   --references-first  first a job array that renders the references into the cache
+#                       (`aalab run|sweep --references-only`: a run splits them by scene and by
+#                       frame of a moving scene), then the shard array after it
 #   WORK                a fresh folder on a filesystem every node sees: the shards go to
 #                       WORK/shards/K, the merged report to WORK/merged, job logs to WORK/logs
 #
@@ -34,11 +35,7 @@ done
 [[ "$shards" =~ ^[1-9][0-9]*$ ]] || die "-n must be a positive integer, got '$shards'"
 work=$1 mode=$2
 shift 2
-case "$mode" in
-  run) ;;
-  sweep) [ $refs_first -eq 0 ] || die "--references-first applies to run only (a sweep renders each scene's reference once per shard)" ;;
-  *) die "the mode must be run or sweep, got '$mode' ($usage)" ;;
-esac
+case "$mode" in run | sweep) ;; *) die "the mode must be run or sweep, got '$mode' ($usage)" ;; esac
 command -v sbatch >/dev/null 2>&1 || die "sbatch not found: run this on a Slurm login node"
 mkdir -p "$work"
 work=$(cd "$work" && pwd)
@@ -56,7 +53,7 @@ record() { echo "$1=$2" | tee -a "$work/jobs.txt"; }
 
 if [ $refs_first -eq 1 ]; then
   refs=$(sbatch --parsable "${extra[@]}" --array="0-$last" --job-name=aalab-refs \
-    --output="$work/logs/%x-%A_%a.out" "$here/aalab-array.sbatch" "$shards" "$work" references "$@")
+    --output="$work/logs/%x-%A_%a.out" "$here/aalab-array.sbatch" "$shards" "$work" "$mode" --references-only "$@")
   refs=${refs%%;*}
   record references_job "$refs"
   dep=(--dependency="afterok:$refs")
