@@ -15,8 +15,9 @@
 # Everything lives in a private temp folder: slurm.conf (SLURM_CONF points every Slurm command
 # at it; no file under /etc is read or written), a munge key made for the test with munged on a
 # private socket, state, spool, logs, and the runs. Ports are picked free. The daemons run in the
-# foreground as children of this script; on exit (also on failure or Ctrl-C) the jobs are
-# cancelled, the daemons stopped and the folder removed (KEEP=1 keeps it).
+# foreground as children of this script, each in its own session (setsid: a Ctrl-C reaches this
+# script, not them); on exit (also on failure or Ctrl-C) the jobs are cancelled, the daemons
+# stopped and the folder removed (KEEP=1 keeps it).
 #
 # Environment: BUILD (build folder, default build), JOBS, SHARDS (default 3), KEEP=1,
 # WAIT_S (longest wait for the cluster or for one case's jobs, default 300).
@@ -139,7 +140,7 @@ chmod 711 "$T/munge"
 dd if=/dev/urandom of="$T/munge/munge.key" bs=1024 count=1 status=none
 chmod 600 "$T/munge/munge.key"
 munge_socket="$T/munge/munge.socket"
-munged --foreground --socket="$munge_socket" --key-file="$T/munge/munge.key" \
+setsid munged --foreground --socket="$munge_socket" --key-file="$T/munge/munge.key" \
   --pid-file="$T/munge/munged.pid" --seed-file="$T/munge/munged.seed" \
   --log-file="$T/log/munged.log" > "$T/log/munged.out" 2>&1 &
 munged_pid=$!
@@ -178,6 +179,7 @@ SelectType=select/cons_tres
 SelectTypeParameters=CR_Core
 SchedulerType=sched/backfill
 MpiDefault=none
+MailProg=/bin/true
 ReturnToService=2
 # Keep finished jobs' records (JobState, ExitCode) for an hour: there is no accounting database.
 MinJobAge=3600
@@ -187,10 +189,10 @@ NodeName=$host NodeAddr=127.0.0.1 CPUs=$(nproc) RealMemory=$mem State=UNKNOWN
 PartitionName=aalab Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF
 export SLURM_CONF="$T/slurm.conf"
-slurmctld -D -f "$SLURM_CONF" > "$T/log/slurmctld.out" 2>&1 &
+setsid slurmctld -D -f "$SLURM_CONF" > "$T/log/slurmctld.out" 2>&1 &
 ctld_pid=$!
 wait_until 60 "slurmctld answering (scontrol ping)" bash -c 'scontrol ping | grep -q UP'
-slurmd -D -f "$SLURM_CONF" -N "$host" > "$T/log/slurmd.out" 2>&1 &
+setsid slurmd -D -f "$SLURM_CONF" -N "$host" > "$T/log/slurmd.out" 2>&1 &
 slurmd_pid=$!
 wait_until 60 "node $host idle in sinfo" bash -c "sinfo -h -n '$host' -o %t | grep -qx idle"
 say "phase cluster start: $(since "$t") s (ports $ctld_port/$slurmd_port, $(nproc) CPUs, node $host idle)"
