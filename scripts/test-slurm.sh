@@ -228,7 +228,9 @@ fail() { say "FAIL: $*" >&2; failures=$((failures + 1)); }
 export AALAB="$AALAB_BIN"
 submit=("$ROOT/scripts/slurm/submit.sh" -n "$SHARDS")
 run_opts=(--suite quick --size 160x90 --ref-spp 16 --repeat 1 --quiet)
+# shellcheck disable=SC2054  # the commas are aalab's list syntax, not array separators
 motion_opts=(--scenes motion-pan,motion-orbit,wedges --frames 4 --size 160x90 --ref-spp 16 --repeat 1 --quiet)
+# shellcheck disable=SC2054
 sweep_opts=(--scenes wedges,circle,thin-wires --method fxaa311-p39 --grid subpix=0,0.5,1
   --grid edge_threshold=0.125,0.25 --size 160x90 --ref-spp 16 --repeat 1 --quiet)
 

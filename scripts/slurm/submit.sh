@@ -35,8 +35,9 @@ rerun() {
   local list=$1 i
   work=$2
   [[ "$list" =~ ^[0-9]+(-[0-9]+)?(,[0-9]+(-[0-9]+)?)*$ ]] || die "--rerun needs array indices such as 1 or 1,4-5, got '$list'"
-  [ -f "$work/submit.state" ] && [ -f "$work/jobs.txt" ] ||
+  if [ ! -f "$work/submit.state" ] || [ ! -f "$work/jobs.txt" ]; then
     die "'$work' holds no submit.state and jobs.txt: --rerun needs the WORK folder of an earlier submit.sh"
+  fi
   work=$(cd "$work" && pwd)
   local shards mode saved_aalab saved_cache saved_sbatch
   local -a args
