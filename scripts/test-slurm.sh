@@ -13,7 +13,7 @@
 # Not part of `make test`: it installs and starts daemons and needs root (docs/cluster.md).
 #
 # Everything lives in a private temp folder: slurm.conf (SLURM_CONF points every Slurm command
-# at it; no file under /etc is read or written), a munge key made for the test with munged on a
+# at it; no Slurm or munge configuration under /etc is read or changed), a munge key made for the test with munged on a
 # private socket, state, spool, logs, and the runs. Ports are picked free. The daemons run in the
 # foreground as children of this script, each in its own session (setsid: a Ctrl-C reaches this
 # script, not them); on exit (also on failure or Ctrl-C) the jobs are cancelled, the daemons
@@ -135,7 +135,7 @@ wait_until() {  # wait_until SECONDS WHAT COMMAND...: polls COMMAND every 0.2 s
 t=$(now)
 host=$(hostname -s)
 mkdir -p "$T/munge" "$T/state" "$T/spool" "$T/log" "$T/run"
-chmod 700 "$T/munge" "$T/state" "$T/spool"
+chmod 700 "$T/state" "$T/spool"
 chmod 711 "$T/munge"
 dd if=/dev/urandom of="$T/munge/munge.key" bs=1024 count=1 status=none
 chmod 600 "$T/munge/munge.key"
