@@ -7,7 +7,8 @@
 #   run    the quick suite in SHARDS shards with a shared reference cache
 #   motion moving scenes over several frames, references rendered by a first job array
 #          (`submit.sh --references-first`), so the split by frame is exercised
-#   sweep  a grid sweep in SHARDS shards
+#   sweep  a grid sweep in SHARDS shards of one CPU each (--cpus-per-task=1 through
+#          AALAB_SBATCH_ARGS: the shards run --threads 1, the single sweep all threads)
 #   rerun  the recipe for a failed shard: shard 1 fails once (a wrapper around the binary), the
 #          merge job waits, `submit.sh --rerun 1` reruns shard 1 and the merge job runs
 # Not part of `make test`: it installs and starts daemons and needs root (docs/cluster.md).
@@ -36,7 +37,10 @@ since() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }'; }
 test_start=$(now)
 failures=0
 
-[[ "$SHARDS" =~ ^[1-9][0-9]*$ ]] || { say "SHARDS must be a positive integer, got '$SHARDS'" >&2; exit 2; }
+if ! [[ "$SHARDS" =~ ^[1-9][0-9]*$ ]] || [ "$SHARDS" -lt 2 ]; then
+  say "SHARDS must be an integer of at least 2 (the rerun case reruns shard 1), got '$SHARDS'" >&2
+  exit 2
+fi
 if [ "$(id -u)" -ne 0 ]; then
   say "needs root: it installs the Slurm and munge packages and starts munged, slurmctld and slurmd (as root) for one test" >&2
   exit 2
@@ -312,7 +316,12 @@ EOF
 
 t=$(now); run_case run run "${run_opts[@]}"; say "phase run: $(since "$t") s"
 t=$(now); run_case motion run "${motion_opts[@]}" -- --references-first; say "phase motion: $(since "$t") s"
-t=$(now); run_case sweep sweep "${sweep_opts[@]}"; say "phase sweep: $(since "$t") s"
+t=$(now)
+AALAB_SBATCH_ARGS=--cpus-per-task=1 run_case sweep sweep "${sweep_opts[@]}"
+if ! grep -q -- "--threads 1 --shard" "$T/run/sweep/logs/aalab-shard-"*_0.out; then
+  fail "sweep: with --cpus-per-task=1 the shard should have run --threads 1"
+fi
+say "phase sweep: $(since "$t") s"
 t=$(now); rerun_case; say "phase rerun: $(since "$t") s"
 
 if [ $failures -ne 0 ]; then
