@@ -30,6 +30,14 @@ usage="usage: submit.sh [-n N] [--references-first] WORK run|sweep [aalab option
 record() { echo "$1=$2" | tee -a "$work/jobs.txt"; }
 job_ids() { sed -n "s/^$1=//p" "$work/jobs.txt"; }
 
+in_list() {  # in_list I LIST: I is in the Slurm index list LIST (1,3-5)
+  local r
+  for r in ${2//,/ }; do
+    [ "$1" -ge "${r%-*}" ] && [ "$1" -le "${r#*-}" ] && return 0
+  done
+  return 1
+}
+
 # --rerun K WORK: shard K again, and the merge after it.
 rerun() {
   local list=$1 i
@@ -43,11 +51,26 @@ rerun() {
   local -a args
   # shellcheck source=/dev/null
   source "$work/submit.state"
-  for i in $(tr ',-' '  ' <<< "$list"); do
-    [ "$i" -lt "$shards" ] || die "--rerun: index $i is outside 0..$((shards - 1)) (this run has $shards shards)"
+  local part job line ids
+  for part in ${list//,/ }; do
+    for i in $(seq "${part%-*}" "${part#*-}"); do
+      [ "$i" -lt "$shards" ] || die "--rerun: index $i is outside 0..$((shards - 1)) (this run has $shards shards)"
+      # Two jobs writing WORK/shards/K at once would collide: refuse while K is still queued or
+      # running (a record's ArrayTaskId is an index, or a list of ranges such as 0,2-4%2).
+      for job in $(job_ids array_job) $(job_ids rerun_job); do
+        while read -r line; do
+          [[ "$line" =~ JobState=(PENDING|RUNNING|CONFIGURING|COMPLETING|REQUEUED|SUSPENDED) ]] || continue
+          [[ "$line" =~ ArrayTaskId=([0-9,%-]+) ]] || continue
+          ids=${BASH_REMATCH[1]%%%*}
+          if in_list "$i" "$ids"; then
+            die "--rerun: shard $i of job $job is still queued or running (squeue -j $job); wait for it or scancel it first"
+          fi
+        done < <(scontrol -o show job "$job" 2>/dev/null || true)
+      done
+    done
   done
-  [ -n "$saved_aalab" ] && export AALAB="$saved_aalab"
-  [ -n "$saved_cache" ] && export AALAB_REF_CACHE="$saved_cache"
+  if [ -n "$saved_aalab" ]; then export AALAB="$saved_aalab"; fi
+  if [ -n "$saved_cache" ]; then export AALAB_REF_CACHE="$saved_cache"; fi
   # shellcheck disable=SC2206
   local -a extra=($saved_sbatch)
   local again merge state deps=""
