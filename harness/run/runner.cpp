@@ -111,8 +111,6 @@ Report RunSuite(const RunSettings& s) {
   for (const auto& src : scenes) {
     if (src.scene) CheckSequenceLength(*src.scene, s.frames);
   }
-  std::optional<ReferenceCache> cache;
-  if (!s.ref_cache.empty()) cache.emplace(s.ref_cache);
   // A shard keeps its share of the scenes (whole sequences: a method's memory and the
   // temporal metrics chain a sequence's frames); the settings still describe the whole run.
   std::optional<ShardInfo> shard_info;
@@ -136,6 +134,8 @@ Report RunSuite(const RunSettings& s) {
   const std::vector<MethodPlan> plans = ResolveMethods(method_specs);
   // A run that fails half-way (an exception from any stage) removes its partial output.
   OutFolder out(s.out_dir, "report.json");
+  std::optional<ReferenceCache> cache;  // created once every input has been checked
+  if (!s.ref_cache.empty()) cache.emplace(s.ref_cache);
   const fs::path tmp = out.Begin();
   fs::create_directories(tmp / "images");
 
