@@ -352,6 +352,19 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
   return r;
 }
 
+std::vector<std::string> ReportImages(const Report& r) {
+  std::vector<std::string> files;
+  for (const auto& s : r.scenes) {
+    for (const auto& [role, path] : s.images) files.push_back(path);
+    files.insert(files.end(), s.frame_images.begin(), s.frame_images.end());
+  }
+  for (const auto& row : r.rows) {
+    for (const auto& [role, path] : row.images) files.push_back(path);
+    files.insert(files.end(), row.frame_images.begin(), row.frame_images.end());
+  }
+  return files;
+}
+
 Report ReadReportFile(const std::string& path) {
   std::ifstream f(path);
   if (!f) throw UserError("report '" + path + "' cannot be read");

@@ -7,19 +7,15 @@
 #include <string>
 #include <type_traits>
 
+#include "harness/core/hash.h"
+
 namespace aalab {
 
 namespace {
 
 class Hasher {
  public:
-  void Bytes(const void* data, size_t size) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < size; ++i) {
-      h_ ^= p[i];
-      h_ *= 0x100000001b3ULL;
-    }
-  }
+  void Bytes(const void* data, size_t size) { h_ = Fnv1a64(data, size, h_); }
   template <typename T>
   void Pod(const T& v) {
     static_assert(std::is_arithmetic_v<T> || std::is_enum_v<T>);
@@ -38,7 +34,7 @@ class Hasher {
   uint64_t Value() const { return h_; }
 
  private:
-  uint64_t h_ = 0xcbf29ce484222325ULL;
+  uint64_t h_ = kFnv1aOffset;
 };
 
 void HashTexture(Hasher& h, const std::optional<Texture>& t) {

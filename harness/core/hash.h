@@ -1,9 +1,23 @@
 /// Counter-based hashing for deterministic jitter: a sample's random numbers are a function
 /// of (pixel, sample index, seed, dimension), never of a shared generator's state.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 
 namespace aalab {
+
+/// FNV-1a 64 of `size` bytes, continuing from `h` (the offset basis starts a new hash): the
+/// output hashes of the report, the scene fingerprint and the reference cache's keys and
+/// checksums.
+constexpr uint64_t kFnv1aOffset = 0xcbf29ce484222325ULL;
+inline uint64_t Fnv1a64(const void* data, size_t size, uint64_t h = kFnv1aOffset) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < size; ++i) {
+    h ^= p[i];
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
 
 /// 64-bit mixer (SplitMix64 finaliser).
 inline uint64_t MixBits(uint64_t v) {

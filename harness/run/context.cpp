@@ -11,6 +11,7 @@
 #include <tbb/version.h>
 
 #include "build_info.h"
+#include "harness/core/hash.h"
 #include "harness/core/parallel.h"
 #include "harness/run/runner.h"
 
@@ -72,12 +73,7 @@ std::vector<std::pair<std::string, std::string>> ContextFacts() {
 }
 
 std::string HashBytes(const void* data, size_t size) {
-  uint64_t h = 0xcbf29ce484222325ULL;
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < size; ++i) {
-    h ^= p[i];
-    h *= 0x100000001b3ULL;
-  }
+  const uint64_t h = Fnv1a64(data, size);
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;

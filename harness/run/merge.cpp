@@ -55,6 +55,10 @@ std::vector<std::pair<size_t, size_t>> CheckShardSet(const std::vector<const Rep
   }
   const ShardInfo& first = *reports[0]->shard;
   const int n = first.count;
+  if (first.total_units < 1) {
+    throw UserError("merge: '" + dirs[0] + "' claims a run of " + std::to_string(first.total_units) + " " + first.unit +
+                    "s: the report is damaged");
+  }
   for (size_t i = 1; i < reports.size(); ++i) {
     const ShardInfo& s = *reports[i]->shard;
     if (s.count != n || s.unit != first.unit || s.total_units != first.total_units) {
@@ -154,11 +158,8 @@ Report MergeRunReports(const std::vector<Report>& reports, const std::vector<std
     }
   }
   Report m;
-  // Shard 0 (by index) gives the context; the settings are everyone's (checked equal).
-  size_t zero = 0;
-  for (size_t i = 0; i < reports.size(); ++i) {
-    if (reports[i].shard->index == 0) zero = i;
-  }
+  // Shard 0 (which holds unit 0) gives the context; the settings are everyone's (checked equal).
+  const size_t zero = order.front().first;
   m.context = reports[zero].context;
   m.settings = reports[zero].settings;
   std::set<std::string> threads, hosts;
@@ -202,20 +203,6 @@ Report MergeRunReports(const std::vector<Report>& reports, const std::vector<std
 
 namespace {
 
-/// Every image a report links, relative to its folder.
-std::vector<std::string> ImagesOf(const Report& r) {
-  std::vector<std::string> files;
-  for (const auto& s : r.scenes) {
-    for (const auto& [role, path] : s.images) files.push_back(path);
-    for (const auto& f : s.frame_images) files.push_back(f);
-  }
-  for (const auto& row : r.rows) {
-    for (const auto& [role, path] : row.images) files.push_back(path);
-    for (const auto& f : row.frame_images) files.push_back(f);
-  }
-  return files;
-}
-
 MergeResult MergeRunFolders(const std::vector<std::string>& dirs, const std::string& out_dir) {
   std::vector<Report> reports;
   for (const auto& d : dirs) reports.push_back(ReadReportFile((fs::path(d) / "report.json").string()));
@@ -224,7 +211,7 @@ MergeResult MergeRunFolders(const std::vector<std::string>& dirs, const std::str
   std::vector<std::pair<fs::path, std::string>> copies;  // source, relative path
   std::set<std::string> planned;
   for (size_t i = 0; i < reports.size(); ++i) {
-    for (const auto& rel : ImagesOf(reports[i])) {
+    for (const auto& rel : ReportImages(reports[i])) {
       const fs::path src = fs::path(dirs[i]) / rel;
       if (!fs::is_regular_file(src)) {
         throw UserError("merge: '" + dirs[i] + "' lacks " + rel + ", which its report links (copied incompletely?)");

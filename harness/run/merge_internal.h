@@ -11,7 +11,8 @@ namespace aalab {
 
 /// The checks of MergeShards common to runs and sweeps (shard blocks, one split, each K once,
 /// same settings and program, exact round-robin shares, no unit twice). Returns the whole
-/// run's unit order: for unit u, (index into `reports`, index into that shard's units).
+/// run's unit order: for unit u, (index into `reports`, index into that shard's units). There
+/// is at least one unit, so order.front().first is shard 0.
 std::vector<std::pair<size_t, size_t>> CheckShardSet(const std::vector<const Report*>& reports,
                                                      const std::vector<std::string>& dirs);
 

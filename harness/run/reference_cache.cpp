@@ -19,6 +19,7 @@
 
 #include "build_info.h"
 #include "harness/core/error.h"
+#include "harness/core/hash.h"
 #include "harness/core/timer.h"
 #include "metrics/metric.h"
 #include "scenes/exact_reference.h"
@@ -32,25 +33,16 @@ namespace {
 constexpr char kMagic[8] = {'A', 'A', 'L', 'A', 'B', 'R', 'E', 'F'};
 constexpr uint32_t kVersion = 1;
 
-uint64_t Fnv(const void* data, size_t size, uint64_t h = 0xcbf29ce484222325ULL) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < size; ++i) {
-    h ^= p[i];
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
-
 /// FNV-1a 64 of the running executable's bytes, computed once.
 const std::string& ExecutableHash() {
   static const std::string hash = [] {
     std::ifstream f("/proc/self/exe", std::ios::binary);
     if (!f) return std::string("unknown");
-    uint64_t h = 0xcbf29ce484222325ULL;
+    uint64_t h = kFnv1aOffset;
     std::vector<char> buf(1 << 20);
     while (f) {
       f.read(buf.data(), static_cast<std::streamsize>(buf.size()));
-      h = Fnv(buf.data(), static_cast<size_t>(f.gcount()), h);
+      h = Fnv1a64(buf.data(), static_cast<size_t>(f.gcount()), h);
     }
     char text[17];
     std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
@@ -139,7 +131,7 @@ std::string ReferenceCache::Key(const Scene& scene, int width, int height, int g
 
 std::string ReferenceCache::PathOf(const std::string& key) const {
   char name[24];
-  std::snprintf(name, sizeof name, "%016llx.ref", static_cast<unsigned long long>(Fnv(key.data(), key.size())));
+  std::snprintf(name, sizeof name, "%016llx.ref", static_cast<unsigned long long>(Fnv1a64(key.data(), key.size())));
   return (fs::path(dir_) / name).string();
 }
 
@@ -152,7 +144,7 @@ std::optional<CachedReference> ReferenceCache::Load(const std::string& key) cons
   if (bytes.size() < sizeof kMagic + 8 + 8) r.Fail("it is too short");
   uint64_t stored_sum = 0;
   std::memcpy(&stored_sum, bytes.data() + bytes.size() - 8, 8);
-  if (Fnv(bytes.data(), bytes.size() - 8) != stored_sum) r.Fail("its checksum does not match");
+  if (Fnv1a64(bytes.data(), bytes.size() - 8) != stored_sum) r.Fail("its checksum does not match");
   char magic[8];
   r.Raw(magic, 8);
   if (std::memcmp(magic, kMagic, 8) != 0) r.Fail("it is not an aalab reference cache file");
@@ -189,7 +181,7 @@ void ReferenceCache::Store(const std::string& key, const CachedReference& e) con
   w.Pod<uint64_t>(e.shadow_rays);
   w.Pod<uint64_t>(e.texture_lookups);
   w.Pod<double>(e.render_ms);
-  w.Pod<uint64_t>(Fnv(w.Bytes().data(), w.Bytes().size()));
+  w.Pod<uint64_t>(Fnv1a64(w.Bytes().data(), w.Bytes().size()));
   // A name no other process or thread uses: host, pid and a per-process counter.
   static std::atomic<unsigned> counter{0};
   char host[64] = {0};

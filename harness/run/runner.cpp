@@ -93,6 +93,30 @@ ImageF DecodeToLinear(const ImageF& encoded) {
   return out;
 }
 
+/// A run's scenes, loaded and checked against its settings before any work: the reference
+/// samples, the frame count, the reference kind and each sequence's length.
+struct RunScenes {
+  std::vector<std::string> names;  ///< as given (a suite's, or --scenes)
+  std::vector<SceneSource> sources;
+  int grid = 0;
+  bool exact = false;
+};
+
+RunScenes LoadRunScenes(const RunSettings& s) {
+  RunScenes r;
+  r.grid = ReferenceGridForSpp(s.ref_spp);
+  r.names = s.scenes.empty() ? SuiteScenes(s.suite) : s.scenes;
+  if (s.frames < 1 || s.frames > kMaxFrames) {
+    throw UserError("--frames " + std::to_string(s.frames) + " is out of range (1.." + std::to_string(kMaxFrames) + ")");
+  }
+  r.sources = LoadSceneSources(r.names);
+  r.exact = CheckReferenceKind(s.reference, r.sources);
+  for (const auto& src : r.sources) {
+    if (src.scene) CheckSequenceLength(*src.scene, s.frames);
+  }
+  return r;
+}
+
 }  // namespace
 
 Report RunSuite(const RunSettings& s) {
@@ -101,16 +125,11 @@ Report RunSuite(const RunSettings& s) {
   SetThreadCount(s.threads);
   // Validate every input before any work.
   if (s.repeat < 1 || s.repeat > 1000) throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
-  const int grid = ReferenceGridForSpp(s.ref_spp);
-  const std::vector<std::string> scene_names = s.scenes.empty() ? SuiteScenes(s.suite) : s.scenes;
-  if (s.frames < 1 || s.frames > kMaxFrames) {
-    throw UserError("--frames " + std::to_string(s.frames) + " is out of range (1.." + std::to_string(kMaxFrames) + ")");
-  }
-  std::vector<SceneSource> scenes = LoadSceneSources(scene_names);
-  const bool exact = CheckReferenceKind(s.reference, scenes);
-  for (const auto& src : scenes) {
-    if (src.scene) CheckSequenceLength(*src.scene, s.frames);
-  }
+  RunScenes loaded = LoadRunScenes(s);
+  const int grid = loaded.grid;
+  const bool exact = loaded.exact;
+  const std::vector<std::string>& scene_names = loaded.names;
+  std::vector<SceneSource> scenes = std::move(loaded.sources);
   // A shard keeps its share of the scenes (whole sequences: a method's memory and the
   // temporal metrics chain a sequence's frames); the settings still describe the whole run.
   std::optional<ShardInfo> shard_info;
@@ -285,16 +304,10 @@ Report RunSuite(const RunSettings& s) {
 int RenderReferencesOnly(const RunSettings& s, int* cached) {
   SetThreadCount(s.threads);
   if (s.ref_cache.empty()) throw UserError("--references-only needs --ref-cache DIR (the folder the shards share)");
-  const int grid = ReferenceGridForSpp(s.ref_spp);
-  if (s.frames < 1 || s.frames > kMaxFrames) {
-    throw UserError("--frames " + std::to_string(s.frames) + " is out of range (1.." + std::to_string(kMaxFrames) + ")");
-  }
-  const std::vector<std::string> scene_names = s.scenes.empty() ? SuiteScenes(s.suite) : s.scenes;
-  std::vector<SceneSource> sources = LoadSceneSources(scene_names);
-  const bool exact = CheckReferenceKind(s.reference, sources);
-  for (const auto& src : sources) {
-    if (src.scene) CheckSequenceLength(*src.scene, s.frames);
-  }
+  const RunScenes loaded = LoadRunScenes(s);
+  const std::vector<SceneSource>& sources = loaded.sources;
+  const int grid = loaded.grid;
+  const bool exact = loaded.exact;
   const ReferenceCache cache(s.ref_cache);
   // The units: every reference the run renders, in run order (a moving scene: one per frame,
   // as RunSuite builds them; a still scene: one).

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "harness/core/error.h"
+#include "reports/report_json.h"
 
 namespace aalab {
 namespace fs = std::filesystem;
@@ -28,35 +29,6 @@ Json ReadJson(const fs::path& path) {
 
 void Erase(Json& j, const char* key) {
   if (j.is_object()) j.erase(key);
-}
-
-/// Every image path a report document links (scene and row images, frame images).
-std::vector<std::string> LinkedImages(const Json& doc) {
-  std::vector<std::string> files;
-  auto strings = [&files](const Json& j) {
-    if (j.is_object()) {
-      for (const auto& v : j) {
-        if (v.is_string()) files.push_back(v.get<std::string>());
-      }
-    } else if (j.is_array()) {
-      for (const auto& v : j) {
-        if (v.is_string()) files.push_back(v.get<std::string>());
-      }
-    }
-  };
-  for (const char* list : {"scenes", "rows"}) {
-    if (!doc.contains(list)) continue;
-    for (const auto& item : doc.at(list)) {
-      if (item.contains("images")) strings(item.at("images"));
-      if (item.contains("sequence") && item.at("sequence").contains("reference_frames")) {
-        strings(item.at("sequence").at("reference_frames"));
-      }
-      if (item.contains("frames") && item.at("frames").is_object() && item.at("frames").contains("images")) {
-        strings(item.at("frames").at("images"));
-      }
-    }
-  }
-  return files;
 }
 
 bool SameBytes(const fs::path& a, const fs::path& b) {
@@ -133,7 +105,11 @@ SameResults CompareResultFolders(const std::string& a, const std::string& b, siz
       differ(line);
     }
   }
-  for (const auto& rel : LinkedImages(da)) {
+  // The images A links (a sweep.json holds the report's scenes and rows too, without a
+  // schema version of its own).
+  Json report_a = da;
+  report_a["schema_version"] = kSchemaVersion;
+  for (const auto& rel : ReportImages(ReportFromJson(report_a, "same-results: '" + ra.string() + "'"))) {
     const fs::path fa = fs::path(a) / rel, fb = fs::path(b) / rel;
     if (!fs::is_regular_file(fa)) {
       differ(rel + ": missing in A");

@@ -157,10 +157,7 @@ MergeResult MergeSweepFolders(const std::vector<std::string>& dirs, const std::s
   const auto order = CheckShardSet(reports, dirs);
   const Json& d0 = shards[0].doc;
   // Shard 0 holds point 0, so it ran every scene: its scene records are the merged ones.
-  size_t zero = 0;
-  for (size_t i = 0; i < shards.size(); ++i) {
-    if (shards[i].report.shard->index == 0) zero = i;
-  }
+  const size_t zero = order.front().first;
   for (size_t i = 0; i < shards.size(); ++i) {
     const Json& d = shards[i].doc;
     if (shards[i].report.shard->unit != "grid point") {

@@ -240,7 +240,7 @@ TEST(ImageScene, ObjectIdsGiveAGeometricMask) {
   const Report direct = RunSuite(Settings({"circle"}, dir / "direct"));
   const Report image = RunSuite(Settings({(dir / "m.json").string()}, dir / "image"));
   const double eps = MaxAbsDiff(views[0].reference, circle->ref.image);
-  for (const std::string& spec : {"none", "fxaa311-p12"}) {
+  for (const std::string spec : {"none", "fxaa311-p12"}) {
     ExpectWithinBounds(Row(direct, "circle", spec), Row(image, "circle", spec), eps, false);
   }
   fs::remove_all(dir);
