@@ -1,8 +1,9 @@
 // FXAA 3.11 and the 12-iteration GLSL FXAA against the ORIGINAL shaders run on llvmpipe
 // (tests/oracle/gl_oracle.h): every fxaa311-p* preset, the tutorial levels that map onto
 // FXAA 3.11's presets, and fxaa-iter12, on rendered library frames and adversarial frames,
-// must give the same bytes. Needs ../shared/seeds (skipped with a message without it) and
-// Mesa's EGL + llvmpipe (fails with a message without them).
+// must give the same bytes. Needs ../shared/seeds and
+// Mesa's EGL + llvmpipe (fails with a message without them). Without the seeds the tests skip
+// with a message, and fail under CI (CI=true: tests/skip_or_fail.h).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -15,6 +16,7 @@
 #include "tests/oracle/gl_oracle.h"
 #include "tests/oracle/oracle_frames.h"
 #include "tests/oracle/seed_shaders.h"
+#include "tests/skip_or_fail.h"
 
 namespace aalab {
 namespace {
@@ -52,8 +54,8 @@ class FxaaOracle : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!oracle::SeedsPresent()) {
-      GTEST_SKIP() << "FXAA oracle needs the source documents with the original shaders: "
-                   << oracle::SeedsDir() << " (../shared/seeds beside the clone, or set AALAB_SEEDS_DIR)";
+      AALAB_SKIP_OR_FAIL_UNDER_CI("FXAA oracle needs the source documents with the original shaders: " +
+                                  oracle::SeedsDir() + " (../shared/seeds beside the clone, or set AALAB_SEEDS_DIR)");
     }
     const std::string err = oracle::StartGl(oracle::GlMode{});
     ASSERT_EQ(err, "") << "the FXAA oracle cannot start OpenGL: " << err;
@@ -156,7 +158,7 @@ TEST(FxaaOracleSeeds, MissingShaderTextFailsWithItsMarkers) {
 
 // With the real seeds: the extracted texts are the complete shaders (start to end markers).
 TEST(FxaaOracleSeeds, ExtractedShadersAreComplete) {
-  if (!oracle::SeedsPresent()) GTEST_SKIP() << "needs " << oracle::SeedsDir() << " (../shared/seeds)";
+  if (!oracle::SeedsPresent()) AALAB_SKIP_OR_FAIL_UNDER_CI("needs " + oracle::SeedsDir() + " (../shared/seeds)");
   const std::string fs = oracle::Fxaa311InteractiveShader();
   EXPECT_EQ(fs.rfind("precision highp float;", 0), 0u);
   EXPECT_NE(fs.find("return vec4(texture2D(tex, posM).xyz, lumaM);"), std::string::npos);

@@ -2,7 +2,8 @@
 // disk (file://) in headless Chromium with the page's self-test (#selftest). Fails on any
 // console message or script error, any image that does not load, and any scene × method the
 // page does not show. Saves screenshots into the build folder for a human to look at.
-// Skipped (visibly) only when /usr/bin/chromium is not installed.
+// Skipped (visibly) only when /usr/bin/chromium is not installed, and then failed under CI
+// (CI=true: tests/skip_or_fail.h).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -19,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../cli/cli_util.h"
+#include "../skip_or_fail.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -48,9 +50,9 @@ std::string Chromium(const fs::path& profile, const std::string& args) {
 
 TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
   if (!fs::exists(kChromium)) {
-    GTEST_SKIP() << "SKIPPED: " << kChromium
-                 << " is not installed, so the HTML report was NOT tested in a browser. Install it with "
-                    "scripts/install-deps.sh (Debian package 'chromium').";
+    AALAB_SKIP_OR_FAIL_UNDER_CI(std::string(kChromium) +
+                                " is not installed, so the HTML report was NOT tested in a browser. Install it with "
+                                "scripts/install-deps.sh (Debian package 'chromium').");
   }
   const fs::path work = fs::path(AALAB_BINARY_DIR) / "html_browser_test";
   const fs::path out = work / "run";
@@ -115,7 +117,7 @@ TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
 // edges among them), tiny. The suite chart must plot one point per method for the default
 // quality axis, and say which scene its means leave out and why.
 TEST(HtmlBrowser, DefaultSuiteOverviewHasOnePointPerMethod) {
-  if (!fs::exists(kChromium)) GTEST_SKIP() << "SKIPPED: " << kChromium << " is not installed.";
+  if (!fs::exists(kChromium)) AALAB_SKIP_OR_FAIL_UNDER_CI(std::string(kChromium) + " is not installed.");
   const fs::path work = fs::path(AALAB_BINARY_DIR) / "html_browser_suite_test";
   const fs::path out = work / "run";
   fs::remove_all(work);
