@@ -6,7 +6,9 @@
 # read); crashes, leaks, timeouts and OOMs go to build-fuzz/findings-<target>/ and fail the
 # target. To keep a finding as a regression case, minimise it
 #   ./build-fuzz/scene_fuzz -minimize_crash=1 -runs=10000 build-fuzz/findings-scene/crash-...
-# and copy it into tests/fuzz/corpus/<target>/ (the replay test in `make test` runs it).
+# and copy it into tests/fuzz/corpus/<target>/ as bad-regress-NAME (refused with a clear error
+# once fixed) or ok-regress-NAME (accepted): the replay test in `make test` runs it and checks
+# the outcome its name states.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${FUZZ_BUILD:-build-fuzz}

@@ -1,6 +1,10 @@
 // Corpus replay (runs in `make test`): every file of tests/fuzz/corpus/{scene,image}/ goes
 // through the same entry function the libFuzzer targets call (fuzz_entries.h). The corpus
 // holds the seeds and every crash `make fuzz` found, minimised, as regression cases.
+// A file's name says what must become of it: `lib-*` / `ok-*` must be accepted (parse or
+// read, post-conditions hold), `bad-*` must be refused with a UserError (crash regressions
+// are `bad-regress-*` or `ok-regress-*`). Any other name fails the replay, so a seed that
+// silently stops parsing, or bad input that starts to pass, is caught.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -31,19 +35,47 @@ std::vector<uint8_t> Bytes(const fs::path& p) {
   return std::vector<uint8_t>(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
 }
 
-void Replay(const std::string& which, int (*entry)(const uint8_t*, size_t)) {
+const char* Name(Outcome o) { return o == Outcome::kAccepted ? "accepted" : "refused"; }
+
+void Replay(const std::string& which, Outcome (*entry)(const uint8_t*, size_t)) {
   const auto files = Files(which);
   ASSERT_FALSE(files.empty()) << "empty corpus " << which;
+  int accepted = 0, refused = 0;
   for (const auto& p : files) {
     SCOPED_TRACE(p.string());
+    const std::string name = p.filename().string();
+    const bool ok = name.rfind("lib-", 0) == 0 || name.rfind("ok-", 0) == 0;
+    const bool bad = name.rfind("bad-", 0) == 0;
+    ASSERT_TRUE(ok || bad) << name << ": a corpus file's name must start with lib- or ok- (must be accepted) or "
+                           << "bad- (must be refused)";
+    const Outcome want = ok ? Outcome::kAccepted : Outcome::kRefused;
     const std::vector<uint8_t> bytes = Bytes(p);
-    EXPECT_NO_THROW(EXPECT_EQ(entry(bytes.data(), bytes.size()), 0));
+    Outcome got = Outcome::kRefused;
+    EXPECT_NO_THROW(got = entry(bytes.data(), bytes.size()));
+    EXPECT_EQ(Name(got), std::string(Name(want))) << name;
+    (want == Outcome::kAccepted ? accepted : refused) += 1;
   }
+  // Both kinds present: a corpus of only good or only bad files checks half the contract.
+  EXPECT_GT(accepted, 0) << which;
+  EXPECT_GT(refused, 0) << which;
 }
 
-TEST(FuzzCorpus, ScenesReplayWithoutFindings) { Replay("scene", FuzzScene); }
+TEST(FuzzCorpus, ScenesReplayWithoutFindings) { Replay("scene", CheckSceneBytes); }
 
-TEST(FuzzCorpus, ImagesReplayWithoutFindings) { Replay("image", FuzzImage); }
+TEST(FuzzCorpus, ImagesReplayWithoutFindings) { Replay("image", CheckImageBytes); }
+
+TEST(FuzzCorpus, EveryLibrarySceneIsAccepted) {
+  // The library as it is now (the corpus copies may be older): each file through the entry.
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(AALAB_SOURCE_DIR) / "scenes" / "library")) {
+    if (!e.is_regular_file() || e.path().extension() != ".json" || e.path().filename() == "suites.json") continue;
+    SCOPED_TRACE(e.path().string());
+    const std::vector<uint8_t> bytes = Bytes(e.path());
+    EXPECT_EQ(CheckSceneBytes(bytes.data(), bytes.size()), Outcome::kAccepted);
+    ++n;
+  }
+  EXPECT_GT(n, 10);
+}
 
 TEST(FuzzCorpus, StaysSmall) {
   // The corpus is checked in: at most 40 files and 200 KB per target.
@@ -56,11 +88,13 @@ TEST(FuzzCorpus, StaysSmall) {
   }
 }
 
-TEST(FuzzCorpus, EmptyAndTinyInputsAreHandled) {
+TEST(FuzzCorpus, EmptyAndTinyInputsAreRefused) {
   const uint8_t none = 0;
-  EXPECT_EQ(FuzzScene(&none, 0), 0);
+  EXPECT_EQ(CheckSceneBytes(&none, 0), Outcome::kRefused);
+  EXPECT_EQ(CheckImageBytes(&none, 0), Outcome::kRefused);
+  for (uint8_t ext = 0; ext < 3; ++ext) EXPECT_EQ(CheckImageBytes(&ext, 1), Outcome::kRefused);  // empty files
+  EXPECT_EQ(FuzzScene(&none, 0), 0);  // libFuzzer's entries always return 0
   EXPECT_EQ(FuzzImage(&none, 0), 0);
-  for (uint8_t ext = 0; ext < 3; ++ext) EXPECT_EQ(FuzzImage(&ext, 1), 0);  // empty files
 }
 
 }  // namespace

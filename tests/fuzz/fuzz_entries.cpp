@@ -138,19 +138,19 @@ std::string TempBase() {
 
 }  // namespace
 
-int FuzzScene(const uint8_t* data, size_t size) {
+Outcome CheckSceneBytes(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     const Scene s = ParseScene(text, "fuzz.json", AALAB_SOURCE_DIR "/scenes/library");
     CheckScene(s);
   } catch (const UserError&) {
-    // Expected for bad input.
+    return Outcome::kRefused;  // expected for bad input
   }
-  return 0;
+  return Outcome::kAccepted;
 }
 
-int FuzzImage(const uint8_t* data, size_t size) {
-  if (size == 0) return 0;
+Outcome CheckImageBytes(const uint8_t* data, size_t size) {
+  if (size == 0) return Outcome::kRefused;
   static const char* const kExt[] = {".png", ".exr", ".tif"};
   const std::string path = TempBase() + kExt[data[0] % 3];
   {
@@ -158,6 +158,7 @@ int FuzzImage(const uint8_t* data, size_t size) {
     f.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));
     if (!f) FuzzFail("cannot write the temporary file " + path);
   }
+  Outcome outcome = Outcome::kAccepted;
   try {
     const LoadedImage img = ReadImage(path, kFuzzMaxPixels);
     const ImageF& p = img.pixels;
@@ -169,10 +170,20 @@ int FuzzImage(const uint8_t* data, size_t size) {
       if (!std::isfinite(v)) FuzzFail("image read with a non-finite pixel");
     }
   } catch (const UserError&) {
-    // Expected for bad input.
+    outcome = Outcome::kRefused;  // expected for bad input
   }
   std::error_code ec;
   fs::remove(path, ec);
+  return outcome;
+}
+
+int FuzzScene(const uint8_t* data, size_t size) {
+  CheckSceneBytes(data, size);
+  return 0;
+}
+
+int FuzzImage(const uint8_t* data, size_t size) {
+  CheckImageBytes(data, size);
   return 0;
 }
 
