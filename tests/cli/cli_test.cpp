@@ -12,6 +12,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_util.h"
+#include "harness/core/color.h"
+#include "harness/io/image_io.h"
+#include "methods/fxaa1.h"
+#include "methods/fxaa311.h"
+#include "scenes/library.h"
+#include "scenes/render.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -21,6 +27,33 @@ using aalab::clitest::TempDir;
 
 
 
+
+/// Expects the 8-bit image file at `path` to hold exactly the RGB bytes of `want`.
+void ExpectFileIs(const fs::path& path, const aalab::Image8& want) {
+  ASSERT_TRUE(fs::exists(path)) << path;
+  const aalab::Image8 got = aalab::ReadImage8(path.string());
+  ASSERT_EQ(got.Width(), want.Width()) << path;
+  ASSERT_EQ(got.Height(), want.Height()) << path;
+  long differing = 0;
+  for (int y = 0; y < want.Height(); ++y) {
+    for (int x = 0; x < want.Width(); ++x) {
+      for (int c = 0; c < 3; ++c) differing += got.At(x, y, c) != want.At(x, y, c);
+    }
+  }
+  EXPECT_EQ(differing, 0) << path << ": channel values that differ from the library's result";
+}
+
+/// The library's render of a library scene (what `aalab render` must write).
+aalab::Image8 LibraryFrame(const std::string& scene, int w, int h, int grid) {
+  const aalab::Scene s = aalab::LoadScene(scene);
+  const aalab::Tracer tracer(s);
+  aalab::RenderSpec spec;
+  if (grid > 1) {
+    spec.pattern = aalab::SamplePattern::kStratified;
+    spec.grid = grid;
+  }
+  return aalab::RenderFrame(tracer, w, h, spec, 1, nullptr);  // seed 1: aalab render's default
+}
 
 void ExpectFails(const std::string& args, const std::vector<std::string>& parts) {
   const CmdResult r = Aalab(args);
@@ -128,8 +161,28 @@ TEST(Cli, RenderWritesImages) {
   const fs::path dir = TempDir("render");
   EXPECT_EQ(Aalab("render --scene circle --size 32x18 --spp 4 --out " + (dir / "c.png").string()).code, 0);
   EXPECT_EQ(Aalab("render --scene circle --size 32x18 --out " + (dir / "c.exr").string()).code, 0);
-  EXPECT_TRUE(fs::exists(dir / "c.png"));
-  EXPECT_TRUE(fs::exists(dir / "c.exr"));
+  // The files hold the library's render of the same scene, size, samples and seed: the PNG
+  // its 8-bit frame (2x2 stratified), the EXR its float resolve (1 sample per pixel at the
+  // centre), checked through its documented relation QuantizeUnorm8(SrgbEncode(linear)) to
+  // the 8-bit frame of the same samples, and against the library's float resolve value by value.
+  ExpectFileIs(dir / "c.png", LibraryFrame("circle", 32, 18, 2));
+  ASSERT_TRUE(fs::exists(dir / "c.exr"));
+  const aalab::ImageF exr = aalab::ReadImage((dir / "c.exr").string()).pixels;
+  const aalab::Image8 centre = LibraryFrame("circle", 32, 18, 1);
+  const aalab::Scene circle = aalab::LoadScene("circle");
+  const aalab::ImageF linear = aalab::RenderFrameLinear(aalab::Tracer(circle), 32, 18, aalab::RenderSpec{}, 1, nullptr);
+  ASSERT_EQ(exr.Width(), 32);
+  ASSERT_EQ(exr.Height(), 18);
+  long differing = 0;
+  for (int y = 0; y < 18; ++y) {
+    for (int x = 0; x < 32; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        differing += exr.At(x, y, c) != linear.At(x, y, c);
+        differing += aalab::QuantizeUnorm8(aalab::SrgbEncode(exr.At(x, y, c))) != centre.At(x, y, c);
+      }
+    }
+  }
+  EXPECT_EQ(differing, 0) << "c.exr is not the library's float resolve of the 1x frame";
   ExpectFails("render --scene circle --spp 3 --out " + (dir / "x.png").string(), {"--spp 3", "square"});
   ExpectFails("render --scene circle --out " + (dir / "x.bmp").string(), {".exr or .png"});
   ExpectFails("render --scene circle --out /nonexistent-dir/x.png", {"does not exist"});
@@ -164,18 +217,32 @@ TEST(Cli, ApplyRunsPostFiltersOnUserImages) {
   const fs::path dir = TempDir("apply");
   const std::string in = (dir / "in.png").string();
   ASSERT_EQ(Aalab("render --scene wedges --size 64x36 --out " + in).code, 0);
+  // Every output is the library's filter, with the spec's parameters set by hand here, of
+  // the library's render of the same scene (which the input file holds: RenderWritesImages).
+  const aalab::Image8 frame = LibraryFrame("wedges", 64, 36, 1);
+  ExpectFileIs(in, frame);
   CmdResult r = Aalab("apply --method fxaa1-p3 " + in + " " + (dir / "out.png").string());
   EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_TRUE(fs::exists(dir / "out.png"));
+  const aalab::Image8 p3 = aalab::Fxaa1(frame, aalab::Fxaa1Preset(3), "", nullptr);
+  EXPECT_NE(p3, frame);  // wedges has edges: the check below compares a filtered frame
+  ExpectFileIs(dir / "out.png", p3);
   r = Aalab("apply --method fxaa311-p39:subpix=0.5 " + in + " " + (dir / "out311.png").string());
   EXPECT_EQ(r.code, 0) << r.output;
+  aalab::Fxaa311Params p39;
+  p39.steps = aalab::Fxaa311PresetSteps(39);
+  p39.subpix = 0.5f;
+  ExpectFileIs(dir / "out311.png", aalab::Fxaa311(frame, p39, nullptr));
   r = Aalab("apply --method fxaa1-p3 --debug horzvert " + in + " " + (dir / "dbg.png").string());
   EXPECT_EQ(r.code, 0) << r.output;
-  // Float input goes through the display transform, and the command says so.
+  ExpectFileIs(dir / "dbg.png", aalab::Fxaa1(frame, aalab::Fxaa1Preset(3), "horzvert", nullptr));
+  // Float input goes through the display transform, and the command says so. The EXR holds
+  // the float resolve of the same centre samples, so display transform + encode gives back
+  // `frame` (RenderFrameLinear's contract), and the output is fxaa-high of `frame`.
   ASSERT_EQ(Aalab("render --scene wedges --size 64x36 --out " + (dir / "in.exr").string()).code, 0);
   r = Aalab("apply --method fxaa-high " + (dir / "in.exr").string() + " " + (dir / "fromexr.png").string());
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("display transform"), std::string::npos) << r.output;
+  ExpectFileIs(dir / "fromexr.png", aalab::Fxaa311(frame, aalab::FxaaTutorialHighParams(), nullptr));
 }
 
 TEST(Cli, ApplyErrorsLeaveNoOutput) {
