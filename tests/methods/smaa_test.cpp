@@ -209,6 +209,125 @@ TEST(SmaaBlending, ZStepWeightsByHand) {
   EXPECT_EQ(w.Pixel(10, 8)[0] | w.Pixel(10, 8)[1] | w.Pixel(7, 8)[0] | w.Pixel(7, 8)[1], 0);
 }
 
+TEST(SmaaBlending, CornerRoundingByHand) {
+  // The Z step of ZStepWeightsByHand with corner detection on (diagonals off). The corner
+  // test of SMAADetectHorizontalCornerPattern reads, at the left end L (texel centre of
+  // (8, 8): the left search ended there, distance 0) and the right end R (centre of (9, 8),
+  // distance 0 for pixel (9, 8)), the left edges one row below / two rows above:
+  //   factor.x = 1 − rounding.x·E(L + (0, 1)).r − rounding.y·E(R + (1, 1)).r
+  //   factor.y = 1 − rounding.x·E(L + (0, −2)).r − rounding.y·E(R + (1, −2)).r
+  // with rounding = (1 − corner_rounding/100)·lr/(lr.x + lr.y), lr = step(d.xy, d.yx):
+  // the nearer end (both when d.x = d.y). All reads are texel centres at this power-of-two
+  // size: 0 or 1 exactly.
+  // In ZStepWeightsByHand the crossing edges are one pixel long: the reads are 0, factor 1,
+  // weights 63. Here they continue: the left one down to (8, 9), the right one up to (10, 6):
+  // a real corner of the shape, which revectorisation would cut.
+  // pixel (8, 8): d = (0, 1) → lr = (1, 0), rounding = (0.75, 0); E(8, 9).r = 1 →
+  //   factor.x = 0.25: r = StoreUnorm8(0.25 · 63·fl(1/255)) = round(15.75) = 16.
+  // pixel (9, 8): d = (1, 0) → lr = (0, 1), rounding = (0, 0.75); E(10, 6).r = 1 →
+  //   factor.y = 0.25: g = 16.
+  // corner_rounding = 100 keeps the full weight (63); 0 removes it (0).
+  Image8 edges(16, 16, 4, 0);
+  edges.Pixel(8, 8)[1] = 255;
+  edges.Pixel(9, 8)[1] = 255;
+  edges.Pixel(8, 8)[0] = 255;
+  edges.Pixel(10, 7)[0] = 255;
+  SmaaParams p = NoDiagNoCorner();
+  p.corner = true;
+  EXPECT_EQ(p.corner_rounding, 25);
+  const Image8 short_crossings = SmaaBlendTexture(edges, p);
+  EXPECT_EQ(short_crossings.Pixel(8, 8)[0], 63);
+  EXPECT_EQ(short_crossings.Pixel(9, 8)[1], 63);
+  edges.Pixel(8, 9)[0] = 255;
+  edges.Pixel(10, 6)[0] = 255;
+  const Image8 w = SmaaBlendTexture(edges, p);
+  EXPECT_EQ(w.Pixel(8, 8)[0], 16);
+  EXPECT_EQ(w.Pixel(8, 8)[1], 0);
+  EXPECT_EQ(w.Pixel(9, 8)[0], 0);
+  EXPECT_EQ(w.Pixel(9, 8)[1], 16);
+  p.corner_rounding = 100;
+  EXPECT_EQ(SmaaBlendTexture(edges, p).Pixel(8, 8)[0], 63);
+  EXPECT_EQ(SmaaBlendTexture(edges, p).Pixel(9, 8)[1], 63);
+  p.corner_rounding = 0;
+  EXPECT_EQ(SmaaBlendTexture(edges, p).Pixel(8, 8)[0], 0);
+  EXPECT_EQ(SmaaBlendTexture(edges, p).Pixel(9, 8)[1], 0);
+  // The vertical twin (SMAADetectVerticalCornerPattern): the transposed edge texture (x ↔ y,
+  // left ↔ top) gives the same weights in the left-edge slots (b, a) at the transposed pixels.
+  Image8 t(16, 16, 4, 0);
+  for (int y = 0; y < 16; ++y) {
+    for (int x = 0; x < 16; ++x) {
+      t.Pixel(y, x)[0] = edges.Pixel(x, y)[1];
+      t.Pixel(y, x)[1] = edges.Pixel(x, y)[0];
+    }
+  }
+  p.corner_rounding = 25;
+  const Image8 wt = SmaaBlendTexture(t, p);
+  EXPECT_EQ(wt.Pixel(8, 8)[2], 16);
+  EXPECT_EQ(wt.Pixel(8, 8)[3], 0);
+  EXPECT_EQ(wt.Pixel(8, 9)[2], 0);
+  EXPECT_EQ(wt.Pixel(8, 9)[3], 16);
+}
+
+TEST(SmaaBlending, DiagonalSearchByHand) {
+  // A 45° staircase on a 32×32 edge texture: both edges (left and top) on the 16 pixels
+  // x + y = 31, 8 ≤ x ≤ 23 — what a bright region {x + y ≥ 31} gives. smaa-high: diagonals
+  // on, max_search_steps_diag = 8 (corners off, so only the diagonal path shapes the weights).
+  // Pixel P = (20, 11), traced through SMAACalculateDiagWeights:
+  //   SearchDiag1 down-left (−1, +1): (19, 12) ... (12, 19) all have both edges (w = 1), so
+  //     the loop runs to its limit, z = max_search_steps_diag − 1 = 7; the last fetch has a
+  //     top edge: d.x = 7 + 1 = 8, and d.z = 1 ≥ 0.9: no crossing edge looked for (cc.x = 0).
+  //   SearchDiag1 up-right (+1, −1): (21, 10), (22, 9), (23, 8), then (24, 7) without edges:
+  //     d.y = 3, d.w = 0: the end's crossing edges are read at texel (23.5 + 1, 11.5 − 3.25)
+  //     = (24.5, 8.25): 0.25·E(24, 7) + 0.75·E(24, 8), decoded (r·|5r − 3.75|, round g).
+  //   d.x + d.y = 11 > 2: AreaDiag at texel (80 + 20·cc.x + 8, 20·cc.y + 3).
+  //   SearchDiag2 (−1, −1) reads between (19, 10) and (20, 10): no edges, d.x = 0; (21, 11) has
+  //     no left edge: d.y = 0; no second contribution.
+  //   A diagonal was found (r ≠ −g): the orthogonal and vertical passes are skipped: b = a = 0.
+  // Without a crossing edge: pattern 0 at texel (88, 3). AreaTex.py's pattern 0 averages the
+  // lines (1, 1)→(1 + d, 1 + d) and (1, 0)→(1 + d, d) (d = l + r + 1 = 12), sampled on the
+  // 30×30 lattice of pixel (1 + l, l) (weight 1 − area) and of (1 + l, 1 + l) (area); counted
+  // by hand with the samples exactly on a line (which double rounding decides) either way:
+  //   first line:  1 − [899, 900]/900, [435, 465]/900;  second: 1 − [435, 465]/900, [0, 1]/900
+  //   average: both weights in [435, 466]/1800 → int(255·v) in [61, 66].
+  // With a top edge on (24, 8): 0.75·1 → round → cz = 1, cc.y = 2·1 + 0 = 2: tile (0, 2),
+  // pattern 2 (crossing code 2 at the far end), texel (88, 43). Its first line starts at the
+  // near end's other corner, (0, 0)→(13, 12): on pixel (9, 8) the samples with
+  // 116 + 12i > 13j (659, one on the line), on (9, 9) those with 12i − 13j > 261 (31, one on
+  // the line); with the second line as above: weights [675, 706]/1800 → [95, 100] and
+  // [31, 33]/1800 → 4.
+  Image8 edges(32, 32, 4, 0);
+  for (int x = 8; x <= 23; ++x) {
+    edges.Pixel(x, 31 - x)[0] = 255;
+    edges.Pixel(x, 31 - x)[1] = 255;
+  }
+  const SmaaParams p = SmaaPreset("high");
+  ASSERT_TRUE(p.diag);
+  ASSERT_EQ(p.max_search_steps_diag, 8);
+  const Image8& area = SmaaAreaTexture();
+  {
+    const Image8 w = SmaaBlendTexture(edges, p);
+    const uint8_t* px = w.Pixel(20, 11);
+    EXPECT_GE(px[0], 61);
+    EXPECT_LE(px[0], 66);
+    EXPECT_GE(px[1], 61);
+    EXPECT_LE(px[1], 66);
+    EXPECT_EQ(px[2] | px[3], 0);
+    EXPECT_EQ(px[0], area.Pixel(88, 3)[0]);  // the texel the hand-traced search lands on
+    EXPECT_EQ(px[1], area.Pixel(88, 3)[1]);
+  }
+  edges.Pixel(24, 8)[1] = 255;
+  {
+    const Image8 w = SmaaBlendTexture(edges, p);
+    const uint8_t* px = w.Pixel(20, 11);
+    EXPECT_GE(px[0], 95);
+    EXPECT_LE(px[0], 100);
+    EXPECT_EQ(px[1], 4);
+    EXPECT_EQ(px[2] | px[3], 0);
+    EXPECT_EQ(px[0], area.Pixel(88, 43)[0]);
+    EXPECT_EQ(px[1], area.Pixel(88, 43)[1]);
+  }
+}
+
 TEST(SmaaBlending, NeighborhoodBlendByHand) {
   // Black rows 0..7 over white rows 8..15. Pixel (8, 8) carries weight r = 63/255 (blend
   // with the pixel above): it fetches at y − 0.24706 texel; the 8-bit fraction of 0.75294

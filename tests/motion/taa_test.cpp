@@ -1,4 +1,5 @@
-// TAA on a still scene converges towards the reference: a bound derived from the blend.
+// TAA on a still scene converges towards the reference (a bound derived from the blend);
+// under motion it flickers less than `none` and leaves no ghost trail (below).
 //
 // The bound. With clip=none the output is an exponential moving average (EMA) of the
 // jittered samples, weights α(1−α)^k. For a pixel crossed by one straight edge between
@@ -19,6 +20,8 @@
 #include "harness/core/color.h"
 #include "methods/registry.h"
 #include "methods/taa.h"
+#include "metrics/temporal.h"
+#include "scenes/motion.h"
 #include "scenes/motion_render.h"
 #include "scenes/render.h"
 #include "../scenes/scene_test_util.h"
@@ -91,12 +94,152 @@ TEST(Taa, StillSceneConvergesWithinTheEmaBound) {
 }
 
 TEST(Taa, DefaultClippingStillConverges) {
-  // Variance clipping may pull the history toward the current sample (a bias the bound
-  // above does not cover); it must still remove most of the 1x frame's edge error.
+  // Variance clipping may pull the history toward the current neighbourhood (a bias the
+  // bound above does not cover). On a still scene the history is the converged average and
+  // an edge pixel's 3×3 neighbourhood straddles the edge, so the box is wide and clipping is
+  // rare: the default is held to the same bound as the plain accumulation, 1.5·2α/(2 − α) =
+  // 0.158 of none's edge MSE (was a loose 0.5). That is a requirement, not a derivation of the
+  // clipping's bias: measured 0.060 (clip=none: 0.036).
+  const double alpha = 0.1;
   const Result r = RunStill("taa", 64);
-  std::printf("taa (variance clip), 64 frames: edge MSE ratio to none %.4f\n", r.taa_mse / r.none_mse);
-  EXPECT_LT(r.taa_mse, 0.5 * r.none_mse) << r.taa_mse << " vs none " << r.none_mse;
+  std::printf("taa (variance clip), 64 frames: edge MSE ratio to none %.4f (bound %.4f)\n", r.taa_mse / r.none_mse,
+              1.5 * 2 * alpha / (2 - alpha));
+  EXPECT_LT(r.taa_mse, 1.5 * 2 * alpha / (2 - alpha) * r.none_mse) << r.taa_mse << " vs none " << r.none_mse;
   EXPECT_TRUE(r.interior_exact);
+}
+
+// ---------------------------------------------------------------- under motion
+//
+// A white quad (12 × 24 px, rotated 7°: slanted edges) crosses a black background for 32
+// frames at 64×48, run as `aalab run --frames 32` runs it (per-frame scene, jittered render,
+// exact motion vectors, one state per sequence).
+//
+// Temporal error, at 0.37 px per frame. The 1x frame samples pixel centres, so as the slanted
+// edges slide by a non-integer step the sampling phase changes every frame and the staircase
+// crawls: an edge pixel's error jumps between −c and 1 − c (c its coverage) whenever the edge
+// crosses its centre. TAA's edge pixels carry a reprojected average of ~1/α jittered samples,
+// which follows the coverage instead, so the frame-to-frame change of its error
+// (temporal_rmse, and temporal_edge_rmse on the edge masks: metrics/temporal.h) must be below
+// none's. Measured when this test was written: 0.058 vs 0.074 (edge pixels 0.202 vs 0.258;
+// at 0.25 and 0.5 px/frame too). Not at every speed: at 0.7 px/frame TAA's is above none's
+// (about 0.08 vs 0.077; edge pixels 0.287 vs 0.261), and at exactly 1 px/frame, where none's
+// frames are exact 1-px shifts of each other (the sampling phase never changes: no crawl),
+// TAA's is higher still (0.099 vs 0.080). Why TAA changes more at these speeds (the
+// neighbourhood clipping of edge pixels whose 3×3 box changes as the edge moves is the first
+// suspect) is not analysed here; docs/motion.md's measurements are on the library scenes.
+//
+// Ghost trail, at 0.37 and 1 px per frame. Behind the quad, a pixel it covered in one of the
+// last 15 frames whose 5×5 neighbourhood in the current reference is pure background: its 3×3
+// neighbourhood's jittered samples (each inside its own pixel) can then only see background
+// (the quad is convex and 12 px wide: a sample on it inside the 3×3 would put covered samples
+// of the 64-spp reference into the 5×5), so the rectification box is the background colour
+// ± 1e-8 (methods/taa.cpp's FLT_EPS extents), the reprojected white history is clipped onto
+// it, and the output is the background's code exactly — what `none` shows. Without
+// rectification (clip=none) the history there decays only as (1 − α)^k: 0.9^15 = 0.21 of
+// white after 15 frames, sRGB code ~125: a trail, which the last test checks is seen (the
+// check can fail).
+
+struct MotionResult {
+  double temporal_rmse = 0, temporal_edge_rmse = 0;            ///< the method's
+  double none_temporal_rmse = 0, none_temporal_edge_rmse = 0;  ///< none's
+  int trail_pixels = 0;  ///< pixels behind the quad checked for a ghost (frames 16..31)
+  int ghosts = 0;        ///< of those, pixels whose output differs from the background's code
+};
+
+MotionResult RunMoving(const std::string& method, double px_per_frame) {
+  // 12 px per scene unit (height 4 over 48 px): px_per_frame · 31 / 12 units in 31 frames.
+  const std::string travel = std::to_string(px_per_frame * 31.0 / 12.0);
+  const Scene s = testing::ParseText(R"({"name": "moving-quad", "effects": ["unlit"], "background": [0, 0, 0],
+    "camera": {"type": "orthographic", "position": [0,0,10], "look_at": [0,0,0], "height": 4},
+    "materials": {"w": {"shading": "unlit", "color": [1, 1, 1]}},
+    "objects": [{"shape": "quad", "size": [1, 2], "material": "w",
+                 "transform": {"translate": [-1.2, 0, 0], "rotate": [0, 0, 7]},
+                 "motion": {"keys": [{"frame": 0}, {"frame": 31, "translate": [)" + travel + R"(, 0, 0]}]}}],
+    "animation": {"frames": 32}})");
+  const int W = 64, H = 48, F = 32;
+  const MethodPlan plan = MakeMethod(method);
+  auto state = plan.make_state();
+  TemporalError taa_te, none_te;
+  std::vector<ImageF> refs;  // every frame's reference, for the trail
+  MotionResult r;
+  for (int k = 0; k < F; ++k) {
+    const Scene frame_scene = SceneAtFrame(s, k);
+    const Tracer tracer(frame_scene);
+    const Reference ref = RenderReference(tracer, W, H, 8, 1, nullptr);
+    const Image8 none = RenderFrame(tracer, W, H, RenderSpec{}, 1, nullptr);
+    const FrameJitter j = FrameJitterAt(plan.render.jitter, k);
+    const SurfaceFrame sf = RenderSurfaceFrame(tracer, W, H, j, nullptr);
+    std::vector<float> prev;
+    if (k > 0) {
+      for (const glm::vec2& p : PreviousPositions(s, k, sf, j)) {
+        prev.push_back(p.x);
+        prev.push_back(p.y);
+      }
+    }
+    TemporalInput in;
+    in.frame = &sf.image;
+    in.previous = k > 0 ? &prev : nullptr;
+    in.frame_index = k;
+    const Image8 out = state->Step(in, nullptr);
+    taa_te.AddFrame(ToFloat(out, 3), ref.image, &ref.edge_mask);
+    none_te.AddFrame(ToFloat(none, 3), ref.image, &ref.edge_mask);
+    refs.push_back(ref.image);
+    if (k < 16) continue;
+    for (int y = 2; y < H - 2; ++y) {
+      for (int x = 2; x < W - 2; ++x) {
+        bool clear = true;
+        for (int dy = -2; dy <= 2 && clear; ++dy) {
+          for (int dx = -2; dx <= 2 && clear; ++dx) clear = ref.image.At(x + dx, y + dy, 0) == 0.0f;
+        }
+        bool was_covered = false;
+        for (int back = 1; back <= 15; ++back) was_covered |= refs[static_cast<size_t>(k - back)].At(x, y, 0) == 1.0f;
+        if (!clear || !was_covered) continue;
+        ++r.trail_pixels;
+        r.ghosts += out.At(x, y, 0) != none.At(x, y, 0) || none.At(x, y, 0) != 0;
+      }
+    }
+  }
+  auto value = [](const TemporalError& te, const char* name) {
+    for (const auto& v : te.Values()) {
+      if (v.name == name) return *v.value;
+    }
+    ADD_FAILURE() << "no " << name;
+    return 0.0;
+  };
+  r.temporal_rmse = value(taa_te, "temporal_rmse");
+  r.temporal_edge_rmse = value(taa_te, "temporal_edge_rmse");
+  r.none_temporal_rmse = value(none_te, "temporal_rmse");
+  r.none_temporal_edge_rmse = value(none_te, "temporal_edge_rmse");
+  return r;
+}
+
+TEST(Taa, SlowMotionFlickersLessThanNoneAndLeavesNoTrail) {
+  const MotionResult r = RunMoving("taa", 0.37);
+  std::printf("taa, quad moving 0.37 px/frame: temporal_rmse %.5f (none %.5f), temporal_edge_rmse %.5f (none %.5f); "
+              "%d trail pixels, %d ghosts\n",
+              r.temporal_rmse, r.none_temporal_rmse, r.temporal_edge_rmse, r.none_temporal_edge_rmse, r.trail_pixels,
+              r.ghosts);
+  EXPECT_LT(r.temporal_rmse, r.none_temporal_rmse);
+  EXPECT_LT(r.temporal_edge_rmse, r.none_temporal_edge_rmse);
+  // 16 frames × a strip ~2.5 px wide (15 frames · 0.37 px less the 5×5 margin) × ~20 px tall.
+  EXPECT_GT(r.trail_pixels, 16 * 30);
+  EXPECT_EQ(r.ghosts, 0);
+}
+
+TEST(Taa, FastMotionLeavesNoTrail) {
+  const MotionResult r = RunMoving("taa", 1.0);
+  std::printf("taa, quad moving 1 px/frame: temporal_rmse %.5f (none %.5f); %d trail pixels, %d ghosts\n",
+              r.temporal_rmse, r.none_temporal_rmse, r.trail_pixels, r.ghosts);
+  // 16 frames × a strip ~12 px wide (15 px of travel less the 5×5 margin) × ~20 px tall.
+  EXPECT_GT(r.trail_pixels, 16 * 100);
+  EXPECT_EQ(r.ghosts, 0);
+}
+
+TEST(Taa, WithoutRectificationTheTrailIsSeen) {
+  // The same sequence with clip=none: the trail check above is able to fail.
+  const MotionResult r = RunMoving("taa:clip=none", 1.0);
+  std::printf("taa:clip=none: %d of %d trail pixels ghost\n", r.ghosts, r.trail_pixels);
+  EXPECT_GT(r.ghosts, r.trail_pixels / 2);
 }
 
 }  // namespace
