@@ -89,7 +89,7 @@
 //     medium level is called "preset 26" in the text, but its numbers (1.5, 2×6, 4; guess 8)
 //     give preset 27's table; the English text's second listing of MEDIUM has 9 sizes for
 //     EXTRA_EDGE_STEPS 8 (seed 001, the Chinese copy, has the 8 of the first listing). We
-//     use the 8-size listing, as DESIGN.md does.
+//     use the 8-size listing, as docs/design.md does.
 //   * seed 003's GLSL vs preset 39: QUALITY(q) = 1,1,1,1,1,1.5,2,2,2,2,4,8 for q = 0..11 and
 //     the loop fetches at i = 1..11 after advancing by QUALITY(i-1), then advances by
 //     QUALITY(i): exactly preset 39's table (11 fetches per side, the last step a guess).

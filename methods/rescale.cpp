@@ -10,7 +10,7 @@
 //             g1 = w2+w3 placed at texel positions (i-1) + w1/g0 and (i+1) + w3/g1.
 //             The B-spline is smoothing, not interpolating: all weights are positive, so
 //             the result never overshoots (no ringing) and stays in [0, 1].
-// Deviations: filtering runs on the sRGB-encoded 8-bit values (DESIGN.md); Unity samples the
+// Deviations: filtering runs on the sRGB-encoded 8-bit values (docs/design.md "Colour"); Unity samples the
 // sRGB render texture, so its GPU filters in linear light. Bicubic taps are computed in
 // texel coordinates and passed to BilinearSampler::Sample (the shader converts them to
 // normalised coordinates and the GPU multiplies back; the difference is float rounding of

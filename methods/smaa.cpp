@@ -61,7 +61,7 @@
 //     float fractions, to show the effect. Round to nearest is our choice; hardware rounding
 //     of the fraction is vendor-specific (documented in docs/smaa.md).
 //   * round() is HLSL's round_ne (nearest, ties to even): std::nearbyint.
-//   * The colour pass blends the sRGB-encoded values read as UNORM (DESIGN.md: post filters
+//   * The colour pass blends the sRGB-encoded values read as UNORM (docs/design.md "Colour": post filters
 //     run on encoded values); the reference recommends an sRGB read/write in pass 3 only
 //     and says it "will work anyway, but will perform antialiasing in gamma space" without.
 //   * Output rgb rounded to 8 bits (round to nearest), alpha 255 (the shader returns the

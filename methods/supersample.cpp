@@ -9,7 +9,7 @@
 //                row and column of a 4×4 sub-grid holds exactly one sample
 //   ssaa-jitter  `spp` samples placed uniformly at random in the pixel (hash of pixel,
 //                sample index and run seed), spp default 8, range 1..1024
-// Sources: DESIGN.md "Resolve"; FrostKiwi, "Analytical Anti-Aliasing" (seeds/004) on SSAA.
+// Sources: docs/design.md "Resolve"; FrostKiwi, "Analytical Anti-Aliasing" (seeds/004) on SSAA.
 #include <cmath>
 
 #include "harness/core/error.h"

@@ -16,7 +16,7 @@
 // image", "empty mask" (no pixel > 0.5), "mask covers every pixel" (interior has no pixel),
 // "identical" (MSE = 0, PSNR infinite), "no none frame" (none_image absent), "none has no
 // edge error" (MSE_edge(none) = 0, ratio undefined).
-// Parameters: none. Source: DESIGN.md "Metrics"; the split into edge and interior error is
+// Parameters: none. Source: docs/design.md "Metrics"; the split into edge and interior error is
 // this project's definition, not a published metric.
 #include <cmath>
 #include <string>

@@ -7,7 +7,7 @@
 // Values: abs_err_p50, abs_err_p95, abs_err_p99 (nearest-rank percentiles: sort the N pixel
 // errors ascending, take the one of 1-based rank ceil(p·N/100)), abs_err_max (rank N).
 // Identical images give 0 everywhere (values, not null). Null only for an empty image.
-// Parameters: none. Source: DESIGN.md "Metrics"; percentiles by the classic nearest-rank
+// Parameters: none. Source: docs/design.md "Metrics"; percentiles by the classic nearest-rank
 // method (no interpolation: every reported percentile is an observed pixel error).
 // Precision: differences and the per-pixel mean in double; ranks in exact integer
 // arithmetic; sorting makes the result independent of pixel order and thread count.

@@ -1,5 +1,5 @@
 /// Metrics: pure functions of a method image and the reference (sRGB-encoded values in
-/// [0, 1], RGB; DESIGN.md "Metrics"). Sums in double, in a fixed order.
+/// [0, 1], RGB; docs/design.md "Metrics"). Sums in double, in a fixed order.
 #pragma once
 #include <optional>
 #include <string>

@@ -4,7 +4,7 @@
 // values in [0, 1]; PSNR = 10·log10(peak² / MSE) with peak 1.0. Identical images (MSE = 0)
 // have infinite PSNR, which JSON cannot hold: the value is empty (null) with the reason
 // "identical". Sums are double, row by row in row-major order (fixed, thread-independent).
-// Source: DESIGN.md "Metrics"; OpenImageIO imagebufalgo_compare (double sums, peak).
+// Source: docs/design.md "Metrics"; OpenImageIO imagebufalgo_compare (double sums, peak).
 #include <cmath>
 
 #include "harness/core/error.h"

@@ -1,5 +1,5 @@
 /// Named, typed, range-checked parameters for methods and metrics, and the
-/// "name:key=value,key=value" spec syntax (DESIGN.md "Names").
+/// "name:key=value,key=value" spec syntax (docs/design.md "Names").
 #pragma once
 #include <map>
 #include <string>

@@ -57,7 +57,7 @@ bool IsFxaaMethod(const std::string& name) { return name.rfind("fxaa", 0) == 0 &
 // Step tables.
 
 TEST(Fxaa311, StepTablesEqualDesignDoc) {
-  // DESIGN.md "FXAA 3.11 quality presets", written out by hand (and checked against the
+  // docs/design.md "Reference facts", FXAA 3.11 quality presets, written out by hand (and checked against the
   // FXAA_QUALITY__P* #defines of seeds/004: they agree row for row).
   const std::vector<std::pair<int, std::vector<float>>> design = {
       {10, {1.5, 3, 12}},
