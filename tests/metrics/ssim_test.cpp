@@ -45,21 +45,46 @@ TEST(Ssim, CheckerboardNoiseOnConstantMatchesClosedForm) {
   EXPECT_NEAR(*ComputeSsim(y, x).ssim, expected, 1e-12);
 }
 
-// Random ±d signs (zero mean, variance d²) on a constant μ. Within a window the sample
-// variance estimates d²(1 − Σw²) on average (the weighted mean absorbs Σw² of it, with the
-// 2-D Σw² = (Σ_i w_i²)² = 0.18813² = 0.035394), so the closed form uses
-// σ² = d²(1 − 0.035394); the remaining spread of local variances (Jensen) and of local
-// means moves the mean SSIM by a few 1e-5 here (naive σ² = d² would be off by 3%).
-TEST(Ssim, RandomNoiseOnConstantNearClosedForm) {
+// Random ±d signs on a constant μ: x = μ, y = μ + d·ε with ε = ±1 per pixel and channel.
+// In a window with weights w (Σw = 1) let S = Σ w_i ε_i. Then, exactly,
+//   μy = μ + d·S,  σy² = Σ w_i (y_i − μy)² = d²·Σ w_i (ε_i − S)² = d²(1 − S²)  (ε_i² = 1),
+//   σx² = σxy = 0,
+// so Eq. (13) of each window is (2μ·μy + C1)/(μ² + μy² + C1) · C2/(d²(1 − S²) + C2), and SSIM
+// is its mean over the valid windows and the three channels. The expected value below is
+// computed that way: S from the signs and the separable Gaussian (σ = 1.5, 11 taps,
+// normalised), no second moments at all — an independent route to the same number. The
+// implementation forms σy² = E[y²] − μy² in double: |E[y²]| ≤ 0.33, so each moment is off by
+// at most ~121·0.33·2⁻⁵³ ≈ 4.4e-15, σy² (≈ 0.0038) by ~1e-14, and a window's SSIM, whose
+// derivative in σy² is at most C2/C2² ≈ 1.1e3 in size, by ~1e-11: tolerance 1e-10.
+// (The closed form C2/(d²(1 − Σw²) + C2) = 0.192802 used before is the expectation over sign
+// patterns to first order; this image's mean, 0.19286, differs from it by its sampling noise,
+// which the 1e-3 tolerance of that check had to absorb.)
+TEST(Ssim, RandomNoiseOnConstantIsEq13OfEachWindow) {
   const double mu = 0.5, d = 0.0625;
-  ImageF x(96, 96, 3, static_cast<float>(mu)), y(96, 96, 3);
-  for (int j = 0; j < 96; ++j)
-    for (int i = 0; i < 96; ++i)
-      for (int c = 0; c < 3; ++c)
-        y.At(i, j, c) = static_cast<float>(testimg::Hash32(i + 1000u * j + 77777u * c) & 1u ? mu + d : mu - d);
-  const double var = d * d * (1.0 - 0.035394);
-  const double expected = kC2 / (var + kC2);  // luminance term is 1 − O(1e-4) here
-  EXPECT_NEAR(*ComputeSsim(x, y).ssim, expected, 1e-3);  // measured: 0.192858 vs 0.192802
+  const int n = 96;
+  ImageF x(n, n, 3, static_cast<float>(mu)), y(n, n, 3);
+  auto sign = [](int i, int j, int c) { return testimg::Hash32(i + 1000u * j + 77777u * c) & 1u ? 1.0 : -1.0; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) y.At(i, j, c) = static_cast<float>(mu + d * sign(i, j, c));
+  double w[11], wsum = 0.0;
+  for (int k = 0; k < 11; ++k) wsum += w[k] = std::exp(-((k - 5) * (k - 5)) / (2.0 * 1.5 * 1.5));
+  for (double& v : w) v /= wsum;
+  double total = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    for (int cy = 5; cy < n - 5; ++cy) {
+      for (int cx = 5; cx < n - 5; ++cx) {
+        double S = 0.0;
+        for (int b = 0; b < 11; ++b)
+          for (int a = 0; a < 11; ++a) S += w[a] * w[b] * sign(cx - 5 + a, cy - 5 + b, c);
+        const double my = mu + d * S;
+        total += (2 * mu * my + kC1) / (mu * mu + my * my + kC1) * kC2 / (d * d * (1.0 - S * S) + kC2);
+      }
+    }
+  }
+  const double expected = total / (3.0 * (n - 10) * (n - 10));
+  EXPECT_NEAR(*ComputeSsim(x, y).ssim, expected, 1e-10);
+  EXPECT_NEAR(*ComputeSsim(y, x).ssim, expected, 1e-10);  // symmetric: σx² and σy² swap roles
 }
 
 TEST(Ssim, MeanOfChannels) {
