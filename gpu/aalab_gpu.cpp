@@ -1,7 +1,9 @@
-// aalab_gpu — the post filters' CUDA twins, timed and checked on a GPU (docs/gpu.md).
+// aalab_gpu — the post filters' and TAA's CUDA twins, timed and checked on a GPU (docs/gpu.md).
 //
-// Reads the frames `aalab export-frames` wrote (DIR/frames.tsv + binary PPMs), runs every
-// method's kernels on them, and writes one JSON file:
+// Reads the frames `aalab export-frames` wrote (DIR/frames.tsv + binary PPMs, and TAA's
+// sequences with --taa-frames), runs every method's kernels on them (SMAA also each pass
+// alone; TAA over each sequence with its history on the GPU, gpu/taa_gpu.cpp), and writes
+// one JSON file:
 //   timing    CUDA events around each launch (chain of kernels), `--warmup` untimed launches,
 //             then `--repeat` timed ones: median / min / max in ms. Clocks are not locked:
 //             the GPU runs at whatever boost clock it chooses (nvidia-smi readings before and

@@ -3,8 +3,10 @@
 /// (cudaTextureObject on a uchar4 cudaArray: hardware clamp-to-edge and bilinear filtering)
 /// and every output written through a surface, as a render target. Built only where CMake
 /// finds a CUDA compiler. Parameters come from the CPU side's registry and preset tables
-/// (Fxaa1Preset, Fxaa311PresetSteps, FxaaTutorialSteps): this file holds no copies of them.
-/// See methods/cuda/post_kernels.cu for the kernels and their deviations from the CPU code.
+/// (Fxaa1Preset, Fxaa311PresetSteps, FxaaTutorialSteps, the SMAA and TAA registry rows, the
+/// SMAA area and search textures): this file holds no copies of them.
+/// The kernels and their deviations from the CPU code are described at the top of each .cu
+/// file beside this header (fxaa1, fxaa311, rescale, smaa, taa; gpu_frame for the frame).
 #pragma once
 #include <cuda_runtime_api.h>
 
