@@ -1,7 +1,9 @@
-// aalab_gpu — the post filters' CUDA twins, timed and checked on a GPU (docs/gpu.md).
+// aalab_gpu — the post filters' and TAA's CUDA twins, timed and checked on a GPU (docs/gpu.md).
 //
-// Reads the frames `aalab export-frames` wrote (DIR/frames.tsv + binary PPMs), runs every
-// method's kernels on them, and writes one JSON file:
+// Reads the frames `aalab export-frames` wrote (DIR/frames.tsv + binary PPMs, and TAA's
+// sequences with --taa-frames), runs every method's kernels on them (SMAA also each pass
+// alone; TAA over each sequence with its history on the GPU, gpu/taa_gpu.cpp), and writes
+// one JSON file:
 //   timing    CUDA events around each launch (chain of kernels), `--warmup` untimed launches,
 //             then `--repeat` timed ones: median / min / max in ms. Clocks are not locked:
 //             the GPU runs at whatever boost clock it chooses (nvidia-smi readings before and
@@ -38,6 +40,8 @@
 #include <vector>
 
 #include "gpu/gpu_methods.h"
+#include "gpu/measure.h"
+#include "gpu/taa_gpu.h"
 #include "harness/io/ppm.h"
 #include "gpu/texture_probe.h"
 #include "harness/core/color.h"
@@ -51,44 +55,10 @@ namespace fs = std::filesystem;
 
 struct Options {
   std::string frames_dir, json_path, outputs_dir, outputs_scene;
-  std::vector<std::string> methods;
+  std::vector<std::string> methods, taa_methods;
   int warmup = 20, repeat = 200;
   bool self_test = false, check = false, timing = true;
 };
-
-struct Stats {
-  double median = 0, min = 0, max = 0;
-};
-
-struct Fidelity {
-  double identical_share = 0;
-  double within1_share = 0;  // pixels whose rgb differs by at most one 8-bit level
-  int max_diff = 0;
-  long long differing = 0;
-  double mean_abs_diff = 0;  // over all pixels and rgb channels, in 8-bit levels
-};
-
-struct Entry {
-  std::string scene, size, spec, kernels;
-  bool timed = false;
-  Stats t, pass;  // pass: FXAA pass alone for pre-pass methods (pass.median 0 otherwise)
-  double ratio = 0, ratio_linear = 0;  // over the texture-path copy / the linear copy
-  bool has_fidelity = false;
-  Fidelity fid;
-  bool has_soft = false;
-  Fidelity soft;  // the software-filter variant (CPU bilinear arithmetic) against the CPU
-  bool deterministic = true, all_written = true;
-};
-
-Entry MakeEntry(const std::string& scene, const std::string& size, const std::string& spec,
-                const std::string& kernels) {
-  Entry e;
-  e.scene = scene;
-  e.size = size;
-  e.spec = spec;
-  e.kernels = kernels;
-  return e;
-}
 
 // "a,b:x=1,y=2,c": a comma followed by key=value continues the current spec.
 std::vector<std::string> SplitSpecs(const std::string& text) {
@@ -134,6 +104,7 @@ Options ParseArgs(int argc, char** argv) {
     else if (a == "--outputs") o.outputs_dir = value(i, a);
     else if (a == "--outputs-scene") o.outputs_scene = value(i, a);
     else if (a == "--methods") o.methods = SplitSpecs(value(i, a));
+    else if (a == "--taa-methods") o.taa_methods = SplitSpecs(value(i, a));
     else if (a == "--warmup") o.warmup = ParseInt(a, value(i, a), 0, 100000);
     else if (a == "--repeat") o.repeat = ParseInt(a, value(i, a), 1, 100000);
     else if (a == "--self-test") o.self_test = true;
@@ -147,6 +118,7 @@ Options ParseArgs(int argc, char** argv) {
           "  --self-test      synthetic frames (noise, shapes, odd sizes) instead of files\n"
           "  --json FILE      write timings and fidelity as JSON (aalab merge-gpu reads it)\n"
           "  --methods SPECS  comma-separated method specs (default: every post filter with a CUDA twin)\n"
+          "  --taa-methods SPECS  TAA specs run over each exported sequence (default: taa)\n"
           "  --repeat N       timed launches per method (default 200), after --warmup N (default 20)\n"
           "  --no-timing      fidelity checks only\n"
           "  --check          exit 1 when a check fails (copy not exact, output not written, GPU\n"
@@ -160,6 +132,7 @@ Options ParseArgs(int argc, char** argv) {
   if (o.self_test == !o.frames_dir.empty()) throw UserError("give exactly one of --frames DIR or --self-test");
   if (!o.outputs_dir.empty() && o.outputs_scene.empty()) throw UserError("--outputs needs --outputs-scene SCENE-WxH");
   if (o.methods.empty()) o.methods = DefaultGpuMethodSpecs();
+  if (o.taa_methods.empty()) o.taa_methods = DefaultGpuTaaSpecs();
   return o;
 }
 
@@ -171,6 +144,7 @@ struct FrameSet {
   int width = 0, height = 0;  // output size
   Image8 frame1x;
   Image8 scaled;  // empty when not exported
+  TaaInput taa;   // TAA's sequence (export-frames --taa-frames); empty when not exported
 };
 
 std::vector<FrameSet> ReadManifest(const std::string& dir) {
@@ -189,7 +163,10 @@ std::vector<FrameSet> ReadManifest(const std::string& dir) {
     while (std::getline(ss, field, '\t')) f.push_back(field);
     const std::string where = path + ":" + std::to_string(lineno);
     if (f.size() != 5) throw UserError(where + ": expected 5 tab-separated fields (scene, role, width, height, file)");
-    if (f[1] != "1x" && f[1] != "scaled") throw UserError(where + ": role '" + f[1] + "' (allowed: 1x, scaled)");
+    const bool taa = f[1].rfind("taa-", 0) == 0;
+    if (f[1] != "1x" && f[1] != "scaled" && !taa) {
+      throw UserError(where + ": role '" + f[1] + "' (allowed: 1x, scaled, taa-<frame>)");
+    }
     const int w = ParseInt(where + " width", f[2], 1, 65536);
     const int h = ParseInt(where + " height", f[3], 1, 65536);
     FrameSet* set = nullptr;
@@ -197,11 +174,25 @@ std::vector<FrameSet> ReadManifest(const std::string& dir) {
       if (s.scene == f[0] && s.width == w && s.height == h) set = &s;
     }
     if (!set) {
-      sets.push_back(FrameSet{f[0], w, h, {}, {}});
+      sets.push_back(FrameSet{f[0], w, h, {}, {}, {}});
       set = &sets.back();
     }
     Image8 img = ReadPpm((fs::path(dir) / f[4]).string());
-    if (f[1] == "1x") {
+    if (taa) {
+      const int t = ParseInt(where + " TAA frame", f[1].substr(4), 0, 255);
+      if (t != static_cast<int>(set->taa.frames.size())) {
+        throw UserError(where + ": TAA frame " + std::to_string(t) + " out of order (expected " +
+                        std::to_string(set->taa.frames.size()) + ")");
+      }
+      if (img.Width() != w || img.Height() != h) throw UserError(where + ": '" + f[4] + "' is not " + f[2] + "x" + f[3]);
+      std::vector<float> prev;
+      if (t > 0) {
+        const std::string stem = f[4].size() > 4 ? f[4].substr(0, f[4].size() - 4) : f[4];
+        prev = ReadPreviousPositions((fs::path(dir) / (stem + ".prev")).string(), w, h);
+      }
+      set->taa.frames.push_back(std::move(img));
+      set->taa.previous.push_back(std::move(prev));
+    } else if (f[1] == "1x") {
       if (img.Width() != w || img.Height() != h) throw UserError(where + ": '" + f[4] + "' is not " + f[2] + "x" + f[3]);
       set->frame1x = std::move(img);
     } else {
@@ -266,7 +257,7 @@ std::vector<FrameSet> SelfTestFrames() {
   auto add = [&](const std::string& name, Image8 (*make)(int, int), int w, int h) {
     const int sw = static_cast<int>(std::lround(4.0 / 3.0 * w));
     const int sh = static_cast<int>(std::lround(4.0 / 3.0 * h));
-    sets.push_back(FrameSet{name, w, h, make(w, h), make(sw, sh)});
+    sets.push_back(FrameSet{name, w, h, make(w, h), make(sw, sh), SyntheticTaaSequence(w, h, 5)});
   };
   add("noise", NoiseFrame, 97, 61);
   add("shapes", ShapesFrame, 331, 187);
@@ -276,70 +267,6 @@ std::vector<FrameSet> SelfTestFrames() {
 
 // ---------------------------------------------------------------------------------------
 // Measuring.
-
-Stats Summarize(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  Stats s;
-  s.min = v.front();
-  s.max = v.back();
-  const size_t n = v.size();
-  s.median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-  return s;
-}
-
-Stats TimeLaunches(const std::function<void()>& launch, const Options& o, cudaStream_t stream) {
-  for (int i = 0; i < o.warmup; ++i) launch();
-  std::vector<cudaEvent_t> ev(2 * static_cast<size_t>(o.repeat));
-  for (auto& e : ev) cuda::Check(cudaEventCreate(&e), "cudaEventCreate");
-  for (int i = 0; i < o.repeat; ++i) {
-    cuda::Check(cudaEventRecord(ev[2 * i], stream), "cudaEventRecord");
-    launch();
-    cuda::Check(cudaEventRecord(ev[2 * i + 1], stream), "cudaEventRecord");
-  }
-  cuda::Check(cudaStreamSynchronize(stream), "timed launches");
-  cuda::Check(cudaGetLastError(), "timed launches");
-  std::vector<double> ms;
-  for (int i = 0; i < o.repeat; ++i) {
-    float t = 0;
-    cuda::Check(cudaEventElapsedTime(&t, ev[2 * i], ev[2 * i + 1]), "cudaEventElapsedTime");
-    ms.push_back(t);
-  }
-  for (auto& e : ev) cudaEventDestroy(e);
-  return Summarize(ms);
-}
-
-Fidelity Compare(const Image8& gpu, const Image8& cpu) {
-  AALAB_CHECK(gpu.Width() == cpu.Width() && gpu.Height() == cpu.Height(), "Compare: sizes differ");
-  Fidelity f;
-  long long same = 0, within1 = 0;
-  double sum = 0;
-  const size_t n = static_cast<size_t>(gpu.Width()) * gpu.Height();
-  for (size_t i = 0; i < n; ++i) {
-    const uint8_t* a = gpu.Data().data() + 4 * i;
-    const uint8_t* b = cpu.Data().data() + 4 * i;
-    int d = 0;
-    for (int c = 0; c < 3; ++c) {
-      const int dc = std::abs(static_cast<int>(a[c]) - static_cast<int>(b[c]));
-      d = std::max(d, dc);
-      sum += dc;
-    }
-    if (d == 0) ++same;
-    if (d <= 1) ++within1;
-    f.max_diff = std::max(f.max_diff, d);
-  }
-  f.differing = static_cast<long long>(n) - same;
-  f.identical_share = static_cast<double>(same) / static_cast<double>(n);
-  f.within1_share = static_cast<double>(within1) / static_cast<double>(n);
-  f.mean_abs_diff = sum / (3.0 * static_cast<double>(n));
-  return f;
-}
-
-bool AllOpaque(const Image8& img) {
-  for (size_t i = 3; i < img.Data().size(); i += 4) {
-    if (img.Data()[i] != 255) return false;
-  }
-  return true;
-}
 
 // The floor under which the hardware path's identical share fails --check. The exactness of
 // the port is checked by the software-filter variant (must be bit-identical); the hardware
@@ -462,8 +389,8 @@ int Main(int argc, char** argv) {
     if (copy.fid.differing != 0) fail(fs_.scene + " " + size + ": texture-path copy is not exact");
     if (o.timing) {
       copy.timed = copy_lin.timed = true;
-      copy.t = TimeLaunches([&] { p1.RunCopyTexture(stream); }, o, stream);
-      copy_lin.t = TimeLaunches([&] { p1.RunCopyLinear(stream); }, o, stream);
+      copy.t = TimeLaunches([&] { p1.RunCopyTexture(stream); }, o.warmup, o.repeat, stream);
+      copy_lin.t = TimeLaunches([&] { p1.RunCopyLinear(stream); }, o.warmup, o.repeat, stream);
       copy.ratio = 1.0;
       copy_lin.ratio = copy_lin.t.median / copy.t.median;
     }
@@ -528,10 +455,16 @@ int Main(int argc, char** argv) {
       }
       if (o.timing) {
         e.timed = true;
-        e.t = TimeLaunches([&] { p->Run(m, stream); }, o, stream);
+        e.t = TimeLaunches([&] { p->Run(m, stream); }, o.warmup, o.repeat, stream);
         e.ratio = e.t.median / floor_ms;
         e.ratio_linear = e.t.median / floor_linear_ms;
-        if (m.prepass && !m.scaled_input) e.pass = TimeLaunches([&] { p->RunPassOnly(m, stream); }, o, stream);
+        if (m.smaa) {
+          for (int k = 0; k < 3; ++k) {
+            e.passes.emplace_back(kSmaaPassNames[k],
+                                  TimeLaunches([&] { p->RunSmaaPass(m, k, stream); }, o.warmup, o.repeat, stream));
+          }
+        }
+        if (m.prepass && !m.scaled_input) e.pass = TimeLaunches([&] { p->RunPassOnly(m, stream); }, o.warmup, o.repeat, stream);
       }
       std::printf("%-16s %-10s %-34s identical %7.3f%% (sw filter %7.3f%%) <=1 %7.3f%% max %3d  %s\n",
                   fs_.scene.c_str(), size.c_str(), m.spec.c_str(), 100.0 * e.fid.identical_share,
@@ -539,12 +472,27 @@ int Main(int argc, char** argv) {
                   e.timed ? (N(e.t.median) + " ms (" + N(e.ratio) + "x copy)").c_str() : "");
       entries.push_back(e);
     }
+    for (const std::string& spec : o.taa_methods) {
+      if (fs_.taa.frames.empty()) break;
+      std::vector<std::string> taa_failures;
+      Entry e = RunTaaSequence(spec, fs_.scene, fs_.taa, decode, o.timing, o.warmup, o.repeat, stream, &taa_failures);
+      for (const auto& f : taa_failures) fail(f);
+      if (e.timed) {
+        e.ratio = e.t.median / floor_ms;
+        e.ratio_linear = e.t.median / floor_linear_ms;
+      }
+      std::printf("%-16s %-10s %-34s worst frame identical %7.3f%% (sw filter %lld px differ) max %3d  %s\n",
+                  fs_.scene.c_str(), size.c_str(), (e.spec + " x" + std::to_string(e.frames)).c_str(),
+                  100.0 * e.fid.identical_share, e.soft.differing, e.fid.max_diff,
+                  e.timed ? (N(e.t.median) + " ms/frame (" + N(e.ratio) + "x copy)").c_str() : "");
+      entries.push_back(e);
+    }
     if (o.timing) {
       // The texture-path copy again after the methods: a drift of the clock (or another load on
       // the GPU) during this frame's measurements shows as a difference to "copy".
       Entry after = MakeEntry(fs_.scene, size, "copy-after", "copy (point fetch + surface write), after the methods");
       after.timed = true;
-      after.t = TimeLaunches([&] { p1.RunCopyTexture(stream); }, o, stream);
+      after.t = TimeLaunches([&] { p1.RunCopyTexture(stream); }, o.warmup, o.repeat, stream);
       after.ratio = after.t.median / floor_ms;
       after.ratio_linear = after.t.median / floor_linear_ms;
       entries.push_back(after);
@@ -589,6 +537,18 @@ int Main(int argc, char** argv) {
         j << ", \"median_ms\": " << N(e.t.median) << ", \"min_ms\": " << N(e.t.min) << ", \"max_ms\": " << N(e.t.max)
           << ", \"ratio_to_copy\": " << N(e.ratio) << ", \"ratio_to_copy_linear\": " << N(e.ratio_linear);
         if (e.pass.median > 0) j << ", \"pass_only\": " << StatsJson(e.pass);
+        if (!e.passes.empty()) {
+          j << ", \"passes\": {";
+          for (size_t k = 0; k < e.passes.size(); ++k) {
+            j << (k ? ", " : "") << Q(e.passes[k].first) << ": " << StatsJson(e.passes[k].second);
+          }
+          j << "}";
+        }
+        if (e.frames > 0) {
+          j << ", \"frames\": " << e.frames << ", \"frame_median_ms\": [";
+          for (size_t k = 0; k < e.frame_ms.size(); ++k) j << (k ? ", " : "") << N(e.frame_ms[k]);
+          j << "]";
+        }
       }
       if (e.has_fidelity) {
         j << ", \"fidelity\": {\"identical_share\": " << N(e.fid.identical_share) << ", \"max_diff\": " << e.fid.max_diff

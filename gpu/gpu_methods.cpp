@@ -8,6 +8,7 @@
 #include "methods/fxaa311.h"
 #include "methods/registry.h"
 #include "methods/rescale.h"
+#include "methods/smaa.h"
 
 namespace aalab {
 namespace {
@@ -41,6 +42,23 @@ cuda::Fxaa311Args Fxaa311ArgsFrom(const Fxaa311Params& p) {
   a.seed003_order = p.order == Fxaa311Params::Order::kSeed003Glsl ? 1 : 0;
   return a;
 }
+
+// The same fields methods/smaa.cpp's registry rows read (SmaaEntry).
+cuda::SmaaArgs SmaaArgsFrom(const ParamValues& v) {
+  cuda::SmaaArgs a{};
+  a.threshold = static_cast<float>(v.Number("threshold"));
+  a.max_search_steps = v.Int("max_search_steps");
+  a.max_search_steps_diag = v.Int("max_search_steps_diag");
+  a.corner_rounding = v.Int("corner_rounding");
+  a.local_contrast = static_cast<float>(v.Number("local_contrast"));
+  a.diag = v.Choice("diag") == "on" ? 1 : 0;
+  a.corner = v.Choice("corner") == "on" ? 1 : 0;
+  a.color = v.Choice("detection") == "color" ? 1 : 0;
+  a.fixed8 = v.Choice("subtexel") == "exact" ? 0 : 1;
+  return a;
+}
+
+bool IsSmaaName(const std::string& n) { return n.rfind("smaa-", 0) == 0; }
 
 // The step table and float order of an FXAA 3.11 registry row, from the CPU tables.
 Fxaa311Params Fxaa311ParamsFor(const MethodPlan& plan) {
@@ -93,6 +111,12 @@ GpuMethod ResolveGpuMethod(const std::string& spec) {
     m.kernels = (m.prepass ? LumaKernelName(p.luma) + " + " : "") + "fxaa311";
     return m;
   }
+  if (IsSmaaName(n)) {
+    m.smaa = true;
+    m.sm = SmaaArgsFrom(m.plan.params);
+    m.kernels = std::string(kSmaaPassNames[0]) + " + " + kSmaaPassNames[1] + " + " + kSmaaPassNames[2];
+    return m;
+  }
   if (n == "scale43" || n == "scale43-fxaa-high") {
     m.scaled_input = true;
     m.rescale = m.plan.rescale;
@@ -109,13 +133,14 @@ GpuMethod ResolveGpuMethod(const std::string& spec) {
     return m;
   }
   throw UserError("method '" + spec + "' has no CUDA twin (GPU kernels exist for fxaa1-p*, fxaa311-p*, fxaa-low, "
-                  "fxaa-medium, fxaa-high, fxaa-iter12, scale43, scale43-fxaa-high)");
+                  "fxaa-medium, fxaa-high, fxaa-iter12, smaa-low, smaa-medium, smaa-high, smaa-ultra, scale43, "
+                  "scale43-fxaa-high; taa through --taa-frames)");
 }
 
 std::vector<std::string> DefaultGpuMethodSpecs() {
   std::vector<std::string> specs;
   for (const auto& e : MethodRegistry()) {
-    if (e.name.rfind("fxaa1-p", 0) == 0 || IsFxaa311Name(e.name)) specs.push_back(e.name);
+    if (e.name.rfind("fxaa1-p", 0) == 0 || IsFxaa311Name(e.name) || IsSmaaName(e.name)) specs.push_back(e.name);
   }
   for (const char* s : {"scale43", "scale43:rescale=bicubic", "scale43-fxaa-high", "scale43-fxaa-high:rescale=bicubic"}) {
     specs.push_back(s);
@@ -159,6 +184,22 @@ void GpuPipeline::Upload(const Image8& frame) {
 
 void GpuPipeline::Run(const GpuMethod& m, cudaStream_t stream, bool software_filter) {
   const cuda::GpuFrame* src = in_.get();
+  if (m.smaa) {
+    AALAB_CHECK(in_w_ == out_w_ && in_h_ == out_h_, "GpuPipeline: SMAA runs at the output size");
+    if (!smaa_area_) {
+      const Image8& area = SmaaAreaTexture();
+      const Image8& search = SmaaSearchTexture();
+      smaa_area_ = std::make_unique<cuda::GpuFrame>(area.Width(), area.Height());
+      smaa_area_->Upload(area.Data().data());
+      smaa_search_ = std::make_unique<cuda::GpuFrame>(search.Width(), search.Height());
+      smaa_search_->Upload(search.Data().data());
+    }
+    // Edge target in luma_, blend target in mid_ (both the input's size; unused by SMAA otherwise).
+    cuda::LaunchSmaaEdges(*in_, *luma_, m.sm, stream, software_filter);
+    cuda::LaunchSmaaWeights(*luma_, *smaa_area_, *smaa_search_, *mid_, m.sm, stream, software_filter);
+    cuda::LaunchSmaaBlend(*in_, *mid_, *out_, m.sm, stream, software_filter);
+    return;
+  }
   if (m.prepass) {
     cuda::LaunchLumaPrepass(*src, *luma_, m.f3.luma, decode_, stream, software_filter);
     src = luma_.get();
@@ -180,6 +221,13 @@ void GpuPipeline::Run(const GpuMethod& m, cudaStream_t stream, bool software_fil
 void GpuPipeline::RunPassOnly(const GpuMethod& m, cudaStream_t stream) {
   AALAB_CHECK(m.prepass && m.rescale == Rescale::kNone, "RunPassOnly: a 1x FXAA 3.11 method with a pre-pass");
   cuda::LaunchFxaa311(*luma_, *out_, m.f3, stream);
+}
+
+void GpuPipeline::RunSmaaPass(const GpuMethod& m, int pass, cudaStream_t stream) {
+  AALAB_CHECK(m.smaa && smaa_area_, "RunSmaaPass: an SMAA method after its Run");
+  if (pass == 0) cuda::LaunchSmaaEdges(*in_, *luma_, m.sm, stream);
+  if (pass == 1) cuda::LaunchSmaaWeights(*luma_, *smaa_area_, *smaa_search_, *mid_, m.sm, stream);
+  if (pass == 2) cuda::LaunchSmaaBlend(*in_, *mid_, *out_, m.sm, stream);
 }
 
 void GpuPipeline::RunCopyTexture(cudaStream_t stream) { cuda::LaunchCopyTexture(*copy_src_, *out_, stream); }

@@ -20,6 +20,8 @@
 #include "reports/html_report.h"
 #include "reports/report_json.h"
 #include "scenes/library.h"
+#include "scenes/motion.h"
+#include "scenes/motion_render.h"
 #include "scenes/render.h"
 
 namespace aalab {
@@ -32,7 +34,41 @@ struct ExportArgs {
   uint64_t seed = 1;
   int threads = 0;
   bool no_scaled = false;
+  int taa_frames = 0;
 };
+
+// TAA's inputs for frames 0..n-1 of `scene` at w × h, as `aalab run --frames n --methods taa`
+// renders them (pipeline.cpp RunMethod): frame t is the jittered one-sample render of the
+// scene at t (FrameJitterAt of taa's default jitter spec) and, from t = 1, the previous
+// positions of its pixel centres (PreviousPositions). Written as BASE-taa-f<t>.ppm and
+// BASE-taa-f<t>.prev, listed as role taa-<t>.
+void ExportTaaSequence(const Scene& scene, const Tracer& still_tracer, int w, int h, int n, const std::string& base,
+                       const fs::path& dir, std::ostringstream& tsv) {
+  const JitterSpec jitter_spec = MakeMethod("taa").render.jitter;
+  for (int t = 0; t < n; ++t) {
+    std::unique_ptr<Scene> frame_scene;
+    std::unique_ptr<Tracer> frame_tracer;
+    if (scene.animation.Moves()) {
+      frame_scene = std::make_unique<Scene>(SceneAtFrame(scene, t));
+      frame_tracer = std::make_unique<Tracer>(*frame_scene);
+    }
+    const Tracer& tracer = frame_tracer ? *frame_tracer : still_tracer;
+    const FrameJitter jitter = FrameJitterAt(jitter_spec, t);
+    const SurfaceFrame sf = RenderSurfaceFrame(tracer, w, h, jitter, nullptr);
+    const std::string stem = base + "-taa-f" + std::to_string(t);
+    WritePpm((dir / (stem + ".ppm")).string(), sf.image);
+    if (t > 0) {
+      const std::vector<glm::vec2> prev = PreviousPositions(scene, t, sf, jitter);
+      std::vector<float> flat(2 * prev.size());
+      for (size_t i = 0; i < prev.size(); ++i) {
+        flat[2 * i] = prev[i].x;
+        flat[2 * i + 1] = prev[i].y;
+      }
+      WritePreviousPositions((dir / (stem + ".prev")).string(), w, h, flat);
+    }
+    tsv << scene.name << "\ttaa-" << t << "\t" << w << "\t" << h << "\t" << stem << ".ppm\n";
+  }
+}
 
 // Writes DIR/<scene>-<W>x<H>.ppm (the 1x frame every post-only method filters, rendered as
 // `aalab run` renders it: one sample at each pixel centre, same seed) and, unless
@@ -49,6 +85,15 @@ int ExportFrames(const ExportArgs& a) {
   if (sizes.empty()) throw UserError("--sizes is empty (give e.g. 1920x1080,3840x2160)");
   const std::vector<std::string> names = a.scenes.empty() ? SuiteScenes(a.suite) : SplitCommaList(a.scenes, "--scenes");
   std::vector<std::unique_ptr<Scene>> scenes = LoadScenes(names);
+  if (a.taa_frames < 0 || a.taa_frames > 256) {
+    throw UserError("--taa-frames " + std::to_string(a.taa_frames) + " is out of range (allowed: 0..256)");
+  }
+  for (const auto& scene : scenes) {
+    if (scene->animation.Moves() && a.taa_frames > scene->animation.frames) {
+      throw UserError("--taa-frames " + std::to_string(a.taa_frames) + " runs past scene '" + scene->name +
+                      "' (it declares /animation/frames = " + std::to_string(scene->animation.frames) + ")");
+    }
+  }
   const fs::path out(a.out);
   if (fs::exists(out) && (!fs::is_directory(out) || (!fs::is_empty(out) && !fs::exists(out / "frames.tsv")))) {
     throw UserError("--out '" + a.out + "' exists and is not a frames folder (no frames.tsv); refusing to replace it");
@@ -60,7 +105,8 @@ int ExportFrames(const ExportArgs& a) {
     // The render request of scale43 at its defaults: the scaled frame is what it renders.
     const RenderSpec scaled = MakeMethod("scale43").render;
     std::ostringstream tsv;
-    tsv << "# aalab export-frames: scene, role (1x | scaled), output width, output height, file (binary PPM)\n";
+    tsv << "# aalab export-frames: scene, role (1x | scaled | taa-<frame>), output width, output height, file "
+           "(binary PPM; taa-<t> with t >= 1 also has its previous positions in the same name with .prev)\n";
     for (const auto& scene : scenes) {
       const Tracer tracer(*scene);
       for (const auto& [w, h] : sizes) {
@@ -73,6 +119,7 @@ int ExportFrames(const ExportArgs& a) {
           WritePpm((tmp / (base + "-scaled.ppm")).string(), RenderFrame(tracer, rw, rh, scaled, a.seed, nullptr));
           tsv << scene->name << "\tscaled\t" << w << "\t" << h << "\t" << base << "-scaled.ppm\n";
         }
+        if (a.taa_frames > 0) ExportTaaSequence(*scene, tracer, w, h, a.taa_frames, base, tmp, tsv);
         std::fprintf(stderr, "exported %s\n", base.c_str());
       }
     }
@@ -115,6 +162,9 @@ void RegisterGpuCommands(CLI::App& app, Commands& commands) {
   ex->add_option("--seed", ea->seed, "jitter seed (as aalab run)")->capture_default_str();
   ex->add_option("--threads", ea->threads, "worker threads (0 = all)")->capture_default_str();
   ex->add_flag("--no-scaled", ea->no_scaled, "skip the frames rendered at scale43's render scale");
+  ex->add_option("--taa-frames", ea->taa_frames,
+                 "also export taa's inputs for frames 0..N-1 (jittered renders + previous positions; 0 = none)")
+      ->capture_default_str();
   ex->add_option("--out", ea->out, "output folder (frames.tsv + PPM files)")->required();
   ex->callback([&commands, ea] { commands.action = [ea] { return ExportFrames(*ea); }; });
 

@@ -1,6 +1,7 @@
 #include "harness/io/ppm.h"
 
 #include <cctype>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -36,6 +37,14 @@ int Number(std::istream& in, const std::string& path, const char* what) {
     throw UserError("'" + path + "': bad PPM header (" + what + " '" + t + "'; expected a number)");
   }
   return std::stoi(t);
+}
+
+// The bit pattern of the centre of pixel k along one axis (k + 0.5, exact in float).
+uint32_t CentreBits(int k) {
+  const float c = static_cast<float>(k) + 0.5f;
+  uint32_t b;
+  std::memcpy(&b, &c, sizeof b);
+  return b;
 }
 
 }  // namespace
@@ -87,6 +96,64 @@ void WritePpm(const std::string& path, const Image8& img) {
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) throw UserError("'" + path + "' cannot be written: " + ec.message());
+}
+
+void WritePreviousPositions(const std::string& path, int width, int height, const std::vector<float>& previous) {
+  AALAB_CHECK(width > 0 && height > 0 && previous.size() == 2 * static_cast<size_t>(width) * height,
+              "WritePreviousPositions: size");
+  std::vector<uint8_t> bytes(previous.size() * 4);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t i = 2 * (static_cast<size_t>(y) * width + x);
+      for (int c = 0; c < 2; ++c) {
+        uint32_t b;
+        std::memcpy(&b, &previous[i + c], sizeof b);
+        const uint32_t d = b - CentreBits(c == 0 ? x : y);
+        for (int k = 0; k < 4; ++k) bytes[4 * (i + c) + k] = static_cast<uint8_t>(d >> (8 * k));
+      }
+    }
+  }
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw UserError("'" + path + "' cannot be written");
+    out << "AALABPREV 1 " << width << " " << height << "\n";
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    if (!out) throw UserError("'" + path + "': write failed");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw UserError("'" + path + "' cannot be written: " + ec.message());
+}
+
+std::vector<float> ReadPreviousPositions(const std::string& path, int width, int height) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UserError("'" + path + "' cannot be read");
+  if (Token(in) != "AALABPREV" || Token(in) != "1") {
+    throw UserError("'" + path + "' is not a previous-positions file (AALABPREV 1)");
+  }
+  const int w = Number(in, path, "width");
+  const int h = Number(in, path, "height");
+  if (w != width || h != height) {
+    throw UserError("'" + path + "' is " + std::to_string(w) + "x" + std::to_string(h) + ", expected " +
+                    std::to_string(width) + "x" + std::to_string(height));
+  }
+  std::vector<uint8_t> bytes(static_cast<size_t>(w) * h * 8);
+  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (in.gcount() != static_cast<std::streamsize>(bytes.size())) throw UserError("'" + path + "': data is truncated");
+  std::vector<float> out(static_cast<size_t>(w) * h * 2);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t i = 2 * (static_cast<size_t>(y) * w + x);
+      for (int c = 0; c < 2; ++c) {
+        uint32_t d = 0;
+        for (int k = 0; k < 4; ++k) d |= static_cast<uint32_t>(bytes[4 * (i + c) + k]) << (8 * k);
+        const uint32_t b = d + CentreBits(c == 0 ? x : y);
+        std::memcpy(&out[i + c], &b, sizeof b);
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace aalab

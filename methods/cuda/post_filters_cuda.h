@@ -1,10 +1,12 @@
-/// CUDA twins of the post filters (methods/fxaa1.cpp, fxaa311.cpp, rescale.cpp): the same
+/// CUDA twins of the post filters (methods/fxaa1.cpp, fxaa311.cpp, rescale.cpp, smaa.cpp, taa.cpp): the same
 /// per-pixel float32 arithmetic, with every fetch going through the GPU's texture units
 /// (cudaTextureObject on a uchar4 cudaArray: hardware clamp-to-edge and bilinear filtering)
 /// and every output written through a surface, as a render target. Built only where CMake
 /// finds a CUDA compiler. Parameters come from the CPU side's registry and preset tables
-/// (Fxaa1Preset, Fxaa311PresetSteps, FxaaTutorialSteps): this file holds no copies of them.
-/// See methods/cuda/post_kernels.cu for the kernels and their deviations from the CPU code.
+/// (Fxaa1Preset, Fxaa311PresetSteps, FxaaTutorialSteps, the SMAA and TAA registry rows, the
+/// SMAA area and search textures): this file holds no copies of them.
+/// The kernels and their deviations from the CPU code are described at the top of each .cu
+/// file beside this header (fxaa1, fxaa311, rescale, smaa, taa; gpu_frame for the frame).
 #pragma once
 #include <cuda_runtime_api.h>
 
@@ -97,6 +99,70 @@ void LaunchFxaa311(const GpuFrame& in, GpuFrame& out, const Fxaa311Args& args, c
 /// bilinear tap at normalised coordinates, true the B-spline from four bilinear taps.
 void LaunchRescale(const GpuFrame& in, GpuFrame& out, bool bicubic, cudaStream_t stream,
                    bool software_filter = false);
+
+/// SMAA 1x parameters as SmaaParams (methods/smaa.h), flattened.
+struct SmaaArgs {
+  int color;  ///< 1 = SMAAColorEdgeDetectionPS, 0 = SMAALumaEdgeDetectionPS
+  float threshold, local_contrast;
+  int max_search_steps, max_search_steps_diag, corner_rounding;
+  int diag, corner;
+  int fixed8;  ///< 1 = SubTexel::kFixed8 (the default), 0 = kExact (software filter only: the
+               ///< texture unit always filters with 8-bit fractions)
+};
+
+/// SMAA pass 1 (edge detection) of `in` into `edges` (same size): r = left edge, g = top edge
+/// (0 or 255), b = a = 0; pixels the shader discards are written 0.
+void LaunchSmaaEdges(const GpuFrame& in, GpuFrame& edges, const SmaaArgs& args, cudaStream_t stream,
+                     bool software_filter = false);
+/// SMAA pass 2 (blending weights) of `edges` into `blend`; `area` and `search` hold
+/// SmaaAreaTexture() (160×560) and SmaaSearchTexture() (64×16).
+void LaunchSmaaWeights(const GpuFrame& edges, const GpuFrame& area, const GpuFrame& search, GpuFrame& blend,
+                       const SmaaArgs& args, cudaStream_t stream, bool software_filter = false);
+/// SMAA pass 3 (neighbourhood blending) of `in` with `blend` into `out` (rgb, alpha 255).
+void LaunchSmaaBlend(const GpuFrame& in, const GpuFrame& blend, GpuFrame& out, const SmaaArgs& args,
+                     cudaStream_t stream, bool software_filter = false);
+
+/// TAA's parameters as methods/taa.cpp's TaaParams (the render-side `samples` is the
+/// exported frames' business).
+struct TaaArgs {
+  float alpha, gamma;
+  int clip;  ///< 0 variance, 1 minmax, 2 none
+};
+
+/// TAA's history on the GPU: linear display RGB in float32 (alpha unused), an RGBA32F
+/// cudaArray with a point view, a bilinear view (texel coordinates, clamp-to-edge; the
+/// texture unit filters floats with the same 8-bit fixed-point weights) and a surface.
+class GpuHistory {
+ public:
+  GpuHistory(int width, int height);
+  ~GpuHistory();
+  GpuHistory(const GpuHistory&) = delete;
+  GpuHistory& operator=(const GpuHistory&) = delete;
+  /// Copies the history back, 4 floats per pixel, row-major.
+  void Download(float* rgba) const;
+  int Width() const { return width_; }
+  int Height() const { return height_; }
+  cudaTextureObject_t Point() const { return point_; }
+  cudaTextureObject_t Linear() const { return linear_; }
+  cudaSurfaceObject_t Surface() const { return surface_; }
+
+ private:
+  int width_ = 0, height_ = 0;
+  cudaArray_t array_ = nullptr;
+  cudaTextureObject_t point_ = 0, linear_ = 0;
+  cudaSurfaceObject_t surface_ = 0;
+};
+
+/// One TAA step (TaaState::Step): `frame` (the jittered 8-bit render) with `previous`
+/// (device, 2 floats per pixel: the pixel centre's position in the previous frame, NaN for
+/// none) against `history` (null on the first frame: every pixel takes the current colour)
+/// into `next` (the new history) and `out` (8-bit sRGB, alpha 255). `decode` is a device table
+/// of SrgbDecode8's 256 values, `encode_starts` of the 255 thresholds of EncodeSrgb8 (code k
+/// starts at encode_starts[k − 1]). software_filter: the history fetch in the CPU's float32
+/// arithmetic from point fetches instead of the texture unit's bilinear filter.
+void LaunchTaaResolve(const GpuFrame& frame, const float* previous, const GpuHistory* history, GpuHistory& next,
+                      GpuFrame& out, const TaaArgs& args, const float* decode, const float* encode_starts,
+                      cudaStream_t stream, bool software_filter = false);
 
 /// Throws std::runtime_error naming `what` when `err` is not cudaSuccess.
 void Check(cudaError_t err, const char* what);

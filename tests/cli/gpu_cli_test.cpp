@@ -72,6 +72,54 @@ TEST(ExportFrames, BadSizeIsAnErrorAndLeavesNothing) {
   EXPECT_FALSE(fs::exists(out.string() + ".partial"));
 }
 
+TEST(ExportFrames, TaaFramesAreJitteredRendersWithTheirPreviousPositions) {
+  const fs::path dir = TempDir("gpu-export-taa");
+  const fs::path out = dir / "frames";
+  const auto r = Aalab("export-frames --scenes wedges --sizes 33x17 --no-scaled --taa-frames 3 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string tsv = ReadText(out / "frames.tsv");
+  for (int t = 0; t < 3; ++t) {
+    const std::string stem = "wedges-33x17-taa-f" + std::to_string(t);
+    EXPECT_NE(tsv.find("wedges\ttaa-" + std::to_string(t) + "\t33\t17\t" + stem + ".ppm\n"), std::string::npos) << tsv;
+    EXPECT_EQ(fs::exists(out / (stem + ".prev")), t > 0) << stem;
+  }
+  // Frame 0 is taa's first render: `aalab run --methods taa` on one frame has no history, so its
+  // output is that render decoded and encoded again (EncodeSrgb8(SrgbDecode8(k)) = k).
+  const fs::path run = dir / "run";
+  const auto rr = Aalab("run --scenes wedges --methods taa --size 33x17 --ref-spp 4 --repeat 1 --quiet --out " +
+                        run.string());
+  ASSERT_EQ(rr.code, 0) << rr.output;
+  std::string taa_png;
+  const auto report = nlohmann::json::parse(ReadText(run / "report.json"));
+  for (const auto& row : report.at("rows")) {
+    if (row.at("method") == "taa") taa_png = row.at("images").at("output").get<std::string>();
+  }
+  ASSERT_FALSE(taa_png.empty());
+  EXPECT_EQ(ReadPpm((out / "wedges-33x17-taa-f0.ppm").string()).Data(), ReadImage8((run / taa_png).string()).Data());
+  // Frames 0 and 1 are jittered differently (Halton points 1 and 2), so they differ on edges.
+  EXPECT_NE(ReadPpm((out / "wedges-33x17-taa-f0.ppm").string()).Data(),
+            ReadPpm((out / "wedges-33x17-taa-f1.ppm").string()).Data());
+  // wedges is still: every pixel's sample reprojects to its own centre (the jitter is taken
+  // back out), up to the float rounding of the projection.
+  const std::vector<float> prev = ReadPreviousPositions((out / "wedges-33x17-taa-f2.prev").string(), 33, 17);
+  for (int y = 0; y < 17; ++y) {
+    for (int x = 0; x < 33; ++x) {
+      const size_t i = 2 * (static_cast<size_t>(y) * 33 + x);
+      EXPECT_NEAR(prev[i], x + 0.5, 1e-3) << x << "," << y;
+      EXPECT_NEAR(prev[i + 1], y + 0.5, 1e-3) << x << "," << y;
+    }
+  }
+}
+
+TEST(ExportFrames, TaaFramesBeyondAMovingScenesSequenceAreRefused) {
+  const fs::path out = TempDir("gpu-export-taa-bad") / "frames";
+  const auto r = Aalab("export-frames --scenes motion-pan --sizes 33x17 --taa-frames 65 --out " + out.string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("motion-pan"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("64"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(MergeGpu, AddsBlocksToMatchingRowsAndRedrawsThePage) {
   const fs::path dir = TempDir("gpu-merge") / "run";
   fs::copy(RunDir(), dir, fs::copy_options::recursive);

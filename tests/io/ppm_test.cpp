@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
+#include <limits>
+#include <vector>
 #include <fstream>
 #include <string>
 
@@ -71,6 +74,52 @@ TEST(Ppm, BadFilesAreUserErrorsNamingThePath) {
   }
   fs::remove(p);
   EXPECT_THROW(ReadPpm(p.string()), UserError);  // missing file
+}
+
+uint32_t Bits(float f) {
+  uint32_t b;
+  std::memcpy(&b, &f, sizeof b);
+  return b;
+}
+
+TEST(PreviousPositions, RoundTripKeepsEveryBitAndCentresCostNothing) {
+  // 3 × 2 pixels: centres, small and large moves, off-screen, NaN (no history), -0.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<float> prev = {0.5f, 0.5f,   1.25f, 0.375f,  -7.0f, 1e9f,
+                                   nan,  nan,    1.5f,  1.5f,    -0.0f, 2.0000002f};
+  const fs::path p = Tmp("rt.prev");
+  WritePreviousPositions(p.string(), 3, 2, prev);
+  // Header "AALABPREV 1 3 2\n" (16 bytes) + 3·2·2 values of 4 bytes.
+  EXPECT_EQ(fs::file_size(p), 16u + 48u);
+  const std::vector<float> back = ReadPreviousPositions(p.string(), 3, 2);
+  ASSERT_EQ(back.size(), prev.size());
+  for (size_t i = 0; i < prev.size(); ++i) EXPECT_EQ(Bits(back[i]), Bits(prev[i])) << i;
+  // A position equal to its pixel centre is stored as 0: pixel (0, 0) and pixel (1, 1).
+  std::ifstream f(p, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(bytes.substr(16, 8), std::string(8, '\0'));
+  EXPECT_EQ(bytes.substr(16 + 4 * 8, 8), std::string(8, '\0'));
+}
+
+TEST(PreviousPositions, BadFilesAreUserErrorsNamingThePath) {
+  const fs::path p = Tmp("bad.prev");
+  const std::pair<std::string, std::string> cases[] = {
+      {"P6\n3 2\n255\n", "not a previous-positions file"},
+      {"AALABPREV 1 4 2\n" + std::string(64, '\0'), "expected 3x2"},
+      {"AALABPREV 1 3 2\n" + std::string(47, '\0'), "truncated"},
+  };
+  for (const auto& [bytes, message] : cases) {
+    WriteBytes(p, bytes);
+    try {
+      ReadPreviousPositions(p.string(), 3, 2);
+      FAIL() << "accepted: " << message;
+    } catch (const UserError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos) << e.what();
+    }
+  }
+  fs::remove(p);
+  EXPECT_THROW(ReadPreviousPositions(p.string(), 3, 2), UserError);  // missing file
 }
 
 }  // namespace
