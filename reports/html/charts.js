@@ -293,7 +293,8 @@
         th(info.label + (info.unit ? ' ' + info.unit : ''), { 'data-first': better > 0 ? 'descending' : 'ascending' }, info.help),
         th('Gain ' + gainUnit, { 'data-first': 'descending' }, better > 0 ? 'quality − none\'s quality' : 'none\'s value − this value (positive = less error)'),
         ...(info2 ? [th(info2.label + (info2.unit ? ' ' + info2.unit : ''), { 'data-first': info2.better > 0 ? 'descending' : 'ascending', class: 'perceptual' },
-                        'the perceptual axis beside the chosen one: ' + info2.help),
+                        'the perceptual axis beside the chosen one: ' + info2.help +
+                        (scope === 'suite' ? ' Suite mean over ' + (A.scenes.length - data2.left.length) + ' of ' + A.scenes.length + ' scenes (those where every method has it).' : '')),
                      th('Gain ' + (info2.unit || 'Δ'), { 'data-first': 'descending', class: 'perceptual' },
                         'perceptual gain over none (positive = better than none by ' + info2.label + ')')] : []),
         th('Time ms', {}, scope === 'suite' ? 'mean over scenes of the median time per frame' : 'median time per frame'),
