@@ -587,7 +587,7 @@ std::vector<MetricValue> ComputeFlipMetric(const MetricInput& in) {
             MetricValue{"flip_max", std::nullopt, "empty image"}};
   }
   const FlipPooled p = in.flip_values ? PoolFlip(*in.flip_values)
-                                      : PoolFlip(flip::ErrorValues(*in.reference, *in.image, kFlipDefaultPpd));
+                                      : PoolFlip(flip::ErrorValues(*in.reference, *in.image, in.flip_ppd));
   return {MetricValue{"flip_mean", p.mean, ""},
           MetricValue{"flip_median_weighted", p.weighted_median, ""},
           MetricValue{"flip_max", p.max, ""}};
@@ -597,7 +597,7 @@ std::vector<MetricValue> ComputeFlipMetric(const MetricInput& in) {
 
 std::vector<MetricEntry> FlipMetrics() {
   return {{"flip",
-           "LDR-FLIP (Andersson 2020) at 67 pixels/degree: mean, value-weighted median and "
+           "LDR-FLIP (Andersson 2020) at the viewing condition's pixels/degree (--viewing; default 67): mean, value-weighted median and "
            "max of the per-pixel error in [0,1]",
            {"flip_mean", "flip_median_weighted", "flip_max"},
            &ComputeFlipMetric}};

@@ -26,9 +26,12 @@ struct MetricInput {
   const ImageF* reference = nullptr;
   const ImageF* edge_mask = nullptr;
   const ImageF* none_image = nullptr;  ///< the `none` frame, for relative metrics (optional)
-  /// Optional: flip::ErrorValues(*reference, *image, kFlipDefaultPpd), already computed by
+  /// Optional: flip::ErrorValues(*reference, *image, flip_ppd), already computed by
   /// the caller (the runner also needs it for the FLIP heatmap). Same values either way.
   const std::vector<double>* flip_values = nullptr;
+  /// Pixels per degree of the viewing condition (metrics/viewing.h) FLIP uses; 67 (FLIP's
+  /// default, kFlipDefaultPpd) unless the run names another.
+  double flip_ppd = 67.0;
   /// Optional: isolated flat disks for the area-bias metrics (metrics/coverage_bias.cpp).
   const std::vector<CoverageProbe>* coverage_probes = nullptr;
 };

@@ -34,7 +34,8 @@ constexpr DirectionRule kDirections[] = {
     {"interior_psnr_db", Better::kHigher}, {"ssim", Better::kHigher},
     {"edge_error_removed", Better::kHigher}, {"mse", Better::kLower},
     {"edge_rmse", Better::kLower},         {"temporal_rmse", Better::kLower},
-    {"temporal_edge_rmse", Better::kLower}, {"*_psnr_db", Better::kHigher},
+    {"temporal_edge_rmse", Better::kLower}, {"temporal_perceptual", Better::kLower},
+    {"temporal_csf_rmse", Better::kLower},  {"*_psnr_db", Better::kHigher},
     {"flip_*", Better::kLower},            {"abs_err_*", Better::kLower},
     {"area_bias_abs_rel", Better::kLower},
 };
@@ -225,6 +226,11 @@ std::map<std::string, Threshold> ParseMetricChangeOption(const std::string& text
   return out;
 }
 
+bool HasDefaultTolerance(const std::string& metric) {
+  return metric == "temporal_rmse" || metric == "temporal_perceptual" || metric == "temporal_csf_rmse" ||
+         metric == "flip_mean";
+}
+
 void ValidateCompareOptions(const CompareOptions& o) {
   if (!std::isfinite(o.max_drop_db) || o.max_drop_db < 0) {
     throw UserError("--max-drop-db " + FormatFixed(o.max_drop_db, 3) + " must be a non-negative number of dB");
@@ -235,7 +241,7 @@ void ValidateCompareOptions(const CompareOptions& o) {
       throw UserError("--metrics: unknown metric '" + m + "' (known: " + KnownMetricsText() + ")");
     }
     if (!seen.insert(m).second) throw UserError("--metrics: metric '" + m + "' is listed twice");
-    if (!IsDbMetric(m) && !o.metric_change.count(m) && !o.metric_change.count("*")) {
+    if (!IsDbMetric(m) && !o.metric_change.count(m) && !o.metric_change.count("*") && !HasDefaultTolerance(m)) {
       throw UserError("--metrics: '" + m + "' is not in dB, so --max-drop-db does not apply; give its tolerance with "
                       "--max-metric-change (absolute, e.g. 0.005, or relative, e.g. 2%; per metric: " + m +
                       "=0.005) or leave it out of --metrics");
@@ -315,6 +321,18 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
     }
   }
 
+  // The viewing condition (absent = the default, 67 px/deg at 60 fps, as before it existed):
+  // FLIP and the perceptual temporal error depend on it.
+  for (const auto& [key, def] : {std::pair<const char*, const char*>{"ppd", "67"}, {"fps", "60"}}) {
+    std::string a = SettingValue(base, key), b = SettingValue(cur, key);
+    if (a.empty()) a = def;
+    if (b.empty()) b = def;
+    if (a != b) {
+      res.cannot_compare.push_back(std::string("setting '") + key + "' differs: baseline " + a + ", current " + b +
+                                   " (FLIP and the perceptual temporal error depend on the viewing condition)");
+    }
+  }
+
   if (base.rows.empty()) res.cannot_compare.push_back("the baseline report has no rows");
   if (cur.rows.empty()) res.cannot_compare.push_back("the current report has no rows");
   if (!res.cannot_compare.empty()) return res;
@@ -335,6 +353,9 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
     // Motion runs (--frames > 1): the temporal error too, when both reports have it.
     if (HasMetricEverywhere(base, "temporal_rmse") && HasMetricEverywhere(cur, "temporal_rmse")) {
       res.metrics.push_back("temporal_rmse");
+    }
+    if (HasMetricEverywhere(base, "temporal_perceptual") && HasMetricEverywhere(cur, "temporal_perceptual")) {
+      res.metrics.push_back("temporal_perceptual");
     }
   } else {
     res.metrics = o.metrics;
@@ -445,8 +466,8 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
       } else {
         auto t = o.metric_change.find(metric);
         if (t == o.metric_change.end()) t = o.metric_change.find("*");
-        if (t == o.metric_change.end() && metric == "temporal_rmse") {
-          tol = Threshold{0.05, true};  // compared by default in motion runs: 5% of the baseline
+        if (t == o.metric_change.end() && HasDefaultTolerance(metric)) {
+          tol = Threshold{0.05, true};  // the perceptual and temporal measures: 5% of the baseline
         } else {
           AALAB_CHECK(t != o.metric_change.end(), "validated options must give every non-dB metric a tolerance");
           tol = t->second;

@@ -86,6 +86,11 @@ struct CompareOptions {
 /// "ssim=0.002,mse=5%" (per metric; names must be known). UserError otherwise.
 std::map<std::string, Threshold> ParseMetricChangeOption(const std::string& text);
 
+/// True for the metrics compared with a default tolerance of 5 % of the baseline when
+/// --max-metric-change does not name them: temporal_rmse, temporal_perceptual,
+/// temporal_csf_rmse and flip_mean (so `--metrics edge_psnr_db,flip_mean` needs no more).
+bool HasDefaultTolerance(const std::string& metric);
+
 /// Checks the options: every metric is known (else the message lists the known ones),
 /// listed once, and has a threshold (dB metrics: max_drop_db >= 0; others: an entry in
 /// metric_change). Throws UserError.

@@ -37,6 +37,9 @@ struct MetricInfo {
   /// axis: the page cannot say which way is better).
   int better = 0;
   std::string help;  ///< one sentence for the tooltip
+  /// What a better score rewards and what it does not see (shown under the chart's axis
+  /// choice; metrics/METRICS.md "What each metric rewards"); empty when unknown.
+  std::string rewards;
 };
 
 /// Known metrics by name (metrics/METRICS.md); unknown names get a label equal to the name

@@ -148,6 +148,7 @@ Json MetaJson(const Report& r) {
                      {"unit", info.unit},
                      {"better", info.better},
                      {"help", info.help},
+                     {"rewards", info.rewards},
                      {"psnr", html::IsPsnrMetric(name)}};
   }
   for (const char* first : {"edge_psnr_db", "psnr_db", "flip_mean"}) {
@@ -168,6 +169,13 @@ Json MetaJson(const Report& r) {
   meta["metrics"] = metrics;
   meta["axis"] = axis;
   meta["default_axis"] = def.empty() ? Json(nullptr) : Json(def);
+  // The perceptual axis shown beside it: the perceptual temporal error of a motion run, else
+  // FLIP (so a method that trades aliasing for blur shows as such on the first screen).
+  std::string perceptual;
+  for (const char* name : {"temporal_perceptual", "flip_mean"}) {
+    if (perceptual.empty() && has_value.count(name) && name != def) perceptual = name;
+  }
+  meta["perceptual_axis"] = perceptual.empty() ? Json(nullptr) : Json(perceptual);
   meta["near_floor_db"] = kNearFloorDb;
   // The page colours its heatmaps with the same tables as metrics/heatmap.cpp.
   Json maps = Json::object();
@@ -196,6 +204,14 @@ void Header(std::string& h, const Report& r) {
        HtmlEscape(ContextOf(r, "threads")) + " of " + HtmlEscape(ContextOf(r, "hardware_threads")) +
        " threads · aalab " + HtmlEscape(ContextOf(r, "tool_version")) + " @ " +
        HtmlEscape(ContextOf(r, "git_commit")) + " (" + HtmlEscape(ContextOf(r, "build_type")) + ")</p>\n";
+  if (!SettingOf(r, "ppd").empty()) {
+    h += "<p class=\"facts viewing\">Viewing condition <b>" + HtmlEscape(SettingOf(r, "viewing")) + "</b>: " +
+         HtmlEscape(SettingOf(r, "display_px")) + " display, " + HtmlEscape(SettingOf(r, "display_diagonal_in")) +
+         " in at " + HtmlEscape(SettingOf(r, "viewing_distance_m")) + " m → <b>" + HtmlEscape(SettingOf(r, "ppd")) +
+         " pixels per degree</b> (FLIP and the perceptual temporal error use it), " +
+         HtmlEscape(SettingOf(r, "fps")) + " fps, peak " + HtmlEscape(SettingOf(r, "peak_cd_m2")) + " cd/m², ambient " +
+         HtmlEscape(SettingOf(r, "ambient_lux")) + " lux (recorded)</p>\n";
+  }
   h += "<p class=\"links\"><a href=\"report.json\">report.json</a> (all numbers, every timed sample) · "
        "<a href=\"#methodology\">timing methodology</a> · <a href=\"#context\">run context</a></p>\n";
   h += "<nav class=\"views\" aria-label=\"Views\"><a href=\"#suite\" data-view=\"suite\">Suite</a>";

@@ -156,6 +156,7 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
                        {"scene_and_bvh_ms", Num(s.sequence_scene_ms)},
                        {"reference_ms", Num(s.sequence_reference_ms)},
                        {"reference_frames", s.frame_images}};
+    if (!s.frame_exr_images.empty()) j["sequence"]["reference_frames_exr"] = s.frame_exr_images;
     }
     scenes.push_back(j);
   }
@@ -282,6 +283,9 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
         s.sequence_scene_ms = q.at("scene_and_bvh_ms").get<double>();
         s.sequence_reference_ms = q.at("reference_ms").get<double>();
         s.frame_images = q.at("reference_frames").get<std::vector<std::string>>();
+        if (q.contains("reference_frames_exr")) {
+          s.frame_exr_images = q.at("reference_frames_exr").get<std::vector<std::string>>();
+        }
       }
       r.scenes.push_back(s);
     }
@@ -357,6 +361,7 @@ std::vector<std::string> ReportImages(const Report& r) {
   for (const auto& s : r.scenes) {
     for (const auto& [role, path] : s.images) files.push_back(path);
     files.insert(files.end(), s.frame_images.begin(), s.frame_images.end());
+    files.insert(files.end(), s.frame_exr_images.begin(), s.frame_exr_images.end());
   }
   for (const auto& row : r.rows) {
     for (const auto& [role, path] : row.images) files.push_back(path);

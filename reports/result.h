@@ -95,6 +95,8 @@ struct SceneResult {
   int frames = 1;
   bool moves = false;
   std::vector<std::string> frame_images;
+  /// `run --frame-exr`: the reference of every frame as display-linear float EXR (empty otherwise).
+  std::vector<std::string> frame_exr_images;
   double sequence_scene_ms = 0;      ///< building the scene at each frame + its BVH, summed
   double sequence_reference_ms = 0;  ///< the references of all frames, summed
   /// "rendered": a scene the tracer renders; "image": a view of an image scene (a user's own

@@ -9,11 +9,30 @@
 #include "harness/core/error.h"
 #include "harness/run/merge.h"
 #include "harness/run/same_results.h"
+#include "harness/run/sequence_export.h"
 
 namespace aalab {
 namespace fs = std::filesystem;
 
 void RegisterClusterCommands(CLI::App& app, Commands& commands) {
+  // export-sequences (docs/motion.md "Exporting sequences")
+  auto* ex = app.add_subcommand("export-sequences",
+                                "write a motion run's sequences as numbered frame folders for outside video metrics");
+  struct ExportArgs {
+    std::string run, out;
+  };
+  auto ea = std::make_shared<ExportArgs>();
+  ex->add_option("run", ea->run, "the run's folder (holding report.json of a run with --frames N > 1)")->required();
+  ex->add_option("--out", ea->out, "output folder")->required();
+  ex->callback([&commands, ea] {
+    commands.action = [ea] {
+      const SequenceExport r = ExportSequences(ea->run, ea->out);
+      std::printf("exported %d scenes, %d sequences, %d frames\nindex: %s\n", r.scenes, r.sequences, r.frames,
+                  (fs::absolute(ea->out) / "sequences.json").string().c_str());
+      return 0;
+    };
+  });
+
   auto* merge = app.add_subcommand(
       "merge", "merge the shards of a run or sweep (--shard K/N) into the report one process would have written");
   struct MergeArgs {

@@ -11,6 +11,7 @@
 #include "harness/core/parallel.h"
 #include "harness/io/image_io.h"
 #include "harness/run/runner.h"
+#include "metrics/viewing.h"
 #include "harness/run/shard.h"
 #include "metrics/metric.h"
 #include "methods/registry.h"
@@ -70,16 +71,24 @@ int ListCommand(const std::string& what) {
     }
     return 0;
   }
-  throw UserError("unknown list '" + what + "' (allowed: scenes, methods, metrics)");
+  if (what == "viewing") {
+    for (const auto& p : ViewingPresets()) {
+      std::printf("%-24s %s\n    %s\n", p.name, p.help, ResolveViewing(p.name).Describe().c_str());
+    }
+    std::printf("overrides (PRESET:key=value,...):\n");
+    for (const auto& d : ViewingParams()) std::printf("    %-12s %s\n", d.name.c_str(), d.help.c_str());
+    return 0;
+  }
+  throw UserError("unknown list '" + what + "' (allowed: scenes, methods, metrics, viewing)");
 }
 
 }  // namespace
 
 void RegisterCommands(CLI::App& app, Commands& commands) {
   // list
-  auto* list = app.add_subcommand("list", "list scenes (and suites), methods or metrics");
+  auto* list = app.add_subcommand("list", "list scenes (and suites), methods, metrics or viewing presets");
   auto list_what = std::make_shared<std::string>();
-  list->add_option("what", *list_what, "scenes | methods | metrics")->required();
+  list->add_option("what", *list_what, "scenes | methods | metrics | viewing")->required();
   list->callback([&commands, list_what] { commands.action = [list_what] { return ListCommand(*list_what); }; });
 
   // render
@@ -150,6 +159,12 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
                   "frames per scene (1..100000; 1 = a still frame; moving scenes allow up to their animation.frames)")
       ->capture_default_str();
   run->add_option("--out", rs->out_dir, "output folder")->capture_default_str();
+  run->add_option("--viewing", rs->viewing,
+                  "viewing condition PRESET[:key=value,...] for FLIP and the perceptual temporal error (default: "
+                  "'default', 67 px/deg; see aalab list viewing)");
+  run->add_flag("--frame-exr", rs->frame_exr,
+                "motion runs: also write every frame's reference as display-linear float EXR (reference.f<t>.exr), for "
+                "outside video metrics (docs/motion.md)");
   run->add_flag("--debug-views", rs->debug_views, "also save each post filter's debug views");
   run->add_flag("--quiet", rs->quiet, "no progress on stderr");
   auto run_shard = std::make_shared<std::string>();

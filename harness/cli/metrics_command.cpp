@@ -10,6 +10,7 @@
 #include "harness/core/error.h"
 #include "harness/io/image_io.h"
 #include "metrics/metrics.h"
+#include "metrics/viewing.h"
 
 namespace aalab {
 
@@ -36,7 +37,8 @@ ImageF LoadEncoded(const std::string& path, int* file_channels) {
 std::string Size(const ImageF& i) { return std::to_string(i.Width()) + "x" + std::to_string(i.Height()); }
 
 int RunMetrics(const std::string& ref_path, const std::string& img_path, const std::string& mask_path,
-               const std::string& none_path, bool json) {
+               const std::string& none_path, bool json, const std::string& viewing) {
+  const ViewingCondition view = ResolveViewing(viewing);  // checked before any file is read
   int ref_nc = 0, img_nc = 0;
   const ImageF ref = LoadEncoded(ref_path, &ref_nc);
   const ImageF img = LoadEncoded(img_path, &img_nc);
@@ -49,6 +51,7 @@ int RunMetrics(const std::string& ref_path, const std::string& img_path, const s
   MetricInput in;
   in.image = &img;
   in.reference = &ref;
+  in.flip_ppd = view.ppd;
   if (!mask_path.empty()) {
     int nc = 0;
     const ImageF m = LoadEncoded(mask_path, &nc);
@@ -99,7 +102,7 @@ int RunMetrics(const std::string& ref_path, const std::string& img_path, const s
 void RegisterMetricsCommand(CLI::App& app, Commands& commands) {
   auto* cmd = app.add_subcommand("metrics", "every metric for any two images (same size and channel count; never resampled)");
   struct Args {
-    std::string reference, image, mask, none;
+    std::string reference, image, mask, none, viewing;
     bool json = false;
   };
   auto a = std::make_shared<Args>();
@@ -107,9 +110,11 @@ void RegisterMetricsCommand(CLI::App& app, Commands& commands) {
   cmd->add_option("image", a->image, "image to score")->required();
   cmd->add_option("--mask", a->mask, "edge mask image (white = edge), e.g. images/<scene>/edge_mask.png");
   cmd->add_option("--none", a->none, "the no-AA image, for edge_error_removed");
+  cmd->add_option("--viewing", a->viewing,
+                  "viewing condition PRESET[:key=value,...] for FLIP's pixels per degree (default 67; aalab list viewing)");
   cmd->add_flag("--json", a->json, "print JSON instead of a table");
   cmd->callback([&commands, a] {
-    commands.action = [a] { return RunMetrics(a->reference, a->image, a->mask, a->none, a->json); };
+    commands.action = [a] { return RunMetrics(a->reference, a->image, a->mask, a->none, a->json, a->viewing); };
   });
 }
 

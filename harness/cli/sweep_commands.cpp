@@ -52,6 +52,8 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
   sw->add_option("--seed", a->s.seed, "jitter seed")->capture_default_str();
   sw->add_option("--repeat", a->s.repeat, "timed repeats after one warm-up")->capture_default_str();
   sw->add_option("--threads", a->s.threads, "worker threads (0 = all hardware threads)")->capture_default_str();
+  sw->add_option("--viewing", a->s.viewing,
+                 "viewing condition PRESET[:key=value,...] for FLIP (default: 'default', 67 px/deg; aalab list viewing)");
   sw->add_flag("--quiet", a->s.quiet, "no progress on stderr");
   sw->add_option("--shard", a->shard,
                  "K/N: run shard K (0..N-1) of N, its share of the grid points on every scene, for 'aalab merge' "

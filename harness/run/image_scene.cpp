@@ -363,9 +363,10 @@ bool CheckReferenceKind(const std::string& kind, const std::vector<SceneSource>&
 
 std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int height, int grid, uint64_t seed,
                                              int repeat, bool exact_reference, StageClock* clock,
-                                             const ReferenceCache* cache) {
+                                             const ReferenceCache* cache, double flip_ppd) {
   if (source.scene) {
-    return PrepareScene(std::move(source.scene), width, height, grid, seed, repeat, exact_reference, clock, cache);
+    return PrepareScene(std::move(source.scene), width, height, grid, seed, repeat, exact_reference, clock, cache,
+                        flip_ppd);
   }
   if (clock) clock->Enter("references");  // reading the view's images
   ImageView v = LoadView(ReadManifest(source.view->manifest), source.view->index);
@@ -397,7 +398,8 @@ std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int 
   p->render1x.samples_ms.assign(static_cast<size_t>(repeat), 0.0);
   p->render1x.Summarize();
   p->none_f = ToFloat(p->frame1x, 3);
-  p->flip_reference = flip::PrepareReference(p->ref.image, kFlipDefaultPpd);
+  p->flip_ppd = flip_ppd;
+  p->flip_reference = flip::PrepareReference(p->ref.image, flip_ppd);
   // The same crop choice as PrepareScene.
   const int crop_size = std::max(8, std::min(32, std::min(W, H) / 4));
   for (const auto& c : PickCrops(CropScore(p->none_f, p->ref.image, &p->ref.edge_mask), crop_size, 4)) {

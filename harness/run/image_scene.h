@@ -63,7 +63,8 @@ std::vector<SceneSource> LoadSceneSources(const std::vector<std::string>& names)
 /// `grid` and `seed` apply to rendered scenes only.
 std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int height, int grid, uint64_t seed,
                                              int repeat, bool exact_reference = false, StageClock* clock = nullptr,
-                                             const ReferenceCache* cache = nullptr);
+                                             const ReferenceCache* cache = nullptr,
+                                             double flip_ppd = kFlipDefaultPpd);
 
 /// CheckReferenceKind over sources: `--reference exact` applies to rendered flat scenes only,
 /// so an image-scene view (whose reference is the user's file) is refused with its name.

@@ -32,6 +32,7 @@ struct PreparedScene {
   SceneResult info;           ///< what the report says about the scene (images filled by the caller)
   /// The reference's half of LDR-FLIP, computed once and shared by every method's score.
   std::shared_ptr<const flip::ReferenceSide> flip_reference;
+  double flip_ppd = kFlipDefaultPpd;  ///< the viewing condition's pixels per degree FLIP uses
   /// Isolated flat disks for the area-bias metrics (empty for scenes that are not flat).
   std::vector<CoverageProbe> coverage_probes;
   /// The sequence this frame belongs to: the scene with its animation (for motion vectors)
@@ -62,10 +63,12 @@ std::vector<MethodPlan> ResolveMethods(const std::vector<std::string>& specs);
 /// "method_renders_filters". With a `cache`, the reference is read from it when present and
 /// stored in it when rendered (harness/run/reference_cache.h); `info.reference_ms` is then the
 /// time the render took when the entry was made, and `ref.half_a`/`half_b` are empty (the
-/// noise floor comes from the halves' stored MSE).
+/// noise floor comes from the halves' stored MSE). `flip_ppd`: the viewing condition's pixels
+/// per degree for FLIP (metrics/viewing.h).
 std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int width, int height, int grid,
                                             uint64_t seed, int repeat, bool exact_reference = false,
-                                            StageClock* clock = nullptr, const ReferenceCache* cache = nullptr);
+                                            StageClock* clock = nullptr, const ReferenceCache* cache = nullptr,
+                                            double flip_ppd = kFlipDefaultPpd);
 
 /// Checks the --reference choice ("sampled" or "exact") and, for "exact", that every scene
 /// qualifies; throws UserError naming the scene and the disqualifying field. Returns true for

@@ -15,6 +15,7 @@
 #include "harness/core/timer.h"
 #include "harness/io/image_io.h"
 #include "metrics/metric.h"
+#include "metrics/viewing.h"
 #include "methods/registry.h"
 #include "reports/html_report.h"
 #include "reports/report_json.h"
@@ -126,6 +127,8 @@ Report RunSuite(const RunSettings& s) {
   // Validate every input before any work.
   if (s.repeat < 1 || s.repeat > 1000) throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
   RunScenes loaded = LoadRunScenes(s);
+  if (s.frame_exr && s.frames < 2) throw UserError("--frame-exr writes each frame's reference of a motion run: it needs --frames N > 1");
+  const ViewingCondition viewing = ResolveViewing(s.viewing);
   const int grid = loaded.grid;
   const bool exact = loaded.exact;
   const std::vector<std::string>& scene_names = loaded.names;
@@ -171,6 +174,8 @@ Report RunSuite(const RunSettings& s) {
                      {"warmup", "1"},
                      {"debug_views", s.debug_views ? "true" : "false"}};
   if (s.frames > 1) report.settings.emplace_back("frames", std::to_string(s.frames));
+  if (s.frame_exr) report.settings.emplace_back("frame_exr", "true");
+  for (auto& kv : viewing.Settings()) report.settings.push_back(std::move(kv));
   report.shard = shard_info;
 
   const int W = s.width, H = s.height;
@@ -185,10 +190,11 @@ Report RunSuite(const RunSettings& s) {
     const std::shared_ptr<const Scene> sequence(std::move(source.scene));
     const bool moves = sequence && sequence->animation.Moves();
     std::vector<std::unique_ptr<TemporalState>> states(plans.size());
-    std::vector<SequenceTrack> tracks(plans.size());
+    std::vector<SequenceTrack> tracks;
+    for (size_t m = 0; m < plans.size(); ++m) tracks.emplace_back(viewing.ppd, viewing.fps, F);
     std::unique_ptr<PreparedScene> prepared;
     SceneResult sr;
-    std::vector<std::string> reference_frames;
+    std::vector<std::string> reference_frames, reference_frames_exr;
     double scene_ms = 0, reference_ms = 0;
     // The last frame's image files are independent: queued and written in parallel at the
     // scene's end; a bit-identical output is stored once.
@@ -205,12 +211,12 @@ Report RunSuite(const RunSettings& s) {
           auto frame_scene = std::make_unique<Scene>(SceneAtFrame(*sequence, k));
           const double scene_build_ms = build.ElapsedMs();
           prepared = PrepareScene(std::move(frame_scene), W, H, grid, s.seed, s.repeat, exact, &clock,
-                                  cache ? &*cache : nullptr);
+                                  cache ? &*cache : nullptr, viewing.ppd);
           scene_ms += scene_build_ms;
         } else {
           if (sequence) source.scene = std::make_unique<Scene>(*sequence);
           prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat, exact, &clock,
-                                   cache ? &*cache : nullptr);
+                                   cache ? &*cache : nullptr, viewing.ppd);
         }
         prepared->sequence_scene = sequence;
         scene_ms += prepared->info.bvh_build_ms;
@@ -223,6 +229,11 @@ Report RunSuite(const RunSettings& s) {
         const std::string rel = rel_dir + "/reference" + tag + ".png";
         WriteImage8((tmp / rel).string(), ToUnorm8(ref.image));
         reference_frames.push_back(rel);
+        if (s.frame_exr) {
+          const std::string exr = rel_dir + "/reference" + tag + ".exr";
+          WriteImageF((tmp / exr).string(), DecodeToLinear(ref.image));
+          reference_frames_exr.push_back(exr);
+        }
       }
       if (last) {  // `prepared` (and so `ref`) lives until the scene's writes are done
         sr = prepared->info;
@@ -283,6 +294,7 @@ Report RunSuite(const RunSettings& s) {
       sr.frames = F;
       sr.moves = moves;
       sr.frame_images = reference_frames;
+      sr.frame_exr_images = reference_frames_exr;
       sr.sequence_scene_ms = scene_ms;
       sr.sequence_reference_ms = reference_ms;
     }
@@ -305,6 +317,7 @@ int RenderReferencesOnly(const RunSettings& s, int* cached) {
   SetThreadCount(s.threads);
   if (s.ref_cache.empty()) throw UserError("--references-only needs --ref-cache DIR (the folder the shards share)");
   const RunScenes loaded = LoadRunScenes(s);
+  ResolveViewing(s.viewing);  // checked like the run's other settings (references do not depend on it)
   const std::vector<SceneSource>& sources = loaded.sources;
   const int grid = loaded.grid;
   const bool exact = loaded.exact;

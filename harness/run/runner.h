@@ -28,6 +28,12 @@ struct RunSettings {
   ShardSpec shard;           ///< --shard K/N: this process's share of the scenes (docs/cluster.md)
   std::string ref_cache;     ///< --ref-cache DIR: read/write references there ("" = none)
   bool references_only = false;  ///< --references-only: fill the cache, write no report
+  /// --viewing PRESET[:key=value,...]: the display and observer of the perceptual metrics
+  /// (metrics/viewing.h); "" = the default preset (67 px/deg, every result as before).
+  std::string viewing;
+  /// --frame-exr: in a motion run, also write every frame's reference as display-linear
+  /// float EXR (images/<scene>/reference.f<t>.exr), for outside video metrics.
+  bool frame_exr = false;
 };
 
 /// The methods `aalab run` uses when --methods is not given: one or two of each family

@@ -8,6 +8,7 @@ namespace aalab {
 void SequenceTrack::AddFrame(const MethodOutput& out, const PreparedScene& frame, const std::string& image) {
   const ImageF out_f = ToFloat(out.output, 3);
   temporal_.AddFrame(out_f, frame.ref.image, &frame.ref.edge_mask);
+  perceptual_.AddFrame(out_f, frame.ref.image);
   std::vector<MetricValue> values;
   for (const auto& m : out.row.metrics) values.push_back({m.name, m.value, m.null_reason});
   metrics_.push_back(std::move(values));
@@ -46,6 +47,7 @@ void SequenceTrack::Finish(ResultRow* row) const {
   row->metrics.clear();
   for (const auto& v : PoolFrames(metrics_)) row->metrics.push_back({v.name, v.value, v.null_reason});
   for (const auto& v : temporal_.Values()) row->metrics.push_back({v.name, v.value, v.null_reason});
+  for (const auto& v : perceptual_.Values()) row->metrics.push_back({v.name, v.value, v.null_reason});
   row->render = MeanTiming(rows_, &ResultRow::render);
   row->post = MeanTiming(rows_, &ResultRow::post);
   row->resample = MeanTiming(rows_, &ResultRow::resample);

@@ -26,6 +26,7 @@
 #include "harness/run/reference_cache.h"
 #include "harness/run/runner.h"
 #include "methods/registry.h"
+#include "metrics/viewing.h"
 #include "metrics/metric.h"
 #include "reports/compare_html.h"
 #include "reports/report_json.h"
@@ -242,6 +243,7 @@ SweepResult RunSweep(const SweepSettings& s) {
     throw UserError("method '" + res.method + "' accumulates over frames, and sweep scores single frames: compare its " +
                     "variants with aalab run --frames N --methods " + res.method + ":...,...");
   }
+  const ViewingCondition viewing = ResolveViewing(s.viewing);
   res.axes = ParseGrid(s.grid, s.method);
   const std::vector<std::string> specs = ExpandGrid(s.method, &res.axes);
   const std::vector<MethodPlan> plans = ResolveMethods(specs);
@@ -301,6 +303,7 @@ SweepResult RunSweep(const SweepSettings& s) {
                      {"threads", std::to_string(ThreadCount())},
                      {"repeat", std::to_string(s.repeat)},
                      {"warmup", "1"}};
+  for (auto& kv : viewing.Settings()) report.settings.push_back(std::move(kv));
 
   // A shard runs its share of the grid points on every scene (each scene's reference once,
   // from the cache when there); the summary is the merge's (harness/run/merge.h).
@@ -320,7 +323,7 @@ SweepResult RunSweep(const SweepSettings& s) {
     if (share.empty()) break;  // a shard beyond the grid's points: nothing to render
     const std::string name = source.Name();
     const auto prepared = PrepareSource(std::move(source), s.width, s.height, ref_grid, s.seed, s.repeat, exact,
-                                        nullptr, cache ? &*cache : nullptr);
+                                        nullptr, cache ? &*cache : nullptr, viewing.ppd);
     if (prepared->tracer) ++res.reference_renders;  // an image-scene view renders nothing
     report.scenes.push_back(prepared->info);
     Progress(s.quiet, ++done, total, name + " reference", clock);

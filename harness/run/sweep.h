@@ -37,6 +37,7 @@ struct SweepSettings {
   bool quiet = false;
   ShardSpec shard;        ///< --shard K/N: this process's share of the grid points (docs/cluster.md)
   std::string ref_cache;  ///< --ref-cache DIR: shared reference cache ("" = none)
+  std::string viewing;    ///< --viewing PRESET[:key=value,...] (metrics/viewing.h); "" = default
 };
 
 /// One swept parameter and its values (canonical text, as the method resolves them).

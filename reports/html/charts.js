@@ -249,8 +249,24 @@
     }
   }
 
-  function costTable(box, scope, metric, data) {
+  /// Where two axes disagree on whether a method helps against none: better by one, worse by
+  /// the other. Returns text for the method's cell, or null.
+  function disagreement(p, base, metric, p2, base2, metric2) {
+    if (!base || !base2 || !p2 || p === base || p.q === null || base.q === null || p2.q === null || base2.q === null) return null;
+    const i1 = A.metricInfo(metric), i2 = A.metricInfo(metric2);
+    const g1 = i1.better * (p.q - base.q), g2 = i2.better * (p2.q - base2.q);
+    if (!(g1 * g2 < 0)) return null;
+    const say = (info, m, g) => (g > 0 ? 'better' : 'worse') + ' than none by ' + info.label + ' (' +
+      A.signed(info.better * g, v => A.fmtMetric(m, v)) + (info.unit ? ' ' + info.unit : '') + ')';
+    return say(i1, metric, g1) + ', ' + say(i2, metric2, g2) + ': the metrics disagree on whether it helps. ' +
+      (i2.rewards || '');
+  }
+
+  function costTable(box, scope, metric, data, metric2, data2) {
     const info = A.metricInfo(metric), better = info.better;
+    const info2 = metric2 ? A.metricInfo(metric2) : null;
+    const base2 = data2 ? data2.all.find(p => p.spec === 'none') || null : null;
+    const p2Of = spec => data2 ? data2.all.find(q => q.spec === spec) || null : null;
     const gainUnit = info.unit || 'Δ';
     const base = data.all.find(p => p.spec === 'none') || null;
     const front = new Set(paretoFront(data.pts, better).map(p => p.spec));
@@ -276,6 +292,11 @@
         th('Method', { 'data-type': 'text' }),
         th(info.label + (info.unit ? ' ' + info.unit : ''), { 'data-first': better > 0 ? 'descending' : 'ascending' }, info.help),
         th('Gain ' + gainUnit, { 'data-first': 'descending' }, better > 0 ? 'quality − none\'s quality' : 'none\'s value − this value (positive = less error)'),
+        ...(info2 ? [th(info2.label + (info2.unit ? ' ' + info2.unit : ''), { 'data-first': info2.better > 0 ? 'descending' : 'ascending', class: 'perceptual' },
+                        'the perceptual axis beside the chosen one: ' + info2.help +
+                        (scope === 'suite' ? ' Suite mean over ' + (A.scenes.length - data2.left.length) + ' of ' + A.scenes.length + ' scenes (those where every method has it).' : '')),
+                     th('Gain ' + (info2.unit || 'Δ'), { 'data-first': 'descending', class: 'perceptual' },
+                        'perceptual gain over none (positive = better than none by ' + info2.label + ')')] : []),
         th('Time ms', {}, scope === 'suite' ? 'mean over scenes of the median time per frame' : 'median time per frame'),
         th('Added ms', {}, 'time − none\'s time'),
         ...(hasGpu ? [th('GPU ms ' + gpuSizes.join(' / '), {}, 'the post filter\'s CUDA twin on a GPU (aalab merge-gpu): median ms at each size')] : []),
@@ -286,7 +307,11 @@
     const num = (v, text, title) => el('td', { class: 'num', 'data-v': v, title }, text);
     for (const p of data.all) {
       const tr = el('tr', { 'data-spec': p.spec });
-      tr.append(el('th', { scope: 'row', 'data-v': p.spec }, el('span', { class: 'method', text: p.spec })));
+      const p2 = p2Of(p.spec);
+      const clash = info2 ? disagreement(p, base, metric, p2, base2, metric2) : null;
+      tr.append(el('th', { scope: 'row', 'data-v': p.spec }, el('span', { class: 'method', text: p.spec }),
+        clash ? el('span', { class: 'disagree', title: clash, 'aria-label': clash, tabindex: '0' },
+          ' ⚠ ' + info.label + ' and ' + info2.label + ' disagree') : null));
       const un = data.unplotted.find(u => u.p === p);
       tr.append(p.q === null ? dash(un ? un.why : 'no value') : num(p.q, A.fmtMetric(metric, p.q)));
       const tOk = Number.isFinite(p.t);
@@ -297,6 +322,17 @@
       } else {
         const g = better * (p.q - base.q);
         tr.append(num(g, A.signed(g, v => A.fmtMetric(metric, v))));
+      }
+      if (info2) {
+        if (!p2 || p2.q === null) tr.append(dash('no value of ' + info2.label), dash('no value of ' + info2.label));
+        else {
+          tr.append(num(p2.q, A.fmtMetric(metric2, p2.q)));
+          if (!base2 || base2.q === null) tr.append(dash('none has no value of ' + info2.label));
+          else {
+            const g2 = info2.better * (p2.q - base2.q);
+            tr.append(num(g2, A.signed(g2, v => A.fmtMetric(metric2, v))));
+          }
+        }
       }
       tr.append(tOk ? num(p.t, A.fmtMs(p.t), scope === 'scene' ? 'min–max ' + A.fmtMs(p.tmin) + '–' + A.fmtMs(p.tmax) + ' ms' : null)
                     : dash('time undefined'));
@@ -325,35 +361,67 @@
     }
     table.append(body);
     A.makeSortable(table);
-    A.sortTable(table, 3);  // by time, fastest first
+    A.sortTable(table, info2 ? 5 : 3);  // by time, fastest first
     box.append(el('div', { class: 'table-wrap' }, table));
     if (scope === 'suite' && data.left.length) box.append(scopeNote(data));
+    if (info2 && scope === 'suite' && data2.left.length) box.append(scopeNote(data2));
+    if (info2) box.append(el('p', { class: 'note' }, '⚠ next to a method: ' + info.label + ' and ' + info2.label +
+      ' disagree on whether it is better than none (hover for the numbers). Both are true statements about different things: ' +
+      info.label + ' — ' + (info.rewards || info.help) + ' ' + info2.label + ' — ' + (info2.rewards || info2.help)));
     box.append(el('p', { class: 'note' }, better > 0
       ? 'Gain = quality − none\'s quality; '
       : 'Gain = none\'s ' + info.label + ' − this method\'s (lower is better, so a positive gain means less error); ',
       gainUnit + '/ms = gain ÷ time added, shown only when time added > 0 ms (else “—”, hover for why). ≈: the time difference is within the min–max spread. CPU times of this implementation; see the timing methodology.'));
   }
 
+  function axisSelect(current, onPick) {
+    return el('select', { onchange: e => onPick(e.target.value) },
+      ...A.META.axis.map(n => el('option', { value: n, selected: n === current }, A.metricLabel(n) + (A.metricInfo(n).better > 0 ? ' ↑ higher is better' : ' ↓ lower is better'))));
+  }
+  function rewardsNote(metric) {
+    const i = A.metricInfo(metric);
+    return i.rewards ? el('p', { class: 'rewards' }, el('b', { text: i.label + ': ' }), i.rewards) : null;
+  }
+
   function renderQC(qc) {
     const scope = qc.dataset.scope, sceneName = qc.dataset.scene, metric = A.state.metric;
-    const hadFocus = qc.contains(document.activeElement) && document.activeElement.tagName === 'SELECT';
+    const metric2 = A.state.metric2 && A.state.metric2 !== metric ? A.state.metric2 : null;
+    const active = document.activeElement;
+    const hadFocus = qc.contains(active) && active.tagName === 'SELECT' ? active.dataset.which : null;
     qc.replaceChildren();
-    qc.dataset.metric = metric || '';
+    qc.dataset.metric = (metric || '') + '|' + (metric2 || '');
     if (!metric) {
       qc.append(A.el('p', { class: 'note', text: 'No metric in this report has a known direction (better = higher or lower), so there is nothing to chart.' }));
       return;
     }
-    const selectEl = el('select', { onchange: e => { A.state.metric = e.target.value; refreshActive(true); } },
-      ...A.META.axis.map(n => el('option', { value: n, selected: n === metric }, A.metricLabel(n) + (A.metricInfo(n).better > 0 ? ' ↑ higher is better' : ' ↓ lower is better'))));
+    const selectEl = axisSelect(metric, v => { A.state.metric = v; refreshActive(true); });
+    selectEl.dataset.which = '1';
     const data = collect(scope, sceneName, metric);
     const chartBox = el('div', { class: 'chart-box' },
       el('div', { class: 'ctl' }, el('label', {}, 'Quality axis ', selectEl),
-        el('span', { class: 'hint', text: 'Hover or Tab to a point for its numbers; Enter or click selects it in the gallery.' })));
+        el('span', { class: 'hint', text: 'Hover or Tab to a point for its numbers; Enter or click selects it in the gallery.' })),
+      rewardsNote(metric));
     drawChart(chartBox, scope, sceneName, metric, data);
+    let data2 = null, chartBox2 = null, select2 = null;
+    if (A.state.metric2) {
+      select2 = axisSelect(A.state.metric2, v => { A.state.metric2 = v; refreshActive(true); });
+      select2.dataset.which = '2';
+      chartBox2 = el('div', { class: 'chart-box perceptual' },
+        el('div', { class: 'ctl' }, el('label', {}, 'Perceptual axis ', select2)));
+      if (metric2) {
+        data2 = collect(scope, sceneName, metric2);
+        const note2 = rewardsNote(metric2);
+        if (note2) chartBox2.append(note2);
+        drawChart(chartBox2, scope, sceneName, metric2, data2);
+      } else {
+        chartBox2.append(el('p', { class: 'note', text: 'The same axis as the quality axis: pick another to see two views side by side.' }));
+      }
+    }
     const costBox = el('div', { class: 'cost-box' });
-    costTable(costBox, scope, metric, data);
-    qc.append(chartBox, costBox);
-    if (hadFocus) selectEl.focus();
+    costTable(costBox, scope, metric, data, metric2, data2);
+    qc.append(chartBox2 ? el('div', { class: 'chart-pair' }, chartBox, chartBox2) : chartBox, costBox);
+    if (hadFocus === '1') selectEl.focus();
+    if (hadFocus === '2' && select2) select2.focus();
     markSelected(qc);
   }
   function markSelected(root) {
@@ -363,9 +431,10 @@
   function refreshActive(force) {
     const sec = A.sectionOf(A.state.view);
     if (!sec) return;
-    for (const qc of sec.querySelectorAll('.qc')) if (force || qc.dataset.metric !== (A.state.metric || '')) renderQC(qc);
+    for (const qc of sec.querySelectorAll('.qc')) if (force || qc.dataset.metric !== axesKey()) renderQC(qc);
   }
-  A.hooks.render.push(sec => { for (const qc of sec.querySelectorAll('.qc')) if (qc.dataset.metric !== (A.state.metric || '')) renderQC(qc); });
+  const axesKey = () => (A.state.metric || '') + '|' + (A.state.metric2 && A.state.metric2 !== A.state.metric ? A.state.metric2 : '');
+  A.hooks.render.push(sec => { for (const qc of sec.querySelectorAll('.qc')) if (qc.dataset.metric !== axesKey()) renderQC(qc); });
   A.hooks.select.push(() => { for (const qc of document.querySelectorAll('.qc')) markSelected(qc); });
   A.setMetric = m => { A.state.metric = m; refreshActive(true); };
   A.collect = collect;

@@ -40,6 +40,7 @@ const AA = (function () {
 
   const state = {
     metric: META.default_axis,
+    metric2: META.perceptual_axis || null,  // the perceptual axis shown beside it (null: none)
     view: null,
     spec: specs.find(s => s !== 'none') || specs[0],
     compare: 'reference',

@@ -263,6 +263,13 @@
         if (A.state.view !== 'scene-' + A.scenes[A.scenes.length - 2].name) problems.push('ArrowUp did not switch the scene');
       }
       A.showView('suite');
+      // The first screen shows a perceptual axis beside the default one (FLIP, or the
+      // perceptual temporal error in a motion run), with what each axis rewards.
+      if (A.META.perceptual_axis && A.state.metric !== A.META.perceptual_axis) {
+        const sec = A.sectionOf('suite');
+        if (!sec.querySelector('.qc .chart-box.perceptual svg, .qc .chart-box.perceptual .note')) problems.push('no perceptual axis beside the quality axis on the suite view');
+        if (!sec.querySelector('table.cost th.perceptual')) problems.push('no perceptual column in the cost-of-accuracy table');
+      }
       const def = A.state.metric;
       for (const m of A.META.axis) A.setMetric(m);
       A.setMetric(def);

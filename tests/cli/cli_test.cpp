@@ -211,6 +211,20 @@ TEST(Cli, MetricsCommand) {
   ExpectFails("metrics --reference " + (dir / "nope.png").string() + " " + (dir / "ref.png").string(), {"does not exist"});
   std::ofstream(dir / "trunc.png") << "\x89PNG\r\n";
   ExpectFails("metrics --reference " + (dir / "trunc.png").string() + " " + (dir / "ref.png").string(), {"trunc.png"});
+  // The viewing condition sets FLIP's pixels per degree: `default` is the plain command's 67,
+  // another distance changes FLIP and nothing else.
+  auto json_of = [&](const std::string& extra) {
+    const CmdResult c = Aalab("metrics --json " + extra + " --reference " + (dir / "ref.png").string() + " " +
+                              (dir / "none.png").string());
+    EXPECT_EQ(c.code, 0) << c.output;
+    return nlohmann::json::parse(c.output);
+  };
+  const auto plain = json_of(""), same = json_of("--viewing default"), far = json_of("--viewing default:ppd=134");
+  EXPECT_EQ(plain["metrics"], same["metrics"]);
+  EXPECT_NE(plain["metrics"]["flip_mean"], far["metrics"]["flip_mean"]);
+  EXPECT_EQ(plain["metrics"]["psnr_db"], far["metrics"]["psnr_db"]);
+  ExpectFails("metrics --viewing cinema --reference " + (dir / "ref.png").string() + " " + (dir / "none.png").string(),
+              {"unknown preset 'cinema'", "tv-1080p-2m"});
 }
 
 TEST(Cli, ApplyRunsPostFiltersOnUserImages) {

@@ -227,6 +227,29 @@ TEST(HistoryCli, AddsReportsRejectsMismatchedSeriesAndWritesTrends) {
   EXPECT_TRUE(Has(r, "line 4")) << r.output;
 }
 
+TEST(SweepCli, PerceptualObjectiveAtAViewingCondition) {
+  // flip_mean as the objective (lower is better): the best point is the one with the lowest
+  // mean FLIP, computed at the viewing condition the sweep records.
+  const fs::path dir = TempDir("sweep-flip");
+  const fs::path out = dir / "sweep";
+  const CmdResult r = Aalab("sweep --scenes wedges,circle --method fxaa311-p39 --grid subpix=0,0.5,1 "
+                            "--objective flip_mean,edge_psnr_db --viewing tv-1080p-2m --size 48x27 --ref-spp 4 "
+                            "--repeat 1 --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const Json j = ReadJson(out / "sweep.json");
+  EXPECT_EQ(j["settings"]["viewing"], "tv-1080p-2m");
+  EXPECT_EQ(j["settings"]["ppd"], "55.04364145434214");  // shortest text that reads back exactly
+  size_t best = 0;
+  for (size_t p = 0; p < j["points"].size(); ++p) {
+    if (j["points"][p]["objectives"]["flip_mean"]["mean"].get<double>() <
+        j["points"][best]["objectives"]["flip_mean"]["mean"].get<double>()) best = p;
+  }
+  EXPECT_EQ(j["best"]["flip_mean"]["point"], best);
+  EXPECT_EQ(j["suggested_preset"], j["points"][best]["spec"]);  // the first objective drives it
+  EXPECT_TRUE(Has(r, "best flip_mean (mean over 2 scenes)")) << r.output;
+  fs::remove_all(dir);
+}
+
 TEST(SweepCli, RendersEachReferenceOnceAndWritesTheFront) {
   const fs::path dir = TempDir("sweep");
   const fs::path out = dir / "sweep";

@@ -401,3 +401,43 @@ TEST(Compare, TextTableAndHtml) {
 
 }  // namespace
 }  // namespace aalab
+
+namespace aalab {
+namespace {
+
+TEST(Compare, PerceptualMeasuresAsObjective) {
+  // flip_mean and the perceptual temporal error are lower-is-better and have a default 5 %
+  // tolerance, so `--metrics psnr_db,flip_mean` needs no --max-metric-change.
+  EXPECT_EQ(MetricDirection("temporal_perceptual"), Better::kLower);
+  EXPECT_EQ(MetricDirection("temporal_csf_rmse"), Better::kLower);
+  CompareOptions o = NoTime();
+  o.metrics = {"psnr_db", "flip_mean"};
+  EXPECT_NO_THROW(ValidateCompareOptions(o));
+  // A change that sharpens PSNR by 0.5 dB but raises FLIP by 10 % (0.040 → 0.044: more
+  // than 5 %) is a regression by FLIP and an improvement by PSNR.
+  ResultRow a = Row("wedges", "fxaa1-p3", 30.0, "h1"), b = Row("wedges", "fxaa1-p3", 30.5, "h2");
+  a.metrics.push_back({"flip_mean", 0.040, ""});
+  b.metrics.push_back({"flip_mean", 0.044, ""});
+  const CompareResult r = CompareReports(Rep({a}), Rep({b}), o);
+  EXPECT_EQ(r.ExitCode(), 1);
+  EXPECT_EQ(Find(r, "wedges", "fxaa1-p3", "flip_mean")->verdict, Verdict::kRegression);
+  EXPECT_EQ(Find(r, "wedges", "fxaa1-p3", "psnr_db")->verdict, Verdict::kImproved);
+}
+
+TEST(Compare, ViewingConditionMustAgree) {
+  // FLIP depends on the pixels per degree: reports of two viewing conditions are not
+  // comparable; a report without the setting (written before it existed) counts as 67.
+  Report a = Rep({Row("wedges", "none", 21.0, "h1")}), b = a;
+  b.settings.push_back({"ppd", "55.04364145434214"});
+  const CompareResult r = CompareReports(a, b, NoTime());
+  EXPECT_EQ(r.ExitCode(), 2);
+  ASSERT_FALSE(r.cannot_compare.empty());
+  EXPECT_NE(r.cannot_compare[0].find("setting 'ppd' differs: baseline 67, current 55.04"), std::string::npos)
+      << r.cannot_compare[0];
+  Report c = a;
+  c.settings.push_back({"ppd", "67"});
+  EXPECT_EQ(CompareReports(a, c, NoTime()).ExitCode(), 0);
+}
+
+}  // namespace
+}  // namespace aalab
