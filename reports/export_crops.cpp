@@ -129,7 +129,7 @@ CropFigureOptions DefaultCropFigure(const std::vector<ExportSource>& sources, co
   if (o.zoom == 0) {
     int largest = 1;
     for (const auto& c : o.crops) largest = std::max({largest, c[2], c[3]});
-    o.zoom = std::max(1, kTileTarget / largest);
+    o.zoom = std::clamp(kTileTarget / largest, 1, 32);
   }
   if (o.zoom < 1 || o.zoom > 32) throw UserError("--zoom " + std::to_string(o.zoom) + " must be 1..32");
   return o;
