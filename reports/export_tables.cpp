@@ -420,13 +420,13 @@ bool AnyNonEmpty(const std::vector<std::string>& v) {
 std::string TableToLatex(const ExportTable& t, const std::string& id, const std::vector<std::string>& provenance) {
   std::string o;
   for (const auto& line : provenance) o += "% " + line + "\n";
-  o += "% Needs \\usepackage{booktabs}" + std::string(t.columns.size() > 8 ? " and \\usepackage{graphicx}" : "") + ".\n";
+  o += "% Needs \\usepackage{booktabs} and \\usepackage{graphicx} (the tabular is scaled to \\linewidth only when "
+       "wider).\n";
   const bool wide = t.columns.size() > 6;
   const std::string env = wide ? "table*" : "table";
   o += "\\begin{" + env + "}[tbp]\n\\centering\n";
   o += "\\caption{" + LatexEscape(t.caption) + "}\n\\label{tab:aalab-" + id + "}\n";
-  const bool scaled = t.columns.size() > 8;
-  if (scaled) o += "\\resizebox{\\linewidth}{!}{%\n";
+  o += "\\setbox0=\\hbox{%\n";
   o += "\\begin{tabular}{l" + std::string(t.columns.size(), 'r') + "}\n\\toprule\n";
   if (AnyNonEmpty(t.column_groups)) {
     std::string rules;
@@ -451,8 +451,8 @@ std::string TableToLatex(const ExportTable& t, const std::string& id, const std:
     for (const auto& c : t.cells[r]) o += " & " + LatexCell(c);
     o += " \\\\\n";
   }
-  o += "\\bottomrule\n\\end{tabular}";
-  o += scaled ? "%\n}\n" : "\n";
+  o += "\\bottomrule\n\\end{tabular}%\n}%\n";
+  o += "\\ifdim\\wd0>\\linewidth\\resizebox{\\linewidth}{!}{\\box0}\\else\\box0\\fi\n";
   if (!t.notes.empty()) {
     o += "\\par\\smallskip\n{\\footnotesize\\raggedright\n";
     for (const auto& n : t.notes) o += LatexEscape(n) + "\n";
@@ -525,7 +525,10 @@ std::string TableToCsv(const ExportTable& t, const std::vector<std::string>& pro
   for (size_t r = 0; r < t.cells.size(); ++r) {
     if (groups) o += field(t.row_groups[r]) + ",";
     o += field(t.row_labels[r]);
-    for (const auto& c : t.cells[r]) o += "," + (c.value ? nlohmann::json(*c.value).dump() : std::string());
+    for (const auto& c : t.cells[r]) {
+      o += ',';
+      if (c.value) o += nlohmann::json(*c.value).dump();
+    }
     o += "\n";
     if (group_order.empty() || group_order.back() != t.row_groups[r]) group_order.push_back(t.row_groups[r]);
   }
@@ -537,7 +540,8 @@ std::string TableToCsv(const ExportTable& t, const std::vector<std::string>& pro
       for (size_t r = 0; r < t.cells.size(); ++r) {
         if (t.row_groups[r] == g && t.cells[r][c].best) names.push_back(t.row_labels[r]);
       }
-      o += "," + field(Join(names, ";"));
+      o += ',';
+      o += field(Join(names, ";"));
     }
     o += "\n";
   }

@@ -55,8 +55,8 @@ ExportTable MetricTable(const std::vector<ExportSource>& sources, const ExportSe
 ExportTable CostTable(const std::vector<ExportSource>& sources, const ExportSelection& sel);
 
 /// LaTeX: a table(*) float with a booktabs tabular, best in bold, caption, label
-/// `tab:aalab-<id>`; `provenance` lines become % comments at the top. Needs \usepackage{booktabs}
-/// (and graphicx for wide tables, which are scaled to \linewidth).
+/// `tab:aalab-<id>`; `provenance` lines become % comments at the top; the tabular is scaled
+/// down to \linewidth only when it is wider. Needs \usepackage{booktabs} and graphicx.
 std::string TableToLatex(const ExportTable& t, const std::string& id, const std::vector<std::string>& provenance);
 /// Markdown (GitHub pipe table), best in bold, caption above, notes below, provenance in an
 /// HTML comment.
