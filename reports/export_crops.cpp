@@ -110,6 +110,20 @@ CropFigureOptions DefaultCropFigure(const std::vector<ExportSource>& sources, co
     const SceneResult* s = FindScene(src.report, o.scene);
     if (!s) throw UserError("--figure-scene: scene '" + o.scene + "' is not in report '" + src.dir + "'");
   }
+  if (asked.methods.empty()) {
+    // Default methods without an output on this scene (not applicable on an image scene)
+    // are left out rather than refused.
+    std::vector<std::string> kept;
+    for (const auto& spec : o.methods) {
+      bool all = true;
+      for (const auto& src : sources) {
+        const ResultRow* row = FindRow(src.report, o.scene, spec);
+        all = all && row && row->images.count("output") && !row->images.at("output").empty();
+      }
+      if (all) kept.push_back(spec);
+    }
+    o.methods = kept;
+  }
   const SceneResult* scene = FindScene(first, o.scene);
   if (o.crops.empty()) {
     for (size_t i = 0; i < scene->crops.size() && i < 2; ++i) o.crops.push_back(scene->crops[i]);
