@@ -227,10 +227,30 @@ ExportTable MetricTable(const std::vector<ExportSource>& sources, const ExportSe
   t.cells.assign(sel.methods.size(), {});
   std::map<std::string, std::set<std::string>> empty_why;  // reason → scenes
   std::vector<std::string> scope_notes;
+  // A scene where no chosen method of any report has a value (no edge pixels for an edge
+  // metric) gets no column of dashes, only a note.
+  std::vector<std::string> shown;
+  for (const auto& scene : sel.scenes) {
+    bool any = false;
+    std::set<std::string> reasons;
+    for (const auto& src : sources) {
+      for (const auto& spec : sel.methods) {
+        const ResultRow* row = FindRow(src.report, scene, spec);
+        if (row && MetricOf(*row, sel.metric)) any = true;
+        if (row && !MetricOf(*row, sel.metric)) reasons.insert(NullReason(*row, sel.metric));
+      }
+    }
+    if (any) {
+      shown.push_back(scene);
+    } else {
+      t.notes.push_back("No column for " + scene + ": " + info.label + " is undefined there for every method (" +
+                        Join({reasons.begin(), reasons.end()}, "; ") + ").");
+    }
+  }
   for (const auto& src : sources) {
     const MeanScope scope = ScopeOf(src.report, sel);
     const std::set<std::string> na = NotApplicableEverywhere(src.report, sel);
-    for (const auto& scene : sel.scenes) {
+    for (const auto& scene : shown) {
       t.columns.push_back(scene);
       t.column_groups.push_back(grouped ? src.label : "");
       for (size_t m = 0; m < sel.methods.size(); ++m) {

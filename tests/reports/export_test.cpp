@@ -135,6 +135,18 @@ TEST(ExportTables, MetricTableValuesMeansAndBest) {
   EXPECT_NE(f.caption.find("67 pixels per degree"), std::string::npos);
 }
 
+TEST(ExportTables, SceneWithoutAnyValueGetsANoteNotAColumn) {
+  ExportSource src = Source();
+  for (auto& r : src.report.rows) {
+    if (r.scene == "c") r.metrics[0] = {"edge_psnr_db", std::nullopt, "empty mask"};
+  }
+  const ExportTable t = MetricTable({src}, Sel({src}));
+  EXPECT_EQ(t.columns, (std::vector<std::string>{"a", "b", "Mean"}));
+  ASSERT_FALSE(t.notes.empty());
+  EXPECT_EQ(t.notes[0], "No column for c: Edge PSNR is undefined there for every method (empty mask).");
+  EXPECT_DOUBLE_EQ(*t.cells[2][2].value, 32.0);  // the mean is unchanged: c was left out anyway
+}
+
 TEST(ExportTables, CsvAndLatexParseBackToTheValues) {
   const std::vector<ExportSource> src{Source()};
   const ExportTable t = MetricTable(src, Sel(src));
