@@ -23,9 +23,14 @@ std::string F(double v) {
   return buf;
 }
 
+/// Tick text: whole numbers in full ("1000", not "1e+03"), others to 3 significant digits.
 std::string Tick(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
+  if (std::fabs(v) >= 1 && std::fabs(v) < 1e7 && std::fabs(v - std::round(v)) < 1e-9 * std::fabs(v)) {
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+  }
   return buf;
 }
 

@@ -176,7 +176,7 @@ std::vector<std::string> ProvenanceLines(const std::vector<ExportSource>& source
   return lines;
 }
 
-std::string ConditionsSentence(const Report& r, const std::string& metric) {
+std::string ConditionsSentence(const Report& r, const std::string& metric, bool timing) {
   std::string out;
   bool exact = !r.scenes.empty();
   for (const auto& s : r.scenes) exact = exact && s.ref_exact;
@@ -198,6 +198,7 @@ std::string ConditionsSentence(const Report& r, const std::string& metric) {
     std::snprintf(ppd, sizeof ppd, "%g", kFlipDefaultPpd);
     out += std::string(" FLIP viewing condition: ") + ppd + " pixels per degree.";
   }
+  if (!timing) return out;
   out += " Times: median over " + SettingOf(r, "repeat") + " timed run(s) after " + SettingOf(r, "warmup") +
          " warm-up, CPU, " + ContextOf(r, "cpu") + ", " + ContextOf(r, "threads") + " threads.";
   return out;

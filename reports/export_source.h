@@ -55,6 +55,7 @@ std::vector<std::string> ProvenanceLines(const std::vector<ExportSource>& source
 /// What produced the numbers, for captions: reference ("64-spp stratified reference" or
 /// "exact-coverage reference"), size, timing conditions (repeats, warm-up, CPU, threads) and
 /// the viewing condition when the metric depends on one (FLIP at 67 pixels per degree).
-std::string ConditionsSentence(const Report& report, const std::string& metric);
+/// `timing` false leaves the timing conditions out (a figure of images has no times).
+std::string ConditionsSentence(const Report& report, const std::string& metric, bool timing = true);
 
 }  // namespace aalab

@@ -139,7 +139,7 @@ std::string FigureLatex(const std::vector<ExportSource>& sources, const CropFigu
     caption += std::string(" Under each crop: the absolute error against the reference (mean over RGB of the 8-bit "
                            "values), viridis from 0 to ") + full + " and above.";
   }
-  caption += " " + ConditionsSentence(sources.front().report, "");
+  caption += " " + ConditionsSentence(sources.front().report, "", false);
   std::string o_tex;
   for (const auto& line : provenance) o_tex += "% " + line + "\n";
   o_tex += "% Needs \\usepackage{graphicx}.\n\\begin{figure*}[tbp]\n\\centering\n"
