@@ -17,6 +17,9 @@ namespace aalab {
 
 namespace {
 
+/// PSNRs at least this close to the reference's noise floor are marked (the page's ⚠ rule).
+constexpr double kNearFloorDb = 3.0;
+
 /// How a column's numbers are printed: dB with 2 decimals, milliseconds with 3/2/1 decimals by
 /// magnitude, other values with enough decimals for 3 significant digits of the largest.
 enum class Kind { kDb, kMs, kValue, kFlag };
@@ -226,7 +229,7 @@ ExportTable MetricTable(const std::vector<ExportSource>& sources, const ExportSe
   t.row_groups.assign(sel.methods.size(), "");
   t.cells.assign(sel.methods.size(), {});
   std::map<std::string, std::set<std::string>> empty_why;  // reason → scenes
-  std::vector<std::string> scope_notes;
+  std::vector<std::string> scope_notes, floor_notes;
   // A scene where no chosen method of any report has a value (no edge pixels for an edge
   // metric) gets no column of dashes, only a note.
   std::vector<std::string> shown;
@@ -258,6 +261,14 @@ ExportTable MetricTable(const std::vector<ExportSource>& sources, const ExportSe
         TableCell c;
         if (row) c.value = MetricOf(*row, sel.metric);
         if (!c.value) empty_why[row ? NullReason(*row, sel.metric) : "not run"].insert(scene);
+        const SceneResult* sc = FindScene(src.report, scene);
+        if (c.value && html::IsPsnrMetric(sel.metric) && sc && sc->ref_floor_psnr_db &&
+            *c.value >= *sc->ref_floor_psnr_db - kNearFloorDb) {
+          c.near_floor = true;
+          char note[160];
+          std::snprintf(note, sizeof note, "%s (noise floor %.2f dB)", scene.c_str(), *sc->ref_floor_psnr_db);
+          if (std::find(floor_notes.begin(), floor_notes.end(), note) == floor_notes.end()) floor_notes.push_back(note);
+        }
         t.cells[m].push_back(c);
       }
     }
@@ -284,6 +295,10 @@ ExportTable MetricTable(const std::vector<ExportSource>& sources, const ExportSe
               (mean ? " and the mean over scenes" : "") + "; best per column in bold." + RunsSentence(sources) +
               Conditions(sources, sel.metric);
   for (const auto& n : scope_notes) t.notes.push_back(n);
+  if (!floor_notes.empty()) {
+    t.notes.push_back("†: within 3 dB of the reference's noise floor or above it, so not distinguishable from "
+                      "the reference at its sample count: " + Join(floor_notes, ", ") + ".");
+  }
   for (const auto& [why, scenes] : empty_why) {
     t.notes.push_back("Empty cells (" + Join({scenes.begin(), scenes.end()}, ", ") + "): " + why + ".");
   }
@@ -378,6 +393,9 @@ std::string LatexEscape(const std::string& text) {
     } else if (starts("≥")) {
       out += "$\\geq$";
       i += std::string("≥").size() - 1;
+    } else if (starts("†")) {
+      out += "\\textdagger{}";
+      i += std::string("†").size() - 1;
     } else if (starts("·")) {
       out += "$\\cdot$";
       i += std::string("·").size() - 1;
@@ -411,7 +429,8 @@ std::string LatexCell(const TableCell& c) {
   std::string s = c.text;
   if (s[0] == '-') s = "$-$" + s.substr(1);
   if (s == "yes") s = "$\\bullet$";
-  return c.best ? "\\textbf{" + s + "}" : s;
+  if (c.best) s = "\\textbf{" + s + "}";
+  return c.near_floor ? s + "$^\\dagger$" : s;
 }
 
 /// Consecutive equal groups: (label, first column, count).
@@ -512,7 +531,7 @@ std::string TableToMarkdown(const ExportTable& t, const std::vector<std::string>
     o += "| " + esc(t.row_labels[r]);
     for (const auto& c : t.cells[r]) {
       const std::string s = !c.value ? "—" : c.text;
-      o += " | " + (c.best && !s.empty() ? "**" + s + "**" : s);
+      o += " | " + (c.best && !s.empty() ? "**" + s + "**" : s) + (c.near_floor ? "†" : "");
     }
     o += " |\n";
   }

@@ -17,6 +17,9 @@ struct TableCell {
   std::optional<double> value;  ///< empty: "—" (the table's notes say why)
   std::string text;             ///< formatted, without markup; "" when empty
   bool best = false;
+  /// A PSNR within 3 dB of the scene's reference noise floor (or above it): the method is
+  /// indistinguishable from the reference at its sample count. Marked † (as ⚠ in the page).
+  bool near_floor = false;
 };
 
 /// A table in a form every writer shares.

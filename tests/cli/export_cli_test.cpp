@@ -94,6 +94,7 @@ std::map<std::string, std::vector<std::optional<double>>> LatexRows(const std::s
     if (line.rfind("\\", 0) == 0) continue;  // \midrule, \multicolumn group rows
     line = std::regex_replace(line, std::regex(R"(\\textbf\{([^}]*)\})"), "$1");
     line = std::regex_replace(line, std::regex(R"(\$-\$)"), "-");
+    line = std::regex_replace(line, std::regex(R"(\$\^\\dagger\$)"), "");  // near the noise floor
     line = std::regex_replace(line, std::regex(R"(\s*\\\\\s*$)"), "");
     std::vector<std::string> f;
     size_t start = 0;

@@ -147,6 +147,21 @@ TEST(ExportTables, SceneWithoutAnyValueGetsANoteNotAColumn) {
   EXPECT_DOUBLE_EQ(*t.cells[2][2].value, 32.0);  // the mean is unchanged: c was left out anyway
 }
 
+TEST(ExportTables, PsnrNearTheNoiseFloorIsMarked) {
+  ExportSource src = Source();
+  src.report.scenes[0].ref_floor_psnr_db = 32.0;  // scene a: slow's 30 dB is within 3 dB of it
+  const ExportTable t = MetricTable({src}, Sel({src}));
+  EXPECT_TRUE(t.cells[2][0].near_floor);
+  EXPECT_FALSE(t.cells[1][0].near_floor);  // fast: 25 dB, 7 dB below
+  EXPECT_FALSE(t.cells[2][1].near_floor);  // scene b has no floor
+  EXPECT_FALSE(t.cells[2][3].near_floor);  // means are not marked
+  const std::string tex = TableToLatex(t, "metric", {});
+  EXPECT_NE(tex.find("slow & \\textbf{30.00}$^\\dagger$ & \\textbf{34.00} &"), std::string::npos) << tex;
+  EXPECT_NE(tex.find("\\textdagger{}: within 3 dB of the reference's noise floor"), std::string::npos);
+  EXPECT_NE(tex.find("a (noise floor 32.00 dB)"), std::string::npos);
+  EXPECT_EQ(MetricTable({src}, Sel({src}, "flip_mean")).cells[2][0].near_floor, false);  // not a PSNR
+}
+
 TEST(ExportTables, CsvAndLatexParseBackToTheValues) {
   const std::vector<ExportSource> src{Source()};
   const ExportTable t = MetricTable(src, Sel(src));
