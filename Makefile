@@ -7,7 +7,7 @@ RUN_ARGS  ?=
 CMAKE_FLAGS ?=
 BENCH_ARGS ?=
 
-.PHONY: all deps configure build run test bench clean test-asan fuzz test-gpu test-slurm
+.PHONY: all deps configure build run test bench clean test-asan fuzz test-gpu test-slurm test-latex
 
 all: build
 
@@ -46,6 +46,15 @@ fuzz: deps
 # stops what it started. Not part of `make test` (it installs and starts daemons).
 test-slurm: configure
 	@BUILD=$(BUILD) JOBS=$(JOBS) bash scripts/test-slurm.sh
+
+# `aalab export`'s LaTeX tables, figure snippet and references.bib in a minimal article through
+# pdflatex + bibtex (docs/publishing.md). Installs TeX Live from Debian first
+# (scripts/debian-packages-latex.txt, about 150 MB), so it is not part of `make test`, where
+# the same test skips when pdflatex is missing.
+test-latex: configure
+	@bash scripts/install-deps.sh scripts/debian-packages-latex.txt
+	@cmake --build $(BUILD) -j $(JOBS) --target aalab cli_test
+	@cd $(BUILD) && ctest -R 'ExportCli\.LatexCompiles' --output-on-failure
 
 # The CUDA twins of the post filters against the CPU methods, on a machine with an NVIDIA GPU
 # and the CUDA toolkit (nothing else: gpu/ builds stand-alone). Synthetic frames always;

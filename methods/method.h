@@ -79,6 +79,9 @@ struct MethodEntry {
   std::string help;
   std::vector<ParamDef> params;
   std::function<MethodPlan(const ParamValues&)> make;
+  /// Where the method comes from: BibTeX keys of reports/export_bibliography.cpp, comma
+  /// separated ("" = defined here, nothing to cite). Set once per family in registry.cpp.
+  std::string source = "";
 };
 
 }  // namespace aalab

@@ -8,18 +8,27 @@ namespace aalab {
 const std::vector<MethodEntry>& MethodRegistry() {
   static const std::vector<MethodEntry> table = [] {
     std::vector<MethodEntry> all;
-    auto add = [&all](std::vector<MethodEntry> rows) {
-      for (auto& r : rows) all.push_back(std::move(r));
+    auto add = [&all](std::vector<MethodEntry> rows, const char* source) {
+      for (auto& r : rows) {
+        r.source = source;
+        all.push_back(std::move(r));
+      }
     };
-    // One line per family file, in listing order.
-    add(SupersampleMethods());
-    add(MsaaMethods());
-    add(Fxaa1Methods());
-    add(Fxaa311Methods());
-    add(SmaaMethods());
-    add(RenderScaleMethods());
-    add(AaaMethods());
-    add(TaaMethods());
+    // One line per family file, in listing order, with the family's sources: BibTeX keys of
+    // reports/export_bibliography.cpp (what `aalab export` cites; "" = nothing to cite).
+    add(SupersampleMethods(), "");
+    add(MsaaMethods(), "d3d11_msaa");
+    add(Fxaa1Methods(), "lottes2009fxaa");
+    add(Fxaa311Methods(), "lottes2011fxaa311");
+    add(SmaaMethods(), "jimenez2012smaa");
+    add(RenderScaleMethods(), "flick2021fxaa,lottes2011fxaa311");
+    add(AaaMethods(), "frostkiwi2024aaa");
+    add(TaaMethods(), "karis2014taa,salvi2016taa");
+    // Methods of a family whose presets come from another document as well.
+    for (auto& r : all) {
+      if (r.name == "fxaa-low" || r.name == "fxaa-medium" || r.name == "fxaa-high") r.source += ",flick2021fxaa";
+      if (r.name == "fxaa-iter12") r.source += ",zeng_fxaa_notes";
+    }
     return all;
   }();
   return table;

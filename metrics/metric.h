@@ -52,6 +52,9 @@ struct MetricEntry {
   /// The row needs `MetricInput::edge_mask`; ComputeAllMetrics reports its values as null
   /// ("no edge mask") when the mask is absent instead of calling `compute`.
   bool needs_edge_mask = false;
+  /// Where the metric comes from: BibTeX keys of reports/export_bibliography.cpp, comma
+  /// separated ("" = defined here, nothing to cite). Set once per family in registry.cpp.
+  std::string source = "";
 };
 
 /// Every metric, in listing order.

@@ -10,16 +10,20 @@ namespace aalab {
 const std::vector<MetricEntry>& MetricRegistry() {
   static const std::vector<MetricEntry> table = [] {
     std::vector<MetricEntry> all;
-    auto add = [&all](std::vector<MetricEntry> rows) {
-      for (auto& r : rows) all.push_back(std::move(r));
+    auto add = [&all](std::vector<MetricEntry> rows, const char* source) {
+      for (auto& r : rows) {
+        r.source = source;
+        all.push_back(std::move(r));
+      }
     };
-    // One line per family file, in listing order.
-    add(PsnrMetrics());
-    add(EdgeErrorMetrics());
-    add(SsimMetrics());
-    add(FlipMetrics());
-    add(AbsErrorMetrics());
-    add(CoverageBiasMetrics());
+    // One line per family file, in listing order, with the family's source: BibTeX keys of
+    // reports/export_bibliography.cpp (what `aalab export` cites; "" = defined by aalab).
+    add(PsnrMetrics(), "");
+    add(EdgeErrorMetrics(), "");
+    add(SsimMetrics(), "wang2004ssim");
+    add(FlipMetrics(), "andersson2020flip");
+    add(AbsErrorMetrics(), "");
+    add(CoverageBiasMetrics(), "");
     return all;
   }();
   return table;

@@ -22,8 +22,6 @@
 namespace aalab {
 namespace fs = std::filesystem;
 
-namespace {
-
 std::vector<std::string> SplitList(const std::string& text) {
   std::vector<std::string> out;
   std::string cur;
@@ -45,6 +43,8 @@ std::vector<std::string> SplitList(const std::string& text) {
   if (!cur.empty()) out.push_back(cur);
   return out;
 }
+
+namespace {
 
 int ListCommand(const std::string& what) {
   if (what == "scenes") {
@@ -271,6 +271,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   RegisterSweepCommands(app, commands);
   RegisterGpuCommands(app, commands);
   RegisterClusterCommands(app, commands);
+  RegisterExportCommand(app, commands);
 }
 
 }  // namespace aalab

@@ -1,6 +1,8 @@
 /// The aalab subcommands: CLI11 wiring and their implementations.
 #pragma once
 #include <functional>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -11,6 +13,10 @@ struct Commands {
   std::function<int()> action;
   int Run() const { return action ? action() : 0; }
 };
+
+/// Splits a comma-separated list of names or method specs: a comma followed by "key=" inside
+/// a spec's parameter list ("a:x=1,y=2,b") continues that spec. UserError on an empty item.
+std::vector<std::string> SplitList(const std::string& text);
 
 /// Adds every subcommand to `app`; the parsed one sets `commands.action`.
 void RegisterCommands(CLI::App& app, Commands& commands);
@@ -30,5 +36,8 @@ void RegisterGpuCommands(CLI::App& app, Commands& commands);
 /// Adds `merge` and `same-results` (cluster_commands.cpp; docs/cluster.md). `same-results`
 /// exits 0 same, 1 different, 2 could not compare.
 void RegisterClusterCommands(CLI::App& app, Commands& commands);
+
+/// Adds `export` (export_command.cpp; docs/publishing.md).
+void RegisterExportCommand(CLI::App& app, Commands& commands);
 
 }  // namespace aalab

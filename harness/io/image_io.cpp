@@ -41,7 +41,7 @@ void Commit(const std::string& tmp, const std::string& path) {
 }
 
 void WriteRaw(const std::string& path, int w, int h, int nc, OIIO::TypeDesc type, const void* data,
-              PngFilter png_filter = PngFilter::kAdaptive) {
+              PngFilter png_filter = PngFilter::kAdaptive, const ImageText* text = nullptr) {
   CheckWritableDir(path);
   const std::string tmp = TempPathFor(path);
   auto out = OIIO::ImageOutput::create(path);
@@ -54,6 +54,9 @@ void WriteRaw(const std::string& path, int w, int h, int nc, OIIO::TypeDesc type
   spec.attribute("DateTime", "");
   // libpng's row filter choice: 0x08 is PNG_FILTER_NONE (png.h); unset, libpng picks per row.
   if (png_filter == PngFilter::kNone) spec.attribute("png:filter", 0x08);
+  if (text) {
+    for (const auto& [key, value] : *text) spec.attribute(key, value);
+  }
   if (!out->open(tmp, spec) || !out->write_image(type, data) || !out->close()) {
     std::error_code ec;
     fs::remove(tmp, ec);
@@ -292,6 +295,16 @@ void WriteImage8(const std::string& path, const Image8& img, bool keep_alpha) {
   }
   WriteRaw(path, img.Width(), img.Height(), 3, OIIO::TypeDesc::UINT8, rgb.data(),
            ChoosePngFilter(rgb.data(), img.Width(), img.Height(), 3));
+}
+
+void WriteImage8WithText(const std::string& path, const Image8& img, const ImageText& text) {
+  AALAB_CHECK(img.Channels() == 4, "WriteImage8WithText expects RGBA8");
+  std::vector<uint8_t> rgb(img.PixelCount() * 3);
+  for (size_t i = 0; i < img.PixelCount(); ++i) {
+    for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = img.Data()[i * 4 + c];
+  }
+  WriteRaw(path, img.Width(), img.Height(), 3, OIIO::TypeDesc::UINT8, rgb.data(),
+           ChoosePngFilter(rgb.data(), img.Width(), img.Height(), 3), &text);
 }
 
 void WriteGrey8(const std::string& path, int width, int height, const std::vector<uint8_t>& data) {

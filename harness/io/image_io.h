@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness/core/image.h"
@@ -41,6 +42,13 @@ PngFilter ChoosePngFilter(const uint8_t* data, int w, int h, int nc);
 /// `keep_alpha`. A PNG's row filter is ChoosePngFilter's (lossless either way). Throws
 /// UserError when the path is not writable or the extension unknown.
 void WriteImage8(const std::string& path, const Image8& img, bool keep_alpha = false);
+
+/// Text metadata of an image file: (key, value) pairs, e.g. ("Software", "aalab 0.1.0").
+using ImageText = std::vector<std::pair<std::string, std::string>>;
+
+/// WriteImage8 (alpha dropped) with text metadata: PNG tEXt chunks, the other formats' string
+/// attributes. `aalab export` stamps its figures' provenance this way.
+void WriteImage8WithText(const std::string& path, const Image8& img, const ImageText& text);
 
 /// Writes a one-channel 8-bit image (`data`: width×height bytes, row-major), e.g. a metric
 /// map quantised to 0..255 for the page to colour. Same errors as WriteImage8.
