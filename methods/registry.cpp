@@ -20,6 +20,7 @@ const std::vector<MethodEntry>& MethodRegistry() {
     add(RenderScaleMethods());
     add(AaaMethods());
     add(TaaMethods());
+    add(SpecularAaMethods());
     return all;
   }();
   return table;
