@@ -319,8 +319,8 @@ class MaterialReader {
     }
     m.alpha_cutoff = 0.5f;
     am->Get(AI_MATKEY_GLTF_ALPHACUTOFF, m.alpha_cutoff);
-    int two = 0;
-    if (am->Get(AI_MATKEY_TWOSIDED, two) == AI_SUCCESS) g.double_sided = two != 0;
+    int two = 0;  // glTF's default is single-sided (doubleSided false)
+    g.double_sided = am->Get(AI_MATKEY_TWOSIDED, two) == AI_SUCCESS && two != 0;
     int model = 0;
     const bool unlit = am->Get(AI_MATKEY_SHADING_MODEL, model) == AI_SUCCESS && model == aiShadingMode_Unlit;
     m.shading = unlit ? Shading::kUnlit : Shading::kPbr;

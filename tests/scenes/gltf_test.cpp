@@ -99,6 +99,7 @@ TEST(GltfLoad, NodeTransformAndTexcoordsArriveUnchanged) {
   EXPECT_FLOAT_EQ(m.gltf->metallic, 0.1f);
   EXPECT_FLOAT_EQ(m.gltf->roughness, 0.7f);
   EXPECT_EQ(m.shading, Shading::kPbr);
+  EXPECT_FALSE(m.gltf->double_sided);  // the file leaves doubleSided out: glTF's default, false
 }
 
 TEST(GltfLoad, CameraFromItsNodeAndYfov) {
