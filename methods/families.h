@@ -34,5 +34,7 @@ std::vector<MethodEntry> AaaMethods();
 /// `taa`: temporal anti-aliasing with Halton(2,3) jitter, exact reprojection, YCoCg
 /// variance clipping and an exponential blend (methods/taa.cpp).
 std::vector<MethodEntry> TaaMethods();
+/// `gsaa`: geometric specular AA of glTF materials (methods/specular_aa.cpp).
+std::vector<MethodEntry> SpecularAaMethods();
 
 }  // namespace aalab

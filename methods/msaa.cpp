@@ -26,10 +26,14 @@
 //   shading     {center|centroid}  default center — where the one shading evaluation is
 //               made: the pixel centre on the primitive (attributes extrapolated past its
 //               edge, the hardware default), or the centroid rule above
-//   alpha_test  {shade|sample}  default shade — alpha test once per shading evaluation (a
+//   alpha_test  {shade|sample|a2c}  default shade — alpha test once per shading evaluation (a
 //               failed test discards the primitive from all its samples, like `discard`; the
-//               hardware default), or at every coverage sample (sample-rate alpha test /
-//               what alpha-to-coverage buys)
+//               hardware default), at every coverage sample (sample-rate alpha test), or
+//               alpha-to-coverage: the shading point's alpha keeps ⌊α·N + d⌋ of the N
+//               samples (the first in index order, ANDed with the primitive's coverage), d the
+//               pixel's threshold in the 4×4 Bayer ordered-dither matrix ((b + 0.5)/16; B. E.
+//               Bayer, "An optimum method for two-level rendition of continuous-tone
+//               pictures", ICC 1973), so N samples and 16 dither phases give 16·N alpha levels
 //   resolve     {display|hdr-linear}  default display — each sample through the display
 //               transform, box average in linear light, sRGB encode (as SSAA and the
 //               reference); hdr-linear averages scene-linear radiance and applies the display
@@ -44,8 +48,8 @@ namespace {
 std::vector<ParamDef> MsaaParams() {
   return {ChoiceParam("shading", "center", {"center", "centroid"},
                       "where a primitive is shaded: the pixel centre (extrapolated) or the centroid rule"),
-          ChoiceParam("alpha_test", "shade", {"shade", "sample"},
-                      "alpha test once per shading evaluation (discard) or at every coverage sample"),
+          ChoiceParam("alpha_test", "shade", {"shade", "sample", "a2c"},
+                      "alpha test once per shading evaluation (discard), at every coverage sample, or alpha-to-coverage"),
           ChoiceParam("resolve", "display", {"display", "hdr-linear"},
                       "tonemap each sample then average (display) or average radiance then tonemap (hdr-linear)")};
 }
@@ -55,7 +59,8 @@ RenderSpec MsaaRender(int samples, const ParamValues& p) {
   RenderSpec r;
   r.msaa.samples = samples;
   r.msaa.shading = p.Choice("shading") == "centroid" ? MsaaShading::kCentroid : MsaaShading::kCenter;
-  r.msaa.alpha_test = p.Choice("alpha_test") == "sample" ? MsaaAlphaTest::kSample : MsaaAlphaTest::kShade;
+  const std::string& at = p.Choice("alpha_test");
+  r.msaa.alpha_test = at == "sample" ? MsaaAlphaTest::kSample : at == "a2c" ? MsaaAlphaTest::kCoverage : MsaaAlphaTest::kShade;
   r.msaa.resolve = p.Choice("resolve") == "hdr-linear" ? MsaaResolve::kHdrLinear : MsaaResolve::kDisplay;
   return r;
 }

@@ -24,6 +24,7 @@ const std::vector<MethodEntry>& MethodRegistry() {
     add(RenderScaleMethods(), "flick2021fxaa,lottes2011fxaa311");
     add(AaaMethods(), "frostkiwi2024aaa");
     add(TaaMethods(), "karis2014taa,salvi2016taa");
+    add(SpecularAaMethods(), "tokuyoshi2021gsaa");
     // Methods of a family whose presets come from another document as well.
     for (auto& r : all) {
       if (r.name == "fxaa-low" || r.name == "fxaa-medium" || r.name == "fxaa-high") r.source += ",flick2021fxaa";

@@ -14,4 +14,5 @@ set(AALAB_METHOD_SOURCES
   render_scale.cpp
   aaa.cpp
   taa.cpp
+  specular_aa.cpp
 )

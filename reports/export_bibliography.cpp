@@ -83,6 +83,14 @@ const Bib kBibliography[] = {
   booktitle = {Game Developers Conference},
   year      = {2016}
 })"},
+    {"tokuyoshi2021gsaa", R"(@article{tokuyoshi2021gsaa,
+  author  = {Yusuke Tokuyoshi and Anton S. Kaplanyan},
+  title   = {Stable Geometric Specular Antialiasing with Projected-Space {NDF} Filtering},
+  journal = {Journal of Computer Graphics Techniques},
+  volume  = {10},
+  number  = {2},
+  year    = {2021}
+})"},
     {"wang2004ssim", R"(@article{wang2004ssim,
   author  = {Zhou Wang and Alan C. Bovik and Hamid R. Sheikh and Eero P. Simoncelli},
   title   = {Image Quality Assessment: From Error Visibility to Structural Similarity},

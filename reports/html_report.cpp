@@ -265,6 +265,12 @@ void SceneFacts(std::string& h, const SceneResult& s) {
   fact("edge pixels", Printf("%.2f %%", 100.0 * s.edge_pixel_fraction));
   fact("edge mask", HtmlEscape(s.edge_mask_source));
   fact("BVH build", FmtMs(s.bvh_build_ms) + " ms (once per scene, not in method times)");
+  if (s.content) {
+    fact("content", std::to_string(s.content->triangles) + " triangles, " + std::to_string(s.content->textures) +
+                        " textures: mip chains " + Printf("%.1f MB", s.content->texture_bytes / 1e6) +
+                        " as stored (RGBA float), " + Printf("%.1f MB", s.content->texture_bytes_rgba8 / 1e6) +
+                        " as RGBA8");
+  }
   fact("scene file", "<code>" + HtmlEscape(s.source) + "</code>");
   h += "</dl>\n";
 }

@@ -143,6 +143,12 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
     j["kind"] = s.kind;
     j["edge_mask_source"] = s.edge_mask_source;
     j["bvh_build_ms"] = Num(s.bvh_build_ms);
+    if (s.content) {
+      j["content"] = {{"triangles", s.content->triangles},
+                      {"textures", s.content->textures},
+                      {"texture_bytes", s.content->texture_bytes},
+                      {"texture_bytes_rgba8", s.content->texture_bytes_rgba8}};
+    }
     j["edge_pixel_fraction"] = Num(s.edge_pixel_fraction);
     Json im = Json::object();
     for (const auto& [k, v] : s.images) im[k] = v;
@@ -271,6 +277,15 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       if (j.contains("kind")) s.kind = j.at("kind").get<std::string>();
       if (j.contains("edge_mask_source")) s.edge_mask_source = j.at("edge_mask_source").get<std::string>();
       s.bvh_build_ms = j.at("bvh_build_ms").get<double>();
+      if (j.contains("content")) {
+        const auto& c = j.at("content");
+        SceneResult::Content k;
+        k.triangles = c.at("triangles").get<uint64_t>();
+        k.textures = c.at("textures").get<int>();
+        k.texture_bytes = c.at("texture_bytes").get<uint64_t>();
+        k.texture_bytes_rgba8 = c.at("texture_bytes_rgba8").get<uint64_t>();
+        s.content = k;
+      }
       s.edge_pixel_fraction = j.at("edge_pixel_fraction").get<double>();
       for (auto it = j.at("images").begin(); it != j.at("images").end(); ++it) {
         s.images[it.key()] = it.value().get<std::string>();

@@ -84,6 +84,14 @@ struct SceneResult {
   int ref_spp = 0;     ///< 0 for the exact reference
   bool ref_exact = false;  ///< closed-form exact reference (scenes/exact_reference.h)
   double bvh_build_ms = 0, reference_ms = 0;
+  /// Scenes with glTF content: triangles, image textures and their mip chains' memory.
+  struct Content {
+    uint64_t triangles = 0;
+    int textures = 0;
+    uint64_t texture_bytes = 0;        ///< mip chains as aalab stores them (RGBA float32)
+    uint64_t texture_bytes_rgba8 = 0;  ///< the same chains as RGBA8 GPU textures
+  };
+  std::optional<Content> content;
   std::optional<double> ref_halves_psnr_db, ref_floor_psnr_db;
   double ref_primary_rays_per_px = 0, ref_shadow_rays_per_px = 0, ref_texture_lookups_per_px = 0;
   double edge_pixel_fraction = 0;

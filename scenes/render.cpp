@@ -74,7 +74,7 @@ struct TileScratch {
 /// merge per tile in tile order.
 template <typename Place, typename Resolve>
 void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Place& place,
-                 const Resolve& resolve, TraceCounters* counters) {
+                 const Resolve& resolve, TraceCounters* counters, TextureFootprint footprint) {
   AALAB_CHECK(width > 0 && height > 0 && spp > 0, "render size and spp must be positive");
   const int tiles_x = (width + kTile - 1) / kTile;
   const int tiles_y = (height + kTile - 1) / kTile;
@@ -100,7 +100,7 @@ void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Pla
         }
       }
       std::fill(res, res + n, SampleResult{});
-      tracer.Trace(pos, static_cast<int>(n), width, height, res, &per_tile[t]);
+      tracer.Trace(pos, static_cast<int>(n), width, height, res, &per_tile[t], footprint);
       size_t k = 0;
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
@@ -127,7 +127,7 @@ struct MsaaTileScratch {
 /// counters merged in tile order; `stats` (when not null) gets the shading evaluations.
 template <typename Resolve>
 void TraceMsaaTiles(const Tracer& tracer, int width, int height, const MsaaSpec& msaa, const Resolve& resolve,
-                    TraceCounters* counters, FrameStats* stats) {
+                    TraceCounters* counters, FrameStats* stats, TextureFootprint footprint) {
   AALAB_CHECK(width > 0 && height > 0, "render size must be positive");
   const int spp = msaa.samples;
   std::vector<std::pair<float, float>> offsets;  // in [0, 1)² from the pixel's corner
@@ -163,7 +163,7 @@ void TraceMsaaTiles(const Tracer& tracer, int width, int height, const MsaaSpec&
         }
       }
       tracer.TraceMsaa(scratch.pos.data(), scratch.centres.data(), n, msaa, width, height, scratch.res.data(),
-                       scratch.evals.data(), &per_tile[t]);
+                       scratch.evals.data(), &per_tile[t], footprint);
       int k = 0;
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x, ++k) {
@@ -184,8 +184,13 @@ void TraceMsaaTiles(const Tracer& tracer, int width, int height, const MsaaSpec&
 template <typename Resolve>
 void TraceFrameSamples(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
                        const Resolve& resolve, TraceCounters* counters, FrameStats* stats) {
+  TextureFootprint footprint;  // MSAA shades at pixel rate: a one-pixel footprint
+  if (spec.specular_aa.enabled) {
+    footprint.gsaa_sigma2 = static_cast<float>(spec.specular_aa.sigma2);
+    footprint.gsaa_kappa = static_cast<float>(spec.specular_aa.kappa);
+  }
   if (spec.msaa.On()) {
-    TraceMsaaTiles(tracer, width, height, spec.msaa, resolve, counters, stats);
+    TraceMsaaTiles(tracer, width, height, spec.msaa, resolve, counters, stats, footprint);
     return;
   }
   const int spp = spec.SamplesPerPixel();
@@ -219,7 +224,16 @@ void TraceFrameSamples(const Tracer& tracer, int width, int height, const Render
         for (int s = 0; s < spp; ++s) out_pos[s] = SamplePos{fx + fixed[s].first, fy + fixed[s].second};
     }
   };
-  RenderTiles(tracer, width, height, spp, place, resolve, counters);
+  // Image textures take their UV derivatives over the render's own sample spacing: a
+  // 1-sample render steps one pixel, an n x n supersampled one 1/n pixel (a GPU rendering at
+  // n times the resolution).
+  switch (spec.pattern) {
+    case SamplePattern::kCenter: footprint.px = 1.0f; break;
+    case SamplePattern::kRotatedGrid: footprint.px = 0.5f; break;
+    case SamplePattern::kJitter: footprint.px = 1.0f / std::sqrt(static_cast<float>(spp)); break;
+    default: footprint.px = 1.0f / static_cast<float>(n); break;
+  }
+  RenderTiles(tracer, width, height, spp, place, resolve, counters, footprint);
 }
 
 }  // namespace
@@ -314,7 +328,8 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
     }
     ref.edge_mask_raw.At(x, y, 0) = edge ? 1.0f : 0.0f;
   };
-  RenderTiles(tracer, width, height, spp, place, resolve, counters);
+  // The truth samples image textures bilinearly on level 0 at every sub-sample (px = 0).
+  RenderTiles(tracer, width, height, spp, place, resolve, counters, TextureFootprint{0.0f, 1});
 
   ref.edge_mask = DilateMask(ref.edge_mask_raw);  // 1 px, 3×3 neighbourhood, clamped at the border
   return ref;

@@ -2,6 +2,7 @@
 /// Scene files are JSON (scenes/README.md documents every field); ParseScene validates them.
 #pragma once
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,13 +10,14 @@
 #include <glm/glm.hpp>
 
 #include "harness/core/color.h"
+#include "scenes/texture_image.h"
 
 namespace aalab {
 
 /// Shading effects a scene may call for. The tracer simulates only the declared ones.
-enum class Effect { kUnlit, kLambert, kShadows, kSpecular, kTextures, kAlphaTest };
-constexpr int kEffectCount = 6;
-/// "unlit", "lambert", "shadows", "specular", "textures", "alpha_test".
+enum class Effect { kUnlit, kLambert, kShadows, kSpecular, kTextures, kAlphaTest, kAlphaBlend, kNormalMap };
+constexpr int kEffectCount = 8;
+/// "unlit", "lambert", "shadows", "specular", "textures", "alpha_test", "alpha_blend", "normal_map".
 const char* EffectName(Effect e);
 
 /// Procedural texture patterns, evaluated at a surface's (u, v) with no filtering (point
@@ -37,7 +39,36 @@ struct Texture {
 /// Evaluates the texture's pattern value t ∈ [0, 1] at uv (pure).
 float EvaluatePattern(const Texture& tex, glm::vec2 uv);
 
-enum class Shading { kUnlit, kLambert };
+/// kPbr: the glTF 2.0 metallic-roughness BRDF (glTF specification, appendix B), for
+/// materials read from glTF files (scenes/gltf_load.h).
+enum class Shading { kUnlit, kLambert, kPbr };
+
+/// glTF alpha modes: opaque, cut-out at alphaCutoff, blended over what lies behind.
+enum class AlphaMode { kOpaque, kMask, kBlend };
+
+/// A material's use of an image texture: which of Scene::images, with the sampler's wraps.
+struct TextureRef {
+  int image = -1;  ///< index into Scene::images (-1: none)
+  WrapMode wrap_s = WrapMode::kRepeat, wrap_t = WrapMode::kRepeat;
+  bool Has() const { return image >= 0; }
+};
+
+/// The glTF part of a material (Material::gltf): factors times textures, as the glTF 2.0
+/// specification defines them.
+struct GltfMaterial {
+  glm::vec4 base_factor{1.0f};  ///< baseColorFactor (linear RGBA)
+  TextureRef base_tex;          ///< baseColorTexture (sRGB RGB, linear alpha)
+  float metallic = 1.0f, roughness = 1.0f;
+  TextureRef mr_tex;            ///< metallicRoughnessTexture: B = metallic, G = roughness
+  TextureRef normal_tex;        ///< normalTexture (tangent space, linear)
+  float normal_scale = 1.0f;
+  glm::vec3 emissive{0.0f};     ///< emissiveFactor
+  TextureRef emissive_tex;      ///< emissiveTexture (sRGB)
+  TextureRef occlusion_tex;     ///< occlusionTexture (R), applied to the ambient term only
+  float occlusion_strength = 1.0f;
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  bool double_sided = true;     ///< doubleSided (false: back faces are still drawn; see docs)
+};
 
 struct Material {
   std::string name;
@@ -48,6 +79,13 @@ struct Material {
   float shininess = 0.0f;                ///< Blinn-Phong exponent
   std::optional<Texture> alpha;          ///< cut-out pattern (needs `alpha_test`)
   float alpha_cutoff = 0.5f;             ///< surface is kept where pattern t >= cutoff
+                                         ///< (glTF MASK: where alpha >= alphaCutoff)
+  std::optional<GltfMaterial> gltf;      ///< a material read from a glTF file
+
+  /// True when hits on it may be rejected by an alpha test (procedural `alpha` or glTF MASK).
+  bool CutOut() const { return alpha.has_value() || (gltf && gltf->alpha_mode == AlphaMode::kMask); }
+  /// True for a glTF BLEND material.
+  bool Blended() const { return gltf && gltf->alpha_mode == AlphaMode::kBlend; }
 };
 
 enum class LightType { kDirectional, kPoint };
@@ -83,6 +121,7 @@ struct Shape {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  ///< per vertex (empty: flat shading)
   std::vector<glm::vec2> uvs;      ///< per vertex
+  std::vector<glm::vec4> tangents; ///< per vertex, xyz + handedness w (glTF meshes; may be empty)
   std::vector<glm::uvec3> triangles;
   // kSphere / kDisk: centre + radius (+ normal for the disk, + frame for uv)
   glm::vec3 center{0.0f};
@@ -140,6 +179,8 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Light> lights;
   std::vector<Shape> shapes;
+  /// Decoded image textures (glTF), shared by copies of the scene (SceneAtFrame).
+  std::vector<std::shared_ptr<const MipChain>> images;
   Animation animation;  ///< motion over time; shapes and camera above are the base pose
                         ///< it applies to (SceneAtFrame in scenes/motion.h)
 

@@ -108,6 +108,30 @@ uint64_t SceneContentHash(const Scene& s) {
     h.V3(sh.p1);
     h.I(sh.motion);
   }
+  // glTF content (absent from every other scene, whose fingerprint this leaves unchanged).
+  for (const Material& m : s.materials) {
+    if (!m.gltf) continue;
+    const GltfMaterial& g = *m.gltf;
+    h.S("gltf-material");
+    for (int c = 0; c < 4; ++c) h.F(g.base_factor[c]);
+    h.F(g.metallic), h.F(g.roughness), h.F(g.normal_scale), h.F(g.occlusion_strength);
+    h.V3(g.emissive);
+    h.I(static_cast<int64_t>(g.alpha_mode));
+    for (const TextureRef* t : {&g.base_tex, &g.mr_tex, &g.normal_tex, &g.emissive_tex, &g.occlusion_tex}) {
+      h.I(t->image), h.I(static_cast<int64_t>(t->wrap_s)), h.I(static_cast<int64_t>(t->wrap_t));
+    }
+  }
+  for (const auto& img : s.images) {
+    h.S("image");
+    const MipLevel& l0 = img->levels[0];
+    h.I(l0.width), h.I(l0.height);
+    for (const glm::vec4& t : l0.texels) h.V3(glm::vec3(t)), h.F(t.w);
+  }
+  for (const Shape& sh : s.shapes) {
+    if (sh.tangents.empty()) continue;
+    h.S("tangents");
+    for (const glm::vec4& t : sh.tangents) h.V3(glm::vec3(t)), h.F(t.w);
+  }
   const Animation& a = s.animation;
   h.I(a.frames);
   h.I(static_cast<int64_t>(a.camera.size()));

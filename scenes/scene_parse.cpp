@@ -9,6 +9,7 @@
 
 #include "harness/core/error.h"
 #include "harness/core/params.h"
+#include "scenes/gltf_load.h"
 #include "scenes/json_fields.h"
 #include "scenes/motion_parse.h"
 #include "scenes/scene.h"
@@ -25,6 +26,8 @@ const char* EffectName(Effect e) {
     case Effect::kSpecular: return "specular";
     case Effect::kTextures: return "textures";
     case Effect::kAlphaTest: return "alpha_test";
+    case Effect::kAlphaBlend: return "alpha_blend";
+    case Effect::kNormalMap: return "normal_map";
   }
   return "?";
 }
@@ -247,6 +250,80 @@ void RequireEffect(const Scene& s, Effect e, const JsonField& where, const std::
   }
 }
 
+/// A {"shape": "gltf", "file": ..., "transform": ...} object: every primitive of the file,
+/// placed by its nodes and then by the object's transform; its materials and images join the
+/// scene's. The first glTF object's cameras are kept for "camera": {"type": "gltf"}.
+void AddGltfObject(Scene& s, const JsonField& o, const std::string& base_dir, std::vector<Camera>& cameras,
+                   std::map<int, size_t>& object_of_material) {
+  o.RequireObject({"shape", "file", "transform", "name", "motion"});
+  const JsonField file = o.Child("file");
+  const fs::path p = fs::path(base_dir) / file.String();
+  if (!fs::is_regular_file(p)) file.Fail("glTF file '" + p.string() + "' not found");
+  GltfContent g;
+  try {
+    g = LoadGltf(p.string());
+  } catch (const UserError& e) {
+    file.Fail(e.what());
+  }
+  if (o.Has("motion")) o.Child("motion").Fail("glTF objects do not move yet (animate the camera instead)");
+  const glm::mat4 m = o.Has("transform") ? ParseTransform(o.Child("transform")) : glm::mat4(1.0f);
+  const int mat_base = static_cast<int>(s.materials.size());
+  const int img_base = static_cast<int>(s.images.size());
+  const size_t index = std::stoul(o.Path().substr(o.Path().rfind('/') + 1));
+  for (Material& mat : g.materials) {
+    for (TextureRef* t : {&mat.gltf->base_tex, &mat.gltf->mr_tex, &mat.gltf->normal_tex, &mat.gltf->emissive_tex,
+                          &mat.gltf->occlusion_tex}) {
+      if (t->Has()) t->image += img_base;
+    }
+    object_of_material[static_cast<int>(s.materials.size())] = index;
+    s.materials.push_back(std::move(mat));
+  }
+  for (auto& img : g.images) s.images.push_back(std::move(img));
+  for (Shape& sh : g.shapes) {
+    sh.material += mat_base;
+    TransformShape(sh, m);
+    for (const glm::vec3& q : sh.positions) {
+      if (!(std::fabs(q.x) <= kMaxCoord && std::fabs(q.y) <= kMaxCoord && std::fabs(q.z) <= kMaxCoord)) {
+        o.Child("transform").Fail("moves a vertex of '" + p.string() + "' beyond +-1e8");
+      }
+    }
+    s.shapes.push_back(std::move(sh));
+  }
+  if (cameras.empty()) {
+    for (Camera c : g.cameras) {
+      c.position = glm::vec3(m * glm::vec4(c.position, 1.0f));
+      c.look_at = glm::vec3(m * glm::vec4(c.look_at, 1.0f));
+      c.up = glm::normalize(glm::mat3(m) * c.up);
+      cameras.push_back(c);
+    }
+  }
+}
+
+/// The effects a glTF material needs: its shading (unlit, or lambert + specular for the
+/// metallic-roughness BRDF), textures, normal_map, alpha_test (MASK), alpha_blend (BLEND).
+void GltfMaterialEffects(const Scene& s, const Material& mat, const JsonField& obj,
+                         std::array<bool, kEffectCount>& used) {
+  const GltfMaterial& g = *mat.gltf;
+  const std::string who = "glTF material '" + mat.name + "'";
+  auto need = [&](Effect e, const std::string& why) {
+    RequireEffect(s, e, obj.Child("file"), who + " (" + why + ")");
+    used[static_cast<int>(e)] = true;
+  };
+  if (mat.shading == Shading::kUnlit) {
+    need(Effect::kUnlit, "KHR_materials_unlit");
+  } else {
+    need(Effect::kLambert, "its diffuse lobe");
+    need(Effect::kSpecular, "its GGX specular lobe");
+  }
+  const bool lit = mat.shading != Shading::kUnlit;
+  if (g.base_tex.Has() || (lit && (g.mr_tex.Has() || g.emissive_tex.Has() || g.occlusion_tex.Has()))) {
+    need(Effect::kTextures, "an image texture");
+  }
+  if (lit && g.normal_tex.Has()) need(Effect::kNormalMap, "a normal texture");
+  if (g.alpha_mode == AlphaMode::kMask) need(Effect::kAlphaTest, "alphaMode MASK");
+  if (g.alpha_mode == AlphaMode::kBlend) need(Effect::kAlphaBlend, "alphaMode BLEND");
+}
+
 }  // namespace
 
 Scene ParseScene(const std::string& text, const std::string& origin, const std::string& base_dir) {
@@ -287,7 +364,15 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
     }
   }
 
-  s.camera = ParseCamera(root.Child("camera"));
+  // "camera": {"type": "gltf", "index": k}: camera k of the first glTF object (set below).
+  int gltf_camera = -1;
+  const JsonField camf = root.Child("camera");
+  if (camf.Value().is_object() && camf.Value().contains("type") && camf.Value()["type"] == "gltf") {
+    camf.RequireObject({"type", "index"});
+    gltf_camera = camf.Has("index") ? camf.Child("index").Integer(0, 1 << 20) : 0;
+  } else {
+    s.camera = ParseCamera(camf);
+  }
   if (root.Has("display")) {
     const JsonField d = root.Child("display");
     d.RequireObject({"exposure", "tonemap"});
@@ -298,7 +383,11 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
   s.ambient = root.Vec3Or("ambient", glm::vec3(0.0f), 0.0, 1e7);
 
   const JsonField mats = root.Child("materials");
-  if (!mats.Value().is_object() || mats.Value().empty()) mats.Fail("expected an object of named materials");
+  bool any_gltf = false;  // a scene of glTF objects only brings its materials from the files
+  if (root.Has("objects") && root.Child("objects").Value().is_array()) {
+    for (const auto& o : root.Child("objects").Value()) any_gltf |= o.is_object() && o.contains("shape") && o["shape"] == "gltf";
+  }
+  if (!mats.Value().is_object() || (mats.Value().empty() && !any_gltf)) mats.Fail("expected an object of named materials");
   std::map<std::string, int> mat_index;
   for (auto it = mats.Value().begin(); it != mats.Value().end(); ++it) {
     mat_index[it.key()] = static_cast<int>(s.materials.size());
@@ -314,9 +403,16 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
 
   const JsonField objs = root.Child("objects");
   if (objs.ArraySize() == 0) objs.Fail("a scene needs at least one object");
+  std::vector<Camera> gltf_cameras;             // the cameras of the first glTF object
+  std::map<int, size_t> gltf_object_of_material;  // material index -> the glTF object it came from
   std::vector<bool> mat_used(s.materials.size(), false);
   for (size_t i = 0; i < objs.ArraySize(); ++i) {
     const JsonField o = objs.At(i);
+    if (o.Has("shape") && o.Child("shape").Value() == "gltf") {
+      AddGltfObject(s, o, base_dir, gltf_cameras, gltf_object_of_material);
+      mat_used.resize(s.materials.size(), true);
+      continue;
+    }
     Shape shape = ParseShape(o, base_dir);
     const JsonField mf = o.Child("material");
     const std::string mname = mf.String();
@@ -347,6 +443,13 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
     }
     s.shapes.push_back(std::move(shape));
   }
+  if (gltf_camera >= 0) {
+    if (gltf_camera >= static_cast<int>(gltf_cameras.size())) {
+      camf.Fail("camera index " + std::to_string(gltf_camera) + " but the first glTF object's file has " +
+                std::to_string(gltf_cameras.size()) + " camera(s)");
+    }
+    s.camera = gltf_cameras[static_cast<size_t>(gltf_camera)];
+  }
   if (root.Has("animation") && s.animation.camera.empty() && s.animation.objects.empty()) {
     root.Child("animation").Fail("an animation that moves nothing: give camera keys or an object 'motion'");
   }
@@ -356,6 +459,10 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
   std::array<bool, kEffectCount> used{};
   for (size_t m = 0; m < s.materials.size(); ++m) {
     const Material& mat = s.materials[m];
+    if (mat.gltf) {
+      GltfMaterialEffects(s, mat, objs.At(gltf_object_of_material.at(static_cast<int>(m))), used);
+      continue;
+    }
     const JsonField mf = mats.Child(mat.name);
     if (!mat_used[m]) mf.Fail("material '" + mat.name + "' is not used by any object");
     const Effect shade = mat.shading == Shading::kUnlit ? Effect::kUnlit : Effect::kLambert;

@@ -206,6 +206,12 @@ bool TransformShape(Shape& s, const glm::mat4& m) {
       const double len = glm::length(t);
       n = len > 0.0 ? glm::vec3(t / len) : glm::vec3(0, 0, 1);
     }
+    for (auto& t4 : s.tangents) {  // tangents follow the surface: the linear part, handedness kept
+      const glm::dvec3 t = glm::dmat3(linear) * glm::dvec3(glm::vec3(t4));
+      const double len = glm::length(t);
+      const float w = glm::determinant(glm::dmat3(linear)) < 0.0 ? -t4.w : t4.w;
+      t4 = glm::vec4(len > 0.0 ? glm::vec3(t / len) : glm::vec3(1, 0, 0), w);
+    }
     return true;
   }
   // Column lengths in double: in float, a scale of 1e-30 squares to 0 and was reported as a

@@ -63,7 +63,9 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
   rtcSetSceneBuildQuality(im.scene, RTC_BUILD_QUALITY_HIGH);
   for (size_t i = 0; i < scene.shapes.size(); ++i) {
     const Shape& s = scene.shapes[i];
-    if (scene.materials[s.material].alpha) im.any_alpha = true;
+    if (scene.materials[s.material].CutOut()) im.any_alpha = true;
+    if (scene.materials[s.material].Blended()) im.any_blend = true;
+    if (scene.materials[s.material].gltf && !scene.materials[s.material].gltf->double_sided) im.any_cull = true;
     RTCGeometry g = nullptr;
     switch (s.kind) {
       case ShapeKind::kTriangles: {
@@ -245,12 +247,12 @@ void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const 
 
 void tracer_detail::ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org,
                                        const glm::vec3* dir, int count, float* tnear, float* tfar, Hit* hits,
-                                       LayerScratch& ls, TraceCounters& local) {
+                                       LayerScratch& ls, TraceCounters& local, const Footprint& fp) {
   // Layer 0 holds every ray in order: trace straight into `hits` (same packets as a copy).
   IntersectRays(im.scene, org, dir, tnear, tfar, nullptr, count, hits, true);
   local.primary_rays += static_cast<uint64_t>(count);
   local.coverage_rays += static_cast<uint64_t>(count);
-  if (!alpha) return;
+  if (!alpha && !im.any_cull) return;
   std::vector<int>& active = ls.active;
   std::vector<int>& next = ls.next;
   active.clear();
@@ -263,10 +265,13 @@ void tracer_detail::ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, 
       hits[i] = hk;
       if (hk.shape < 0) continue;
       const Material& m = sc.materials[sc.shapes[hk.shape].material];
-      if (!m.alpha) continue;
-      const Surface srf = SurfaceAt(sc, hk, org[i], dir[i]);
-      ++local.texture_lookups;
-      if (EvaluatePattern(*m.alpha, srf.uv) >= m.alpha_cutoff) continue;
+      const bool culled = im.any_cull && BackFaceCulled(sc, m, hk, dir[i]);
+      if (!culled) {
+        if (!alpha || !m.CutOut()) continue;
+        const Surface srf = SurfaceAt(sc, hk, org[i], dir[i]);
+        ++local.texture_lookups;
+        if (CutoutKeeps(im, sc, m, hk, srf, org[i], dir[i], fp)) continue;
+      }
       // Rejected: continue just past this hit.
       hits[i] = Hit{};
       tnear[i] = ContinuePast(hk.t);
@@ -300,7 +305,7 @@ struct TraceScratch {
 }  // namespace
 
 void Tracer::Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out,
-                   TraceCounters* counters) const {
+                   TraceCounters* counters, TextureFootprint footprint) const {
   const Impl& im = *impl_;
   const Scene& sc = scene_;
   TraceCounters local;
@@ -325,10 +330,11 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
   // 2. Closest hits, continuing through alpha cut-outs (only with `alpha_test`).
   Hit* hits = Sized(S.hits, n_all);
   const bool alpha = sc.Has(Effect::kAlphaTest) && im.any_alpha;
-  ClosestVisibleHits(im, sc, alpha, org, dir, count, tnear, tfar, hits, S.layers, local);
+  const Footprint fp{width, height, footprint};
+  ClosestVisibleHits(im, sc, alpha, org, dir, count, tnear, tfar, hits, S.layers, local, fp);
 
   // 3. One shading per sample.
-  ShadeHits(im, sc, alpha, hits, org, dir, count, S.shade, out, local);
+  ShadeHits(im, sc, alpha, hits, org, dir, count, S.shade, out, local, fp);
   if (counters) *counters += local;
 }
 

@@ -49,6 +49,24 @@ struct SamplePos {
   float x = 0, y = 0;
 };
 
+/// How image textures (glTF) are filtered for a batch of camera samples: the UV derivatives
+/// are the difference to the camera ray `px` pixels to the right and `px` pixels down, taken
+/// on the hit triangle's plane (what a GPU's 2 × 2 quad computes at the render's own sample
+/// spacing); px = 0 samples level 0 bilinearly (the reference's truth). Procedural textures
+/// ignore it (they stay point-sampled). docs/real-content.md "Texture sampling".
+struct TextureFootprint {
+  float px = 1.0f;    ///< sample spacing in pixels of the image plane traced (0: level 0 only)
+  int max_aniso = 1;  ///< 1: trilinear; 2..16: anisotropic probes
+  /// Geometric specular AA (RenderSpec::specular_aa): σ² > 0 turns it on; the normal's
+  /// derivatives are taken over the same footprint as the texture's.
+  float gsaa_sigma2 = 0.0f;
+  float gsaa_kappa = 0.0f;
+};
+
+/// The alpha-to-coverage mask of `samples` MSAA samples at pixel (px, py): the first
+/// ⌊α·N + d⌋ sample indices, d = (Bayer4[py mod 4][px mod 4] + 0.5) / 16 (methods/msaa.cpp).
+uint32_t AlphaToCoverageMask(float alpha, int samples, int px, int py);
+
 class Tracer {
  public:
   /// Builds the Embree scene (BVH) for `scene`. The Scene must outlive the Tracer.
@@ -60,7 +78,7 @@ class Tracer {
   /// Traces and shades `count` samples on a width × height image plane. Thread-safe (call
   /// from many threads at once); results depend only on the inputs.
   void Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out,
-             TraceCounters* counters) const;
+             TraceCounters* counters, TextureFootprint footprint = {}) const;
 
   /// MSAA (docs/msaa.md): traces `pixels` pixels of `msaa.samples` = N coverage samples each
   /// (sample_pos[p·N + s], sample index order) with one visibility ray per sample, then
@@ -71,7 +89,8 @@ class Tracer {
   /// then see what lies behind it. shading_evals[p] (when not null) receives pixel p's
   /// number of shading evaluations. Thread-safe; results depend only on the inputs.
   void TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos, int pixels, const MsaaSpec& msaa,
-                 int width, int height, SampleResult* out, uint32_t* shading_evals, TraceCounters* counters) const;
+                 int width, int height, SampleResult* out, uint32_t* shading_evals, TraceCounters* counters,
+                 TextureFootprint footprint = {}) const;
 
   const Scene& GetScene() const { return scene_; }
 

@@ -4,6 +4,8 @@
 //                     Tracer::Trace (one shading per sample), BareTrace
 //   tracer_shade.cpp  surface attributes, shadow rays and shading of a list of hits
 //   tracer_msaa.cpp   Tracer::TraceMsaa: coverage samples, one shading per primitive
+//   tracer_gltf.cpp   image textures (footprints, mip-mapped fetches), glTF alpha and the
+//                     metallic-roughness BRDF
 #pragma once
 #include <embree3/rtcore.h>
 
@@ -21,6 +23,8 @@ struct Tracer::Impl {
   RTCScene scene = nullptr;
   std::string error;
   bool any_alpha = false;
+  bool any_blend = false;
+  bool any_cull = false;  // a single-sided glTF material: camera rays skip its back faces
   // camera basis
   glm::vec3 origin{0.0f}, forward{0.0f}, right{0.0f}, up{0.0f};
 
@@ -52,6 +56,12 @@ struct Surface {
   glm::vec2 uv{0.0f};
 };
 
+/// The texture footprint of a batch of camera rays on a width × height image plane.
+struct Footprint {
+  int width = 1, height = 1;
+  TextureFootprint tex;  ///< tex.px == 0: level 0 bilinear (also used for shadow rays)
+};
+
 /// Where a ray continues after rejecting a hit at distance t (just past it).
 inline float ContinuePast(float t) { return t + std::max(t * 2e-6f, 1e-6f); }
 
@@ -81,11 +91,39 @@ struct LayerScratch {
 
 /// Closest hits of `count` camera rays (tnear 0, tfar ∞) that pass the alpha test at their
 /// own position: with `alpha`, a ray whose hit is cut out continues just past it (a new packet
-/// round) up to kMaxAlphaLayers rounds. Adds the rays to counters.primary_rays and
+/// round) up to kMaxAlphaLayers rounds; so does a ray that meets the back of a single-sided
+/// glTF material (always: a rasterizer culls at coverage). Adds the rays to counters.primary_rays and
 /// counters.coverage_rays, the alpha lookups to counters.texture_lookups.
 void ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org,
                         const glm::vec3* dir, int count, float* tnear, float* tfar, Hit* hits, LayerScratch& ls,
-                        TraceCounters& counters);
+                        TraceCounters& counters, const Footprint& fp);
+
+/// True when the cut-out material `m` keeps the hit h (procedural pattern t >= cutoff, or glTF
+/// MASK alpha >= alphaCutoff, the alpha filtered with the ray's footprint).
+bool CutoutKeeps(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
+                 glm::vec3 org, glm::vec3 dir, const Footprint& fp);
+
+/// The continuous alpha of a cut-out material at a hit (procedural: the pattern value t; glTF
+/// MASK: baseColorFactor.a × the filtered texture alpha), for alpha-to-coverage.
+float CutoutAlpha(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
+                  glm::vec3 org, glm::vec3 dir, const Footprint& fp);
+
+/// True when camera rays skip this hit: a single-sided glTF material (doubleSided false) seen
+/// from the back (the triangle's counter-clockwise normal faces away from the ray's origin).
+bool BackFaceCulled(const Scene& sc, const Material& m, const Hit& h, glm::vec3 dir);
+
+/// UV derivatives of a camera ray's hit on a triangle shape (Footprint's rule; zero with
+/// fp.tex.px == 0; huge when an offset ray misses the triangle's plane).
+UvDerivs HitUvDerivs(const Tracer::Impl& im, const Scene& sc, const Hit& h, glm::vec3 org, glm::vec3 dir,
+                     const Footprint& fp);
+
+/// A texture fetch of material texture `t` at uv with derivatives d (Footprint's filter).
+glm::vec4 FetchTexture(const Scene& sc, const TextureRef& t, glm::vec2 uv, const UvDerivs& d, const Footprint& fp);
+
+/// Radiance of a glTF material (unlit or the metallic-roughness BRDF) at a camera-ray hit,
+/// with `blocked` the shadowed-light bits. Adds its texture fetches to counters.
+glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
+                    glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& counters);
 
 /// Surface attributes of a hit on the ray (org, dir).
 Surface SurfaceAt(const Scene& scene, const Hit& h, glm::vec3 org, glm::vec3 dir);
@@ -105,7 +143,8 @@ struct ShadeScratch {
 /// textures. out[i] receives radiance, the surface index and the shadowed-light bits;
 /// hits with shape < 0 get the background. Adds shadow rays and colour lookups to counters.
 void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* hits, const glm::vec3* org,
-               const glm::vec3* dir, int n, ShadeScratch& scratch, SampleResult* out, TraceCounters& counters);
+               const glm::vec3* dir, int n, ShadeScratch& scratch, SampleResult* out, TraceCounters& counters,
+               const Footprint& fp);
 
 }  // namespace tracer_detail
 }  // namespace aalab

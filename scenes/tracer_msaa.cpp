@@ -27,6 +27,9 @@
 //      With alpha_test=shade the alpha test runs at the shading point; when it fails the
 //      fragment is discarded from all its samples (like `discard` at pixel frequency),
 //      which continue past it and may join or form fragments behind it (next round).
+//      With alpha_test=a2c (alpha-to-coverage) the shading point's continuous alpha keeps
+//      ⌊α·N + d⌋ samples (d: the pixel's 4×4 Bayer threshold) in sample index order; the
+//      fragment's other samples continue past it like discarded ones.
 //      A fragment's shading point is fixed in the round where it is first seen.
 //   4. Shading: every kept fragment through the same shading code as Trace (textures,
 //      lighting, specular, shadow rays), its colour copied to its samples.
@@ -60,6 +63,7 @@ struct Fragment {
   uint32_t mask = 0;   // covered samples, bit s = sample index s
   int first = 0;       // global index of its first covered sample at creation
   bool discarded = false;
+  uint32_t keep = 0xFFFFFFFFu;  // alpha-to-coverage: the samples it keeps (bit s)
   Hit hit;             // shading point, seen along the ray (org, dir)
   glm::vec3 org{0.0f}, dir{0.0f};
 };
@@ -113,7 +117,7 @@ struct MsaaScratch {
 
 void Tracer::TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos, int pixels, const MsaaSpec& msaa,
                        int width, int height, SampleResult* out, uint32_t* shading_evals,
-                       TraceCounters* counters) const {
+                       TraceCounters* counters, TextureFootprint footprint) const {
   const Impl& im = *impl_;
   const Scene& sc = scene_;
   const int N = msaa.samples;
@@ -132,6 +136,7 @@ void Tracer::TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos,
   const bool alpha = sc.Has(Effect::kAlphaTest) && im.any_alpha;
   const bool alpha_per_sample = alpha && msaa.alpha_test == MsaaAlphaTest::kSample;
   const bool alpha_at_shade = alpha && msaa.alpha_test == MsaaAlphaTest::kShade;
+  const bool alpha_a2c = alpha && msaa.alpha_test == MsaaAlphaTest::kCoverage;
   const uint32_t full_mask = (1u << N) - 1u;
 
   // 1. Coverage rays: closest hit per sample (through cut-outs only with alpha_test=sample).
@@ -143,7 +148,8 @@ void Tracer::TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos,
   std::fill(tnear, tnear + count, 0.0f);
   std::fill(tfar, tfar + count, inf);
   Hit* hits = Sized(S.hits, n_all);
-  ClosestVisibleHits(im, sc, alpha_per_sample, org, dir, count, tnear, tfar, hits, S.layers, local);
+  const Footprint fp{width, height, footprint};
+  ClosestVisibleHits(im, sc, alpha_per_sample, org, dir, count, tnear, tfar, hits, S.layers, local, fp);
 
   // Pixel-centre rays (shading rays, not coverage): their closest hit, no alpha test; only
   // for pixels where some sample sees a surface (nothing is shaded in the others). Packed:
@@ -246,10 +252,21 @@ void Tracer::TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos,
       Fragment& fr = frags[f];
       place_shading_point(fr, fr.first / N);
       const Material& m = sc.materials[sc.shapes[fr.shape].material];
-      if (alpha_at_shade && m.alpha) {
+      if (alpha_at_shade && m.CutOut()) {
         const Surface srf = SurfaceAt(sc, fr.hit, fr.org, fr.dir);
         ++local.texture_lookups;
-        if (EvaluatePattern(*m.alpha, srf.uv) < m.alpha_cutoff) {
+        if (!CutoutKeeps(im, sc, m, fr.hit, srf, fr.org, fr.dir, fp)) {
+          fr.discarded = true;
+          ++discarded;
+        }
+      }
+      if (alpha_a2c && m.CutOut()) {
+        const Surface srf = SurfaceAt(sc, fr.hit, fr.org, fr.dir);
+        ++local.texture_lookups;
+        const SamplePos c = centre_pos[fr.first / N];
+        fr.keep = AlphaToCoverageMask(CutoutAlpha(im, sc, m, fr.hit, srf, fr.org, fr.dir, fp), N,
+                                      static_cast<int>(std::floor(c.x)), static_cast<int>(std::floor(c.y)));
+        if ((fr.mask & fr.keep) == 0) {
           fr.discarded = true;
           ++discarded;
         }
@@ -258,7 +275,7 @@ void Tracer::TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos,
     next.clear();
     for (const int i : pending) {
       const int f = sample_frag[i];
-      if (f < 0 || !frags[f].discarded) continue;
+      if (f < 0 || (!frags[f].discarded && ((frags[f].keep >> (i % N)) & 1u))) continue;
       sample_frag[i] = -1;
       tnear[i] = ContinuePast(hits[i].t);
       if (layer + 1 < kMaxAlphaLayers) next.push_back(i);
@@ -290,7 +307,7 @@ void Tracer::TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos,
     ++n_shade;
   }
   SampleResult* shaded = Sized(S.shade_out, nf);
-  ShadeHits(im, sc, alpha, shade_hits, shade_org, shade_dir, n_shade, S.shade, shaded, local);
+  ShadeHits(im, sc, alpha, shade_hits, shade_org, shade_dir, n_shade, S.shade, shaded, local, fp);
   local.shading_evals += discarded;  // a discarded fragment ran its shader up to the alpha test
   SampleResult background;
   background.rgb[0] = sc.background.x;

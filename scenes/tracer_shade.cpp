@@ -36,7 +36,7 @@ void ShadowRays(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* 
   stf.clear();
   for (int i = 0; i < n; ++i) {
     if (hits[i].shape < 0) continue;
-    if (sc.materials[sc.shapes[hits[i].shape].material].shading != Shading::kLambert) continue;
+    if (sc.materials[sc.shapes[hits[i].shape].material].shading == Shading::kUnlit) continue;
     for (size_t l = 0; l < sc.lights.size() && l < 32; ++l) {
       const Light& light = sc.lights[l];
       if (!light.shadows) continue;
@@ -78,10 +78,10 @@ void ShadowRays(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* 
       const int r = act[k];
       if (h[k].shape < 0) continue;
       const Material& mat = sc.materials[sc.shapes[h[k].shape].material];
-      if (alpha && mat.alpha) {
+      if (alpha && mat.CutOut()) {
         const Surface srf = SurfaceAt(sc, h[k], so[r], sd[r]);
         ++local.texture_lookups;
-        if (EvaluatePattern(*mat.alpha, srf.uv) < mat.alpha_cutoff) {
+        if (!CutoutKeeps(im, sc, mat, h[k], srf, so[r], sd[r], Footprint{1, 1, {0.0f, 1}})) {
           stn[r] = ContinuePast(h[k].t);
           next.push_back(r);
           continue;
@@ -144,7 +144,8 @@ Surface SurfaceAt(const Scene& scene, const Hit& h, glm::vec3 org, glm::vec3 dir
 }
 
 void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* hits, const glm::vec3* org,
-               const glm::vec3* dir, int n, ShadeScratch& S, SampleResult* out, TraceCounters& local) {
+               const glm::vec3* dir, int n, ShadeScratch& S, SampleResult* out, TraceCounters& local,
+               const Footprint& fp) {
   const bool lambert = sc.Has(Effect::kLambert);
   const bool shadows = sc.Has(Effect::kShadows);
   const bool specular = sc.Has(Effect::kSpecular);
@@ -178,6 +179,13 @@ void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* h
     if (hits[i].shape >= 0) {
       ++local.shading_evals;
       const Material& m = sc.materials[sc.shapes[hits[i].shape].material];
+      if (m.gltf) {
+        c = ShadeGltf(im, sc, m, hits[i], surf[i], org[i], dir[i], blocked[i], fp, local);
+        r.rgb[0] = c.x;
+        r.rgb[1] = c.y;
+        r.rgb[2] = c.z;
+        continue;
+      }
       glm::vec3 base = m.color;
       if (textures && m.texture) {
         ++local.texture_lookups;

@@ -29,7 +29,8 @@ const std::vector<SampleOffset16>& StandardSamplePositions(int n) {
 }
 
 bool RenderSpec::IsPlain1x() const {
-  return pattern == SamplePattern::kCenter && scale == 1.0 && !msaa.On() && !aaa.enabled && jitter.samples == 0;
+  return pattern == SamplePattern::kCenter && scale == 1.0 && !msaa.On() && !aaa.enabled && jitter.samples == 0 &&
+         !specular_aa.enabled;
 }
 
 int RenderSpec::SamplesPerPixel() const {

@@ -42,7 +42,9 @@ enum class MsaaShading {
 /// When MSAA runs the alpha test of a cut-out material.
 enum class MsaaAlphaTest {
   kShade,   ///< once per shading evaluation; a failed test discards all samples of that primitive
-  kSample,  ///< at every coverage sample (sample-rate alpha test / alpha-to-coverage)
+  kSample,  ///< at every coverage sample (sample-rate alpha test)
+  kCoverage,  ///< alpha-to-coverage: the shading point's alpha picks how many samples stay
+              ///< (⌊α·N + Bayer 4×4 dither⌋, in sample index order; docs/msaa.md)
 };
 
 /// How MSAA's samples become a pixel.
@@ -90,6 +92,16 @@ struct AnalyticSpec {
   double smoothing = 1.0;  ///< the article's smoothingAmount: the ramp is px · smoothing wide
 };
 
+/// Geometric specular anti-aliasing (Tokuyoshi & Kaplanyan, "Stable Geometric Specular
+/// Antialiasing with Projected-Space NDF Filtering", JCGT 10(2), 2021, listing 5; methods/
+/// specular_aa.cpp): the GGX roughness of glTF materials widened by the variance of the shading
+/// normal over the pixel footprint, α'² = min(1, α² + min(σ²·(|∂n/∂x|² + |∂n/∂y|²), κ)). Off by default.
+struct SpecularAaSpec {
+  bool enabled = false;
+  double sigma2 = 0.15915494309189535;  ///< variance of the pixel filter kernel (1/(2π))
+  double kappa = 0.18;                  ///< clamp of the added α²
+};
+
 /// The render a method asks for. Samples are tonemapped each, averaged in linear light with
 /// a box filter over the pixel, sRGB-encoded and stored as RGBA8 (alpha 255).
 struct RenderSpec {
@@ -100,6 +112,7 @@ struct RenderSpec {
   MsaaSpec msaa;       ///< MSAA (off by default); when on it replaces `pattern`
   AnalyticSpec aaa;    ///< analytical AA (off unless aaa.enabled); uses the kCenter pattern
   JitterSpec jitter;   ///< TAA: per-frame jitter of the kCenter sample (off by default)
+  SpecularAaSpec specular_aa;  ///< geometric specular AA of glTF materials (off by default)
 
   /// Samples per pixel this pattern takes (MSAA: coverage samples).
   int SamplesPerPixel() const;

@@ -105,6 +105,18 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
   Stopwatch bvh_clock;
   p->tracer = std::make_unique<Tracer>(sc);
   sr.bvh_build_ms = bvh_clock.ElapsedMs();
+  bool gltf = !sc.images.empty();
+  for (const Material& m : sc.materials) gltf |= m.gltf.has_value();
+  if (gltf) {
+    SceneResult::Content c;
+    for (const Shape& shape : sc.shapes) c.triangles += shape.triangles.size();
+    c.textures = static_cast<int>(sc.images.size());
+    for (const auto& img : sc.images) {
+      c.texture_bytes += img->Bytes();
+      c.texture_bytes_rgba8 += img->Bytes8();
+    }
+    sr.content = c;
+  }
 
   CachedReference cr = ObtainReference(sc, *p->tracer, W, H, grid, seed, exact_reference, cache, nullptr);
   p->ref = std::move(cr.ref);

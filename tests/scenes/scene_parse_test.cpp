@@ -43,10 +43,15 @@ TEST(SceneParse, EveryLibrarySceneParsesAndDescribesItself) {
     EXPECT_EQ(s.name, n);
     EXPECT_FALSE(s.description.empty()) << n;
   }
-  // Every scene is in `default`, `hard` or (the moving ones, motion-*) `motion`.
+  // Every scene is in `default`, `hard`, `real` or (the moving ones, motion-* and real-*-pan)
+  // `motion`.
   const auto motion = SuiteScenes("motion");
-  const auto moving = std::count_if(motion.begin(), motion.end(), [](const std::string& n) { return n.rfind("motion-", 0) == 0; });
-  EXPECT_EQ(SuiteScenes("default").size() + SuiteScenes("hard").size() + static_cast<size_t>(moving), names.size());
+  const auto moving = std::count_if(motion.begin(), motion.end(), [](const std::string& n) {
+    return n.rfind("motion-", 0) == 0 || (n.rfind("real-", 0) == 0 && n.size() > 4 && n.substr(n.size() - 4) == "-pan");
+  });
+  EXPECT_EQ(SuiteScenes("default").size() + SuiteScenes("hard").size() + SuiteScenes("real").size() +
+                static_cast<size_t>(moving),
+            names.size());
   EXPECT_FALSE(SuiteScenes("quick").empty());
 }
 

@@ -1,0 +1,306 @@
+// glTF materials in the tracer: texture footprints from the camera (the UV derivatives a GPU
+// quad would compute, taken exactly on the hit triangle's plane), mip-mapped texture fetches,
+// the MASK alpha test, normal mapping and the glTF 2.0 metallic-roughness BRDF (glTF 2.0
+// specification, appendix B: Lambert diffuse, GGX distribution, separable Smith-GGX
+// visibility, Schlick Fresnel). Only scenes with glTF materials reach this file, so the
+// shading of every other scene is untouched.
+#include <cmath>
+
+#include "scenes/specular_aa.h"
+#include "scenes/tracer_internal.h"
+
+namespace aalab {
+
+uint32_t AlphaToCoverageMask(float alpha, int samples, int px, int py) {
+  static const int kBayer4[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+  const float d = (static_cast<float>(kBayer4[py & 3][px & 3]) + 0.5f) / 16.0f;
+  const float a = std::clamp(alpha, 0.0f, 1.0f);
+  const int k = std::clamp(static_cast<int>(std::floor(a * static_cast<float>(samples) + d)), 0, samples);
+  return k >= 32 ? 0xFFFFFFFFu : (1u << k) - 1u;
+}
+
+namespace tracer_detail {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+struct Ray {
+  glm::vec3 o, d;
+};
+
+/// The camera rays fp.tex.px pixels to the right of and below the camera ray (org, dir).
+/// False when (org, dir) does not look forward.
+bool OffsetRays(const Tracer::Impl& im, const Camera& cam, glm::vec3 org, glm::vec3 dir, const Footprint& fp, Ray* rx,
+                Ray* ry) {
+  const bool persp = cam.type == CameraType::kPerspective;
+  const float aspect = static_cast<float>(fp.width) / static_cast<float>(fp.height);
+  const float half_h = persp ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  const float sx = 2.0f * fp.tex.px / static_cast<float>(fp.width) * half_h * aspect;
+  const float sy = 2.0f * fp.tex.px / static_cast<float>(fp.height) * half_h;
+  if (!persp) {
+    *rx = {org + im.right * sx, dir};
+    *ry = {org - im.up * sy, dir};  // image y runs down
+    return true;
+  }
+  const float f = glm::dot(dir, im.forward);
+  if (!(f > 0.0f)) return false;
+  const float a = glm::dot(dir, im.right) / f, b = glm::dot(dir, im.up) / f;
+  *rx = {org, glm::normalize(im.forward + im.right * (a + sx) + im.up * b)};
+  *ry = {org, glm::normalize(im.forward + im.right * a + im.up * (b - sy))};
+  return true;
+}
+
+/// The barycentric weights (of vertices 1 and 2) where ray r meets the plane of triangle
+/// `prim`, extrapolated outside the triangle as a GPU's helper lanes do, in double.
+bool BaryOnPlane(const Shape& s, unsigned prim, const Ray& r, double* w1, double* w2) {
+  const glm::uvec3 tri = s.triangles[prim];
+  const glm::dvec3 p0(s.positions[tri.x]), e1 = glm::dvec3(s.positions[tri.y]) - p0,
+      e2 = glm::dvec3(s.positions[tri.z]) - p0;
+  const glm::dvec3 n = glm::cross(e1, e2);
+  const double denom = glm::dot(n, glm::dvec3(r.d));
+  if (!(std::fabs(denom) > 1e-300)) return false;
+  const double t = glm::dot(n, p0 - glm::dvec3(r.o)) / denom;
+  if (!(t > 0.0) || !std::isfinite(t)) return false;
+  const glm::dvec3 q = glm::dvec3(r.o) + glm::dvec3(r.d) * t - p0;
+  const double d00 = glm::dot(e1, e1), d01 = glm::dot(e1, e2), d11 = glm::dot(e2, e2);
+  const double d20 = glm::dot(q, e1), d21 = glm::dot(q, e2);
+  const double den = d00 * d11 - d01 * d01;
+  if (!(den > 0.0)) return false;
+  *w1 = (d11 * d20 - d01 * d21) / den;
+  *w2 = (d00 * d21 - d01 * d20) / den;
+  return std::isfinite(*w1) && std::isfinite(*w2);
+}
+
+/// The texture coordinate where ray r meets the plane of triangle `prim` (BaryOnPlane).
+bool UvOnPlane(const Shape& s, unsigned prim, const Ray& r, glm::dvec2* uv) {
+  double b1, b2;
+  if (!BaryOnPlane(s, prim, r, &b1, &b2)) return false;
+  const glm::uvec3 tri = s.triangles[prim];
+  const glm::dvec2 uv0(s.uvs[tri.x]);
+  *uv = uv0 + b1 * (glm::dvec2(s.uvs[tri.y]) - uv0) + b2 * (glm::dvec2(s.uvs[tri.z]) - uv0);
+  return std::isfinite(uv->x) && std::isfinite(uv->y);
+}
+
+/// Tangent (xyz) and handedness (w) at a hit: interpolated vertex tangents, else the
+/// triangle's dp/du from its texture coordinates.
+glm::vec4 TangentAt(const Shape& s, const Hit& h) {
+  const glm::uvec3 tri = s.triangles[h.prim];
+  if (!s.tangents.empty()) {
+    const float w = 1.0f - h.u - h.v;
+    const glm::vec4 t = s.tangents[tri.x] * w + s.tangents[tri.y] * h.u + s.tangents[tri.z] * h.v;
+    return glm::vec4(glm::vec3(t), s.tangents[tri.x].w < 0.0f ? -1.0f : 1.0f);
+  }
+  const glm::vec3 e1 = s.positions[tri.y] - s.positions[tri.x], e2 = s.positions[tri.z] - s.positions[tri.x];
+  const glm::vec2 d1 = s.uvs[tri.y] - s.uvs[tri.x], d2 = s.uvs[tri.z] - s.uvs[tri.x];
+  const float det = d1.x * d2.y - d2.x * d1.y;
+  if (!(std::fabs(det) > 0.0f)) return glm::vec4(0.0f);
+  const glm::vec3 t = (e1 * d2.y - e2 * d1.y) / det;
+  const glm::vec3 b = (e2 * d1.x - e1 * d2.x) / det;
+  const float w = glm::dot(glm::cross(glm::cross(e1, e2), t), b) < 0.0f ? -1.0f : 1.0f;
+  return glm::vec4(t, w);
+}
+
+/// The shading normal of a normal-mapped hit: the texture's tangent-space normal (x, y scaled
+/// by normalTexture.scale) in the frame (T, B = cross(N, T)·w, N) of the front face, turned to
+/// the viewer's side like the unperturbed normal.
+glm::vec3 NormalMapped(const Shape& s, const Hit& h, const Surface& srf, glm::vec3 tex, float scale) {
+  glm::vec3 n0 = srf.n;
+  if (!s.normals.empty()) {
+    const glm::uvec3 tri = s.triangles[h.prim];
+    const float w = 1.0f - h.u - h.v;
+    n0 = s.normals[tri.x] * w + s.normals[tri.y] * h.u + s.normals[tri.z] * h.v;
+  } else {
+    n0 = h.ng;
+  }
+  const float len = glm::length(n0);
+  if (!(len > 0.0f)) return srf.n;
+  n0 /= len;
+  const bool back = glm::dot(n0, srf.n) < 0.0f;
+  const glm::vec4 t4 = TangentAt(s, h);
+  glm::vec3 t = glm::vec3(t4) - n0 * glm::dot(n0, glm::vec3(t4));  // Gram-Schmidt
+  const float tl = glm::length(t);
+  if (!(tl > 0.0f) || !std::isfinite(tl)) return srf.n;
+  t /= tl;
+  const glm::vec3 b = glm::cross(n0, t) * t4.w;
+  const glm::vec3 m = (tex * 2.0f - 1.0f) * glm::vec3(scale, scale, 1.0f);
+  glm::vec3 n = t * m.x + b * m.y + n0 * m.z;
+  const float nl = glm::length(n);
+  if (!(nl > 0.0f) || !std::isfinite(nl)) return srf.n;
+  n /= nl;
+  return back ? -n : n;
+}
+
+/// The interpolated vertex normal (else the geometric one) at barycentrics (w1, w2).
+glm::vec3 VertexNormal(const Shape& s, unsigned prim, float w1, float w2, glm::vec3 ng) {
+  if (s.normals.empty()) return glm::normalize(ng);
+  const glm::uvec3 tri = s.triangles[prim];
+  const glm::vec3 n = s.normals[tri.x] * (1.0f - w1 - w2) + s.normals[tri.y] * w1 + s.normals[tri.z] * w2;
+  const float len = glm::length(n);
+  return len > 0.0f && std::isfinite(len) ? n / len : glm::normalize(ng);
+}
+
+}  // namespace
+
+bool BackFaceCulled(const Scene& sc, const Material& m, const Hit& h, glm::vec3 dir) {
+  if (!m.gltf || m.gltf->double_sided) return false;
+  const Shape& s = sc.shapes[h.shape];
+  if (s.kind != ShapeKind::kTriangles) return false;
+  const glm::uvec3 t = s.triangles[h.prim];
+  const glm::vec3 n = glm::cross(s.positions[t.y] - s.positions[t.x], s.positions[t.z] - s.positions[t.x]);
+  return glm::dot(n, dir) > 0.0f;
+}
+
+UvDerivs HitUvDerivs(const Tracer::Impl& im, const Scene& sc, const Hit& h, glm::vec3 org, glm::vec3 dir,
+                     const Footprint& fp) {
+  UvDerivs d;
+  if (!(fp.tex.px > 0.0f)) return d;
+  const Shape& s = sc.shapes[h.shape];
+  if (s.kind != ShapeKind::kTriangles) return d;
+  Ray rx, ry;
+  glm::dvec2 uv, ux, uy;
+  constexpr float kHuge = 1e30f;  // an offset ray beyond the plane: the coarsest level
+  if (!OffsetRays(im, sc.camera, org, dir, fp, &rx, &ry) || !UvOnPlane(s, h.prim, {org, dir}, &uv)) {
+    d.dx = d.dy = glm::vec2(kHuge, 0.0f);
+    return d;
+  }
+  d.dx = UvOnPlane(s, h.prim, rx, &ux) ? glm::vec2(ux - uv) : glm::vec2(kHuge, 0.0f);
+  d.dy = UvOnPlane(s, h.prim, ry, &uy) ? glm::vec2(uy - uv) : glm::vec2(kHuge, 0.0f);
+  return d;
+}
+
+glm::vec4 FetchTexture(const Scene& sc, const TextureRef& t, glm::vec2 uv, const UvDerivs& d, const Footprint& fp) {
+  TextureFilter f;
+  f.level0_only = !(fp.tex.px > 0.0f);
+  f.max_aniso = fp.tex.max_aniso;
+  return SampleTexture(*sc.images[static_cast<size_t>(t.image)], uv, d, t.wrap_s, t.wrap_t, f);
+}
+
+float CutoutAlpha(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
+                  glm::vec3 org, glm::vec3 dir, const Footprint& fp) {
+  if (m.alpha) return EvaluatePattern(*m.alpha, srf.uv);
+  const GltfMaterial& g = *m.gltf;
+  float a = g.base_factor.w;
+  if (g.base_tex.Has()) a *= FetchTexture(sc, g.base_tex, srf.uv, HitUvDerivs(im, sc, h, org, dir, fp), fp).w;
+  return a;
+}
+
+bool CutoutKeeps(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
+                 glm::vec3 org, glm::vec3 dir, const Footprint& fp) {
+  if (m.alpha) return EvaluatePattern(*m.alpha, srf.uv) >= m.alpha_cutoff;
+  const GltfMaterial& g = *m.gltf;
+  float a = g.base_factor.w;
+  if (g.base_tex.Has()) a *= FetchTexture(sc, g.base_tex, srf.uv, HitUvDerivs(im, sc, h, org, dir, fp), fp).w;
+  return a >= m.alpha_cutoff;
+}
+
+glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
+                    glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& local) {
+  const GltfMaterial& g = *m.gltf;
+  const bool textures = sc.Has(Effect::kTextures);
+  const bool any_tex = textures && (g.base_tex.Has() || g.mr_tex.Has() || g.emissive_tex.Has() ||
+                                    g.occlusion_tex.Has() || g.normal_tex.Has());
+  const UvDerivs d = any_tex ? HitUvDerivs(im, sc, h, org, dir, fp) : UvDerivs{};
+  auto fetch = [&](const TextureRef& t) {
+    ++local.texture_lookups;
+    return FetchTexture(sc, t, srf.uv, d, fp);
+  };
+  glm::vec4 base = g.base_factor;
+  if (textures && g.base_tex.Has()) base *= fetch(g.base_tex);
+  if (m.shading == Shading::kUnlit) return glm::vec3(base);
+
+  float metallic = g.metallic, roughness = g.roughness, occlusion = 1.0f;
+  if (textures && g.mr_tex.Has()) {
+    const glm::vec4 mr = fetch(g.mr_tex);
+    roughness *= mr.y;
+    metallic *= mr.z;
+  }
+  metallic = std::clamp(metallic, 0.0f, 1.0f);
+  roughness = std::clamp(roughness, 0.0f, 1.0f);
+  if (textures && g.occlusion_tex.Has()) occlusion = 1.0f + g.occlusion_strength * (fetch(g.occlusion_tex).x - 1.0f);
+  glm::vec3 n = srf.n;
+  if (sc.Has(Effect::kNormalMap) && g.normal_tex.Has()) {
+    n = NormalMapped(sc.shapes[h.shape], h, srf, glm::vec3(fetch(g.normal_tex)), g.normal_scale);
+  }
+  // α = roughness², floored so that D stays finite in float at roughness 0 (a mirror).
+  const float alpha = std::max(roughness * roughness, 1e-3f);
+  float a2 = alpha * alpha;
+  if (fp.tex.gsaa_sigma2 > 0.0f && fp.tex.px > 0.0f) {
+    // Geometric specular AA (RenderSpec::specular_aa): the shading normal where the rays one
+    // footprint step right and down meet the triangle's plane, as a pixel shader's ddx(N),
+    // ddy(N) of the final (normal-mapped) normal; α'² = min(1, α² + min(σ²·(|dN/dx|² +
+    // |dN/dy|²), κ)) (Tokuyoshi & Kaplanyan 2021, listing 5).
+    const Shape& shape = sc.shapes[h.shape];
+    Ray rx, ry;
+    if (shape.kind == ShapeKind::kTriangles && OffsetRays(im, sc.camera, org, dir, fp, &rx, &ry)) {
+      const glm::vec3 n_hit = VertexNormal(shape, h.prim, h.u, h.v, h.ng);
+      const bool back = glm::dot(n_hit, srf.n) < 0.0f;
+      const bool mapped = sc.Has(Effect::kNormalMap) && g.normal_tex.Has();
+      auto normal_at = [&](const Ray& r, glm::vec3* out) {
+        double w1, w2;
+        if (!BaryOnPlane(shape, h.prim, r, &w1, &w2)) return false;
+        Hit h2 = h;
+        h2.u = static_cast<float>(w1);
+        h2.v = static_cast<float>(w2);
+        const glm::vec3 n0 = VertexNormal(shape, h.prim, h2.u, h2.v, h.ng);
+        Surface s2 = srf;
+        s2.n = back ? -n0 : n0;
+        if (!mapped) {
+          *out = s2.n;
+          return true;
+        }
+        const glm::uvec3 tri = shape.triangles[h.prim];
+        s2.uv = shape.uvs[tri.x] * (1.0f - h2.u - h2.v) + shape.uvs[tri.y] * h2.u + shape.uvs[tri.z] * h2.v;
+        ++local.texture_lookups;
+        *out = NormalMapped(shape, h2, s2, glm::vec3(FetchTexture(sc, g.normal_tex, s2.uv, d, fp)), g.normal_scale);
+        return true;
+      };
+      glm::vec3 nx, ny;
+      if (normal_at(rx, &nx) && normal_at(ry, &ny)) {
+        a2 = FilteredAlpha2(a2, nx - n, ny - n, fp.tex.gsaa_sigma2, fp.tex.gsaa_kappa);
+      }
+    }
+  }
+  const glm::vec3 base_rgb(base);
+  const glm::vec3 c_diff = base_rgb * (1.0f - metallic);
+  const glm::vec3 f0 = glm::vec3(0.04f) * (1.0f - metallic) + base_rgb * metallic;
+  const glm::vec3 v = -dir;
+  const float nv = std::max(glm::dot(n, v), 1e-4f);
+  const float vis_v = nv + std::sqrt(a2 + (1.0f - a2) * nv * nv);
+  glm::vec3 c = sc.ambient * (c_diff + f0) * occlusion;
+  for (size_t l = 0; l < sc.lights.size(); ++l) {
+    const Light& light = sc.lights[l];
+    glm::vec3 L;
+    float falloff = 1.0f;
+    if (light.type == LightType::kDirectional) {
+      L = -light.direction;
+    } else {
+      L = light.position - srf.p;
+      const float d2 = glm::dot(L, L);
+      if (!(d2 > 0.0f)) continue;
+      L /= std::sqrt(d2);
+      falloff = 1.0f / d2;
+    }
+    const float nl = glm::dot(n, L);
+    if (nl <= 0.0f || glm::dot(srf.ng, L) <= 0.0f) continue;  // below the shading or the geometric surface
+    if (l < 32 && (blocked >> l) & 1u) continue;
+    const glm::vec3 hv = glm::normalize(L + v);
+    const float vh = std::clamp(glm::dot(v, hv), 0.0f, 1.0f);
+    const float nh = std::max(glm::dot(n, hv), 0.0f);
+    const float fw = std::pow(1.0f - vh, 5.0f);
+    const glm::vec3 F = f0 + (glm::vec3(1.0f) - f0) * fw;
+    const float dd = nh * nh * (a2 - 1.0f) + 1.0f;
+    const float D = a2 / (kPi * dd * dd);
+    const float vis = 1.0f / ((nl + std::sqrt(a2 + (1.0f - a2) * nl * nl)) * vis_v);
+    const glm::vec3 f = (glm::vec3(1.0f) - F) * c_diff / kPi + F * (D * vis);
+    // aalab's light convention (scenes/README.md): a white Lambert surface facing a light of
+    // intensity E reflects E, so the BRDF is scaled by π: π · f · E · (N·L).
+    c += kPi * f * light.color * (light.intensity * falloff) * nl;
+  }
+  glm::vec3 emissive = g.emissive;
+  if (textures && g.emissive_tex.Has() && emissive != glm::vec3(0.0f)) emissive *= glm::vec3(fetch(g.emissive_tex));
+  return c + emissive;
+}
+
+}  // namespace tracer_detail
+}  // namespace aalab

@@ -1,0 +1,115 @@
+// glTF scenes through the real binary: a real scene renders the same bytes at 1 and 2
+// threads (every method family, the reference included), reports its content; a bad glTF
+// file is refused with one message and nothing is written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_util.h"
+
+namespace aalab::clitest {
+namespace {
+namespace fs = std::filesystem;
+
+std::string Bytes(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+TEST(GltfCli, RealSceneIsIdenticalAtOneAndTwoThreads) {
+  const fs::path dir = TempDir("gltf-threads");
+  const std::string common =
+      "run --scenes real-foliage,real-glossy --methods none,ssaa-2x2,msaa-4x:alpha_test=sample,fxaa311-p39,taa "
+      "--size 96x54 --ref-spp 16 --repeat 1 --quiet --out ";
+  for (const char* t : {"1", "2"}) {
+    const CmdResult r = Aalab(common + (dir / t).string() + " --threads " + t);
+    ASSERT_EQ(r.code, 0) << r.output;
+  }
+  int compared = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "1")) {
+    const std::string ext = e.path().extension().string();
+    if (!e.is_regular_file() || (ext != ".png" && ext != ".exr")) continue;
+    const fs::path other = dir / "2" / fs::relative(e.path(), dir / "1");
+    ASSERT_TRUE(fs::exists(other)) << other;
+    EXPECT_TRUE(Bytes(e.path()) == Bytes(other)) << e.path() << " differs between 1 and 2 threads";
+    ++compared;
+  }
+  EXPECT_GE(compared, 2 * 5);
+  std::ifstream f(dir / "1" / "report.json");
+  const auto doc = nlohmann::json::parse(f);
+  const auto& content = doc["scenes"][0]["content"];
+  EXPECT_GT(content["triangles"].get<int>(), 100);
+  EXPECT_EQ(content["textures"].get<int>(), 2);  // leaf and grass
+  // 256² leaf + 256² grass, full chains: 2 · (256² · 4/3 rounded to the levels) texels of 16 bytes.
+  uint64_t texels = 0;
+  for (int n = 256; n >= 1; n /= 2) texels += static_cast<uint64_t>(n) * n;
+  EXPECT_EQ(content["texture_bytes"].get<uint64_t>(), 2 * texels * 16);
+  fs::remove_all(dir);
+}
+
+/// The output hash of `method` on `scene` in a report.
+std::string OutputHash(const nlohmann::json& doc, const std::string& scene, const std::string& method) {
+  for (const auto& r : doc["rows"]) {
+    if (r["scene"] == scene && r["method"] == method) return r["output_hash"].get<std::string>();
+  }
+  return "";
+}
+
+TEST(GltfCli, SpecularAaChangesOnlyWhereTheNormalVaries) {
+  // real-grazing: flat planes, constant vertex normals, no normal map: the widening is zero
+  // and gsaa renders the none frame's bytes. real-glossy: the normal map varies within every
+  // pixel: gsaa differs.
+  const fs::path dir = TempDir("gltf-gsaa");
+  const CmdResult r = Aalab("run --scenes real-grazing,real-glossy --methods none,gsaa --size 96x54 --ref-spp 4 "
+                            "--repeat 1 --quiet --out " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream f(dir / "out" / "report.json");
+  const auto doc = nlohmann::json::parse(f);
+  EXPECT_EQ(OutputHash(doc, "real-grazing", "gsaa"), OutputHash(doc, "real-grazing", "none"));
+  EXPECT_NE(OutputHash(doc, "real-glossy", "gsaa"), OutputHash(doc, "real-glossy", "none"));
+  EXPECT_FALSE(OutputHash(doc, "real-glossy", "none").empty());
+  fs::remove_all(dir);
+}
+
+TEST(GltfCli, BadFileIsRefusedAndNothingIsWritten) {
+  const fs::path dir = TempDir("gltf-bad");
+  std::ofstream(dir / "broken.gltf") << R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 12, "uri": "gone.bin"}]})";
+  std::ofstream(dir / "scene.json") << R"({"name": "bad-gltf", "effects": ["lambert", "specular"],
+      "camera": {"type": "perspective", "position": [0, 0, 5], "look_at": [0, 0, 0], "fov_y": 40},
+      "ambient": [1, 1, 1], "materials": {}, "objects": [{"shape": "gltf", "file": "broken.gltf"}]})";
+  const CmdResult r = Aalab("render --scene " + (dir / "scene.json").string() + " --size 32x16 --out " +
+                            (dir / "out.png").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("/objects/0/file"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("buffer 0"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("gone.bin' not found"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out.png"));
+  const CmdResult run = Aalab("run --scenes " + (dir / "scene.json").string() + " --size 32x16 --out " +
+                              (dir / "run").string());
+  EXPECT_EQ(run.code, 1) << run.output;
+  EXPECT_FALSE(fs::exists(dir / "run" / "report.json"));
+  fs::remove_all(dir);
+}
+
+TEST(GltfCli, UndeclaredEffectOfAGltfMaterialIsNamed) {
+  // real/fence.glb has MASK materials: a scene that does not declare alpha_test is refused.
+  const fs::path dir = TempDir("gltf-effects");
+  std::ofstream(dir / "scene.json") << std::string(R"({"name": "fence", "effects": ["lambert", "specular", "textures"],
+      "camera": {"type": "gltf"}, "ambient": [1, 1, 1], "materials": {},
+      "objects": [{"shape": "gltf", "file": ")") + AALAB_SOURCE_DIR + R"(/scenes/library/real/fence.glb"}]})";
+  const CmdResult r = Aalab("render --scene " + (dir / "scene.json").string() + " --size 32x16 --out " +
+                            (dir / "out.png").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("alphaMode MASK"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("alpha_test"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out.png"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace aalab::clitest
