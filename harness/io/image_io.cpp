@@ -1,8 +1,15 @@
 #include "harness/io/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <iterator>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -10,56 +17,58 @@
 #include <fstream>
 #include <memory>
 
+#include "harness/core/cleanup.h"
 #include "harness/core/color.h"
 #include "harness/core/error.h"
+#include "harness/io/image_info.h"
 
 namespace aalab {
 namespace fs = std::filesystem;
 
 namespace {
 
+/// A temporary name beside `path` that no other thread, process or host uses.
 std::string TempPathFor(const std::string& path) {
+  static std::atomic<unsigned> counter{0};
+  char host[64] = {0};
+  ::gethostname(host, sizeof host - 1);
   const fs::path p(path);
-  // Keep the extension last so OpenImageIO picks the right writer.
-  return (p.parent_path() / (".tmp-" + p.stem().string() + p.extension().string())).string();
+  return (p.parent_path() / (".tmp-" + p.stem().string() + "." + host + "." + std::to_string(::getpid()) + "." +
+                             std::to_string(counter++) + p.extension().string()))
+      .string();
 }
 
-void CheckWritableDir(const std::string& path) {
-  const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent)) {
-    throw UserError("cannot write '" + path + "': directory '" + parent.string() + "' does not exist");
-  }
+[[noreturn]] void FailWrite(const std::string& path, const std::string& why) {
+  throw UserError("cannot write '" + path + "': " + why);
 }
 
-void Commit(const std::string& tmp, const std::string& path) {
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw UserError("cannot write '" + path + "': " + ec.message());
-  }
-}
-
-void WriteRaw(const std::string& path, int w, int h, int nc, OIIO::TypeDesc type, const void* data,
-              PngFilter png_filter = PngFilter::kAdaptive) {
-  CheckWritableDir(path);
-  const std::string tmp = TempPathFor(path);
+/// Encodes an image in memory with the OpenImageIO writer the extension names; every error
+/// of the library is checked, and nothing touches the disk.
+std::string Encode(const std::string& path, int w, int h, int nc, OIIO::TypeDesc type, const void* data,
+                   PngFilter png_filter) {
   auto out = OIIO::ImageOutput::create(path);
-  if (!out) {
-    throw UserError("cannot write '" + path + "': unknown image format (use .png, .jpg, .tif or .exr)");
-  }
+  if (!out) FailWrite(path, "unknown image format (use .png, .jpg, .tif or .exr)");
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  if (!out->set_ioproxy(&memory)) FailWrite(path, "the image library cannot encode this format in memory");
   OIIO::ImageSpec spec(w, h, nc, type);
   // OpenImageIO stamps EXR and TIFF files with the current time unless DateTime is set; an
   // empty value writes none, so the same pixels always give the same bytes (determinism).
   spec.attribute("DateTime", "");
+  // Alpha as given: without this, OpenImageIO's PNG writer divides colour by alpha.
+  if (nc == 2 || nc == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
   // libpng's row filter choice: 0x08 is PNG_FILTER_NONE (png.h); unset, libpng picks per row.
   if (png_filter == PngFilter::kNone) spec.attribute("png:filter", 0x08);
-  if (!out->open(tmp, spec) || !out->write_image(type, data) || !out->close()) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw UserError("cannot write '" + path + "': " + out->geterror());
+  if (!out->open(path, spec) || !out->write_image(type, data) || !out->close() || bytes.empty()) {
+    const std::string why = out->geterror();
+    FailWrite(path, why.empty() ? "the image library failed without saying why" : why);
   }
-  Commit(tmp, path);
+  return std::string(bytes.begin(), bytes.end());
+}
+
+void WriteRaw(const std::string& path, int w, int h, int nc, OIIO::TypeDesc type, const void* data,
+              PngFilter png_filter = PngFilter::kAdaptive) {
+  WriteTextFile(path, Encode(path, w, h, nc, type, data, png_filter));
 }
 
 }  // namespace
@@ -114,21 +123,63 @@ void WriteImageF(const std::string& path, const ImageF& img) {
   WriteImage8(path, ToUnorm8(img));
 }
 
-void WriteTextFile(const std::string& path, const std::string& text) {
-  CheckWritableDir(path);
-  const std::string tmp = TempPathFor(path);
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f) throw UserError("cannot write '" + path + "': cannot create a file there");
-    f << text;
-    f.flush();
-    if (!f) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw UserError("cannot write '" + path + "': write failed");
+void WriteImage16(const std::string& path, const ImageF& img, int channels) {
+  AALAB_CHECK(channels >= 1 && channels <= 4 && channels <= img.Channels(), "WriteImage16: bad channel count");
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".png" && ext != ".tif" && ext != ".tiff") {
+    FailWrite(path, "16-bit images are written as .png, .tif or .tiff");
+  }
+  std::vector<uint16_t> data(img.PixelCount() * static_cast<size_t>(channels));
+  for (size_t i = 0; i < img.PixelCount(); ++i) {
+    for (int c = 0; c < channels; ++c) {
+      const float v = std::clamp(img.Data()[i * img.Channels() + c], 0.0f, 1.0f);
+      data[i * channels + c] = static_cast<uint16_t>(std::lround(static_cast<double>(v) * 65535.0));
     }
   }
-  Commit(tmp, path);
+  WriteRaw(path, img.Width(), img.Height(), channels, OIIO::TypeDesc::UINT16, data.data());
+}
+
+void WriteTextFile(const std::string& path, const std::string& bytes) {
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent)) {
+    FailWrite(path, "directory '" + parent.string() + "' does not exist");
+  }
+  const std::string tmp = TempPathFor(path);
+  TrackUnfinished(tmp);  // an interruption removes it
+  auto fail = [&](int err, const std::string& what) {
+    ::unlink(tmp.c_str());
+    UntrackUnfinished(tmp);
+    FailWrite(path, what + std::strerror(err));
+  };
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int err = errno;
+    UntrackUnfinished(tmp);
+    FailWrite(path, "cannot create a file there: " + std::string(std::strerror(err)));
+  }
+  for (size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : EIO;
+      ::close(fd);
+      fail(err, "");
+    }
+    done += static_cast<size_t>(n);
+  }
+  // close() reports what a file system defers (NFS, quota): checked like every write.
+  if (::close(fd) != 0) fail(errno, "");
+  if (::rename(tmp.c_str(), path.c_str()) != 0) fail(errno, "");
+  UntrackUnfinished(tmp);
+}
+
+void CopyFileChecked(const std::string& from, const std::string& to) {
+  std::ifstream f(from, std::ios::binary);
+  if (!f || !fs::is_regular_file(from)) throw UserError("cannot read '" + from + "': not a readable file");
+  std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  if (f.bad()) throw UserError("cannot read '" + from + "': read error");
+  WriteTextFile(to, bytes);
 }
 
 }  // namespace aalab

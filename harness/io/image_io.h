@@ -1,5 +1,6 @@
-/// Image files through OpenImageIO. Writes are atomic: a temporary file beside the target is
-/// renamed into place, so a failed write never leaves a half-written result.
+/// Image files through OpenImageIO. Reads: one reader (image_read.cpp). Writes are atomic and
+/// checked: a temporary file beside the target is renamed into place, so a failed write never
+/// leaves a half-written result and always says so.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -74,7 +75,14 @@ void WriteGrey8(const std::string& path, int width, int height, const std::vecto
 /// Writes a float image (EXR as half-free float32; PNG etc. quantised to 8 bits).
 void WriteImageF(const std::string& path, const ImageF& img);
 
-/// Writes text atomically (temporary file + rename). Throws UserError on failure.
-void WriteTextFile(const std::string& path, const std::string& text);
+/// Writes `bytes` (text or binary) atomically: to a temporary file beside `path` (a name no
+/// other thread, process or host uses), every write and the close checked (ENOSPC, EIO,
+/// EFBIG...), then renamed over `path`. On any error the temporary file is removed and
+/// UserError names `path` and the OS error. Every file aalab writes goes through here (the
+/// image writers encode in memory first, so the image library's errors are checked too).
+void WriteTextFile(const std::string& path, const std::string& bytes);
+
+/// Copies the regular file `from` to `to` through WriteTextFile.
+void CopyFileChecked(const std::string& from, const std::string& to);
 
 }  // namespace aalab

@@ -88,6 +88,18 @@ TEST(ImageRead, AlphaIsNeverMultipliedIntoColour) {
   }
 }
 
+TEST(ImageRead, AlphaIsWrittenAsGiven) {
+  // WriteImage8 with alpha: colour bytes stored as given (OpenImageIO's PNG writer would
+  // divide them by alpha unless told the alpha is unassociated).
+  Image8 img(2, 1, 4, 0);
+  img.At(0, 0, 0) = 200, img.At(0, 0, 3) = 0;
+  img.At(1, 0, 0) = 100, img.At(1, 0, 3) = 128;
+  for (const std::string name : {"given.png", "given.tif"}) {
+    WriteImage8((Dir() / name).string(), img, true);
+    EXPECT_EQ(ReadImage8((Dir() / name).string()), img) << name;
+  }
+}
+
 TEST(ImageRead, ChannelsAreTakenByNameNotPosition) {
   // Written in the order B, Z, R, G (OpenEXR stores channels sorted by name): colour must come
   // from the names. Z holds +Inf (a depth background) and is not read for colour.
