@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "harness/core/image.h"
+#include "harness/io/file_write.h"  // WriteTextFile
 
 namespace aalab {
 
@@ -74,13 +75,6 @@ void WriteGrey8(const std::string& path, int width, int height, const std::vecto
 
 /// Writes a float image (EXR as half-free float32; PNG etc. quantised to 8 bits).
 void WriteImageF(const std::string& path, const ImageF& img);
-
-/// Writes `bytes` (text or binary) atomically: to a temporary file beside `path` (a name no
-/// other thread, process or host uses), every write and the close checked (ENOSPC, EIO,
-/// EFBIG...), then renamed over `path`. On any error the temporary file is removed and
-/// UserError names `path` and the OS error. Every file aalab writes goes through here (the
-/// image writers encode in memory first, so the image library's errors are checked too).
-void WriteTextFile(const std::string& path, const std::string& bytes);
 
 /// Copies the regular file `from` to `to` through WriteTextFile.
 void CopyFileChecked(const std::string& from, const std::string& to);

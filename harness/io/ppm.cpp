@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "harness/core/error.h"
-#include "harness/io/image_io.h"
+#include "harness/io/file_write.h"
 
 namespace aalab {
 namespace {

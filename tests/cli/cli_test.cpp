@@ -120,7 +120,7 @@ TEST(Cli, RunWritesReportCoveringTheMatrix) {
   fs::create_directories(foreign);
   std::ofstream(foreign / "notes.txt") << "mine";
   ExpectFails("run --scenes wedges --methods none --size 16x9 --ref-spp 4 --quiet --out " + foreign.string(),
-              {"cannot be replaced", "notes.txt", "which aalab did not write"});
+              {"cannot be replaced", "was not written by aalab"});
   EXPECT_TRUE(fs::exists(foreign / "notes.txt"));
 }
 

@@ -63,7 +63,7 @@ TEST(Safety, OutputPathsAreNormalisedAndUsersFilesSurvive) {
   std::ofstream(dir / "results" / "notes.txt") << "mine";
   // The spellings shell completion and users type: all the same folder, all refused because of
   // the user's file, which survives with the report.
-  for (const std::string out : {res + "/", res + "/.", res + "/images/..", res + "//"}) {
+  for (const std::string& out : {res + "/", res + "/.", res + "/images/..", res + "//"}) {
     ExpectFail(Aalab("run " + kSmall + " --out " + out), 1, {"cannot be replaced", "'notes.txt', which aalab did not write"},
                out);
     EXPECT_EQ(Bytes(dir / "results" / "notes.txt"), "mine") << out;
@@ -75,7 +75,7 @@ TEST(Safety, OutputPathsAreNormalisedAndUsersFilesSurvive) {
   EXPECT_TRUE(fs::exists(dir / "results" / "notes.txt"));
   // Without the user's file, an earlier run's folder is replaced through every spelling.
   fs::remove(dir / "results" / "notes.txt");
-  for (const std::string out : {res + "/", res + "/.", res + "/images/.."}) {
+  for (const std::string& out : {res + "/", res + "/.", res + "/images/.."}) {
     EXPECT_EQ(Aalab("run " + kSmall + " --out " + out).code, 0) << out;
     EXPECT_TRUE(fs::exists(dir / "results" / "report.json")) << out;
   }
