@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -386,8 +389,17 @@ std::vector<std::string> ReportImages(const Report& r) {
 }
 
 Report ReadReportFile(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (!fs::exists(st)) throw UserError("report '" + path + "' does not exist");
+  if (fs::is_directory(st)) {
+    throw UserError("report '" + path + "' is a folder, not a report file (give " +
+                    (fs::path(path) / "report.json").string() + ")");
+  }
+  if (!fs::is_regular_file(st)) throw UserError("report '" + path + "' is not a regular file (a FIFO or device?)");
   std::ifstream f(path);
-  if (!f) throw UserError("report '" + path + "' cannot be read");
+  if (!f) throw UserError("report '" + path + "' cannot be read: " + std::strerror(errno));
   std::stringstream ss;
   ss << f.rdbuf();
   nlohmann::ordered_json doc;

@@ -3,6 +3,8 @@
 #include <cfloat>
 #include <cmath>
 #include <filesystem>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -503,8 +505,11 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
 
 Scene LoadSceneFile(const std::string& path) {
   if (!fs::exists(path)) throw UserError("scene file '" + path + "' does not exist");
+  if (fs::is_directory(path)) throw UserError("scene file '" + path + "' is a folder, not a scene file");
+  // A FIFO or device would block or never end: scene files are regular files.
+  if (!fs::is_regular_file(path)) throw UserError("scene file '" + path + "' is not a regular file");
   std::ifstream f(path, std::ios::binary);
-  if (!f) throw UserError("scene file '" + path + "' cannot be read");
+  if (!f) throw UserError("scene file '" + path + "' cannot be read: " + std::strerror(errno));
   std::stringstream ss;
   ss << f.rdbuf();
   Scene s = ParseScene(ss.str(), "scene '" + path + "'", fs::path(path).parent_path().string());

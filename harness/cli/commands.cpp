@@ -10,6 +10,7 @@
 #include "harness/core/params.h"
 #include "harness/core/parallel.h"
 #include "harness/io/image_io.h"
+#include "harness/run/out_folder.h"
 #include "harness/run/runner.h"
 #include "metrics/viewing.h"
 #include "harness/run/shard.h"
@@ -117,6 +118,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       }
       const std::string ext = fs::path(ra->out).extension().string();
       if (ext != ".exr" && ext != ".png") throw UserError("--out '" + ra->out + "' must end in .exr or .png");
+      CheckOutFile(ra->out, {ra->scene});  // never onto the scene file, never a folder
       const Scene scene = LoadScene(ra->scene);
       Tracer tracer(scene);
       RenderSpec spec;
@@ -238,6 +240,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".tif" && ext != ".tiff") {
         throw UserError("output '" + aa->out + "' must end in .png, .jpg, .jpeg, .tif or .tiff (an 8-bit display image)");
       }
+      CheckOutFile(aa->out, {aa->in});  // never onto its own input, never a folder
       const LoadedImage img = ReadImage(aa->in);
       Image8 frame(img.pixels.Width(), img.pixels.Height(), 4, 255);
       for (int y = 0; y < frame.Height(); ++y) {

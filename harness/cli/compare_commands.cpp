@@ -11,6 +11,7 @@
 #include "harness/cli/commands.h"
 #include "harness/core/error.h"
 #include "harness/core/params.h"
+#include "harness/core/cleanup.h"
 #include "harness/io/image_io.h"
 #include "reports/compare.h"
 #include "reports/history.h"
@@ -84,9 +85,24 @@ void WriteCompareHtml(const std::string& out, const CompareResult& res, const Re
   std::vector<std::vector<HtmlImage>> images =
       CompareHtmlImages(res, base, cur, FolderOf(a.baseline), FolderOf(a.current));
   const fs::path staging = files.string() + ".partial";
+  // Only a leftover of an earlier compare (it holds the marker) is removed.
+  if (fs::exists(fs::symlink_status(staging)) && !fs::exists(staging / ".aalab-compare")) {
+    throw UserError("--html: '" + staging.string() + "' exists and was not written by aalab compare; move it away");
+  }
   fs::remove_all(staging);
   fs::create_directories(staging);
-  std::ofstream(staging / ".aalab-compare") << "images of " << page.filename().string() << "\n";
+  TrackUnfinished(staging.string());  // an interruption removes it
+  // A failed copy removes the staging folder (the page's old images stay as they were).
+  struct RemoveUnlessDone {
+    fs::path path;
+    bool done = false;
+    ~RemoveUnlessDone() {
+      std::error_code ec;
+      if (!done) fs::remove_all(path, ec);
+      UntrackUnfinished(path.string());
+    }
+  } guard{staging};
+  WriteTextFile((staging / ".aalab-compare").string(), "images of " + page.filename().string() + "\n");
   int missing = 0;
   for (size_t k = 0; k < images.size(); ++k) {
     for (auto& im : images[k]) {
@@ -103,13 +119,16 @@ void WriteCompareHtml(const std::string& out, const CompareResult& res, const Re
       std::string role = im.label;
       for (char& c : role) c = c == ' ' ? '-' : c;
       const std::string name = "row" + std::to_string(k + 1) + "-" + role + fs::path(im.source).extension().string();
-      fs::copy_file(im.source, staging / name, fs::copy_options::overwrite_existing, ec);
-      if (ec) throw UserError("--html: cannot copy '" + im.source + "': " + ec.message());
+      CopyFileChecked(im.source, (staging / name).string());
       im.href = files_name + "/" + name;
     }
   }
-  fs::remove_all(files);
-  fs::rename(staging, files);
+  {
+    auto lock = LockUnfinished();
+    fs::remove_all(files);
+    fs::rename(staging, files);
+    guard.done = true;
+  }
   WriteTextFile(page.string(), CompareHtml(res, images, a.baseline, a.current));
   std::printf("wrote %s (%zu changed rows; images copied to %s)\n", page.string().c_str(), images.size(),
               files.string().c_str());

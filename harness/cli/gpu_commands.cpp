@@ -13,6 +13,7 @@
 #include "harness/core/parallel.h"
 #include "harness/io/image_io.h"
 #include "harness/io/ppm.h"
+#include "harness/run/out_folder.h"
 #include "harness/run/pipeline.h"
 #include "harness/run/runner.h"
 #include "methods/registry.h"
@@ -94,42 +95,33 @@ int ExportFrames(const ExportArgs& a) {
                       "' (it declares /animation/frames = " + std::to_string(scene->animation.frames) + ")");
     }
   }
-  const fs::path out(a.out);
-  if (fs::exists(out) && (!fs::is_directory(out) || (!fs::is_empty(out) && !fs::exists(out / "frames.tsv")))) {
-    throw UserError("--out '" + a.out + "' exists and is not a frames folder (no frames.tsv); refusing to replace it");
-  }
-  const fs::path tmp = out.string() + ".partial";
-  fs::remove_all(tmp);
-  fs::create_directories(tmp);
-  try {
-    // The render request of scale43 at its defaults: the scaled frame is what it renders.
-    const RenderSpec scaled = MakeMethod("scale43").render;
-    std::ostringstream tsv;
-    tsv << "# aalab export-frames: scene, role (1x | scaled | taa-<frame>), output width, output height, file "
-           "(binary PPM; taa-<t> with t >= 1 also has its previous positions in the same name with .prev)\n";
-    for (const auto& scene : scenes) {
-      const Tracer tracer(*scene);
-      for (const auto& [w, h] : sizes) {
-        const std::string base = scene->name + "-" + std::to_string(w) + "x" + std::to_string(h);
-        WritePpm((tmp / (base + ".ppm")).string(), RenderFrame(tracer, w, h, RenderSpec{}, a.seed, nullptr));
-        tsv << scene->name << "\t1x\t" << w << "\t" << h << "\t" << base << ".ppm\n";
-        if (!a.no_scaled) {
-          const int rw = std::max(1, static_cast<int>(std::lround(scaled.scale * w)));
-          const int rh = std::max(1, static_cast<int>(std::lround(scaled.scale * h)));
-          WritePpm((tmp / (base + "-scaled.ppm")).string(), RenderFrame(tracer, rw, rh, scaled, a.seed, nullptr));
-          tsv << scene->name << "\tscaled\t" << w << "\t" << h << "\t" << base << "-scaled.ppm\n";
-        }
-        if (a.taa_frames > 0) ExportTaaSequence(*scene, tracer, w, h, a.taa_frames, base, tmp, tsv);
-        std::fprintf(stderr, "exported %s\n", base.c_str());
+  // The output folder rule (harness/run/out_folder.h): only an earlier frames folder is replaced.
+  OutFolder out(a.out, "frames", names);
+  const fs::path tmp = out.Begin();
+  // The render request of scale43 at its defaults: the scaled frame is what it renders.
+  const RenderSpec scaled = MakeMethod("scale43").render;
+  std::ostringstream tsv;
+  tsv << "# aalab export-frames: scene, role (1x | scaled | taa-<frame>), output width, output height, file "
+         "(binary PPM; taa-<t> with t >= 1 also has its previous positions in the same name with .prev)\n";
+  for (const auto& scene : scenes) {
+    const Tracer tracer(*scene);
+    for (const auto& [w, h] : sizes) {
+      const std::string base = scene->name + "-" + std::to_string(w) + "x" + std::to_string(h);
+      WritePpm((tmp / (base + ".ppm")).string(), RenderFrame(tracer, w, h, RenderSpec{}, a.seed, nullptr));
+      tsv << scene->name << "\t1x\t" << w << "\t" << h << "\t" << base << ".ppm\n";
+      if (!a.no_scaled) {
+        const int rw = std::max(1, static_cast<int>(std::lround(scaled.scale * w)));
+        const int rh = std::max(1, static_cast<int>(std::lround(scaled.scale * h)));
+        WritePpm((tmp / (base + "-scaled.ppm")).string(), RenderFrame(tracer, rw, rh, scaled, a.seed, nullptr));
+        tsv << scene->name << "\tscaled\t" << w << "\t" << h << "\t" << base << "-scaled.ppm\n";
       }
+      if (a.taa_frames > 0) ExportTaaSequence(*scene, tracer, w, h, a.taa_frames, base, tmp, tsv);
+      }
+      std::fprintf(stderr, "exported %s\n", base.c_str());
     }
-    WriteTextFile((tmp / "frames.tsv").string(), tsv.str());
-  } catch (...) {
-    fs::remove_all(tmp);
-    throw;
   }
-  fs::remove_all(out);
-  fs::rename(tmp, out);
+  WriteTextFile((tmp / "frames.tsv").string(), tsv.str());
+  out.Commit();
   std::printf("wrote %zu scene(s) x %zu size(s) to %s (frames.tsv)\n", scenes.size(), sizes.size(), a.out.c_str());
   return 0;
 }

@@ -1,16 +1,107 @@
 // aalab command line: list, render, run, apply (and more as issues land).
-// Exit codes: 0 success, 1 bad input or failure (one clear message on stderr), 3 internal error.
+// Exit codes: harness/cli/exit_code.h (docs/cli.md). Signals: SIGINT and SIGTERM are taken by
+// one thread, which removes the command's unfinished output (harness/core/cleanup.h) and exits
+// 130 / 143 with one line.
 #include <CLI/CLI.hpp>
+#include <pthread.h>
+#include <signal.h>
+#include <unistd.h>
 
+#include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
+#include <string>
+#include <thread>
 
 #include "build_info.h"
 #include "harness/cli/commands.h"
+#include "harness/cli/exit_code.h"
+#include "harness/core/cleanup.h"
 #include "harness/core/error.h"
+
+namespace aalab {
+namespace {
+
+/// Blocks SIGINT and SIGTERM in every thread (threads started later inherit the mask) and
+/// waits for them in one thread of their own, where cleaning up is safe.
+void HandleSignals() {
+  sigset_t set;
+  sigemptyset(&set);
+  for (int sig : {SIGINT, SIGTERM}) {
+    // A signal the caller ignores (nohup, a shell's background job) stays ignored.
+    struct sigaction old {};
+    if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    sigaddset(&set, sig);
+  }
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  std::thread([set] {
+    int sig = 0;
+    while (sigwait(&set, &sig) != 0) {
+    }
+    const int removed = RemoveUnfinishedForExit();
+    const bool interrupted = sig == SIGINT;
+    const std::string line = std::string("aalab: ") + (interrupted ? "interrupted (SIGINT)" : "terminated (SIGTERM)") +
+                             ": stopped; removed " + std::to_string(removed) +
+                             " unfinished output path(s), left everything that was there before as it was\n";
+    if (::write(STDERR_FILENO, line.data(), line.size()) < 0) {
+      // Nothing more to do: the exit status says it.
+    }
+    ::_exit(ToInt(interrupted ? ExitCode::kInterrupted : ExitCode::kTerminated));
+  }).detach();
+}
+
+/// How a value of `opt` is written, for parse error messages.
+std::string Allowed(const CLI::Option* opt) {
+  const std::string type = opt->get_type_name();
+  std::string what = type == "INT"     ? "a whole number"
+                     : type == "UINT"  ? "a whole number >= 0"
+                     : type == "FLOAT" ? "a number"
+                     : opt->get_type_size() == 0 ? "no value (a flag)"
+                                                 : "a value (" + (type.empty() ? std::string("text") : type) + ")";
+  const std::string def = opt->get_default_str();
+  if (!def.empty()) what += ", default " + def;
+  return opt->get_name() + " takes " + what + ": " + opt->get_description();
+}
+
+/// CLI11's message, with what the option allows where the message names an option.
+std::string DescribeParseError(CLI::App& app, const CLI::ParseError& e) {
+  std::string msg = e.what();
+  std::vector<CLI::App*> apps = app.get_subcommands();  // the subcommand(s) parsed so far
+  if (apps.empty()) apps = app.get_subcommands({});
+  for (CLI::App* sub : apps) {
+    for (const CLI::Option* opt : sub->get_options()) {
+      const std::string name = opt->get_name();
+      if (name.rfind("--", 0) != 0) continue;
+      const size_t at = msg.find(name);
+      if (at == std::string::npos) continue;
+      const size_t end = at + name.size();
+      if (end < msg.size() && (std::isalnum(static_cast<unsigned char>(msg[end])) || msg[end] == '-')) continue;
+      return msg + " (" + Allowed(opt) + ")";
+    }
+  }
+  bool negative = false;  // "-3": CLI11 reads a negative number as an unknown option
+  for (size_t i = 0; i + 1 < msg.size(); ++i) {
+    negative = negative || (msg[i] == '-' && (i == 0 || msg[i - 1] == ' ') && std::isdigit(static_cast<unsigned char>(msg[i + 1])));
+  }
+  if (msg.find("not expected") != std::string::npos && negative) {
+    msg += " (a value that starts with '-' is read as an option: write --option=-value; see --help for the options)";
+  } else if (msg.find("not expected") != std::string::npos) {
+    msg += " (see 'aalab " + (apps.size() == 1 ? apps[0]->get_name() + " " : std::string()) + "--help' for the options)";
+  } else if (msg.find("subcommand is required") != std::string::npos) {
+    std::string names;
+    for (CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+    msg += " (commands: " + names + ")";
+  }
+  return msg;
+}
+
+}  // namespace
+}  // namespace aalab
 
 int main(int argc, char** argv) {
   using namespace aalab;
+  HandleSignals();
   CLI::App app{"aalab: measures anti-aliasing methods against a supersampled ground truth"};
   app.set_version_flag("--version", std::string("aalab ") + AALAB_VERSION + " (" + AALAB_GIT_COMMIT + ")");
   app.require_subcommand(1);
@@ -19,18 +110,21 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version end parsing with CLI11's "success" code: printed as CLI11 does.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    std::fprintf(stderr, "aalab: error: %s\n", DescribeParseError(app, e).c_str());
+    return ToInt(ExitCode::kFailure);
   }
   try {
     return commands.Run();
   } catch (const UserError& e) {
     std::fprintf(stderr, "aalab: error: %s\n", e.what());
-    return 1;
+    return ToInt(ExitCode::kFailure);
   } catch (const InternalError& e) {
     std::fprintf(stderr, "aalab: internal error (a bug, please report): %s\n", e.what());
-    return 3;
+    return ToInt(ExitCode::kInternalError);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "aalab: error: %s\n", e.what());
-    return 1;
+    return ToInt(ExitCode::kFailure);
   }
 }

@@ -10,4 +10,5 @@ set(AALAB_CORE_SOURCES
   params.cpp
   render_spec.cpp
   edge_mask.cpp
+  cleanup.cpp
 )

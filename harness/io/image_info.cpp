@@ -34,41 +34,4 @@ ImageFileInfo ProbeImage(const std::string& path) {
   return info;
 }
 
-void WriteImage16(const std::string& path, const ImageF& img, int channels) {
-  namespace fs = std::filesystem;
-  AALAB_CHECK(channels >= 1 && channels <= 4 && channels <= img.Channels(), "WriteImage16: bad channel count");
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".png" && ext != ".tif" && ext != ".tiff") {
-    throw UserError("cannot write '" + path + "': 16-bit images are written as .png, .tif or .tiff");
-  }
-  const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent)) {
-    throw UserError("cannot write '" + path + "': directory '" + parent.string() + "' does not exist");
-  }
-  std::vector<uint16_t> data(img.PixelCount() * static_cast<size_t>(channels));
-  for (size_t i = 0; i < img.PixelCount(); ++i) {
-    for (int c = 0; c < channels; ++c) {
-      const float v = std::clamp(img.Data()[i * img.Channels() + c], 0.0f, 1.0f);
-      data[i * channels + c] = static_cast<uint16_t>(std::lround(static_cast<double>(v) * 65535.0));
-    }
-  }
-  const std::string tmp = (parent / (".tmp-" + fs::path(path).stem().string() + ext)).string();
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw UserError("cannot write '" + path + "': no writer for this file type");
-  OIIO::ImageSpec spec(img.Width(), img.Height(), channels, OIIO::TypeDesc::UINT16);
-  spec.attribute("DateTime", "");  // no time stamp: the same pixels give the same bytes
-  if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT16, data.data()) || !out->close()) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw UserError("cannot write '" + path + "': " + out->geterror());
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw UserError("cannot write '" + path + "': " + ec.message());
-  }
-}
-
 }  // namespace aalab

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "harness/core/error.h"
+#include "harness/io/file_write.h"
 
 namespace aalab {
 namespace {
@@ -78,24 +79,14 @@ Image8 ReadPpm(const std::string& path) {
 
 void WritePpm(const std::string& path, const Image8& img) {
   AALAB_CHECK(img.Channels() == 4, "WritePpm needs an RGBA8 frame");
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw UserError("'" + path + "' cannot be written");
-    out << "P6\n" << img.Width() << " " << img.Height() << "\n255\n";
-    std::vector<uint8_t> rgb(static_cast<size_t>(img.Width()) * img.Height() * 3);
-    for (size_t i = 0, n = static_cast<size_t>(img.Width()) * img.Height(); i < n; ++i) {
-      const uint8_t* p = img.Data().data() + 4 * i;
-      rgb[3 * i] = p[0];
-      rgb[3 * i + 1] = p[1];
-      rgb[3 * i + 2] = p[2];
-    }
-    out.write(reinterpret_cast<const char*>(rgb.data()), static_cast<std::streamsize>(rgb.size()));
-    if (!out) throw UserError("'" + path + "': write failed");
+  std::string bytes = "P6\n" + std::to_string(img.Width()) + " " + std::to_string(img.Height()) + "\n255\n";
+  const size_t header = bytes.size();
+  bytes.resize(header + static_cast<size_t>(img.Width()) * img.Height() * 3);
+  for (size_t i = 0, n = static_cast<size_t>(img.Width()) * img.Height(); i < n; ++i) {
+    const uint8_t* p = img.Data().data() + 4 * i;
+    for (int c = 0; c < 3; ++c) bytes[header + 3 * i + c] = static_cast<char>(p[c]);
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw UserError("'" + path + "' cannot be written: " + ec.message());
+  WriteTextFile(path, bytes);  // checked, atomic (harness/io/image_io.h)
 }
 
 void WritePreviousPositions(const std::string& path, int width, int height, const std::vector<float>& previous) {

@@ -219,12 +219,12 @@ MergeResult MergeRunFolders(const std::vector<std::string>& dirs, const std::str
       if (planned.insert(rel).second) copies.emplace_back(src, rel);
     }
   }
-  OutFolder out(out_dir, "report.json");
+  OutFolder out(out_dir, "run", dirs);
   const fs::path tmp = out.Begin();
   fs::create_directories(tmp / "images");
   for (const auto& [src, rel] : copies) {
     fs::create_directories((tmp / rel).parent_path());
-    fs::copy_file(src, tmp / rel, fs::copy_options::overwrite_existing);
+    CopyFileChecked(src.string(), (tmp / rel).string());
   }
   // The page as a single run writes it: rendered before the time breakdown exists.
   Report page = merged;

@@ -1,37 +1,227 @@
-// The output folder guard (harness/run/out_folder.h).
+// The output folder rule (harness/run/out_folder.h).
 #include "harness/run/out_folder.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "harness/core/cleanup.h"
 #include "harness/core/error.h"
+#include "harness/io/image_io.h"
 
 namespace aalab {
 namespace fs = std::filesystem;
 
-OutFolder::OutFolder(const std::string& dir, const std::string& marker) : dir_(dir), partial_(dir + ".partial") {
-  if (dir.empty()) throw UserError("--out must not be empty");
-  if (fs::exists(dir_)) {
-    if (!fs::is_directory(dir_)) throw UserError("--out '" + dir + "' exists and is not a folder");
-    if (!fs::is_empty(dir_) && !fs::exists(dir_ / marker)) {
-      throw UserError("--out '" + dir + "' is a non-empty folder without a " + marker + "; refusing to replace it");
+namespace {
+
+constexpr const char* kLockFile = ".aalab-lock";
+
+std::string Q(const fs::path& p) {
+  std::string q = "'";  // (not "'" + ...: GCC 12 warns a false -Wrestrict on that)
+  q += p.string();
+  q += "'";
+  return q;
+}
+
+/// The first line of the marker, then "kind KIND", then one relative file path per line.
+std::string MarkerHeader() { return "aalab output folder 1"; }
+
+/// Relative paths of every file (and symlink) under `dir`, folders left out.
+std::set<std::string> FilesUnder(const fs::path& dir) {
+  std::set<std::string> files;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it->is_directory(ec) && !it->is_symlink(ec)) continue;
+    files.insert(fs::relative(it->path(), dir, ec).generic_string());
+  }
+  if (ec) throw UserError("cannot list the folder " + Q(dir) + ": " + ec.message());
+  return files;
+}
+
+/// "" when `dir` (an existing folder) may be replaced by an output of `kind`, else why not.
+std::string WhyNotReplaceable(const fs::path& dir, const std::string& kind) {
+  const std::set<std::string> files = FilesUnder(dir);
+  if (files.empty()) return "";
+  const fs::path marker = dir / kOutputMarker;
+  std::ifstream f(marker);
+  std::string header, kind_line;
+  if (!f || !std::getline(f, header) || header != MarkerHeader() || !std::getline(f, kind_line)) {
+    return "it is not empty and was not written by aalab (it has no " + std::string(kOutputMarker) +
+           ", the list of files aalab wrote; outputs of older aalab builds have none: remove such a folder yourself)";
+  }
+  if (kind_line != "kind " + kind) {
+    return "it holds an aalab output of another kind (" + kind_line.substr(std::min<size_t>(5, kind_line.size())) +
+           ", this command writes a " + kind + " output)";
+  }
+  std::set<std::string> listed;
+  for (std::string line; std::getline(f, line);) listed.insert(line);
+  for (const auto& file : files) {
+    if (file != kOutputMarker && file != kLockFile && !listed.count(file)) {
+      return "it holds '" + file + "', which aalab did not write (aalab replaces the whole folder: move the file out)";
     }
   }
+  return "";
+}
+
+bool Contains(const fs::path& outer, const fs::path& inner) {
+  auto o = outer.begin(), i = inner.begin();
+  for (; o != outer.end(); ++o, ++i) {
+    if (i == inner.end() || *o != *i) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+fs::path NormaliseOutPath(const std::string& dir, const std::string& option) {
+  if (dir.empty()) throw UserError(option + " must not be empty");
+  std::error_code ec;
+  fs::path p = fs::weakly_canonical(fs::absolute(dir), ec);
+  if (ec) throw UserError(option + " '" + dir + "': " + ec.message());
+  p = p.lexically_normal();
+  while (!p.has_filename() && p.has_relative_path()) p = p.parent_path();  // "dir/" -> "dir"
+  if (!p.has_relative_path()) throw UserError(option + " '" + dir + "' is the root folder; give a folder of its own");
+  return p;
+}
+
+OutFolder::OutFolder(const std::string& dir, const std::string& kind, const std::vector<std::string>& inputs)
+    : kind_(kind) {
+  dir_ = NormaliseOutPath(dir);
+  partial_ = dir_.string() + ".partial";
+  const std::string shown = dir == dir_.string() ? Q(dir) : Q(dir) + " (" + dir_.string() + ")";
+  for (const auto& in : inputs) {
+    std::error_code ec;
+    if (in.empty()) continue;
+    const fs::path p = fs::weakly_canonical(fs::absolute(in), ec);
+    if (ec) continue;
+    if (p == dir_ || Contains(dir_, p) || p == partial_ || Contains(partial_, p)) {
+      throw UserError("--out " + shown + (p == dir_ ? " is" : " contains") + " the input '" + in +
+                      "'; the output folder is replaced as a whole, so it must not hold anything the command reads: "
+                      "choose an --out outside the inputs");
+    }
+  }
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(dir_, ec))) {
+    if (!fs::is_directory(dir_, ec)) throw UserError("--out " + shown + " exists and is not a folder");
+    if (const std::string why = WhyNotReplaceable(dir_, kind); !why.empty()) {
+      throw UserError("--out " + shown + " cannot be replaced: " + why +
+                      ". Choose another --out (or empty the folder yourself)");
+    }
+  }
+  if (!fs::is_directory(dir_.parent_path(), ec)) {
+    throw UserError("--out " + shown + ": the folder '" + dir_.parent_path().string() + "' does not exist");
+  }
+  // DIR.partial is the lock: created atomically, with a locked file in it.
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    if (::mkdir(partial_.c_str(), 0755) == 0) {
+      TrackUnfinished(partial_.string());
+      const std::string lock = (partial_ / kLockFile).string();
+      lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+      if (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+        // Another command removed a stale DIR.partial and made its own in between: it wins.
+        const int err = errno;
+        if (lock_fd_ >= 0) ::close(lock_fd_), lock_fd_ = -1;
+        UntrackUnfinished(partial_.string());
+        throw UserError("--out " + shown + ": cannot lock '" + lock + "': " + std::strerror(err));
+      }
+      const std::string pid = std::to_string(::getpid()) + "\n";
+      if (::write(lock_fd_, pid.data(), pid.size()) < 0) {
+        // Only informative (which process holds the folder); the lock is the flock.
+      }
+      return;
+    }
+    const int err = errno;
+    if (err != EEXIST) {
+      throw UserError("--out " + shown + ": cannot create '" + partial_.string() + "': " + std::strerror(err));
+    }
+    // A DIR.partial exists: another command's (locked), a killed one's (ours, lock free) or
+    // the user's (no lock file): only the second is removed.
+    const std::string lock = (partial_ / kLockFile).string();
+    const int fd = ::open(lock.c_str(), O_RDWR | O_CLOEXEC);
+    if (fd < 0) {
+      throw UserError("--out " + shown + ": '" + partial_.string() +
+                      "' exists and was not made by aalab (no " + kLockFile + " in it); move it away or choose another --out");
+    }
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      std::ifstream f(lock);
+      std::string pid;
+      std::getline(f, pid);
+      ::close(fd);
+      throw UserError("--out " + shown + " is being written by another aalab command right now (process " +
+                      (pid.empty() ? "?" : pid) + ", holding '" + partial_.string() +
+                      "'); wait for it to finish or choose another --out");
+    }
+    fs::remove_all(partial_, ec);  // a killed command's leftover; we hold its lock meanwhile
+    ::close(fd);
+    if (ec) throw UserError("--out " + shown + ": cannot remove the leftover '" + partial_.string() + "': " + ec.message());
+  }
+  throw UserError("--out " + shown + ": another command keeps creating '" + partial_.string() + "'");
 }
 
 OutFolder::~OutFolder() {
   std::error_code ec;
-  if (begun_ && !committed_) fs::remove_all(partial_, ec);
-}
-
-const fs::path& OutFolder::Begin() {
-  fs::remove_all(partial_);
-  fs::create_directories(partial_);
-  begun_ = true;
-  return partial_;
+  if (!committed_) {
+    auto lock = LockUnfinished();
+    fs::remove_all(partial_, ec);
+    UntrackUnfinished(partial_.string());
+  }
+  if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 
 void OutFolder::Commit() {
-  fs::remove_all(dir_);
-  fs::rename(partial_, dir_);
+  // The list of what aalab wrote: checked before this folder is ever replaced.
+  std::set<std::string> files = FilesUnder(partial_);
+  files.erase(kLockFile);
+  std::string marker = MarkerHeader() + "\nkind " + kind_ + "\n";
+  for (const auto& f : files) marker += f + "\n";
+  WriteTextFile((partial_ / kOutputMarker).string(), marker);
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(dir_, ec))) {
+    // Files may have appeared during a long run: checked again just before the replacement.
+    if (const std::string why = WhyNotReplaceable(dir_, kind_); !why.empty()) {
+      throw UserError("--out '" + dir_.string() + "' cannot be replaced: " + why + "; the finished output is not kept");
+    }
+  }
+  auto lock = LockUnfinished();  // an interruption waits until the renames are done
+  const fs::path old = dir_.string() + ".old-" + std::to_string(::getpid());
+  const bool had_old = fs::exists(fs::symlink_status(dir_, ec));
+  if (had_old && ::rename(dir_.c_str(), old.c_str()) != 0) {
+    throw UserError("cannot replace '" + dir_.string() + "': " + std::strerror(errno));
+  }
+  if (::rename(partial_.c_str(), dir_.c_str()) != 0) {
+    const int err = errno;
+    if (had_old) ::rename(old.c_str(), dir_.c_str());
+    throw UserError("cannot move '" + partial_.string() + "' to '" + dir_.string() + "': " + std::strerror(err));
+  }
   committed_ = true;
+  UntrackUnfinished(partial_.string());
+  ::unlink((dir_ / kLockFile).c_str());
+  if (had_old) {
+    TrackUnfinished(old.string());
+    fs::remove_all(old, ec);
+    UntrackUnfinished(old.string());
+  }
+}
+
+std::string CheckOutFile(const std::string& path, const std::vector<std::string>& inputs) {
+  const fs::path out = NormaliseOutPath(path, "output");
+  std::error_code ec;
+  if (fs::is_directory(out, ec)) throw UserError("output '" + path + "' is a folder; give a file name");
+  for (const auto& in : inputs) {
+    if (fs::exists(in, ec) && fs::weakly_canonical(fs::absolute(in), ec) == out) {
+      throw UserError("output '" + path + "' is the input '" + in + "'; write the result to another file");
+    }
+  }
+  return out.string();
 }
 
 }  // namespace aalab

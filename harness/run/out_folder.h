@@ -1,33 +1,63 @@
-/// The output folder of `run`, `sweep` and `merge`: checked before any work, written through
-/// DIR.partial and moved into place only when everything succeeded, so a failed command never
-/// leaves a half-written result.
+/// The one rule for output folders (run, sweep, merge, export-frames): checked before any
+/// work, written through DIR.partial and moved into place only when everything succeeded.
+///
+///  - The path is normalised first: trailing slashes, `.`, `..` and symlinks resolved, so
+///    `results/`, `results/.` and `results/x/..` are the folder `results`.
+///  - An existing folder is replaced only when it is an earlier aalab output of the same kind
+///    and holds nothing aalab did not write: aalab lists every file it wrote in DIR/.aalab-output
+///    at commit, and refuses (before any work) a folder without that list, of another kind, or
+///    holding any file not in the list. An empty folder is fine.
+///  - The folder may neither equal nor contain an input of the command (scene files, shard
+///    folders, the reference cache...).
+///  - DIR.partial is created at once and holds a lock (flock on DIR.partial/.aalab-lock): a
+///    second command into the same folder is refused at its start. A DIR.partial left by a
+///    killed command (lock free, marker present) is removed; one aalab did not create is refused.
+///  - Commit: DIR is moved aside, DIR.partial renamed to DIR, the old folder removed; an
+///    interruption (harness/core/cleanup.h) removes DIR.partial and leaves DIR as it was.
 #pragma once
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace aalab {
 
+/// The file in every output folder that lists what aalab wrote there.
+inline constexpr const char* kOutputMarker = ".aalab-output";
+
+/// Normalises an output path: absolute, `.`/`..`/trailing slashes removed, symlinks of the
+/// existing part resolved. UserError for an empty path or the root folder.
+std::filesystem::path NormaliseOutPath(const std::string& dir, const std::string& option = "--out");
+
 class OutFolder {
  public:
-  /// Checks `dir`: not empty, not a file, and, when it exists and is not empty, holding
-  /// `marker` (the report file a previous run wrote): a folder of other files is never
-  /// replaced. UserError naming the folder otherwise. Creates nothing.
-  OutFolder(const std::string& dir, const std::string& marker);
+  /// Checks `dir` as above for an output of `kind` ("run", "sweep", "frames"); `inputs` are
+  /// the files and folders the command reads or creates (a --ref-cache that does not exist yet
+  /// counts too; callers pass scene names only when they are files). Takes the
+  /// lock and creates DIR.partial. UserError naming the folder and what to do otherwise.
+  OutFolder(const std::string& dir, const std::string& kind, const std::vector<std::string>& inputs = {});
   /// Removes DIR.partial if Commit() was not reached.
   ~OutFolder();
   OutFolder(const OutFolder&) = delete;
   OutFolder& operator=(const OutFolder&) = delete;
 
-  /// Creates DIR.partial afresh (removing a leftover one) and returns it.
-  const std::filesystem::path& Begin();
-  /// DIR.partial.
+  /// DIR.partial (created by the constructor), where the command writes.
+  const std::filesystem::path& Begin() { return partial_; }
   const std::filesystem::path& Partial() const { return partial_; }
-  /// Replaces DIR with DIR.partial.
+  /// The normalised DIR.
+  const std::filesystem::path& Dir() const { return dir_; }
+  /// Lists the files written in DIR.partial/.aalab-output and replaces DIR with DIR.partial
+  /// (checking again that DIR holds nothing aalab did not write).
   void Commit();
 
  private:
   std::filesystem::path dir_, partial_;
-  bool begun_ = false, committed_ = false;
+  std::string kind_;
+  int lock_fd_ = -1;
+  bool committed_ = false;
 };
+
+/// Checks that the output file `path` may be written: not equal to any of `inputs` (an
+/// `apply` onto its own input), not a folder. Returns the normalised path.
+std::string CheckOutFile(const std::string& path, const std::vector<std::string>& inputs);
 
 }  // namespace aalab

@@ -21,6 +21,7 @@
 #include "harness/core/error.h"
 #include "harness/core/hash.h"
 #include "harness/core/timer.h"
+#include "harness/io/image_io.h"
 #include "metrics/metric.h"
 #include "scenes/exact_reference.h"
 #include "scenes/scene_hash.h"
@@ -115,7 +116,8 @@ ReferenceCache::ReferenceCache(std::string dir) : dir_(std::move(dir)) {
   }
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_)) {
-    throw UserError("--ref-cache '" + dir_ + "' cannot be created: " + ec.message());
+    throw UserError("--ref-cache '" + dir_ + "' cannot be created: " +
+                    (ec ? ec.message() : std::string("a file or broken link of that name is in the way")));
   }
 }
 
@@ -182,28 +184,9 @@ void ReferenceCache::Store(const std::string& key, const CachedReference& e) con
   w.Pod<uint64_t>(e.texture_lookups);
   w.Pod<double>(e.render_ms);
   w.Pod<uint64_t>(Fnv1a64(w.Bytes().data(), w.Bytes().size()));
-  // A name no other process or thread uses: host, pid and a per-process counter.
-  static std::atomic<unsigned> counter{0};
-  char host[64] = {0};
-  gethostname(host, sizeof host - 1);
-  const std::string path = PathOf(key);
-  const std::string tmp = path + ".tmp." + host + "." + std::to_string(getpid()) + "." + std::to_string(counter++);
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f.write(w.Bytes().data(), static_cast<std::streamsize>(w.Bytes().size()));
-    f.close();
-    if (!f) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw UserError("reference cache: cannot write '" + tmp + "' (disk full or no permission?)");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw UserError("reference cache: cannot rename into '" + path + "': " + ec.message());
-  }
+  // Checked and atomic; the temporary name is unique across threads, processes and hosts
+  // (harness/io/image_io.h), and an interruption removes it.
+  WriteTextFile(PathOf(key), std::string(w.Bytes().data(), w.Bytes().size()));
 }
 
 CachedReference ObtainReference(const Scene& scene, const Tracer& tracer, int W, int H, int grid, uint64_t seed,

@@ -155,7 +155,11 @@ Report RunSuite(const RunSettings& s) {
   }
   const std::vector<MethodPlan> plans = ResolveMethods(method_specs);
   // A run that fails half-way (an exception from any stage) removes its partial output.
-  OutFolder out(s.out_dir, "report.json");
+  std::vector<std::string> inputs = {s.ref_cache};
+  for (const auto& name : s.scenes) {
+    if (fs::exists(name)) inputs.push_back(name);  // a scene file or manifest (not a library name)
+  }
+  OutFolder out(s.out_dir, "run", inputs);
   std::optional<ReferenceCache> cache;  // created once every input has been checked
   if (!s.ref_cache.empty()) cache.emplace(s.ref_cache);
   const fs::path tmp = out.Begin();

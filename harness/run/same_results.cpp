@@ -1,6 +1,8 @@
 // `aalab same-results` (harness/run/same_results.h).
 #include "harness/run/same_results.h"
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -16,8 +18,10 @@ using Json = nlohmann::ordered_json;
 namespace {
 
 Json ReadJson(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw UserError("same-results: '" + path.string() + "' is not a regular file");
   std::ifstream f(path);
-  if (!f) throw UserError("same-results: '" + path.string() + "' cannot be read");
+  if (!f) throw UserError("same-results: '" + path.string() + "' cannot be read: " + std::strerror(errno));
   std::stringstream ss;
   ss << f.rdbuf();
   try {
@@ -85,6 +89,22 @@ SameResults CompareResultFolders(const std::string& a, const std::string& b, siz
                     rb.filename().string() + ": a run and a sweep cannot be compared");
   }
   const Json da = ReadJson(ra), db = ReadJson(rb);
+  // Both must be aalab reports of the schema this build reads (a sweep.json holds a report's
+  // scenes and rows without a schema version of its own): checked before any comparison.
+  for (const auto& [doc, path] : {std::pair<const Json&, const fs::path&>{da, ra}, {db, rb}}) {
+    if (!doc.is_object()) throw UserError("same-results: '" + path.string() + "' is not an aalab report (not a JSON object)");
+    Json check = doc;
+    if (path.filename() == "sweep.json") {
+      const Json version = check.value("sweep_version", Json());
+      if (!version.is_number_integer() || version.get<int>() != 1) {
+        throw UserError("same-results: '" + path.string() + "' is not an aalab sweep file of a supported version " +
+                        "(sweep_version " + (version.is_null() ? std::string("missing") : version.dump()) +
+                        "; this aalab reads 1)");
+      }
+      check["schema_version"] = kSchemaVersion;
+    }
+    ReportFromJson(check, "same-results: '" + path.string() + "'");
+  }
   SameResults out;
   auto differ = [&](const std::string& line) {
     out.same = false;

@@ -282,7 +282,11 @@ SweepResult RunSweep(const SweepSettings& s) {
     }
   }
 
-  OutFolder out(s.out_dir, "sweep.json");
+  std::vector<std::string> inputs = {s.ref_cache};
+  for (const auto& name : s.scenes) {
+    if (fs::exists(name)) inputs.push_back(name);  // a scene file or manifest (not a library name)
+  }
+  OutFolder out(s.out_dir, "sweep", inputs);
   res.out_dir = s.out_dir;
 
   Report& report = res.report;

@@ -214,7 +214,7 @@ MergeResult MergeSweepFolders(const std::vector<std::string>& dirs, const std::s
     }
   }
   SummarizeSweep(&res, ResolveMethods(res.specs));
-  OutFolder out(out_dir, "sweep.json");
+  OutFolder out(out_dir, "sweep", dirs);
   res.out_dir = out_dir;
   const fs::path tmp = out.Begin();
   WriteTextFile((tmp / "sweep.json").string(), SweepToJson(res).dump(2) + "\n");

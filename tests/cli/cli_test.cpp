@@ -153,7 +153,7 @@ TEST(Cli, RunWritesReportCoveringTheMatrix) {
   fs::create_directories(foreign);
   std::ofstream(foreign / "notes.txt") << "mine";
   ExpectFails("run --scenes wedges --methods none --size 16x9 --ref-spp 4 --quiet --out " + foreign.string(),
-              {"refusing to replace"});
+              {"cannot be replaced", "was not written by aalab"});
   EXPECT_TRUE(fs::exists(foreign / "notes.txt"));
 }
 
