@@ -150,7 +150,7 @@ std::string FigureLatex(const std::vector<ExportSource>& sources, const CropFigu
 
 int RunExport(const ExportArgs& a) {
   if (a.out.empty()) throw UserError("--out is required");
-  OutFolder folder(a.out, "export.json");
+  OutFolder folder(a.out, "export", a.reports);
   // Read and check every input before creating anything.
   std::vector<std::string> labels = a.labels.empty() ? std::vector<std::string>{} : SplitList(a.labels);
   if (!labels.empty() && labels.size() != a.reports.size()) {

@@ -116,7 +116,6 @@ int ExportFrames(const ExportArgs& a) {
         tsv << scene->name << "\tscaled\t" << w << "\t" << h << "\t" << base << "-scaled.ppm\n";
       }
       if (a.taa_frames > 0) ExportTaaSequence(*scene, tracer, w, h, a.taa_frames, base, tmp, tsv);
-      }
       std::fprintf(stderr, "exported %s\n", base.c_str());
     }
   }

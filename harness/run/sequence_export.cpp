@@ -61,7 +61,7 @@ SequenceExport ExportSequences(const std::string& run_dir, const std::string& ou
     for (const auto& f : row.frame_images) need(f);
   }
 
-  OutFolder out(out_dir, "sequences.json");
+  OutFolder out(out_dir, "sequences", {run.string()});
   const fs::path tmp = out.Begin();
   SequenceExport res;
   nlohmann::ordered_json doc;
