@@ -312,6 +312,9 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
     if (!row.not_applicable.empty()) {
       h += " <small class=\"na\" title=\"" + Attr(row.not_applicable) + "\">not applicable</small>";
     }
+    if (!row.supplied.empty()) {
+      h += " <small class=\"supplied\" title=\"" + Attr(row.supplied) + "\">supplied, not run</small>";
+    }
     if (!row.output_hash.empty()) {
       const auto [it, inserted] = first_with_hash.emplace(row.output_hash, row.spec);
       if (!inserted) {
@@ -338,6 +341,13 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
                          " + resample " + FmtMs(row.resample.median_ms) + " ms (medians of " +
                          Int(static_cast<long>(row.total.samples_ms.size())) + " timed runs)";
     if (row.render_shared) stages += "; the render is the 1x frame shared with none (timed once, for none)";
+    if (!row.supplied.empty()) {
+      stages = row.total.samples_ms.empty() ? "no time given in the manifest (the output's \"ms\")"
+                                            : "the time per frame the manifest gives (the output's \"ms\"), not measured by aalab";
+    } else if (row.method == "none" && s.kind == "image") {
+      stages = s.frame_ms_given ? "the render time per frame the manifest gives (\"frame_ms\"), not measured by aalab"
+                                : "unknown: the manifest gives no \"frame_ms\" (recorded as 0)";
+    }
     if (!row.not_applicable.empty()) {
       h += "<td class=\"num time null\" title=\"" + Attr("not applicable: " + row.not_applicable) + "\">—</td>";
     } else {

@@ -319,7 +319,7 @@ SweepResult RunSweep(const SweepSettings& s) {
   for (auto& source : scenes) {
     if (share.empty()) break;  // a shard beyond the grid's points: nothing to render
     const std::string name = source.Name();
-    const auto prepared = PrepareSource(std::move(source), s.width, s.height, ref_grid, s.seed, s.repeat, exact,
+    const auto prepared = PrepareSource(source, s.width, s.height, ref_grid, s.seed, s.repeat, exact,
                                         nullptr, cache ? &*cache : nullptr);
     if (prepared->tracer) ++res.reference_renders;  // an image-scene view renders nothing
     report.scenes.push_back(prepared->info);

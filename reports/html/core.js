@@ -41,7 +41,8 @@ const AA = (function () {
   const state = {
     metric: META.default_axis,
     view: null,
-    spec: specs.find(s => s !== 'none') || specs[0],
+    // The first method with an output somewhere (not one that is not applicable everywhere).
+    spec: specs.find(s => s !== 'none' && DATA.rows.some(r => r.spec === s && !r.not_applicable)) || specs[0],
     compare: 'reference',
     abZoom: 0,  // 0 = auto
     cropZoom: 0,
