@@ -2,6 +2,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "harness/core/error.h"
@@ -19,6 +20,13 @@ class Image {
       : width_(width), height_(height), channels_(channels) {
     AALAB_CHECK(width >= 0 && height >= 0 && channels > 0, "bad image dimensions");
     data_.assign(static_cast<size_t>(width) * height * channels, fill);
+  }
+  /// A width × height image taking over `data` (width·height·channels values, interleaved).
+  Image(int width, int height, int channels, std::vector<T> data)
+      : width_(width), height_(height), channels_(channels), data_(std::move(data)) {
+    AALAB_CHECK(width >= 0 && height >= 0 && channels > 0 &&
+                    data_.size() == static_cast<size_t>(width) * height * channels,
+                "bad image dimensions or data size");
   }
 
   int Width() const { return width_; }

@@ -1,6 +1,7 @@
 /// Image files through OpenImageIO. Writes are atomic: a temporary file beside the target is
 /// renamed into place, so a failed write never leaves a half-written result.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -9,24 +10,48 @@
 
 namespace aalab {
 
+/// Images larger than this many pixels are refused unless a caller passes its own limit
+/// (2^28 = 268 million, e.g. 16384x16384; a 4-channel float image of that size is 4 GiB).
+inline constexpr size_t kMaxImagePixels = size_t{1} << 28;
+
 /// An image read from disk.
 struct LoadedImage {
   ImageF pixels;          ///< values as stored, converted to float (8-bit k → k/255)
-  int file_channels = 0;  ///< channels in the file (1, 2, 3 or 4)
-  bool is_float = false;  ///< the file stores half/float data (EXR, float TIFF): scene-linear
+  int file_channels = 0;  ///< channels read: 1 grey, 2 grey+alpha, 3 RGB, 4 RGBA
+  bool is_float = false;  ///< the channels read store half/float data (EXR, float TIFF): scene-linear
   std::string format;     ///< OpenImageIO format name ("png", "openexr", ...)
 };
 
-/// Reads a PNG, JPEG, TIFF or EXR image, chosen by the extension (.png, .jpg, .jpeg, .tif,
-/// .tiff, .exr; no other reader is tried). Throws UserError naming the path for: another
-/// extension, content that does not match it, missing or unreadable file,
-/// truncated data, zero size, more than `max_pixels` pixels, unsupported channel count
-/// (allowed 1–4; grey is expanded to RGB, the alpha of 2/4-channel images is kept as
-/// channel 3), and NaN/Inf pixels (rejected; the message gives the first bad pixel).
-LoadedImage ReadImage(const std::string& path, size_t max_pixels = 1ull << 28);
+/// Channel names of an image in file order. Single-part files: OIIO's channel names
+/// (e.g. "R","G","B","A","Z" or Blender's "ViewLayer.Combined.R"). Multi-part EXR: every part's
+/// channels, each prefixed "PART." with the part's name unless it already starts with it.
+/// Throws UserError naming the path (missing, not a regular file, unknown format...).
+std::vector<std::string> ListImageChannels(const std::string& path);
 
-/// Reads an 8-bit display image as RGBA8 (alpha 255 when the file has none). Float files are
-/// refused with a message pointing at the float path.
+/// Reads exactly the channels `names` (exact names as ListImageChannels gives them, in that order)
+/// into a float image with names.size() channels. Values as stored (8-bit k -> k/255, 16-bit k -> k/65535,
+/// half/float as is); alpha is NEVER multiplied into colour. A name the file lacks -> UserError that
+/// lists the channels the file has. Non-finite values: refused with the first bad pixel unless
+/// `allow_inf` (then +Inf/-Inf are kept, NaN still refused), used for depth where a background
+/// overflowed to +Inf. Only regular files are opened; the declared size is checked against `max_pixels`
+/// and against the file's size before any large allocation.
+ImageF ReadImageChannels(const std::string& path, const std::vector<std::string>& names,
+                         size_t max_pixels = kMaxImagePixels, bool allow_inf = false);
+
+/// Reads a PNG, JPEG, TIFF or EXR image, chosen by the extension (.png, .jpg, .jpeg, .tif,
+/// .tiff, .exr; no other reader is tried), through ReadImageChannels: colour is the channels
+/// named R, G, B (exact case first, else any case), alpha the channel named A when there is
+/// one (channel 3, as stored: never multiplied into colour); other channels (Z, ids, AOVs) are
+/// ignored. A 1-channel file, or one with a grey channel Y (and optionally A), is expanded to
+/// RGB(A). Throws UserError naming the path for: another extension, content that does not
+/// match it, a missing file or one that is not a regular file (FIFO, device), truncated data,
+/// zero size, more than `max_pixels` pixels or more than the file's size can hold, no R, G, B
+/// (the message lists the channels the file has), and NaN/Inf pixels in the channels read
+/// (rejected; the message gives the first bad pixel).
+LoadedImage ReadImage(const std::string& path, size_t max_pixels = kMaxImagePixels);
+
+/// Reads an 8-bit display image as RGBA8 (alpha as stored, 255 when the file has none). Float
+/// files are refused with a message pointing at the float path.
 Image8 ReadImage8(const std::string& path);
 
 /// libpng's row filters for a PNG: kAdaptive lets libpng pick per row, kNone stores rows
