@@ -142,6 +142,7 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
     if (!s.reference_note.empty()) j["reference"]["note"] = s.reference_note;
     if (s.kind == "image") j["frame_ms_given"] = s.frame_ms_given;
     if (!s.motion_note.empty()) j["motion_vectors"] = s.motion_note;
+    if (!s.warnings.empty()) j["warnings"] = s.warnings;
     j["kind"] = s.kind;
     j["edge_mask_source"] = s.edge_mask_source;
     j["bvh_build_ms"] = Num(s.bvh_build_ms);
@@ -272,6 +273,7 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       if (ref.contains("note")) s.reference_note = ref.at("note").get<std::string>();
       s.frame_ms_given = j.value("frame_ms_given", false);
       if (j.contains("motion_vectors")) s.motion_note = j.at("motion_vectors").get<std::string>();
+      if (j.contains("warnings")) s.warnings = j.at("warnings").get<std::vector<std::string>>();
       if (j.contains("kind")) s.kind = j.at("kind").get<std::string>();
       if (j.contains("edge_mask_source")) s.edge_mask_source = j.at("edge_mask_source").get<std::string>();
       s.bvh_build_ms = j.at("bvh_build_ms").get<double>();

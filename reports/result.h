@@ -113,6 +113,10 @@ struct SceneResult {
   /// motion-vector convention of a captured sequence ("" when none).
   bool frame_ms_given = false;
   std::string motion_note;
+  /// Image scenes: what the capture checks found that AA cannot explain (harness/run/
+  /// capture_checks.h: a mean interior bias, interior error far above the edges'), with the
+  /// likely causes; empty when nothing was found.
+  std::vector<std::string> warnings;
 };
 
 /// Where a run's time went: one stage's wall-clock time and the process's CPU time (user +

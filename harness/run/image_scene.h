@@ -40,6 +40,10 @@ struct ImageView {
   Jitter jitter{0.0f, 0.0f};
   std::vector<float> previous;
   std::string motion_note;  ///< the motion-vector convention, in words
+  /// The manifest's `reference_info`: what made the reference ("" / 0 when not given).
+  std::string reference_origin;
+  int reference_spp = 0;
+  int width = 0, height = 0;  ///< the frame's size (kept in the light copy a run plans with)
 };
 
 /// Whether `path` names an image-scene manifest: a readable JSON file whose top level is an

@@ -180,12 +180,31 @@ Report RunSuite(const RunSettings& s) {
 
   Report report;
   for (const auto& [k, v] : ContextFacts()) report.context[k] = v;
+  // What applied: --size, --ref-spp and --seed apply to rendered scenes only; an image-scene
+  // view has its images' size and the user's reference.
+  bool any_rendered = false;
+  std::vector<std::string> view_sizes;
+  for (const auto& src : scenes) {
+    if (src.scene) any_rendered = true;
+    if (!src.view) continue;
+    const std::string sz = std::to_string(src.view->width) + "x" + std::to_string(src.view->height);
+    if (std::find(view_sizes.begin(), view_sizes.end(), sz) == view_sizes.end()) view_sizes.push_back(sz);
+  }
+  std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
+  std::string ref_spp = exact ? std::string("exact") : std::to_string(s.ref_spp);
+  std::string seed = std::to_string(s.seed);
+  if (!view_sizes.empty()) {
+    const std::string views = JoinNames(view_sizes);
+    size = any_rendered ? size + " (rendered scenes; image-scene views: " + views + ")" : views + " (the views' own size)";
+    ref_spp = any_rendered ? ref_spp + " (rendered scenes; image-scene views: the user's own)" : "the user's own";
+    if (!any_rendered) seed = "(not used: image scenes only)";
+  }
   report.settings = {{"suite", s.scenes.empty() ? s.suite : "(custom)"},
                      {"scenes", JoinNames(scene_names)},
                      {"methods", JoinNames(method_specs)},
-                     {"size", std::to_string(s.width) + "x" + std::to_string(s.height)},
-                     {"ref_spp", exact ? std::string("exact") : std::to_string(s.ref_spp)},
-                     {"seed", std::to_string(s.seed)},
+                     {"size", size},
+                     {"ref_spp", ref_spp},
+                     {"seed", seed},
                      {"threads", std::to_string(ThreadCount())},
                      {"repeat", std::to_string(s.repeat)},
                      {"warmup", "1"},
@@ -215,6 +234,8 @@ Report RunSuite(const RunSettings& s) {
     SceneResult sr;
     std::vector<std::string> reference_frames;
     double scene_ms = 0, reference_ms = 0;
+    std::vector<std::string> scene_warnings;
+    int more_warnings = 0;
     // The last frame's image files are independent: queued and written in parallel at the
     // scene's end; a bit-identical output is stored once.
     std::vector<std::function<void()>> writes;
@@ -240,6 +261,12 @@ Report RunSuite(const RunSettings& s) {
                                    cache ? &*cache : nullptr);
         }
         prepared->sequence_scene = sequence;
+        // A capture's mismatch warnings (image scenes): said now, kept for the report (the
+        // first frames that have any, then a count).
+        for (const auto& w : prepared->info.warnings) {
+          std::fprintf(stderr, "aalab: warning: scene '%s': %s\n", name.c_str(), w.c_str());
+          if (scene_warnings.size() < 3) scene_warnings.push_back(w); else ++more_warnings;
+        }
         scene_ms += prepared->info.bvh_build_ms;
         reference_ms += prepared->info.reference_ms;
       }
@@ -253,6 +280,8 @@ Report RunSuite(const RunSettings& s) {
       }
       if (last) {  // `prepared` (and so `ref`) lives until the scene's writes are done
         sr = prepared->info;
+        sr.warnings = scene_warnings;
+        if (more_warnings) sr.warnings.push_back(std::to_string(more_warnings) + " more frame(s) with such warnings");
         writes.push_back([&tmp, &rel_dir, &ref] {
           WriteImageF((tmp / rel_dir / "reference.exr").string(), DecodeToLinear(ref.image));
         });
