@@ -140,6 +140,19 @@ std::string FramePath(const JsonField& f, const ViewSequence& seq, int k) {
   return *path;
 }
 
+/// Ids and depth may come at n times the frame's width and height (sub-samples, 2 <= n <= 32):
+/// returns n (1 at the frame's size); anything else fails naming both sizes.
+int SubsampleFactor(const JsonField& f, const ViewImage& img, int w, int h, const std::string& frame_rel) {
+  const int iw = img.pixels.Width(), ih = img.pixels.Height();
+  if (iw == w && ih == h) return 1;
+  const int n = iw / w;
+  if (n >= 2 && n <= 32 && iw == n * w && ih == n * h) return n;
+  f.Fail("'" + img.rel + "' is " + std::to_string(iw) + "x" + std::to_string(ih) + " but the frame '" + frame_rel +
+         "' is " + std::to_string(w) + "x" + std::to_string(h) +
+         " (give ids and depth at the frame's size, or at n times it, 2 <= n <= 32, for sub-sample edges: e.g. " +
+         std::to_string(8 * w) + "x" + std::to_string(8 * h) + ")");
+}
+
 void RequireSize(const JsonField& f, const ViewImage& img, int w, int h, const std::string& frame_rel) {
   if (img.info.width != w || img.info.height != h) {
     f.Fail("'" + img.rel + "' is " + std::to_string(img.info.width) + "x" + std::to_string(img.info.height) +
@@ -281,13 +294,15 @@ void ReadEdgeMask(const JsonField& v, const ViewSequence& seq, int k, const fs::
     const FieldRef ir = ParseFieldRef(idf);
     const ViewImage ids = ReadViewImage(ir, FramePath(ir.path, seq, k), base, {".png", ".tif", ".tiff", ".exr"},
                                         ChannelRole::kIds);
-    RequireSize(idf, ids, W, H, frame_rel);
+    const int n = SubsampleFactor(idf, ids, W, H, frame_rel);
     if (!ids.info.is_float && ids.info.bits != 8 && ids.info.bits != 16) {
       idf.Fail("'" + ids.rel + "' stores " + ids.info.Describe() +
                " samples; object ids must be 8- or 16-bit integer PNG/TIFF, or a float EXR (integer ids up to 2^24)");
     }
-    view->edge_mask_raw = EdgesFromIds(ids.pixels);
-    how = "object ids ('" + ids.rel + "': a 4-neighbour has another id)";
+    view->edge_mask_raw = n > 1 ? EdgesFromIdBlocks(ids.pixels, n) : EdgesFromIds(ids.pixels);
+    how = n > 1 ? "object ids at " + std::to_string(n) + "x ('" + ids.rel + "': the " + std::to_string(n) + "x" +
+                      std::to_string(n) + " sub-samples of a pixel have more than one id)"
+                : "object ids ('" + ids.rel + "': a 4-neighbour has another id)";
   }
   if (has_depth) {
     const JsonField df = v.Child("depth");
@@ -302,7 +317,7 @@ void ReadEdgeMask(const JsonField& v, const ViewSequence& seq, int k, const fs::
         ++infinite;
       }
     }
-    RequireSize(df, depth, W, H, frame_rel);
+    const int dn = SubsampleFactor(df, depth, W, H, frame_rel);
     if (!depth.info.is_float && depth.info.bits != 16) {
       df.Fail("'" + depth.rel + "' stores " + depth.info.Describe() +
               " samples; depth must be float (EXR/TIFF) or 16-bit integer");
@@ -315,10 +330,11 @@ void ReadEdgeMask(const JsonField& v, const ViewSequence& seq, int k, const fs::
         }
       }
     }
-    const ImageF d = EdgesFromDepth(FirstChannels(depth.pixels, 1));
+    const ImageF d = dn > 1 ? EdgesFromDepthBlocks(depth.pixels, dn) : EdgesFromDepth(FirstChannels(depth.pixels, 1));
     view->edge_mask_raw = has_ids ? UnionMask(view->edge_mask_raw, d) : d;
-    how += std::string(has_ids ? " or " : "") + "depth ('" + depth.rel +
-           "': a 4-neighbour's depth differs by more than " + ShortNumber(kDepthEdgeRelativeJump * 100.0f) +
+    how += std::string(has_ids ? " or " : "") + "depth" + (dn > 1 ? " at " + std::to_string(dn) + "x" : std::string()) +
+           " ('" + depth.rel + (dn > 1 ? "': within a pixel's sub-samples the depth varies by more than "
+                                       : "': a 4-neighbour's depth differs by more than ") + ShortNumber(kDepthEdgeRelativeJump * 100.0f) +
            " % of the nearer one" +
            (infinite ? "; " + std::to_string(infinite) + " px of +Inf read as no surface" : std::string()) + ")";
   }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "harness/core/color.h"
+#include "harness/core/edge_mask.h"
 #include "harness/core/error.h"
 #include "harness/io/image_info.h"
 #include "harness/io/image_io.h"
@@ -215,6 +216,40 @@ TEST(CaptureChecks, SweepTiesGoToThePresetsDefaults) {
   EXPECT_EQ(r.best_ties.at(r.objectives.front()), 8);
   EXPECT_NE(SweepSummaryText(r).find("closest to the defaults"), std::string::npos);
   fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace aalab
+
+namespace aalab {
+namespace {
+
+TEST(CaptureChecks, SubsampledIdsAndDepthFindASubPixelWire) {
+  // A 6x4 frame; ids and depth at 4x (24x16): background id 0 at depth 10, a vertical wire
+  // one sub-sample wide (sub-column 9, inside pixel column 2, off its centre sub-samples 1-2)
+  // with id 5 at depth 3, and a boundary exactly on the pixel border x = 4 (id 7 right of it).
+  constexpr int n = 4, w = 6, h = 4;
+  ImageF ids(w * n, h * n, 1), depth(w * n, h * n, 1, 10.0f);
+  for (int y = 0; y < h * n; ++y) {
+    ids.At(9, y, 0) = 5;
+    depth.At(9, y, 0) = 3;
+    for (int x = 4 * n; x < w * n; ++x) ids.At(x, y, 0) = 7;
+  }
+  const ImageF blocks = EdgesFromIdBlocks(ids, n), dblocks = EdgesFromDepthBlocks(depth, n);
+  // The pixel-centre ids (sub-sample (2, 2) of each pixel, the sample nearest the centre) miss
+  // the wire; only the id boundary on the pixel border shows there.
+  ImageF centre(w, h, 1);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) centre.At(x, y, 0) = ids.At(x * n + 2, y * n + 2, 0);
+  }
+  const ImageF centre_mask = EdgesFromIds(centre);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      EXPECT_EQ(blocks.At(x, y, 0), x == 2 ? 1.0f : 0.0f) << x << "," << y;   // the wire's pixel only
+      EXPECT_EQ(dblocks.At(x, y, 0), x == 2 ? 1.0f : 0.0f) << x << "," << y;
+      EXPECT_EQ(centre_mask.At(x, y, 0), x == 3 || x == 4 ? 1.0f : 0.0f) << x << "," << y;
+    }
+  }
 }
 
 }  // namespace
