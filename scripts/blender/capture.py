@@ -5,7 +5,7 @@
 #
 # Writes into OUT_DIR: a still (still/frame.png, still/capture.exr: multilayer 1x passes,
 # still/reference.exr, still/hires.exr: ids/depth at REF_SCALE x, plus the traps:
-# still/frame-filmic.png, still/reference-linear16.png) and a sequence of FRAMES frames with a
+# still/frame-filmic.png, still/frame-threshold.png) and a sequence of FRAMES frames with a
 # sub-pixel camera pan (seq/frame_%04d.png jittered, seq/ref_%04d.exr, seq/passes_%04d.exr
 # with Vector), and the manifests still.json, seq.json.
 #
@@ -222,15 +222,7 @@ os.remove(os.path.join(S, "hires-rgb.exr"))
 scene.view_settings.view_transform = "Filmic"
 render(os.path.join(S, "frame-filmic.png"), W, H, 1, 0.01, "PNG")
 scene.view_settings.view_transform = "Standard"
-# Trap 2: a 16-bit PNG reference holding linear values (no sRGB encode).
-lin16 = bpy.data.images.new("lin16", W, H, alpha=True, float_buffer=True)
-lin16.pixels = np.concatenate([small, np.ones(small.shape[:2] + (1,))], axis=2)[::-1].astype(np.float32).ravel().tolist()
-lin16.filepath_raw = os.path.join(S, "reference-linear16.png")
-lin16.file_format = "PNG"
-scene.render.image_settings.color_depth = "16"
-lin16.colorspace_settings.name = "Non-Color"
-lin16.save()
-# Trap 3: the light sampling threshold left at its default 0.01 for the 1x frame.
+# Trap 2: the light sampling threshold left at its default 0.01 for the 1x frame.
 cy.light_sampling_threshold = 0.01
 render(os.path.join(S, "frame-threshold.png"), W, H, 1, 0.01, "PNG")
 cy.light_sampling_threshold = 0.0
