@@ -3,6 +3,7 @@
 #include "reports/html_stability.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -198,7 +199,13 @@ void Header(std::string& h, const Report& r) {
   h += "<header class=\"top\">\n<h1>aalab report <span class=\"sub\">suite " + HtmlEscape(SettingOf(r, "suite")) +
        " · " + HtmlEscape(SettingOf(r, "size")) + " · " + Int(static_cast<long>(r.scenes.size())) + " scenes × " +
        Int(static_cast<long>(specs.size())) + " methods</span></h1>\n";
-  h += "<p class=\"facts\">Reference " + HtmlEscape(SettingOf(r, "ref_spp")) + " spp · seed " +
+  for (const auto& s : r.scenes) {
+    if (s.warnings.empty()) continue;
+    h += "<p class=\"mismatch\"><span class=\"warn\">⚠</span> <b>" + HtmlEscape(s.name) +
+         "</b>: " + HtmlEscape(s.warnings.front()) + "</p>\n";
+  }
+  const std::string spp = SettingOf(r, "ref_spp");
+  h += "<p class=\"facts\">Reference " + HtmlEscape(spp) + (std::isdigit(static_cast<unsigned char>(spp.empty() ? 'x' : spp.back())) ? " spp" : "") + " · seed " +
        HtmlEscape(SettingOf(r, "seed")) + " · " + HtmlEscape(SettingOf(r, "repeat")) + " timed run(s) after " +
        HtmlEscape(SettingOf(r, "warmup")) + " warm-up · " + HtmlEscape(ContextOf(r, "cpu")) + ", " +
        HtmlEscape(ContextOf(r, "threads")) + " of " + HtmlEscape(ContextOf(r, "hardware_threads")) +
@@ -243,7 +250,10 @@ void SceneFacts(std::string& h, const SceneResult& s) {
     return e;
   }());
   if (s.kind == "image") {  // a user's own frames (docs/own-frames.md): no renderer, no noise floor
-    fact("1x frame", "the user's own 8-bit frame; render time and cost unknown (0 here)");
+    fact("1x frame", s.frame_ms_given ? "the user's own 8-bit frame; render time from the manifest (frame_ms), cost unknown"
+                                      : "the user's own 8-bit frame; render time and cost unknown (0 here)");
+    for (const auto& w : s.warnings) fact("<span class=\"warn\">⚠ mismatch</span>", HtmlEscape(w));
+    if (!s.motion_note.empty()) fact("motion vectors", HtmlEscape(s.motion_note));
     fact("reference", HtmlEscape(s.reference_note));
     fact("noise floor", HtmlEscape(s.noise_floor_null_reason));
     fact("edge pixels", Printf("%.2f %%", 100.0 * s.edge_pixel_fraction));
@@ -289,7 +299,8 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
   const std::vector<std::string> metrics = MetricNames(r.rows, &s.name);
   h += "<div class=\"table-wrap\"><table class=\"metrics sortable\" id=\"table-" + Int(index) + "\" data-scene=\"" +
        Attr(s.name) + "\">\n<caption>Every method on <b>" + HtmlEscape(s.name) + "</b> against the reference (" +
-       (s.kind == "image" ? std::string("the user's own") : s.ref_exact ? std::string("exact") : Int(s.ref_spp) + " spp") +
+       (s.kind == "image" ? std::string("the user's own") + (s.ref_spp > 0 ? ", " + Int(s.ref_spp) + " spp" : "")
+                          : s.ref_exact ? std::string("exact") : Int(s.ref_spp) + " spp") +
        "; noise floor ";
   h += s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db)
                            : std::string(s.kind == "image" ? "unknown" : s.ref_exact ? "infinite" : "none");
@@ -334,6 +345,9 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
     if (!row.not_applicable.empty()) {
       h += " <small class=\"na\" title=\"" + Attr(row.not_applicable) + "\">not applicable</small>";
     }
+    if (!row.supplied.empty()) {
+      h += " <small class=\"supplied\" title=\"" + Attr(row.supplied) + "\">supplied, not run</small>";
+    }
     if (!row.output_hash.empty()) {
       const auto [it, inserted] = first_with_hash.emplace(row.output_hash, row.spec);
       if (!inserted) {
@@ -360,6 +374,13 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
                          " + resample " + FmtMs(row.resample.median_ms) + " ms (medians of " +
                          Int(static_cast<long>(row.total.samples_ms.size())) + " timed runs)";
     if (row.render_shared) stages += "; the render is the 1x frame shared with none (timed once, for none)";
+    if (!row.supplied.empty()) {
+      stages = row.total.samples_ms.empty() ? "no time given in the manifest (the output's \"ms\")"
+                                            : "the time per frame the manifest gives (the output's \"ms\"), not measured by aalab";
+    } else if (row.method == "none" && s.kind == "image") {
+      stages = s.frame_ms_given ? "the render time per frame the manifest gives (\"frame_ms\"), not measured by aalab"
+                                : "unknown: the manifest gives no \"frame_ms\" (recorded as 0)";
+    }
     if (!row.not_applicable.empty()) {
       h += "<td class=\"num time null\" title=\"" + Attr("not applicable: " + row.not_applicable) + "\">—</td>";
     } else {

@@ -143,6 +143,9 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
                       {"texture_lookups_per_px", Num(s.ref_texture_lookups_per_px)}};
     if (!s.noise_floor_null_reason.empty()) j["reference"]["noise_floor_null_reason"] = s.noise_floor_null_reason;
     if (!s.reference_note.empty()) j["reference"]["note"] = s.reference_note;
+    if (s.kind == "image") j["frame_ms_given"] = s.frame_ms_given;
+    if (!s.motion_note.empty()) j["motion_vectors"] = s.motion_note;
+    if (!s.warnings.empty()) j["warnings"] = s.warnings;
     j["kind"] = s.kind;
     j["edge_mask_source"] = s.edge_mask_source;
     j["bvh_build_ms"] = Num(s.bvh_build_ms);
@@ -210,6 +213,7 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
     for (const auto& [k, v] : row.images) im[k] = v;
     j["images"] = im;
     if (!row.not_applicable.empty()) j["not_applicable"] = row.not_applicable;
+    if (!row.supplied.empty()) j["supplied"] = row.supplied;
     if (!row.frame_images.empty() || !row.frame_series.empty()) {
       Json series = Json::object();
       for (const auto& [name, values] : row.frame_series) {
@@ -277,6 +281,9 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       // Optional fields (added after schema 1 first shipped; older reports lack them).
       if (ref.contains("noise_floor_null_reason")) s.noise_floor_null_reason = ref.at("noise_floor_null_reason").get<std::string>();
       if (ref.contains("note")) s.reference_note = ref.at("note").get<std::string>();
+      s.frame_ms_given = j.value("frame_ms_given", false);
+      if (j.contains("motion_vectors")) s.motion_note = j.at("motion_vectors").get<std::string>();
+      if (j.contains("warnings")) s.warnings = j.at("warnings").get<std::vector<std::string>>();
       if (j.contains("kind")) s.kind = j.at("kind").get<std::string>();
       if (j.contains("edge_mask_source")) s.edge_mask_source = j.at("edge_mask_source").get<std::string>();
       s.bvh_build_ms = j.at("bvh_build_ms").get<double>();
@@ -350,6 +357,7 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
         row.images[it.key()] = it.value().get<std::string>();
       }
       if (j.contains("not_applicable")) row.not_applicable = j.at("not_applicable").get<std::string>();
+      if (j.contains("supplied")) row.supplied = j.at("supplied").get<std::string>();
       if (j.contains("frames")) {
         const auto& fr = j.at("frames");
         for (auto it = fr.at("series").begin(); it != fr.at("series").end(); ++it) {

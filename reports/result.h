@@ -73,6 +73,10 @@ struct ResultRow {
   /// Non-empty when the method cannot run on this scene (a renderer-side method on an image
   /// scene): why. Such a row has every metric null with this reason, no timings, no images.
   std::string not_applicable;
+  /// Non-empty for a row the user supplied (an image scene's `outputs`: frames anti-aliased by
+  /// the user's own pipeline, scored like any method's output but not run by aalab): where the
+  /// frames came from. Timings are the manifest's `ms` (render = total) or empty.
+  std::string supplied;
   std::optional<GpuTiming> gpu;  ///< set by `aalab merge-gpu` / `run --gpu-timings`
 };
 
@@ -115,6 +119,14 @@ struct SceneResult {
                                  "or an alpha cut-out; dilated by 1 px";
   std::string reference_note;           ///< how an image scene's reference file was read ("" otherwise)
   std::string noise_floor_null_reason;  ///< why ref_floor_psnr_db is null, when it is ("" otherwise)
+  /// Image scenes: whether the manifest gave the 1x frame's render time (`frame_ms`); the
+  /// motion-vector convention of a captured sequence ("" when none).
+  bool frame_ms_given = false;
+  std::string motion_note;
+  /// Image scenes: what the capture checks found that AA cannot explain (harness/run/
+  /// capture_checks.h: a mean interior bias, interior error far above the edges'), with the
+  /// likely causes; empty when nothing was found.
+  std::vector<std::string> warnings;
 };
 
 /// Where a run's time went: one stage's wall-clock time and the process's CPU time (user +

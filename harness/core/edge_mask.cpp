@@ -74,6 +74,46 @@ ImageF EdgesFromGradient(const ImageF& image, float threshold) {
   });
 }
 
+ImageF EdgesFromIdBlocks(const ImageF& ids, int n) {
+  AALAB_CHECK(n >= 2 && ids.Width() % n == 0 && ids.Height() % n == 0, "ids at n x the frame's size");
+  const int W = ids.Width() / n, H = ids.Height() / n, nc = ids.Channels();
+  ImageF out(W, H, 1);
+  for (int y = 0; y < H; ++y) {
+    for (int x = 0; x < W; ++x) {
+      const float* first = ids.Pixel(x * n, y * n);
+      bool differ = false;
+      for (int j = 0; j < n && !differ; ++j) {
+        for (int i = 0; i < n && !differ; ++i) {
+          const float* p = ids.Pixel(x * n + i, y * n + j);
+          for (int c = 0; c < nc; ++c) differ = differ || p[c] != first[c];
+        }
+      }
+      out.At(x, y, 0) = differ ? 1.0f : 0.0f;
+    }
+  }
+  return out;
+}
+
+ImageF EdgesFromDepthBlocks(const ImageF& depth, int n, float relative_jump) {
+  AALAB_CHECK(n >= 2 && depth.Width() % n == 0 && depth.Height() % n == 0, "depth at n x the frame's size");
+  const int W = depth.Width() / n, H = depth.Height() / n;
+  ImageF out(W, H, 1);
+  for (int y = 0; y < H; ++y) {
+    for (int x = 0; x < W; ++x) {
+      float lo = depth.At(x * n, y * n, 0), hi = lo;
+      for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+          const float v = depth.At(x * n + i, y * n + j, 0);
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
+      }
+      out.At(x, y, 0) = (hi - lo > relative_jump * lo || (lo == 0.0f && hi != 0.0f)) ? 1.0f : 0.0f;
+    }
+  }
+  return out;
+}
+
 ImageF UnionMask(const ImageF& a, const ImageF& b) {
   AALAB_CHECK(a.Width() == b.Width() && a.Height() == b.Height() && a.Channels() == b.Channels(),
               "UnionMask needs masks of the same size");

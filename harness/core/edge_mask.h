@@ -36,6 +36,18 @@ ImageF EdgesFromDepth(const ImageF& depth, float relative_jump = kDepthEdgeRelat
 /// and shading detail as well as geometric edges.
 ImageF EdgesFromGradient(const ImageF& image, float threshold = kGradientEdgeThreshold);
 
+/// Raw mask at 1/n of the resolution of object ids given at n× the frame's width and height
+/// (n ≥ 2): a pixel is an edge when the n×n sub-samples of its square do not all have the same
+/// value (any channel), the rule of the rendered scenes' mask (more than one surface under the
+/// pixel). Sub-pixel wires and silhouettes between pixel centres are found; a boundary that
+/// lies exactly on a pixel border is not (no pixel is partly covered).
+ImageF EdgesFromIdBlocks(const ImageF& ids, int n);
+
+/// The same for depth at n× (channel 0): an edge when, within a pixel's n×n sub-samples, the
+/// largest depth exceeds the smallest by more than `relative_jump` × the smallest (or the
+/// smallest is 0, "no surface", and the largest is not).
+ImageF EdgesFromDepthBlocks(const ImageF& depth, int n, float relative_jump = kDepthEdgeRelativeJump);
+
 /// Pixel-wise maximum of two masks of the same size.
 ImageF UnionMask(const ImageF& a, const ImageF& b);
 

@@ -14,6 +14,10 @@
 #include "harness/core/params.h"
 #include "harness/io/image_info.h"
 #include "harness/io/image_io.h"
+#include "harness/run/capture_checks.h"
+#include "harness/run/image_view.h"
+#include "methods/registry.h"
+#include "scenes/motion.h"
 #include "metrics/crops.h"
 #include "metrics/metric.h"
 #include "scenes/json_fields.h"
@@ -36,215 +40,6 @@ std::string ReadText(const std::string& path) {
   return ss.str();
 }
 
-std::string LowerExt(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
-/// An image a view names, read and described.
-struct ViewImage {
-  std::string rel;   ///< as written in the manifest
-  std::string path;  ///< resolved against the manifest's folder
-  LoadedImage image;
-  ImageFileInfo info;
-};
-
-/// Reads the image a field names; `exts` are the allowed extensions. Errors name the field.
-ViewImage ReadViewImage(const JsonField& f, const fs::path& base, const std::vector<std::string>& exts) {
-  ViewImage v;
-  v.rel = f.String();
-  if (v.rel.empty()) f.Fail("an empty path (give an image file relative to the manifest)");
-  v.path = (base / v.rel).lexically_normal().string();
-  const std::string ext = LowerExt(v.path);
-  if (std::find(exts.begin(), exts.end(), ext) == exts.end()) {
-    f.Fail("'" + v.rel + "' has file type '" + ext + "'; allowed here: " + JoinNames(exts));
-  }
-  try {
-    v.image = ReadImage(v.path);
-    v.info = ProbeImage(v.path);
-  } catch (const UserError& e) {
-    f.Fail(e.what());
-  }
-  return v;
-}
-
-void RequireSize(const JsonField& f, const ViewImage& img, int w, int h, const std::string& frame_rel) {
-  if (img.info.width != w || img.info.height != h) {
-    f.Fail("'" + img.rel + "' is " + std::to_string(img.info.width) + "x" + std::to_string(img.info.height) +
-           " but the frame '" + frame_rel + "' is " + std::to_string(w) + "x" + std::to_string(h) +
-           " (every image of a view must have the frame's size)");
-  }
-}
-
-ImageF FirstChannels(const ImageF& img, int n) {
-  ImageF out(img.Width(), img.Height(), n);
-  for (size_t i = 0; i < img.PixelCount(); ++i) {
-    for (int c = 0; c < n; ++c) out.Data()[i * n + c] = img.Data()[i * img.Channels() + c];
-  }
-  return out;
-}
-
-/// A float constant as people write it (0.1, not 0.10000000149011612).
-std::string ShortNumber(float v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", static_cast<double>(v));
-  return buf;
-}
-
-std::string DisplayText(const Display& d) {
-  const char* tm = d.tonemap == Tonemap::kReinhard ? "reinhard" : d.tonemap == Tonemap::kAces ? "aces" : "none";
-  return "exposure " + FormatNumber(d.exposure) + ", tonemap " + tm;
-}
-
-ImageView ParseView(const JsonField& v, const fs::path& base, const std::string& manifest) {
-  v.RequireObject({"name", "description", "frame", "reference", "display", "depth", "object_ids", "edge_mask"});
-  ImageView view;
-  view.manifest = manifest;
-  view.name = v.Child("name").String();
-  if (view.name.empty()) v.Child("name").Fail("view names must not be empty");
-  for (char c : view.name) {
-    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-')) {
-      v.Child("name").Fail("view names are lowercase-kebab like scene names ([a-z0-9-]+), got '" + view.name + "'");
-    }
-  }
-  view.description = v.StringOr("description", "");
-
-  // The 1x frame: the back buffer, 8 bits per channel, display-encoded (sRGB).
-  const JsonField ff = v.Child("frame");
-  const ViewImage frame = ReadViewImage(ff, base, {".png", ".tif", ".tiff"});
-  if (frame.info.is_float || frame.info.bits != 8) {
-    ff.Fail("'" + frame.rel + "' stores " + frame.info.Describe() +
-            " samples; the 1x frame must be 8-bit integer (the RGBA8 back buffer, sRGB-encoded)");
-  }
-  const int W = frame.info.width, H = frame.info.height;
-  view.frame = Image8(W, H, 4, 255);
-  for (int y = 0; y < H; ++y) {
-    for (int x = 0; x < W; ++x) {
-      for (int c = 0; c < 3; ++c) view.frame.At(x, y, c) = QuantizeUnorm8(frame.image.pixels.At(x, y, c));
-    }
-  }
-
-  // The reference: scene-linear EXR through the display transform, or display-encoded integers.
-  const JsonField rf = v.Child("reference");
-  const ViewImage ref = ReadViewImage(rf, base, {".exr", ".png", ".tif", ".tiff"});
-  RequireSize(rf, ref, W, H, frame.rel);
-  view.reference = ImageF(W, H, 3);
-  if (ref.info.is_float) {
-    if (LowerExt(ref.path) != ".exr") {
-      rf.Fail("'" + ref.rel + "' stores float samples in a " + ref.info.format +
-              " file; give a scene-linear reference as .exr, or a display-encoded one as 8/16-bit integers");
-    }
-    Display d;
-    if (v.Has("display")) {
-      const JsonField df = v.Child("display");
-      df.RequireObject({"exposure", "tonemap"});
-      d.exposure = static_cast<float>(df.NumberOr("exposure", 1.0, 0.0, 1e9, true));
-      if (df.Has("tonemap")) d.tonemap = ParseTonemap(df.Child("tonemap").Choice({"none", "reinhard", "aces"}));
-    }
-    for (int y = 0; y < H; ++y) {
-      for (int x = 0; x < W; ++x) {
-        const float* p = ref.image.pixels.Pixel(x, y);
-        const std::array<float, 3> lin = DisplayLinear(d, {p[0], p[1], p[2]});
-        for (int c = 0; c < 3; ++c) view.reference.At(x, y, c) = SrgbEncode(lin[c]);
-      }
-    }
-    view.reference_note = "'" + ref.rel + "': " + ref.info.Describe() +
-                          " EXR, scene-linear, through the display transform (" + DisplayText(d) +
-                          ", clamp to [0, 1]) and sRGB-encoded, kept as float";
-  } else {
-    if (v.Has("display")) {
-      v.Child("display").Fail("a display transform applies only to a scene-linear .exr reference; '" + ref.rel +
-                              "' is " + ref.info.Describe() + ", read as display-encoded (sRGB) values");
-    }
-    if (ref.info.bits != 8 && ref.info.bits != 16) {
-      rf.Fail("'" + ref.rel + "' stores " + ref.info.Describe() +
-              " samples; a display-encoded reference must be 8- or 16-bit integer (or give a scene-linear .exr)");
-    }
-    view.reference = FirstChannels(ref.image.pixels, 3);
-    view.reference_note = "'" + ref.rel + "': " + ref.info.Describe() + " " + ref.info.format +
-                          ", display-encoded (sRGB): value k read as k/" + (ref.info.bits == 8 ? "255" : "65535");
-  }
-
-  // The edge mask: given, from ids and/or depth, or from the reference's gradients.
-  const bool has_mask = v.Has("edge_mask"), has_ids = v.Has("object_ids"), has_depth = v.Has("depth");
-  if (has_mask && (has_ids || has_depth)) {
-    v.Child("edge_mask").Fail("give either edge_mask or object_ids/depth, not both (the mask would be ambiguous)");
-  }
-  if (has_mask) {
-    const JsonField mf = v.Child("edge_mask");
-    const ViewImage m = ReadViewImage(mf, base, {".png", ".tif", ".tiff"});
-    RequireSize(mf, m, W, H, frame.rel);
-    if (m.info.is_float || m.info.bits != 8 || (m.info.channels != 1 && m.info.channels != 3)) {
-      mf.Fail("'" + m.rel + "' is " + m.info.Describe() + " with " + std::to_string(m.info.channels) +
-              " channel(s); an edge mask must be 8-bit integer grey (1 channel, or RGB with R = G = B), "
-              "255 = edge, 0 = not");
-    }
-    view.edge_mask_raw = ImageF(W, H, 1);
-    for (int y = 0; y < H; ++y) {
-      for (int x = 0; x < W; ++x) {
-        const float* px = m.image.pixels.Pixel(x, y);
-        const uint8_t k = QuantizeUnorm8(px[0]);
-        if ((k != 0 && k != 255) || px[1] != px[0] || px[2] != px[0]) {
-          mf.Fail("'" + m.rel + "' has value (" + std::to_string(k) + ", " + std::to_string(QuantizeUnorm8(px[1])) +
-                  ", " + std::to_string(QuantizeUnorm8(px[2])) + ") at pixel (" + std::to_string(x) + ", " +
-                  std::to_string(y) + "); an edge mask holds only grey 0 and 255");
-        }
-        view.edge_mask_raw.At(x, y, 0) = k == 255 ? 1.0f : 0.0f;
-      }
-    }
-    view.edge_mask = view.edge_mask_raw;
-    view.edge_mask_source = "given: the edge_mask image '" + m.rel + "', used as is (no dilation)";
-  } else if (has_ids || has_depth) {
-    std::string how;
-    if (has_ids) {
-      const JsonField idf = v.Child("object_ids");
-      const ViewImage ids = ReadViewImage(idf, base, {".png", ".tif", ".tiff", ".exr"});
-      RequireSize(idf, ids, W, H, frame.rel);
-      if (!ids.info.is_float && ids.info.bits != 8 && ids.info.bits != 16) {
-        idf.Fail("'" + ids.rel + "' stores " + ids.info.Describe() +
-                 " samples; object ids must be 8- or 16-bit integer PNG/TIFF, or a float EXR (integer ids up to 2^24)");
-      }
-      view.edge_mask_raw = EdgesFromIds(ids.image.pixels);
-      how = "object ids ('" + ids.rel + "': a 4-neighbour has another id)";
-    }
-    if (has_depth) {
-      const JsonField df = v.Child("depth");
-      const ViewImage depth = ReadViewImage(df, base, {".exr", ".tif", ".tiff", ".png"});
-      RequireSize(df, depth, W, H, frame.rel);
-      if (depth.info.channels != 1) {
-        df.Fail("'" + depth.rel + "' has " + std::to_string(depth.info.channels) +
-                " channels; depth must be a single-channel image");
-      }
-      if (!depth.info.is_float && depth.info.bits != 16) {
-        df.Fail("'" + depth.rel + "' stores " + depth.info.Describe() +
-                " samples; depth must be float (EXR/TIFF) or 16-bit integer");
-      }
-      for (int y = 0; y < H; ++y) {
-        for (int x = 0; x < W; ++x) {
-          if (depth.image.pixels.At(x, y, 0) < 0.0f) {
-            df.Fail("'" + depth.rel + "' has a negative depth at pixel (" + std::to_string(x) + ", " +
-                    std::to_string(y) + "); depths are distances >= 0");
-          }
-        }
-      }
-      const ImageF d = EdgesFromDepth(FirstChannels(depth.image.pixels, 1));
-      view.edge_mask_raw = has_ids ? UnionMask(view.edge_mask_raw, d) : d;
-      how += std::string(has_ids ? " or " : "") + "depth ('" + depth.rel +
-             "': a 4-neighbour's depth differs by more than " + ShortNumber(kDepthEdgeRelativeJump * 100.0f) +
-             " % of the nearer one)";
-    }
-    view.edge_mask = DilateMask(view.edge_mask_raw);
-    view.edge_mask_source = "geometry from " + how + "; dilated by 1 px";
-  } else {
-    view.edge_mask_raw = EdgesFromGradient(view.reference);
-    view.edge_mask = DilateMask(view.edge_mask_raw);
-    view.edge_mask_source = "reference gradients (no object ids or depth given): a 4-neighbour differs by more than " +
-                            ShortNumber(kGradientEdgeThreshold) +
-                            " in any sRGB-encoded channel; dilated by 1 px. Marks texture and shading detail too";
-  }
-  return view;
-}
 
 }  // namespace
 
@@ -290,10 +85,11 @@ Manifest ReadManifest(const std::string& manifest_path) {
   return m;
 }
 
-/// Reads view `index` of a manifest (every image), checking its name against the views before it.
-ImageView LoadView(const Manifest& m, size_t index) {
+/// Reads frame k of view `index` of a manifest (every image), checking its name against the
+/// views before it.
+ImageView LoadView(const Manifest& m, size_t index, int k = 0) {
   const JsonField views = JsonField(m.doc, "image scene '" + m.path + "'", "").Child("views");
-  ImageView v = ParseView(views.At(index), fs::path(m.path).parent_path(), m.path);
+  ImageView v = ParseView(views.At(index), fs::path(m.path).parent_path(), m.path, k);
   for (size_t i = 0; i < index; ++i) {
     const nlohmann::json& other = m.doc.at("views").at(i);
     if (other.is_object() && other.contains("name") && other.at("name") == v.name) {
@@ -322,15 +118,22 @@ std::vector<SceneSource> LoadSceneSources(const std::vector<std::string>& names)
   for (const auto& n : names) {
     std::vector<SceneSource> added;
     if (IsImageSceneManifest(n)) {
-      // Every view is read and validated now, before any work, but only its name is kept:
-      // PrepareSource reads the images again, so a run holds one view's pixels at a time.
+      // Every frame of every view is read and validated now, before any work, but only what
+      // the run plans with is kept: PrepareSource reads the images again, so a run holds one
+      // frame's pixels at a time.
       const Manifest m = ReadManifest(n);
       for (size_t i = 0; i < m.views; ++i) {
         const ImageView full = LoadView(m, i);
+        for (int k = 1; k < full.frames; ++k) LoadView(m, i, k);
         auto light = std::make_unique<ImageView>();
         light->name = full.name;
         light->manifest = full.manifest;
         light->index = i;
+        light->frames = full.frames;
+        light->has_motion = full.has_motion;
+        light->width = full.width;
+        light->height = full.height;
+        for (const auto& o : full.outputs) light->outputs.push_back({o.name, o.file, Image8(), o.ms});
         added.push_back({nullptr, std::move(light)});
       }
     } else {
@@ -344,6 +147,17 @@ std::vector<SceneSource> LoadSceneSources(const std::vector<std::string>& names)
     }
   }
   return out;
+}
+
+std::vector<std::string> SuppliedOutputNames(const std::vector<SceneSource>& sources) {
+  std::vector<std::string> names;
+  for (const auto& src : sources) {
+    if (!src.view) continue;
+    for (const auto& o : src.view->outputs) {
+      if (std::find(names.begin(), names.end(), o.name) == names.end()) names.push_back(o.name);
+    }
+  }
+  return names;
 }
 
 bool CheckReferenceKind(const std::string& kind, const std::vector<SceneSource>& sources) {
@@ -361,18 +175,20 @@ bool CheckReferenceKind(const std::string& kind, const std::vector<SceneSource>&
   return exact;
 }
 
-std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int height, int grid, uint64_t seed,
+std::unique_ptr<PreparedScene> PrepareSource(SceneSource& source, int width, int height, int grid, uint64_t seed,
                                              int repeat, bool exact_reference, StageClock* clock,
-                                             const ReferenceCache* cache, double flip_ppd) {
+                                             const ReferenceCache* cache, int frame, double flip_ppd) {
   if (source.scene) {
     return PrepareScene(std::move(source.scene), width, height, grid, seed, repeat, exact_reference, clock, cache,
                         flip_ppd);
   }
   if (clock) clock->Enter("references");  // reading the view's images
-  ImageView v = LoadView(ReadManifest(source.view->manifest), source.view->index);
-  if (v.name != source.view->name) {
+  AALAB_CHECK(frame >= 0 && frame < source.view->frames, "a view's frame index lies in its sequence");
+  ImageView v = LoadView(ReadManifest(source.view->manifest), source.view->index, frame);
+  if (v.name != source.view->name || v.frames != source.view->frames) {
     throw UserError("image scene '" + v.manifest + "' changed during the run (view " + std::to_string(v.index) +
-                    " was '" + source.view->name + "', now '" + v.name + "')");
+                    " was '" + source.view->name + "' with " + std::to_string(source.view->frames) +
+                    " frame(s), now '" + v.name + "' with " + std::to_string(v.frames) + ")");
   }
   const int W = v.frame.Width(), H = v.frame.Height();
   auto p = std::make_unique<PreparedScene>();
@@ -385,6 +201,12 @@ std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int 
   sr.kind = "image";
   sr.edge_mask_source = v.edge_mask_source;
   sr.reference_note = v.reference_note;
+  sr.ref_spp = v.reference_spp;  // 0: unknown
+  if (!v.reference_origin.empty() || v.reference_spp > 0) {
+    sr.reference_note += "; made by " + (v.reference_origin.empty() ? std::string("(renderer not given)") : v.reference_origin) +
+                         (v.reference_spp > 0 ? ", " + std::to_string(v.reference_spp) + " samples per pixel" : "") +
+                         " (the manifest's reference_info)";
+  }
   sr.noise_floor_null_reason =
       "unknown: a user's reference has no independent half-references to estimate its noise from";
   size_t edge_px = 0;
@@ -394,12 +216,22 @@ std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int 
   p->ref.edge_mask = std::move(v.edge_mask);
   p->ref.edge_mask_raw = std::move(v.edge_mask_raw);
   p->frame1x = std::move(v.frame);
-  // The frame comes from the user's renderer: its render time is not measured here.
-  p->render1x.samples_ms.assign(static_cast<size_t>(repeat), 0.0);
+  // The frame comes from the user's renderer: its render time is not measured here; the
+  // manifest's frame_ms when given, else 0.
+  p->render1x.samples_ms.assign(static_cast<size_t>(repeat), v.frame_ms.value_or(0.0));
   p->render1x.Summarize();
+  sr.frame_ms_given = v.frame_ms.has_value();
+  p->supplied = std::move(v.outputs);
+  p->captured_motion = v.has_motion;
+  p->captured_previous = std::move(v.previous);
+  sr.motion_note = v.motion_note;
   p->none_f = ToFloat(p->frame1x, 3);
   p->flip_ppd = flip_ppd;
   p->flip_reference = flip::PrepareReference(p->ref.image, flip_ppd);
+  // What AA cannot explain: a bias or interior error between the frame and its reference.
+  for (const auto& w : CheckCapture(p->none_f, p->ref.image, p->ref.edge_mask).warnings) {
+    sr.warnings.push_back(v.frames > 1 ? "frame " + std::to_string(frame) + ": " + w : w);
+  }
   // The same crop choice as PrepareScene.
   const int crop_size = std::max(8, std::min(32, std::min(W, H) / 4));
   for (const auto& c : PickCrops(CropScore(p->none_f, p->ref.image, &p->ref.edge_mask), crop_size, 4)) {
@@ -408,7 +240,52 @@ std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int 
   return p;
 }
 
-bool RunsOnImageScenes(const MethodPlan& plan) { return plan.IsPostOnly() || plan.name == "none"; }
+bool RunsOnImageScenes(const MethodPlan& plan, bool has_motion) {
+  if (plan.IsPostOnly() || plan.name == "none") return true;
+  // TAA: a jittered one-sample 1x render plus a temporal step, all of which a captured
+  // sequence with motion vectors and jitter supplies.
+  return has_motion && plan.make_state && plan.render.jitter.samples > 0 && plan.render.scale == 1.0 &&
+         plan.rescale == Rescale::kNone;
+}
+
+MethodOutput SuppliedOutputRow(const PreparedScene& p, const std::string& name, int repeat, StageClock* clock) {
+  MethodOutput out;
+  ResultRow& row = out.row;
+  row.scene = p.info.name;
+  row.method = name;
+  row.spec = name;
+  row.render_width = p.info.width;
+  row.render_height = p.info.height;
+  const auto it = std::find_if(p.supplied.begin(), p.supplied.end(), [&](const SuppliedFrame& s) { return s.name == name; });
+  if (it == p.supplied.end()) {
+    row.not_applicable = "no '" + name + "' frames were supplied for this scene (outputs are given per view in an "
+                         "image scene's manifest)";
+    for (const MetricEntry& m : MetricRegistry()) {
+      for (const std::string& metric : m.outputs) {
+        row.metrics.push_back({metric, std::nullopt, "not applicable: " + row.not_applicable});
+      }
+    }
+    return out;
+  }
+  row.supplied = "supplied: frames anti-aliased by the user's own pipeline, named in image scene '" + p.info.source +
+                 "' (this frame: '" + it->file + "'); scored like aalab's outputs, not run by aalab";
+  // The user's measured time per frame (the whole frame with that AA), when given: it stands
+  // for render + AA, so it goes into `render` and `total` (post and resample 0).
+  if (it->ms) {
+    Timing t;
+    t.samples_ms.assign(static_cast<size_t>(repeat), *it->ms);
+    t.Summarize();
+    row.render = t;
+    row.total = t;
+    Timing zero;
+    zero.samples_ms.assign(static_cast<size_t>(repeat), 0.0);
+    zero.Summarize();
+    row.post = zero;
+    row.resample = zero;
+  }
+  ScoreOutput(p, it->frame, &out, clock);
+  return out;
+}
 
 ResultRow NotApplicableRow(const PreparedScene& p, const MethodPlan& plan) {
   ResultRow row;

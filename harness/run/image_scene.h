@@ -7,16 +7,18 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/core/color.h"
 #include "harness/core/image.h"
+#include "harness/run/image_sequence.h"
 #include "harness/run/pipeline.h"
 
 namespace aalab {
 
-/// One view of an image scene, read and validated.
+/// One view of an image scene (one frame of it, for a sequence), read and validated.
 struct ImageView {
   std::string name;         ///< lowercase-kebab, unique in the run
   std::string description;
@@ -28,6 +30,20 @@ struct ImageView {
   ImageF edge_mask_raw;     ///< the mask before dilation (the given mask when one was given)
   ImageF edge_mask;         ///< the mask the edge metrics use
   std::string edge_mask_source;  ///< how the mask was made, for the report
+  int frames = 1;           ///< frames in the view's sequence (1: a still view)
+  int frame_index = 0;      ///< the frame this holds
+  std::optional<double> frame_ms;  ///< the 1x frame's render time per frame, when given
+  std::vector<SuppliedFrame> outputs;  ///< the user's own AA outputs of this frame
+  /// Motion vectors and jitter given (TAA can run): this frame's jitter and, from frame 1 on,
+  /// TAA's `previous` positions derived from the motion vectors (image_sequence.h).
+  bool has_motion = false;
+  Jitter jitter{0.0f, 0.0f};
+  std::vector<float> previous;
+  std::string motion_note;  ///< the motion-vector convention, in words
+  /// The manifest's `reference_info`: what made the reference ("" / 0 when not given).
+  std::string reference_origin;
+  int reference_spp = 0;
+  int width = 0, height = 0;  ///< the frame's size (kept in the light copy a run plans with)
 };
 
 /// Whether `path` names an image-scene manifest: a readable JSON file whose top level is an
@@ -49,6 +65,8 @@ struct SceneSource {
   /// kept); PrepareSource reads the images again, so a run holds one view's pixels at a time.
   std::unique_ptr<ImageView> view;
   const std::string& Name() const;
+  /// Frames of the source's own sequence: a sequence view's N, else 1.
+  int Frames() const { return view ? view->frames : 1; }
 };
 
 /// Loads every name: library names and scene files through LoadScenes, manifests through
@@ -61,18 +79,30 @@ std::vector<SceneSource> LoadSceneSources(const std::vector<std::string>& names)
 /// reference and edge mask, crops as PrepareScene picks them, and no noise floor (a user's
 /// reference has no independent halves; the report gives the reason). `width`, `height`,
 /// `grid` and `seed` apply to rendered scenes only.
-std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int height, int grid, uint64_t seed,
+/// For a sequence view, `frame` picks the frame (0..N−1) and the source is only read (a
+/// view source stays usable for the next frame); rendered scenes ignore it.
+std::unique_ptr<PreparedScene> PrepareSource(SceneSource& source, int width, int height, int grid, uint64_t seed,
                                              int repeat, bool exact_reference = false, StageClock* clock = nullptr,
-                                             const ReferenceCache* cache = nullptr,
+                                             const ReferenceCache* cache = nullptr, int frame = 0,
                                              double flip_ppd = kFlipDefaultPpd);
+
+/// The names of the outputs supplied by the views among `sources`, in first-seen order.
+std::vector<std::string> SuppliedOutputNames(const std::vector<SceneSource>& sources);
 
 /// CheckReferenceKind over sources: `--reference exact` applies to rendered flat scenes only,
 /// so an image-scene view (whose reference is the user's file) is refused with its name.
 bool CheckReferenceKind(const std::string& kind, const std::vector<SceneSource>& sources);
 
 /// True when the plan needs nothing but the 1x frame: `none` and the post-only methods
-/// (MethodPlan::IsPostOnly). Everything else needs the renderer.
-bool RunsOnImageScenes(const MethodPlan& plan);
+/// (MethodPlan::IsPostOnly), and on a view with motion vectors and jitter (`has_motion`) the
+/// jittered 1x methods (TAA). Everything else needs the renderer.
+bool RunsOnImageScenes(const MethodPlan& plan, bool has_motion = false);
+
+/// The row of a supplied output (the user's own AA) on a prepared view: scored like any
+/// method's output; `supplied` set; timings from the manifest's `ms` (one sample per repeat)
+/// or empty when not given. A view without that output gets a not-applicable row.
+MethodOutput SuppliedOutputRow(const PreparedScene& prepared, const std::string& name, int repeat,
+                               StageClock* clock = nullptr);
 
 /// The row of a method that cannot run on an image-scene view: every metric null with the
 /// reason, no timings (empty), no images, `not_applicable` set.

@@ -163,7 +163,7 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
 
 MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t seed, int repeat,
                        std::unique_ptr<TemporalState>* state, StageClock* clock) {
-  if (!p.tracer && !RunsOnImageScenes(plan)) return MethodOutput{NotApplicableRow(p, plan), {}, {}, {}};
+  if (!p.tracer && !RunsOnImageScenes(plan, p.captured_motion)) return MethodOutput{NotApplicableRow(p, plan), {}, {}, {}};
   if (clock) clock->Enter("method_renders_filters");
   const int W = p.info.width, H = p.info.height;
   const double px = static_cast<double>(W) * H;
@@ -179,7 +179,17 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   Image8 frame;
   TraceCounters counters;
   std::vector<float> previous;  // motion vectors of a jittered render (frame >= 1)
-  if (jittered) {
+  if (jittered && !p.tracer) {
+    // A captured sequence (image scene with motion vectors and jitter): the 1x frame is the
+    // engine's jittered frame, the previous positions come from its motion vectors; the
+    // plan's own jitter pattern does not apply (the engine chose the jitter).
+    frame = p.frame1x;
+    row.render = p.render1x;
+    row.render_shared = true;
+    row.render_width = W;
+    row.render_height = H;
+    if (p.frame > 0) previous = p.captured_previous;
+  } else if (jittered) {
     AALAB_CHECK(plan.render.pattern == SamplePattern::kCenter && plan.render.scale == 1.0,
                 "jitter applies to a 1x one-sample render");
     const FrameJitter jitter = FrameJitterAt(plan.render.jitter, p.frame);
@@ -289,15 +299,20 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   row.coverage_rays_per_px = static_cast<double>(counters.coverage_rays) / px;
   row.shading_evals_per_px = static_cast<double>(counters.shading_evals) / px;
   row.taps_per_px = static_cast<double>(post_stats.taps + rescale_stats.taps) / px;
-  row.output_hash = HashBytes(frame.Data().data(), frame.Data().size());
+  ScoreOutput(p, std::move(frame), &out, clock);
+  return out;
+}
 
+void ScoreOutput(const PreparedScene& p, Image8 frame, MethodOutput* out, StageClock* clock) {
+  ResultRow& row = out->row;
+  row.output_hash = HashBytes(frame.Data().data(), frame.Data().size());
   if (clock) clock->Enter("metrics");
   const auto seen = p.scored_by_hash.find(row.output_hash);
   if (seen != p.scored_by_hash.end()) {
     row.metrics = seen->second.metrics;
-    out.flip_grey = seen->second.flip_grey;
-    out.output = std::move(frame);
-    return out;
+    out->flip_grey = seen->second.flip_grey;
+    out->output = std::move(frame);
+    return;
   }
   const ImageF out_f = ToFloat(frame, 3);
   const std::vector<double> flip_values = flip::ErrorValues(*p.flip_reference, out_f);
@@ -311,13 +326,12 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   in.flip_ppd = p.flip_ppd;
   for (const auto& v : ComputeAllMetrics(in)) row.metrics.push_back({v.name, v.value, v.null_reason});
   // The FLIP map for the page, 8 bits: round(255 · v), v in [0, 1].
-  out.flip_grey.resize(flip_values.size());
+  out->flip_grey.resize(flip_values.size());
   for (size_t i = 0; i < flip_values.size(); ++i) {
-    out.flip_grey[i] = static_cast<uint8_t>(std::lround(std::clamp(flip_values[i], 0.0, 1.0) * 255.0));
+    out->flip_grey[i] = static_cast<uint8_t>(std::lround(std::clamp(flip_values[i], 0.0, 1.0) * 255.0));
   }
-  p.scored_by_hash[row.output_hash] = {row.metrics, out.flip_grey};
-  out.output = std::move(frame);
-  return out;
+  p.scored_by_hash[row.output_hash] = {row.metrics, out->flip_grey};
+  out->output = std::move(frame);
 }
 
 }  // namespace aalab

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,15 @@
 #include "scenes/tracer.h"
 
 namespace aalab {
+
+/// A frame anti-aliased by the user's own pipeline (an engine's TAA, DLSS, FSR...), given
+/// under the user's name: a row of the report beside aalab's methods, supplied, not run.
+struct SuppliedFrame {
+  std::string name;           ///< lowercase-kebab, never one of aalab's method names
+  std::string file;           ///< as the manifest names it (this frame's file)
+  Image8 frame;               ///< RGBA8, alpha 255
+  std::optional<double> ms;   ///< the user's measured time per frame, when given
+};
 
 /// A scene ready for methods. Everything here is computed once per scene.
 struct PreparedScene {
@@ -48,6 +58,12 @@ struct PreparedScene {
     std::vector<uint8_t> flip_grey;
   };
   mutable std::map<std::string, Scored> scored_by_hash;
+  /// Image-scene views only: the user's own AA outputs of this frame; whether motion vectors
+  /// and jitter were given (the 1x frame is then the jittered TAA input) and, from frame 1
+  /// on, TAA's previous positions derived from them (TemporalInput::previous).
+  std::vector<SuppliedFrame> supplied;
+  bool captured_motion = false;
+  std::vector<float> captured_previous;
 };
 
 /// Loads and validates scenes by name or path; duplicates are an error.
@@ -95,6 +111,11 @@ struct MethodOutput {
 /// index for the jitter and, from frame 1 on, pass exact motion vectors to the state. With a
 /// `clock`, charges rendering and filtering to "method_renders_filters" and scoring to
 /// "metrics".
+/// Scores `frame` (the output size) against the prepared scene: every metric and the 8-bit
+/// FLIP map, reusing the scores of a bit-identical earlier output; fills out->row.metrics,
+/// output_hash, out->flip_grey and moves the frame into out->output.
+void ScoreOutput(const PreparedScene& prepared, Image8 frame, MethodOutput* out, StageClock* clock = nullptr);
+
 MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat,
                        std::unique_ptr<TemporalState>* state = nullptr, StageClock* clock = nullptr);
 

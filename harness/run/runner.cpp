@@ -114,6 +114,12 @@ RunScenes LoadRunScenes(const RunSettings& s) {
   r.exact = CheckReferenceKind(s.reference, r.sources);
   for (const auto& src : r.sources) {
     if (src.scene) CheckSequenceLength(*src.scene, s.frames);
+    if (src.view && src.view->frames > 1 && s.frames > src.view->frames) {
+      throw UserError("--frames " + std::to_string(s.frames) + " runs past the sequence of view '" + src.Name() +
+                      "' of image scene '" + src.view->manifest + "', which has " +
+                      std::to_string(src.view->frames) + " frames (allowed: 1.." + std::to_string(src.view->frames) +
+                      "; without --frames a sequence view runs all its frames)");
+    }
   }
   return r;
 }
@@ -146,14 +152,28 @@ Report RunSuite(const RunSettings& s) {
     scenes = std::move(mine);
     shard_info = info;
   }
+  // A sequence view runs its own frames (all of them, or the first --frames); everything
+  // else runs --frames.
+  auto frames_of = [&s](const SceneSource& src) { return src.Frames() > 1 && s.frames == 1 ? src.Frames() : s.frames; };
+  bool any_sequence = false;
+  for (const auto& src : scenes) any_sequence = any_sequence || frames_of(src) > 1;
   const bool all = s.methods.size() == 1 && s.methods[0] == "all";
   std::vector<std::string> method_specs = s.methods.empty() ? DefaultMethods() : all ? MethodNames() : s.methods;
-  if ((s.methods.empty() || all) && s.frames == 1) {
+  if ((s.methods.empty() || all) && !any_sequence) {
     // Methods with memory need a sequence: a still run's default list leaves them out (a
     // still run is unchanged by their existence); name them with --methods to see frame 0.
     std::erase_if(method_specs, [](const std::string& m) { return static_cast<bool>(MakeMethod(m).make_state); });
   }
   const std::vector<MethodPlan> plans = ResolveMethods(method_specs);
+  // The user's own AA outputs (image scenes' `outputs`): rows after aalab's methods.
+  const std::vector<std::string> supplied = SuppliedOutputNames(scenes);
+  for (const auto& name : supplied) {
+    for (const auto& p : plans) {
+      if (p.spec == name) throw UserError("output '" + name + "' of an image scene has the name of a method of this run");
+    }
+  }
+  int total_steps = 0;
+  for (const auto& src : scenes) total_steps += static_cast<int>(plans.size() + supplied.size() + 1) * frames_of(src);
   // A run that fails half-way (an exception from any stage) removes its partial output.
   std::vector<std::string> inputs = {s.ref_cache};
   for (const auto& name : s.scenes) {
@@ -167,12 +187,31 @@ Report RunSuite(const RunSettings& s) {
 
   Report report;
   for (const auto& [k, v] : ContextFacts()) report.context[k] = v;
+  // What applied: --size, --ref-spp and --seed apply to rendered scenes only; an image-scene
+  // view has its images' size and the user's reference.
+  bool any_rendered = false;
+  std::vector<std::string> view_sizes;
+  for (const auto& src : scenes) {
+    if (src.scene) any_rendered = true;
+    if (!src.view) continue;
+    const std::string sz = std::to_string(src.view->width) + "x" + std::to_string(src.view->height);
+    if (std::find(view_sizes.begin(), view_sizes.end(), sz) == view_sizes.end()) view_sizes.push_back(sz);
+  }
+  std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
+  std::string ref_spp = exact ? std::string("exact") : std::to_string(s.ref_spp);
+  std::string seed = std::to_string(s.seed);
+  if (!view_sizes.empty()) {
+    const std::string views = JoinNames(view_sizes);
+    size = any_rendered ? size + " (rendered scenes; image-scene views: " + views + ")" : views + " (the views' own size)";
+    ref_spp = any_rendered ? ref_spp + " (rendered scenes; image-scene views: the user's own)" : "the user's own";
+    if (!any_rendered) seed = "(not used: image scenes only)";
+  }
   report.settings = {{"suite", s.scenes.empty() ? s.suite : "(custom)"},
                      {"scenes", JoinNames(scene_names)},
                      {"methods", JoinNames(method_specs)},
-                     {"size", std::to_string(s.width) + "x" + std::to_string(s.height)},
-                     {"ref_spp", exact ? std::string("exact") : std::to_string(s.ref_spp)},
-                     {"seed", std::to_string(s.seed)},
+                     {"size", size},
+                     {"ref_spp", ref_spp},
+                     {"seed", seed},
                      {"threads", std::to_string(ThreadCount())},
                      {"repeat", std::to_string(s.repeat)},
                      {"warmup", "1"},
@@ -180,26 +219,33 @@ Report RunSuite(const RunSettings& s) {
   if (s.frames > 1) report.settings.emplace_back("frames", std::to_string(s.frames));
   if (s.frame_exr) report.settings.emplace_back("frame_exr", "true");
   for (auto& kv : viewing.Settings()) report.settings.push_back(std::move(kv));
+  if (!supplied.empty()) report.settings.emplace_back("supplied", JoinNames(supplied));
   report.shard = shard_info;
 
   const int W = s.width, H = s.height;
-  const int F = s.frames;
-  Progress progress(static_cast<int>(scenes.size() * (plans.size() + 1)) * F, s.quiet);
+  const size_t rows_per_frame = plans.size() + supplied.size();
+  Progress progress(total_steps, s.quiet);
   for (auto& source : scenes) {
     const std::string name = source.Name();
+    const int F = frames_of(source);
     const std::string rel_dir = "images/" + name;
     fs::create_directories(tmp / rel_dir);
     // A sequence per (scene, method): methods with memory keep their state from frame to
     // frame; a still run is a sequence of one frame. Image-scene views are still scenes.
     const std::shared_ptr<const Scene> sequence(std::move(source.scene));
-    const bool moves = sequence && sequence->animation.Moves();
+    // A captured sequence (a view with N frames) is read anew at every frame, as a moving
+    // scene is rendered anew.
+    const bool captured = source.view && source.view->frames > 1;
+    const bool moves = (sequence && sequence->animation.Moves()) || captured;
     std::vector<std::unique_ptr<TemporalState>> states(plans.size());
     std::vector<SequenceTrack> tracks;
-    for (size_t m = 0; m < plans.size(); ++m) tracks.emplace_back(viewing.ppd, viewing.fps, F);
+    for (size_t m = 0; m < rows_per_frame; ++m) tracks.emplace_back(viewing.ppd, viewing.fps, F);
     std::unique_ptr<PreparedScene> prepared;
     SceneResult sr;
     std::vector<std::string> reference_frames, reference_frames_exr;
     double scene_ms = 0, reference_ms = 0;
+    std::vector<std::string> scene_warnings;
+    int more_warnings = 0;
     // The last frame's image files are independent: queued and written in parallel at the
     // scene's end; a bit-identical output is stored once.
     std::vector<std::function<void()>> writes;
@@ -210,7 +256,9 @@ Report RunSuite(const RunSettings& s) {
       // A moving scene is built, traced and referenced anew at every frame; a still one once.
       if (!prepared || moves) {
         Stopwatch build;
-        if (moves) {
+        if (captured) {
+          prepared = PrepareSource(source, W, H, grid, s.seed, s.repeat, exact, &clock, nullptr, k, viewing.ppd);
+        } else if (moves) {
           clock.Enter("references");
           auto frame_scene = std::make_unique<Scene>(SceneAtFrame(*sequence, k));
           const double scene_build_ms = build.ElapsedMs();
@@ -219,10 +267,16 @@ Report RunSuite(const RunSettings& s) {
           scene_ms += scene_build_ms;
         } else {
           if (sequence) source.scene = std::make_unique<Scene>(*sequence);
-          prepared = PrepareSource(std::move(source), W, H, grid, s.seed, s.repeat, exact, &clock,
-                                   cache ? &*cache : nullptr, viewing.ppd);
+          prepared = PrepareSource(source, W, H, grid, s.seed, s.repeat, exact, &clock,
+                                   cache ? &*cache : nullptr, 0, viewing.ppd);
         }
         prepared->sequence_scene = sequence;
+        // A capture's mismatch warnings (image scenes): said now, kept for the report (the
+        // first frames that have any, then a count).
+        for (const auto& w : prepared->info.warnings) {
+          std::fprintf(stderr, "aalab: warning: scene '%s': %s\n", name.c_str(), w.c_str());
+          if (scene_warnings.size() < 3) scene_warnings.push_back(w); else ++more_warnings;
+        }
         scene_ms += prepared->info.bvh_build_ms;
         reference_ms += prepared->info.reference_ms;
       }
@@ -241,6 +295,8 @@ Report RunSuite(const RunSettings& s) {
       }
       if (last) {  // `prepared` (and so `ref`) lives until the scene's writes are done
         sr = prepared->info;
+        sr.warnings = scene_warnings;
+        if (more_warnings) sr.warnings.push_back(std::to_string(more_warnings) + " more frame(s) with such warnings");
         writes.push_back([&tmp, &rel_dir, &ref] {
           WriteImageF((tmp / rel_dir / "reference.exr").string(), DecodeToLinear(ref.image));
         });
@@ -253,34 +309,38 @@ Report RunSuite(const RunSettings& s) {
       progress.Step(name + tag + " reference");
 
       const int fw = prepared->info.width, fh = prepared->info.height;  // a view's own size
-      for (size_t m = 0; m < plans.size(); ++m) {
-        const MethodPlan& plan = plans[m];
-        auto mo = std::make_shared<MethodOutput>(RunMethod(*prepared, plan, s.seed, s.repeat, &states[m], &clock));
+      for (size_t m = 0; m < rows_per_frame; ++m) {
+        // aalab's methods, then the user's supplied outputs (scored, not run).
+        const MethodPlan* plan = m < plans.size() ? &plans[m] : nullptr;
+        const std::string spec = plan ? plan->spec : supplied[m - plans.size()];
+        auto mo = std::make_shared<MethodOutput>(
+            plan ? RunMethod(*prepared, *plan, s.seed, s.repeat, &states[m], &clock)
+                 : SuppliedOutputRow(*prepared, spec, s.repeat, &clock));
         ResultRow& row = mo->row;
         if (!row.not_applicable.empty()) {  // a renderer-side method on an image scene: no images
           if (last) report.rows.push_back(std::move(row));
-          progress.Step(name + tag + " " + plan.spec + " (not applicable)");
+          progress.Step(name + tag + " " + spec + " (not applicable)");
           continue;
         }
         clock.Enter("image_writing");
         if (F > 1) {
-          const std::string rel = rel_dir + "/" + FileSafe(plan.spec) + tag + ".png";
+          const std::string rel = rel_dir + "/" + FileSafe(spec) + tag + ".png";
           WriteImage8((tmp / rel).string(), mo->output);
           tracks[m].AddFrame(*mo, *prepared, rel);
         }
-        progress.Step(name + tag + " " + plan.spec);
+        progress.Step(name + tag + " " + spec);
         if (!last) continue;
-        if (s.debug_views && plan.post) {
-          for (const auto& view : plan.debug_views) {
+        if (s.debug_views && plan && plan->post) {
+          for (const auto& view : plan->debug_views) {
             PostOptions opt;
             opt.debug_view = view;
-            const std::string rel = rel_dir + "/" + FileSafe(plan.spec) + ".debug-" + view + ".png";
-            WriteImage8((tmp / rel).string(), plan.post(mo->input, opt, nullptr));
+            const std::string rel = rel_dir + "/" + FileSafe(spec) + ".debug-" + view + ".png";
+            WriteImage8((tmp / rel).string(), plan->post(mo->input, opt, nullptr));
             row.images["debug_" + view] = rel;
           }
         }
         mo->input = Image8();  // only the output and FLIP map wait for the scene's writes
-        const auto [it, fresh] = file_of_hash.emplace(row.output_hash, rel_dir + "/" + FileSafe(plan.spec));
+        const auto [it, fresh] = file_of_hash.emplace(row.output_hash, rel_dir + "/" + FileSafe(spec));
         const std::string base = it->second;
         if (fresh) {
           writes.push_back([&tmp, base, mo] { WriteImage8((tmp / (base + ".png")).string(), mo->output); });

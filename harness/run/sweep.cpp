@@ -326,8 +326,8 @@ SweepResult RunSweep(const SweepSettings& s) {
   for (auto& source : scenes) {
     if (share.empty()) break;  // a shard beyond the grid's points: nothing to render
     const std::string name = source.Name();
-    const auto prepared = PrepareSource(std::move(source), s.width, s.height, ref_grid, s.seed, s.repeat, exact,
-                                        nullptr, cache ? &*cache : nullptr, viewing.ppd);
+    const auto prepared = PrepareSource(source, s.width, s.height, ref_grid, s.seed, s.repeat, exact,
+                                        nullptr, cache ? &*cache : nullptr, 0, viewing.ppd);
     if (prepared->tracer) ++res.reference_renders;  // an image-scene view renders nothing
     report.scenes.push_back(prepared->info);
     Progress(s.quiet, ++done, total, name + " reference", clock);
@@ -351,6 +351,36 @@ SweepResult RunSweep(const SweepSettings& s) {
   }
   out.Commit();
   return res;
+}
+
+double DistanceFromDefaults(const SweepPoint& pt, const std::vector<GridAxis>& axes,
+                            const std::vector<std::pair<std::string, std::string>>& defaults) {
+  double d = 0;
+  for (const auto& [name, value] : pt.overrides) {
+    std::string def;
+    for (const auto& [k, v] : defaults) {
+      if (k == name) def = v;
+    }
+    const GridAxis* axis = nullptr;
+    for (const auto& a : axes) {
+      if (a.name == name) axis = &a;
+    }
+    char* end_v = nullptr;
+    char* end_d = nullptr;
+    const double x = std::strtod(value.c_str(), &end_v), x0 = std::strtod(def.c_str(), &end_d);
+    if (axis && !value.empty() && !def.empty() && *end_v == '\0' && *end_d == '\0') {
+      double lo = x0, hi = x0;  // the span of the axis's values and the default
+      for (const auto& s : axis->values) {
+        const double y = std::strtod(s.c_str(), nullptr);
+        lo = std::min(lo, y);
+        hi = std::max(hi, y);
+      }
+      d += hi > lo ? std::fabs(x - x0) / (hi - lo) : 0.0;
+    } else {
+      d += value == def ? 0.0 : 1.0;
+    }
+  }
+  return d;
 }
 
 void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
@@ -389,13 +419,19 @@ void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
     res.pareto_front = ParetoFront(t, q, primary_dir);
     for (size_t i : res.pareto_front) res.points[i].pareto = true;
   }
+  // Ties go to the point closest to the preset it sweeps from (--method: its defaults and
+  // overrides), then the first in grid order.
+  const std::vector<std::pair<std::string, std::string>> defaults = MakeMethod(res.base_spec.empty() ? res.method : res.base_spec).params.Ordered();
+  std::vector<double> distance;
+  for (const auto& pt : res.points) distance.push_back(DistanceFromDefaults(pt, res.axes, defaults));
   for (const auto& o : res.objectives) {
     const Better dir = *MetricDirection(o);
     std::optional<size_t> best;
     for (size_t p = 0; p < res.points.size(); ++p) {
       const auto& m = res.points[p].objectives.at(o).mean;
       if (!m) continue;
-      if (!best || Better_(m, res.points[*best].objectives.at(o).mean, dir)) best = p;  // ties: first in grid order
+      const auto& b = best ? res.points[*best].objectives.at(o).mean : std::optional<double>();
+      if (!best || Better_(m, b, dir) || (*m == *b && distance[p] < distance[*best])) best = p;
     }
     if (best) {
       res.best[o] = *best;
@@ -427,7 +463,7 @@ std::string SweepSummaryText(const SweepResult& r) {
     o << "best " << obj << " (mean over " << r.report.scenes.size() << " scenes): " << MeanText(obj, p.objectives.at(obj))
       << " at " << JoinOverrides(p.overrides) << " (method time " << FormatFixed(p.mean_time_ms, 3) << " ms)";
     const int ties = r.best_ties.at(obj);
-    if (ties > 0) o << "; " << ties << " other point(s) tie, the first in grid order is shown";
+    if (ties > 0) o << "; " << ties << " other point(s) tie, the one closest to the defaults is shown";
     o << "\n";
   }
   const std::string& primary = r.objectives.front();

@@ -81,6 +81,13 @@ struct SweepPoint {
   bool pareto = false;      ///< on the front of the first objective vs time
 };
 
+struct SweepPoint;
+/// How far a point lies from the method's defaults: over its swept parameters, |value −
+/// default| divided by the span of the axis's values and the default (numbers), or 0 / 1
+/// (other values: equal or not); summed. Ties of the best mean go to the smallest distance.
+double DistanceFromDefaults(const SweepPoint& pt, const std::vector<GridAxis>& axes,
+                            const std::vector<std::pair<std::string, std::string>>& defaults);
+
 struct SweepResult {
   std::string method;                 ///< registry name
   std::vector<GridAxis> axes;

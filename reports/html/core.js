@@ -42,7 +42,8 @@ const AA = (function () {
     metric: META.default_axis,
     metric2: META.perceptual_axis || null,  // the perceptual axis shown beside it (null: none)
     view: null,
-    spec: specs.find(s => s !== 'none') || specs[0],
+    // The first method with an output somewhere (not one that is not applicable everywhere).
+    spec: specs.find(s => s !== 'none' && DATA.rows.some(r => r.spec === s && !r.not_applicable)) || specs[0],
     compare: 'reference',
     abZoom: 0,  // 0 = auto
     cropZoom: 0,

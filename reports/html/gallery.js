@@ -24,7 +24,8 @@
     const specs = (A.rowsByScene.get(scene.name) || []).map(r => r.spec);
     if (!specs.length) { host.replaceChildren(el('p', { class: 'note', text: 'No rows for this scene.' })); return; }
     const applicable = s => { const r = rowOf(scene.name, s); return r && !r.not_applicable; };
-    if (!specs.includes(state.spec)) state.spec = specs.find(s => s !== 'none' && applicable(s)) || specs[0];
+    // Open on a method that has an output on this scene (never a not-applicable row).
+    if (!applicable(state.spec)) state.spec = specs.find(s => s !== 'none' && applicable(s)) || specs[0];
     const idx = A.scenes.indexOf(scene), n = A.scenes.length;
     const g = el('div', { class: 'gallery', tabindex: '0', role: 'region',
       'aria-label': 'Gallery of ' + scene.name + '. Left and right arrows switch methods, up and down switch scenes.' });
@@ -95,6 +96,7 @@
       bits.push(i.label + ' ' + (v === null ? '— (' + A.nullReason(r, name) + ')' : A.fmtMetric(name, v) + (i.unit ? ' ' + i.unit : '')));
     }
     const t = r.timing.total;
+    if (r.supplied) bits.push('supplied by your pipeline, not run by aalab');
     bits.push('time ' + A.fmtMs(t.median_ms) + ' ms [' + A.fmtMs(t.min_ms) + '–' + A.fmtMs(t.max_ms) + ']');
     if (r.render_size && (r.render_size[0] !== s.width || r.render_size[1] !== s.height)) bits.push('rendered at ' + r.render_size[0] + '×' + r.render_size[1]);
     G.parts.summary.replaceChildren(el('b', { class: 'method', text: r.spec }), ': ' + bits.join(' · '));

@@ -92,6 +92,14 @@ TEST(HtmlBrowserImageScene, NotApplicableRowsAndSuiteMeans) {
   EXPECT_EQ(plotted, (std::set<std::string>{"fxaa1-p3", "fxaa311-p12"}));
   EXPECT_NE(suite.find("Suite means over all 1 scenes"), std::string::npos);
   EXPECT_NE(suite.find("not applicable on any scene of this run"), std::string::npos);
+
+  // The gallery opens on a method that has an output (ssaa-2x2, the first method after none,
+  // is not applicable here).
+  dom = Dom(work, "only", "file://" + fs::absolute(work / "only/index.html").string() + "#scene-mine");
+  std::smatch pressed;
+  ASSERT_TRUE(std::regex_search(dom, pressed, std::regex("data-spec=\"([^\"]+)\" aria-pressed=\"true\"")))
+      << "no selected method in the gallery";
+  EXPECT_EQ(pressed[1], "fxaa1-p3");
 }
 
 }  // namespace

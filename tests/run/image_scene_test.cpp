@@ -401,7 +401,7 @@ TEST(ImageScene, BadManifestsFailWithOneClearMessageAndNoOutput) {
       {head + R"("frame": "frame.png", "reference": "ref.exr", "edge_mask": "grey.png", "object_ids": "ids.png"}]})",
        {"either edge_mask or object_ids/depth"}},
       {head + R"("frame": "frame.png", "reference": "ref.exr", "depth": "ids.png"}]})",
-       {"/views/0/depth", "3 channels", "single-channel"}},
+       {"/views/0/depth", "cannot tell which channels hold the depth", "\"R\", \"G\", \"B\"", "\"channels\": [\"Z\"]"}},
       {head + R"("frame": "ref.exr", "reference": "ref.exr"}]})", {"/views/0/frame", "file type '.exr'"}},
       {R"({"views": [{"name": "v", "frame": "frame.png", "reference": "ref.exr"}]})",
        {"missing \"aalab_image_scene\": 1"}},
