@@ -9,6 +9,8 @@
 
 namespace aalab {
 
+struct SsimReferenceSide;  // metrics/ssim.h
+
 /// One isolated flat disk for the signed coverage (area bias) metric: a window that holds the
 /// whole disk and, outside it, one uniform colour; the disk's colour and that colour in
 /// display-linear light; its exact area and radius in pixels. Built from the scene
@@ -29,6 +31,9 @@ struct MetricInput {
   /// Optional: flip::ErrorValues(*reference, *image, kFlipDefaultPpd), already computed by
   /// the caller (the runner also needs it for the FLIP heatmap). Same values either way.
   const std::vector<double>* flip_values = nullptr;
+  /// Optional: PrepareSsimReference(*reference), prepared once per scene by the caller (the
+  /// reference's half of SSIM). Same values either way.
+  const SsimReferenceSide* ssim_reference = nullptr;
   /// Optional: isolated flat disks for the area-bias metrics (metrics/coverage_bias.cpp).
   const std::vector<CoverageProbe>* coverage_probes = nullptr;
 };

@@ -398,6 +398,7 @@ std::unique_ptr<PreparedScene> PrepareSource(SceneSource source, int width, int 
   p->render1x.Summarize();
   p->none_f = ToFloat(p->frame1x, 3);
   p->flip_reference = flip::PrepareReference(p->ref.image, kFlipDefaultPpd);
+  p->ssim_reference = PrepareSsimReference(p->ref.image);
   // The same crop choice as PrepareScene.
   const int crop_size = std::max(8, std::min(32, std::min(W, H) / 4));
   for (const auto& c : PickCrops(CropScore(p->none_f, p->ref.image, &p->ref.edge_mask), crop_size, 4)) {

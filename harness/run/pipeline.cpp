@@ -127,6 +127,7 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
   if (clock) clock->Enter("references");
   p->none_f = ToFloat(p->frame1x, 3);
   p->flip_reference = flip::PrepareReference(p->ref.image, kFlipDefaultPpd);
+  p->ssim_reference = PrepareSsimReference(p->ref.image);
   for (const DiskProbe& d : DiskProbes(sc, W, H, p->ref.image)) {
     CoverageProbe c;
     c.x0 = d.x0;
@@ -295,6 +296,7 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   in.none_image = &p.none_f;
   in.coverage_probes = &p.coverage_probes;
   in.flip_values = &flip_values;
+  in.ssim_reference = p.ssim_reference.get();
   for (const auto& v : ComputeAllMetrics(in)) row.metrics.push_back({v.name, v.value, v.null_reason});
   // The FLIP map for the page, 8 bits: round(255 · v), v in [0, 1].
   out.flip_grey.resize(flip_values.size());
