@@ -85,6 +85,7 @@ TaaBench RunTaaBench(int reps, int threads) {
 
   TaaBench b;
   const double ratio = taa_t.Median() / fxaa_t.Median();
+  b.ratio = ratio;
   const std::string th = std::to_string(threads);
   b.lines.push_back("## TAA — ms per 1920x1080 frame (motion-pan, frame 1), " + th + " threads; goal: taa ≤ 2× fxaa311-p39");
   b.lines.push_back("");
