@@ -380,7 +380,7 @@ void VerticalAndMapPrepared(const double* const* rows_a, const double* const* ro
 }  // namespace
 
 struct SsimReferenceSide {
-  ImageF image;    // the reference (for the cross term E_w[xy])
+  const ImageF* image = nullptr;  // the reference (for the cross term E_w[xy]); not owned
   int nx = 0, ny = 0;  // valid region; 0 when the image is smaller than the window
   std::array<std::vector<double>, 3> mean, mean_sq;  // E_w[y], E_w[y²] per channel, nx × ny row-major
 };
@@ -389,7 +389,7 @@ namespace {
 
 // Fills side->mean[c], side->mean_sq[c] (same blocking as ChannelSsim).
 void PrepareChannel(SsimReferenceSide* side, int c, const std::array<double, kTaps>& w) {
-  const ImageF& b = side->image;
+  const ImageF& b = *side->image;
   const int nx = side->nx, ny = side->ny;
   const int cb = b.Channels();
   side->mean[c].resize(static_cast<size_t>(nx) * ny);
@@ -422,7 +422,7 @@ void PrepareChannel(SsimReferenceSide* side, int c, const std::array<double, kTa
 // ChannelSsim against a prepared reference: E_w[x], E_w[x²], E_w[xy] in a 3-plane ring, the
 // reference's sums read from its planes; the map and its row sums as ChannelSsim.
 double ChannelSsimPrepared(const ImageF& a, const SsimReferenceSide& side, int c, const std::array<double, kTaps>& w) {
-  const ImageF& b = side.image;
+  const ImageF& b = *side.image;
   const int nx = side.nx, ny = side.ny;
   const double c1 = (kSsimK1 * 1.0) * (kSsimK1 * 1.0);
   const double c2 = (kSsimK2 * 1.0) * (kSsimK2 * 1.0);
@@ -512,7 +512,7 @@ std::shared_ptr<const SsimReferenceSide> PrepareSsimReference(const ImageF& refe
     throw UserError("ssim: needs RGB images (got " + std::to_string(reference.Channels()) + " channels)");
   }
   auto side = std::make_shared<SsimReferenceSide>();
-  side->image = reference;
+  side->image = &reference;
   if (reference.Width() < 2 * kSsimRadius + 1 || reference.Height() < 2 * kSsimRadius + 1) return side;
   side->nx = reference.Width() - 2 * kSsimRadius;
   side->ny = reference.Height() - 2 * kSsimRadius;
@@ -522,7 +522,7 @@ std::shared_ptr<const SsimReferenceSide> PrepareSsimReference(const ImageF& refe
 }
 
 SsimResult ComputeSsim(const ImageF& image, const SsimReferenceSide& reference) {
-  return ComputeSsimWith(image, reference.image,
+  return ComputeSsimWith(image, *reference.image,
                          [&](int c, const auto& w) { return ChannelSsimPrepared(image, reference, c, w); });
 }
 

@@ -42,9 +42,11 @@ SsimResult ComputeSsim(const ImageF& a, const ImageF& b);
 /// run scores every method against one reference, so the runner prepares it once per scene.
 struct SsimReferenceSide;
 /// Prepares the reference side of ComputeSsim(image, reference) (same checks as ComputeSsim
-/// where they concern the reference alone). Memory: 48 bytes per valid pixel plus a copy of
-/// the reference's RGB.
+/// where they concern the reference alone). Memory: 48 bytes per valid pixel. The side keeps
+/// a pointer to `reference` (for the cross term): the reference must outlive it.
 std::shared_ptr<const SsimReferenceSide> PrepareSsimReference(const ImageF& reference);
+/// Refused: the side would point at a temporary.
+std::shared_ptr<const SsimReferenceSide> PrepareSsimReference(ImageF&& reference) = delete;
 /// ComputeSsim(image, reference) against a prepared reference: the same values bit for bit
 /// (the same sums in the same order; the reference's are formed once). UserError when the
 /// image's size differs from the reference's or it has fewer than 3 channels.

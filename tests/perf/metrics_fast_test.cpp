@@ -72,9 +72,11 @@ TEST(FastPath, SsimSameAtOneAndTwoThreads) {
 }
 
 TEST(FastPath, SsimPreparedReferenceRefusesAnotherSize) {
-  const auto side = PrepareSsimReference(RandomImage(40, 30, 3, 5, false));
+  const ImageF reference = RandomImage(40, 30, 3, 5, false);
+  const auto side = PrepareSsimReference(reference);
   EXPECT_THROW(ComputeSsim(RandomImage(41, 30, 3, 6, false), *side), UserError);
-  EXPECT_THROW(PrepareSsimReference(ImageF(40, 30, 1)), UserError);
+  const ImageF grey(40, 30, 1);
+  EXPECT_THROW(PrepareSsimReference(grey), UserError);
 }
 
 TEST(FastPath, FlipWithReusedReferenceEqualsFreshComputation) {
