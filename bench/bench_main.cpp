@@ -37,6 +37,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <fcntl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -479,6 +480,11 @@ int Main(int argc, char** argv) {
     Register("metric-ssim" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
       benchmark::DoNotOptimize(ComputeSsim(*pair_img, pair_ref->image).ssim);
     });
+    // SSIM as a run computes it per method: the reference's half prepared once per scene.
+    Register("metric-ssim-run" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
+      static const std::shared_ptr<const SsimReferenceSide> side = PrepareSsimReference(pair_ref->image);
+      benchmark::DoNotOptimize(ComputeSsim(*pair_img, *side).ssim);
+    });
     // FLIP as a run computes it per method (the reference's half reused after the first
     // method of a scene), and from scratch (the first method of a scene, or `aalab metrics`).
     Register("metric-flip" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
@@ -613,6 +619,38 @@ int Main(int argc, char** argv) {
   }
   fs::remove_all(suite_out);
 
+  // The default run, as `make run` does it with the binary prebuilt (not in --quick): wall,
+  // CPU and peak memory of that one process (wait4's rusage of the child).
+  struct DefaultRun {
+    bool ok = false;
+    double wall_s = 0, cpu_s = 0, max_rss_mb = 0;
+  } default_run;
+  if (!cfg.quick) {
+    fs::remove_all(suite_out);
+    std::fprintf(stderr, "  default run (aalab run)...\n");
+    const auto t0 = std::chrono::steady_clock::now();
+    const pid_t pid = fork();
+    if (pid == 0) {
+      const int null_fd = open("/dev/null", O_WRONLY);
+      if (null_fd >= 0) dup2(null_fd, 1);
+      execl(cfg.aalab_bin.c_str(), cfg.aalab_bin.c_str(), "run", "--quiet", "--out", suite_out.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    int status = 0;
+    rusage ru{};
+    if (pid > 0 && wait4(pid, &status, 0, &ru) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+      default_run.ok = true;
+      default_run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      default_run.cpu_s = static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+                          (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec) / 1e6;
+      default_run.max_rss_mb = static_cast<double>(ru.ru_maxrss) / 1024.0;  // kB
+    } else {
+      std::fprintf(stderr, "the default run failed (status %d)\n", status);
+      return 3;
+    }
+    fs::remove_all(suite_out);
+  }
+
   // ---------------------------------------------------------------- table and JSON
   std::ostringstream tab;
   auto line = [&](const std::string& s) { tab << s << "\n"; };
@@ -741,20 +779,22 @@ int Main(int argc, char** argv) {
   double ssim_speedup = 0.0;
   for (int threads : {1, 2}) {
     const std::string t = "/t" + std::to_string(threads);
-    for (const char* m : {"psnr", "ssim", "flip", "flip-uncached", "edge", "all"}) {
+    for (const char* m : {"psnr", "ssim", "ssim-run", "flip", "flip-uncached", "edge", "all"}) {
       const Stats& s = get(std::string("metric-") + m + t);
       std::string ext = "—", speed = "—";
       Json fj = {{"group", "metrics"}, {"name", m}, {"threads", threads}, {"unit", "ms"}, {"value", StatsJson(s.samples, 1e3)}};
       const std::optional<Stats>* e = nullptr;
       std::string tool;
-      if (std::string(m) == "ssim" && sk_ssim) e = &sk_ssim, tool = "scikit-image structural_similarity (float64)";
+      if ((std::string(m) == "ssim" || std::string(m) == "ssim-run") && sk_ssim) {
+        e = &sk_ssim, tool = "scikit-image structural_similarity (float64)";
+      }
       if (std::string(m) == "psnr" && sk_psnr) e = &sk_psnr, tool = "scikit-image peak_signal_noise_ratio (float64)";
       if (e) {
         ext = tool + " " + range(**e, 1e3, "%.1f") + " ms";
         const double sp = (*e)->Median() / s.Median();
         speed = Fmt("%.1f×", sp);
         fj["external"] = {{"tool", tool}, {"ms", StatsJson((*e)->samples, 1e3)}, {"speedup", sp}};
-        if (std::string(m) == "ssim" && threads == 1) ssim_speedup = sp;
+        if (std::string(m) == "ssim-run" && threads == 1) ssim_speedup = sp;
       }
       if (std::string(m) == "psnr" && idiff_s && threads == 1) {
         ext += "; idiff process " + range(*idiff_s, 1e3, "%.0f") + " ms";
@@ -763,6 +803,8 @@ int Main(int argc, char** argv) {
       const std::string label = std::string(m) == "all"             ? "all metrics (ComputeAllMetrics, as a run)"
                                 : std::string(m) == "edge"          ? "edge/interior error (edge mask)"
                                 : std::string(m) == "flip"          ? "flip (reference half reused, as in a run)"
+                                : std::string(m) == "ssim"          ? "ssim (from scratch)"
+                                : std::string(m) == "ssim-run"      ? "ssim (reference half reused, as in a run)"
                                 : std::string(m) == "flip-uncached" ? "flip (from scratch)"
                                                                     : m;
       line("| " + label + " | " + std::to_string(threads) + " | " + range(s, 1e3, "%.1f") + " | " + ext + " | " + speed + " |");
@@ -775,11 +817,13 @@ int Main(int argc, char** argv) {
     for (auto& f : BenchAnalyticAa(cfg.reps, &aaa_table)) figures.push_back(f);
     tab << aaa_table;
   }
+  double taa_ratio = 0.0;
   {  // TAA vs fxaa311-p39 (bench/bench_taa.cpp)
     const TaaBench taa = RunTaaBench(cfg.reps, 2);
     line("");
     for (const auto& l : taa.lines) line(l);
     for (const auto& f : taa.figures) figures.push_back(f);
+    taa_ratio = taa.ratio;
   }
   line("");
   line("## Suite — wall time of `aalab run --suite " + suite_name + " --ref-spp " + std::to_string(suite_spp) +
@@ -817,6 +861,17 @@ int Main(int argc, char** argv) {
                        {"methods", suite_methods}, {"ref_spp", suite_spp}});
   }
 
+  if (default_run.ok) {
+    line("");
+    line("## Default run — `aalab run` with its defaults (11 scenes × 12 methods, 960x540, 64 spp, 2 timed repeats), prebuilt");
+    line("");
+    line("| wall s | CPU s | cores used | peak memory (max RSS) |");
+    line("|---|---|---|---|");
+    line("| " + Fmt("%.1f", default_run.wall_s) + " | " + Fmt("%.1f", default_run.cpu_s) + " | " +
+         Fmt("%.2f", default_run.cpu_s / default_run.wall_s) + " | " + Fmt("%.0f MB", default_run.max_rss_mb) + " |");
+    figures.push_back({{"group", "default-run"}, {"unit", "s"}, {"wall_s", default_run.wall_s}, {"cpu_s", default_run.cpu_s},
+                       {"max_rss_mb", default_run.max_rss_mb}});
+  }
   AppendMsaaBench(cfg.quick, tab, report);  // bench/bench_msaa.cpp
   // ---------------------------------------------------------------- goals
   line("");
@@ -832,10 +887,10 @@ int Main(int argc, char** argv) {
   {
     const Stats& s = get("fxaa311-p39/real/t1");
     const double r = s.Median() / get("floor/real/t1").Median();
-    goal("FXAA 3.11 p39 within 8× of the bandwidth floor, real content (1 thread)", Fmt("%.1f×", r), r <= 8.0);
+    goal("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (1 thread)", Fmt("%.1f×", r), r <= 6.0);
     const Stats& s2 = get("fxaa311-p39/real/t2");
     const double r2 = s2.Median() / get("floor/real/t2").Median();
-    goal("FXAA 3.11 p39 within 8× of the bandwidth floor, real content (2 threads)", Fmt("%.1f×", r2), r2 <= 8.0);
+    goal("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (2 threads)", Fmt("%.1f×", r2), r2 <= 6.0);
   }
   {
     double worst = 1e9;
@@ -850,8 +905,14 @@ int Main(int argc, char** argv) {
              std::to_string(trace_ratio_t1.size()) + " scenes below 70%",
          below == 0);
   }
-  goal("SSIM ≥ 10× faster than scikit-image's Gaussian SSIM (1 thread)", ssim_speedup > 0 ? Fmt("%.1f×", ssim_speedup) : "skimage missing",
-       ssim_speedup >= 10.0);
+  goal("SSIM as in a run ≥ 15× faster than scikit-image's Gaussian SSIM (1 thread)",
+       ssim_speedup > 0 ? Fmt("%.1f×", ssim_speedup) : "skimage missing", ssim_speedup >= 15.0);
+  {
+    const double sp = get("metric-ssim-run/t1").Median() / get("metric-ssim-run/t2").Median();
+    goal("SSIM as in a run: 2 threads ≥ 1.8× one thread", Fmt("%.2f×", sp) + "; the 2-thread runs got " +
+         Fmt("%.2f", cores("metric-ssim-run/t2")) + " cores", sp >= 1.8);
+  }
+  goal("TAA temporal step ≤ 2× fxaa311-p39's time (1080p, 2 threads)", Fmt("%.2f×", taa_ratio), taa_ratio > 0 && taa_ratio <= 2.0);
   {
     double worst = 1e9;
     std::string worst_name;
@@ -887,7 +948,14 @@ int Main(int argc, char** argv) {
     goal("(same on CPU seconds, less exposed to other load)", Fmt("worst deviation %.0f%%", 100 * linear_worst_cpu), linear_worst_cpu <= 0.15);
   }
   if (suite_t1 > 0 && suite_t2 > 0) {
-    goal("(info) suite at 960x540: 2 threads vs 1", Fmt("%.2f×", suite_t1 / suite_t2), suite_t1 / suite_t2 >= 1.8);
+    goal("quick suite at 960x540: 2 threads ≥ 1.85× one thread", Fmt("%.2f×", suite_t1 / suite_t2), suite_t1 / suite_t2 >= 1.85);
+  }
+
+  if (default_run.ok) {
+    goal("default run (`aalab run`, prebuilt) ≤ 30 s wall and ≤ 300 MB peak memory",
+         Fmt("%.1f s", default_run.wall_s) + " wall (" + Fmt("%.1f", default_run.cpu_s) + " CPU s), " +
+             Fmt("%.0f MB", default_run.max_rss_mb) + " peak",
+         default_run.wall_s <= 30.0 && default_run.max_rss_mb <= 300.0);
   }
 
   const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

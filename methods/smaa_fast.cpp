@@ -60,12 +60,14 @@ constexpr uint8_t kLeft = 1;  // edge-plane bits: r (left edge) and g (top edge)
 constexpr uint8_t kTop = 2;
 
 // The edge texture as one byte per pixel (bit 0 = r, bit 1 = g), plus one flag per row
-// (any edge in the row).
+// (any edge in the row). The bytes are allocated uninitialised: the parallel pass that
+// fills a row clears it first (no serial zero-fill of the whole plane).
 struct EdgePlane {
   int w = 0, h = 0;
-  std::vector<uint8_t> e;
+  std::unique_ptr<uint8_t[]> e;
   std::vector<uint8_t> row_any;
-  const uint8_t* Row(int y) const { return e.data() + static_cast<size_t>(y) * w; }
+  const uint8_t* Row(int y) const { return e.get() + static_cast<size_t>(y) * w; }
+  uint8_t* Row(int y) { return e.get() + static_cast<size_t>(y) * w; }
 };
 
 // EdgePixel's decision from the six deltas it computes; returns the two edge bits.
@@ -152,7 +154,8 @@ void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t
       const uint8_t* rt = in.Row(std::max(y - 1, 0));
       const uint8_t* rtt = in.Row(std::max(y - 2, 0));
       const uint8_t* rb = in.Row(std::min(y + 1, h - 1));
-      uint8_t* out = plane->e.data() + static_cast<size_t>(y) * w;
+      uint8_t* out = plane->Row(y);
+      std::memset(out, 0, static_cast<size_t>(w));  // pixels the prefilter settles keep 0
       CandidateRow(r0, rt, w, safe, tmp.data(), cand.data());
       uint64_t kept = 0;
       uint8_t any = 0;
@@ -193,7 +196,7 @@ void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t
 // The edge plane as the RGBA8 edge texture (r, g = 0 or 255), for the debug view.
 Image8 EdgeTextureOf(const EdgePlane& pl) {
   Image8 t(pl.w, pl.h, 4, 0);
-  for (size_t i = 0; i < pl.e.size(); ++i) {
+  for (size_t i = 0; i < t.PixelCount(); ++i) {
     t.Data()[4 * i] = (pl.e[i] & kLeft) ? 255 : 0;
     t.Data()[4 * i + 1] = (pl.e[i] & kTop) ? 255 : 0;
   }
@@ -202,9 +205,21 @@ Image8 EdgeTextureOf(const EdgePlane& pl) {
 
 // BilinearSampler::SampleNormalized, operation for operation (BilinearAt, clamped reads,
 // UnormToFloat, BilinearBlend), inline and with its own tap counter.
+// An RGBA8 texture: the fast path's own buffers and Image8 alike.
+struct Tex8 {
+  const uint8_t* data = nullptr;
+  int w = 0, h = 0;
+  explicit Tex8(const Image8& img) : data(img.Data().data()), w(img.Width()), h(img.Height()) {
+    AALAB_CHECK(img.Channels() == 4, "SMAA textures are RGBA8");
+  }
+  Tex8(const uint8_t* d, int width, int height) : data(d), w(width), h(height) {}
+  const uint8_t* Pixel(int x, int y) const { return data + 4 * (static_cast<size_t>(y) * w + x); }
+  const uint8_t* Row(int y) const { return Pixel(0, y); }
+};
+
 class InlineSampler {
  public:
-  InlineSampler(const Image8& img, SubTexel mode) : img_(img), w_(img.Width()), h_(img.Height()), mode_(mode) {}
+  InlineSampler(Tex8 img, SubTexel mode) : img_(img), w_(img.w), h_(img.h), mode_(mode) {}
   [[gnu::always_inline]] Float4 SampleNormalized(float s, float t) {
     ++taps_;
     const BilinearFootprint f = BilinearAt(s * static_cast<float>(w_), t * static_cast<float>(h_), w_, h_, mode_);
@@ -225,7 +240,7 @@ class InlineSampler {
 
  private:
   static float U(uint8_t k) { return UnormToFloat(k); }  // BilinearSampler::Fetch
-  const Image8& img_;
+  Tex8 img_;
   int w_, h_;
   SubTexel mode_;
   uint64_t taps_ = 0;
@@ -292,11 +307,16 @@ bool AnyRow(const std::vector<uint8_t>& row_any, int y, int r0, int r1) {
 }
 
 // The blend texture (RGBA8, as the reference stores it), a byte plane "weights not all 0"
-// and per-row flags, for pass 3.
+// and per-row flags, for pass 3. The texture and the plane are allocated uninitialised:
+// the parallel weights pass clears each row before it writes it (no serial zero-fill).
 struct BlendTex {
-  Image8 tex;
-  std::vector<uint8_t> nz;
+  int w = 0, h = 0;
+  std::unique_ptr<uint8_t[]> px;  // 4 bytes per pixel
+  std::unique_ptr<uint8_t[]> nz;  // only when the footprint test of BlendFlags reads it
   std::vector<uint8_t> row_any;
+  Tex8 Tex() const { return Tex8(px.get(), w, h); }
+  uint8_t* Row(int y) { return px.get() + 4 * static_cast<size_t>(y) * w; }
+  const uint8_t* Row(int y) const { return px.get() + 4 * static_cast<size_t>(y) * w; }
 };
 
 void WeightsFast(const EdgePlane& edges, const SmaaParams& p, BlendTex* out, uint64_t* taps) {
@@ -311,11 +331,13 @@ void WeightsFast(const EdgePlane& edges, const SmaaParams& p, BlendTex* out, uin
   std::vector<uint64_t> t(static_cast<size_t>((h + kGrain - 1) / kGrain), 0);
   ParallelForChunks(h, kGrain, [&](int y0, int y1) {
     PlaneEdges reader(edges, p.subtexel);
-    InlineSampler as(area_tex, p.subtexel), ss(search_tex, p.subtexel);
+    InlineSampler as(Tex8(area_tex), p.subtexel), ss(Tex8(search_tex), p.subtexel);
     smaa_detail::WeightsShader<PlaneEdges, InlineSampler> shader(reader, as, ss, p, f);
     std::vector<uint8_t> col(static_cast<size_t>(w)), flags(static_cast<size_t>(w));
     uint64_t skipped = 0;
     for (int y = y0; y < y1; ++y) {
+      std::memset(out->Row(y), 0, 4 * static_cast<size_t>(w));
+      if (out->nz) std::memset(out->nz.get() + static_cast<size_t>(y) * w, 0, static_cast<size_t>(w));
       if (!AnyRow(edges.row_any, y, -1, 1)) {
         skipped += static_cast<uint64_t>(w);  // every pixel's one fetch returns (0, 0)
         continue;
@@ -324,7 +346,7 @@ void WeightsFast(const EdgePlane& edges, const SmaaParams& p, BlendTex* out, uin
         const uint8_t* er = edges.Row(y);
         for (int x = 0; x < w; ++x) flags[static_cast<size_t>(x)] = er[x];
       } else {
-        NeighbourFlags(edges.e.data(), w, h, y, -1, 1, -1, 1, col.data(), flags.data());
+        NeighbourFlags(edges.e.get(), w, h, y, -1, 1, -1, 1, col.data(), flags.data());
       }
       uint8_t row_any = 0;
       for (int x = 0; x < w; ++x) {
@@ -333,13 +355,13 @@ void WeightsFast(const EdgePlane& edges, const SmaaParams& p, BlendTex* out, uin
           continue;
         }
         const Float4 wt = shader.Run(x, y);
-        uint8_t* o = out->tex.Pixel(x, y);
+        uint8_t* o = out->Row(y) + 4 * x;
         o[0] = QuantizeUnorm8(wt.r);
         o[1] = QuantizeUnorm8(wt.g);
         o[2] = QuantizeUnorm8(wt.b);
         o[3] = QuantizeUnorm8(wt.a);
         const uint8_t nz = (o[0] | o[1] | o[2] | o[3]) != 0;
-        if (!out->nz.empty()) out->nz[static_cast<size_t>(y) * w + x] = nz;
+        if (out->nz) out->nz[static_cast<size_t>(y) * w + x] = nz;
         row_any |= nz;
       }
       out->row_any[static_cast<size_t>(y)] = row_any;
@@ -356,13 +378,13 @@ void WeightsFast(const EdgePlane& edges, const SmaaParams& p, BlendTex* out, uin
 // own.b, right.a or bottom.g is non-zero. Otherwise (exact fractions) any non-zero byte in
 // the fetches' footprints (rows y-1 .. y+2, columns x-1 .. x+2) flags it.
 void BlendFlags(const BlendTex& b, bool precise, int y, uint8_t* col, uint8_t* flags) {
-  const int w = b.tex.Width(), h = b.tex.Height();
+  const int w = b.w, h = b.h;
   if (!precise) {
-    NeighbourFlags(b.nz.data(), w, h, y, -1, 2, -1, 2, col, flags);
+    NeighbourFlags(b.nz.get(), w, h, y, -1, 2, -1, 2, col, flags);
     return;
   }
-  const uint8_t* own = b.tex.Row(y);
-  const uint8_t* below = b.tex.Row(std::min(y + 1, h - 1));
+  const uint8_t* own = b.Row(y);
+  const uint8_t* below = b.Row(std::min(y + 1, h - 1));
   for (int x = 0; x < w - 1; ++x) flags[x] = (own[4 * x] | own[4 * x + 2] | own[4 * (x + 1) + 3] | below[4 * x + 1]) != 0;
   const int x = w - 1;
   flags[x] = (own[4 * x] | own[4 * x + 2] | own[4 * x + 3] | below[4 * x + 1]) != 0;
@@ -376,7 +398,7 @@ Image8 BlendFast(const Image8& in, const BlendTex& blend, const SmaaParams& p, u
   Image8 out(w, h, 4);
   std::vector<uint64_t> t(static_cast<size_t>((h + kGrain - 1) / kGrain), 0);
   ParallelForChunks(h, kGrain, [&](int y0, int y1) {
-    InlineSampler bs(blend.tex, p.subtexel), cs(in, p.subtexel);
+    InlineSampler bs(blend.Tex(), p.subtexel), cs(Tex8(in), p.subtexel);
     std::vector<uint8_t> col(static_cast<size_t>(w)), flags(static_cast<size_t>(w), 1);
     uint64_t copied = 0;
     for (int y = y0; y < y1; ++y) {
@@ -389,8 +411,8 @@ Image8 BlendFast(const Image8& in, const BlendTex& blend, const SmaaParams& p, u
         continue;
       }
       if (shortcut) BlendFlags(blend, precise, y, col.data(), flags.data());
-      const uint8_t* own = blend.tex.Row(y);
-      const uint8_t* below = blend.tex.Row(std::min(y + 1, h - 1));
+      const uint8_t* own = blend.Row(y);
+      const uint8_t* below = blend.Row(std::min(y + 1, h - 1));
       for (int x = 0; x < w; ++x) {
         if (!flags[static_cast<size_t>(x)]) {
           copied += 4;
@@ -426,20 +448,26 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
   EdgePlane edges;
   edges.w = in.Width();
   edges.h = in.Height();
-  edges.e.assign(in.PixelCount(), 0);  // pixels the prefilter settles keep 0
+  edges.e.reset(new uint8_t[in.PixelCount()]);  // rows cleared by EdgesFast
   edges.row_any.resize(static_cast<size_t>(in.Height()));
   EdgesFast(in, params, &edges, &taps);
   if (view == 1 && stats) stats->taps += taps;  // a debug view counts the passes it ran
   if (view == 1) return smaa_detail::EdgesView(EdgeTextureOf(edges));
   BlendTex blend;
-  blend.tex = Image8(in.Width(), in.Height(), 4, 0);
+  blend.w = in.Width();
+  blend.h = in.Height();
+  blend.px.reset(new uint8_t[4 * in.PixelCount()]);  // rows cleared by WeightsFast
   const bool precise = params.subtexel == SubTexel::kFixed8 && in.Width() <= kMaxShortcutSize &&
                        in.Height() <= kMaxShortcutSize;
-  if (!precise) blend.nz.assign(in.PixelCount(), 0);  // only the footprint test of BlendFlags reads it
+  if (!precise) blend.nz.reset(new uint8_t[in.PixelCount()]);  // only the footprint test of BlendFlags reads it
   blend.row_any.assign(static_cast<size_t>(in.Height()), 0);
   WeightsFast(edges, params, &blend, &taps);
   if (view == 2 && stats) stats->taps += taps;
-  if (view == 2) return smaa_detail::WeightsView(blend.tex);
+  if (view == 2) {
+    Image8 tex(blend.w, blend.h, 4);
+    std::memcpy(tex.Data().data(), blend.px.get(), tex.Data().size());
+    return smaa_detail::WeightsView(tex);
+  }
   Image8 out = BlendFast(in, blend, params, &taps);
   if (stats) stats->taps += taps;
   return out;

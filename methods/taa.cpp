@@ -98,7 +98,9 @@ inline Ycc ClipToBox(Ycc h, const float* lo, const float* hi) {
 /// QuantizeUnorm8(SrgbEncode(v)) for v in [0, 1], bit for bit, without a pow per channel:
 /// the function is non-decreasing in v, so code k starts at the smallest float where it is
 /// reached; those 255 thresholds are found by bisection over the float bit patterns of
-/// [0, 1] (ordered like the values) and a lookup is a binary search (8 comparisons).
+/// [0, 1] (ordered like the values). A lookup takes a first guess from the value's high 16
+/// bits (exponent and 8 mantissa bits: the code of the smallest float with those bits, a
+/// lower bound) and steps up past the thresholds the value reaches (at most one or two).
 /// tests/motion/taa_test.cpp checks it against the direct formula on a dense grid.
 class Encode8 {
  public:
@@ -115,20 +117,21 @@ class Encode8 {
       }
       start_[static_cast<size_t>(k - 1)] = FromBits(lo);
     }
-    // A first guess per 1/kBuckets of [0, 1]: the code at the bucket's lower end (a lower
-    // bound for every value in it, the function being non-decreasing).
-    for (int b = 0; b < kBuckets; ++b) {
-      const float v = static_cast<float>(b) / kBuckets;
-      guess_[static_cast<size_t>(b)] = static_cast<uint8_t>(std::upper_bound(start_.begin(), start_.end(), v) - start_.begin());
+    // A first guess per bucket of float bit patterns (the high 16 bits): the code of the
+    // bucket's smallest float (a lower bound for every value in it, the function being
+    // non-decreasing). Buckets hold at most 2^16 ulps: under one code step above 1/64 and
+    // far less below (the linear segment's 12.92·255 codes per unit meets ulps of 1e-10).
+    for (uint32_t b = 0; b < kBuckets; ++b) {
+      const float v = FromBits(b << kShift);
+      guess_[b] = static_cast<uint8_t>(std::upper_bound(start_.begin(), start_.end(), v) - start_.begin());
     }
   }
-  /// v in [0, 1] (NaN excluded). The guess is at most a code or two low (sRGB's steepest
-  /// slope, 12.92·255 codes per unit, spans < 1 code per bucket); step up to the exact code.
+  /// v in [0, 1] (NaN excluded; -0 reads as 0); step up from the guess to the exact code.
   uint8_t operator()(float v) const {
-    int b = static_cast<int>(v * kBuckets);
-    b = std::clamp(b, 0, kBuckets - 1);
-    while (b > 0 && static_cast<float>(b) / kBuckets > v) --b;  // float rounding of v·kBuckets
-    int code = guess_[static_cast<size_t>(b)];
+    uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    bits &= 0x7fffffffu;  // -0 → +0 (every other input is non-negative)
+    int code = guess_[std::min(bits >> kShift, kBuckets - 1)];
     while (code < 255 && v >= start_[static_cast<size_t>(code)]) ++code;
     return static_cast<uint8_t>(code);
   }
@@ -140,7 +143,8 @@ class Encode8 {
     std::memcpy(&f, &b, sizeof f);
     return f;
   }
-  static constexpr int kBuckets = 4096;
+  static constexpr uint32_t kShift = 16;
+  static constexpr uint32_t kBuckets = (0x3f800000u >> kShift) + 1;  // up to 1.0f
   std::array<float, 255> start_{};  ///< start_[k − 1]: smallest float whose code is ≥ k
   std::array<uint8_t, kBuckets> guess_{};
 };
@@ -156,6 +160,97 @@ uint8_t EncodeSrgb8(float v) { return Encoder()(v); }
 
 namespace {
 
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_TAA_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define AALAB_TAA_CLONES
+#endif
+
+/// Rectify's box for one channel of one row, every pixel at once: the 3×3 neighbourhood's
+/// min/max (and with `variance`, intersected with μ ± γσ), each value formed exactly as
+/// Rectify forms it (same operations, same order: rows top to bottom, columns left to right).
+/// r0, r1, r2: the rows above, at and below (clamped), padded by one replicated texel on each
+/// side (texel x at index x + 1).
+// std::min / std::max of floats as selects the compiler vectorises (same results: std::min(a,
+// b) is b < a ? b : a, std::max(a, b) is a < b ? b : a).
+inline float Min(float a, float b) { return b < a ? b : a; }
+inline float Max(float a, float b) { return a < b ? b : a; }
+
+template <bool kVariance>
+AALAB_TAA_CLONES void BoxRow(const float* __restrict r0, const float* __restrict r1, const float* __restrict r2, int w,
+                             float gamma, float* __restrict lo, float* __restrict hi) {
+  for (int x = 0; x < w; ++x) {
+    float mn = 1e30f, mx = -1e30f, m1 = 0.0f, m2 = 0.0f;
+    const float* rows[3] = {r0, r1, r2};
+    for (int k = 0; k < 3; ++k) {
+      for (int d = 0; d < 3; ++d) {
+        const float v = rows[k][x + d];
+        mn = Min(mn, v);
+        mx = Max(mx, v);
+        m1 += v;
+        m2 += v * v;
+      }
+    }
+    if constexpr (kVariance) {
+      const float mu = m1 / 9.0f;
+      const float sigma = std::sqrt(std::fabs(m2 / 9.0f - mu * mu));  // -fno-math-errno: no branch
+      mn = Max(mn, mu - gamma * sigma);
+      mx = Min(mx, mu + gamma * sigma);
+    }
+    lo[x] = mn;
+    hi[x] = mx;
+  }
+}
+
+/// The rest of a row's step, every pixel at once: ClipToBox of the history (when `clip`),
+/// the blend with the current YCoCg (cy, cco, ccg: the padded plane rows, texel x at x + 1),
+/// FromYCoCg and the clamp, exactly as StepReference; pixels without history (valid[x] = 0)
+/// take the current linear colour (cur, 3 floats per pixel). Writes the new history (3
+/// floats per pixel) and the planar output colour for the encode.
+struct RowIn {
+  const float *hy, *hco, *hcg;           // history in YCoCg
+  const float *lo[3], *hi[3];             // the box (when clip)
+  const float *cy, *cco, *ccg;           // current YCoCg, padded
+  const float* cur;                      // current linear RGB
+  const uint8_t* valid;
+};
+// std::clamp(v, 0, 1) as selects: v < 0 ? 0 : (1 < v ? 1 : v).
+inline float Clamp01(float v) { return v < 0.0f ? 0.0f : (1.0f < v ? 1.0f : v); }
+
+template <bool kClip>
+AALAB_TAA_CLONES void BlendRow(const RowIn& in, int w, float alpha, float* __restrict next, float* __restrict outr,
+                               float* __restrict outg, float* __restrict outb) {
+  for (int x = 0; x < w; ++x) {
+    float h[3] = {in.hy[x], in.hco[x], in.hcg[x]};
+    if constexpr (kClip) {
+      float centre[3], v[3], m = 0.0f;
+      for (int c = 0; c < 3; ++c) {
+        centre[c] = 0.5f * (in.hi[c][x] + in.lo[c][x]);
+        const float ext = 0.5f * (in.hi[c][x] - in.lo[c][x]) + 1e-8f;
+        v[c] = h[c] - centre[c];
+        m = Max(m, std::fabs(v[c] / ext));
+      }
+      const bool inside = m <= 1.0f;
+      const float div = inside ? 1.0f : m;  // every lane divides (by 1 where the result is unused)
+      for (int c = 0; c < 3; ++c) {
+        const float moved = centre[c] + v[c] / div;
+        h[c] = inside ? h[c] : moved;
+      }
+    }
+    const float oy = h[0] + alpha * (in.cy[x + 1] - h[0]);
+    const float oco = h[1] + alpha * (in.cco[x + 1] - h[1]);
+    const float ocg = h[2] + alpha * (in.ccg[x + 1] - h[2]);
+    const float t = oy - ocg;
+    const bool ok = in.valid[x] != 0;
+    const float c0 = in.cur[3 * x], c1 = in.cur[3 * x + 1], c2 = in.cur[3 * x + 2];  // loaded always: a select
+    const float o[3] = {ok ? Clamp01(t + oco) : c0, ok ? Clamp01(oy + ocg) : c1, ok ? Clamp01(t - oco) : c2};
+    for (int c = 0; c < 3; ++c) next[3 * x + c] = o[c];
+    outr[x] = o[0];
+    outg[x] = o[1];
+    outb[x] = o[2];
+  }
+}
+
 class TaaState : public TemporalState {
  public:
   explicit TaaState(TaaParams p) : p_(p) {
@@ -164,8 +259,132 @@ class TaaState : public TemporalState {
 
   std::unique_ptr<TemporalState> Clone() const override { return std::make_unique<TaaState>(*this); }
 
+  /// Makes Step run StepReference (the simple implementation) instead of StepFast.
+  void UseReference() { reference_ = true; }
+
   Image8 Step(const TemporalInput& in, PostStats* stats) override {
     AALAB_CHECK(in.frame != nullptr, "TAA needs a frame");
+    return reference_ ? StepReference(in, stats) : StepFast(in, stats);
+  }
+
+ private:
+  bool HaveHistory(const TemporalInput& in, int W, int H) const {
+    const size_t n = static_cast<size_t>(W) * static_cast<size_t>(H);
+    return !history_.empty() && hist_w_ == W && hist_h_ == H && in.previous && in.previous->size() == 2 * n;
+  }
+
+  /// The production step: the same values as StepReference, bit for bit, organised for a
+  /// CPU. The current frame's YCoCg goes into three padded planes (one replicated texel on
+  /// each side, so the clamped 3×3 neighbourhood is plain reads); each row then computes the
+  /// boxes of all its pixels (BoxRow), fetches the history (scalar: a gather), clips, blends
+  /// and converts (BlendRow) and encodes. tests/motion/taa_test.cpp compares the two.
+  Image8 StepFast(const TemporalInput& in, PostStats* stats) {
+    const Image8& f = *in.frame;
+    const int W = f.Width(), H = f.Height();
+    const size_t n = static_cast<size_t>(W) * static_cast<size_t>(H);
+    const size_t pw = static_cast<size_t>(W) + 2;
+    const bool have_history = HaveHistory(in, W, H);
+    const bool clip = p_.clip != Clip::kNone;
+    const bool need_planes = have_history;
+    if (need_planes) {
+      for (auto& pl : planes_) pl.resize(pw * static_cast<size_t>(H));
+      ParallelForChunks(H, 16, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+          float* py = &planes_[0][static_cast<size_t>(y) * pw];
+          float* pco = &planes_[1][static_cast<size_t>(y) * pw];
+          float* pcg = &planes_[2][static_cast<size_t>(y) * pw];
+          const uint8_t* src = f.Row(y);
+          for (int x = 0; x < W; ++x) {
+            const float rgb[3] = {decode_[src[4 * x]], decode_[src[4 * x + 1]], decode_[src[4 * x + 2]]};
+            const Ycc v = ToYCoCg(rgb);
+            py[x + 1] = v.y;
+            pco[x + 1] = v.co;
+            pcg[x + 1] = v.cg;
+          }
+          for (float* p : {py, pco, pcg}) {
+            p[0] = p[1];
+            p[W + 1] = p[W];
+          }
+        }
+      });
+    }
+    next_.resize(3 * n);
+    Image8 result(W, H, 4, 255);
+    const Encode8& encode = Encoder();
+    ParallelForChunks(H, 8, [&](int y0, int y1) {
+      std::vector<float> buf(static_cast<size_t>(W) * 13);
+      std::vector<uint8_t> valid(static_cast<size_t>(W));
+      float* hy = buf.data();
+      float* hco = hy + W;
+      float* hcg = hco + W;
+      float* lo[3] = {hcg + W, hcg + 2 * W, hcg + 3 * W};
+      float* hi[3] = {hcg + 4 * W, hcg + 5 * W, hcg + 6 * W};
+      float* outc[3] = {hcg + 7 * W, hcg + 8 * W, hcg + 9 * W};
+      std::vector<float> cur(3 * static_cast<size_t>(W));
+      for (int y = y0; y < y1; ++y) {
+        const uint8_t* src = f.Row(y);
+        for (int x = 0; x < W; ++x) {
+          for (int c = 0; c < 3; ++c) cur[3 * static_cast<size_t>(x) + c] = decode_[src[4 * x + c]];
+        }
+        float* next = &next_[3 * static_cast<size_t>(y) * W];
+        uint8_t* row = result.Row(y);
+        if (!have_history) {
+          std::copy(cur.begin(), cur.end(), next);
+          for (int x = 0; x < W; ++x) {
+            for (int c = 0; c < 3; ++c) row[4 * x + c] = encode(cur[3 * static_cast<size_t>(x) + c]);
+          }
+          continue;
+        }
+        const float* prev = &(*in.previous)[2 * static_cast<size_t>(y) * W];
+        for (int x = 0; x < W; ++x) {
+          const float px = prev[2 * x], py = prev[2 * x + 1];
+          const bool ok = px >= 0.0f && px <= static_cast<float>(W) && py >= 0.0f && py <= static_cast<float>(H);
+          valid[static_cast<size_t>(x)] = ok;
+          if (!ok) {
+            hy[x] = hco[x] = hcg[x] = 0.0f;
+            continue;
+          }
+          float h[3];
+          FetchHistory(px, py, h);
+          const Ycc v = ToYCoCg(h);
+          hy[x] = v.y;
+          hco[x] = v.co;
+          hcg[x] = v.cg;
+        }
+        const size_t rm = static_cast<size_t>(std::max(y - 1, 0)) * pw, rc = static_cast<size_t>(y) * pw,
+                     rp = static_cast<size_t>(std::min(y + 1, H - 1)) * pw;
+        if (clip) {
+          for (int c = 0; c < 3; ++c) {
+            const float* pl = planes_[static_cast<size_t>(c)].data();
+            if (p_.clip == Clip::kVariance) {
+              BoxRow<true>(pl + rm, pl + rc, pl + rp, W, p_.gamma, lo[c], hi[c]);
+            } else {
+              BoxRow<false>(pl + rm, pl + rc, pl + rp, W, p_.gamma, lo[c], hi[c]);
+            }
+          }
+        }
+        RowIn ri{hy, hco, hcg, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, planes_[0].data() + rc,
+                 planes_[1].data() + rc, planes_[2].data() + rc, cur.data(), valid.data()};
+        if (clip) {
+          BlendRow<true>(ri, W, p_.alpha, next, outc[0], outc[1], outc[2]);
+        } else {
+          BlendRow<false>(ri, W, p_.alpha, next, outc[0], outc[1], outc[2]);
+        }
+        for (int x = 0; x < W; ++x) {
+          for (int c = 0; c < 3; ++c) row[4 * x + c] = encode(outc[c][x]);
+        }
+      }
+    });
+    history_.swap(next_);
+    hist_w_ = W;
+    hist_h_ = H;
+    if (stats) stats->taps += static_cast<uint64_t>(n) * (have_history ? 13u : 1u);  // 9 neighbours + 4 history texels
+    return result;
+  }
+
+  /// The simple implementation of the step (one loop nest per pass, per pixel), kept as the
+  /// reference StepFast is tested against.
+  Image8 StepReference(const TemporalInput& in, PostStats* stats) {
     const Image8& f = *in.frame;
     const int W = f.Width(), H = f.Height();
     const size_t n = static_cast<size_t>(W) * static_cast<size_t>(H);
@@ -180,8 +399,7 @@ class TaaState : public TemporalState {
         ycc_[i] = ToYCoCg(&cur_[3 * i]);
       }
     });
-    const bool have_history = !history_.empty() && hist_w_ == W && hist_h_ == H && in.previous &&
-                              in.previous->size() == 2 * n;
+    const bool have_history = HaveHistory(in, W, H);
     next_.resize(3 * n);
     Image8 result(W, H, 4, 255);
     const Encode8& encode = Encoder();
@@ -216,7 +434,6 @@ class TaaState : public TemporalState {
     return result;
   }
 
- private:
   /// Bilinear fetch of the history at continuous pixel position (px, py), clamp to edge.
   void FetchHistory(float px, float py, float* out) const {
     const float fx = px - 0.5f, fy = py - 0.5f;
@@ -266,12 +483,14 @@ class TaaState : public TemporalState {
   }
 
   TaaParams p_;
+  bool reference_ = false;
   std::array<float, 256> decode_{};
   std::vector<float> history_;  ///< linear display RGB, 3 floats per pixel
   int hist_w_ = 0, hist_h_ = 0;
   // Per-frame working buffers (not state: reused only to avoid reallocating every frame).
   std::vector<float> cur_, next_;
   std::vector<Ycc> ycc_;
+  std::array<std::vector<float>, 3> planes_;  ///< StepFast: Y, Co, Cg, padded rows of W + 2
 };
 
 Clip ParseClip(const std::string& name) {
@@ -282,6 +501,14 @@ Clip ParseClip(const std::string& name) {
 }
 
 }  // namespace
+
+std::unique_ptr<TemporalState> TaaReferenceCopy(const TemporalState& taa_state) {
+  const auto* t = dynamic_cast<const TaaState*>(&taa_state);
+  AALAB_CHECK(t != nullptr, "TaaReferenceCopy needs a TAA state");
+  auto copy = std::make_unique<TaaState>(*t);
+  copy->UseReference();
+  return copy;
+}
 
 std::vector<MethodEntry> TaaMethods() {
   std::vector<MethodEntry> out;

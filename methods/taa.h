@@ -1,11 +1,20 @@
 /// Helpers of the TAA method (methods/taa.cpp) that tests check on their own.
 #pragma once
 #include <cstdint>
+#include <memory>
+
+#include "methods/method.h"
 
 namespace aalab {
 
 /// QuantizeUnorm8(SrgbEncode(v)) for v in [0, 1] (same bits), by a search over the 255 code
 /// thresholds instead of a pow per value: TAA's output encode.
 uint8_t EncodeSrgb8(float v);
+
+/// A copy of a TAA state (one made by MakeMethod("taa...").make_state()) whose Step runs the
+/// simple implementation of the temporal step (one loop nest per pass, per pixel) instead of
+/// the production path: the reference tests/motion/taa_test.cpp compares the two with, bit
+/// for bit. InternalError for any other state.
+std::unique_ptr<TemporalState> TaaReferenceCopy(const TemporalState& taa_state);
 
 }  // namespace aalab

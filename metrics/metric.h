@@ -9,6 +9,8 @@
 
 namespace aalab {
 
+struct SsimReferenceSide;  // metrics/ssim.h
+
 /// One isolated flat disk for the signed coverage (area bias) metric: a window that holds the
 /// whole disk and, outside it, one uniform colour; the disk's colour and that colour in
 /// display-linear light; its exact area and radius in pixels. Built from the scene
@@ -32,6 +34,9 @@ struct MetricInput {
   /// Pixels per degree of the viewing condition (metrics/viewing.h) FLIP uses; 67 (FLIP's
   /// default, kFlipDefaultPpd) unless the run names another.
   double flip_ppd = 67.0;
+  /// Optional: PrepareSsimReference(*reference), prepared once per scene by the caller (the
+  /// reference's half of SSIM). Same values either way.
+  const SsimReferenceSide* ssim_reference = nullptr;
   /// Optional: isolated flat disks for the area-bias metrics (metrics/coverage_bias.cpp).
   const std::vector<CoverageProbe>* coverage_probes = nullptr;
 };

@@ -310,9 +310,166 @@ double ChannelSsim(const ImageF& a, const ImageF& b, int c, const std::array<dou
   return total / (static_cast<double>(nx) * static_cast<double>(ny));
 }
 
+// The prepared path (PrepareSsimReference / ComputeSsim(image, side)): the reference's two
+// window means E_w[y] and E_w[y²] are the same for every method of a scene, so they are
+// formed once, with the kernels above (the same sums in the same order), and kept as full
+// planes over the valid region; a method's score then forms only E_w[x], E_w[x²] and
+// E_w[xy] (3 of the 5 horizontal and vertical window sums) and the map.
+
+// Vertical window sums of two planes, for the reference side.
+constexpr int kV2Lanes = 32;
+
+AALAB_SIMD_CLONES
+void VerticalSums2(const double* const* rows_b, const double* const* rows_bb, int nx, const double* w, double* mb_out,
+                   double* mbb_out) {
+  int ox = 0;
+  for (; ox + kV2Lanes <= nx; ox += kV2Lanes) {
+    double mb[kV2Lanes] = {}, mbb[kV2Lanes] = {};
+    for (int j = 0; j < kTaps; ++j) {
+      const double wj = w[j];
+      for (int k = 0; k < kV2Lanes; ++k) {
+        mb[k] += wj * rows_b[j][ox + k];
+        mbb[k] += wj * rows_bb[j][ox + k];
+      }
+    }
+    for (int k = 0; k < kV2Lanes; ++k) {
+      mb_out[ox + k] = mb[k];
+      mbb_out[ox + k] = mbb[k];
+    }
+  }
+  for (; ox < nx; ++ox) {
+    double mb = 0.0, mbb = 0.0;
+    for (int j = 0; j < kTaps; ++j) {
+      mb += w[j] * rows_b[j][ox];
+      mbb += w[j] * rows_bb[j][ox];
+    }
+    mb_out[ox] = mb;
+    mbb_out[ox] = mbb;
+  }
+}
+
+// VerticalAndMap with the reference's vertical sums given (mb, mbb: one row of the planes).
+AALAB_SIMD_CLONES
+void VerticalAndMapPrepared(const double* const* rows_a, const double* const* rows_aa, const double* const* rows_ab,
+                            const double* mb, const double* mbb, int nx, const double* w, double c1, double c2,
+                            double* map) {
+  int ox = 0;
+  for (; ox + kVLanes <= nx; ox += kVLanes) {
+    double ma[kVLanes] = {}, maa[kVLanes] = {}, mab[kVLanes] = {};
+    for (int j = 0; j < kTaps; ++j) {
+      const double wj = w[j];
+      for (int k = 0; k < kVLanes; ++k) {
+        ma[k] += wj * rows_a[j][ox + k];
+        maa[k] += wj * rows_aa[j][ox + k];
+        mab[k] += wj * rows_ab[j][ox + k];
+      }
+    }
+    for (int k = 0; k < kVLanes; ++k) map[ox + k] = MapValue(ma[k], mb[ox + k], maa[k], mbb[ox + k], mab[k], c1, c2);
+  }
+  for (; ox < nx; ++ox) {
+    double ma = 0.0, maa = 0.0, mab = 0.0;
+    for (int j = 0; j < kTaps; ++j) {
+      ma += w[j] * rows_a[j][ox];
+      maa += w[j] * rows_aa[j][ox];
+      mab += w[j] * rows_ab[j][ox];
+    }
+    map[ox] = MapValue(ma, mb[ox], maa, mbb[ox], mab, c1, c2);
+  }
+}
+
+}  // namespace
+
+struct SsimReferenceSide {
+  const ImageF* image = nullptr;  // the reference (for the cross term E_w[xy]); not owned
+  int nx = 0, ny = 0;  // valid region; 0 when the image is smaller than the window
+  std::array<std::vector<double>, 3> mean, mean_sq;  // E_w[y], E_w[y²] per channel, nx × ny row-major
+};
+
+namespace {
+
+// Fills side->mean[c], side->mean_sq[c] (same blocking as ChannelSsim).
+void PrepareChannel(SsimReferenceSide* side, int c, const std::array<double, kTaps>& w) {
+  const ImageF& b = *side->image;
+  const int nx = side->nx, ny = side->ny;
+  const int cb = b.Channels();
+  side->mean[c].resize(static_cast<size_t>(nx) * ny);
+  side->mean_sq[c].resize(static_cast<size_t>(nx) * ny);
+  ParallelForChunks(ny, kChunkRows, [&](int r0, int r1) {
+    const int strip_in = kStripCols + 2 * kSsimRadius;
+    std::vector<double> rb(strip_in), rbb(strip_in);
+    std::vector<double> ring(static_cast<size_t>(2) * kTaps * kStripCols);
+    for (int x0 = 0; x0 < nx; x0 += kStripCols) {
+      const int sx = std::min(kStripCols, nx - x0);
+      auto slot = [&](int plane, int yy) { return ring.data() + (static_cast<size_t>(plane) * kTaps + yy % kTaps) * kStripCols; };
+      for (int yy = r0; yy < r1 + 2 * kSsimRadius; ++yy) {
+        HorizontalRow(b.Row(yy) + static_cast<size_t>(x0) * cb + c, cb, sx + 2 * kSsimRadius, sx, w.data(), rb.data(),
+                      rbb.data(), slot(0, yy), slot(1, yy));
+        const int r = yy - 2 * kSsimRadius;
+        if (r < r0) continue;
+        const double* pb[kTaps];
+        const double* pbb[kTaps];
+        for (int j = 0; j < kTaps; ++j) {
+          pb[j] = slot(0, r + j);
+          pbb[j] = slot(1, r + j);
+        }
+        const size_t at = static_cast<size_t>(r) * nx + x0;
+        VerticalSums2(pb, pbb, sx, w.data(), side->mean[c].data() + at, side->mean_sq[c].data() + at);
+      }
+    }
+  });
+}
+
+// ChannelSsim against a prepared reference: E_w[x], E_w[x²], E_w[xy] in a 3-plane ring, the
+// reference's sums read from its planes; the map and its row sums as ChannelSsim.
+double ChannelSsimPrepared(const ImageF& a, const SsimReferenceSide& side, int c, const std::array<double, kTaps>& w) {
+  const ImageF& b = *side.image;
+  const int nx = side.nx, ny = side.ny;
+  const double c1 = (kSsimK1 * 1.0) * (kSsimK1 * 1.0);
+  const double c2 = (kSsimK2 * 1.0) * (kSsimK2 * 1.0);
+  std::vector<double> row_sums(ny, 0.0);
+  const int ca = a.Channels(), cb = b.Channels();
+  ParallelForChunks(ny, kChunkRows, [&](int r0, int r1) {
+    const int strip_in = kStripCols + 2 * kSsimRadius;
+    std::vector<double> ra(strip_in), rb(strip_in), raa(strip_in), rab(strip_in);
+    std::vector<double> ring(static_cast<size_t>(3) * kTaps * kStripCols);
+    std::vector<double> map(kStripCols);
+    for (int x0 = 0; x0 < nx; x0 += kStripCols) {
+      const int sx = std::min(kStripCols, nx - x0);
+      const int sw = sx + 2 * kSsimRadius;
+      auto slot = [&](int plane, int yy) { return ring.data() + (static_cast<size_t>(plane) * kTaps + yy % kTaps) * kStripCols; };
+      for (int yy = r0; yy < r1 + 2 * kSsimRadius; ++yy) {
+        HorizontalRow(a.Row(yy) + static_cast<size_t>(x0) * ca + c, ca, sw, sx, w.data(), ra.data(), raa.data(),
+                      slot(0, yy), slot(1, yy));
+        const float* brow = b.Row(yy) + static_cast<size_t>(x0) * cb + c;
+        for (int x = 0; x < sw; ++x) rb[x] = static_cast<double>(brow[static_cast<size_t>(x) * cb]);
+        HorizontalCross(ra.data(), rb.data(), sw, sx, w.data(), rab.data(), slot(2, yy));
+        const int r = yy - 2 * kSsimRadius;
+        if (r < r0) continue;
+        const double* pa[kTaps];
+        const double* paa[kTaps];
+        const double* pab[kTaps];
+        for (int j = 0; j < kTaps; ++j) {
+          pa[j] = slot(0, r + j);
+          paa[j] = slot(1, r + j);
+          pab[j] = slot(2, r + j);
+        }
+        const size_t at = static_cast<size_t>(r) * nx + x0;
+        VerticalAndMapPrepared(pa, paa, pab, side.mean[c].data() + at, side.mean_sq[c].data() + at, sx, w.data(), c1,
+                               c2, map.data());
+        double sum = row_sums[r];
+        for (int ox = 0; ox < sx; ++ox) sum += map[ox];
+        row_sums[r] = sum;
+      }
+    }
+  });
+  double total = 0.0;
+  for (double s : row_sums) total += s;
+  return total / (static_cast<double>(nx) * static_cast<double>(ny));
+}
+
 std::vector<MetricValue> ComputeSsimMetric(const MetricInput& in) {
   AALAB_CHECK(in.image && in.reference, "ssim needs image and reference");
-  const SsimResult r = ComputeSsim(*in.image, *in.reference);
+  const SsimResult r = in.ssim_reference ? ComputeSsim(*in.image, *in.ssim_reference) : ComputeSsim(*in.image, *in.reference);
   return {MetricValue{"ssim", r.ssim, r.null_reason}};
 }
 
@@ -320,6 +477,8 @@ std::vector<MetricValue> ComputeSsimMetric(const MetricInput& in) {
 
 namespace {
 
+// The checks and the per-channel loop shared by every path; channel(c, w) is one
+// channel's mean SSIM.
 template <typename Channel>
 SsimResult ComputeSsimWith(const ImageF& a, const ImageF& b, Channel channel) {
   RequireSameShape(a, b, "ssim");
@@ -333,7 +492,7 @@ SsimResult ComputeSsimWith(const ImageF& a, const ImageF& b, Channel channel) {
     return out;
   }
   const auto w = GaussianWindow();
-  for (int c = 0; c < 3; ++c) out.per_channel[c] = channel(a, b, c, w);
+  for (int c = 0; c < 3; ++c) out.per_channel[c] = channel(c, w);
   out.ssim = (out.per_channel[0] + out.per_channel[1] + out.per_channel[2]) / 3.0;
   return out;
 }
@@ -341,11 +500,31 @@ SsimResult ComputeSsimWith(const ImageF& a, const ImageF& b, Channel channel) {
 }  // namespace
 
 SsimResult ComputeSsimReference(const ImageF& a, const ImageF& b) {
-  return ComputeSsimWith(a, b, ChannelSsimReference);
+  return ComputeSsimWith(a, b, [&](int c, const auto& w) { return ChannelSsimReference(a, b, c, w); });
 }
 
-SsimResult ComputeSsim(const ImageF& a, const ImageF& b) { return ComputeSsimWith(a, b, ChannelSsim); }
+SsimResult ComputeSsim(const ImageF& a, const ImageF& b) {
+  return ComputeSsimWith(a, b, [&](int c, const auto& w) { return ChannelSsim(a, b, c, w); });
+}
 
+std::shared_ptr<const SsimReferenceSide> PrepareSsimReference(const ImageF& reference) {
+  if (reference.Channels() < 3) {
+    throw UserError("ssim: needs RGB images (got " + std::to_string(reference.Channels()) + " channels)");
+  }
+  auto side = std::make_shared<SsimReferenceSide>();
+  side->image = &reference;
+  if (reference.Width() < 2 * kSsimRadius + 1 || reference.Height() < 2 * kSsimRadius + 1) return side;
+  side->nx = reference.Width() - 2 * kSsimRadius;
+  side->ny = reference.Height() - 2 * kSsimRadius;
+  const auto w = GaussianWindow();
+  for (int c = 0; c < 3; ++c) PrepareChannel(side.get(), c, w);
+  return side;
+}
+
+SsimResult ComputeSsim(const ImageF& image, const SsimReferenceSide& reference) {
+  return ComputeSsimWith(image, *reference.image,
+                         [&](int c, const auto& w) { return ChannelSsimPrepared(image, reference, c, w); });
+}
 
 std::vector<MetricEntry> SsimMetrics() {
   return {{"ssim",

@@ -3,6 +3,7 @@
 /// metrics/ssim.cpp and metrics/METRICS.md.
 #pragma once
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -35,6 +36,21 @@ struct SsimResult {
 /// Throws UserError when the shapes differ or there are fewer than 3 channels.
 /// Production path (vectorised kernels); the same bits as ComputeSsimReference.
 SsimResult ComputeSsim(const ImageF& a, const ImageF& b);
+
+/// The reference's half of SSIM (its window means E_w[y] and E_w[y²] per channel over the
+/// valid region, and its pixels for the cross term), which depends on the reference alone: a
+/// run scores every method against one reference, so the runner prepares it once per scene.
+struct SsimReferenceSide;
+/// Prepares the reference side of ComputeSsim(image, reference) (same checks as ComputeSsim
+/// where they concern the reference alone). Memory: 48 bytes per valid pixel. The side keeps
+/// a pointer to `reference` (for the cross term): the reference must outlive it.
+std::shared_ptr<const SsimReferenceSide> PrepareSsimReference(const ImageF& reference);
+/// Refused: the side would point at a temporary.
+std::shared_ptr<const SsimReferenceSide> PrepareSsimReference(ImageF&& reference) = delete;
+/// ComputeSsim(image, reference) against a prepared reference: the same values bit for bit
+/// (the same sums in the same order; the reference's are formed once). UserError when the
+/// image's size differs from the reference's or it has fewer than 3 channels.
+SsimResult ComputeSsim(const ImageF& image, const SsimReferenceSide& reference);
 
 /// The simple implementation of ComputeSsim (one loop nest per pass, exactly the sums of the
 /// definition above), kept as the reference the production path is tested against.

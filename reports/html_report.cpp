@@ -460,6 +460,27 @@ void Methodology(std::string& h, const Report& r) {
        "(post-filter fetches) — are the portable measure of work.</li>\n</ul>\n</section>\n";
 }
 
+// Where the run's time went (report.json's time_breakdown; the table `aalab run` prints at
+// its end): wall and CPU seconds per stage, the stage's share of the wall time and the cores
+// it kept busy on average (CPU ÷ wall). Nothing when the report has no breakdown.
+void TimeBreakdownTable(std::string& h, const std::vector<StageTime>& stages) {
+  if (stages.empty()) return;
+  double total = 0;
+  for (const auto& t : stages) {
+    if (t.stage == "total") total = t.wall_ms;
+  }
+  h += "<table class=\"kv\" id=\"time-breakdown\"><caption>Where the run's time went</caption><thead><tr>"
+       "<th scope=\"col\">stage</th><th scope=\"col\">wall s</th><th scope=\"col\">CPU s</th>"
+       "<th scope=\"col\">share of wall</th><th scope=\"col\">cores busy</th></tr></thead><tbody>";
+  for (const auto& t : stages) {
+    h += "<tr><th scope=\"row\">" + HtmlEscape(t.stage) + "</th><td>" + Printf("%.2f", t.wall_ms / 1e3) + "</td><td>" +
+         Printf("%.2f", t.cpu_ms / 1e3) + "</td><td>" +
+         (total > 0 ? Printf("%.1f%%", 100.0 * t.wall_ms / total) : std::string("—")) + "</td><td>" +
+         (t.wall_ms > 0 ? Printf("%.2f", t.cpu_ms / t.wall_ms) : std::string("—")) + "</td></tr>";
+  }
+  h += "</tbody></table>";
+}
+
 void ContextSection(std::string& h, const Report& r) {
   h += "<footer id=\"context\">\n<h2>Run context</h2>\n<div class=\"ctx\"><table class=\"kv\"><caption>Tool and "
        "machine</caption><tbody>";
@@ -470,7 +491,9 @@ void ContextSection(std::string& h, const Report& r) {
   for (const auto& [k, v] : r.settings) {
     h += "<tr><th scope=\"row\">" + HtmlEscape(k) + "</th><td>" + HtmlEscape(v) + "</td></tr>";
   }
-  h += "</tbody></table></div>\n<p>Schema version " + Int(r.schema_version) +
+  h += "</tbody></table>";
+  TimeBreakdownTable(h, r.time_breakdown);
+  h += "</div>\n<p>Schema version " + Int(r.schema_version) +
        ". Every number on this page comes from <a href=\"report.json\">report.json</a> (embedded below as "
        "data); metric definitions: <code>metrics/METRICS.md</code>, report format: "
        "<code>reports/SCHEMA.md</code> in the aalab source.</p>\n</footer>\n";

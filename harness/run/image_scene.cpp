@@ -232,6 +232,7 @@ std::unique_ptr<PreparedScene> PrepareSource(SceneSource& source, int width, int
   for (const auto& w : CheckCapture(p->none_f, p->ref.image, p->ref.edge_mask).warnings) {
     sr.warnings.push_back(v.frames > 1 ? "frame " + std::to_string(frame) + ": " + w : w);
   }
+  p->ssim_reference = PrepareSsimReference(p->ref.image);
   // The same crop choice as PrepareScene.
   const int crop_size = std::max(8, std::min(32, std::min(W, H) / 4));
   for (const auto& c : PickCrops(CropScore(p->none_f, p->ref.image, &p->ref.edge_mask), crop_size, 4)) {

@@ -226,10 +226,8 @@ MergeResult MergeRunFolders(const std::vector<std::string>& dirs, const std::str
     fs::create_directories((tmp / rel).parent_path());
     CopyFileChecked(src.string(), (tmp / rel).string());
   }
-  // The page as a single run writes it: rendered before the time breakdown exists.
-  Report page = merged;
-  page.time_breakdown.clear();
-  WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(page));
+  // The page of the merged report, with its time breakdown (each stage summed over the shards).
+  WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(merged));
   WriteTextFile((tmp / "report.json").string(), ReportToJson(merged).dump(2) + "\n");
   out.Commit();
   return MergeResult{"run", reports[0].shard->count, merged.scenes.size(), merged.rows.size(), out_dir};

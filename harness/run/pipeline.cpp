@@ -140,6 +140,7 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
   p->none_f = ToFloat(p->frame1x, 3);
   p->flip_ppd = flip_ppd;
   p->flip_reference = flip::PrepareReference(p->ref.image, flip_ppd);
+  p->ssim_reference = PrepareSsimReference(p->ref.image);
   for (const DiskProbe& d : DiskProbes(sc, W, H, p->ref.image)) {
     CoverageProbe c;
     c.x0 = d.x0;
@@ -324,6 +325,7 @@ void ScoreOutput(const PreparedScene& p, Image8 frame, MethodOutput* out, StageC
   in.coverage_probes = &p.coverage_probes;
   in.flip_values = &flip_values;
   in.flip_ppd = p.flip_ppd;
+  in.ssim_reference = p.ssim_reference.get();
   for (const auto& v : ComputeAllMetrics(in)) row.metrics.push_back({v.name, v.value, v.null_reason});
   // The FLIP map for the page, 8 bits: round(255 · v), v in [0, 1].
   out->flip_grey.resize(flip_values.size());

@@ -14,6 +14,7 @@
 #include "methods/method.h"
 #include "metrics/flip.h"
 #include "metrics/metric.h"
+#include "metrics/ssim.h"
 #include "reports/result.h"
 #include "scenes/render.h"
 #include "scenes/scene.h"
@@ -43,6 +44,8 @@ struct PreparedScene {
   /// The reference's half of LDR-FLIP, computed once and shared by every method's score.
   std::shared_ptr<const flip::ReferenceSide> flip_reference;
   double flip_ppd = kFlipDefaultPpd;  ///< the viewing condition's pixels per degree FLIP uses
+  /// The reference's half of SSIM (its window means), computed once per scene.
+  std::shared_ptr<const SsimReferenceSide> ssim_reference;
   /// Isolated flat disks for the area-bias metrics (empty for scenes that are not flat).
   std::vector<CoverageProbe> coverage_probes;
   /// The sequence this frame belongs to: the scene with its animation (for motion vectors)

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -141,6 +142,17 @@ TEST(Cli, RunWritesReportCoveringTheMatrix) {
   }
   EXPECT_EQ(stages, (std::vector<std::string>{"load_scenes", "references", "method_renders_filters", "metrics",
                                               "image_writing", "html", "total"}));
+  // The page shows the same breakdown: a row per stage with its wall seconds as report.json has them.
+  std::ifstream page_file(out / "index.html");
+  const std::string page((std::istreambuf_iterator<char>(page_file)), std::istreambuf_iterator<char>());
+  const auto table = page.find("id=\"time-breakdown\"");
+  ASSERT_NE(table, std::string::npos);
+  for (const auto& t : doc["time_breakdown"]) {
+    char cell[64];
+    std::snprintf(cell, sizeof cell, "</th><td>%.2f</td>", t["wall_ms"].get<double>() / 1e3);
+    const std::string row = "<th scope=\"row\">" + t["stage"].get<std::string>() + cell;
+    EXPECT_NE(page.find(row, table), std::string::npos) << row;
+  }
   // Every row has its output and FLIP map; the error heatmap is drawn by the page, not stored.
   for (const auto& row : doc["rows"]) {
     EXPECT_TRUE(fs::exists(out / row["images"]["flip_map"].get<std::string>()));

@@ -21,9 +21,7 @@ ImageF RandomImage(int w, int h, int channels, uint64_t seed, bool wild) {
   return img;
 }
 
-void ExpectSsimSame(const ImageF& a, const ImageF& b, const std::string& what) {
-  const SsimResult fast = ComputeSsim(a, b);
-  const SsimResult ref = ComputeSsimReference(a, b);
+void ExpectSsimResultSame(const SsimResult& fast, const SsimResult& ref, const std::string& what) {
   ASSERT_EQ(fast.ssim.has_value(), ref.ssim.has_value()) << what;
   EXPECT_EQ(fast.null_reason, ref.null_reason) << what;
   if (fast.ssim) {
@@ -34,8 +32,16 @@ void ExpectSsimSame(const ImageF& a, const ImageF& b, const std::string& what) {
   }
 }
 
+// The streaming production path and the prepared-reference path (the reference's half formed
+// once, as a run does) against the reference implementation.
+void ExpectSsimSame(const ImageF& a, const ImageF& b, const std::string& what) {
+  const SsimResult ref = ComputeSsimReference(a, b);
+  ExpectSsimResultSame(ComputeSsim(a, b), ref, what);
+  ExpectSsimResultSame(ComputeSsim(a, *PrepareSsimReference(b)), ref, what + " (prepared reference)");
+}
+
 TEST(FastPath, SsimEqualsReferenceOnRandomAndRenderedImages) {
-  for (auto [w, h] : std::vector<std::pair<int, int>>{{11, 11}, {12, 30}, {31, 11}, {64, 64}, {203, 117}, {10, 40}}) {
+  for (auto [w, h] : std::vector<std::pair<int, int>>{{11, 11}, {12, 30}, {31, 11}, {64, 64}, {203, 117}, {10, 40}, {300, 80}, {523, 11}}) {
     for (int channels : {3, 4}) {
       const ImageF a = RandomImage(w, h, channels, 7 + w, false);
       const ImageF b = RandomImage(w, h, channels, 99 + h, true);
@@ -56,8 +62,21 @@ TEST(FastPath, SsimSameAtOneAndTwoThreads) {
   const SsimResult one = ComputeSsim(a, b);
   SetThreadCount(2);
   const SsimResult two = ComputeSsim(a, b);
+  const SsimResult two_prepared = ComputeSsim(a, *PrepareSsimReference(b));
+  SetThreadCount(1);
+  const SsimResult one_prepared = ComputeSsim(a, *PrepareSsimReference(b));
   SetThreadCount(0);
   EXPECT_EQ(std::memcmp(&*one.ssim, &*two.ssim, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&*one.ssim, &*one_prepared.ssim, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&*one.ssim, &*two_prepared.ssim, sizeof(double)), 0);
+}
+
+TEST(FastPath, SsimPreparedReferenceRefusesAnotherSize) {
+  const ImageF reference = RandomImage(40, 30, 3, 5, false);
+  const auto side = PrepareSsimReference(reference);
+  EXPECT_THROW(ComputeSsim(RandomImage(41, 30, 3, 6, false), *side), UserError);
+  const ImageF grey(40, 30, 1);
+  EXPECT_THROW(PrepareSsimReference(grey), UserError);
 }
 
 TEST(FastPath, FlipWithReusedReferenceEqualsFreshComputation) {
