@@ -270,7 +270,7 @@ TEST(ExportCli, BadInputNamesTheProblemAndWritesNothing) {
   std::ofstream(out / "thesis.tex") << "mine";
   const CmdResult r = Aalab("export " + run.string() + " --out " + out.string());
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.output.find("refusing to replace it"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cannot be replaced"), std::string::npos) << r.output;
   EXPECT_EQ(Slurp(out / "thesis.tex"), "mine");
   fs::remove_all(root);
 }
