@@ -13,6 +13,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "harness/core/cleanup.h"
 #include "harness/core/error.h"
 #include "harness/io/image_io.h"
@@ -47,6 +49,29 @@ std::set<std::string> FilesUnder(const fs::path& dir) {
   return files;
 }
 
+/// Collects every string of a JSON document that names a file under images/.
+void ImagePathsIn(const nlohmann::json& j, std::set<std::string>* out) {
+  if (j.is_object() || j.is_array()) {
+    for (const auto& v : j) ImagePathsIn(v, out);
+  } else if (j.is_string()) {
+    const auto& s = j.get_ref<const std::string&>();
+    if (s.rfind("images/", 0) == 0) out->insert(s);
+  }
+}
+
+/// A run folder written by an aalab build from before the marker: report.json is an aalab
+/// report and every file in the folder is report.json, index.html or an image the report
+/// names. Anything else (a user's file anywhere in it) and it is not recognised.
+bool IsLegacyRunFolder(const fs::path& dir, const std::set<std::string>& files) {
+  if (!files.count("report.json") || !fs::is_regular_file(dir / "report.json")) return false;
+  std::ifstream f(dir / "report.json");
+  const nlohmann::json j = nlohmann::json::parse(f, nullptr, /*allow_exceptions=*/false);
+  if (!j.is_object() || !j.contains("schema_version") || !j.contains("rows")) return false;
+  std::set<std::string> named = {"report.json", "index.html"};
+  ImagePathsIn(j, &named);
+  return std::all_of(files.begin(), files.end(), [&](const std::string& file) { return named.count(file) > 0; });
+}
+
 /// "" when `dir` (an existing folder) may be replaced by an output of `kind`, else why not.
 std::string WhyNotReplaceable(const fs::path& dir, const std::string& kind) {
   const std::set<std::string> files = FilesUnder(dir);
@@ -54,9 +79,10 @@ std::string WhyNotReplaceable(const fs::path& dir, const std::string& kind) {
   const fs::path marker = dir / kOutputMarker;
   std::ifstream f(marker);
   std::string header, kind_line;
+  if (!fs::exists(marker) && kind == "run" && IsLegacyRunFolder(dir, files)) return "";
   if (!f || !std::getline(f, header) || header != MarkerHeader() || !std::getline(f, kind_line)) {
     return "it is not empty and was not written by aalab (it has no " + std::string(kOutputMarker) +
-           ", the list of files aalab wrote; outputs of older aalab builds have none: remove such a folder yourself)";
+           ", the list of files aalab wrote, and is not a run folder of an older aalab build holding only its report, page and the images the report names)";
   }
   if (kind_line != "kind " + kind) {
     return "it holds an aalab output of another kind (" + kind_line.substr(std::min<size_t>(5, kind_line.size())) +

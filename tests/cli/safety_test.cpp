@@ -5,6 +5,8 @@
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
+
+#include "harness/run/out_folder.h"
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -94,6 +96,28 @@ TEST(Safety, OutputPathsAreNormalisedAndUsersFilesSurvive) {
   ExpectFail(Aalab("run " + kSmall + " --out " + (dir / "x").string()), 1, {"was not made by aalab"}, "x.partial");
   EXPECT_TRUE(fs::exists(dir / "x.partial" / "keep.txt"));
   EXPECT_EQ(Leftovers(dir), std::vector<std::string>{(dir / "x.partial").string()});
+  fs::remove_all(dir);
+}
+
+// A run folder from an aalab build before the list of written files (no .aalab-output) is
+// replaced when it holds only report.json, index.html and the images report.json names, so
+// `make run` after an update reuses out/; one more file anywhere in it and it is refused.
+TEST(Safety, AnOlderBuildsRunFolderIsReplacedOnlyWhenItHoldsNothingElse) {
+  const fs::path dir = TempDir("safety-legacy");
+  const fs::path res = dir / "old";
+  ASSERT_EQ(Aalab("run " + kSmall + " --out " + res.string()).code, 0);
+  fs::remove(res / kOutputMarker);  // as an older build left it
+  std::ofstream(res / "images" / "circle" / "mine.png") << "x";
+  ExpectFail(Aalab("run " + kSmall + " --out " + res.string()), 1, {"was not written by aalab"}, "legacy+user file");
+  EXPECT_EQ(Bytes(res / "images" / "circle" / "mine.png"), "x");
+  fs::remove(res / "images" / "circle" / "mine.png");
+  // A report.json that is not an aalab report does not make a folder aalab's.
+  const std::string report = Bytes(res / "report.json");
+  std::ofstream(res / "report.json") << "{\"rows\": []}";
+  ExpectFail(Aalab("run " + kSmall + " --out " + res.string()), 1, {"was not written by aalab"}, "legacy+foreign json");
+  std::ofstream(res / "report.json") << report;
+  EXPECT_EQ(Aalab("run " + kSmall + " --out " + res.string()).code, 0);
+  EXPECT_TRUE(fs::exists(res / kOutputMarker));
   fs::remove_all(dir);
 }
 
