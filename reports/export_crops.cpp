@@ -9,6 +9,7 @@
 
 #include "harness/core/error.h"
 #include "metrics/heatmap.h"
+#include "reports/html_report.h"
 
 namespace aalab {
 
@@ -35,20 +36,8 @@ std::string OutputOf(const ExportSource& src, const std::string& scene, const st
 
 }  // namespace
 
-std::string XmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+// SVG text and attributes need the same five escapes as HTML: one implementation.
+std::string XmlEscape(const std::string& text) { return HtmlEscape(text); }
 
 CropFigureOptions DefaultCropFigure(const std::vector<ExportSource>& sources, const ExportSelection& sel,
                                     const CropFigureOptions& asked) {
