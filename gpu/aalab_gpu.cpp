@@ -46,6 +46,7 @@
 #include "gpu/texture_probe.h"
 #include "harness/core/color.h"
 #include "harness/core/error.h"
+#include "harness/core/hash.h"
 #include "harness/core/params.h"
 
 namespace aalab {
@@ -206,21 +207,12 @@ std::vector<FrameSet> ReadManifest(const std::string& dir) {
   return sets;
 }
 
-uint32_t Mix(uint32_t v) {
-  v ^= v >> 16;
-  v *= 0x7feb352dU;
-  v ^= v >> 15;
-  v *= 0x846ca68bU;
-  v ^= v >> 16;
-  return v;
-}
-
 // Noise: every pixel an independent hash; the worst case for FXAA (edges everywhere).
 Image8 NoiseFrame(int w, int h) {
   Image8 img(w, h, 4, 255);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
-      const uint32_t r = Mix(static_cast<uint32_t>(y * 65537 + x) * 2654435761u);
+      const uint32_t r = MixBits32(static_cast<uint32_t>(y * 65537 + x) * 2654435761u);
       uint8_t* p = img.Pixel(x, y);
       p[0] = r & 255;
       p[1] = (r >> 8) & 255;

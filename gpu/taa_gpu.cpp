@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "harness/core/error.h"
+#include "harness/core/hash.h"
 #include "harness/core/params.h"
 #include "methods/cuda/post_filters_cuda.h"
 #include "methods/registry.h"
@@ -72,15 +73,6 @@ void Poison(cuda::GpuFrame& f) {
   f.Upload(poison.data());
 }
 
-uint32_t Mix(uint32_t v) {
-  v ^= v >> 16;
-  v *= 0x7feb352dU;
-  v ^= v >> 15;
-  v *= 0x846ca68bU;
-  v ^= v >> 16;
-  return v;
-}
-
 }  // namespace
 
 std::vector<std::string> DefaultGpuTaaSpecs() { return {"taa"}; }
@@ -99,7 +91,7 @@ TaaInput SyntheticTaaSequence(int width, int height, int frames) {
           r = 0.95, g = 0.85, b = 0.1;
         }
         if (v > 0.1 + 0.23 * u && v < 0.16 + 0.23 * u) r = g = b = 0.05;
-        const uint32_t n = Mix(static_cast<uint32_t>((t * 7919 + y) * 65537 + x));
+        const uint32_t n = MixBits32(static_cast<uint32_t>((t * 7919 + y) * 65537 + x));
         uint8_t* p = img.Pixel(x, y);
         const double c[3] = {r, g, b};
         for (int k = 0; k < 3; ++k) {

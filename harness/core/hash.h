@@ -29,6 +29,17 @@ inline uint64_t MixBits(uint64_t v) {
   return v;
 }
 
+/// 32-bit mixer (the "lowbias32" finaliser: xor-shift, multiply, twice), for synthetic test
+/// frames of the GPU tool.
+inline uint32_t MixBits32(uint32_t v) {
+  v ^= v >> 16;
+  v *= 0x7feb352dU;
+  v ^= v >> 15;
+  v *= 0x846ca68bU;
+  v ^= v >> 16;
+  return v;
+}
+
 /// Hash of a tuple of integers, order-sensitive.
 inline uint64_t HashTuple(uint64_t a, uint64_t b, uint64_t c, uint64_t d, uint64_t e = 0) {
   uint64_t h = MixBits(a + 0x9e3779b97f4a7c15ULL);

@@ -48,17 +48,11 @@ __device__ __forceinline__ float4 Texel(cudaTextureObject_t point, int x, int y)
 /// sampler.h FilterLerp / BilinearBlend: lerp(lerp(a, b, fx), lerp(c, d, fx), fy), a + w·(b − a).
 __device__ __forceinline__ float FilterLerp(float a, float b, float w) { return a + w * (b - a); }
 
-/// The CPU's BilinearSampler::Sample (harness/core/sampler.h: BilinearAt, BilinearBlend,
-/// UnormToFloat texels) from four point fetches, in float32 with the CPU's operation order:
-/// the "software filter" variant the gpu tool uses to show that every GPU/CPU difference
-/// comes from the texture unit (with it, outputs are bit-identical to the CPU).
-__device__ __forceinline__ float4 SoftBilinear(cudaTextureObject_t point, float u, float v, int w, int h) {
-  const float x = u - 0.5f;
-  const float y = v - 0.5f;
-  const float x0f = floorf(x);
-  const float y0f = floorf(y);
-  const float fx = x - x0f;
-  const float fy = y - y0f;
+/// The four CPU-decoded texels at corner (x0f, y0f) (clamped to [-1, w] × [-1, h]; the
+/// fetches clamp to the edge) blended with fractions (fx, fy) in sampler.h's order: the
+/// shared tail of SoftBilinear and of SMAA's software sampler (methods/cuda/smaa.cu).
+__device__ __forceinline__ float4 SoftBlendAt(cudaTextureObject_t point, float x0f, float y0f, float fx, float fy,
+                                              int w, int h) {
   const int x0 = static_cast<int>(fminf(fmaxf(x0f, -1.0f), static_cast<float>(w)));
   const int y0 = static_cast<int>(fminf(fmaxf(y0f, -1.0f), static_cast<float>(h)));
   const float4 a = Texel<true>(point, x0, y0);
@@ -70,6 +64,18 @@ __device__ __forceinline__ float4 SoftBilinear(cudaTextureObject_t point, float 
   };
   return make_float4(blend(a.x, b.x, c.x, d.x), blend(a.y, b.y, c.y, d.y), blend(a.z, b.z, c.z, d.z),
                      blend(a.w, b.w, c.w, d.w));
+}
+
+/// The CPU's BilinearSampler::Sample (harness/core/sampler.h: BilinearAt, BilinearBlend,
+/// UnormToFloat texels) from four point fetches, in float32 with the CPU's operation order:
+/// the "software filter" variant the gpu tool uses to show that every GPU/CPU difference
+/// comes from the texture unit (with it, outputs are bit-identical to the CPU).
+__device__ __forceinline__ float4 SoftBilinear(cudaTextureObject_t point, float u, float v, int w, int h) {
+  const float x = u - 0.5f;
+  const float y = v - 0.5f;
+  const float x0f = floorf(x);
+  const float y0f = floorf(y);
+  return SoftBlendAt(point, x0f, y0f, x - x0f, y - y0f, w, h);
 }
 
 /// A bilinear fetch at texel coordinates (u, v): the texture unit (kSoft = false) or

@@ -42,17 +42,7 @@ __device__ __forceinline__ float4 SoftSample(cudaTextureObject_t point, float u,
       fy = 0.0f;
     }
   }
-  const int x0 = static_cast<int>(fminf(fmaxf(x0f, -1.0f), static_cast<float>(w)));
-  const int y0 = static_cast<int>(fminf(fmaxf(y0f, -1.0f), static_cast<float>(h)));
-  const float4 a = Texel<true>(point, x0, y0);
-  const float4 b = Texel<true>(point, x0 + 1, y0);
-  const float4 c = Texel<true>(point, x0, y0 + 1);
-  const float4 d = Texel<true>(point, x0 + 1, y0 + 1);
-  auto blend = [fx, fy](float ta, float tb, float tc, float td) {
-    return FilterLerp(FilterLerp(ta, tb, fx), FilterLerp(tc, td, fx), fy);
-  };
-  return make_float4(blend(a.x, b.x, c.x, d.x), blend(a.y, b.y, c.y, d.y), blend(a.z, b.z, c.z, d.z),
-                     blend(a.w, b.w, c.w, d.w));
+  return SoftBlendAt(point, x0f, y0f, fx, fy, w, h);
 }
 
 // One texture as the shader reads it: the texture unit or SoftSample.

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/cli/cli_util.h"
 #include "harness/core/color.h"
 #include "harness/core/edge_mask.h"
 #include "harness/core/error.h"
@@ -31,12 +32,7 @@ namespace fs = std::filesystem;
 
 constexpr int kW = 48, kH = 32;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("aalab-capture-check-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path TempDir(const std::string& name) { return clitest::TempDir("capture-check-" + name); }
 
 void WriteText(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/cli/cli_util.h"
 #include "harness/core/color.h"
 #include "harness/core/error.h"
 #include "harness/io/image_io.h"
@@ -30,12 +31,7 @@ using Names = std::vector<std::string>;
 
 constexpr int kW = 32, kH = 20;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("aalab-image-ch-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path TempDir(const std::string& name) { return clitest::TempDir("image-ch-" + name); }
 
 void WriteText(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 

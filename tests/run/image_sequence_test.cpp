@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/cli/cli_util.h"
 #include "harness/core/error.h"
 #include "harness/io/image_io.h"
 #include "harness/run/image_scene.h"
@@ -27,12 +28,7 @@ namespace fs = std::filesystem;
 
 constexpr int kW = 40, kH = 24, kFrames = 6;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("aalab-image-seq-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path TempDir(const std::string& name) { return clitest::TempDir("image-seq-" + name); }
 
 void WriteText(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
