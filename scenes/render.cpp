@@ -62,19 +62,46 @@ void PlaceStratifiedPixel(uint64_t pixel_hash, int grid, uint64_t seed, float fx
   }
 }
 
+/// DisplayLinearInline of every sample's rgb into d[3·k + c], for one tonemap: the
+/// same operations in the same order (std::clamp written out), without the per-sample
+/// switch, so that the loop has no branches and vectorises.
+template <Tonemap kTone>
+inline __attribute__((always_inline)) void DisplayLinearLoop(float exposure, const SampleResult* r, int n, float* d) {
+  for (int k = 0; k < n; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      float v = r[k].rgb[c];
+      v = v > 0.0f ? v : 0.0f;  // negatives and NaN → 0
+      v = ApplyTonemap(kTone, v * exposure);
+      d[3 * k + c] = v < 0.0f ? 0.0f : (1.0f < v ? 1.0f : v);
+    }
+  }
+}
+
+AALAB_SIMD_CLONES
+void DisplayLinearSamples(const Display& display, const SampleResult* r, int n, float* d) {
+  switch (display.tonemap) {
+    case Tonemap::kNone: DisplayLinearLoop<Tonemap::kNone>(display.exposure, r, n, d); break;
+    case Tonemap::kReinhard: DisplayLinearLoop<Tonemap::kReinhard>(display.exposure, r, n, d); break;
+    case Tonemap::kAces: DisplayLinearLoop<Tonemap::kAces>(display.exposure, r, n, d); break;
+  }
+}
+
 /// Per-thread sample buffers of RenderTiles, reused from tile to tile.
 struct TileScratch {
   std::vector<SamplePos> pos;
   std::vector<SampleResult> res;
+  std::vector<float> display;  // 3 per sample: DisplayLinearSamples
 };
 
-/// Calls `resolve(x, y, samples, spp)` for every pixel after tracing its samples; the spp
+/// Calls `resolve(x, y, samples, display, spp)` for every pixel after tracing its samples
+/// (display: the samples' DisplayLinearInline values, 3 floats each); the spp
 /// sample positions of pixel (x, y) come from `place(x, y, out)`. Tiles run in parallel,
 /// one Tracer::Trace call per tile (all its samples, pixel by pixel, row-major); counters
 /// merge per tile in tile order.
 template <typename Place, typename Resolve>
 void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Place& place,
                  const Resolve& resolve, TraceCounters* counters, TextureFootprint footprint) {
+  const Display& display = tracer.GetScene().display;
   AALAB_CHECK(width > 0 && height > 0 && spp > 0, "render size and spp must be positive");
   const int tiles_x = (width + kTile - 1) / kTile;
   const int tiles_y = (height + kTile - 1) / kTile;
@@ -86,9 +113,11 @@ void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Pla
     if (scratch.pos.size() < max_samples) {
       scratch.pos.resize(max_samples);
       scratch.res.resize(max_samples);
+      scratch.display.resize(3 * max_samples);
     }
     SamplePos* pos = scratch.pos.data();
     SampleResult* res = scratch.res.data();
+    float* disp = scratch.display.data();
     for (int t = begin; t < end; ++t) {
       const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
       const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
@@ -99,12 +128,12 @@ void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Pla
           n += static_cast<size_t>(spp);
         }
       }
-      std::fill(res, res + n, SampleResult{});
       tracer.Trace(pos, static_cast<int>(n), width, height, res, &per_tile[t], footprint);
+      DisplayLinearSamples(display, res, static_cast<int>(n), disp);
       size_t k = 0;
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
-          resolve(x, y, res + k, spp);
+          resolve(x, y, res + k, disp + 3 * k, spp);
           k += static_cast<size_t>(spp);
         }
       }
@@ -181,9 +210,13 @@ void TraceMsaaTiles(const Tracer& tracer, int width, int height, const MsaaSpec&
 /// Traces the samples of a method frame (the render spec's pattern and jitter, or MSAA) and
 /// calls `resolve(x, y, samples, spp)` for each pixel: what RenderFrame and RenderFrameLinear
 /// share.
-template <typename Resolve>
+///
+/// `resolve_display(x, y, samples, display, spp)` is the same resolve for samples that come
+/// with their display-linear values (every render but MSAA's).
+template <typename Resolve, typename ResolveDisplay>
 void TraceFrameSamples(const Tracer& tracer, int width, int height, const RenderSpec& spec, uint64_t seed,
-                       const Resolve& resolve, TraceCounters* counters, FrameStats* stats) {
+                       const Resolve& resolve, const ResolveDisplay& resolve_display, TraceCounters* counters,
+                       FrameStats* stats) {
   TextureFootprint footprint;  // MSAA shades at pixel rate: a one-pixel footprint
   if (spec.specular_aa.enabled) {
     footprint.gsaa_sigma2 = static_cast<float>(spec.specular_aa.sigma2);
@@ -233,7 +266,7 @@ void TraceFrameSamples(const Tracer& tracer, int width, int height, const Render
     case SamplePattern::kJitter: footprint.px = 1.0f / std::sqrt(static_cast<float>(spp)); break;
     default: footprint.px = 1.0f / static_cast<float>(n); break;
   }
-  RenderTiles(tracer, width, height, spp, place, resolve, counters, footprint);
+  RenderTiles(tracer, width, height, spp, place, resolve_display, counters, footprint);
 }
 
 }  // namespace
@@ -250,7 +283,16 @@ Image8 RenderFrame(const Tracer& tracer, int width, int height, const RenderSpec
       ResolveBoxPixel(display, r, count, out.Pixel(x, y));
     }
   };
-  TraceFrameSamples(tracer, width, height, spec, seed, resolve, counters, stats);
+  // The box resolve of ResolveBoxPixel from the samples' display-linear values.
+  auto resolve_display = [&](int x, int y, const SampleResult*, const float* d, int count) {
+    double sum[3] = {0, 0, 0};
+    for (int s = 0; s < count; ++s) {
+      for (int c = 0; c < 3; ++c) sum[c] += d[3 * s + c];
+    }
+    uint8_t* p = out.Pixel(x, y);
+    for (int c = 0; c < 3; ++c) p[c] = QuantizeUnorm8(SrgbEncode(static_cast<float>(sum[c] / count)));
+  };
+  TraceFrameSamples(tracer, width, height, spec, seed, resolve, resolve_display, counters, stats);
   return out;
 }
 
@@ -274,7 +316,14 @@ ImageF RenderFrameLinear(const Tracer& tracer, int width, int height, const Rend
     }
     for (int c = 0; c < 3; ++c) out.At(x, y, c) = static_cast<float>(sum[c] / count);
   };
-  TraceFrameSamples(tracer, width, height, spec, seed, resolve, counters, nullptr);
+  auto resolve_display = [&](int x, int y, const SampleResult*, const float* d, int count) {
+    double sum[3] = {0, 0, 0};
+    for (int s = 0; s < count; ++s) {
+      for (int c = 0; c < 3; ++c) sum[c] += d[3 * s + c];
+    }
+    for (int c = 0; c < 3; ++c) out.At(x, y, c) = static_cast<float>(sum[c] / count);
+  };
+  TraceFrameSamples(tracer, width, height, spec, seed, resolve, resolve_display, counters, nullptr);
   return out;
 }
 
@@ -289,7 +338,6 @@ int ReferenceGridForSpp(int spp) {
 Reference RenderReference(const Tracer& tracer, int width, int height, int grid, uint64_t seed,
                           TraceCounters* counters) {
   AALAB_CHECK(grid >= 2 && grid % 2 == 0, "reference grid must be even and >= 2");
-  const Display& display = tracer.GetScene().display;
   const int spp = grid * grid;
   Reference ref;
   ref.grid = grid;
@@ -302,7 +350,7 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
     const PixelHash ph(x, y);
     PlaceStratifiedPixel(ph.h, grid, rseed, static_cast<float>(x), static_cast<float>(y), out_pos);
   };
-  auto resolve = [&](int x, int y, const SampleResult* r, int count) {
+  auto resolve = [&](int x, int y, const SampleResult* r, const float* disp, int count) {
     double all[3] = {0, 0, 0}, a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
     int na = 0, nb = 0;
     bool edge = false;
@@ -310,15 +358,14 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
     int s = 0;
     for (int j = 0; j < grid; ++j) {  // s = j·grid + i, stratum (i, j)
       for (int i = 0; i < grid; ++i, ++s) {
-        float d[3];
-        DisplayLinearInline(display, r[s].rgb, d);
+        const float* d = disp + 3 * s;
         const bool even = (i + j) % 2 == 0;
         for (int c = 0; c < 3; ++c) {
           all[c] += d[c];
           (even ? a : b)[c] += d[c];
         }
         (even ? na : nb)++;
-        if (r[s].surface != r[0].surface || r[s].shadowed != r[0].shadowed) edge = true;
+        edge |= r[s].surface != r[0].surface || r[s].shadowed != r[0].shadowed;
       }
     }
     for (int c = 0; c < 3; ++c) {

@@ -30,8 +30,10 @@ void DeviceError(void* user, RTCError code, const char* str) {
 float EvaluatePattern(const Texture& tex, glm::vec2 uv) {
   switch (tex.pattern) {
     case TexturePattern::kChecker: {
-      const float a = std::floor(uv.x * tex.scale) + std::floor(uv.y * tex.scale);
-      return std::fmod(std::fabs(a), 2.0f) >= 1.0f ? 1.0f : 0.0f;
+      // a is an integer (or ±inf, NaN): fmod(|a|, 2) >= 1 exactly when |a| is odd, and every
+      // float from 2^24 on is even (fmod 0), as are inf and NaN (fmod NaN): no fmod call.
+      const float a = std::fabs(std::floor(uv.x * tex.scale) + std::floor(uv.y * tex.scale));
+      return a < 16777216.0f && (static_cast<int32_t>(a) & 1) ? 1.0f : 0.0f;
     }
     case TexturePattern::kStripes: {
       const float ang = glm::radians(tex.angle_deg);
@@ -66,6 +68,7 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
     if (scene.materials[s.material].CutOut()) im.any_alpha = true;
     if (scene.materials[s.material].Blended()) im.any_blend = true;
     if (scene.materials[s.material].gltf && !scene.materials[s.material].gltf->double_sided) im.any_cull = true;
+    if (scene.materials[s.material].gltf) im.any_gltf = true;
     RTCGeometry g = nullptr;
     switch (s.kind) {
       case ShapeKind::kTriangles: {
@@ -160,7 +163,29 @@ void tracer_detail::IntersectRays(RTCScene scene, const glm::vec3* org, const gl
     rh.ray.flags[k] = 0;
   }
   for (int base = 0; base < n; base += kPacket) {
-    for (int k = 0; k < kPacket; ++k) {
+    // A full packet of consecutive rays, all with tnear < tfar (camera rays): the same lanes
+    // as the general loop below, filled without its per-lane selects.
+    bool plain = !idx && base + kPacket <= n;
+    for (int k = 0; plain && k < kPacket; ++k) plain = tnear[base + k] < tfar[base + k];
+    if (plain) {
+      const glm::vec3* o = org + base;
+      const glm::vec3* d = dir + base;
+      for (int k = 0; k < kPacket; ++k) {
+        valid[k] = -1;
+        rh.ray.org_x[k] = o[k].x;
+        rh.ray.org_y[k] = o[k].y;
+        rh.ray.org_z[k] = o[k].z;
+        rh.ray.dir_x[k] = d[k].x;
+        rh.ray.dir_y[k] = d[k].y;
+        rh.ray.dir_z[k] = d[k].z;
+        rh.ray.tnear[k] = tnear[base + k];
+        rh.ray.tfar[k] = tfar[base + k];
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+      }
+    }
+    for (int k = 0; !plain && k < kPacket; ++k) {
       const int i = base + k;
       const int ri = i < n ? (idx ? idx[i] : i) : 0;
       const bool on = i < n && tnear[ri] < tfar[ri];
@@ -179,18 +204,55 @@ void tracer_detail::IntersectRays(RTCScene scene, const glm::vec3* org, const gl
       rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
     }
     rtcIntersect16(valid, scene, &ctx, &rh);
-    for (int k = 0; k < kPacket && base + k < n; ++k) {
+    const int lanes = std::min(kPacket, n - base);
+    for (int k = 0; k < lanes; ++k) {
+      // Branch-free: a miss (or an invalid lane) is Hit{}: t = inf, shape = -1, the rest 0.
+      const bool hit = valid[k] && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
       Hit& h = hits[base + k];
-      if (!valid[k] || rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
-        h = Hit{};
-        continue;
-      }
-      h.t = rh.ray.tfar[k];
-      h.shape = static_cast<int>(rh.hit.geomID[k]);
-      h.prim = rh.hit.primID[k];
-      h.u = rh.hit.u[k];
-      h.v = rh.hit.v[k];
-      h.ng = {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]};
+      h.t = hit ? rh.ray.tfar[k] : std::numeric_limits<float>::infinity();
+      h.shape = hit ? static_cast<int>(rh.hit.geomID[k]) : -1;
+      h.prim = hit ? rh.hit.primID[k] : 0u;
+      h.u = hit ? rh.hit.u[k] : 0.0f;
+      h.v = hit ? rh.hit.v[k] : 0.0f;
+      h.ng = hit ? glm::vec3(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]) : glm::vec3(0.0f);
+    }
+  }
+}
+
+void tracer_detail::OccludedRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear,
+                                 const float* tfar, int n, uint8_t* occluded) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  // Shadow rays of neighbouring samples start close together toward the same light: coherent
+  // (a traversal hint only; a yes/no answer cannot depend on it).
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRay16 ray;
+  alignas(64) int valid[kPacket];
+  for (int k = 0; k < kPacket; ++k) {
+    ray.time[k] = 0.0f;
+    ray.mask[k] = 0xFFFFFFFFu;
+    ray.id[k] = static_cast<unsigned>(k);
+    ray.flags[k] = 0;
+  }
+  for (int base = 0; base < n; base += kPacket) {
+    for (int k = 0; k < kPacket; ++k) {
+      const int i = base + k;
+      const bool on = i < n && tnear[i] < tfar[i];
+      valid[k] = on ? -1 : 0;
+      const int j = on ? i : base;
+      ray.org_x[k] = org[j].x;
+      ray.org_y[k] = org[j].y;
+      ray.org_z[k] = org[j].z;
+      ray.dir_x[k] = dir[j].x;
+      ray.dir_y[k] = dir[j].y;
+      ray.dir_z[k] = dir[j].z;
+      ray.tnear[k] = on ? tnear[j] : 0.0f;
+      ray.tfar[k] = on ? tfar[j] : 0.0f;
+    }
+    rtcOccluded16(valid, scene, &ctx, &ray);
+    for (int k = 0; k < kPacket && base + k < n; ++k) {
+      // Embree sets tfar to -inf on an occluded ray.
+      occluded[base + k] = valid[k] && ray.tfar[k] == -std::numeric_limits<float>::infinity() ? 1 : 0;
     }
   }
 }
@@ -210,17 +272,49 @@ namespace {
 AALAB_SIMD_CLONES
 void PerspectiveRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
                      glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
+  // Blocks of 16: the arithmetic runs on separate x, y, z lanes (vectorised), the vec3
+  // stores after it (a vec3 array's 12-byte stride kept the one-loop form scalar).
+  constexpr int kBlock = 16;
+  for (int base = 0; base < count; base += kBlock) {
+    const int m = std::min(kBlock, count - base);
+    float px[kBlock], py[kBlock], dx[kBlock], dy[kBlock], dz[kBlock];
+    for (int k = 0; k < kBlock; ++k) {
+      px[k] = k < m ? pos[base + k].x : 0.0f;
+      py[k] = k < m ? pos[base + k].y : 0.0f;
+    }
+    for (int k = 0; k < kBlock; ++k) {
+      const float nx = 2.0f * px[k] / width - 1.0f;
+      const float ny = 1.0f - 2.0f * py[k] / height;
+      const float a = nx * half_h * aspect;
+      const float b = ny * half_h;
+      const float vx = fwd.x + (right.x * a + up.x * b);
+      const float vy = fwd.y + (right.y * a + up.y * b);
+      const float vz = fwd.z + (right.z * a + up.z * b);
+      const float inv = 1.0f / std::sqrt((vx * vx + vy * vy) + vz * vz);
+      dx[k] = vx * inv;
+      dy[k] = vy * inv;
+      dz[k] = vz * inv;
+    }
+    for (int k = 0; k < m; ++k) {
+      org[base + k] = origin;
+      dir[base + k] = glm::vec3(dx[k], dy[k], dz[k]);
+    }
+  }
+}
+
+/// Orthographic camera rays, written out so the loop vectorises: exactly glm's
+/// `origin + (right·(nx·half_h·aspect) + up·(ny·half_h))`, direction `forward`.
+AALAB_SIMD_CLONES
+void OrthographicRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
+                      glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
   for (int i = 0; i < count; ++i) {
     const float nx = 2.0f * pos[i].x / width - 1.0f;
     const float ny = 1.0f - 2.0f * pos[i].y / height;
     const float a = nx * half_h * aspect;
     const float b = ny * half_h;
-    const float vx = fwd.x + (right.x * a + up.x * b);
-    const float vy = fwd.y + (right.y * a + up.y * b);
-    const float vz = fwd.z + (right.z * a + up.z * b);
-    const float inv = 1.0f / std::sqrt((vx * vx + vy * vy) + vz * vz);
-    org[i] = origin;
-    dir[i] = glm::vec3(vx * inv, vy * inv, vz * inv);
+    org[i] = glm::vec3(origin.x + (right.x * a + up.x * b), origin.y + (right.y * a + up.y * b),
+                       origin.z + (right.z * a + up.z * b));
+    dir[i] = fwd;
   }
 }
 
@@ -235,13 +329,8 @@ void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const 
     PerspectiveRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
                     im.forward, im.right, im.up, org, dir);
   } else {
-    for (int i = 0; i < count; ++i) {
-      const float nx = 2.0f * pos[i].x / static_cast<float>(width) - 1.0f;
-      const float ny = 1.0f - 2.0f * pos[i].y / static_cast<float>(height);
-      const glm::vec3 offset = im.right * (nx * half_h * aspect) + im.up * (ny * half_h);
-      org[i] = im.origin + offset;
-      dir[i] = im.forward;
-    }
+    OrthographicRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
+                     im.forward, im.right, im.up, org, dir);
   }
 }
 

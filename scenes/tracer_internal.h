@@ -25,6 +25,7 @@ struct Tracer::Impl {
   bool any_alpha = false;
   bool any_blend = false;
   bool any_cull = false;  // a single-sided glTF material: camera rays skip its back faces
+  bool any_gltf = false;  // a glTF material (its shading reads every surface attribute)
   // camera basis
   glm::vec3 origin{0.0f}, forward{0.0f}, right{0.0f}, up{0.0f};
 
@@ -79,6 +80,13 @@ T* Sized(std::vector<T>& v, size_t n) {
 void IntersectRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear,
                    const float* tfar, const int* idx, int n, Hit* hits, bool coherent);
 
+/// Whether each of n rays (tnear[i] < tfar[i]) meets anything in [tnear, tfar], in 16-wide
+/// packets (rtcOccluded16): occluded[i] = 1 or 0. The same answer as "IntersectRays finds a
+/// hit" (the same primitive tests; Embree only stops at the first hit it meets), without
+/// the search for the closest one; for shadow rays that need no alpha test.
+void OccludedRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear, const float* tfar,
+                  int n, uint8_t* occluded);
+
 /// Camera rays through `count` continuous pixel positions of a width × height image plane.
 void CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width, int height,
                 glm::vec3* org, glm::vec3* dir);
@@ -125,8 +133,12 @@ glm::vec4 FetchTexture(const Scene& sc, const TextureRef& t, glm::vec2 uv, const
 glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
                     glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& counters);
 
-/// Surface attributes of a hit on the ray (org, dir).
-Surface SurfaceAt(const Scene& scene, const Hit& h, glm::vec3 org, glm::vec3 dir);
+/// Surface attributes of a hit on the ray (org, dir). With `uv` false the texture
+/// coordinates are left at 0, with `normals` false n and ng are left at 0 (what a caller
+/// that never reads them skips: a sphere's uv costs an atan2 and an acos); every attribute
+/// that is computed has the same bits either way.
+Surface SurfaceAt(const Scene& scene, const Hit& h, const glm::vec3& org, const glm::vec3& dir, bool uv = true,
+                  bool normals = true);
 
 /// Working memory of ShadeHits, reused from call to call.
 struct ShadeScratch {
@@ -135,6 +147,7 @@ struct ShadeScratch {
   std::vector<int> who_sample, who_light;
   std::vector<glm::vec3> so, sd;
   std::vector<float> stn, stf;
+  std::vector<uint8_t> occluded;
   LayerScratch layers;
 };
 

@@ -22,22 +22,22 @@ void ShadowRays(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* 
   const float inf = std::numeric_limits<float>::infinity();
   const Surface* surf = S.surf.data();
   uint32_t* blocked = S.blocked.data();
-  std::vector<int>& who_sample = S.who_sample;
-  std::vector<int>& who_light = S.who_light;
-  std::vector<glm::vec3>& so = S.so;
-  std::vector<glm::vec3>& sd = S.sd;
-  std::vector<float>& stn = S.stn;
-  std::vector<float>& stf = S.stf;
-  who_sample.clear();
-  who_light.clear();
-  so.clear();
-  sd.clear();
-  stn.clear();
-  stf.clear();
+  // At most one ray per hit and shadow-casting light: the arrays are sized once and filled
+  // through a count (no per-ray push_back).
+  const size_t n_lights = std::min<size_t>(sc.lights.size(), 32);
+  const size_t cap = static_cast<size_t>(n) * n_lights;
+  int* who_sample = Sized(S.who_sample, cap);
+  int* who_light = Sized(S.who_light, cap);
+  glm::vec3* so = Sized(S.so, cap);
+  glm::vec3* sd = Sized(S.sd, cap);
+  float* stn = Sized(S.stn, cap);
+  float* stf = Sized(S.stf, cap);
+  int m = 0;
   for (int i = 0; i < n; ++i) {
     if (hits[i].shape < 0) continue;
     if (sc.materials[sc.shapes[hits[i].shape].material].shading == Shading::kUnlit) continue;
-    for (size_t l = 0; l < sc.lights.size() && l < 32; ++l) {
+    const Surface& sf = surf[i];
+    for (size_t l = 0; l < n_lights; ++l) {
       const Light& light = sc.lights[l];
       if (!light.shadows) continue;
       glm::vec3 L;
@@ -46,35 +46,46 @@ void ShadowRays(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* 
         L = -light.direction;
         dist = inf;
       } else {
-        L = light.position - surf[i].p;
+        L = light.position - sf.p;
         dist = glm::length(L);
         if (!(dist > 0.0f)) continue;
         L /= dist;
       }
-      if (glm::dot(surf[i].ng, L) <= 0.0f && glm::dot(surf[i].n, L) <= 0.0f) continue;
-      const float eps = RayEpsilon(surf[i].p);
-      const glm::vec3 side = glm::dot(surf[i].ng, L) > 0.0f ? surf[i].ng : -surf[i].ng;
-      so.push_back(surf[i].p + side * eps);
-      sd.push_back(L);
-      stn.push_back(0.0f);
-      stf.push_back(light.type == LightType::kDirectional ? inf : dist * (1.0f - 1e-5f));
-      who_sample.push_back(i);
-      who_light.push_back(static_cast<int>(l));
+      if (glm::dot(sf.ng, L) <= 0.0f && glm::dot(sf.n, L) <= 0.0f) continue;
+      const float eps = RayEpsilon(sf.p);
+      const glm::vec3 side = glm::dot(sf.ng, L) > 0.0f ? sf.ng : -sf.ng;
+      so[m] = sf.p + side * eps;
+      sd[m] = L;
+      stn[m] = 0.0f;
+      stf[m] = light.type == LightType::kDirectional ? inf : dist * (1.0f - 1e-5f);
+      who_sample[m] = i;
+      who_light[m] = static_cast<int>(l);
+      ++m;
     }
+  }
+  if (!alpha) {
+    // No alpha test: any hit blocks the light, so whether there is one is all that counts
+    // (the same answer as the closest hit's existence below, without searching for it).
+    uint8_t* occ = Sized(S.occluded, static_cast<size_t>(m));
+    OccludedRays(im.scene, so, sd, stn, stf, m, occ);
+    local.shadow_rays += static_cast<uint64_t>(m);
+    for (int k = 0; k < m; ++k) {
+      if (occ[k]) blocked[who_sample[k]] |= 1u << who_light[k];
+    }
+    return;
   }
   std::vector<int>& act = S.layers.active;
   std::vector<int>& next = S.layers.next;
-  act.resize(so.size());
-  for (size_t k = 0; k < so.size(); ++k) act[k] = static_cast<int>(k);
+  act.resize(static_cast<size_t>(m));
+  for (int k = 0; k < m; ++k) act[static_cast<size_t>(k)] = k;
   for (int layer = 0; !act.empty() && layer < kMaxAlphaLayers; ++layer) {
-    const int m = static_cast<int>(act.size());
-    Hit* h = Sized(S.layers.layer_hits, static_cast<size_t>(m));
+    const int count = static_cast<int>(act.size());
+    Hit* h = Sized(S.layers.layer_hits, static_cast<size_t>(count));
     // Layer 0 traces every shadow ray in order (no index list needed).
-    IntersectRays(im.scene, so.data(), sd.data(), stn.data(), stf.data(), layer == 0 ? nullptr : act.data(), m, h,
-                  false);
-    local.shadow_rays += static_cast<uint64_t>(m);
+    IntersectRays(im.scene, so, sd, stn, stf, layer == 0 ? nullptr : act.data(), count, h, false);
+    local.shadow_rays += static_cast<uint64_t>(count);
     next.clear();
-    for (int k = 0; k < m; ++k) {
+    for (int k = 0; k < count; ++k) {
       const int r = act[k];
       if (h[k].shape < 0) continue;
       const Material& mat = sc.materials[sc.shapes[h[k].shape].material];
@@ -95,20 +106,12 @@ void ShadowRays(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* 
 
 }  // namespace
 
-Surface SurfaceAt(const Scene& scene, const Hit& h, glm::vec3 org, glm::vec3 dir) {
-  const Shape& s = scene.shapes[h.shape];
-  Surface out;
-  out.p = org + dir * h.t;
-  glm::vec3 ng = h.ng;
-  glm::vec3 n = ng;
+namespace {
+
+/// The texture coordinates of a non-triangle shape's hit at out.p (triangles: SurfaceAt).
+void CurvedSurfaceUv(const Shape& s, const Hit& h, Surface& out) {
   switch (s.kind) {
-    case ShapeKind::kTriangles: {
-      const glm::uvec3 tri = s.triangles[h.prim];
-      const float w = 1.0f - h.u - h.v;
-      out.uv = s.uvs[tri.x] * w + s.uvs[tri.y] * h.u + s.uvs[tri.z] * h.v;
-      if (!s.normals.empty()) n = s.normals[tri.x] * w + s.normals[tri.y] * h.u + s.normals[tri.z] * h.v;
-      break;
-    }
+    case ShapeKind::kTriangles: break;
     case ShapeKind::kSphere: {
       const glm::vec3 d = out.p - s.center;
       const float len = glm::length(d);
@@ -130,6 +133,34 @@ Surface SurfaceAt(const Scene& scene, const Hit& h, glm::vec3 org, glm::vec3 dir
       break;
     }
   }
+}
+
+}  // namespace
+
+namespace {
+
+/// SurfaceAt, writing into `out` in place (a returned Surface copied into the caller's array
+/// stalled on store forwarding: the per-sample loop spent more time copying than computing).
+inline __attribute__((always_inline)) void FillSurface(const Scene& scene, const Hit& h, const glm::vec3& org,
+                                                       const glm::vec3& dir, bool uv, bool normals, Surface& out) {
+  const Shape& s = scene.shapes[h.shape];
+  out.p = org + dir * h.t;
+  out.uv = glm::vec2(0.0f);
+  glm::vec3 ng = h.ng;
+  glm::vec3 n = ng;
+  if (s.kind == ShapeKind::kTriangles) {
+    const glm::uvec3 tri = s.triangles[h.prim];
+    const float w = 1.0f - h.u - h.v;
+    if (uv) out.uv = s.uvs[tri.x] * w + s.uvs[tri.y] * h.u + s.uvs[tri.z] * h.v;
+    if (normals && !s.normals.empty()) n = s.normals[tri.x] * w + s.normals[tri.y] * h.u + s.normals[tri.z] * h.v;
+  } else if (uv) {
+    CurvedSurfaceUv(s, h, out);
+  }
+  if (!normals) {
+    out.ng = glm::vec3(0.0f);
+    out.n = glm::vec3(0.0f);
+    return;
+  }
   auto safe_normalize = [](glm::vec3 v, glm::vec3 fallback) {
     const float len = glm::length(v);
     return (len > 0.0f && std::isfinite(len)) ? v / len : fallback;
@@ -140,6 +171,13 @@ Surface SurfaceAt(const Scene& scene, const Hit& h, glm::vec3 org, glm::vec3 dir
   if (glm::dot(n, dir) > 0.0f) n = -n;
   out.ng = ng;
   out.n = n;
+}
+
+}  // namespace
+
+Surface SurfaceAt(const Scene& scene, const Hit& h, const glm::vec3& org, const glm::vec3& dir, bool uv, bool normals) {
+  Surface out;
+  FillSurface(scene, h, org, dir, uv, normals, out);
   return out;
 }
 
@@ -154,9 +192,13 @@ void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* h
   // Surface attributes feed only lighting, shadows and textures: unlit untextured scenes
   // never read them, so they are not computed there.
   Surface* surf = Sized(S.surf, n_all);
+  // Texture coordinates feed only textures (and glTF shading), the normals only lighting and
+  // shadows (and glTF shading): each is computed only where it is read.
+  const bool need_uv = textures || im.any_gltf;
+  const bool need_normals = lambert || shadows || im.any_gltf;
   if (lambert || shadows || textures) {
     for (int i = 0; i < n; ++i) {
-      if (hits[i].shape >= 0) surf[i] = SurfaceAt(sc, hits[i], org[i], dir[i]);
+      if (hits[i].shape >= 0) FillSurface(sc, hits[i], org[i], dir[i], need_uv, need_normals, surf[i]);
     }
   }
   uint32_t* blocked = Sized(S.blocked, n_all);
@@ -169,12 +211,11 @@ void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* h
     r.surface = hits[i].shape;
     r.shadowed = blocked[i];
     r.t = hits[i].t;
-    if (hits[i].shape >= 0) {  // the hit point, for exact motion vectors (scenes/motion_render.h)
-      const glm::vec3 p = org[i] + dir[i] * hits[i].t;
-      r.position[0] = p.x;
-      r.position[1] = p.y;
-      r.position[2] = p.z;
-    }
+    // The hit point, for exact motion vectors (scenes/motion_render.h); 0 for the background.
+    const glm::vec3 p = hits[i].shape >= 0 ? org[i] + dir[i] * hits[i].t : glm::vec3(0.0f);
+    r.position[0] = p.x;
+    r.position[1] = p.y;
+    r.position[2] = p.z;
     glm::vec3 c = sc.background;
     if (hits[i].shape >= 0) {
       ++local.shading_evals;
