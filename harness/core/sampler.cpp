@@ -20,6 +20,27 @@ SamplerArithmetic ParseSamplerArithmetic(const std::string& name) {
 
 namespace {
 
+std::array<float, 65536> MakeHwUnorm16() {
+  std::array<float, 65536> t{};
+  // The double quotient is within 2^-53 relative of q/65535, which is never a float rounding
+  // tie for 0 < q < 65535 (its binary expansion does not end), so one rounding to float gives
+  // the nearest float (tests/core/sampler_gpu_texture_test.cpp checks all 256 UNORM8 codes).
+  for (uint32_t q = 0; q < t.size(); ++q) t[q] = static_cast<float>(static_cast<double>(q) / 65535.0);
+  return t;
+}
+
+}  // namespace
+
+const std::array<float, 65536> kHwUnorm16 = MakeHwUnorm16();
+
+namespace {
+
+// floor(x) for |x| < 2^62 by truncation (std::floor is a libm call on baseline x86-64).
+int64_t FloorToInt(double x) {
+  const auto i = static_cast<int64_t>(x);
+  return static_cast<double>(i) > x ? i - 1 : i;
+}
+
 // One axis of HwFootprintAt: the coordinate in 1/256 texel, rounded with ties upwards,
 // split into texel and fraction; clamped so that far-away coordinates stay integers (any
 // x0 < −1 or > size reads the edge texel twice, as x0 = −1 or size does).
@@ -27,7 +48,7 @@ void HwAxis(double u, int size, int* x0, int* k) {
   if (std::isnan(u)) u = 0.0;
   const double lim = 4.0 * (static_cast<double>(size) + 2.0);
   u = std::clamp(u, -lim, lim);
-  const auto t = static_cast<int64_t>(std::floor((u - 0.5) * 256.0 + 0.5));
+  const int64_t t = FloorToInt((u - 0.5) * 256.0 + 0.5);
   const int64_t t0 = t >= 0 ? t / 256 : -((-t + 255) / 256);  // floor(t / 256)
   *k = static_cast<int>(t - 256 * t0);
   *x0 = static_cast<int>(std::clamp<int64_t>(t0, -1, size));
@@ -37,7 +58,7 @@ void HwAxis(double u, int size, int* x0, int* k) {
 double HwNormalizedAxis(float s, int size) {
   if (std::isnan(s)) return 0.0;
   const double sc = std::clamp(static_cast<double>(s), -1024.0, 1024.0);
-  return std::floor(sc * 2097152.0) * static_cast<double>(size) / 2097152.0;
+  return static_cast<double>(FloorToInt(sc * 2097152.0)) * static_cast<double>(size) / 2097152.0;
 }
 
 // Rounds a finite double to float with ties upwards (towards +∞), as the texture unit rounds

@@ -24,11 +24,11 @@ const char* SamplerArithmeticName(SamplerArithmetic a);
 /// Parses "gl" / "gpu-texture"; throws UserError naming the allowed values otherwise.
 SamplerArithmetic ParseSamplerArithmetic(const std::string& name);
 
+/// kHwUnorm16[q] = q/65535 correctly rounded to float, q in 0..65535 (filled at start-up).
+extern const std::array<float, 65536> kHwUnorm16;
 /// The texture unit's float for a 16-bit fixed-point filter result q in 0..65535: q/65535
 /// correctly rounded to float (for q = k·257 this is k/255, the UNORM8 texel value).
-[[gnu::always_inline]] inline float HwUnorm16ToFloat(uint32_t q) {
-  return static_cast<float>(static_cast<double>(q) / 65535.0);
-}
+[[gnu::always_inline]] inline float HwUnorm16ToFloat(uint32_t q) { return kHwUnorm16[q & 0xffffu]; }
 /// The texture unit's value of UNORM8 code k: k/255 correctly rounded (measured for all 256).
 [[gnu::always_inline]] inline float HwUnorm8ToFloat(uint8_t k) { return HwUnorm16ToFloat(257u * k); }
 
