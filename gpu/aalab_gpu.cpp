@@ -21,6 +21,10 @@
 //             a second GPU run must give the same bytes. The same kernels with every bilinear
 //             fetch done in float32 from point fetches (the CPU's arithmetic, "software
 //             filter") must match the CPU bit for bit: what differs is the texture unit's.
+//             The CPU with --sampler gpu-texture (the texture unit's arithmetic,
+//             harness/core/sampler.h) must match the texture path bit for bit, and the
+//             probe's samples must all follow that rule (CheckTextureRule).
+// `--probe-dump DIR` writes the raw probe data (gpu/texture_probe.h) and exits.
 // `--self-test` runs the same on synthetic frames (noise, hard-edged shapes, odd sizes)
 // without files; `--check` makes the exit status 1 when a check fails (make test-gpu).
 // Exit status: 0 ok, 1 a failed check or bad input, 3 a CUDA or internal error.
@@ -55,7 +59,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Options {
-  std::string frames_dir, json_path, outputs_dir, outputs_scene;
+  std::string frames_dir, json_path, outputs_dir, outputs_scene, probe_dump;
   std::vector<std::string> methods, taa_methods;
   int warmup = 20, repeat = 200;
   bool self_test = false, check = false, timing = true;
@@ -109,6 +113,7 @@ Options ParseArgs(int argc, char** argv) {
     else if (a == "--warmup") o.warmup = ParseInt(a, value(i, a), 0, 100000);
     else if (a == "--repeat") o.repeat = ParseInt(a, value(i, a), 1, 100000);
     else if (a == "--self-test") o.self_test = true;
+    else if (a == "--probe-dump") o.probe_dump = value(i, a);
     else if (a == "--check") o.check = true;
     else if (a == "--no-timing") o.timing = false;
     else if (a == "--help" || a == "-h") {
@@ -124,12 +129,15 @@ Options ParseArgs(int argc, char** argv) {
           "  --no-timing      fidelity checks only\n"
           "  --check          exit 1 when a check fails (copy not exact, output not written, GPU\n"
           "                   runs differ, identical share under the per-method floor)\n"
-          "  --outputs DIR    write the GPU outputs on one frame as PPM; --outputs-scene SCENE-WxH names it\n");
+          "  --outputs DIR    write the GPU outputs on one frame as PPM; --outputs-scene SCENE-WxH names it\n"
+          "  --probe-dump DIR write the texture unit's raw bilinear probe data into DIR and exit\n"
+          "                   (scripts/fit_texture_rule.py fits the sampler rule to it; docs/gpu.md)\n");
       std::exit(0);
     } else {
       throw UserError("unknown argument '" + a + "' (see --help)");
     }
   }
+  if (!o.probe_dump.empty()) return o;
   if (o.self_test == !o.frames_dir.empty()) throw UserError("give exactly one of --frames DIR or --self-test");
   if (!o.outputs_dir.empty() && o.outputs_scene.empty()) throw UserError("--outputs needs --outputs-scene SCENE-WxH");
   if (o.methods.empty()) o.methods = DefaultGpuMethodSpecs();
@@ -317,6 +325,15 @@ std::string StatsJson(const Stats& s) {
 
 int Main(int argc, char** argv) {
   const Options o = ParseArgs(argc, argv);
+  if (!o.probe_dump.empty()) {
+    const TextureProbeData data = CollectTextureProbeData();
+    WriteTextureProbeData(data, o.probe_dump);
+    std::printf("texture probe data written to %s\n", o.probe_dump.c_str());
+    const TextureRuleCheck rule = CheckTextureRule(data);
+    std::printf("texture rule (harness/core/sampler.h) against the probe: %lld of %lld samples differ\n",
+                rule.Mismatches(), rule.pairs + rule.quad8 + rule.coords + rule.quadf);
+    return 0;
+  }
   std::vector<GpuMethod> methods;
   for (const auto& s : o.methods) methods.push_back(ResolveGpuMethod(s));
   const std::vector<FrameSet> sets = o.self_test ? SelfTestFrames() : ReadManifest(o.frames_dir);
@@ -355,10 +372,16 @@ int Main(int argc, char** argv) {
 
   std::vector<Entry> entries;
   int failures = 0;
+  const TextureRuleCheck rule = CheckTextureRule(CollectTextureProbeData());
+  std::printf("texture rule (harness/core/sampler.h, --sampler gpu-texture) against this device: pairs %lld/%lld, "
+              "RGBA8 quads %lld/%lld, coordinates %lld/%lld, RGBA32F quads %lld/%lld differ\n",
+              rule.pair_mismatches, rule.pairs, rule.quad8_mismatches, rule.quad8, rule.coord_mismatches, rule.coords,
+              rule.quadf_mismatches, rule.quadf);
   auto fail = [&](const std::string& what) {
     ++failures;
     std::printf("CHECK FAILED: %s\n", what.c_str());
   };
+  if (rule.Mismatches() != 0) fail("the texture rule of --sampler gpu-texture does not match this device's texture unit");
   if (!o.outputs_dir.empty()) fs::create_directories(o.outputs_dir);
 
   for (const FrameSet& fs_ : sets) {
@@ -428,12 +451,18 @@ int Main(int argc, char** argv) {
       cuda::Check(cudaStreamSynchronize(stream), m.spec.c_str());
       e.has_soft = true;
       e.soft = Compare(p->Output(), cpu);
+      e.has_hw_mode = true;
+      e.hw_mode = Compare(gpu, CpuOutput(m, input, fs_.width, fs_.height, SamplerArithmetic::kGpuTexture));
       const std::string what = fs_.scene + " " + size + " " + m.spec;
       if (!e.all_written) fail(what + ": output pixels left unwritten");
       if (!e.deterministic) fail(what + ": two GPU runs differ");
       if (e.soft.differing != 0) {
         fail(what + ": the software-filter variant differs from the CPU on " + std::to_string(e.soft.differing) +
              " pixels (max diff " + std::to_string(e.soft.max_diff) + ")");
+      }
+      if (e.hw_mode.differing != 0) {
+        fail(what + ": the CPU with --sampler gpu-texture differs from the texture path on " +
+             std::to_string(e.hw_mode.differing) + " pixels (max diff " + std::to_string(e.hw_mode.max_diff) + ")");
       }
       if (e.fid.identical_share < IdenticalFloor(fs_.scene)) {
         fail(what + ": identical share " + N(e.fid.identical_share) + " < " + N(IdenticalFloor(fs_.scene)));
@@ -458,9 +487,11 @@ int Main(int argc, char** argv) {
         }
         if (m.prepass && !m.scaled_input) e.pass = TimeLaunches([&] { p->RunPassOnly(m, stream); }, o.warmup, o.repeat, stream);
       }
-      std::printf("%-16s %-10s %-34s identical %7.3f%% (sw filter %7.3f%%) <=1 %7.3f%% max %3d  %s\n",
+      std::printf("%-16s %-10s %-34s identical %7.3f%% (sw filter %7.3f%%, cpu gpu-texture %7.3f%% max %d) <=1 %7.3f%% "
+                  "max %3d  %s\n",
                   fs_.scene.c_str(), size.c_str(), m.spec.c_str(), 100.0 * e.fid.identical_share,
-                  100.0 * e.soft.identical_share, 100.0 * e.fid.within1_share, e.fid.max_diff,
+                  100.0 * e.soft.identical_share, 100.0 * e.hw_mode.identical_share, e.hw_mode.max_diff,
+                  100.0 * e.fid.within1_share, e.fid.max_diff,
                   e.timed ? (N(e.t.median) + " ms (" + N(e.ratio) + "x copy)").c_str() : "");
       entries.push_back(e);
     }
@@ -520,6 +551,10 @@ int Main(int argc, char** argv) {
       << ", \"unorm8_point_fetch_mismatches_vs_cpu\": " << probe.unorm_mismatches_cpu
       << ", \"half_texel_pairs\": " << probe.half_pairs << ", \"half_texel_mismatches\": " << probe.half_mismatches
       << ", \"half_texel_max_err\": " << N(probe.half_max_err) << "},\n";
+    j << "  \"texture_rule\": {\"pairs\": " << rule.pairs << ", \"pair_mismatches\": " << rule.pair_mismatches
+      << ", \"rgba8_quads\": " << rule.quad8 << ", \"rgba8_quad_mismatches\": " << rule.quad8_mismatches
+      << ", \"coordinates\": " << rule.coords << ", \"coordinate_mismatches\": " << rule.coord_mismatches
+      << ", \"rgba32f_quads\": " << rule.quadf << ", \"rgba32f_quad_mismatches\": " << rule.quadf_mismatches << "},\n";
     j << "  \"results\": [\n";
     for (size_t i = 0; i < entries.size(); ++i) {
       const Entry& e = entries[i];
@@ -551,6 +586,10 @@ int Main(int argc, char** argv) {
       if (e.has_soft) {
         j << ", \"fidelity_software_filter\": {\"identical_share\": " << N(e.soft.identical_share)
           << ", \"max_diff\": " << e.soft.max_diff << ", \"differing_pixels\": " << e.soft.differing << "}";
+      }
+      if (e.has_hw_mode) {
+        j << ", \"fidelity_cpu_gpu_texture\": {\"identical_share\": " << N(e.hw_mode.identical_share)
+          << ", \"max_diff\": " << e.hw_mode.max_diff << ", \"differing_pixels\": " << e.hw_mode.differing << "}";
       }
       j << "}" << (i + 1 < entries.size() ? "," : "") << "\n";
     }

@@ -148,9 +148,11 @@ std::vector<std::string> DefaultGpuMethodSpecs() {
   return specs;
 }
 
-Image8 CpuOutput(const GpuMethod& m, const Image8& frame, int out_w, int out_h) {
-  Image8 out = m.plan.post ? m.plan.post(frame, PostOptions{}, nullptr) : frame;
-  if (m.plan.rescale != Rescale::kNone) out = RescaleFrame(out, out_w, out_h, m.plan.rescale, nullptr);
+Image8 CpuOutput(const GpuMethod& m, const Image8& frame, int out_w, int out_h, SamplerArithmetic sampler) {
+  PostOptions opt;
+  opt.sampler = sampler;
+  Image8 out = m.plan.post ? m.plan.post(frame, opt, nullptr) : frame;
+  if (m.plan.rescale != Rescale::kNone) out = RescaleFrame(out, out_w, out_h, m.plan.rescale, nullptr, sampler);
   return out;
 }
 

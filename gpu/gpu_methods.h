@@ -39,7 +39,8 @@ std::vector<std::string> DefaultGpuMethodSpecs();
 
 /// The CPU output for `frame` (the 1x frame, or the scaled frame for scaled_input methods):
 /// the method's post filter, then RescaleFrame to out_w × out_h where it rescales.
-Image8 CpuOutput(const GpuMethod& m, const Image8& frame, int out_w, int out_h);
+Image8 CpuOutput(const GpuMethod& m, const Image8& frame, int out_w, int out_h,
+                 SamplerArithmetic sampler = SamplerArithmetic::kGl);
 
 /// The SMAA pass names, in launch order, as the JSON's `passes` and docs/gpu.md name them.
 inline const char* const kSmaaPassNames[3] = {"smaa-edges", "smaa-weights", "smaa-blend"};

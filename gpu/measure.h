@@ -39,6 +39,8 @@ struct Entry {
   Fidelity fid;  ///< a sequence: its worst frame
   bool has_soft = false;
   Fidelity soft;  ///< the software-filter variant (CPU bilinear arithmetic) against the CPU
+  bool has_hw_mode = false;
+  Fidelity hw_mode;  ///< the texture path against the CPU with --sampler gpu-texture
   bool deterministic = true, all_written = true;
 };
 

@@ -440,7 +440,7 @@ Image8 Fxaa1Reference(const Image8& in, const Fxaa1Params& p, const std::string&
   constexpr int kGrain = 8;  // rows per chunk; chunking depends on the height alone
   std::vector<uint64_t> chunk_taps(static_cast<size_t>((height + kGrain - 1) / kGrain), 0);
   ParallelForChunks(height, kGrain, [&](int y0, int y1) {
-    BilinearSampler tex(in);
+    BilinearSampler tex(in, SubTexel::kExact, p.sampler);
     for (int y = y0; y < y1; ++y) {
       for (int x = 0; x < width; ++x) {
         const Fxaa1Trace t = Fxaa1TracePixel(tex, x, y, p);
@@ -491,7 +491,7 @@ namespace {
 Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_view, PostStats* stats) {
   ValidateParams(p);
   const View view = ParseView(debug_view);
-  if (view != View::kNormal) return Fxaa1Reference(in, p, debug_view, stats);
+  if (view != View::kNormal || p.sampler != SamplerArithmetic::kGl) return Fxaa1Reference(in, p, debug_view, stats);
   AALAB_CHECK(in.Channels() == 4, "fxaa1 needs an RGBA8 frame");
   Image8 out(in.Width(), in.Height(), 4, 255);
   if (in.Empty()) return out;
@@ -629,7 +629,9 @@ MethodEntry Fxaa1Entry(int preset, const std::string& help) {
         plan.params = v;
         plan.render = RenderSpec{};  // 1x centre samples
         plan.post = [params](const Image8& in, const PostOptions& options, PostStats* stats) {
-          return Fxaa1(in, params, options.debug_view, stats);
+          Fxaa1Params p = params;
+          p.sampler = options.sampler;
+          return Fxaa1(in, p, options.debug_view, stats);
         };
         plan.debug_views = Fxaa1DebugViews();
         return plan;

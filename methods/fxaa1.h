@@ -24,6 +24,7 @@ struct Fxaa1Params {
   /// FXAA_SUBPIX_FASTER: true = lowpass is the 5-tap cross (N+W+M+E+S)/5, the "lower quality
   /// sub-pixel aliasing removal filter" of preset 0; false = the 3x3 box (presets 1-5).
   bool subpix_faster = false;
+  SamplerArithmetic sampler = SamplerArithmetic::kGl;  ///< texel/filter arithmetic (PostOptions)
 };
 
 /// The whitepaper presets 0-4, plus 5 (preset 4 with 32 search steps, as the shader

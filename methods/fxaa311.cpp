@@ -364,7 +364,7 @@ float Fxaa311TapLuma(const Float4& t, Fxaa311Params::Luma luma) {
   return t.a;
 }
 
-Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma) {
+Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma, SamplerArithmetic sampler) {
   AALAB_CHECK(in.Channels() == 4, "FXAA needs an RGBA8 frame");
   Image8 out = in;
   if (luma != Luma::kRec601 && luma != Luma::kSqrtLuminance) return out;
@@ -376,7 +376,7 @@ Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma) {
       if (luma == Luma::kRec601) {
         // Fxaa3_11.h: "color.a = dot(color.rgb, FxaaFloat3(0.299, 0.587, 0.114))" on the
         // sRGB-encoded (perceptual) colour.
-        const Float4 t{UnormToFloat(p[0]), UnormToFloat(p[1]), UnormToFloat(p[2]), 0.0f};
+        const Float4 t{TexelValue(p[0], sampler), TexelValue(p[1], sampler), TexelValue(p[2], sampler), 0.0f};
         l = Fxaa311TapLuma(t, Luma::kRec601Rgb);
       } else {
         // Tutorial: color.a = sqrt(Luminance(color.rgb)) with linear rgb.
@@ -397,7 +397,7 @@ Image8 Fxaa311Reference(const Image8& in, const Fxaa311Params& params, PostStats
   if (in.Empty()) return in;
   const bool prepass = params.luma == Luma::kRec601 || params.luma == Luma::kSqrtLuminance;
   Image8 prepared;
-  if (prepass) prepared = Fxaa311LumaFrame(in, params.luma);
+  if (prepass) prepared = Fxaa311LumaFrame(in, params.luma, params.sampler);
   const Image8& src = prepass ? prepared : in;
 
   const int w = src.Width();
@@ -408,7 +408,7 @@ Image8 Fxaa311Reference(const Image8& in, const Fxaa311Params& params, PostStats
   constexpr int kGrain = 8;
   std::vector<uint64_t> taps(static_cast<size_t>((h + kGrain - 1) / kGrain), 0);
   ParallelForChunks(h, kGrain, [&](int y0, int y1) {
-    BilinearSampler tex(src);
+    BilinearSampler tex(src, SubTexel::kExact, params.sampler);
     for (int y = y0; y < y1; ++y) {
       for (int x = 0; x < w; ++x) ShadePixel(tex, src, x, y, params, rcpX, rcpY, out.Pixel(x, y));
     }
@@ -495,7 +495,9 @@ MethodPlan FxaaPlan(const std::string& name, const ParamValues& v, std::vector<f
     if (!options.debug_view.empty()) {
       throw UserError("method '" + name + "' has no debug view '" + options.debug_view + "'");
     }
-    return Fxaa311(in, fp, stats);
+    Fxaa311Params p = fp;
+    p.sampler = options.sampler;
+    return Fxaa311(in, p, stats);
   };
   return plan;
 }

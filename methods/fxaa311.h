@@ -44,6 +44,7 @@ struct Fxaa311Params {
   float edge_threshold_min = 0.0833f; ///< fxaaQualityEdgeThresholdMin (absolute)
   Luma luma = Luma::kRec601;
   Order order = Order::kFxaa311;
+  SamplerArithmetic sampler = SamplerArithmetic::kGl;  ///< texel/filter arithmetic (PostOptions)
 };
 
 /// Parses "rec601" | "rec601-rgb" | "green" | "sqrt-luminance"; throws UserError listing them.
@@ -53,8 +54,10 @@ const std::vector<std::string>& Fxaa311LumaNames();
 
 /// The luma pre-pass: for kRec601 and kSqrtLuminance a copy of `in` (RGBA8) whose alpha
 /// holds the luma rounded to 8 bits (StoreUnorm8, GL's UNORM store); for kGreen and
-/// kRec601Rgb a plain copy (those modes read luma from rgb at each tap).
-Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma);
+/// kRec601Rgb a plain copy (those modes read luma from rgb at each tap). kRec601 reads the
+/// texels as TexelValue(k, sampler), as the GPU pre-pass reads them through the texture unit.
+Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma,
+                        SamplerArithmetic sampler = SamplerArithmetic::kGl);
 
 /// The luma the shader reads from one tap of the frame Fxaa311LumaFrame prepared
 /// (FxaaLuma): alpha, green, or dot(rgb, (0.299, 0.587, 0.114)) evaluated as

@@ -479,6 +479,7 @@ Image8 Fxaa311(const Image8& in, const Fxaa311Params& params, PostStats* stats) 
   AALAB_CHECK(in.Channels() == 4, "FXAA needs an RGBA8 frame");
   AALAB_CHECK(params.steps.size() >= 2, "FXAA 3.11 needs at least two search steps");
   if (in.Empty()) return in;
+  if (params.sampler != SamplerArithmetic::kGl) return Fxaa311Reference(in, params, stats);  // no fast path
   if (params.luma == Luma::kRec601Rgb) return Fxaa311Fast<float>(in, params, stats);
   return Fxaa311Fast<uint8_t>(in, params, stats);
 }

@@ -11,12 +11,17 @@
 #include "harness/core/image.h"
 #include "harness/core/params.h"
 #include "harness/core/render_spec.h"
+#include "harness/core/sampler.h"
 
 namespace aalab {
 
 /// Options that do not change a method's identity (debug views).
 struct PostOptions {
   std::string debug_view;  ///< "" = normal output; otherwise a view the filter supports
+  /// Arithmetic of every texel read and bilinear fetch (run-level `--sampler`): kGl (the
+  /// default, llvmpipe's) or kGpuTexture (the H100 texture unit's, docs/gpu.md). Filters
+  /// with a fast path run their reference implementation when it is not kGl.
+  SamplerArithmetic sampler = SamplerArithmetic::kGl;
 };
 
 /// Counters a post filter reports.

@@ -55,7 +55,9 @@ MethodPlan ScalePlan(const std::string& name, const ParamValues& v, bool fxaa) {
       if (!options.debug_view.empty()) {
         throw UserError("method '" + name + "' has no debug view '" + options.debug_view + "'");
       }
-      return Fxaa311(in, fp, stats);
+      Fxaa311Params p = fp;
+      p.sampler = options.sampler;
+      return Fxaa311(in, p, stats);
     };
   }
   return plan;

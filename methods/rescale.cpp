@@ -70,7 +70,8 @@ Axis BicubicAxis(int X, int n_out, int n_in) {
 
 }  // namespace
 
-Image8 RescaleFrameReference(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats) {
+Image8 RescaleFrameReference(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats,
+                             SamplerArithmetic sampler) {
   AALAB_CHECK(in.Channels() == 4, "RescaleFrame needs an RGBA8 frame");
   AALAB_CHECK(out_w > 0 && out_h > 0, "RescaleFrame needs a positive output size");
   if (kind == Rescale::kNone) {
@@ -87,7 +88,7 @@ Image8 RescaleFrameReference(const Image8& in, int out_w, int out_h, Rescale kin
     for (int X = 0; X < out_w; ++X) xs.push_back(BicubicAxis(X, out_w, in.Width()));
   }
   ParallelForChunks(out_h, kGrain, [&](int y0, int y1) {
-    BilinearSampler tex(in);
+    BilinearSampler tex(in, SubTexel::kExact, sampler);
     for (int Y = y0; Y < y1; ++Y) {
       const Axis ay = kind == Rescale::kBicubic ? BicubicAxis(Y, out_h, in.Height()) : Axis{};
       const float t = (static_cast<float>(Y) + 0.5f) / static_cast<float>(out_h);
@@ -185,10 +186,13 @@ inline uint8_t Quantize(float v) {  // QuantizeUnorm8: lround(vÂ·255) = floor(vÂ
 
 }  // namespace
 
-Image8 RescaleFrame(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats) {
+Image8 RescaleFrame(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats,
+                    SamplerArithmetic sampler) {
   AALAB_CHECK(in.Channels() == 4, "RescaleFrame needs an RGBA8 frame");
   AALAB_CHECK(out_w > 0 && out_h > 0, "RescaleFrame needs a positive output size");
-  if (kind == Rescale::kNone) return RescaleFrameReference(in, out_w, out_h, kind, stats);
+  if (kind == Rescale::kNone || sampler != SamplerArithmetic::kGl) {
+    return RescaleFrameReference(in, out_w, out_h, kind, stats, sampler);  // no fast path for kGpuTexture
+  }
   AALAB_CHECK(!in.Empty(), "RescaleFrame needs a non-empty frame");
   const int W = in.Width(), H = in.Height();
   const float* u8 = UnormTable();

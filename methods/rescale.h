@@ -31,11 +31,14 @@ BsplineTaps BsplineCubicTaps(float t);
 /// rgb is rounded to 8 bits (UNORM store), alpha is 255. Deterministic at any thread count.
 /// When `stats` is not null, adds the bilinear taps taken to stats->taps.
 /// This is the production path (per-axis tap tables); same bits and taps as
-/// RescaleFrameReference.
-Image8 RescaleFrame(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats);
+/// RescaleFrameReference. `sampler` (PostOptions::sampler): the fetches' arithmetic; with
+/// kGpuTexture this runs RescaleFrameReference (the fast path is the default arithmetic's).
+Image8 RescaleFrame(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats,
+                    SamplerArithmetic sampler = SamplerArithmetic::kGl);
 
 /// The simple implementation of RescaleFrame (every tap through BilinearSampler), kept as the
 /// reference the production path is tested against, bit for bit.
-Image8 RescaleFrameReference(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats);
+Image8 RescaleFrameReference(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats,
+                             SamplerArithmetic sampler = SamplerArithmetic::kGl);
 
 }  // namespace aalab

@@ -160,7 +160,7 @@ Image8 EdgesRef(const Image8& in, const SmaaParams& p, uint64_t* taps) {
   Image8 edges(in.Width(), in.Height(), 4, 0);
   std::vector<uint64_t> t(static_cast<size_t>((in.Height() + kGrain - 1) / kGrain), 0);
   ParallelForChunks(in.Height(), kGrain, [&](int y0, int y1) {
-    BilinearSampler tex(in, p.subtexel);
+    BilinearSampler tex(in, p.subtexel, p.sampler);
     for (int y = y0; y < y1; ++y) {
       for (int x = 0; x < in.Width(); ++x) EdgePixel(tex, x, y, p, edges.Pixel(x, y));
     }
@@ -177,7 +177,8 @@ Image8 WeightsRef(const Image8& edges, const SmaaParams& p, uint64_t* taps) {
   const Image8& search_tex = SmaaSearchTexture();
   std::vector<uint64_t> t(static_cast<size_t>((edges.Height() + kGrain - 1) / kGrain), 0);
   ParallelForChunks(edges.Height(), kGrain, [&](int y0, int y1) {
-    BilinearSampler es(edges, p.subtexel), as(area_tex, p.subtexel), ss(search_tex, p.subtexel);
+    BilinearSampler es(edges, p.subtexel, p.sampler), as(area_tex, p.subtexel, p.sampler),
+        ss(search_tex, p.subtexel, p.sampler);
     smaa_detail::SamplerEdges reader(es);
     smaa_detail::WeightsShader<smaa_detail::SamplerEdges> shader(reader, as, ss, p, f);
     for (int y = y0; y < y1; ++y) {
@@ -201,7 +202,7 @@ Image8 BlendRef(const Image8& in, const Image8& blend, const SmaaParams& p, uint
   Image8 out(in.Width(), in.Height(), 4);
   std::vector<uint64_t> t(static_cast<size_t>((in.Height() + kGrain - 1) / kGrain), 0);
   ParallelForChunks(in.Height(), kGrain, [&](int y0, int y1) {
-    BilinearSampler bs(blend, p.subtexel), cs(in, p.subtexel);
+    BilinearSampler bs(blend, p.subtexel, p.sampler), cs(in, p.subtexel, p.sampler);
     for (int y = y0; y < y1; ++y) {
       for (int x = 0; x < in.Width(); ++x) smaa_detail::BlendPixel(bs, cs, f, x, y, out.Pixel(x, y));
     }
@@ -349,7 +350,9 @@ MethodEntry SmaaEntry(const std::string& preset, double threshold, const std::st
             plan.name = name;
             plan.params = v;
             plan.post = [sp](const Image8& in, const PostOptions& options, PostStats* stats) {
-              return Smaa(in, sp, options.debug_view, stats);
+              SmaaParams p = sp;
+              p.sampler = options.sampler;
+              return Smaa(in, p, options.debug_view, stats);
             };
             plan.debug_views = SmaaDebugViews();
             return plan;

@@ -24,6 +24,7 @@ struct SmaaParams {
   bool diag = true;                     ///< false = SMAA_DISABLE_DIAG_DETECTION
   bool corner = true;                   ///< false = SMAA_DISABLE_CORNER_DETECTION
   SubTexel subtexel = SubTexel::kFixed8;  ///< bilinear fraction precision of every fetch
+  SamplerArithmetic sampler = SamplerArithmetic::kGl;  ///< texel/filter arithmetic (PostOptions)
 };
 
 /// The reference's presets: "low", "medium", "high", "ultra" (SMAA_PRESET_*). Throws

@@ -443,6 +443,7 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
   AALAB_CHECK(in.Channels() == 4, "SMAA needs an RGBA8 frame");
   AALAB_CHECK(params.max_search_steps >= 0 && params.max_search_steps_diag >= 0, "SMAA search steps must be >= 0");
   const int view = smaa_detail::ParseView(debug_view);
+  if (params.sampler != SamplerArithmetic::kGl) return SmaaReference(in, params, debug_view, stats);  // no fast path
   if (in.Empty()) return in;
   uint64_t taps = 0;
   EdgePlane edges;

@@ -168,6 +168,11 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
                 "motion runs: also write every frame's reference as display-linear float EXR (reference.f<t>.exr), for "
                 "outside video metrics (docs/motion.md)");
   run->add_flag("--debug-views", rs->debug_views, "also save each post filter's debug views");
+  auto run_sampler = std::make_shared<std::string>("gl");
+  run->add_option("--sampler", *run_sampler,
+                  "texel and bilinear arithmetic of the post filters: gl (llvmpipe's, the fidelity oracle) or "
+                  "gpu-texture (the H100 texture unit's fixed-point filter; docs/gpu.md)")
+      ->capture_default_str();
   run->add_flag("--quiet", rs->quiet, "no progress on stderr");
   auto run_shard = std::make_shared<std::string>();
   run->add_option("--shard", *run_shard,
@@ -178,9 +183,10 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   run->add_flag("--references-only", rs->references_only,
                 "only render this shard's share of the references into --ref-cache (scenes, and frames of moving "
                 "scenes); write no report");
-  run->callback([&commands, rs, run_scenes, run_methods, run_size, run_shard] {
-    commands.action = [rs, run_scenes, run_methods, run_size, run_shard] {
+  run->callback([&commands, rs, run_scenes, run_methods, run_size, run_shard, run_sampler] {
+    commands.action = [rs, run_scenes, run_methods, run_size, run_shard, run_sampler] {
       ParseSize(*run_size, &rs->width, &rs->height);
+      rs->sampler = ParseSamplerArithmetic(*run_sampler);
       if (!run_scenes->empty()) rs->scenes = SplitList(*run_scenes);
       if (!run_methods->empty()) rs->methods = SplitList(*run_methods);
       if (!run_shard->empty()) rs->shard = ParseShard(*run_shard);
@@ -210,18 +216,22 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   // apply
   auto* apply = app.add_subcommand("apply", "run a post-filter method on your own image");
   struct ApplyArgs {
-    std::string method, debug, in, out;
+    std::string method, debug, in, out, sampler = "gl";
     int threads = 0;
   };
   auto aa = std::make_shared<ApplyArgs>();
   apply->add_option("--method", aa->method, "method spec, e.g. fxaa311-p39:subpix=0.5")->required();
   apply->add_option("--debug", aa->debug, "debug view instead of the filtered image (see aalab list methods)");
   apply->add_option("--threads", aa->threads, "worker threads (0 = all)");
+  apply->add_option("--sampler", aa->sampler,
+                    "texel and bilinear arithmetic: gl (llvmpipe's) or gpu-texture (the H100 texture unit's)")
+      ->capture_default_str();
   apply->add_option("input", aa->in, "input image (PNG, JPEG, TIFF, EXR)")->required();
   apply->add_option("output", aa->out, "output image (.png, .jpg, .tif)")->required();
   apply->callback([&commands, aa] {
     commands.action = [aa] {
       SetThreadCount(aa->threads);
+      const SamplerArithmetic sampler = ParseSamplerArithmetic(aa->sampler);
       const MethodPlan plan = MakeMethod(aa->method);
       if (!plan.IsPostOnly()) {
         throw UserError("method '" + plan.spec + "' is not a post filter on a finished frame (it renders " +
@@ -260,6 +270,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       }
       PostOptions opt;
       opt.debug_view = aa->debug;
+      opt.sampler = sampler;
       PostStats stats;
       const Image8 result = plan.post(frame, opt, &stats);
       WriteImage8(aa->out, result);

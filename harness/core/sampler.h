@@ -4,10 +4,74 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "harness/core/image.h"
 
 namespace aalab {
+
+/// Which arithmetic every texel read and bilinear fetch of the CPU post filters uses (a
+/// run-level setting, `--sampler`; docs/gpu.md "A CPU mode that predicts the GPU's bits").
+///   kGl:         Mesa llvmpipe's float path (UnormToFloat texels, float32 lerps): the default,
+///                what the original shaders return on the GL oracle (tests/oracle).
+///   kGpuTexture: the NVIDIA texture unit's fixed-point filter as measured on the H100 by
+///                `aalab_gpu --probe-dump` (HwUnorm8ToFloat, HwWeights, HwFilter8): what the
+///                CUDA twins' texture path returns.
+enum class SamplerArithmetic { kGl, kGpuTexture };
+
+/// "gl" or "gpu-texture".
+const char* SamplerArithmeticName(SamplerArithmetic a);
+/// Parses "gl" / "gpu-texture"; throws UserError naming the allowed values otherwise.
+SamplerArithmetic ParseSamplerArithmetic(const std::string& name);
+
+/// kHwUnorm16[q] = q/65535 correctly rounded to float, q in 0..65535 (filled at start-up).
+extern const std::array<float, 65536> kHwUnorm16;
+/// The texture unit's float for a 16-bit fixed-point filter result q in 0..65535: q/65535
+/// correctly rounded to float (for q = k·257 this is k/255, the UNORM8 texel value).
+[[gnu::always_inline]] inline float HwUnorm16ToFloat(uint32_t q) { return kHwUnorm16[q & 0xffffu]; }
+/// The texture unit's value of UNORM8 code k: k/255 correctly rounded (measured for all 256).
+[[gnu::always_inline]] inline float HwUnorm8ToFloat(uint8_t k) { return HwUnorm16ToFloat(257u * k); }
+
+/// The texture unit's footprint of a bilinear fetch: top-left texel (x0, y0) (x0 in
+/// [-1, W], y0 in [-1, H]; reads clamp to the edge) and 8-bit fractions kx, ky in 0..255
+/// (units of 1/256 texel).
+struct HwFootprint {
+  int x0 = 0, y0 = 0;
+  int kx = 0, ky = 0;
+};
+/// The fetch at unnormalised coordinates (u, v) (exact values, e.g. a float widened to
+/// double): t = floor((u − 0.5)·256 + 0.5), x0 = floor(t/256), kx = t mod 256 — the
+/// coordinate rounded to 1/256 texel, ties upwards (towards +∞, negative coordinates too).
+/// A NaN coordinate reads as 0.
+HwFootprint HwFootprintAt(double u, double v, int width, int height);
+/// Normalised coordinates (s, t): each is first truncated to a multiple of 2^-21 (floor),
+/// then scaled by the size exactly: u = floor(s·2^21)·W/2^21, v alike, then HwFootprintAt.
+HwFootprint HwFootprintNormalized(float s, float t, int width, int height);
+
+/// The four 8-bit weights of a footprint, in 1/256, summing to 256: d = round(kx·ky/256)
+/// with ties upwards, b = kx − d, c = ky − d, a = 256 − kx − ky + d (texels a = (x0, y0),
+/// b = (x0+1, y0), c = (x0, y0+1), d = (x0+1, y0+1)).
+struct HwWeights {
+  int a = 256, b = 0, c = 0, d = 0;
+};
+[[gnu::always_inline]] inline HwWeights HwWeightsOf(int kx, int ky) {
+  HwWeights w;
+  w.d = (kx * ky + 128) >> 8;
+  w.b = kx - w.d;
+  w.c = ky - w.d;
+  w.a = 256 - kx - ky + w.d;
+  return w;
+}
+/// One channel of an RGBA8 fetch: S = Σ W_i·k_i exactly (units of 1/(256·255)), rescaled to
+/// 16 bits with ties upwards, q = floor((257·S + 128)/256), returned as HwUnorm16ToFloat(q).
+[[gnu::always_inline]] inline float HwFilter8(uint8_t a, uint8_t b, uint8_t c, uint8_t d, const HwWeights& w) {
+  const uint32_t s = static_cast<uint32_t>(w.a * a + w.b * b + w.c * c + w.d * d);
+  return HwUnorm16ToFloat((257u * s + 128u) >> 8);
+}
+/// One channel of an RGBA32F fetch (TAA's history on the GPU): the exact Σ W_i·v_i / 256
+/// rounded to float with ties upwards (measured on non-negative values; the sum is formed in
+/// double, exact unless the four terms span more than 20 binary orders of magnitude).
+float HwFilterFloat(float a, float b, float c, float d, const HwWeights& w);
 
 /// Four float channels, as a shader's float4.
 struct Float4 {
@@ -19,6 +83,11 @@ struct Float4 {
 /// 126 of the 256 values). Every 8-bit texel read in aalab goes through this.
 [[gnu::always_inline]] inline float UnormToFloat(uint8_t k) {
   return static_cast<float>(k) * (1.0f / 255.0f);
+}
+
+/// The texel value of code k under arithmetic `a`.
+[[gnu::always_inline]] inline float TexelValue(uint8_t k, SamplerArithmetic a) {
+  return a == SamplerArithmetic::kGl ? UnormToFloat(k) : HwUnorm8ToFloat(k);
 }
 
 /// GL's float-to-UNORM8 store of a render target: clamp to [0, 1], scale by 255, round to
@@ -97,9 +166,16 @@ enum class SubTexel { kExact, kFixed8 };
 /// sub-texel precision (so does llvmpipe's default RGBA8 path); this sampler uses the exact
 /// float32 fraction unless constructed with SubTexel::kFixed8 (which SMAA uses). Every call
 /// counts one tap in the sampler's counter (fetches, not texels).
+///
+/// With SamplerArithmetic::kGpuTexture every read follows the texture unit instead: texels
+/// HwUnorm8ToFloat, Sample at HwFootprintAt, SampleNormalized at HwFootprintNormalized,
+/// SampleNormalizedOffset as the CUDA twins' textureLodOffset (s·W + dx in float, then
+/// unnormalised), filtered by HwFilter8; `mode` is then irrelevant (the unit always uses 8-bit
+/// fractions).
 class BilinearSampler {
  public:
-  explicit BilinearSampler(const Image8& img, SubTexel mode = SubTexel::kExact);
+  explicit BilinearSampler(const Image8& img, SubTexel mode = SubTexel::kExact,
+                           SamplerArithmetic arithmetic = SamplerArithmetic::kGl);
   /// Sample at texture-space pixel coordinates (u, v) in pixels: the centre of texel (x, y)
   /// is (x + 0.5, y + 0.5).
   Float4 Sample(float u, float v);
@@ -121,8 +197,10 @@ class BilinearSampler {
  private:
   Float4 Fetch(int x, int y) const;
   Float4 Blend(const BilinearFootprint& f);
+  Float4 BlendHw(const HwFootprint& f);
   const Image8& img_;
   SubTexel mode_ = SubTexel::kExact;
+  SamplerArithmetic arithmetic_ = SamplerArithmetic::kGl;
   uint64_t taps_ = 0;
 };
 

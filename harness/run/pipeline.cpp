@@ -163,7 +163,7 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
 }
 
 MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t seed, int repeat,
-                       std::unique_ptr<TemporalState>* state, StageClock* clock) {
+                       std::unique_ptr<TemporalState>* state, StageClock* clock, SamplerArithmetic sampler) {
   if (!p.tracer && !RunsOnImageScenes(plan, p.captured_motion)) return MethodOutput{NotApplicableRow(p, plan), {}, {}, {}};
   if (clock) clock->Enter("method_renders_filters");
   const int W = p.info.width, H = p.info.height;
@@ -269,7 +269,9 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
     Image8 filtered;
     row.post = TimeRepeats(repeat, [&] {
       PostStats st;
-      filtered = plan.post(frame, PostOptions{}, &st);
+      PostOptions opt;
+      opt.sampler = sampler;
+      filtered = plan.post(frame, opt, &st);
       post_stats = st;
     });
     out.input = std::move(frame);
@@ -282,7 +284,7 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
     Image8 scaled;
     row.resample = TimeRepeats(repeat, [&] {
       PostStats st;
-      scaled = RescaleFrame(frame, W, H, plan.rescale, &st);
+      scaled = RescaleFrame(frame, W, H, plan.rescale, &st, sampler);
       rescale_stats = st;
     });
     frame = std::move(scaled);

@@ -113,14 +113,15 @@ struct MethodOutput {
 /// sequence of one frame. Jittered renders (plan.render.jitter) use the prepared frame's
 /// index for the jitter and, from frame 1 on, pass exact motion vectors to the state. With a
 /// `clock`, charges rendering and filtering to "method_renders_filters" and scoring to
-/// "metrics".
+/// "metrics". `sampler` goes to the post filter (PostOptions::sampler) and the rescale.
 /// Scores `frame` (the output size) against the prepared scene: every metric and the 8-bit
 /// FLIP map, reusing the scores of a bit-identical earlier output; fills out->row.metrics,
 /// output_hash, out->flip_grey and moves the frame into out->output.
 void ScoreOutput(const PreparedScene& prepared, Image8 frame, MethodOutput* out, StageClock* clock = nullptr);
 
 MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat,
-                       std::unique_ptr<TemporalState>* state = nullptr, StageClock* clock = nullptr);
+                       std::unique_ptr<TemporalState>* state = nullptr, StageClock* clock = nullptr,
+                       SamplerArithmetic sampler = SamplerArithmetic::kGl);
 
 /// Runs `body` once untimed, then `repeat` times timed (wall clock).
 Timing TimeRepeats(int repeat, const std::function<void()>& body);

@@ -218,6 +218,7 @@ Report RunSuite(const RunSettings& s) {
                      {"debug_views", s.debug_views ? "true" : "false"}};
   if (s.frames > 1) report.settings.emplace_back("frames", std::to_string(s.frames));
   if (s.frame_exr) report.settings.emplace_back("frame_exr", "true");
+  if (s.sampler != SamplerArithmetic::kGl) report.settings.emplace_back("sampler", SamplerArithmeticName(s.sampler));
   for (auto& kv : viewing.Settings()) report.settings.push_back(std::move(kv));
   if (!supplied.empty()) report.settings.emplace_back("supplied", JoinNames(supplied));
   report.shard = shard_info;
@@ -314,7 +315,7 @@ Report RunSuite(const RunSettings& s) {
         const MethodPlan* plan = m < plans.size() ? &plans[m] : nullptr;
         const std::string spec = plan ? plan->spec : supplied[m - plans.size()];
         auto mo = std::make_shared<MethodOutput>(
-            plan ? RunMethod(*prepared, *plan, s.seed, s.repeat, &states[m], &clock)
+            plan ? RunMethod(*prepared, *plan, s.seed, s.repeat, &states[m], &clock, s.sampler)
                  : SuppliedOutputRow(*prepared, spec, s.repeat, &clock));
         ResultRow& row = mo->row;
         if (!row.not_applicable.empty()) {  // a renderer-side method on an image scene: no images
@@ -334,6 +335,7 @@ Report RunSuite(const RunSettings& s) {
           for (const auto& view : plan->debug_views) {
             PostOptions opt;
             opt.debug_view = view;
+            opt.sampler = s.sampler;
             const std::string rel = rel_dir + "/" + FileSafe(spec) + ".debug-" + view + ".png";
             WriteImage8((tmp / rel).string(), plan->post(mo->input, opt, nullptr));
             row.images["debug_" + view] = rel;

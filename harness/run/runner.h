@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/core/sampler.h"
 #include "harness/run/shard.h"
 #include "reports/result.h"
 
@@ -34,6 +35,9 @@ struct RunSettings {
   /// --frame-exr: in a motion run, also write every frame's reference as display-linear
   /// float EXR (images/<scene>/reference.f<t>.exr), for outside video metrics.
   bool frame_exr = false;
+  /// --sampler: the post filters' texel and bilinear arithmetic (PostOptions::sampler);
+  /// kGpuTexture is recorded in the report's settings as "sampler".
+  SamplerArithmetic sampler = SamplerArithmetic::kGl;
 };
 
 /// The methods `aalab run` uses when --methods is not given: one or two of each family

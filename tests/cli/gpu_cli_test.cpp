@@ -164,5 +164,42 @@ TEST(MergeGpu, FileMatchingNoRowIsAnErrorAndChangesNothing) {
   EXPECT_EQ(ReadText(dir / "report.json"), before);
 }
 
+TEST(SamplerOption, GpuTextureIsRecordedAndChangesOnlyTheFilters) {
+  // --sampler gpu-texture: the report records it, the render and `none` keep their bits
+  // (nothing samples there), the filters run. The default run does not name a sampler.
+  const fs::path dir = TempDir("sampler-option");
+  const std::string common = "run --scenes wedges --methods none,fxaa311-p39,smaa-high,scale43 --size 61x37 "
+                             "--ref-spp 4 --repeat 1 --quiet --out ";
+  auto r = Aalab(common + (dir / "gl").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = Aalab(common + (dir / "hw").string() + " --sampler gpu-texture");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto gl = nlohmann::json::parse(ReadText(dir / "gl" / "report.json"));
+  const auto hw = nlohmann::json::parse(ReadText(dir / "hw" / "report.json"));
+  EXPECT_FALSE(gl["settings"].contains("sampler"));
+  EXPECT_EQ(hw["settings"]["sampler"], "gpu-texture");
+  ASSERT_EQ(gl["rows"].size(), hw["rows"].size());
+  for (size_t i = 0; i < gl["rows"].size(); ++i) {
+    ASSERT_EQ(gl["rows"][i]["spec"], hw["rows"][i]["spec"]);
+    if (gl["rows"][i]["spec"] == "none") {
+      EXPECT_EQ(gl["rows"][i]["output_hash"], hw["rows"][i]["output_hash"]);
+    }
+  }
+  EXPECT_NE(ReadText(dir / "hw" / "index.html").find("gpu-texture"), std::string::npos);
+}
+
+TEST(SamplerOption, UnknownSamplerIsRefusedNamingTheChoices) {
+  const fs::path dir = TempDir("sampler-bad");
+  auto r = Aalab("run --scenes wedges --methods none --size 16x9 --ref-spp 4 --quiet --sampler hw --out " +
+                 (dir / "out").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("unknown sampler 'hw' (allowed: gl, gpu-texture)"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  r = Aalab("apply --method fxaa311-p39 --sampler hw " + (dir / "in.png").string() + " " + (dir / "o.png").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("unknown sampler 'hw'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "o.png"));
+}
+
 }  // namespace
 }  // namespace aalab
