@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "harness/core/error.h"
+#include "harness/core/hash.h"
 #include "harness/core/params.h"
 #include "harness/core/timer.h"
 #include "harness/run/image_scene.h"
-#include "harness/run/runner.h"
 #include "metrics/crops.h"
 #include "metrics/metric.h"
 #include "metrics/metrics.h"
