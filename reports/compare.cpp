@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "harness/core/error.h"
-#include "reports/compare_html.h"
+#include "reports/html_page.h"
 
 namespace aalab {
 

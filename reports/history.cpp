@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/core/error.h"
-#include "reports/compare_html.h"
+#include "reports/html_page.h"
 
 namespace aalab {
 

@@ -28,7 +28,7 @@
 #include "methods/registry.h"
 #include "metrics/viewing.h"
 #include "metrics/metric.h"
-#include "reports/compare_html.h"
+#include "reports/html_page.h"
 #include "reports/report_json.h"
 #include "scenes/render.h"
 
