@@ -14,7 +14,10 @@
 #include "harness/core/cleanup.h"
 #include "harness/io/image_io.h"
 #include "reports/compare.h"
+#include "reports/compare_page.h"
+#include "reports/compare_text.h"
 #include "reports/history.h"
+#include "reports/history_page.h"
 #include "reports/report_json.h"
 
 namespace aalab {
