@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "harness/core/error.h"
+#include "harness/core/exit_code.h"
 #include "reports/compare_text.h"
 #include "reports/html_page.h"
 
@@ -246,8 +247,11 @@ const char* VerdictName(Verdict v) {
 bool IsQualityLine(const CompareLine& l) { return l.quantity != "time_ms"; }
 
 int CompareResult::ExitCode() const {
-  if (!cannot_compare.empty() || !missing_rows.empty() || !extra_rows.empty()) return 2;
-  return regressions > 0 ? 1 : 0;
+  // The member's name hides the enum here: aalab::ExitCode is the type.
+  if (!cannot_compare.empty() || !missing_rows.empty() || !extra_rows.empty()) {
+    return ToInt(aalab::ExitCode::kCouldNotCompare);
+  }
+  return ToInt(regressions > 0 ? aalab::ExitCode::kFailure : aalab::ExitCode::kOk);
 }
 
 std::string SettingValue(const Report& report, const std::string& key) {

@@ -140,7 +140,7 @@ struct CompareResult {
   int regressions = 0, improvements = 0;
 
   /// 2 could not compare (anything in cannot_compare / missing_rows / extra_rows), 1 at
-  /// least one regression, 0 otherwise.
+  /// least one regression, 0 otherwise (ExitCode, harness/core/exit_code.h, as an int).
   int ExitCode() const;
 };
 
