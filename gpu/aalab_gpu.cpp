@@ -50,6 +50,7 @@
 #include "gpu/texture_probe.h"
 #include "harness/core/color.h"
 #include "harness/core/error.h"
+#include "harness/core/exit_code.h"
 #include "harness/core/hash.h"
 #include "harness/core/params.h"
 
@@ -132,7 +133,7 @@ Options ParseArgs(int argc, char** argv) {
           "  --outputs DIR    write the GPU outputs on one frame as PPM; --outputs-scene SCENE-WxH names it\n"
           "  --probe-dump DIR write the texture unit's raw bilinear probe data into DIR and exit\n"
           "                   (scripts/fit_texture_rule.py fits the sampler rule to it; docs/gpu.md)\n");
-      std::exit(0);
+      std::exit(ToInt(ExitCode::kOk));
     } else {
       throw UserError("unknown argument '" + a + "' (see --help)");
     }
@@ -606,7 +607,7 @@ int Main(int argc, char** argv) {
   cudaFree(decode);
   cudaStreamDestroy(stream);
   if (failures > 0) std::printf("%d check(s) failed\n", failures);
-  return o.check && failures > 0 ? 1 : 0;
+  return ToInt(o.check && failures > 0 ? ExitCode::kFailure : ExitCode::kOk);
 }
 
 }  // namespace
@@ -617,9 +618,9 @@ int main(int argc, char** argv) {
     return aalab::Main(argc, argv);
   } catch (const aalab::UserError& e) {
     std::fprintf(stderr, "aalab_gpu: error: %s\n", e.what());
-    return 1;
+    return aalab::ToInt(aalab::ExitCode::kFailure);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "aalab_gpu: internal error: %s\n", e.what());
-    return 3;
+    return aalab::ToInt(aalab::ExitCode::kInternalError);
   }
 }

@@ -1,21 +1,21 @@
-// Regression comparison of two reports. The rules are in compare.h and
-// docs/regression.md; exit codes as OpenImageIO's idiff (0 pass, 1 fail,
-// 2 could not compare).
+// Regression comparison of two reports: the rules (compare.h, docs/regression.md); exit
+// codes as OpenImageIO's idiff (0 pass, 1 fail, 2 could not compare). The text:
+// compare_text.cpp; the page: compare_page.cpp.
 #include "reports/compare.h"
 
 #include <algorithm>
-#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <limits>
 #include <set>
 #include <sstream>
 
 #include "harness/core/error.h"
-#include "reports/compare_html.h"
+#include "harness/core/exit_code.h"
+#include "reports/compare_text.h"
+#include "reports/html_page.h"
 
 namespace aalab {
 
@@ -64,32 +64,6 @@ bool ParseNumber(const std::string& text, double* out) {
 
 std::string RowName(const std::string& scene, const std::string& spec) { return scene + " / " + spec; }
 
-std::string FormatValue(const std::string& quantity, double v) {
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  if (IsDbMetric(quantity)) return FormatFixed(v, 3);
-  if (quantity == "time_ms") return FormatFixed(v, 3);
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-std::string FormatDelta(const std::string& quantity, double d) {
-  if (std::isinf(d)) return d > 0 ? "+inf" : "-inf";
-  std::string s = FormatValue(quantity, d);
-  if (d >= 0 && s.front() != '-') s = "+" + s;
-  return s;
-}
-
-std::string LineValueText(const CompareLine& l, bool base) {
-  const auto& v = base ? l.base : l.current;
-  const std::string& reason = base ? l.base_null : l.current_null;
-  if (v) {
-    if (std::isinf(*v) && !reason.empty()) return "inf (" + reason + ")";
-    return FormatValue(l.quantity, *v);
-  }
-  return "null (" + reason + ")";
-}
-
 struct MetricLookup {
   bool present = false;
   std::optional<double> value;
@@ -128,8 +102,6 @@ std::string ParamsDiff(const ResultRow& a, const ResultRow& b) {
   for (size_t i = 0; i < parts.size(); ++i) s += (i ? ", " : "") + parts[i];
   return s;
 }
-
-bool QualityLine(const CompareLine& l) { return l.quantity != "time_ms"; }
 
 }  // namespace
 
@@ -272,9 +244,14 @@ const char* VerdictName(Verdict v) {
   return "?";
 }
 
+bool IsQualityLine(const CompareLine& l) { return l.quantity != "time_ms"; }
+
 int CompareResult::ExitCode() const {
-  if (!cannot_compare.empty() || !missing_rows.empty() || !extra_rows.empty()) return 2;
-  return regressions > 0 ? 1 : 0;
+  // The member's name hides the enum here: aalab::ExitCode is the type.
+  if (!cannot_compare.empty() || !missing_rows.empty() || !extra_rows.empty()) {
+    return ToInt(aalab::ExitCode::kCouldNotCompare);
+  }
+  return ToInt(regressions > 0 ? aalab::ExitCode::kFailure : aalab::ExitCode::kOk);
 }
 
 std::string SettingValue(const Report& report, const std::string& key) {
@@ -571,7 +548,7 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
       if (l.scene != m.scene || l.spec != m.spec) continue;
       if (l.verdict == Verdict::kRegression) m.regression = true;
       if (l.verdict == Verdict::kRegression || l.verdict == Verdict::kImproved ||
-          (QualityLine(l) && l.verdict != Verdict::kUnchanged)) {
+          (IsQualityLine(l) && l.verdict != Verdict::kUnchanged)) {
         m.changed = true;
       }
     }
@@ -586,184 +563,6 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
     if (l.verdict == Verdict::kImproved) ++res.improvements;
   }
   return res;
-}
-
-std::string FormatCompareText(const CompareResult& r, const Report& base, const Report& cur, const std::string& base_name,
-                              const std::string& cur_name, bool all) {
-  std::ostringstream out;
-  auto describe = [](const Report& rep) {
-    auto it = rep.context.find("git_commit");
-    return "commit " + (it == rep.context.end() ? std::string("unknown") : it->second) + ", size " +
-           SettingValue(rep, "size") + ", ref_spp " + SettingValue(rep, "ref_spp") + ", seed " + SettingValue(rep, "seed");
-  };
-  out << "baseline: " << base_name << " (" << describe(base) << ")\n";
-  out << "current:  " << cur_name << " (" << describe(cur) << ")\n";
-
-  // Table of changed values.
-  std::vector<std::array<std::string, 8>> table;
-  table.push_back({"scene", "method", "metric", "baseline", "current", "delta", "threshold", "verdict"});
-  for (const auto& l : r.lines) {
-    const bool show = all || l.verdict == Verdict::kRegression || l.verdict == Verdict::kImproved ||
-                      (QualityLine(l) && l.verdict != Verdict::kUnchanged);
-    if (!show) continue;
-    std::string verdict = VerdictName(l.verdict);
-    if (!l.note.empty()) verdict += ": " + l.note;
-    table.push_back({l.scene, l.spec, l.quantity, LineValueText(l, true), LineValueText(l, false),
-                     l.delta ? FormatDelta(l.quantity, *l.delta) : "-", l.threshold, verdict});
-  }
-  if (table.size() > 1) {
-    std::array<size_t, 8> w{};
-    for (const auto& row : table) {
-      for (size_t c = 0; c < 8; ++c) w[c] = std::max(w[c], row[c].size());
-    }
-    for (const auto& row : table) {
-      std::string line;
-      for (size_t c = 0; c < 8; ++c) {
-        std::string cell = row[c];
-        if (c + 1 < 8) cell.resize(w[c], ' ');
-        line += cell + (c + 1 < 8 ? "  " : "");
-      }
-      out << line << "\n";
-    }
-  } else if (r.cannot_compare.empty() || !r.rows.empty()) {
-    out << (all ? "no values compared\n" : "no changed values\n");
-  }
-  if (!r.cannot_compare.empty()) {
-    out << "could not compare (" << r.cannot_compare.size() << "):\n";
-    for (const auto& s : r.cannot_compare) out << "  " << s << "\n";
-  }
-  if (!r.missing_rows.empty()) {
-    out << "missing from the current report (" << r.missing_rows.size() << " rows):\n";
-    for (const auto& s : r.missing_rows) out << "  " << s << "\n";
-  }
-  if (!r.extra_rows.empty()) {
-    out << "extra in the current report, not in the baseline (" << r.extra_rows.size() << " rows):\n";
-    for (const auto& s : r.extra_rows) out << "  " << s << "\n";
-  }
-  for (const auto& n : r.notes) out << "note: " << n << "\n";
-  int identical = 0;
-  for (const auto& m : r.rows) identical += m.bit_identical ? 1 : 0;
-  std::string metrics;
-  for (const auto& m : r.metrics) metrics += (metrics.empty() ? "" : ", ") + m;
-  const int code = r.ExitCode();
-  out << "summary: " << r.rows.size() << " rows compared on " << (metrics.empty() ? "(none)" : metrics)
-      << (r.lines.empty() || r.lines.back().quantity != "time_ms" ? "" : " and time") << " (" << identical
-      << " bit-identical outputs); " << r.regressions << " regression(s), " << r.improvements << " improvement(s); exit "
-      << code << (code == 0 ? " (no regression)" : code == 1 ? " (regression)" : " (could not compare)") << "\n";
-  return out.str();
-}
-
-std::vector<size_t> ChangedRowOrder(const CompareResult& r) {
-  std::vector<size_t> order;
-  for (size_t i = 0; i < r.rows.size(); ++i) {
-    if (r.rows[i].regression) order.push_back(i);
-  }
-  for (size_t i = 0; i < r.rows.size(); ++i) {
-    if (!r.rows[i].regression && r.rows[i].changed) order.push_back(i);
-  }
-  return order;
-}
-
-std::vector<std::vector<HtmlImage>> CompareHtmlImages(const CompareResult& r, const Report& base, const Report& cur,
-                                                      const std::string& base_dir, const std::string& cur_dir) {
-  namespace fs = std::filesystem;
-  std::vector<std::vector<HtmlImage>> out;
-  auto image = [](const std::string& label, const std::map<std::string, std::string>& images, const std::string& key,
-                  const std::string& dir, const std::string& which) {
-    HtmlImage im;
-    im.label = label;
-    auto it = images.find(key);
-    if (it == images.end()) {
-      im.missing = "the " + which + " names no '" + key + "' image";
-    } else {
-      im.source = (fs::path(dir) / it->second).string();
-    }
-    return im;
-  };
-  for (size_t i : ChangedRowOrder(r)) {
-    const RowMatch& m = r.rows[i];
-    const ResultRow& brow = base.rows[static_cast<size_t>(m.base_index)];
-    const ResultRow& crow = cur.rows[static_cast<size_t>(m.current_index)];
-    std::vector<HtmlImage> ims;
-    ims.push_back(image("baseline output", brow.images, "output", base_dir, "baseline row"));
-    ims.push_back(image("current output", crow.images, "output", cur_dir, "current row"));
-    const SceneResult* scene = nullptr;
-    for (const auto& s : cur.scenes) {
-      if (s.name == m.scene) scene = &s;
-    }
-    if (scene) {
-      ims.push_back(image("reference", scene->images, "reference_png", cur_dir, "current report's scene"));
-    } else {
-      HtmlImage im;
-      im.label = "reference";
-      im.missing = "the current report has no scene entry '" + m.scene + "'";
-      ims.push_back(im);
-    }
-    out.push_back(ims);
-  }
-  return out;
-}
-
-std::string CompareHtml(const CompareResult& r, const std::vector<std::vector<HtmlImage>>& images,
-                        const std::string& base_name, const std::string& cur_name) {
-  std::ostringstream h;
-  const int code = r.ExitCode();
-  h << HtmlPageStart("aalab compare");
-  h << "<h1>aalab compare</h1>\n<p>baseline <code>" << HtmlEscape(base_name) << "</code>, current <code>"
-    << HtmlEscape(cur_name) << "</code></p>\n";
-  h << "<p class=\"" << (code == 0 ? "improved" : "regression") << "\">exit " << code << ": "
-    << (code == 0 ? "no regression" : code == 1 ? "regression" : "could not compare") << " &mdash; " << r.rows.size()
-    << " rows compared, " << r.regressions << " regression(s), " << r.improvements << " improvement(s)</p>\n";
-  auto list = [&h](const std::string& title, const std::vector<std::string>& items) {
-    if (items.empty()) return;
-    h << "<h2>" << HtmlEscape(title) << " (" << items.size() << ")</h2>\n<ul>\n";
-    for (const auto& s : items) h << "<li>" << HtmlEscape(s) << "</li>\n";
-    h << "</ul>\n";
-  };
-  list("Could not compare", r.cannot_compare);
-  list("Missing from the current report", r.missing_rows);
-  list("Extra in the current report", r.extra_rows);
-  list("Notes", r.notes);
-  auto verdict_class = [](Verdict v) {
-    switch (v) {
-      case Verdict::kRegression: return "regression";
-      case Verdict::kImproved: return "improved";
-      case Verdict::kWithin: return "within";
-      case Verdict::kNotJudged: return "not-judged";
-      default: return "unchanged";
-    }
-  };
-  const std::vector<size_t> order = ChangedRowOrder(r);
-  AALAB_CHECK(order.size() == images.size(), "one image list per changed row");
-  if (order.empty()) h << "<p>No changed rows.</p>\n";
-  for (size_t k = 0; k < order.size(); ++k) {
-    const RowMatch& m = r.rows[order[k]];
-    h << "<section><h2 class=\"" << (m.regression ? "regression" : "") << "\">" << HtmlEscape(m.scene) << " / "
-      << HtmlEscape(m.spec) << (m.bit_identical ? " (bit-identical output)" : "") << "</h2>\n";
-    h << "<table><tr><th class=\"l\">metric</th><th>baseline</th><th>current</th><th>delta</th><th>threshold</th>"
-         "<th class=\"l\">verdict</th></tr>\n";
-    for (const auto& l : r.lines) {
-      if (l.scene != m.scene || l.spec != m.spec) continue;
-      h << "<tr><td class=\"l\">" << HtmlEscape(l.quantity) << "</td><td>" << HtmlEscape(LineValueText(l, true))
-        << "</td><td>" << HtmlEscape(LineValueText(l, false)) << "</td><td>"
-        << (l.delta ? HtmlEscape(FormatDelta(l.quantity, *l.delta)) : "-") << "</td><td>" << HtmlEscape(l.threshold)
-        << "</td><td class=\"l " << verdict_class(l.verdict) << "\">" << VerdictName(l.verdict)
-        << (l.note.empty() ? "" : ": " + HtmlEscape(l.note)) << "</td></tr>\n";
-    }
-    h << "</table>\n<div class=\"imgs\">\n";
-    for (const auto& im : images[k]) {
-      h << "<figure>";
-      if (!im.href.empty()) {
-        h << "<img src=\"" << HtmlEscape(im.href) << "\" alt=\"" << HtmlEscape(im.label) << "\" width=\"320\">";
-      } else {
-        h << "<div class=\"missing\">not available: " << HtmlEscape(im.missing) << "</div>";
-      }
-      h << "<figcaption>" << HtmlEscape(im.label) << "</figcaption></figure>\n";
-    }
-    h << "</div></section>\n";
-  }
-  h << HtmlPageEnd();
-  return h.str();
 }
 
 }  // namespace aalab

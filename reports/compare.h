@@ -1,4 +1,5 @@
-/// Regression comparison of two reports (`aalab compare`), shared by `aalab history`.
+/// Regression comparison of two reports (`aalab compare`), shared by `aalab history`: the
+/// rules. The text of a result: compare_text.h; its HTML page: compare_page.h.
 ///
 /// Pure functions: no I/O except what the caller does with the results. The rules (also in
 /// `aalab compare --help` and docs/regression.md):
@@ -117,6 +118,9 @@ struct CompareLine {
   std::string note;                     ///< why, when the numbers alone do not say
 };
 
+/// True for a metric's line, false for the time line ("time_ms").
+bool IsQualityLine(const CompareLine& line);
+
 /// A matched row pair.
 struct RowMatch {
   std::string scene, spec;
@@ -136,7 +140,7 @@ struct CompareResult {
   int regressions = 0, improvements = 0;
 
   /// 2 could not compare (anything in cannot_compare / missing_rows / extra_rows), 1 at
-  /// least one regression, 0 otherwise.
+  /// least one regression, 0 otherwise (ExitCode, harness/core/exit_code.h, as an int).
   int ExitCode() const;
 };
 
@@ -146,35 +150,6 @@ CompareResult CompareReports(const Report& baseline, const Report& current, cons
 
 /// The method's own time per repeat: post + resample (+ render unless shared with `none`).
 Timing MethodTime(const ResultRow& row);
-
-/// The human-readable result: a header, the table of changed values (every value with
-/// `all`), missing/extra rows, notes and a summary line ending in the exit code.
-std::string FormatCompareText(const CompareResult& result, const Report& baseline, const Report& current,
-                              const std::string& baseline_name, const std::string& current_name, bool all);
-
-/// One image shown on the HTML page.
-struct HtmlImage {
-  std::string label;   ///< "baseline output", "current output", "reference"
-  std::string source;  ///< path of the image as the report names it, joined to its folder
-  std::string href;    ///< path relative to the HTML file; empty when not available
-  std::string missing; ///< why it is not shown (when href is empty)
-};
-
-/// The images to show per changed row, in the order of result.rows filtered to changed or
-/// regressed rows: baseline output, current output, reference (current report's
-/// `reference_png`). `href` is left for the caller, who copies the files.
-std::vector<std::vector<HtmlImage>> CompareHtmlImages(const CompareResult& result, const Report& baseline,
-                                                      const Report& current, const std::string& baseline_dir,
-                                                      const std::string& current_dir);
-
-/// The offline HTML page: summary, missing/extra rows, and per changed row its lines and
-/// images side by side (`images` as returned by CompareHtmlImages with hrefs filled).
-std::string CompareHtml(const CompareResult& result, const std::vector<std::vector<HtmlImage>>& images,
-                        const std::string& baseline_name, const std::string& current_name);
-
-/// Indices (into result.rows) of the rows shown on the HTML page: rows with a regression
-/// first, then other changed rows, in report order.
-std::vector<size_t> ChangedRowOrder(const CompareResult& result);
 
 /// Value of a report setting, or empty when absent.
 std::string SettingValue(const Report& report, const std::string& key);

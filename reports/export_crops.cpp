@@ -9,7 +9,7 @@
 
 #include "harness/core/error.h"
 #include "metrics/heatmap.h"
-#include "reports/html_report.h"
+#include "reports/html_page.h"
 
 namespace aalab {
 

@@ -1,19 +1,15 @@
-// The history database (JSON lines) and its trend page. Format and rules in history.h.
+// The history database (JSON lines). Format and rules in history.h; the trend page: history_page.cpp.
 #include "reports/history.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <fstream>
-#include <map>
-#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "harness/core/error.h"
-#include "reports/compare_html.h"
 
 namespace aalab {
 
@@ -37,11 +33,6 @@ Timing SamplesFrom(const Json& j) {
   for (const auto& v : j) t.samples_ms.push_back(v.get<double>());
   t.Summarize();
   return t;
-}
-
-std::string Setting(const Report& r, const std::string& k) {
-  const std::string v = SettingValue(r, k);
-  return v.empty() ? "(absent)" : v;
 }
 
 HistoryEntry EntryFromJson(const Json& j, const std::string& where) {
@@ -100,6 +91,11 @@ HistoryEntry EntryFromJson(const Json& j, const std::string& where) {
 const std::vector<std::string>& HistorySeriesKeys() {
   static const std::vector<std::string> keys = {"size", "ref_spp", "seed", "scenes", "methods", "frames"};
   return keys;
+}
+
+std::string HistorySettingText(const Report& r, const std::string& k) {
+  const std::string v = SettingValue(r, k);
+  return v.empty() ? "(absent)" : v;
 }
 
 void ValidateSeriesName(const std::string& name) {
@@ -248,7 +244,7 @@ void CheckSeriesCompatible(const std::vector<HistoryEntry>& entries, const Histo
   if (!last) return;
   std::vector<std::string> diffs;
   for (const auto& k : HistorySeriesKeys()) {
-    const std::string a = Setting(last->report, k), b = Setting(e.report, k);
+    const std::string a = HistorySettingText(last->report, k), b = HistorySettingText(e.report, k);
     if (a != b) diffs.push_back(k + ": series " + a + ", report " + b);
   }
   if (!diffs.empty()) {
@@ -267,293 +263,6 @@ std::vector<std::string> HistorySeriesNames(const std::vector<HistoryEntry>& ent
     if (std::find(names.begin(), names.end(), e.series) == names.end()) names.push_back(e.series);
   }
   return names;
-}
-
-namespace {
-
-/// One point of a trend chart.
-struct TrendPoint {
-  std::optional<double> value;  ///< +inf: identical to the reference
-  std::optional<double> lo, hi; ///< min–max bar (time)
-  std::string null_text;        ///< when value is empty
-  std::string mark;             ///< "", "regression", "improved", "cannot"
-  std::string tooltip;
-};
-
-std::string SvgTrend(const std::string& title, const std::string& unit, const std::vector<TrendPoint>& pts,
-                     const std::vector<std::string>& labels) {
-  const double W = 420, H = 160, L = 58, R = 12, T = 20, B = 26;
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const auto& p : pts) {
-    for (const auto& v : {p.value, p.lo, p.hi}) {
-      if (v && std::isfinite(*v)) {
-        lo = std::min(lo, *v);
-        hi = std::max(hi, *v);
-      }
-    }
-  }
-  if (!(lo <= hi)) lo = 0, hi = 1;
-  if (hi - lo < 1e-9 * std::max(1.0, std::fabs(hi))) {
-    const double pad = std::max(1e-3, std::fabs(hi) * 0.01);
-    lo -= pad;
-    hi += pad;
-  } else {
-    const double pad = (hi - lo) * 0.08;
-    lo -= pad;
-    hi += pad;
-  }
-  const size_t n = pts.size();
-  const double inset = 10;  // keep the first point off the axis
-  auto X = [&](size_t i) {
-    return n <= 1 ? L + (W - L - R) / 2 : L + inset + (W - L - R - inset) * static_cast<double>(i) / (n - 1);
-  };
-  auto Y = [&](double v) {
-    if (std::isinf(v)) return T - 6.0;
-    return T + (H - T - B) * (1.0 - (v - lo) / (hi - lo));
-  };
-  std::ostringstream s;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W << " "
-    << H << "\" role=\"img\"><title>" << HtmlEscape(title) << "</title>\n";
-  s << "<text x=\"" << L << "\" y=\"13\" font-size=\"12\">" << HtmlEscape(title) << " (" << HtmlEscape(unit) << ")</text>\n";
-  s << "<line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L << "\" y2=\"" << H - B << "\" stroke=\"#888\"/>"
-    << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << W - R << "\" y2=\"" << H - B << "\" stroke=\"#888\"/>\n";
-  const int digits = unit == "dB" ? 2 : 3;
-  s << "<text x=\"" << L - 4 << "\" y=\"" << T + 4 << "\" font-size=\"10\" text-anchor=\"end\">" << FormatFixed(hi, digits)
-    << "</text><text x=\"" << L - 4 << "\" y=\"" << H - B << "\" font-size=\"10\" text-anchor=\"end\">"
-    << FormatFixed(lo, digits) << "</text>\n";
-  if (!labels.empty()) {
-    s << "<text x=\"" << X(0) << "\" y=\"" << H - 8 << "\" font-size=\"10\" text-anchor=\"start\">"
-      << HtmlEscape(labels.front()) << "</text>";
-    if (labels.size() > 1) {
-      s << "<text x=\"" << X(n - 1) << "\" y=\"" << H - 8 << "\" font-size=\"10\" text-anchor=\"end\">"
-        << HtmlEscape(labels.back()) << "</text>";
-    }
-    s << "\n";
-  }
-  // Min–max bars.
-  for (size_t i = 0; i < n; ++i) {
-    if (pts[i].lo && pts[i].hi) {
-      s << "<line x1=\"" << X(i) << "\" y1=\"" << Y(*pts[i].lo) << "\" x2=\"" << X(i) << "\" y2=\"" << Y(*pts[i].hi)
-        << "\" stroke=\"#9ab\" stroke-width=\"3\"/>";
-    }
-  }
-  // The line through finite values (broken at nulls / infinities).
-  std::string path;
-  bool pen = false;
-  for (size_t i = 0; i < n; ++i) {
-    const auto& v = pts[i].value;
-    if (v && std::isfinite(*v)) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%s%.1f,%.1f ", pen ? "L" : "M", X(i), Y(*v));
-      path += buf;
-      pen = true;
-    } else {
-      pen = false;
-    }
-  }
-  if (!path.empty()) s << "<path d=\"" << path << "\" fill=\"none\" stroke=\"#2060c0\" stroke-width=\"1.5\"/>\n";
-  for (size_t i = 0; i < n; ++i) {
-    const auto& p = pts[i];
-    const std::string color = p.mark == "regression" ? "#d00020"
-                              : p.mark == "improved" ? "#1b9e3a"
-                              : p.mark == "cannot"   ? "#e08000"
-                                                     : "#2060c0";
-    const double r = p.mark.empty() ? 3 : 5.5;
-    s << "<g><title>" << HtmlEscape(p.tooltip) << "</title>";
-    if (p.value) {
-      s << "<circle cx=\"" << X(i) << "\" cy=\"" << Y(*p.value) << "\" r=\"" << r << "\" fill=\"" << color << "\"/>";
-      if (std::isinf(*p.value)) {
-        s << "<text x=\"" << X(i) + 7 << "\" y=\"" << Y(*p.value) + 4 << "\" font-size=\"10\">&#8734;</text>";
-      }
-    } else {
-      const double y = H - B - 6;
-      s << "<text x=\"" << X(i) << "\" y=\"" << y << "\" font-size=\"12\" text-anchor=\"middle\" fill=\"" << color
-        << "\">&#215;</text>";
-    }
-    s << "</g>\n";
-  }
-  s << "</svg>";
-  return s.str();
-}
-
-std::string Short(const std::string& commit) { return commit.substr(0, std::min<size_t>(commit.size(), 10)); }
-
-}  // namespace
-
-HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::string& only_series,
-                        const CompareOptions& options) {
-  HistoryPage page;
-  std::vector<std::string> names = HistorySeriesNames(entries);
-  if (entries.empty()) throw UserError("the history database holds no entries");
-  if (!only_series.empty()) {
-    if (std::find(names.begin(), names.end(), only_series) == names.end()) {
-      std::string all;
-      for (const auto& n : names) all += (all.empty() ? "" : ", ") + n;
-      throw UserError("no series '" + only_series + "' in the history (series: " + all + ")");
-    }
-    names = {only_series};
-  }
-  std::ostringstream h;
-  h << HtmlPageStart("aalab history");
-  h << "<h1>aalab history</h1>\n<p>Trend per scene &times; method. Marked points crossed a threshold against the "
-       "previous entry of the series (the rule of <code>aalab compare</code>: dB metrics more than "
-    << FormatFixed(options.max_drop_db, 3) << " dB; time more than "
-    << (options.check_time ? options.time_increase.Text("ms") : std::string("(off)"))
-    << " and more than the repeats' spread, on the same machine configuration): "
-       "<span class=\"regression\">red = regression</span>, <span class=\"improved\">green = improvement</span>, "
-       "<span class=\"not-judged\">orange = could not compare</span>. Hover a point for its values. "
-       "&#8734; = identical to the reference (infinite PSNR); &#215; = null.</p>\n";
-  for (const auto& series : names) {
-    std::vector<const HistoryEntry*> es;
-    for (const auto& e : entries) {
-      if (e.series == series) es.push_back(&e);
-    }
-    ++page.series;
-    page.entries += static_cast<int>(es.size());
-    bool has_edge = true;
-    for (const auto* e : es) {
-      for (const auto& r : e->report.rows) {
-        bool found = false;
-        for (const auto& m : r.metrics) found = found || m.name == "edge_psnr_db";
-        has_edge = has_edge && found;
-      }
-    }
-    std::vector<std::string> metrics = has_edge ? std::vector<std::string>{"edge_psnr_db", "psnr_db"}
-                                                : std::vector<std::string>{"psnr_db"};
-    bool has_temporal = true;  // motion runs (--frames > 1): the temporal error too
-    for (const auto* e : es) {
-      for (const auto& r : e->report.rows) {
-        bool found = false;
-        for (const auto& m : r.metrics) found = found || (m.name == "temporal_rmse" && m.value);
-        has_temporal = has_temporal && found;
-      }
-    }
-    if (has_temporal) metrics.push_back("temporal_rmse");
-    CompareOptions opt = options;
-    opt.metrics = metrics;
-    opt.metric_change.clear();
-    // Consecutive comparisons.
-    std::vector<CompareResult> cmp(es.size());
-    for (size_t i = 1; i < es.size(); ++i) {
-      cmp[i] = CompareReports(es[i - 1]->report, es[i]->report, opt);
-      page.regressions += cmp[i].regressions;
-      page.improvements += cmp[i].improvements;
-      page.cannot_compare += static_cast<int>(cmp[i].cannot_compare.size() + cmp[i].missing_rows.size() +
-                                              cmp[i].extra_rows.size());
-    }
-    h << "<section><h2>series " << HtmlEscape(series) << "</h2>\n<p>settings:";
-    for (const auto& k : HistorySeriesKeys()) {
-      h << " " << HtmlEscape(k) << " <code>" << HtmlEscape(Setting(es.front()->report, k)) << "</code>";
-    }
-    h << "</p>\n<table><tr><th>#</th><th class=\"l\">commit</th><th class=\"l\">date</th><th>regressions</th>"
-         "<th>improvements</th><th class=\"l\">could not compare / notes</th></tr>\n";
-    for (size_t i = 0; i < es.size(); ++i) {
-      h << "<tr><td>" << i + 1 << "</td><td class=\"l\"><code>" << HtmlEscape(es[i]->commit) << "</code></td><td class=\"l\">"
-        << HtmlEscape(es[i]->date) << "</td>";
-      if (i == 0) {
-        h << "<td>-</td><td>-</td><td class=\"l\">first entry</td></tr>\n";
-        continue;
-      }
-      const CompareResult& c = cmp[i];
-      std::string problems;
-      for (const auto& v : {c.cannot_compare, c.missing_rows, c.extra_rows, c.notes}) {
-        for (const auto& s : v) problems += (problems.empty() ? "" : "; ") + s;
-      }
-      h << "<td class=\"" << (c.regressions ? "regression" : "") << "\">" << c.regressions << "</td><td>"
-        << c.improvements << "</td><td class=\"l\">" << HtmlEscape(problems) << "</td></tr>\n";
-    }
-    h << "</table>\n";
-    // Rows in the order of the latest entry, then any only in earlier ones.
-    std::vector<std::pair<std::string, std::string>> keys;
-    for (auto it = es.rbegin(); it != es.rend(); ++it) {
-      for (const auto& r : (*it)->report.rows) {
-        const auto key = std::make_pair(r.scene, r.spec);
-        if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
-      }
-    }
-    std::vector<std::string> labels;
-    for (const auto* e : es) labels.push_back(Short(e->commit));
-    for (const auto& [scene, spec] : keys) {
-      h << "<h3>" << HtmlEscape(scene) << " / " << HtmlEscape(spec) << "</h3>\n<div>";
-      std::vector<std::string> quantities = metrics;
-      if (options.check_time) quantities.push_back("time_ms");
-      for (const auto& q : quantities) {
-        std::vector<TrendPoint> pts;
-        for (size_t i = 0; i < es.size(); ++i) {
-          TrendPoint p;
-          const ResultRow* row = nullptr;
-          for (const auto& r : es[i]->report.rows) {
-            if (r.scene == scene && r.spec == spec) row = &r;
-          }
-          p.tooltip = es[i]->commit + " " + es[i]->date + ": ";
-          if (!row) {
-            p.null_text = "no such row";
-            p.tooltip += "no such row";
-          } else if (q == "time_ms") {
-            const Timing t = MethodTime(*row);
-            p.value = t.median_ms;
-            p.lo = t.min_ms;
-            p.hi = t.max_ms;
-            p.tooltip += "median " + FormatFixed(t.median_ms, 3) + " ms (min " + FormatFixed(t.min_ms, 3) + ", max " +
-                         FormatFixed(t.max_ms, 3) + ")";
-          } else {
-            bool found = false;
-            for (const auto& m : row->metrics) {
-              if (m.name != q) continue;
-              found = true;
-              if (m.value) {
-                p.value = *m.value;
-                p.tooltip += FormatFixed(*m.value, 3) + (q.size() > 3 && q.compare(q.size() - 3, 3, "_db") == 0 ? " dB" : "");
-              } else if (m.null_reason == "identical") {
-                p.value = std::numeric_limits<double>::infinity();
-                p.tooltip += "infinite (identical)";
-              } else {
-                p.null_text = m.null_reason;
-                p.tooltip += "null (" + m.null_reason + ")";
-              }
-            }
-            if (!found) p.tooltip += "metric absent";
-          }
-          if (i > 0) {
-            const CompareResult& c = cmp[i];
-            const std::string name = scene + " / " + spec;
-            for (const auto& l : c.lines) {
-              if (l.scene != scene || l.spec != spec || l.quantity != q) continue;
-              if (l.verdict == Verdict::kRegression || l.verdict == Verdict::kImproved) {
-                p.mark = l.verdict == Verdict::kRegression ? "regression" : "improved";
-                p.tooltip += std::string("; ") + VerdictName(l.verdict) + " vs previous (delta " +
-                             (l.delta ? FormatFixed(*l.delta, 3) : std::string("-")) + ", threshold " + l.threshold +
-                             (l.note.empty() ? "" : ", " + l.note) + ")";
-              }
-            }
-            auto cannot = [&p](const std::string& why) {
-              p.mark = "cannot";
-              p.tooltip += "; could not compare: " + why;
-            };
-            for (const auto& s : c.cannot_compare) {
-              // Row-level reasons start with "row <name>: "; anything else concerns the whole report.
-              if (s.rfind("row ", 0) != 0 || s.rfind("row " + name + ": ", 0) == 0) cannot(s);
-            }
-            for (const auto& s : c.missing_rows) {
-              if (s == name) cannot("row missing from this entry");
-            }
-            for (const auto& s : c.extra_rows) {
-              if (s == name) cannot("row not in the previous entry");
-            }
-          }
-          pts.push_back(p);
-        }
-        const std::string title = q == "time_ms" ? "method time" : q;
-        h << SvgTrend(title, q == "time_ms" ? "ms" : "dB", pts, labels);
-        ++page.charts;
-      }
-      h << "</div>\n";
-    }
-    h << "</section>\n";
-  }
-  h << HtmlPageEnd();
-  page.html = h.str();
-  return page;
 }
 
 }  // namespace aalab

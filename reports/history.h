@@ -1,6 +1,6 @@
 /// Quality and time over commits (`aalab history`): a JSON-lines database, one line per
 /// report (per-row metrics, timing samples, output hashes and parameters; no images), grouped
-/// into named series whose run settings agree, and an offline HTML trend page.
+/// into named series whose run settings agree. Its offline HTML trend page: history_page.h.
 ///
 /// Line format (history_version 1), keys in this order:
 ///   {"history_version":1, "series":S, "commit":C, "date":D, "source":PATH,
@@ -32,6 +32,9 @@ struct HistoryEntry {
 /// The settings that must agree within a series.
 const std::vector<std::string>& HistorySeriesKeys();
 
+/// A report setting's value as the history shows it: the value, or "(absent)".
+std::string HistorySettingText(const Report& report, const std::string& key);
+
 /// Checks a series name: 1–64 characters from [A-Za-z0-9._-]. UserError otherwise.
 void ValidateSeriesName(const std::string& name);
 
@@ -61,21 +64,5 @@ void CheckSeriesCompatible(const std::vector<HistoryEntry>& entries, const Histo
 
 /// Series names in order of first appearance.
 std::vector<std::string> HistorySeriesNames(const std::vector<HistoryEntry>& entries);
-
-/// What `history report` produced.
-struct HistoryPage {
-  std::string html;
-  int series = 0, entries = 0, charts = 0;
-  int regressions = 0, improvements = 0, cannot_compare = 0;  ///< over consecutive pairs
-};
-
-/// The offline trend page: per series and scene × method an inline-SVG chart each for
-/// edge_psnr_db (when every entry has it), psnr_db and the method time (median, min–max
-/// bar), with every point where CompareReports(previous, this, options) crossed a threshold
-/// marked (red regression, green improvement, orange could not compare; the reason in the
-/// point's tooltip and in a table). `only_series` empty: every series, else that one
-/// (UserError when unknown). `options.metrics` is ignored (the charted metrics are used).
-HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::string& only_series,
-                        const CompareOptions& options);
 
 }  // namespace aalab

@@ -5,7 +5,7 @@
 #include <set>
 #include <vector>
 
-#include "reports/html_report.h"
+#include "reports/html_page.h"
 
 namespace aalab {
 

@@ -1,7 +1,7 @@
 // Exact 2-D areas: convex clipping, shoelace, disk ∩ convex polygon, capsule ∩ convex polygon,
 // disk ∩ rectangle. Sources: Sutherland & Hodgman 1974 (reentrant polygon clipping); the
 // circle–triangle decomposition (signed triangle/sector pieces per edge) as in
-// notes/msaa-and-analytic-aa.md §4; the odd-odd primitive G for disk ∩ rectangle (same notes).
+// ../shared/notes/msaa-and-analytic-aa.md §4; the odd-odd primitive G for disk ∩ rectangle (same notes).
 #include "scenes/analytic_geometry.h"
 
 #include <algorithm>

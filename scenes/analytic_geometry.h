@@ -45,7 +45,7 @@ double DiskPolyArea(Vec2d c, double r, const ConvexPoly& p);
 double CapsulePolyArea(Vec2d a, Vec2d b, double r, const ConvexPoly& p);
 
 /// Area of the disk (centre (cx, cy), radius r) ∩ [x0, x1] × [y0, y1] from the odd-odd
-/// primitive G(x, y) = sgn x · sgn y · A(|x|, |y|) (notes/msaa-and-analytic-aa.md §4),
+/// primitive G(x, y) = sgn x · sgn y · A(|x|, |y|) (../shared/notes/msaa-and-analytic-aa.md §4),
 /// independent of DiskPolyArea (the tests compare the two).
 double DiskRectArea(double cx, double cy, double r, double x0, double y0, double x1, double y1);
 

@@ -7,6 +7,7 @@
 
 #include "harness/cli/commands.h"
 #include "harness/core/error.h"
+#include "harness/core/exit_code.h"
 #include "harness/run/merge.h"
 #include "harness/run/same_results.h"
 #include "harness/run/sequence_export.h"
@@ -29,7 +30,7 @@ void RegisterClusterCommands(CLI::App& app, Commands& commands) {
       const SequenceExport r = ExportSequences(ea->run, ea->out);
       std::printf("exported %d scenes, %d sequences, %d frames\nindex: %s\n", r.scenes, r.sequences, r.frames,
                   (fs::absolute(ea->out) / "sequences.json").string().c_str());
-      return 0;
+      return ToInt(ExitCode::kOk);
     };
   });
 
@@ -54,7 +55,7 @@ void RegisterClusterCommands(CLI::App& app, Commands& commands) {
       std::printf("merged %d %s shards: %zu scenes, %zu results\nhtml:   %s\n%s %s\n", r.shards, r.kind.c_str(),
                   r.scenes, r.rows, (dir / "index.html").string().c_str(), r.kind == "run" ? "report:" : "sweep: ",
                   (dir / (r.kind == "run" ? "report.json" : "sweep.json")).string().c_str());
-      return 0;
+      return ToInt(ExitCode::kOk);
     };
   });
 
@@ -73,15 +74,15 @@ void RegisterClusterCommands(CLI::App& app, Commands& commands) {
         r = CompareResultFolders((*pair)[0], (*pair)[1]);
       } catch (const UserError& e) {
         std::fprintf(stderr, "aalab: error: %s\n", e.what());
-        return 2;
+        return ToInt(ExitCode::kCouldNotCompare);
       }
       if (r.same) {
         std::printf("same results: '%s' and '%s' (timings and context aside)\n", (*pair)[0].c_str(), (*pair)[1].c_str());
-        return 0;
+        return ToInt(ExitCode::kOk);
       }
       std::printf("different results: '%s' (A) and '%s' (B)\n", (*pair)[0].c_str(), (*pair)[1].c_str());
       for (const auto& line : r.differences) std::printf("  %s\n", line.c_str());
-      return 1;
+      return ToInt(ExitCode::kFailure);
     };
   });
 }

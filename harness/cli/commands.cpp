@@ -7,6 +7,7 @@
 
 #include "harness/core/color.h"
 #include "harness/core/error.h"
+#include "harness/core/exit_code.h"
 #include "harness/core/params.h"
 #include "harness/core/parallel.h"
 #include "harness/io/image_io.h"
@@ -57,20 +58,20 @@ int ListCommand(const std::string& what) {
     for (const auto& suite : SuiteNames()) {
       std::printf("  %-10s %s\n", suite.c_str(), JoinNames(SuiteScenes(suite)).c_str());
     }
-    return 0;
+    return ToInt(ExitCode::kOk);
   }
   if (what == "methods") {
     for (const auto& e : MethodRegistry()) {
       std::printf("%-20s %s\n", e.name.c_str(), e.help.c_str());
       for (const auto& p : e.params) std::printf("    %-44s %s\n", p.Describe().c_str(), p.help.c_str());
     }
-    return 0;
+    return ToInt(ExitCode::kOk);
   }
   if (what == "metrics") {
     for (const auto& e : MetricRegistry()) {
       std::printf("%-14s %s\n    values: %s\n", e.name.c_str(), e.help.c_str(), JoinNames(e.outputs).c_str());
     }
-    return 0;
+    return ToInt(ExitCode::kOk);
   }
   if (what == "viewing") {
     for (const auto& p : ViewingPresets()) {
@@ -78,7 +79,7 @@ int ListCommand(const std::string& what) {
     }
     std::printf("overrides (PRESET:key=value,...):\n");
     for (const auto& d : ViewingParams()) std::printf("    %-12s %s\n", d.name.c_str(), d.help.c_str());
-    return 0;
+    return ToInt(ExitCode::kOk);
   }
   throw UserError("unknown list '" + what + "' (allowed: scenes, methods, metrics, viewing)");
 }
@@ -136,7 +137,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
                   ra->out.c_str(), w, h, ra->spp, static_cast<double>(counters.primary_rays) / (w * h),
                   static_cast<double>(counters.shadow_rays) / (w * h),
                   static_cast<double>(counters.texture_lookups) / (w * h));
-      return 0;
+      return ToInt(ExitCode::kOk);
     };
   });
 
@@ -195,7 +196,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
         const int rendered = RenderReferencesOnly(*rs, &cached);
         std::printf("references: %d rendered, %d already cached, in %s\n", rendered, cached,
                     fs::absolute(rs->ref_cache).string().c_str());
-        return 0;
+        return ToInt(ExitCode::kOk);
       }
       const Report report = RunSuite(*rs);
       if (report.shard) {
@@ -203,13 +204,13 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
         std::printf("shard %d/%d: %zu of %d scenes, %zu results\npartial report: %s (merge the shards with aalab merge)\n",
                     report.shard->index, report.shard->count, report.scenes.size(), report.shard->total_units,
                     report.rows.size(), (fs::absolute(rs->out_dir) / "report.json").string().c_str());
-        return 0;
+        return ToInt(ExitCode::kOk);
       }
       std::printf("%s", FormatTimeBreakdown(report.time_breakdown).c_str());
       std::printf("wrote %zu results for %zu scenes\nhtml:   %s\nreport: %s\n", report.rows.size(), report.scenes.size(),
                   (fs::absolute(rs->out_dir) / "index.html").string().c_str(),
                   (fs::absolute(rs->out_dir) / "report.json").string().c_str());
-      return 0;
+      return ToInt(ExitCode::kOk);
     };
   });
 
@@ -277,7 +278,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       std::printf("wrote %s (%dx%d, %s%s, %.2f taps/px)\n", aa->out.c_str(), result.Width(), result.Height(),
                   plan.spec.c_str(), aa->debug.empty() ? "" : (", debug " + aa->debug).c_str(),
                   static_cast<double>(stats.taps) / static_cast<double>(result.PixelCount()));
-      return 0;
+      return ToInt(ExitCode::kOk);
     };
   });
   RegisterMetricsCommand(app, commands);

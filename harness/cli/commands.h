@@ -6,12 +6,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include "harness/core/exit_code.h"
+
 namespace aalab {
 
 /// Holds the chosen subcommand's action after parsing.
 struct Commands {
   std::function<int()> action;
-  int Run() const { return action ? action() : 0; }
+  int Run() const { return action ? action() : ToInt(ExitCode::kOk); }
 };
 
 /// Splits a comma-separated list of names or method specs: a comma followed by "key=" inside

@@ -10,11 +10,15 @@
 
 #include "harness/cli/commands.h"
 #include "harness/core/error.h"
+#include "harness/core/exit_code.h"
 #include "harness/core/params.h"
 #include "harness/core/cleanup.h"
 #include "harness/io/image_io.h"
 #include "reports/compare.h"
+#include "reports/compare_page.h"
+#include "reports/compare_text.h"
 #include "reports/history.h"
+#include "reports/history_page.h"
 #include "reports/report_json.h"
 
 namespace aalab {
@@ -153,7 +157,7 @@ int CompareCommand(const CompareArgs& a) {
     std::fflush(stdout);
     std::fprintf(stderr, "aalab: error: %s\n", e.what());
     std::fprintf(stderr, "aalab: could not compare (exit 2)\n");
-    return 2;
+    return ToInt(ExitCode::kCouldNotCompare);
   } catch (const InternalError&) {
     throw;  // a bug: exit 3 from main
   } catch (const std::exception& e) {
@@ -161,7 +165,7 @@ int CompareCommand(const CompareArgs& a) {
     std::fflush(stdout);
     std::fprintf(stderr, "aalab: error: %s\n", e.what());
     std::fprintf(stderr, "aalab: could not compare (exit 2)\n");
-    return 2;
+    return ToInt(ExitCode::kCouldNotCompare);
   }
 }
 
@@ -238,7 +242,7 @@ int HistoryAdd(const HistoryAddArgs& a) {
                 prev->commit.c_str(), c.regressions, c.improvements,
                 c.ExitCode() == 2 ? ", some rows could not be compared" : "");
   }
-  return 0;
+  return ToInt(ExitCode::kOk);
 }
 
 struct HistoryReportArgs {
@@ -259,7 +263,7 @@ int HistoryReport(const HistoryReportArgs& a) {
               "%d regression(s), %d improvement(s), %d could-not-compare item(s)\n",
               index.string().c_str(), page.series, page.entries, page.charts, page.regressions, page.improvements,
               page.cannot_compare);
-  return 0;
+  return ToInt(ExitCode::kOk);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "build_info.h"
 #include "harness/cli/commands.h"
 #include "harness/core/error.h"
+#include "harness/core/exit_code.h"
 #include "harness/io/image_io.h"
 #include "harness/io/text_draw.h"
 #include "harness/run/out_folder.h"
@@ -251,7 +252,7 @@ int RunExport(const ExportArgs& a) {
               fig_opts.zoom);
   for (const auto& m : fig_opts.methods) std::printf(" %s", m.c_str());
   std::printf("\n");
-  return 0;
+  return ToInt(ExitCode::kOk);
 }
 
 }  // namespace

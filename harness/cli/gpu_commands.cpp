@@ -9,6 +9,7 @@
 
 #include "harness/cli/commands.h"
 #include "harness/core/error.h"
+#include "harness/core/exit_code.h"
 #include "harness/core/params.h"
 #include "harness/core/parallel.h"
 #include "harness/io/image_io.h"
@@ -122,7 +123,7 @@ int ExportFrames(const ExportArgs& a) {
   WriteTextFile((tmp / "frames.tsv").string(), tsv.str());
   out.Commit();
   std::printf("wrote %zu scene(s) x %zu size(s) to %s (frames.tsv)\n", scenes.size(), sizes.size(), a.out.c_str());
-  return 0;
+  return ToInt(ExitCode::kOk);
 }
 
 int MergeGpu(const std::string& dir, const std::string& gpu_json) {
@@ -138,7 +139,7 @@ int MergeGpu(const std::string& dir, const std::string& gpu_json) {
   WriteTextFile((fs::path(dir) / "index.html").string(), RenderHtmlReport(report));
   std::printf("merged GPU timings (%s, driver %s) into %d of %zu rows of %s\n", gpu.device.c_str(), gpu.driver.c_str(),
               matched, report.rows.size(), report_path.string().c_str());
-  return 0;
+  return ToInt(ExitCode::kOk);
 }
 
 }  // namespace

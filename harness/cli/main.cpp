@@ -1,5 +1,5 @@
 // aalab command line: list, render, run, apply (and more as issues land).
-// Exit codes: harness/cli/exit_code.h (docs/cli.md). Signals: SIGINT and SIGTERM are taken by
+// Exit codes: harness/core/exit_code.h (docs/cli.md). Signals: SIGINT and SIGTERM are taken by
 // one thread, which removes the command's unfinished output (harness/core/cleanup.h) and exits
 // 130 / 143 with one line.
 #include <CLI/CLI.hpp>
@@ -16,7 +16,7 @@
 
 #include "build_info.h"
 #include "harness/cli/commands.h"
-#include "harness/cli/exit_code.h"
+#include "harness/core/exit_code.h"
 #include "harness/core/cleanup.h"
 #include "harness/core/error.h"
 

@@ -8,6 +8,7 @@
 #include "harness/cli/commands.h"
 #include "harness/core/color.h"
 #include "harness/core/error.h"
+#include "harness/core/exit_code.h"
 #include "harness/io/image_io.h"
 #include "metrics/metrics.h"
 #include "metrics/viewing.h"
@@ -85,7 +86,7 @@ int RunMetrics(const std::string& ref_path, const std::string& img_path, const s
     j["metrics"] = m;
     j["null_reasons"] = reasons;
     std::printf("%s\n", j.dump(2).c_str());
-    return 0;
+    return ToInt(ExitCode::kOk);
   }
   for (const auto& v : values) {
     if (v.value) {
@@ -94,7 +95,7 @@ int RunMetrics(const std::string& ref_path, const std::string& img_path, const s
       std::printf("%-22s null (%s)\n", v.name.c_str(), v.null_reason.c_str());
     }
   }
-  return 0;
+  return ToInt(ExitCode::kOk);
 }
 
 }  // namespace

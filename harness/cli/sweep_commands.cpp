@@ -6,6 +6,7 @@
 
 #include "harness/cli/commands.h"
 #include "harness/core/error.h"
+#include "harness/core/exit_code.h"
 #include "harness/core/params.h"
 #include "harness/run/runner.h"
 #include "harness/run/sweep.h"
@@ -74,7 +75,7 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
         const int rendered = RenderSweepReferences(a->s, &cached);
         std::printf("references: %d rendered, %d already cached, in %s\n", rendered, cached,
                     fs::absolute(a->s.ref_cache).string().c_str());
-        return 0;
+        return ToInt(ExitCode::kOk);
       }
       const SweepResult r = RunSweep(a->s);
       if (r.report.shard) {
@@ -83,12 +84,12 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
                     r.report.shard->index, r.report.shard->count, r.report.shard->units.size(),
                     r.report.shard->total_units, r.report.scenes.size(),
                     (fs::absolute(r.out_dir) / "sweep.json").string().c_str());
-        return 0;
+        return ToInt(ExitCode::kOk);
       }
       std::fputs(SweepSummaryText(r).c_str(), stdout);
       std::printf("wrote %s and %s\n", (fs::absolute(r.out_dir) / "sweep.json").string().c_str(),
                   (fs::absolute(r.out_dir) / "index.html").string().c_str());
-      return 0;
+      return ToInt(ExitCode::kOk);
     };
   });
 }

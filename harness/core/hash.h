@@ -1,8 +1,11 @@
-/// Counter-based hashing for deterministic jitter: a sample's random numbers are a function
-/// of (pixel, sample index, seed, dimension), never of a shared generator's state.
+/// Hashes: FNV-1a 64 for content (output hashes, fingerprints, cache keys) and counter-based
+/// hashing for deterministic jitter: a sample's random numbers are a function of (pixel,
+/// sample index, seed, dimension), never of a shared generator's state.
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <string>
 
 namespace aalab {
 
@@ -17,6 +20,14 @@ inline uint64_t Fnv1a64(const void* data, size_t size, uint64_t h = kFnv1aOffset
     h *= 0x100000001b3ULL;
   }
   return h;
+}
+
+/// FNV-1a 64 of bytes, as 16 lowercase hex digits (the report's `output_hash`).
+inline std::string HashBytes(const void* data, size_t size) {
+  const uint64_t h = Fnv1a64(data, size);
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
 }
 
 /// 64-bit mixer (SplitMix64 finaliser).

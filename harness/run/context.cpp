@@ -11,7 +11,6 @@
 #include <tbb/version.h>
 
 #include "build_info.h"
-#include "harness/core/hash.h"
 #include "harness/core/parallel.h"
 #include "harness/run/runner.h"
 
@@ -70,13 +69,6 @@ std::vector<std::pair<std::string, std::string>> ContextFacts() {
   c.emplace_back("memory", MemoryTotal());
   c.emplace_back("threads", std::to_string(ThreadCount()));
   return c;
-}
-
-std::string HashBytes(const void* data, size_t size) {
-  const uint64_t h = Fnv1a64(data, size);
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
 }
 
 }  // namespace aalab

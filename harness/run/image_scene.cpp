@@ -241,14 +241,6 @@ std::unique_ptr<PreparedScene> PrepareSource(SceneSource& source, int width, int
   return p;
 }
 
-bool RunsOnImageScenes(const MethodPlan& plan, bool has_motion) {
-  if (plan.IsPostOnly() || plan.name == "none") return true;
-  // TAA: a jittered one-sample 1x render plus a temporal step, all of which a captured
-  // sequence with motion vectors and jitter supplies.
-  return has_motion && plan.make_state && plan.render.jitter.samples > 0 && plan.render.scale == 1.0 &&
-         plan.rescale == Rescale::kNone;
-}
-
 MethodOutput SuppliedOutputRow(const PreparedScene& p, const std::string& name, int repeat, StageClock* clock) {
   MethodOutput out;
   ResultRow& row = out.row;
@@ -286,29 +278,6 @@ MethodOutput SuppliedOutputRow(const PreparedScene& p, const std::string& name, 
   }
   ScoreOutput(p, it->frame, &out, clock);
   return out;
-}
-
-ResultRow NotApplicableRow(const PreparedScene& p, const MethodPlan& plan) {
-  ResultRow row;
-  row.scene = p.info.name;
-  row.method = plan.name;
-  row.spec = plan.spec;
-  row.params = plan.params.Ordered();
-  row.samples_per_pixel = plan.render.SamplesPerPixel();
-  row.render_width = p.info.width;
-  row.render_height = p.info.height;
-  row.not_applicable = "needs the renderer (it renders its own frame";
-  if (plan.render.SamplesPerPixel() > 1) {
-    row.not_applicable += ", " + std::to_string(plan.render.SamplesPerPixel()) + " samples per pixel";
-  }
-  if (plan.render.scale != 1.0) row.not_applicable += ", at scale " + FormatNumber(plan.render.scale);
-  row.not_applicable += "); image scene '" + p.info.source + "' has only the 1x frame";
-  for (const MetricEntry& m : MetricRegistry()) {
-    for (const std::string& name : m.outputs) {
-      row.metrics.push_back({name, std::nullopt, "not applicable: " + row.not_applicable});
-    }
-  }
-  return row;
 }
 
 }  // namespace aalab

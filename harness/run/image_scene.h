@@ -93,19 +93,10 @@ std::vector<std::string> SuppliedOutputNames(const std::vector<SceneSource>& sou
 /// so an image-scene view (whose reference is the user's file) is refused with its name.
 bool CheckReferenceKind(const std::string& kind, const std::vector<SceneSource>& sources);
 
-/// True when the plan needs nothing but the 1x frame: `none` and the post-only methods
-/// (MethodPlan::IsPostOnly), and on a view with motion vectors and jitter (`has_motion`) the
-/// jittered 1x methods (TAA). Everything else needs the renderer.
-bool RunsOnImageScenes(const MethodPlan& plan, bool has_motion = false);
-
 /// The row of a supplied output (the user's own AA) on a prepared view: scored like any
 /// method's output; `supplied` set; timings from the manifest's `ms` (one sample per repeat)
 /// or empty when not given. A view without that output gets a not-applicable row.
 MethodOutput SuppliedOutputRow(const PreparedScene& prepared, const std::string& name, int repeat,
                                StageClock* clock = nullptr);
-
-/// The row of a method that cannot run on an image-scene view: every metric null with the
-/// reason, no timings (empty), no images, `not_applicable` set.
-ResultRow NotApplicableRow(const PreparedScene& prepared, const MethodPlan& plan);
 
 }  // namespace aalab

@@ -4,10 +4,9 @@
 #include <cmath>
 
 #include "harness/core/error.h"
+#include "harness/core/hash.h"
 #include "harness/core/params.h"
 #include "harness/core/timer.h"
-#include "harness/run/image_scene.h"
-#include "harness/run/runner.h"
 #include "metrics/crops.h"
 #include "metrics/metric.h"
 #include "metrics/metrics.h"
@@ -160,6 +159,37 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
     sr.crops.push_back({c.x, c.y, c.w, c.h});
   }
   return p;
+}
+
+bool RunsOnImageScenes(const MethodPlan& plan, bool has_motion) {
+  if (plan.IsPostOnly() || plan.name == "none") return true;
+  // TAA: a jittered one-sample 1x render plus a temporal step, all of which a captured
+  // sequence with motion vectors and jitter supplies.
+  return has_motion && plan.make_state && plan.render.jitter.samples > 0 && plan.render.scale == 1.0 &&
+         plan.rescale == Rescale::kNone;
+}
+
+ResultRow NotApplicableRow(const PreparedScene& p, const MethodPlan& plan) {
+  ResultRow row;
+  row.scene = p.info.name;
+  row.method = plan.name;
+  row.spec = plan.spec;
+  row.params = plan.params.Ordered();
+  row.samples_per_pixel = plan.render.SamplesPerPixel();
+  row.render_width = p.info.width;
+  row.render_height = p.info.height;
+  row.not_applicable = "needs the renderer (it renders its own frame";
+  if (plan.render.SamplesPerPixel() > 1) {
+    row.not_applicable += ", " + std::to_string(plan.render.SamplesPerPixel()) + " samples per pixel";
+  }
+  if (plan.render.scale != 1.0) row.not_applicable += ", at scale " + FormatNumber(plan.render.scale);
+  row.not_applicable += "); image scene '" + p.info.source + "' has only the 1x frame";
+  for (const MetricEntry& m : MetricRegistry()) {
+    for (const std::string& name : m.outputs) {
+      row.metrics.push_back({name, std::nullopt, "not applicable: " + row.not_applicable});
+    }
+  }
+  return row;
 }
 
 MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t seed, int repeat,

@@ -123,6 +123,15 @@ MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, ui
                        std::unique_ptr<TemporalState>* state = nullptr, StageClock* clock = nullptr,
                        SamplerArithmetic sampler = SamplerArithmetic::kGl);
 
+/// True when the plan needs nothing but the 1x frame: `none` and the post-only methods
+/// (MethodPlan::IsPostOnly), and on a view with motion vectors and jitter (`has_motion`) the
+/// jittered 1x methods (TAA). Everything else needs the renderer.
+bool RunsOnImageScenes(const MethodPlan& plan, bool has_motion = false);
+
+/// The row of a method that cannot run on an image-scene view: every metric null with the
+/// reason, no timings (empty), no images, `not_applicable` set.
+ResultRow NotApplicableRow(const PreparedScene& prepared, const MethodPlan& plan);
+
 /// Runs `body` once untimed, then `repeat` times timed (wall clock).
 Timing TimeRepeats(int repeat, const std::function<void()>& body);
 

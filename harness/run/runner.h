@@ -63,7 +63,4 @@ int RenderReferencesOnly(const RunSettings& settings, int* cached = nullptr);
 /// versions, machine, threads).
 std::vector<std::pair<std::string, std::string>> ContextFacts();
 
-/// FNV-1a 64-bit hash of bytes, as 16 hex digits.
-std::string HashBytes(const void* data, size_t size);
-
 }  // namespace aalab

@@ -1,7 +1,8 @@
 /// Preset tuning (`aalab sweep`): one method over a grid of parameter values, each scene's
 /// reference and 1x frame rendered once (PrepareScene) and reused for every grid point
 /// (RunMethod). Writes DIR/sweep.json and DIR/index.html (Pareto front of quality vs time,
-/// heatmap per parameter pair; inline SVG, offline) and returns the summary.
+/// heatmap per parameter pair; inline SVG, offline: reports/sweep_page.h) and returns the
+/// summary (reports/sweep_result.h).
 #pragma once
 #include <cstdint>
 #include <map>
@@ -16,6 +17,7 @@
 #include "methods/method.h"
 #include "reports/compare.h"
 #include "reports/result.h"
+#include "reports/sweep_result.h"
 
 namespace aalab {
 
@@ -40,12 +42,6 @@ struct SweepSettings {
   std::string viewing;    ///< --viewing PRESET[:key=value,...] (metrics/viewing.h); "" = default
 };
 
-/// One swept parameter and its values (canonical text, as the method resolves them).
-struct GridAxis {
-  std::string name;
-  std::vector<std::string> values;
-};
-
 /// Parses the --grid arguments: "name=v1,v2,..." each, non-empty names and values; a
 /// parameter given twice (in two --grid, or in --grid and the base spec `base_spec`), or a
 /// value repeated within an axis, is a UserError. Values are not checked here.
@@ -64,47 +60,11 @@ std::vector<std::string> ExpandGrid(const std::string& base_spec, std::vector<Gr
 std::vector<size_t> ParetoFront(const std::vector<double>& time_ms, const std::vector<std::optional<double>>& quality,
                                 Better better);
 
-/// An objective averaged over scenes: arithmetic mean of the per-scene values; +inf when any
-/// scene is identical to the reference (higher-is-better metrics); empty with a reason when
-/// any scene's value is null for another reason.
-struct ObjectiveMean {
-  std::optional<double> mean;
-  std::string null_reason;
-};
-
-/// One grid point, summarised over scenes.
-struct SweepPoint {
-  std::vector<std::pair<std::string, std::string>> overrides;  ///< axis name → value
-  std::string spec;                                             ///< canonical spec
-  std::map<std::string, ObjectiveMean> objectives;
-  double mean_time_ms = 0;  ///< mean over scenes of the method time's median (MethodTime)
-  bool pareto = false;      ///< on the front of the first objective vs time
-};
-
-struct SweepPoint;
 /// How far a point lies from the method's defaults: over its swept parameters, |value −
 /// default| divided by the span of the axis's values and the default (numbers), or 0 / 1
 /// (other values: equal or not); summed. Ties of the best mean go to the smallest distance.
 double DistanceFromDefaults(const SweepPoint& pt, const std::vector<GridAxis>& axes,
                             const std::vector<std::pair<std::string, std::string>>& defaults);
-
-struct SweepResult {
-  std::string method;                 ///< registry name
-  std::vector<GridAxis> axes;
-  std::vector<std::string> objectives;
-  std::string objective_note;         ///< set when the default objective fell back to psnr_db
-  int reference_renders = 0;          ///< PrepareScene calls (one per rendered scene; image-scene views render none)
-  std::vector<SweepPoint> points;
-  std::vector<size_t> pareto_front;   ///< indices into points, by time
-  std::map<std::string, size_t> best; ///< objective → best point (absent when all are null)
-  std::map<std::string, int> best_ties;  ///< objective → other points with the same best mean
-  std::string suggested_preset;       ///< spec of the best point of the first objective
-  Report report;                      ///< context, settings, scenes, rows (scene-major); a shard's block
-  std::vector<size_t> row_point;      ///< point index of each report row
-  std::vector<std::string> specs;     ///< every grid point's spec, in grid order
-  std::string base_spec;              ///< --method as given
-  std::string out_dir;
-};
 
 /// Runs the sweep (validating every input before any rendering), writes DIR/sweep.json and
 /// DIR/index.html through DIR.partial (a non-empty DIR without sweep.json is never replaced).
@@ -133,8 +93,5 @@ ObjectiveMean MeanOverScenes(const std::vector<const ResultRow*>& rows, const st
 /// The summary printed by the CLI: best setting per objective, the Pareto front and the
 /// suggested preset line.
 std::string SweepSummaryText(const SweepResult& result);
-
-/// The offline HTML page.
-std::string SweepHtml(const SweepResult& result);
 
 }  // namespace aalab

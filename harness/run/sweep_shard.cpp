@@ -16,6 +16,7 @@
 #include "harness/run/runner.h"
 #include "harness/run/sweep.h"
 #include "reports/report_json.h"
+#include "reports/sweep_page.h"
 
 namespace aalab {
 namespace fs = std::filesystem;

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <string>
 
+#include "../temp_dir.h"
+
 namespace aalab::clitest {
 
 struct CmdResult {
@@ -40,13 +42,8 @@ inline CmdResult Aalab(const std::string& args) {
   return RunCommand(std::string(AALAB_BINARY_DIR) + "/aalab " + args + " 2>&1");
 }
 
-/// A fresh, empty folder under the system temp folder, unique to this process.
-inline std::filesystem::path TempDir(const std::string& name) {
-  const std::filesystem::path d =
-      std::filesystem::temp_directory_path() / ("aalab-" + name + "-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
+/// A fresh, empty folder under the system temp folder, unique to this process, removed when
+/// the process exits (tests/temp_dir.h).
+inline std::filesystem::path TempDir(const std::string& name) { return testenv::ScratchDir(name); }
 
 }  // namespace aalab::clitest

@@ -18,18 +18,14 @@
 
 #include "harness/core/error.h"
 #include "harness/io/image_io.h"
+#include "tests/temp_dir.h"
 
 namespace aalab {
 namespace {
 namespace fs = std::filesystem;
 
 fs::path Dir() {
-  static const fs::path d = [] {
-    const fs::path p = fs::temp_directory_path() / ("aalab-read-" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
-  }();
+  static const fs::path d = testenv::ScratchDir("read");
   return d;
 }
 

@@ -11,13 +11,17 @@
 #include <string>
 
 #include "harness/core/error.h"
+#include "tests/temp_dir.h"
 
 namespace aalab {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path Tmp(const std::string& name) { return fs::temp_directory_path() / ("aalab-ppm-" + name); }
+fs::path Tmp(const std::string& name) {
+  static const fs::path dir = testenv::ScratchDir("ppm");
+  return dir / name;
+}
 
 void WriteBytes(const fs::path& p, const std::string& bytes) {
   std::ofstream f(p, std::ios::binary);

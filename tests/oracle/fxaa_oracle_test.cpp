@@ -17,6 +17,7 @@
 #include "tests/oracle/oracle_frames.h"
 #include "tests/oracle/seed_shaders.h"
 #include "tests/skip_or_fail.h"
+#include "tests/temp_dir.h"
 
 namespace aalab {
 namespace {
@@ -129,8 +130,7 @@ TEST_F(FxaaOracle, Iter12IsSeed003Glsl) {
 // The extraction finds the shaders by their markers and says what it looked for when a
 // seeds folder lacks them (here: a folder with one unrelated text file).
 TEST(FxaaOracleSeeds, MissingShaderTextFailsWithItsMarkers) {
-  const std::string dir = ::testing::TempDir() + "/aalab_no_shader_seeds";
-  std::filesystem::create_directories(dir);
+  const std::string dir = testenv::ScratchDir("no-shader-seeds").string();
   std::ofstream(dir + "/000_unrelated.txt") << "no shader here\n#version 430 core\n";
   const char* old = std::getenv("AALAB_SEEDS_DIR");
   const std::string saved = old ? old : "";

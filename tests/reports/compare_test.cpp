@@ -1,5 +1,7 @@
 // compare: the rules of reports/compare.h on reports built in code with hand-picked numbers.
 #include "reports/compare.h"
+#include "reports/compare_page.h"
+#include "reports/compare_text.h"
 
 #include <gtest/gtest.h>
 

@@ -10,6 +10,7 @@
 
 #include "harness/core/error.h"
 #include "reports/report_json.h"
+#include "tests/temp_dir.h"
 
 namespace aalab {
 namespace {
@@ -36,7 +37,8 @@ const char* kFile = R"({
   ]})";
 
 fs::path WriteTmp(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / ("aalab-gpu-timings-" + name);
+  static const fs::path dir = testenv::ScratchDir("gpu-timings");
+  const fs::path p = dir / name;
   std::ofstream(p) << text;
   return p;
 }

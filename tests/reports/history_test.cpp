@@ -1,5 +1,6 @@
 // history: JSON-lines round trip, series rules, malformed lines, the trend page.
 #include "reports/history.h"
+#include "reports/history_page.h"
 
 #include <gtest/gtest.h>
 

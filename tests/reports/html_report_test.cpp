@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "reports/html_assets.h"
+#include "reports/html_page.h"
 #include "reports/report_json.h"
 
 namespace aalab {

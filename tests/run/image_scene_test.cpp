@@ -24,6 +24,7 @@
 #include "harness/run/runner.h"
 #include "harness/run/sweep.h"
 #include "reports/report_json.h"
+#include "tests/temp_dir.h"
 
 namespace aalab {
 namespace {
@@ -32,12 +33,7 @@ namespace fs = std::filesystem;
 constexpr int kW = 64, kH = 48;
 const std::vector<std::string> kMethods = {"none", "fxaa1-p3", "fxaa311-p12", "fxaa-high", "ssaa-2x2"};
 
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("aalab-image-scene-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path TempDir(const std::string& name) { return testenv::ScratchDir("image-scene-" + name); }
 
 void WriteText(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 

@@ -27,17 +27,13 @@
 #include "reports/report_json.h"
 #include "scenes/library.h"
 #include "scenes/scene_hash.h"
+#include "tests/temp_dir.h"
 
 namespace aalab {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("aalab-shard-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path TempDir(const std::string& name) { return testenv::ScratchDir("shard-" + name); }
 
 std::string ReadBytes(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);

@@ -15,6 +15,7 @@
 #include "harness/io/image_io.h"
 #include "scenes/gltf_load.h"
 #include "scenes/library.h"
+#include "tests/temp_dir.h"
 
 namespace aalab {
 namespace {
@@ -22,8 +23,7 @@ namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
 fs::path TestDir() {
-  const fs::path d = fs::temp_directory_path() / ("aalab-gltf-test-" + std::to_string(::getpid()));
-  fs::create_directories(d);
+  static const fs::path d = testenv::ScratchDir("gltf-test");
   return d;
 }
 
