@@ -333,7 +333,7 @@ int Main(int argc, char** argv) {
     const TextureRuleCheck rule = CheckTextureRule(data);
     std::printf("texture rule (harness/core/sampler.h) against the probe: %lld of %lld samples differ\n",
                 rule.Mismatches(), rule.pairs + rule.quad8 + rule.coords + rule.quadf);
-    return 0;
+    return ToInt(ExitCode::kOk);
   }
   std::vector<GpuMethod> methods;
   for (const auto& s : o.methods) methods.push_back(ResolveGpuMethod(s));
