@@ -1,6 +1,6 @@
 // SMAA figures for aalab_bench (bench/bench_smaa.cpp): the four presets' production path
 // beside the FXAA figures, checked bit for bit against the reference implementation, and
-// the speed goal. Two hook lines in bench_main.cpp use these.
+// the speed goal. bench_post.cpp (the post filters timed) and bench_main.cpp (the goals) use these.
 #pragma once
 #include <functional>
 #include <string>
