@@ -16,7 +16,7 @@
 #include "harness/core/color.h"
 #include "harness/core/parallel.h"
 #include "harness/io/image_io.h"
-#include "methods/fxaa311.h"
+#include "methods/registry.h"
 #include "metrics/metrics.h"
 #include "scenes/library.h"
 #include "scenes/tracer.h"
@@ -36,9 +36,7 @@ MetricsBench RegisterMetricFigures(const Settings& cfg, const Image8& real_frame
     const Scene scene = LoadScene("mesh");
     const Tracer tracer(scene);
     *pair_ref = RenderReference(tracer, kFrameW, kFrameH, 2, 1, nullptr);
-    Fxaa311Params p;
-    p.steps = Fxaa311PresetSteps(39);
-    *pair_img = ToFloat(Fxaa311(real_frame, p, nullptr), 3);
+    *pair_img = ToFloat(MakeMethod("fxaa311-p39").post(real_frame, PostOptions{}, nullptr), 3);
     *pair_none = ToFloat(real_frame, 3);
   }
   mb.ref = pair_ref, mb.img = pair_img, mb.none = pair_none;

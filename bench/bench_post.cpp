@@ -5,12 +5,11 @@
 
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <memory>
 
-#include "bench/bench_smaa.h"
 #include "harness/core/parallel.h"
-#include "methods/fxaa1.h"
-#include "methods/fxaa311.h"
+#include "methods/registry.h"
 #include "methods/rescale.h"
 #include "scenes/library.h"
 #include "scenes/render.h"
@@ -24,36 +23,21 @@ struct Post {
   std::function<Image8(const Image8&, PostStats*)> fast, ref;
 };
 
+// Every post-only registry row with a reference implementation beside its production path,
+// in registry order (MethodPlan::post_reference). --quick keeps the default list's and every
+// row of a family of at most four (SMAA's goal compares all four presets).
 std::vector<Post> PostFilters(bool quick) {
+  std::map<std::string, int> family_rows;
+  for (const auto& e : MethodRegistry()) ++family_rows[e.family];
   std::vector<Post> posts;
-  for (int preset = 0; preset <= 5; ++preset) {
-    const Fxaa1Params p = Fxaa1Preset(preset);
-    posts.push_back({"fxaa1-p" + std::to_string(preset),
-                     [p](const Image8& f, PostStats* s) { return Fxaa1(f, p, "", s); },
-                     [p](const Image8& f, PostStats* s) { return Fxaa1Reference(f, p, "", s); }});
+  for (const auto& e : MethodRegistry()) {
+    const MethodPlan plan = MakeMethod(e.name);
+    if (!plan.IsPostOnly() || !plan.post_reference) continue;
+    if (quick && !plan.in_default_list && family_rows[e.family] > 4) continue;
+    const PostFilter fast = plan.post, ref = plan.post_reference;
+    posts.push_back({plan.name, [fast](const Image8& f, PostStats* s) { return fast(f, PostOptions{}, s); },
+                     [ref](const Image8& f, PostStats* s) { return ref(f, PostOptions{}, s); }});
   }
-  for (int id : Fxaa311PresetIds()) {
-    Fxaa311Params p;
-    p.steps = Fxaa311PresetSteps(id);
-    if (quick && id != 12 && id != 39) continue;
-    posts.push_back({"fxaa311-p" + std::to_string(id), [p](const Image8& f, PostStats* s) { return Fxaa311(f, p, s); },
-                     [p](const Image8& f, PostStats* s) { return Fxaa311Reference(f, p, s); }});
-  }
-  {
-    const Fxaa311Params high = FxaaTutorialHighParams();
-    posts.push_back({"fxaa-high", [high](const Image8& f, PostStats* s) { return Fxaa311(f, high, s); },
-                     [high](const Image8& f, PostStats* s) { return Fxaa311Reference(f, high, s); }});
-    Fxaa311Params iter12;
-    iter12.steps = Fxaa311PresetSteps(39);
-    iter12.edge_threshold = 0.125f;
-    iter12.edge_threshold_min = 0.0312f;
-    iter12.luma = Fxaa311Params::Luma::kRec601Rgb;
-    iter12.order = Fxaa311Params::Order::kSeed003Glsl;
-    posts.push_back({"fxaa-iter12", [iter12](const Image8& f, PostStats* s) { return Fxaa311(f, iter12, s); },
-                     [iter12](const Image8& f, PostStats* s) { return Fxaa311Reference(f, iter12, s); }});
-  }
-  if (quick) posts.erase(posts.begin() + 1, posts.begin() + 6);  // keep fxaa1-p0 only
-  for (auto& c : SmaaPostCases()) posts.push_back({c.name, c.fast, c.ref});  // bench/bench_smaa.cpp
   return posts;
 }
 

@@ -13,6 +13,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "harness/run/runner.h"
+#include "scenes/library.h"
+
 namespace aalab::bench {
 namespace {
 
@@ -125,7 +128,8 @@ void SuiteTable(SuiteBench& sb, BenchOutput& out) {
   const DefaultRun& d = sb.default_run;
   if (d.ok) {
     out.Line("");
-    out.Line("## Default run — `aalab run` with its defaults (11 scenes × 12 methods, 960x540, 64 spp, 2 timed repeats), prebuilt");
+    out.Line("## Default run — `aalab run` with its defaults (" + std::to_string(SuiteScenes("default").size()) + " scenes × " +
+             std::to_string(DefaultMethods().size()) + " methods, 960x540, 64 spp, 2 timed repeats), prebuilt");
     out.Line("");
     out.Line("| wall s | CPU s | cores used | peak memory (max RSS) |");
     out.Line("|---|---|---|---|");

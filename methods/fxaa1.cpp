@@ -531,9 +531,9 @@ std::vector<ParamDef> PresetDefs(int preset) {
   return defs;
 }
 
-MethodEntry Fxaa1Entry(int preset, const std::string& help) {
+MethodEntry Fxaa1Entry(int preset, const std::string& help, bool in_default_list = false) {
   const std::string name = "fxaa1-p" + std::to_string(preset);
-  return MethodEntry{
+  MethodEntry entry{
       name, help, PresetDefs(preset), [name](const ParamValues& v) {
         const Fxaa1Params params = ParamsFromValues(v);
         MethodPlan plan;
@@ -543,9 +543,15 @@ MethodEntry Fxaa1Entry(int preset, const std::string& help) {
         plan.post = [params](const Image8& in, const PostOptions& options, PostStats* stats) {
           return Fxaa1(in, params, options.debug_view, stats);
         };
+        plan.post_reference = [params](const Image8& in, const PostOptions& options, PostStats* stats) {
+          return Fxaa1Reference(in, params, options.debug_view, stats);
+        };
+        plan.config = params;
         plan.debug_views = Fxaa1DebugViews();
         return plan;
       }};
+  entry.in_default_list = in_default_list;
+  return entry;
 }
 
 }  // namespace
@@ -555,7 +561,7 @@ std::vector<MethodEntry> Fxaa1Methods() {
       Fxaa1Entry(0, "FXAA 1.0 preset 0: fastest; 2 search steps of 4 texels, cross lowpass"),
       Fxaa1Entry(1, "FXAA 1.0 preset 1: 4 search steps of 3 texels, 3x3 lowpass"),
       Fxaa1Entry(2, "FXAA 1.0 preset 2: 8 search steps of 2 texels (some search dithering)"),
-      Fxaa1Entry(3, "FXAA 1.0 preset 3 (default): 16 single-texel search steps"),
+      Fxaa1Entry(3, "FXAA 1.0 preset 3 (default): 16 single-texel search steps", /*in_default_list=*/true),
       Fxaa1Entry(4, "FXAA 1.0 preset 4: 24 single-texel search steps"),
       Fxaa1Entry(5, "FXAA 1.0 preset 5 (shader header): 32 single-texel search steps"),
   };
