@@ -4,19 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "methods/smaa.h"
-
 namespace aalab::bench {
-
-std::vector<PostCase> SmaaPostCases() {
-  std::vector<PostCase> out;
-  for (const char* preset : {"low", "medium", "high", "ultra"}) {
-    const SmaaParams p = SmaaPreset(preset);
-    out.push_back({std::string("smaa-") + preset, [p](const Image8& f, PostStats* s) { return Smaa(f, p, "", s); },
-                   [p](const Image8& f, PostStats* s) { return SmaaReference(f, p, "", s); }});
-  }
-  return out;
-}
 
 void SmaaGoals(const std::function<double(const std::string&)>& median,
                const std::function<void(const std::string&, const std::string&, bool)>& goal) {

@@ -1,6 +1,6 @@
-// SMAA figures for aalab_bench (bench/bench_smaa.cpp): the four presets' production path
-// beside the FXAA figures, checked bit for bit against the reference implementation, and
-// the issue's speed goal. Two hook lines in bench_main.cpp use these.
+// SMAA's goal for aalab_bench (bench/bench_smaa.cpp). The four presets' production path is
+// timed beside the FXAA figures and checked bit for bit against the reference implementation
+// by bench/bench_post.cpp, which takes every post filter from the registry.
 #pragma once
 #include <functional>
 #include <string>
@@ -10,15 +10,6 @@
 #include "methods/method.h"
 
 namespace aalab::bench {
-
-/// One post filter to time: its production path and its reference implementation.
-struct PostCase {
-  std::string name;
-  std::function<Image8(const Image8&, PostStats*)> fast, ref;
-};
-
-/// smaa-low, smaa-medium, smaa-high, smaa-ultra with the reference presets.
-std::vector<PostCase> SmaaPostCases();
 
 /// Adds the goal "each SMAA preset within 2× of fxaa311-p39 on the same 1080p frames, 1 and
 /// 2 threads" through `goal`, reading median seconds of figure `key` from `median`

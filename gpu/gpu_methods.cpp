@@ -13,17 +13,17 @@
 namespace aalab {
 namespace {
 
-cuda::Fxaa1Args Fxaa1ArgsFrom(const ParamValues& v) {
+cuda::Fxaa1Args Fxaa1ArgsFrom(const Fxaa1Params& p) {
   cuda::Fxaa1Args a{};
-  // The same fields methods/fxaa1.cpp reads from the registry's values.
-  a.edge_threshold = static_cast<float>(v.Number("edge_threshold"));
-  a.edge_threshold_min = static_cast<float>(v.Number("edge_threshold_min"));
-  a.search_steps = v.Int("search_steps");
-  a.search_acceleration = v.Int("search_acceleration");
-  a.search_threshold = static_cast<float>(v.Number("search_threshold"));
-  a.subpix_cap = static_cast<float>(v.Number("subpix_cap"));
-  a.subpix_trim = static_cast<float>(v.Number("subpix_trim"));
-  a.subpix_faster = v.Int("subpix_faster");
+  // The typed parameters methods/fxaa1.cpp's post filter runs with (MethodPlan::config).
+  a.edge_threshold = p.edge_threshold;
+  a.edge_threshold_min = p.edge_threshold_min;
+  a.search_steps = p.search_steps;
+  a.search_acceleration = p.search_acceleration;
+  a.search_threshold = p.search_threshold;
+  a.subpix_cap = p.subpix_cap;
+  a.subpix_trim = p.subpix_trim;
+  a.subpix_faster = p.subpix_faster ? 1 : 0;
   return a;
 }
 
@@ -43,51 +43,33 @@ cuda::Fxaa311Args Fxaa311ArgsFrom(const Fxaa311Params& p) {
   return a;
 }
 
-// The same fields methods/smaa.cpp's registry rows read (SmaaEntry).
-cuda::SmaaArgs SmaaArgsFrom(const ParamValues& v) {
+// The typed parameters methods/smaa.cpp's post filter runs with (MethodPlan::config).
+cuda::SmaaArgs SmaaArgsFrom(const SmaaParams& p) {
   cuda::SmaaArgs a{};
-  a.threshold = static_cast<float>(v.Number("threshold"));
-  a.max_search_steps = v.Int("max_search_steps");
-  a.max_search_steps_diag = v.Int("max_search_steps_diag");
-  a.corner_rounding = v.Int("corner_rounding");
-  a.local_contrast = static_cast<float>(v.Number("local_contrast"));
-  a.diag = v.Choice("diag") == "on" ? 1 : 0;
-  a.corner = v.Choice("corner") == "on" ? 1 : 0;
-  a.color = v.Choice("detection") == "color" ? 1 : 0;
-  a.fixed8 = v.Choice("subtexel") == "exact" ? 0 : 1;
+  a.threshold = p.threshold;
+  a.max_search_steps = p.max_search_steps;
+  a.max_search_steps_diag = p.max_search_steps_diag;
+  a.corner_rounding = p.corner_rounding;
+  a.local_contrast = p.local_contrast_factor;
+  a.diag = p.diag ? 1 : 0;
+  a.corner = p.corner ? 1 : 0;
+  a.color = p.detection == SmaaParams::Detection::kColor ? 1 : 0;
+  a.fixed8 = p.subtexel == SubTexel::kExact ? 0 : 1;
   return a;
-}
-
-bool IsSmaaName(const std::string& n) { return n.rfind("smaa-", 0) == 0; }
-
-// The step table and float order of an FXAA 3.11 registry row, from the CPU tables.
-Fxaa311Params Fxaa311ParamsFor(const MethodPlan& plan) {
-  Fxaa311Params p;
-  const std::string& n = plan.name;
-  if (n.rfind("fxaa311-p", 0) == 0) {
-    p.steps = Fxaa311PresetSteps(std::stoi(n.substr(9)));
-  } else if (n == "fxaa-low" || n == "fxaa-medium" || n == "fxaa-high") {
-    p.steps = FxaaTutorialSteps(n.substr(5));
-  } else if (n == "fxaa-iter12") {
-    p.steps = Fxaa311PresetSteps(39);
-    p.order = Fxaa311Params::Order::kSeed003Glsl;
-  } else {
-    throw InternalError("no FXAA 3.11 step table for '" + n + "'");
-  }
-  p.subpix = static_cast<float>(plan.params.Number("subpix"));
-  p.edge_threshold = static_cast<float>(plan.params.Number("edge_threshold"));
-  p.edge_threshold_min = static_cast<float>(plan.params.Number("edge_threshold_min"));
-  p.luma = ParseFxaa311Luma(plan.params.Choice("luma"));
-  return p;
-}
-
-bool IsFxaa311Name(const std::string& n) {
-  return n.rfind("fxaa311-p", 0) == 0 || n == "fxaa-low" || n == "fxaa-medium" || n == "fxaa-high" ||
-         n == "fxaa-iter12";
 }
 
 std::string LumaKernelName(Fxaa311Params::Luma l) {
   return l == Fxaa311Params::Luma::kRec601 ? "luma-rec601" : "luma-sqrt-luminance";
+}
+
+// The registry rows the GPU runs through ResolveGpuMethod: a CUDA twin and no memory (TAA
+// runs through --taa-frames, gpu/taa_gpu.cpp).
+std::vector<const MethodEntry*> GpuRows() {
+  std::vector<const MethodEntry*> rows;
+  for (const auto& e : MethodRegistry()) {
+    if (e.has_gpu_twin && !MakeMethod(e.name).NeedsHistory()) rows.push_back(&e);
+  }
+  return rows;
 }
 
 }  // namespace
@@ -96,55 +78,59 @@ GpuMethod ResolveGpuMethod(const std::string& spec) {
   GpuMethod m;
   m.plan = MakeMethod(spec);
   m.spec = m.plan.spec;
-  const std::string& n = m.plan.name;
-  if (n.rfind("fxaa1-p", 0) == 0) {
+  const MethodPlan& plan = m.plan;
+  if (!plan.has_gpu_twin || plan.NeedsHistory()) {
+    std::vector<std::string> names;
+    for (const MethodEntry* e : GpuRows()) names.push_back(e->name);
+    throw UserError("method '" + spec + "' has no CUDA twin (GPU kernels exist for " + JoinNames(names) +
+                    "; taa through --taa-frames)");
+  }
+  // A method that renders at another scale reads the scaled frame and rescales after its
+  // post filter (render_scale.cpp: scale43, scale43-fxaa-high).
+  m.scaled_input = plan.rescale != Rescale::kNone;
+  m.rescale = plan.rescale;
+  std::vector<std::string> kernels;
+  if (const auto* p = plan.Config<Fxaa1Params>()) {
     m.fxaa1 = true;
-    m.f1 = Fxaa1ArgsFrom(m.plan.params);
-    m.kernels = "fxaa1";
-    return m;
-  }
-  if (IsFxaa311Name(n)) {
-    const Fxaa311Params p = Fxaa311ParamsFor(m.plan);
+    m.f1 = Fxaa1ArgsFrom(*p);
+    kernels.push_back("fxaa1");
+  } else if (const auto* p3 = plan.Config<Fxaa311Params>()) {
     m.fxaa311 = true;
-    m.f3 = Fxaa311ArgsFrom(p);
-    m.prepass = p.luma == Fxaa311Params::Luma::kRec601 || p.luma == Fxaa311Params::Luma::kSqrtLuminance;
-    m.kernels = (m.prepass ? LumaKernelName(p.luma) + " + " : "") + "fxaa311";
-    return m;
-  }
-  if (IsSmaaName(n)) {
+    m.f3 = Fxaa311ArgsFrom(*p3);
+    m.prepass = p3->luma == Fxaa311Params::Luma::kRec601 || p3->luma == Fxaa311Params::Luma::kSqrtLuminance;
+    if (m.prepass) kernels.push_back(LumaKernelName(p3->luma));
+    kernels.push_back("fxaa311");
+  } else if (const auto* ps = plan.Config<SmaaParams>()) {
     m.smaa = true;
-    m.sm = SmaaArgsFrom(m.plan.params);
-    m.kernels = std::string(kSmaaPassNames[0]) + " + " + kSmaaPassNames[1] + " + " + kSmaaPassNames[2];
-    return m;
+    m.sm = SmaaArgsFrom(*ps);
+    kernels.insert(kernels.end(), std::begin(kSmaaPassNames), std::end(kSmaaPassNames));
+  } else if (plan.post) {
+    throw InternalError("method '" + plan.name + "' is marked as having a CUDA twin but its post filter has no typed configuration");
   }
-  if (n == "scale43" || n == "scale43-fxaa-high") {
-    m.scaled_input = true;
-    m.rescale = m.plan.rescale;
-    const std::string rk = m.rescale == Rescale::kBicubic ? "rescale-bicubic" : "rescale-bilinear";
-    if (n == "scale43-fxaa-high") {
-      const Fxaa311Params p = FxaaTutorialHighParams();  // what render_scale.cpp runs
-      m.fxaa311 = true;
-      m.f3 = Fxaa311ArgsFrom(p);
-      m.prepass = true;
-      m.kernels = LumaKernelName(p.luma) + " + fxaa311 + " + rk;
-    } else {
-      m.kernels = rk;
-    }
-    return m;
-  }
-  throw UserError("method '" + spec + "' has no CUDA twin (GPU kernels exist for fxaa1-p*, fxaa311-p*, fxaa-low, "
-                  "fxaa-medium, fxaa-high, fxaa-iter12, smaa-low, smaa-medium, smaa-high, smaa-ultra, scale43, "
-                  "scale43-fxaa-high; taa through --taa-frames)");
+  if (m.scaled_input) kernels.push_back(m.rescale == Rescale::kBicubic ? "rescale-bicubic" : "rescale-bilinear");
+  for (const auto& k : kernels) m.kernels += (m.kernels.empty() ? "" : " + ") + k;
+  return m;
 }
 
 std::vector<std::string> DefaultGpuMethodSpecs() {
-  std::vector<std::string> specs;
-  for (const auto& e : MethodRegistry()) {
-    if (e.name.rfind("fxaa1-p", 0) == 0 || IsFxaa311Name(e.name) || IsSmaaName(e.name)) specs.push_back(e.name);
+  // Every GPU row at its defaults; the rescaling rows (render scale) once more with each other
+  // choice of their `rescale` parameter, after the post filters.
+  std::vector<std::string> specs, scaled;
+  for (const MethodEntry* e : GpuRows()) {
+    const MethodPlan plan = MakeMethod(e->name);
+    if (plan.rescale == Rescale::kNone) {
+      specs.push_back(e->name);
+      continue;
+    }
+    scaled.push_back(e->name);
+    for (const auto& def : e->params) {
+      if (def.name != "rescale") continue;
+      for (const auto& choice : def.choices) {
+        if (choice != def.default_choice) scaled.push_back(e->name + ":rescale=" + choice);
+      }
+    }
   }
-  for (const char* s : {"scale43", "scale43:rescale=bicubic", "scale43-fxaa-high", "scale43-fxaa-high:rescale=bicubic"}) {
-    specs.push_back(s);
-  }
+  specs.insert(specs.end(), scaled.begin(), scaled.end());
   return specs;
 }
 

@@ -75,7 +75,13 @@ void Poison(cuda::GpuFrame& f) {
 
 }  // namespace
 
-std::vector<std::string> DefaultGpuTaaSpecs() { return {"taa"}; }
+std::vector<std::string> DefaultGpuTaaSpecs() {  // the registry rows with memory and a CUDA twin
+  std::vector<std::string> specs;
+  for (const auto& e : MethodRegistry()) {
+    if (e.has_gpu_twin && MakeMethod(e.name).NeedsHistory()) specs.push_back(e.name);
+  }
+  return specs;
+}
 
 TaaInput SyntheticTaaSequence(int width, int height, int frames) {
   TaaInput seq;
@@ -122,7 +128,9 @@ Entry RunTaaSequence(const std::string& spec, const std::string& scene, const Ta
                      bool timing, int warmup, int repeat, cudaStream_t stream, std::vector<std::string>* failures) {
   AALAB_CHECK(!seq.frames.empty() && seq.previous.size() == seq.frames.size(), "RunTaaSequence: empty sequence");
   const MethodPlan plan = MakeMethod(spec);
-  if (!plan.make_state || plan.name != "taa") throw UserError("'" + spec + "' is not a TAA spec (taa[:...])");
+  if (!plan.NeedsHistory() || !plan.has_gpu_twin) {
+    throw UserError("'" + spec + "' is not a TAA spec (" + JoinNames(DefaultGpuTaaSpecs()) + ", with [:...])");
+  }
   const cuda::TaaArgs args = TaaArgsFrom(plan.params);
   const int w = seq.frames[0].Width(), h = seq.frames[0].Height();
   const size_t n = static_cast<size_t>(w) * h;

@@ -88,6 +88,7 @@ std::vector<MethodEntry> AaaMethods() {
                     FloatParam("smoothing", pr.smoothing, 0.25, 4.0, "ramp width in pixels")},
                    MakeAaa});
   }
+  for (auto& e : out) e.in_default_list = e.name == "aaa";  // in `aalab run`'s default list
   return out;
 }
 

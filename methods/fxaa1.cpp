@@ -25,6 +25,8 @@
 //   (pairing, gradient, start offsets, dstN/dstP, the shift and the debug colours) follow
 //   the FxaaShader.h that ships with the whitepaper's sample (FXAA 1.0 SDK header), read
 //   for facts only.
+//   This file holds the reference (Fxaa1Reference, Fxaa1TracePixel for every pixel), the
+//   debug views and the registry rows; the production path `Fxaa1` is methods/fxaa1_fast.cpp.
 //
 // Parameters (registry names; defaults are preset 3; ranges are what the registry accepts)
 //   edge_threshold       FXAA_EDGE_THRESHOLD       [0..1]     p0 1/4, p1-p5 1/8
@@ -83,7 +85,6 @@
 //     colour·(1−|o|), which draws tiny shifts fully saturated and the largest ones grey,
 //     discontinuous with the grey of "no shift"; we mix grey·(1−|o|) + colour·|o|, which
 //     matches the whitepaper's description (colour marks the direction of the shift).
-#include "methods/row_ops.h"
 #include "methods/fxaa1.h"
 
 #include <algorithm>
@@ -101,8 +102,7 @@
 namespace aalab {
 namespace {
 
-// FxaaLuma's green weight, 0.587/0.299, rounded to float once.
-constexpr float kLumaGreen = static_cast<float>(0.587 / 0.299);
+constexpr float kLumaGreen = kFxaa1LumaGreen;
 
 struct Rgb {
   float r = 0, g = 0, b = 0;
@@ -291,15 +291,6 @@ void CheckRange(const char* name, double v, double lo, double hi) {
   }
 }
 
-void ValidateParams(const Fxaa1Params& p) {
-  CheckRange("edge_threshold", p.edge_threshold, 0.0, 1.0);
-  CheckRange("edge_threshold_min", p.edge_threshold_min, 0.0, 1.0);
-  CheckRange("search_steps", p.search_steps, 1, 64);
-  CheckRange("search_acceleration", p.search_acceleration, 1, 4);
-  CheckRange("search_threshold", p.search_threshold, 0.0, 1.0);
-  CheckRange("subpix_cap", p.subpix_cap, 0.0, 1.0);
-  CheckRange("subpix_trim", p.subpix_trim, 0.0, 0.99);
-}
 
 // Debug colours (see the header block). `grey` is lumaO = lumaM / (1 + 0.587/0.299).
 Rgb DebugColour(const Fxaa1Trace& t, View view, const Fxaa1Params& p) {
@@ -332,6 +323,16 @@ Rgb DebugColour(const Fxaa1Trace& t, View view, const Fxaa1Params& p) {
 }
 
 }  // namespace
+
+void Fxaa1CheckParams(const Fxaa1Params& p) {
+  CheckRange("edge_threshold", p.edge_threshold, 0.0, 1.0);
+  CheckRange("edge_threshold_min", p.edge_threshold_min, 0.0, 1.0);
+  CheckRange("search_steps", p.search_steps, 1, 64);
+  CheckRange("search_acceleration", p.search_acceleration, 1, 4);
+  CheckRange("search_threshold", p.search_threshold, 0.0, 1.0);
+  CheckRange("subpix_cap", p.subpix_cap, 0.0, 1.0);
+  CheckRange("subpix_trim", p.subpix_trim, 0.0, 0.99);
+}
 
 Fxaa1Params Fxaa1Preset(int preset) {
   Fxaa1Params p;  // preset 3
@@ -429,7 +430,7 @@ Fxaa1Trace Fxaa1TracePixel(BilinearSampler& tex, int x, int y, const Fxaa1Params
 
 Image8 Fxaa1Reference(const Image8& in, const Fxaa1Params& p, const std::string& debug_view,
                       PostStats* stats) {
-  ValidateParams(p);
+  Fxaa1CheckParams(p);
   const View view = ParseView(debug_view);
   AALAB_CHECK(in.Channels() == 4, "fxaa1 needs an RGBA8 frame");
   Image8 out(in.Width(), in.Height(), 4, 255);
@@ -470,95 +471,6 @@ Image8 Fxaa1Reference(const Image8& in, const Fxaa1Params& p, const std::string&
   });
   if (stats != nullptr) {
     for (uint64_t taps : chunk_taps) stats->taps += taps;  // chunk order
-  }
-  return out;
-}
-
-// ---------------------------------------------------------------------------------------
-// The production path for the normal output. Same per-pixel computation as the reference,
-// organised for a CPU: FxaaLuma of every texel once per frame into a float plane (it
-// depends on the texel alone), the local contrast check over whole rows in a loop the
-// compiler vectorises, then Fxaa1TracePixel only for the pixels that pass it. Early-exit
-// pixels copy the input, as FxaaFilterReturn(rgbM) does, and count their 5 taps. Debug
-// views go through the reference. Tests compare both paths bit for bit, taps included
-// (tests/perf/fxaa_fast_test.cpp).
-
-namespace {
-
-
-}  // namespace
-
-Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_view, PostStats* stats) {
-  ValidateParams(p);
-  const View view = ParseView(debug_view);
-  if (view != View::kNormal || p.sampler != SamplerArithmetic::kGl) return Fxaa1Reference(in, p, debug_view, stats);
-  AALAB_CHECK(in.Channels() == 4, "fxaa1 needs an RGBA8 frame");
-  Image8 out(in.Width(), in.Height(), 4, 255);
-  if (in.Empty()) return out;
-  const int height = in.Height();
-  const int width = in.Width();
-  // Step 1 for every texel: FxaaLuma(rgb) with rgb = UnormToFloat(k) as the sampler reads it.
-  // Tables of the two terms for every 8-bit value: the same floats the sampler path computes.
-  static const auto tables = [] {
-    std::array<std::array<float, 256>, 2> t{};
-    for (int k = 0; k < 256; ++k) {
-      t[0][k] = UnormToFloat(static_cast<uint8_t>(k));               // r
-      t[1][k] = UnormToFloat(static_cast<uint8_t>(k)) * kLumaGreen;  // g · (0.587/0.299)
-    }
-    return t;
-  }();
-  std::vector<float> luma(static_cast<size_t>(width) * height);
-  ParallelForChunks(height, 16, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      const uint8_t* s = in.Row(y);
-      float* l = luma.data() + static_cast<size_t>(y) * width;
-      for (int x = 0; x < width; ++x) l[x] = tables[1][s[4 * x + 1]] + tables[0][s[4 * x]];
-    }
-  });
-  constexpr int kGrain = 8;
-  std::vector<uint64_t> chunk_taps(static_cast<size_t>((height + kGrain - 1) / kGrain), 0);
-  ParallelForChunks(height, kGrain, [&](int y0, int y1) {
-    BilinearSampler tex(in);
-    thread_local std::vector<uint8_t> edge;
-    if (edge.size() < static_cast<size_t>(width)) edge.resize(static_cast<size_t>(width));
-    uint64_t exits = 0;
-    for (int y = y0; y < y1; ++y) {
-      uint8_t* orow = out.Row(y);
-      CopyRowOpaque(in.Row(y), orow, width);
-      const float* ln = luma.data() + static_cast<size_t>(std::max(y - 1, 0)) * width;
-      const float* lm = luma.data() + static_cast<size_t>(y) * width;
-      const float* ls = luma.data() + static_cast<size_t>(std::min(y + 1, height - 1)) * width;
-      // Step 2, LocalContrastExit: max/min are exact, so their nesting does not matter.
-      auto test = [&](float n, float w, float m, float e, float s) -> uint8_t {
-        const float rmax = std::max(std::max(n, w), std::max(m, std::max(e, s)));
-        const float rmin = std::min(std::min(n, w), std::min(m, std::min(e, s)));
-        const float range = rmax - rmin;
-        return range < std::max(p.edge_threshold_min, rmax * p.edge_threshold) ? 0 : 1;
-      };
-      if (width == 1) {
-        edge[0] = test(ln[0], lm[0], lm[0], lm[0], ls[0]);
-      } else {
-        edge[0] = test(ln[0], lm[0], lm[0], lm[1], ls[0]);
-        for (int x = 1; x < width - 1; ++x) edge[x] = test(ln[x], lm[x - 1], lm[x], lm[x + 1], ls[x]);
-        edge[width - 1] = test(ln[width - 1], lm[width - 2], lm[width - 1], lm[width - 1], ls[width - 1]);
-      }
-      for (int x = 0; x < width; ++x) {
-        if (!edge[x]) {
-          ++exits;
-          continue;
-        }
-        const Fxaa1Trace t = Fxaa1TracePixel(tex, x, y, p);
-        AALAB_CHECK(!t.early_exit, "fxaa1 fast path: contrast test disagrees with the trace");
-        uint8_t* o = orow + 4 * x;
-        o[0] = QuantizeUnorm8(t.rgb_out[0]);
-        o[1] = QuantizeUnorm8(t.rgb_out[1]);
-        o[2] = QuantizeUnorm8(t.rgb_out[2]);
-      }
-    }
-    chunk_taps[static_cast<size_t>(y0 / kGrain)] = tex.Taps() + 5 * exits;
-  });
-  if (stats != nullptr) {
-    for (uint64_t taps : chunk_taps) stats->taps += taps;
   }
   return out;
 }
@@ -619,9 +531,9 @@ std::vector<ParamDef> PresetDefs(int preset) {
   return defs;
 }
 
-MethodEntry Fxaa1Entry(int preset, const std::string& help) {
+MethodEntry Fxaa1Entry(int preset, const std::string& help, bool in_default_list = false) {
   const std::string name = "fxaa1-p" + std::to_string(preset);
-  return MethodEntry{
+  MethodEntry entry{
       name, help, PresetDefs(preset), [name](const ParamValues& v) {
         const Fxaa1Params params = ParamsFromValues(v);
         MethodPlan plan;
@@ -633,9 +545,17 @@ MethodEntry Fxaa1Entry(int preset, const std::string& help) {
           p.sampler = options.sampler;
           return Fxaa1(in, p, options.debug_view, stats);
         };
+        plan.post_reference = [params](const Image8& in, const PostOptions& options, PostStats* stats) {
+          Fxaa1Params p = params;
+          p.sampler = options.sampler;
+          return Fxaa1Reference(in, p, options.debug_view, stats);
+        };
+        plan.config = params;
         plan.debug_views = Fxaa1DebugViews();
         return plan;
       }};
+  entry.in_default_list = in_default_list;
+  return entry;
 }
 
 }  // namespace
@@ -645,7 +565,7 @@ std::vector<MethodEntry> Fxaa1Methods() {
       Fxaa1Entry(0, "FXAA 1.0 preset 0: fastest; 2 search steps of 4 texels, cross lowpass"),
       Fxaa1Entry(1, "FXAA 1.0 preset 1: 4 search steps of 3 texels, 3x3 lowpass"),
       Fxaa1Entry(2, "FXAA 1.0 preset 2: 8 search steps of 2 texels (some search dithering)"),
-      Fxaa1Entry(3, "FXAA 1.0 preset 3 (default): 16 single-texel search steps"),
+      Fxaa1Entry(3, "FXAA 1.0 preset 3 (default): 16 single-texel search steps", /*in_default_list=*/true),
       Fxaa1Entry(4, "FXAA 1.0 preset 4: 24 single-texel search steps"),
       Fxaa1Entry(5, "FXAA 1.0 preset 5 (shader header): 32 single-texel search steps"),
   };

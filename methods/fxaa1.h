@@ -27,6 +27,12 @@ struct Fxaa1Params {
   SamplerArithmetic sampler = SamplerArithmetic::kGl;  ///< texel/filter arithmetic (PostOptions)
 };
 
+/// FxaaLuma's green weight, 0.587/0.299 rounded to float once: luma = g · this + r.
+inline constexpr float kFxaa1LumaGreen = static_cast<float>(0.587 / 0.299);
+
+/// Throws UserError naming the first field of `p` outside the registry's range.
+void Fxaa1CheckParams(const Fxaa1Params& p);
+
 /// The whitepaper presets 0-4, plus 5 (preset 4 with 32 search steps, as the shader
 /// header's FXAA_PRESET 5). Throws UserError for any other number.
 Fxaa1Params Fxaa1Preset(int preset);

@@ -499,6 +499,15 @@ MethodPlan FxaaPlan(const std::string& name, const ParamValues& v, std::vector<f
     p.sampler = options.sampler;
     return Fxaa311(in, p, stats);
   };
+  plan.post_reference = [fp, name](const Image8& in, const PostOptions& options, PostStats* stats) {
+    if (!options.debug_view.empty()) {
+      throw UserError("method '" + name + "' has no debug view '" + options.debug_view + "'");
+    }
+    Fxaa311Params p = fp;
+    p.sampler = options.sampler;
+    return Fxaa311Reference(in, p, stats);
+  };
+  plan.config = fp;
   return plan;
 }
 
@@ -543,6 +552,10 @@ std::vector<MethodEntry> Fxaa311Methods() {
                           "widely copied GLSL FXAA with 12 iterations (seed 003): preset 39 steps, "
                           "thresholds 0.125/0.0312, luma from rgb per tap, that GLSL's float order",
                           Fxaa311PresetSteps(39), 0.125, 0.0312, "rec601-rgb", Order::kSeed003Glsl));
+  // In `aalab run`'s default list: two presets, the tutorial's high quality and the GLSL copy.
+  for (auto& e : out) {
+    e.in_default_list = e.name == "fxaa311-p12" || e.name == "fxaa311-p39" || e.name == "fxaa-high" || e.name == "fxaa-iter12";
+  }
   return out;
 }
 

@@ -2,6 +2,7 @@
 /// frame, and how the result is resampled to the output size. Pure data + pure functions:
 /// methods do no I/O and read no clocks (the runner times the stages).
 #pragma once
+#include <any>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -72,9 +73,34 @@ struct MethodPlan {
   /// The state's Step replaces the post filter stage.
   TemporalFactory make_state;
 
+  /// The family's typed parameters, built by the family's factory from `params`: for a post
+  /// filter the struct its `post` runs with (Fxaa1Params, Fxaa311Params, SmaaParams; for
+  /// scale43-fxaa-high its FXAA's); empty for families whose `render`, `rescale` and
+  /// `params` say everything (TAA: its state is private to methods/taa.cpp). Read with Config<T>(), not by parsing `name`.
+  std::any config;
+  /// For a post filter with a separate production path: the plain reference implementation
+  /// that `post` equals bit for bit (same output, same taps); empty otherwise.
+  PostFilter post_reference;
+
+  // Properties of the registry row (MethodEntry), copied by MakeMethod.
+  std::string family;            ///< the family's name ("fxaa311"), as `aalab list methods` groups it
+  bool in_default_list = false;  ///< one of the methods `aalab run` compares when --methods is not given
+  bool has_gpu_twin = false;     ///< the GPU tool (gpu/) has CUDA kernels for it
+
+  /// The typed configuration when it is a T, else nullptr.
+  template <class T>
+  const T* Config() const {
+    return std::any_cast<T>(&config);
+  }
   /// True when the method works on a finished 1x frame alone (usable by `aalab apply`).
   bool IsPostOnly() const {
     return post && render.IsPlain1x() && rescale == Rescale::kNone;
+  }
+  /// True for methods with memory (TAA): they need a sequence, and a still run's default list leaves them out.
+  bool NeedsHistory() const { return static_cast<bool>(make_state); }
+  /// True when the method changes nothing: a plain 1x render, no post filter, no state, no rescale (`none`).
+  bool IsIdentity() const {
+    return !post && !make_state && render.IsPlain1x() && rescale == Rescale::kNone;
   }
 };
 
@@ -87,6 +113,12 @@ struct MethodEntry {
   /// Where the method comes from: BibTeX keys of reports/export_bibliography.cpp, comma
   /// separated ("" = defined here, nothing to cite). Set once per family in registry.cpp.
   std::string source = "";
+  /// The family's name: set once per family in registry.cpp.
+  std::string family = "";
+  /// In the default list (`aalab run` without --methods, in registry order): set by the family file.
+  bool in_default_list = false;
+  /// Has a CUDA twin in the GPU tool: set once per family in registry.cpp.
+  bool has_gpu_twin = false;
 };
 
 }  // namespace aalab

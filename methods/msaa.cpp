@@ -82,6 +82,7 @@ std::vector<MethodEntry> MsaaMethods() {
                      return plan;
                    }});
   }
+  for (auto& e : out) e.in_default_list = e.name == "msaa-4x";  // in `aalab run`'s default list
   return out;
 }
 

@@ -59,6 +59,15 @@ MethodPlan ScalePlan(const std::string& name, const ParamValues& v, bool fxaa) {
       p.sampler = options.sampler;
       return Fxaa311(in, p, stats);
     };
+    plan.post_reference = [fp, name](const Image8& in, const PostOptions& options, PostStats* stats) {
+      if (!options.debug_view.empty()) {
+        throw UserError("method '" + name + "' has no debug view '" + options.debug_view + "'");
+      }
+      Fxaa311Params p = fp;
+      p.sampler = options.sampler;
+      return Fxaa311Reference(in, p, stats);
+    };
+    plan.config = fp;
   }
   return plan;
 }
@@ -75,6 +84,7 @@ std::vector<MethodEntry> RenderScaleMethods() {
                  "render scale (default 4/3) + tutorial high-quality FXAA at that size, rescaled",
                  ScaleParams(),
                  [](const ParamValues& v) { return ScalePlan("scale43-fxaa-high", v, true); }});
+  out.back().in_default_list = true;
   return out;
 }
 

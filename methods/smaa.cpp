@@ -354,6 +354,12 @@ MethodEntry SmaaEntry(const std::string& preset, double threshold, const std::st
               p.sampler = options.sampler;
               return Smaa(in, p, options.debug_view, stats);
             };
+            plan.post_reference = [sp](const Image8& in, const PostOptions& options, PostStats* stats) {
+              SmaaParams p = sp;
+              p.sampler = options.sampler;
+              return SmaaReference(in, p, options.debug_view, stats);
+            };
+            plan.config = sp;
             plan.debug_views = SmaaDebugViews();
             return plan;
           }};
@@ -362,12 +368,14 @@ MethodEntry SmaaEntry(const std::string& preset, double threshold, const std::st
 }  // namespace
 
 std::vector<MethodEntry> SmaaMethods() {
-  return {
+  std::vector<MethodEntry> out = {
       SmaaEntry("low", 0.15, "SMAA 1x, reference preset LOW: threshold 0.15, 4 search steps, no diagonals, no corners"),
       SmaaEntry("medium", 0.1, "SMAA 1x, reference preset MEDIUM: threshold 0.1, 8 search steps, no diagonals, no corners"),
       SmaaEntry("high", 0.1, "SMAA 1x, reference preset HIGH: threshold 0.1, 16 search steps, 8 diagonal, corner rounding 25"),
       SmaaEntry("ultra", 0.05, "SMAA 1x, reference preset ULTRA: threshold 0.05, 32 search steps, 16 diagonal, corner rounding 25"),
   };
+  for (auto& e : out) e.in_default_list = e.name == "smaa-high";  // in `aalab run`'s default list
+  return out;
 }
 
 }  // namespace aalab

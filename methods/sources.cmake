@@ -5,6 +5,7 @@ set(AALAB_METHOD_SOURCES
   supersample.cpp
   msaa.cpp
   fxaa1.cpp
+  fxaa1_fast.cpp
   fxaa311.cpp
   fxaa311_fast.cpp
   smaa.cpp

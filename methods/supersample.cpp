@@ -64,6 +64,8 @@ std::vector<MethodEntry> SupersampleMethods() {
                    r.spp = p.Int("spp");
                    return Plan("ssaa-jitter", p, r);
                  }});
+  // In `aalab run`'s default list: the baseline and the two ordered grids.
+  for (auto& e : out) e.in_default_list = e.name == "none" || e.name == "ssaa-2x2" || e.name == "ssaa-4x4";
   return out;
 }
 

@@ -48,7 +48,12 @@ std::vector<std::string> SplitList(const std::string& text) {
 
 namespace {
 
-int ListCommand(const std::string& what) {
+int ListCommand(const std::string& what, bool markdown) {
+  if (markdown && what != "methods") throw UserError("--markdown is for `aalab list methods` only (not '" + what + "')");
+  if (what == "methods" && markdown) {
+    std::printf("%s", MethodTableMarkdown().c_str());  // README.md's and docs/cli.md's table
+    return 0;
+  }
   if (what == "scenes") {
     for (const auto& name : LibrarySceneNames()) {
       const Scene s = LoadScene(name);
@@ -90,8 +95,12 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   // list
   auto* list = app.add_subcommand("list", "list scenes (and suites), methods, metrics or viewing presets");
   auto list_what = std::make_shared<std::string>();
+  auto list_markdown = std::make_shared<bool>(false);
   list->add_option("what", *list_what, "scenes | methods | metrics | viewing")->required();
-  list->callback([&commands, list_what] { commands.action = [list_what] { return ListCommand(*list_what); }; });
+  list->add_flag("--markdown", *list_markdown, "methods: the family table of README.md and docs/cli.md, in Markdown");
+  list->callback([&commands, list_what, list_markdown] {
+    commands.action = [list_what, list_markdown] { return ListCommand(*list_what, *list_markdown); };
+  });
 
   // render
   auto* render = app.add_subcommand("render", "render one scene (reference-style stratified samples) to EXR or PNG");

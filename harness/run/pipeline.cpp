@@ -162,10 +162,10 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
 }
 
 bool RunsOnImageScenes(const MethodPlan& plan, bool has_motion) {
-  if (plan.IsPostOnly() || plan.name == "none") return true;
+  if (plan.IsPostOnly() || plan.IsIdentity()) return true;
   // TAA: a jittered one-sample 1x render plus a temporal step, all of which a captured
   // sequence with motion vectors and jitter supplies.
-  return has_motion && plan.make_state && plan.render.jitter.samples > 0 && plan.render.scale == 1.0 &&
+  return has_motion && plan.NeedsHistory() && plan.render.jitter.samples > 0 && plan.render.scale == 1.0 &&
          plan.rescale == Rescale::kNone;
 }
 

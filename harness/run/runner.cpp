@@ -34,10 +34,13 @@ namespace aalab {
 namespace fs = std::filesystem;
 
 std::vector<std::string> DefaultMethods() {
-  // One or two representatives of each family at their defaults, in registry order: what the
-  // first run of `make run` compares. `--methods all` runs every registered method.
-  return {"none",     "ssaa-2x2",    "ssaa-4x4",    "msaa-4x",   "fxaa1-p3",          "fxaa311-p12",
-          "fxaa311-p39", "fxaa-high", "fxaa-iter12", "smaa-high", "scale43-fxaa-high", "aaa"};
+  // The registry rows marked in_default_list (by their family files), in registry order: what
+  // the first run of `make run` compares. `--methods all` runs every registered method.
+  std::vector<std::string> names;
+  for (const auto& e : MethodRegistry()) {
+    if (e.in_default_list) names.push_back(e.name);
+  }
+  return names;
 }
 
 void ParseSize(const std::string& text, int* width, int* height) {
@@ -159,12 +162,16 @@ Report RunSuite(const RunSettings& s) {
   for (const auto& src : scenes) any_sequence = any_sequence || frames_of(src) > 1;
   const bool all = s.methods.size() == 1 && s.methods[0] == "all";
   std::vector<std::string> method_specs = s.methods.empty() ? DefaultMethods() : all ? MethodNames() : s.methods;
+  std::vector<MethodPlan> plans = ResolveMethods(method_specs);
   if ((s.methods.empty() || all) && !any_sequence) {
     // Methods with memory need a sequence: a still run's default list leaves them out (a
     // still run is unchanged by their existence); name them with --methods to see frame 0.
-    std::erase_if(method_specs, [](const std::string& m) { return static_cast<bool>(MakeMethod(m).make_state); });
+    for (size_t i = plans.size(); i-- > 0;) {
+      if (!plans[i].NeedsHistory()) continue;
+      plans.erase(plans.begin() + static_cast<std::ptrdiff_t>(i));
+      method_specs.erase(method_specs.begin() + static_cast<std::ptrdiff_t>(i));
+    }
   }
-  const std::vector<MethodPlan> plans = ResolveMethods(method_specs);
   // The user's own AA outputs (image scenes' `outputs`): rows after aalab's methods.
   const std::vector<std::string> supplied = SuppliedOutputNames(scenes);
   for (const auto& name : supplied) {

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "methods/fxaa311.h"
+#include "methods/registry.h"
 #include "tests/oracle/gl_oracle.h"
 #include "tests/oracle/oracle_frames.h"
 #include "tests/oracle/seed_shaders.h"
@@ -99,12 +100,7 @@ int Run(int argc, char** argv) {
     p.steps = FxaaTutorialSteps(level);
     preset(std::string("fxaa-") + level, p, id);
   }
-  Fxaa311Params p;
-  p.steps = Fxaa311PresetSteps(39);
-  p.edge_threshold = 0.125f;
-  p.edge_threshold_min = 0.0312f;
-  p.luma = Fxaa311Params::Luma::kRec601Rgb;
-  p.order = Fxaa311Params::Order::kSeed003Glsl;
+  const Fxaa311Params p = *MakeMethod("fxaa-iter12").Config<Fxaa311Params>();  // the registry row's parameters
   Tally t;
   for (size_t i = 0; i < frames.size(); ++i) {
     const Image8 ours = Fxaa311(frames[i].img, p, nullptr);

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "methods/fxaa311.h"
+#include "methods/registry.h"
 #include "tests/oracle/gl_oracle.h"
 #include "tests/oracle/oracle_frames.h"
 #include "tests/oracle/seed_shaders.h"
@@ -116,12 +117,7 @@ TEST_F(FxaaOracle, TutorialLevelsAreTheShaderWithTheirPresets) {
 }
 
 TEST_F(FxaaOracle, Iter12IsSeed003Glsl) {
-  Fxaa311Params p;
-  p.steps = Fxaa311PresetSteps(39);
-  p.edge_threshold = 0.125f;
-  p.edge_threshold_min = 0.0312f;
-  p.luma = Fxaa311Params::Luma::kRec601Rgb;
-  p.order = Fxaa311Params::Order::kSeed003Glsl;
+  const Fxaa311Params p = *MakeMethod("fxaa-iter12").Config<Fxaa311Params>();  // the registry row's parameters
   ExpectIdentical(
       "fxaa-iter12", [&](const Image8& img) { return Fxaa311(img, p, nullptr); },
       [&](const Image8& img) { return oracle::RunIter12Shader(img); });

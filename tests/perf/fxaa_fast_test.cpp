@@ -43,25 +43,15 @@ void ExpectFxaa311Same(const Image8& img, const Fxaa311Params& p, const std::str
   EXPECT_EQ(fast_stats.taps, ref_stats.taps) << what;
 }
 
+// Every registered FXAA 3.11 post filter at its defaults, with the typed parameters its
+// post filter runs with (MethodPlan::config), named as in the registry; then settings that
+// reach the edge cases.
 std::vector<std::pair<std::string, Fxaa311Params>> Fxaa311Settings() {
   std::vector<std::pair<std::string, Fxaa311Params>> out;
-  for (int id : Fxaa311PresetIds()) {
-    Fxaa311Params p;
-    p.steps = Fxaa311PresetSteps(id);
-    out.push_back({"p" + std::to_string(id), p});
+  for (const auto& e : MethodRegistry()) {
+    const MethodPlan plan = MakeMethod(e.name);
+    if (const auto* p = plan.Config<Fxaa311Params>(); p && plan.IsPostOnly()) out.push_back({plan.name, *p});
   }
-  for (const char* level : {"low", "medium", "high"}) {
-    Fxaa311Params p = FxaaTutorialHighParams();
-    p.steps = FxaaTutorialSteps(level);
-    out.push_back({std::string("tutorial-") + level, p});
-  }
-  Fxaa311Params iter12;
-  iter12.steps = Fxaa311PresetSteps(39);
-  iter12.edge_threshold = 0.125f;
-  iter12.edge_threshold_min = 0.0312f;
-  iter12.luma = Fxaa311Params::Luma::kRec601Rgb;
-  iter12.order = Fxaa311Params::Order::kSeed003Glsl;
-  out.push_back({"iter12", iter12});
   // Every luma mode with both orders, thresholds 0 (range = 0 pixels reach the guard), and
   // extreme subpix values.
   const Fxaa311Params::Luma lumas[] = {Fxaa311Params::Luma::kRec601, Fxaa311Params::Luma::kRec601Rgb,
@@ -106,7 +96,8 @@ TEST(FastPath, Fxaa311EqualsReferenceOnVeryWideAndTallFrames) {
     Image8 img(w, h, 4);
     for (auto& b : img.Data()) b = static_cast<uint8_t>((perf_test::NextRandom(seed) & 0x3f) * 4);
     for (const auto& [name, p] : Fxaa311Settings()) {
-      if (name != "p12" && name != "tutorial-high" && name != "iter12" && name.find("thr0") == std::string::npos) continue;
+      const bool row = !name.starts_with("luma");  // a registry row, not an edge-case setting
+      if ((row && !MakeMethod(name).in_default_list) || (!row && name.find("thr0") == std::string::npos)) continue;
       ExpectFxaa311Same(img, p, name + " noise " + std::to_string(w) + "x" + std::to_string(h));
     }
   }

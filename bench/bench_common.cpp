@@ -1,0 +1,163 @@
+// What the `make bench` figures share; see bench/bench_common.h.
+#include "bench/bench_common.h"
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+
+#include <sys/resource.h>
+
+#include "harness/core/parallel.h"
+#include "scenes/library.h"
+#include "scenes/render.h"
+#include "scenes/tracer.h"
+
+namespace aalab::bench {
+namespace {
+
+std::map<std::string, Stats>& Collected() {
+  static std::map<std::string, Stats> m;
+  return m;
+}
+
+// Cores the process actually got while a figure ran: CPU seconds / wall seconds, one value
+// per repetition. On a machine shared with other work, 2 worker threads may get less than 2.
+std::map<std::string, std::vector<double>>& CoresByFigure() {
+  static std::map<std::string, std::vector<double>> m;
+  return m;
+}
+
+class CollectingReporter : public benchmark::BenchmarkReporter {
+ public:
+  bool ReportContext(const Context&) override { return true; }
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const Run& r : runs) {
+      if (r.run_type != Run::RT_Iteration) continue;
+      if (r.error_occurred) {
+        std::fprintf(stderr, "benchmark %s failed: %s\n", r.run_name.function_name.c_str(), r.error_message.c_str());
+        std::exit(3);
+      }
+      // Seconds per iteration, wall clock.
+      const double secs = r.real_accumulated_time / static_cast<double>(r.iterations);
+      Collected()[r.run_name.function_name].samples.push_back(secs);
+      std::fprintf(stderr, "  %-60s %10.3f ms\n", r.run_name.function_name.c_str(), secs * 1e3);
+    }
+  }
+};
+
+}  // namespace
+
+double ProcessCpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
+}
+
+void Register(const std::string& name, int threads, int reps, double min_time, std::function<void()> body) {
+  auto* b = benchmark::RegisterBenchmark(name.c_str(), [name, threads, body](benchmark::State& st) {
+    SetThreadCount(threads);
+    body();  // warm-up (also first touch of any buffer)
+    const double cpu0 = ProcessCpuSeconds();
+    const auto w0 = std::chrono::steady_clock::now();
+    for (auto _ : st) body();
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+    if (wall > 0) CoresByFigure()[name].push_back((ProcessCpuSeconds() - cpu0) / wall);
+  });
+  b->UseRealTime()->Repetitions(reps)->MinTime(min_time);
+}
+
+void RunRegistered() {
+  std::fprintf(stderr, "running %s figures (Google Benchmark %s)...\n", "registered", "repetitions");
+  CollectingReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  SetThreadCount(0);
+}
+
+const Stats& Figure(const std::string& name) {
+  auto it = Collected().find(name);
+  if (it == Collected().end()) {
+    std::fprintf(stderr, "missing figure %s\n", name.c_str());
+    std::exit(3);
+  }
+  return it->second;
+}
+
+double CoresUsed(const std::string& name) {
+  auto it = CoresByFigure().find(name);
+  return it == CoresByFigure().end() || it->second.empty() ? 0.0 : Stats{it->second}.Median();
+}
+
+Image8 RenderFrame1x(const std::string& scene_name, int w, int h) {
+  const Scene scene = LoadScene(scene_name);
+  const Tracer tracer(scene);
+  return RenderFrame(tracer, w, h, RenderSpec{}, 1, nullptr);
+}
+
+void PlainPass(const Image8& in, Image8& out) {
+  const int w = in.Width();
+  ParallelForChunks(in.Height(), 8, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const uint8_t* s = in.Row(y);
+      uint8_t* d = out.Row(y);
+      for (int x = 0; x < w; ++x) {
+        uint32_t v;
+        std::memcpy(&v, s + 4 * x, 4);
+        v |= 0xFF000000u;
+        std::memcpy(d + 4 * x, &v, 4);
+      }
+    }
+  });
+}
+
+void FailIdentity(const std::string& what) {
+  std::fprintf(stderr, "\n*** BIT-IDENTITY FAILURE: %s: the optimised path differs from its reference ***\n", what.c_str());
+  std::exit(2);
+}
+
+std::string Fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string Range(const Stats& s, double scale, const char* f) {
+  return Fmt(f, s.Median() * scale) + " (" + Fmt(f, s.Min() * scale) + "–" + Fmt(f, s.Max() * scale) + ")";
+}
+
+Stats Mpix(const Stats& s, double mp) {  // median of rates = mp / median time
+  Stats r;
+  for (double v : s.samples) r.samples.push_back(mp / v);
+  return r;
+}
+
+Json StatsJson(const std::vector<double>& v, double scale) {
+  Stats s{v};
+  Json j;
+  j["median"] = s.Median() * scale;
+  j["min"] = s.Min() * scale;
+  j["max"] = s.Max() * scale;
+  j["repeats"] = v.size();
+  return j;
+}
+
+std::string RunCapture(const std::string& cmd) {
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  pclose(p);
+  return out;
+}
+
+void BenchOutput::Goal(const std::string& goal, const std::string& measured, bool met) {
+  Line("| " + goal + " | " + measured + " | " + (met ? "yes" : "**no**") + " |");
+  goals.push_back({{"goal", goal}, {"measured", measured}, {"met", met}});
+}
+
+}  // namespace aalab::bench

@@ -1,0 +1,48 @@
+/// The suite figures of `make bench` (bench/bench_suite.cpp): wall and CPU time of
+/// `aalab run --suite quick` at three sizes and at 1 vs 2 threads (one process per
+/// repetition), and the default run (`aalab run` with its defaults: wall, CPU, peak memory).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "bench/bench_common.h"
+
+namespace aalab::bench {
+
+/// One suite configuration and its repetitions.
+struct SuiteRun {
+  std::string size;
+  int w, h, threads;
+  std::vector<double> secs;
+  std::vector<double> cpu;  ///< child CPU seconds (user + system)
+};
+
+/// The default run, as `make run` does it with the binary prebuilt (not in --quick).
+struct DefaultRun {
+  bool ok = false;
+  double wall_s = 0, cpu_s = 0, max_rss_mb = 0;
+};
+
+/// What the suite figures measured, for their table and goals.
+struct SuiteBench {
+  std::vector<SuiteRun> runs;
+  DefaultRun default_run;
+  // Filled by SuiteTable:
+  double per_mpix_1080 = 0.0;                          ///< wall s per Mpix at 1080p, 2 threads
+  double linear_worst = 0.0, linear_worst_cpu = 0.0;   ///< worst deviation from per_mpix_1080 (wall, CPU)
+  double t1 = 0, t2 = 0;                               ///< 960x540 wall s at 1 and 2 threads
+};
+
+/// Runs the suite configurations and the default run; false (with a message) when a run failed.
+bool RunSuiteFigures(const Settings& cfg, SuiteBench& suite);
+
+/// The "## Suite" and "## Default run" sections; fills the linearity and thread figures.
+void SuiteTable(SuiteBench& suite, BenchOutput& out);
+
+/// Goals: suite time linear in pixel count, 2 threads at 960x540 (the "## Goals" rows after SMAA's).
+void SuiteGoals(const SuiteBench& suite, BenchOutput& out);
+
+/// Goal: the default run ≤ 30 s wall and ≤ 300 MB peak memory (when it ran).
+void DefaultRunGoal(const SuiteBench& suite, BenchOutput& out);
+
+}  // namespace aalab::bench
