@@ -44,6 +44,7 @@
 
 #include "bench/bench_stats.h"
 #include "bench/bench_bigmesh.h"
+#include "bench/bench_metrics.h"
 #include "bench/bench_msaa.h"
 #include "bench/bench_taa.h"
 #include "harness/core/color.h"
@@ -488,10 +489,11 @@ int Main(int argc, char** argv) {
     // FLIP as a run computes it per method (the reference's half reused after the first
     // method of a scene), and from scratch (the first method of a scene, or `aalab metrics`).
     Register("metric-flip" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
-      benchmark::DoNotOptimize(PoolFlip(flip::ErrorValues(pair_ref->image, *pair_img, kFlipDefaultPpd)).mean);
+      static const std::shared_ptr<const flip::ReferenceSide> side = flip::PrepareReference(pair_ref->image, kFlipDefaultPpd);
+      benchmark::DoNotOptimize(PoolFlip(flip::ErrorValues(*side, *pair_img)).mean);
     });
     Register("metric-flip-uncached" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
-      benchmark::DoNotOptimize(PoolFlip(flip::ErrorValuesUncached(pair_ref->image, *pair_img, kFlipDefaultPpd)).mean);
+      benchmark::DoNotOptimize(PoolFlip(flip::ErrorValues(pair_ref->image, *pair_img, kFlipDefaultPpd)).mean);
     });
     Register("metric-edge" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img, pair_none] {
       for (const auto& e : MetricRegistry()) {
@@ -547,6 +549,8 @@ int Main(int argc, char** argv) {
   write_raw(*pair_img, tmp / "a.f32");
   write_raw(pair_ref->image, tmp / "b.f32");
   Json external;
+  const bench::NvidiaFlipRun nvidia_flip =  // bench/bench_metrics.cpp
+      bench::RunNvidiaFlip(ToUnorm8(pair_ref->image), ToUnorm8(*pair_img), std::max(3, cfg.reps / 2 + 1), tmp.string());
   {
     const std::string cmd = cfg.python + " " + cfg.script_dir + "/external_metrics.py " + (tmp / "a.f32").string() + " " +
                             (tmp / "b.f32").string() + " " + std::to_string(FW) + " " + std::to_string(FH) + " " +
@@ -812,6 +816,8 @@ int Main(int argc, char** argv) {
     }
   }
 
+  const std::vector<bench::BenchGoal> nvidia_flip_goals = bench::ReportNvidiaFlip(
+      nvidia_flip, [&](int th) { return get("metric-flip/t" + std::to_string(th)).Median() * 1e3; }, line, &figures);
   {  // analytical AA (bench/bench_aaa.cpp)
     std::string aaa_table;
     for (auto& f : BenchAnalyticAa(cfg.reps, &aaa_table)) figures.push_back(f);
@@ -905,6 +911,7 @@ int Main(int argc, char** argv) {
              std::to_string(trace_ratio_t1.size()) + " scenes below 70%",
          below == 0);
   }
+  for (const auto& g : nvidia_flip_goals) goal(g.goal, g.measured, g.met);
   goal("SSIM as in a run ≥ 15× faster than scikit-image's Gaussian SSIM (1 thread)",
        ssim_speedup > 0 ? Fmt("%.1f×", ssim_speedup) : "skimage missing", ssim_speedup >= 15.0);
   {

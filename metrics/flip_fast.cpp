@@ -12,8 +12,9 @@
 //    of the last 2Rf+1 rows; an output row is finished (vertical sums, then the per-pixel
 //    colour transform or the feature magnitudes) as soon as its last input row is in. No
 //    full-size intermediate plane is written.
-//  - Sums run tap-outer, pixel-inner (each output's sum over the taps in index order, as the
-//    double path), so the compiler vectorises across pixels; the kernels are compiled for
+//  - Sums run tap-outer, pixel-inner (each output's sum over the taps in a fixed order; the
+//    even kernels add the two pixels of one weight first: k(0)·v(0) + Σ k(i)·(v(i) + v(−i))),
+//    so the compiler vectorises across pixels; the kernels are compiled for
 //    AVX-512, AVX2 and the baseline (target_clones), separate multiplies and adds
 //    (-ffp-contract=off): every clone and every thread count gives the same bits.
 //  - The reference's half (Hunt-adjusted Lab after the CSF, edge and point magnitudes: 20
@@ -49,6 +50,7 @@ namespace {
 
 constexpr int kChunkRows = 48;  // rows per parallel chunk (fixed: results never depend on it)
 constexpr int kLanes = 16;      // outputs kept in registers per block of a horizontal sum
+constexpr int kVLanes = 16;     // the same for a vertical sum
 
 int ClampI(int v, int lo, int hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
@@ -147,20 +149,31 @@ Kernels MakeKernels(double ppd) {
 
 // ---- horizontal passes (one row; `py` etc. are the row padded by the radius, replicated)
 
+// The CSF kernels are even (tap r − i equals tap r + i bit for bit: both are computed from
+// the same squared offset), so each sum pairs the two taps of one weight:
+// k(0)·v(x) + Σ_{i=1..r} k(i)·(v(x+i) + v(x−i)), i in increasing order.
 AALAB_FLIP_CLONES
-void HorizontalCsf(const float* py, const float* pcx, const float* pcz, int w, int taps, const float* ky,
+void HorizontalCsf(const float* py, const float* pcx, const float* pcz, int w, int r, const float* ky,
                    const float* kcx, const float* kcz1, const float* kcz2, float* oy, float* ocx, float* ocz1,
                    float* ocz2) {
   int x = 0;
   for (; x + kLanes <= w; x += kLanes) {
-    float sy[kLanes] = {}, scx[kLanes] = {}, s1[kLanes] = {}, s2[kLanes] = {};
-    for (int t = 0; t < taps; ++t) {
-      const float a = ky[t], b = kcx[t], c = kcz1[t], d = kcz2[t];
+    float sy[kLanes], scx[kLanes], s1[kLanes], s2[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      sy[l] = ky[r] * py[x + l + r];
+      scx[l] = kcx[r] * pcx[x + l + r];
+      s1[l] = kcz1[r] * pcz[x + l + r];
+      s2[l] = kcz2[r] * pcz[x + l + r];
+    }
+    for (int i = 1; i <= r; ++i) {
+      const float a = ky[r + i], b = kcx[r + i], c = kcz1[r + i], d = kcz2[r + i];
       for (int l = 0; l < kLanes; ++l) {
-        sy[l] += a * py[x + l + t];
-        scx[l] += b * pcx[x + l + t];
-        s1[l] += c * pcz[x + l + t];
-        s2[l] += d * pcz[x + l + t];
+        const int q = x + l + r;
+        const float z = pcz[q + i] + pcz[q - i];
+        sy[l] += a * (py[q + i] + py[q - i]);
+        scx[l] += b * (pcx[q + i] + pcx[q - i]);
+        s1[l] += c * z;
+        s2[l] += d * z;
       }
     }
     for (int l = 0; l < kLanes; ++l) {
@@ -171,12 +184,14 @@ void HorizontalCsf(const float* py, const float* pcx, const float* pcz, int w, i
     }
   }
   for (; x < w; ++x) {
-    float sy = 0.0f, scx = 0.0f, s1 = 0.0f, s2 = 0.0f;
-    for (int t = 0; t < taps; ++t) {
-      sy += ky[t] * py[x + t];
-      scx += kcx[t] * pcx[x + t];
-      s1 += kcz1[t] * pcz[x + t];
-      s2 += kcz2[t] * pcz[x + t];
+    const int q = x + r;
+    float sy = ky[r] * py[q], scx = kcx[r] * pcx[q], s1 = kcz1[r] * pcz[q], s2 = kcz2[r] * pcz[q];
+    for (int i = 1; i <= r; ++i) {
+      const float z = pcz[q + i] + pcz[q - i];
+      sy += ky[r + i] * (py[q + i] + py[q - i]);
+      scx += kcx[r + i] * (pcx[q + i] + pcx[q - i]);
+      s1 += kcz1[r + i] * z;
+      s2 += kcz2[r + i] * z;
     }
     oy[x] = sy;
     ocx[x] = scx;
@@ -191,19 +206,16 @@ void HorizontalCsf(const float* py, const float* pcx, const float* pcz, int w, i
 AALAB_FLIP_CLONES
 void HorizontalFeatures(const float* pv, int w, int r, const float* g, const float* dg, const float* ddg, float* og,
                         float* odg, float* oddg) {
-  const int taps = 2 * r + 1;
   int x = 0;
   for (; x + kLanes <= w; x += kLanes) {
-    float sg[kLanes] = {}, sd[kLanes] = {}, sdd[kLanes] = {};
-    for (int t = 0; t < taps; ++t) {
-      const float a = g[t];
-      for (int l = 0; l < kLanes; ++l) sg[l] += a * pv[x + l + t];
-    }
+    float sg[kLanes], sd[kLanes] = {}, sdd[kLanes] = {};
+    for (int l = 0; l < kLanes; ++l) sg[l] = g[r] * pv[x + l + r];
     for (int i = 1; i <= r; ++i) {
-      const float a = dg[r + i], b = ddg[r + i];
+      const float k = g[r + i], a = dg[r + i], b = ddg[r + i];
       for (int l = 0; l < kLanes; ++l) {
         const float c = pv[x + l + r];
         const float up = pv[x + l + r + i], down = pv[x + l + r - i];
+        sg[l] += k * (up + down);
         sd[l] += a * (up - down);
         sdd[l] += b * ((up - c) + (down - c));
       }
@@ -215,11 +227,11 @@ void HorizontalFeatures(const float* pv, int w, int r, const float* g, const flo
     }
   }
   for (; x < w; ++x) {
-    float sg = 0.0f, sd = 0.0f, sdd = 0.0f;
-    for (int t = 0; t < taps; ++t) sg += g[t] * pv[x + t];
     const float c = pv[x + r];
+    float sg = g[r] * c, sd = 0.0f, sdd = 0.0f;
     for (int i = 1; i <= r; ++i) {
       const float up = pv[x + r + i], down = pv[x + r - i];
+      sg += g[r + i] * (up + down);
       sd += dg[r + i] * (up - down);
       sdd += ddg[r + i] * ((up - c) + (down - c));
     }
@@ -238,22 +250,22 @@ void VerticalCsf(const float* const* ry, const float* const* rcx, const float* c
                  int w, int taps, const float* ky, const float* kcx, const float* kcz1, const float* kcz2, float* sy,
                  float* scx, float* scz) {
   int x = 0;
-  for (; x + kLanes <= w; x += kLanes) {
-    float a[kLanes] = {}, b[kLanes] = {}, c[kLanes] = {}, d[kLanes] = {};
+  for (; x + kVLanes <= w; x += kVLanes) {
+    float a[kVLanes] = {}, b[kVLanes] = {}, c[kVLanes] = {}, d[kVLanes] = {};
     for (int t = 0; t < taps; ++t) {
       const float ka = ky[t], kb = kcx[t], kc = kcz1[t], kd = kcz2[t];
       const float* y = ry[t] + x;
       const float* cx = rcx[t] + x;
       const float* cz1 = rcz1[t] + x;
       const float* cz2 = rcz2[t] + x;
-      for (int l = 0; l < kLanes; ++l) {
+      for (int l = 0; l < kVLanes; ++l) {
         a[l] += ka * y[l];
         b[l] += kb * cx[l];
         c[l] += kc * cz1[l];
         d[l] += kd * cz2[l];
       }
     }
-    for (int l = 0; l < kLanes; ++l) {
+    for (int l = 0; l < kVLanes; ++l) {
       sy[x + l] = a[l];
       scx[x + l] = b[l];
       scz[x + l] = c[l] + d[l];  // the two Cz Gaussians, summed separately, then added
@@ -278,13 +290,13 @@ void VerticalFeatures(const float* const* rg, const float* const* rdg, const flo
                       const float* g, const float* dg, const float* ddg, float* edge, float* point) {
   const int taps = 2 * r + 1;
   int x = 0;
-  for (; x + kLanes <= w; x += kLanes) {
-    float dx[kLanes] = {}, ddx[kLanes] = {}, dy[kLanes] = {}, ddy[kLanes] = {};
+  for (; x + kVLanes <= w; x += kVLanes) {
+    float dx[kVLanes] = {}, ddx[kVLanes] = {}, dy[kVLanes] = {}, ddy[kVLanes] = {};
     for (int t = 0; t < taps; ++t) {
       const float a = g[t];
       const float* d1 = rdg[t] + x;
       const float* d2 = rddg[t] + x;
-      for (int l = 0; l < kLanes; ++l) {
+      for (int l = 0; l < kVLanes; ++l) {
         dx[l] += a * d1[l];
         ddx[l] += a * d2[l];
       }
@@ -294,13 +306,13 @@ void VerticalFeatures(const float* const* rg, const float* const* rdg, const flo
       const float a = dg[r + i], b = ddg[r + i];
       const float* up = rg[r - i] + x;
       const float* down = rg[r + i] + x;
-      for (int l = 0; l < kLanes; ++l) {
+      for (int l = 0; l < kVLanes; ++l) {
         const float c = centre[l];
         dy[l] += a * (down[l] - up[l]);
         ddy[l] += b * ((down[l] - c) + (up[l] - c));
       }
     }
-    for (int l = 0; l < kLanes; ++l) {
+    for (int l = 0; l < kVLanes; ++l) {
       edge[x + l] = std::sqrt(dx[l] * dx[l] + dy[l] * dy[l]);
       point[x + l] = std::sqrt(ddx[l] * ddx[l] + ddy[l] * ddy[l]);
     }
@@ -413,7 +425,7 @@ void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSi
         pad[pw + i] = p.cx[s];
         pad[2 * pw + i] = p.cz[s];
       }
-      HorizontalCsf(pad.data(), pad.data() + pw, pad.data() + 2 * pw, w, taps, k.y.data(), k.cx.data(), k.cz1.data(),
+      HorizontalCsf(pad.data(), pad.data() + pw, pad.data() + 2 * pw, w, r, k.y.data(), k.cx.data(), k.cz1.data(),
                     k.cz2.data(), slot(0, yy), slot(1, yy), slot(2, yy), slot(3, yy));
       const int y = yy - r;  // output row complete once its last input row is in
       if (y < y0) continue;
