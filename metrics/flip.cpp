@@ -30,6 +30,10 @@
 // ΔEf = ( max(| |∇ref| − |∇test| |, | |pt ref| − |pt test| |) / sqrt(2) )^qf.
 // Final: ΔE = ΔEc^(1 − ΔEf).
 //
+// This file is the double-precision implementation (flip::ErrorValuesUncached,
+// ColorErrorValues, FeatureErrorValues: what the outside-oracle cross-checks test); the
+// production path, the same maths in float32 laid out for speed, is metrics/flip_fast.cpp.
+//
 // Implementation (same maths as the reference, different arithmetic; documented so the
 // numbers can be reproduced):
 //  - Separable filtering. The Y and Cx CSF filters and the feature kernels are products of
@@ -62,6 +66,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <numbers>
@@ -491,54 +496,6 @@ std::vector<double> ErrorValuesUncached(const ImageF& reference, const ImageF& t
   return out;
 }
 
-struct ReferenceSide {
-  int w = 0, h = 0;
-  double ppd = 0.0;
-  std::vector<Color> lab;
-  Features features;
-};
-
-std::shared_ptr<const ReferenceSide> PrepareReference(const ImageF& reference, double ppd) {
-  CheckPair(reference, reference);
-  CheckPpd(ppd);
-  auto side = std::make_shared<ReferenceSide>();
-  side->w = reference.Width();
-  side->h = reference.Height();
-  side->ppd = ppd;
-  const Planes a = ToYCxCz(reference);
-  side->lab = FilteredHuntLab(a, MakeSpatialKernels(ppd));
-  side->features = DetectFeatures(a, MakeFeatureKernels(ppd));
-  return side;
-}
-
-std::vector<double> ErrorValues(const ReferenceSide& ref, const ImageF& test) {
-  if (test.Width() != ref.w || test.Height() != ref.h) {
-    throw UserError("flip: test image is " + std::to_string(test.Width()) + "x" + std::to_string(test.Height()) +
-                    ", the prepared reference " + std::to_string(ref.w) + "x" + std::to_string(ref.h));
-  }
-  const double ppd = ref.ppd;
-  const Planes b = ToYCxCz(test);
-  // ColorErrorFromPlanes and FeatureErrorFromPlanes with the reference's half precomputed.
-  const std::vector<Color> lab_b = FilteredHuntLab(b, MakeSpatialKernels(ppd));
-  std::vector<double> out(lab_b.size());
-  ForEachPixel(out.size(), [&](size_t i) { out[i] = RemapColorError(std::pow(HyAB(ref.lab[i], lab_b[i]), kQc)); });
-  const Features fb = DetectFeatures(b, MakeFeatureKernels(ppd));
-  const Features& fa = ref.features;
-  std::vector<double> feature(out.size());
-  const double inv_sqrt2 = 1.0 / std::sqrt(2.0);
-  ForEachPixel(out.size(), [&](size_t i) {
-    const double d = std::max(std::abs(fa.edge[i] - fb.edge[i]), std::abs(fa.point[i] - fb.point[i]));
-    feature[i] = std::pow(inv_sqrt2 * d, kQf);
-  });
-  ForEachPixel(out.size(), [&](size_t i) { out[i] = std::pow(out[i], 1.0 - feature[i]); });
-  return out;
-}
-
-std::vector<double> ErrorValues(const ImageF& reference, const ImageF& test, double ppd) {
-  CheckPair(reference, test);
-  return ErrorValues(*PrepareReference(reference, ppd), test);
-}
-
 }  // namespace flip
 
 ImageF FlipErrorMap(const ImageF& reference, const ImageF& test, double ppd) {
@@ -547,6 +504,43 @@ ImageF FlipErrorMap(const ImageF& reference, const ImageF& test, double ppd) {
   for (size_t i = 0; i < v.size(); ++i) map.Data()[i] = static_cast<float>(v[i]);
   return map;
 }
+
+namespace {
+
+// `values` in ascending order. FLIP maps hold float values >= 0 (flip_fast.cpp): their bit
+// patterns order as unsigned integers, so they are sorted by an LSD radix sort (3 passes of
+// 11 bits) instead of a comparison sort; any other input takes std::sort. The result is the
+// same sequence either way (equal values are indistinguishable).
+std::vector<double> SortedValues(const std::vector<double>& values) {
+  std::vector<uint32_t> keys(values.size());
+  for (size_t i = 0; i < values.size(); ++i) {
+    const double v = values[i];
+    const float f = static_cast<float>(v);
+    if (!(v >= 0.0) || static_cast<double>(f) != v) {
+      std::vector<double> sorted = values;
+      std::sort(sorted.begin(), sorted.end());
+      return sorted;
+    }
+    std::memcpy(&keys[i], &f, sizeof f);
+  }
+  std::vector<uint32_t> tmp(keys.size());
+  for (int shift = 0; shift < 32; shift += 11) {
+    std::vector<size_t> count(2049, 0);
+    for (uint32_t k : keys) ++count[((k >> shift) & 2047u) + 1];
+    for (size_t b = 1; b < count.size(); ++b) count[b] += count[b - 1];
+    for (uint32_t k : keys) tmp[count[(k >> shift) & 2047u]++] = k;
+    keys.swap(tmp);
+  }
+  std::vector<double> sorted(keys.size());
+  for (size_t i = 0; i < keys.size(); ++i) {
+    float f;
+    std::memcpy(&f, &keys[i], sizeof f);
+    sorted[i] = static_cast<double>(f);
+  }
+  return sorted;
+}
+
+}  // namespace
 
 FlipPooled PoolFlip(const std::vector<double>& values) {
   AALAB_CHECK(!values.empty(), "PoolFlip of no values");
@@ -558,8 +552,7 @@ FlipPooled PoolFlip(const std::vector<double>& values) {
     p.max = std::max(p.max, v);
   }
   p.mean = sum / static_cast<double>(values.size());
-  std::vector<double> sorted = values;
-  std::sort(sorted.begin(), sorted.end());
+  const std::vector<double> sorted = SortedValues(values);
   double total = 0.0;
   for (double v : sorted) total += v;
   p.weighted_median = 0.0;

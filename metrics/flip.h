@@ -18,7 +18,8 @@ inline constexpr double kFlipDefaultPpd = 67.0;
 /// Per-pixel LDR-FLIP error map (1 channel, float, values in [0, 1]) of `test` against
 /// `reference`: same-size RGB images (channels 0..2 used), sRGB-encoded values; each value
 /// is clamped to [0, 1] first (NaN → 0). `ppd` is pixels per degree, finite and > 0.
-/// Computed in double and rounded to float at the end; bit-identical at any thread count.
+/// Computed in float32 (metrics/flip_fast.cpp, as NVIDIA's tools compute); bit-identical at
+/// any thread count.
 /// Throws UserError on a shape mismatch, fewer than 3 channels or a bad `ppd`.
 ImageF FlipErrorMap(const ImageF& reference, const ImageF& test, double ppd = kFlipDefaultPpd);
 
@@ -117,20 +118,25 @@ FeatureKernels MakeFeatureKernels(double ppd);
 std::vector<double> ColorErrorValues(const ImageF& reference, const ImageF& test, double ppd);
 /// Feature pipeline alone: ΔEf per pixel (row-major), in [0, 1].
 std::vector<double> FeatureErrorValues(const ImageF& reference, const ImageF& test, double ppd);
-/// Full LDR-FLIP per pixel (row-major): ΔEc^(1 − ΔEf). The reference's half of the work is
-/// kept from the previous call and reused when the reference pixels (compared in full), size
-/// and ppd are the same: a run scores many methods against one reference.
+/// Full LDR-FLIP per pixel (row-major): ΔEc^(1 − ΔEf), the production path (float32,
+/// separable filters streamed through row rings, vectorised; metrics/flip_fast.cpp): equals
+/// ErrorValues(*PrepareReference(reference, ppd), test) bit for bit. Against the double
+/// path (ErrorValuesUncached): mean within ~1e-7, pixels within ~1e-5 (up to 2e-4 where
+/// ΔEc ≈ 0 and ΔEf > 0); METRICS.md gives the measurements, also against NVIDIA's tool.
 std::vector<double> ErrorValues(const ImageF& reference, const ImageF& test, double ppd);
 /// The reference's half of LDR-FLIP (its filtered Hunt-adjusted Lab colours and feature
-/// magnitudes), which depends on the reference and ppd alone: a run scores every method
-/// against one reference, so the runner prepares it once per scene (explicit, no cache).
+/// magnitudes, float32: 20 bytes a pixel), which depends on the reference and ppd alone: a
+/// run scores every method against one reference, so the runner prepares it once per scene
+/// (explicit, no cache).
 struct ReferenceSide;
 /// Prepares the reference side (same checks as FlipErrorMap).
 std::shared_ptr<const ReferenceSide> PrepareReference(const ImageF& reference, double ppd);
 /// ErrorValues against a prepared reference: the same values as ErrorValues(reference,
-/// test, ppd), bit for bit. UserError when `test`'s size differs from the reference's.
+/// test, ppd), bit for bit. UserError when `test`'s size differs from the reference's or it
+/// has fewer than 3 channels.
 std::vector<double> ErrorValues(const ReferenceSide& reference, const ImageF& test);
-/// ErrorValues computed from scratch every time (the simple path; tests compare the two).
+/// The double-precision implementation of the definition (flip.cpp; the outside-oracle
+/// cross-checks run on it at 1e-12); the tests bound the production path against it.
 std::vector<double> ErrorValuesUncached(const ImageF& reference, const ImageF& test, double ppd);
 
 }  // namespace flip
