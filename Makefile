@@ -29,6 +29,7 @@ test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 bench: configure
+	@bash scripts/install-deps.sh scripts/debian-packages-bench.txt
 	@cmake --build $(BUILD) -j $(JOBS) --target aalab aalab_bench
 	@./$(BUILD)/bench/aalab_bench --json bench.json $(BENCH_ARGS)
 
