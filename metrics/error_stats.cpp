@@ -10,7 +10,8 @@
 // Parameters: none. Source: docs/design.md "Metrics"; percentiles by the classic nearest-rank
 // method (no interpolation: every reported percentile is an observed pixel error).
 // Precision: differences and the per-pixel mean in double; ranks in exact integer
-// arithmetic; sorting makes the result independent of pixel order and thread count.
+// arithmetic; order statistics (selected as a sort would place them) make the result
+// independent of pixel order and thread count.
 #include "metrics/error_stats.h"
 
 #include <algorithm>
@@ -70,11 +71,28 @@ std::vector<MetricValue> ComputeAbsError(const MetricInput& in) {
             MetricValue{"abs_err_p99", std::nullopt, "empty image"},
             MetricValue{"abs_err_max", std::nullopt, "empty image"}};
   }
-  std::sort(v.begin(), v.end());
-  return {MetricValue{"abs_err_p50", NearestRankPercentile(v, 50), ""},
-          MetricValue{"abs_err_p95", NearestRankPercentile(v, 95), ""},
-          MetricValue{"abs_err_p99", NearestRankPercentile(v, 99), ""},
-          MetricValue{"abs_err_max", v.back(), ""}};
+  // Selection instead of a full sort (a 960x540 sort was ~4 % of a run's serial time): after
+  // nth_element at index k, v[k] is the value a sort would put there and everything before it
+  // is not larger, so the next lower rank is selected within [0, k). Same values as sorting.
+  const size_t n = v.size();
+  auto rank_index = [n](int percent) {
+    const size_t rank = (static_cast<size_t>(percent) * n + 99) / 100;  // as NearestRankPercentile
+    return (rank < 1 ? size_t{1} : rank) - 1;
+  };
+  const double max = *std::max_element(v.begin(), v.end());
+  double p[3] = {0, 0, 0};
+  const int percents[3] = {99, 95, 50};
+  size_t end = n;
+  for (int i = 0; i < 3; ++i) {
+    const size_t k = rank_index(percents[i]);
+    if (k < end) std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.begin() + static_cast<std::ptrdiff_t>(end));
+    p[i] = v[k];
+    end = k;
+  }
+  return {MetricValue{"abs_err_p50", p[2], ""},
+          MetricValue{"abs_err_p95", p[1], ""},
+          MetricValue{"abs_err_p99", p[0], ""},
+          MetricValue{"abs_err_max", max, ""}};
 }
 
 }  // namespace
