@@ -203,7 +203,7 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
                  {"taps_per_px", Num(row.taps_per_px)},
                  {"coverage_rays_per_px", Num(row.coverage_rays_per_px)},
                  {"shading_evals_per_px", Num(row.shading_evals_per_px)}};
-    if (row.method.rfind("aaa", 0) == 0) {
+    if (row.analytic_costs) {
       j["cost"]["analytic_edge_share"] = Opt(row.analytic_edge_share);
       j["cost"]["analytic_pixels_per_px"] = Num(row.analytic_pixels_per_px);
       j["cost"]["distance_evals_per_px"] = Num(row.distance_evals_per_px);
@@ -348,6 +348,7 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       row.coverage_rays_per_px = c.value("coverage_rays_per_px", 0.0);
       row.shading_evals_per_px = c.value("shading_evals_per_px", 0.0);
       if (c.contains("analytic_edge_share")) {
+        row.analytic_costs = true;
         row.analytic_edge_share = OptFrom(c.at("analytic_edge_share"));
         row.analytic_pixels_per_px = c.at("analytic_pixels_per_px").get<double>();
         row.distance_evals_per_px = c.at("distance_evals_per_px").get<double>();

@@ -61,6 +61,7 @@ struct ResultRow {
   // surface differs from a 4-neighbour's) within one pixel size of an analytic outline, i.e.
   // whose coverage came from the distance (null: not an aaa method, or no edge pixels);
   // pixels with a fractional alpha per pixel; signed-distance evaluations per pixel.
+  bool analytic_costs = false;  ///< the method renders analytically (its plan says so): the three below are reported
   std::optional<double> analytic_edge_share;
   double analytic_pixels_per_px = 0, distance_evals_per_px = 0;
   std::vector<MetricResult> metrics;

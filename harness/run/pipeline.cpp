@@ -176,6 +176,7 @@ ResultRow NotApplicableRow(const PreparedScene& p, const MethodPlan& plan) {
   row.spec = plan.spec;
   row.params = plan.params.Ordered();
   row.samples_per_pixel = plan.render.SamplesPerPixel();
+  row.analytic_costs = plan.render.aaa.enabled;
   row.render_width = p.info.width;
   row.render_height = p.info.height;
   row.not_applicable = "needs the renderer (it renders its own frame";
@@ -205,6 +206,7 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   row.spec = plan.spec;
   row.params = plan.params.Ordered();
   row.samples_per_pixel = plan.render.SamplesPerPixel();
+  row.analytic_costs = plan.render.aaa.enabled;
   const bool jittered = plan.render.jitter.samples > 0;
   const bool shared = plan.render.IsPlain1x();  // false for jittered renders
   Image8 frame;
