@@ -75,8 +75,8 @@
 //   * Verified: tests/oracle runs seed 004's FXAA-interactive.fs and seed 003's GLSL on
 //     llvmpipe (float32 filtering, no FMA) and compares every preset byte for byte
 //     (docs/fxaa-fidelity.md). The luma pre-pass is ours; the oracle is given its alpha.
-//   * Colour space: taps read the sRGB-encoded 8-bit values as UNORM and filter them (DESIGN:
-//     post filters run on encoded values). The tutorial samples an sRGB texture, so its GPU
+//   * Colour space: taps read the sRGB-encoded 8-bit values as UNORM and filter them (docs/design.md,
+//     "Sampling conventions": post filters run on encoded values). The tutorial samples an sRGB texture, so its GPU
 //     filters rgb in linear light; its luma lives in alpha, which is never decoded.
 //   * sqrt-luminance uses Unity's Luminance() weights (0.2126729, 0.7151522, 0.0721750; the
 //     Y row of the sRGB/Rec.709 primaries), which the tutorial calls; stored in alpha at 8

@@ -15,7 +15,7 @@
 //      border), `clip=variance`: the box μ ± γσ (Salvi 2016) intersected with the min/max
 //      box; `clip=minmax`: the min/max box (Karis 2014 "clamp" neighbourhood); `clip=none`:
 //      no rectification (the plain accumulation the convergence bound in
-//      tests/methods/taa_test.cpp is derived for). The history is clipped toward the box
+//      tests/motion/taa_test.cpp is derived for). The history is clipped toward the box
 //      centre along the line to it (Playdead's clip_aabb "optimized" form; Bevy), extents
 //      + 1e-8 so a flat neighbourhood does not divide by zero (Playdead's FLT_EPS);
 //   4. blend: out = H' + α·(C − H') (exponential moving average), written to the history
