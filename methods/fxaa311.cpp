@@ -491,23 +491,7 @@ MethodPlan FxaaPlan(const std::string& name, const ParamValues& v, std::vector<f
   MethodPlan plan;
   plan.name = name;
   plan.params = v;
-  plan.post = [fp, name](const Image8& in, const PostOptions& options, PostStats* stats) {
-    if (!options.debug_view.empty()) {
-      throw UserError("method '" + name + "' has no debug view '" + options.debug_view + "'");
-    }
-    Fxaa311Params p = fp;
-    p.sampler = options.sampler;
-    return Fxaa311(in, p, stats);
-  };
-  plan.post_reference = [fp, name](const Image8& in, const PostOptions& options, PostStats* stats) {
-    if (!options.debug_view.empty()) {
-      throw UserError("method '" + name + "' has no debug view '" + options.debug_view + "'");
-    }
-    Fxaa311Params p = fp;
-    p.sampler = options.sampler;
-    return Fxaa311Reference(in, p, stats);
-  };
-  plan.config = fp;
+  SetFxaa311Post(plan, fp);
   return plan;
 }
 
@@ -557,6 +541,23 @@ std::vector<MethodEntry> Fxaa311Methods() {
     e.in_default_list = e.name == "fxaa311-p12" || e.name == "fxaa311-p39" || e.name == "fxaa-high" || e.name == "fxaa-iter12";
   }
   return out;
+}
+
+void SetFxaa311Post(MethodPlan& plan, const Fxaa311Params& fp) {
+  // Both paths take the run's sampler arithmetic (PostOptions) and refuse debug views.
+  auto make = [fp, name = plan.name](Image8 (*filter)(const Image8&, const Fxaa311Params&, PostStats*)) {
+    return [fp, name, filter](const Image8& in, const PostOptions& options, PostStats* stats) {
+      if (!options.debug_view.empty()) {
+        throw UserError("method '" + name + "' has no debug view '" + options.debug_view + "'");
+      }
+      Fxaa311Params p = fp;
+      p.sampler = options.sampler;
+      return filter(in, p, stats);
+    };
+  };
+  plan.post = make(&Fxaa311);
+  plan.post_reference = make(&Fxaa311Reference);
+  plan.config = fp;
 }
 
 }  // namespace aalab

@@ -81,6 +81,12 @@ Image8 Fxaa311(const Image8& in, const Fxaa311Params& params, PostStats* stats);
 /// reference the fast path is tested against (bit for bit, taps included).
 Image8 Fxaa311Reference(const Image8& in, const Fxaa311Params& params, PostStats* stats);
 
+/// Gives `plan` (its name already set) FXAA 3.11 with `fp` as its post filter: `post` the
+/// production path, `post_reference` the reference, both with the run's sampler arithmetic
+/// (PostOptions::sampler) and no debug views; `config` = fp. Used by the FXAA 3.11 rows and
+/// by the render-scale rows that end in FXAA.
+void SetFxaa311Post(MethodPlan& plan, const Fxaa311Params& fp);
+
 /// The FXAA 3.11 quality presets this build knows (10..15, 20..29, 39), ascending.
 std::vector<int> Fxaa311PresetIds();
 /// Step table P0..P(n-1) of a quality preset, as Fxaa3_11.h #defines it (FXAA_QUALITY__P*).

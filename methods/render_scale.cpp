@@ -51,23 +51,7 @@ MethodPlan ScalePlan(const std::string& name, const ParamValues& v, bool fxaa) {
   plan.rescale = ParseRescaleChoice(v.Choice("rescale"));
   if (fxaa) {
     const Fxaa311Params fp = FxaaTutorialHighParams();
-    plan.post = [fp, name](const Image8& in, const PostOptions& options, PostStats* stats) {
-      if (!options.debug_view.empty()) {
-        throw UserError("method '" + name + "' has no debug view '" + options.debug_view + "'");
-      }
-      Fxaa311Params p = fp;
-      p.sampler = options.sampler;
-      return Fxaa311(in, p, stats);
-    };
-    plan.post_reference = [fp, name](const Image8& in, const PostOptions& options, PostStats* stats) {
-      if (!options.debug_view.empty()) {
-        throw UserError("method '" + name + "' has no debug view '" + options.debug_view + "'");
-      }
-      Fxaa311Params p = fp;
-      p.sampler = options.sampler;
-      return Fxaa311Reference(in, p, stats);
-    };
-    plan.config = fp;
+    SetFxaa311Post(plan, fp);
   }
   return plan;
 }
