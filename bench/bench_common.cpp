@@ -144,17 +144,6 @@ Json StatsJson(const std::vector<double>& v, double scale) {
   return j;
 }
 
-std::string RunCapture(const std::string& cmd) {
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  pclose(p);
-  return out;
-}
-
 void BenchOutput::Goal(const std::string& goal, const std::string& measured, bool met) {
   Line("| " + goal + " | " + measured + " | " + (met ? "yes" : "**no**") + " |");
   goals.push_back({{"goal", goal}, {"measured", measured}, {"met", met}});

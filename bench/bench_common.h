@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/bench_stats.h"
+#include "bench/run_capture.h"
 #include "harness/core/image.h"
 
 namespace aalab::bench {
@@ -72,7 +73,6 @@ Stats Mpix(const Stats& s, double mp);
 Json StatsJson(const std::vector<double>& v, double scale);
 
 /// The standard output of a shell command.
-std::string RunCapture(const std::string& cmd);
 
 /// What the bench writes: the markdown table, bench.json's figures and the goals.
 struct BenchOutput {

@@ -2,6 +2,7 @@
 // prints "Mean: m" (6 decimals) and "Evaluation time: t seconds" (FLIP::evaluate alone, no
 // file I/O or pooling) per test image; OMP_NUM_THREADS sets its threads.
 #include "bench/bench_flip_peer.h"
+#include "bench/run_capture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,17 +16,6 @@
 
 namespace aalab::bench {
 namespace {
-
-std::string Capture(const std::string& cmd) {
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  pclose(p);
-  return out;
-}
 
 std::string F(const char* f, double v) {
   char b[64];
@@ -59,7 +49,7 @@ NvidiaFlipRun RunNvidiaFlip(const Image8& reference, const Image8& test, int rep
     std::string cmd = "cd " + tmp_dir + " && OMP_NUM_THREADS=" + std::to_string(threads) + " " + r.path + " -nerm -v 2 -ppd 67 -r " +
                       ref_png + " -t";
     for (int i = 0; i < reps + 1; ++i) cmd += " " + test_png;
-    const std::string out = Capture(cmd + " 2>&1");
+    const std::string out = RunCapture(cmd + " 2>&1");
     std::istringstream in(out);
     std::string l;
     std::vector<double> times;

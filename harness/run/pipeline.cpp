@@ -169,7 +169,10 @@ bool RunsOnImageScenes(const MethodPlan& plan, bool has_motion) {
          plan.rescale == Rescale::kNone;
 }
 
-ResultRow NotApplicableRow(const PreparedScene& p, const MethodPlan& plan) {
+namespace {
+
+// What every row of `plan` on scene `p` says about itself before anything runs.
+ResultRow RowHeader(const PreparedScene& p, const MethodPlan& plan) {
   ResultRow row;
   row.scene = p.info.name;
   row.method = plan.name;
@@ -177,6 +180,13 @@ ResultRow NotApplicableRow(const PreparedScene& p, const MethodPlan& plan) {
   row.params = plan.params.Ordered();
   row.samples_per_pixel = plan.render.SamplesPerPixel();
   row.analytic_costs = plan.render.aaa.enabled;
+  return row;
+}
+
+}  // namespace
+
+ResultRow NotApplicableRow(const PreparedScene& p, const MethodPlan& plan) {
+  ResultRow row = RowHeader(p, plan);
   row.render_width = p.info.width;
   row.render_height = p.info.height;
   row.not_applicable = "needs the renderer (it renders its own frame";
@@ -200,13 +210,8 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   const int W = p.info.width, H = p.info.height;
   const double px = static_cast<double>(W) * H;
   MethodOutput out;
+  out.row = RowHeader(p, plan);
   ResultRow& row = out.row;
-  row.scene = p.info.name;
-  row.method = plan.name;
-  row.spec = plan.spec;
-  row.params = plan.params.Ordered();
-  row.samples_per_pixel = plan.render.SamplesPerPixel();
-  row.analytic_costs = plan.render.aaa.enabled;
   const bool jittered = plan.render.jitter.samples > 0;
   const bool shared = plan.render.IsPlain1x();  // false for jittered renders
   Image8 frame;
