@@ -45,6 +45,14 @@
 namespace aalab {
 namespace {
 
+// The SSIM map's mean from its per-row sums, added in row order (the same order at any
+// thread count, so the same bits).
+double MeanOfRowSums(const std::vector<double>& row_sums, int nx, int ny) {
+  double total = 0.0;
+  for (double s : row_sums) total += s;
+  return total / (static_cast<double>(nx) * static_cast<double>(ny));
+}
+
 constexpr int kTaps = 2 * kSsimRadius + 1;
 
 std::array<double, kTaps> GaussianWindow() {
@@ -129,9 +137,7 @@ double ChannelSsimReference(const ImageF& a, const ImageF& b, int c, const std::
       row_sums[r] = sum;
     }
   });
-  double total = 0.0;
-  for (double s : row_sums) total += s;
-  return total / (static_cast<double>(nx) * static_cast<double>(ny));
+  return MeanOfRowSums(row_sums, nx, ny);
 }
 
 // The production ChannelSsim: the same sums as ChannelSsimReference, term for term and in
@@ -305,9 +311,7 @@ double ChannelSsim(const ImageF& a, const ImageF& b, int c, const std::array<dou
       }
     }
   });
-  double total = 0.0;
-  for (double s : row_sums) total += s;
-  return total / (static_cast<double>(nx) * static_cast<double>(ny));
+  return MeanOfRowSums(row_sums, nx, ny);
 }
 
 // The prepared path (PrepareSsimReference / ComputeSsim(image, side)): the reference's two
@@ -462,9 +466,7 @@ double ChannelSsimPrepared(const ImageF& a, const SsimReferenceSide& side, int c
       }
     }
   });
-  double total = 0.0;
-  for (double s : row_sums) total += s;
-  return total / (static_cast<double>(nx) * static_cast<double>(ny));
+  return MeanOfRowSums(row_sums, nx, ny);
 }
 
 std::vector<MetricValue> ComputeSsimMetric(const MetricInput& in) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "tests/cli/cli_util.h"
+#include "tests/run/image_scene_settings.h"
 #include "harness/core/color.h"
 #include "harness/core/edge_mask.h"
 #include "harness/core/error.h"
@@ -126,15 +127,6 @@ TEST(CaptureChecks, ExposureLinearValuesAndAViewTransformAreWarnedAbout) {
   EXPECT_NE(f.warnings[0].find("Filmic"), std::string::npos) << f.warnings[0];
 }
 
-RunSettings Settings(const fs::path& manifest, const fs::path& out) {
-  RunSettings s;
-  s.scenes = {manifest.string()};
-  s.methods = {"none", "fxaa311-p12"};
-  s.repeat = 1;
-  s.quiet = true;
-  s.out_dir = out.string();
-  return s;
-}
 
 std::string ReadAll(const fs::path& p) {
   std::ifstream f(p);
@@ -159,7 +151,7 @@ TEST(CaptureChecks, TheRunReportsAndShowsTheWarningAndTheViewsSize) {
     "reference": "ref.exr", "reference_info": {"renderer": "test", "samples_per_pixel": 256}}]})");
   WriteText(dir / "trap.json", R"({"aalab_image_scene": 1, "views": [{"name": "v", "frame": "frame.png",
     "reference": "ref-linear16.png"}]})");
-  const Report good = RunSuite(Settings(dir / "good.json", dir / "out-good"));
+  const Report good = RunSuite(testing_util::ImageSceneSettings(dir / "good.json", dir / "out-good"));
   EXPECT_TRUE(good.scenes[0].warnings.empty());
   EXPECT_EQ(good.scenes[0].ref_spp, 256);
   EXPECT_NE(good.scenes[0].reference_note.find("made by test, 256 samples per pixel"), std::string::npos);
@@ -175,7 +167,7 @@ TEST(CaptureChecks, TheRunReportsAndShowsTheWarningAndTheViewsSize) {
   const std::string good_page = ReadAll(dir / "out-good" / "index.html");
   EXPECT_EQ(good_page.find("960x540"), std::string::npos);
   EXPECT_EQ(good_page.find("class=\"mismatch\""), std::string::npos);
-  const Report trap = RunSuite(Settings(dir / "trap.json", dir / "out-trap"));
+  const Report trap = RunSuite(testing_util::ImageSceneSettings(dir / "trap.json", dir / "out-trap"));
   ASSERT_EQ(trap.scenes[0].warnings.size(), 1u);
   EXPECT_NE(trap.scenes[0].warnings[0].find("looks like linear values"), std::string::npos);
   EXPECT_NE(ReadAll(dir / "out-trap" / "report.json").find("\"warnings\""), std::string::npos);

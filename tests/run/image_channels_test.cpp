@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "tests/cli/cli_util.h"
+#include "tests/run/image_scene_settings.h"
 #include "harness/core/color.h"
 #include "harness/core/error.h"
 #include "harness/io/image_io.h"
@@ -129,15 +130,6 @@ Capture MakeCapture() {
   return c;
 }
 
-RunSettings Settings(const fs::path& manifest, const fs::path& out) {
-  RunSettings s;
-  s.scenes = {manifest.string()};
-  s.methods = {"none", "fxaa311-p12"};
-  s.repeat = 1;
-  s.quiet = true;
-  s.out_dir = out.string();
-  return s;
-}
 
 TEST(ImageChannels, BlenderMultilayerExrScoresLikePlainFiles) {
   const fs::path dir = TempDir("blender");
@@ -180,9 +172,9 @@ TEST(ImageChannels, BlenderMultilayerExrScoresLikePlainFiles) {
     "reference": {"path": "capture.exr", "layer": "ViewLayer.Combined"},
     "depth": {"path": "capture.exr", "channels": ["ViewLayer.Depth.Z"]},
     "object_ids": {"path": "capture.exr", "layer": "ViewLayer.IndexOB"}}]})");
-  const Report plain = RunSuite(Settings(dir / "plain.json", dir / "out-plain"));
+  const Report plain = RunSuite(testing_util::ImageSceneSettings(dir / "plain.json", dir / "out-plain"));
   for (const std::string m : {"blender", "explicit"}) {
-    const Report r = RunSuite(Settings(dir / (m + ".json"), dir / ("out-" + m)));
+    const Report r = RunSuite(testing_util::ImageSceneSettings(dir / (m + ".json"), dir / ("out-" + m)));
     ASSERT_EQ(r.rows.size(), plain.rows.size());
     EXPECT_EQ(r.scenes[0].edge_pixel_fraction, plain.scenes[0].edge_pixel_fraction) << m;
     EXPECT_GT(plain.scenes[0].edge_pixel_fraction, 0.0);
@@ -226,7 +218,7 @@ TEST(ImageChannels, AmbiguousOrMissingChannelsAreRefusedNamingThem) {
                                   cases[i].first + "}]}");
     const fs::path out = dir / ("out" + std::to_string(i));
     try {
-      RunSuite(Settings(dir / "m.json", out));
+      RunSuite(testing_util::ImageSceneSettings(dir / "m.json", out));
       ADD_FAILURE() << "accepted case " << i;
     } catch (const UserError& e) {
       for (const auto& want : cases[i].second) EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
@@ -236,7 +228,7 @@ TEST(ImageChannels, AmbiguousOrMissingChannelsAreRefusedNamingThem) {
   // Naming the layer makes the same file work.
   WriteText(dir / "m.json", R"({"aalab_image_scene": 1, "views": [{"name": "v", "frame": "frame.png",
     "reference": {"path": "aovs.exr", "layer": "diffuse"}}]})");
-  EXPECT_NO_THROW(RunSuite(Settings(dir / "m.json", dir / "ok")));
+  EXPECT_NO_THROW(RunSuite(testing_util::ImageSceneSettings(dir / "m.json", dir / "ok")));
   fs::remove_all(dir);
 }
 
