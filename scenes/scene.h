@@ -183,6 +183,11 @@ struct Scene {
   std::vector<std::shared_ptr<const MipChain>> images;
   Animation animation;  ///< motion over time; shapes and camera above are the base pose
                         ///< it applies to (SceneAtFrame in scenes/motion.h)
+  /// Every file this scene was built from, beyond `path` (meshes, glTF buffers and images,
+  /// environment maps), as given after resolving against their base folder. Whoever reads a
+  /// file for the scene appends it here; the output-folder rule treats each as an input
+  /// that `--out` may not equal, contain or replace.
+  std::vector<std::string> files_read;
 
   bool Has(Effect e) const { return effects[static_cast<int>(e)]; }
   /// Names of the declared effects, in enum order.
