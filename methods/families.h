@@ -34,6 +34,13 @@ std::vector<MethodEntry> AaaMethods();
 /// `taa`: temporal anti-aliasing with Halton(2,3) jitter, exact reprojection, YCoCg
 /// variance clipping and an exponential blend (methods/taa.cpp).
 std::vector<MethodEntry> TaaMethods();
+/// `taa-prod`: the production TAA, each technique switchable (methods/taa_production.cpp).
+std::vector<MethodEntry> TaaProdMethods();
+/// `taau-77`, `taau-67`, `taau-59`, `taau-50`: temporal upscaling with the production TAA
+/// (methods/taau.cpp).
+std::vector<MethodEntry> TaauMethods();
+/// Jitter phases of temporal upscaling at output/render `ratio`: ⌊8·ratio²⌋ (FSR 2).
+int TaauJitterPhases(double ratio);
 /// `gsaa`: geometric specular AA of glTF materials (methods/specular_aa.cpp).
 std::vector<MethodEntry> SpecularAaMethods();
 

@@ -42,6 +42,17 @@ struct TemporalInput {
   /// pixel's centre (centres at +0.5); NaN where there is no history. Empty on frame 0.
   const std::vector<float>* previous = nullptr;
   int frame_index = 0;
+  /// Per pixel of `frame`, row-major: the view depth of the surface its sample hit (distance
+  /// along the camera's forward axis; +Inf for the background). nullptr when unknown (captured
+  /// sequences without depth). `taa` ignores it; the production TAA dilates and tests
+  /// disocclusion with it (methods/taa_production.cpp).
+  const std::vector<float>* depth = nullptr;
+  /// This frame's sub-pixel jitter (render pixels), the offset of `frame`'s samples from the
+  /// pixel centres.
+  FrameJitter jitter;
+  /// The size the step must return (temporal upscaling renders `frame` smaller); 0 = the
+  /// frame's own size.
+  int output_width = 0, output_height = 0;
 };
 
 /// Per-sequence state of a temporal method. The runner creates one per (scene, method)

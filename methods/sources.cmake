@@ -15,5 +15,7 @@ set(AALAB_METHOD_SOURCES
   render_scale.cpp
   aaa.cpp
   taa.cpp
+  taa_production.cpp
+  taau.cpp
   specular_aa.cpp
 )

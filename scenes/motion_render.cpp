@@ -66,4 +66,13 @@ std::vector<glm::vec2> PreviousPositions(const Scene& scene, int frame, const Su
   return out;
 }
 
+std::vector<float> SurfaceDepth(const Camera& camera, const SurfaceFrame& current) {
+  const glm::vec3 forward = CameraBasisOf(camera).forward;
+  std::vector<float> out(current.surface.size(), std::numeric_limits<float>::infinity());
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (current.surface[i] >= 0) out[i] = glm::dot(current.position[i] - camera.position, forward);
+  }
+  return out;
+}
+
 }  // namespace aalab

@@ -34,4 +34,9 @@ SurfaceFrame RenderSurfaceFrame(const Tracer& tracer, int width, int height, Fra
 std::vector<glm::vec2> PreviousPositions(const Scene& scene, int frame, const SurfaceFrame& current,
                                          FrameJitter jitter);
 
+/// View depth per pixel of `current` (row-major): the hit point's distance from `camera`'s
+/// eye along its forward axis (perspective and orthographic alike); +Inf where the sample hit
+/// nothing (the background). TAA's depth buffer (closest-depth dilation, disocclusion).
+std::vector<float> SurfaceDepth(const Camera& camera, const SurfaceFrame& current);
+
 }  // namespace aalab

@@ -224,6 +224,7 @@ std::unique_ptr<PreparedScene> PrepareSource(SceneSource& source, int width, int
   p->supplied = std::move(v.outputs);
   p->captured_motion = v.has_motion;
   p->captured_previous = std::move(v.previous);
+  p->captured_jitter = {v.jitter[0], v.jitter[1]};
   sr.motion_note = v.motion_note;
   p->none_f = ToFloat(p->frame1x, 3);
   p->flip_ppd = flip_ppd;

@@ -15,6 +15,7 @@
 #include "scenes/analytic.h"
 #include "scenes/exact_reference.h"
 #include "scenes/library.h"
+#include "scenes/motion.h"
 #include "scenes/motion_render.h"
 
 namespace aalab {
@@ -63,7 +64,8 @@ std::vector<MethodPlan> ResolveMethods(const std::vector<std::string>& specs) {
       if (plans[i].spec == plans.back().spec) throw UserError("method '" + m + "' is listed twice");
     }
     const MethodPlan& p = plans.back();
-    if (p.render.scale != 1.0 && p.rescale == Rescale::kNone) {
+    // A temporal upscaler (make_state) resolves at the output size itself.
+    if (p.render.scale != 1.0 && p.rescale == Rescale::kNone && !p.make_state) {
       throw InternalError("method '" + p.spec + "' renders at scale " + FormatNumber(p.render.scale) +
                           " but does not rescale");
     }
@@ -217,6 +219,8 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
   Image8 frame;
   TraceCounters counters;
   std::vector<float> previous;  // motion vectors of a jittered render (frame >= 1)
+  std::vector<float> depth;     // view depth of a jittered render (+Inf: background)
+  FrameJitter jitter;           // the jittered render's offset
   if (jittered && !p.tracer) {
     // A captured sequence (image scene with motion vectors and jitter): the 1x frame is the
     // engine's jittered frame, the previous positions come from its motion vectors; the
@@ -227,17 +231,21 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
     row.render_width = W;
     row.render_height = H;
     if (p.frame > 0) previous = p.captured_previous;
+    jitter = p.captured_jitter;
   } else if (jittered) {
-    AALAB_CHECK(plan.render.pattern == SamplePattern::kCenter && plan.render.scale == 1.0,
-                "jitter applies to a 1x one-sample render");
-    const FrameJitter jitter = FrameJitterAt(plan.render.jitter, p.frame);
-    row.render_width = W;
-    row.render_height = H;
+    AALAB_CHECK(plan.render.pattern == SamplePattern::kCenter, "jitter applies to a one-sample render");
+    jitter = FrameJitterAt(plan.render.jitter, p.frame);
+    // Temporal upscaling (methods/taau.cpp) renders its jittered frame at the plan's scale.
+    const int rw = std::max(1, static_cast<int>(std::lround(plan.render.scale * W)));
+    const int rh = std::max(1, static_cast<int>(std::lround(plan.render.scale * H)));
+    row.render_width = rw;
+    row.render_height = rh;
     // The render stage includes the motion vectors (a rasterizer writes its velocity buffer
     // while it renders).
     row.render = TimeRepeats(repeat, [&] {
       TraceCounters c;
-      SurfaceFrame sf = RenderSurfaceFrame(*p.tracer, W, H, jitter, &c);
+      SurfaceFrame sf = RenderSurfaceFrame(*p.tracer, rw, rh, jitter, &c);
+      if (p.sequence_scene) depth = SurfaceDepth(CameraAtFrame(*p.sequence_scene, p.frame), sf);
       if (p.frame > 0 && p.sequence_scene) {
         const std::vector<glm::vec2> prev = PreviousPositions(*p.sequence_scene, p.frame, sf, jitter);
         previous.resize(2 * prev.size());
@@ -288,6 +296,10 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
     tin.frame = &frame;
     tin.previous = previous.empty() ? nullptr : &previous;
     tin.frame_index = p.frame;
+    tin.depth = depth.empty() ? nullptr : &depth;
+    tin.jitter = jitter;
+    tin.output_width = W;
+    tin.output_height = H;
     Image8 filtered;
     std::unique_ptr<TemporalState> advanced;
     for (int r = 0; r <= repeat; ++r) {  // r = 0: the untimed warm-up, as TimeRepeats

@@ -67,6 +67,7 @@ struct PreparedScene {
   std::vector<SuppliedFrame> supplied;
   bool captured_motion = false;
   std::vector<float> captured_previous;
+  FrameJitter captured_jitter;  ///< the captured frame's jitter (TemporalInput::jitter)
 };
 
 /// Loads and validates scenes by name or path; duplicates are an error.
