@@ -364,8 +364,9 @@ class TaaProdState : public TemporalState {
         const float now = (*in.depth)[static_cast<size_t>(m)];
         if (prev_depth_[q] < now * (1.0f - p_.disocclusion_depth)) return fallback();
       } else {
+        // An unknown previous vector (frame 0 has none) cannot show a discontinuity.
         const float dx = prev_mv_[2 * q] - vx, dy = prev_mv_[2 * q + 1] - vy;
-        if (!(dx * dx + dy * dy <= p_.disocclusion_px * p_.disocclusion_px)) return fallback();  // NaN: drop
+        if (dx * dx + dy * dy > p_.disocclusion_px * p_.disocclusion_px) return fallback();
       }
     }
     float h[3];

@@ -191,7 +191,7 @@ TEST(MotionCli, SameBitsAtAnyThreadCount) {
   nlohmann::json reps[2];
   for (int t = 1; t <= 2; ++t) {
     const std::string out = (dir / std::string("t").append(std::to_string(t))).string();
-    const auto r = Aalab("run --scenes motion-orbit --methods none,taa --frames 3 --size 64x36 --ref-spp 4 --repeat 1 "
+    const auto r = Aalab("run --scenes motion-orbit --methods none,taa,taa-prod,taau-50 --frames 3 --size 64x36 --ref-spp 4 --repeat 1 "
                          "--quiet --threads " + std::to_string(t) + " --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
     std::ifstream f(fs::path(out) / "report.json");
