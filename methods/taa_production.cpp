@@ -485,6 +485,10 @@ std::vector<MethodEntry> TaaProdMethods() {
                    plan.make_state = [tp] { return MakeTaaProdState(tp); };
                    return plan;
                  }});
+  // In `aalab run`'s default list: a run with --frames > 1 compares it (a still run's list
+  // leaves methods with memory out; harness/run/runner.cpp). It beats `taa` on the speed sweep
+  // (docs/motion.md "Speed sweep"), so it, not `taa`, is the default temporal method.
+  out.back().in_default_list = true;
   return out;
 }
 

@@ -206,16 +206,22 @@ TEST(ImageSequence, TaaOnACapturedSequenceFollowsTheMotionVectors) {
       {"uv", R"({"path": "mv_uv_%d.exr", "units": "uv", "direction": "velocity", "y": "up"})"},
       {"ndc", R"({"path": "mv_ndc_%d.exr", "units": "ndc", "direction": "velocity", "y": "up"})"},
       {"wrong", R"({"path": "mv_wrong_%d.exr", "direction": "to_previous"})"}};
-  std::map<std::string, std::string> taa_hash;
+  std::map<std::string, std::string> taa_hash, prod_hash;
   std::string none_hash;
   for (const auto& [tag, mv] : cases) {
     WriteText(dir / ("m_" + tag + ".json"), Manifest(mv));
     // clip=none: the variance clip would move a texel that is more than 1 sigma off its
     // 3x3 neighbourhood's mean (common in this noise-like texture) even when the history is right.
-    const Report r = RunSuite(Settings(dir / ("m_" + tag + ".json"), dir / ("out_" + tag), {"none", "taa:clip=none"}));
+    // The production TAA on the same captured frames (no depth given: no dilation, the
+    // motion-vector disocclusion test; Catmull-Rom at texel centres is the texel itself).
+    const Report r = RunSuite(Settings(dir / ("m_" + tag + ".json"), dir / ("out_" + tag),
+                                       {"none", "taa:clip=none", "taa-prod:clip=none"}));
     const ResultRow& taa = Row(r, "taa:clip=none");
     ASSERT_TRUE(taa.not_applicable.empty()) << taa.not_applicable;
     taa_hash[tag] = taa.output_hash;
+    const ResultRow& prod = Row(r, "taa-prod:clip=none");
+    ASSERT_TRUE(prod.not_applicable.empty()) << prod.not_applicable;
+    prod_hash[tag] = prod.output_hash;
     none_hash = Row(r, "none").output_hash;
     EXPECT_FALSE(r.scenes.at(0).motion_note.empty());
   }
@@ -226,6 +232,8 @@ TEST(ImageSequence, TaaOnACapturedSequenceFollowsTheMotionVectors) {
   EXPECT_EQ(taa_hash.at("ndc"), none_hash);
   // Reversed vectors fetch the wrong history: the output differs.
   EXPECT_NE(taa_hash.at("wrong"), none_hash);
+  for (const char* tag : {"px", "uv", "ndc"}) EXPECT_EQ(prod_hash.at(tag), none_hash) << tag;
+  EXPECT_NE(prod_hash.at("wrong"), none_hash);
   if (!HasFailure()) fs::remove_all(dir);
 }
 
