@@ -1,5 +1,6 @@
 #include "reports/html_report.h"
 #include "reports/html_gpu.h"
+#include "reports/html_speed.h"
 #include "reports/html_stability.h"
 
 #include <algorithm>
@@ -470,6 +471,7 @@ std::string RenderHtmlReport(const Report& r) {
   h += html::GpuSummary(r);
   h += "</section>\n";
   for (size_t i = 0; i < r.scenes.size(); ++i) SceneSection(h, r, r.scenes[i], static_cast<int>(i));
+  AppendSpeedSection(h, r);  // only for runs over the speed-sweep scenes
   Methodology(h, r);
   AppendStabilitySection(h, r);
   h += "</main>\n";

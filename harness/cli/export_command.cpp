@@ -19,6 +19,7 @@
 #include "methods/registry.h"
 #include "metrics/heatmap.h"
 #include "metrics/metric.h"
+#include "reports/html_speed.h"
 #include "reports/export_bibliography.h"
 #include "reports/export_chart.h"
 #include "reports/export_crops.h"
@@ -217,6 +218,10 @@ int RunExport(const ExportArgs& a) {
   files.push_back({"figure_crops.tex", FigureLatex(sources, fig_opts, prov)});
   files.push_back({"chart_quality_time.svg", QualityTimeChartSvg(sources, sel, prov)});
   files.push_back({"references.bib", BibtexFile(uses, prov)});
+  // Runs over the speed-sweep scenes (docs/motion.md): quality against speed per method.
+  if (!SpeedSweepPoints(sources.front().report).empty()) {
+    files.push_back({"speed_sweep.csv", SpeedSweepCsv(sources.front().report)});
+  }
   nlohmann::ordered_json manifest;
   manifest["tool"] = "aalab export";
   manifest["tool_version"] = AALAB_VERSION;

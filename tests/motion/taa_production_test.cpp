@@ -21,6 +21,7 @@
 #include "methods/registry.h"
 #include "methods/taa.h"
 #include "methods/taa_production.h"
+#include "reports/html_speed.h"
 #include "scenes/motion.h"
 #include "scenes/motion_render.h"
 #include "scenes/render.h"
@@ -284,6 +285,50 @@ TEST(TaaProd, SameBytesAtOneAndTwoThreads) {
     SetThreadCount(0);
     EXPECT_EQ(out[0].Data(), out[1].Data()) << method;
   }
+}
+
+}  // namespace
+}  // namespace aalab
+
+namespace aalab {
+namespace {
+
+ResultRow SweepRow(const std::string& scene, const std::string& spec, double tp, double flip) {
+  ResultRow r;
+  r.scene = scene;
+  r.method = spec;
+  r.spec = spec;
+  r.metrics.push_back({"flip_mean", flip, ""});
+  r.metrics.push_back({"temporal_perceptual", tp, ""});
+  return r;
+}
+
+TEST(SpeedSweep, PointsCsvAndSectionFromSceneNames) {
+  Report rep;
+  rep.rows.push_back(SweepRow("motion-speed-zoom-2", "taa-prod", 0.5, 0.25));
+  rep.rows.push_back(SweepRow("motion-speed-zoom-0p25", "taa-prod", 0.125, 0.75));
+  rep.rows.push_back(SweepRow("motion-speed-rotate-8", "none", 1.5, 0.0625));
+  rep.rows.push_back(SweepRow("wedges", "none", 1.0, 1.0));                 // not in the family
+  rep.rows.push_back(SweepRow("motion-speed-zoom-fast", "none", 1.0, 1.0));  // no speed
+  ResultRow null_row = SweepRow("motion-speed-zoom-1", "taa", 0.0, 0.0);
+  null_row.metrics[1].value.reset();  // a null measure: left out
+  rep.rows.push_back(null_row);
+  EXPECT_EQ(SpeedSweepCsv(rep),
+            "kind,speed,method,temporal_perceptual,flip_mean\n"
+            "zoom,0.25,taa-prod,0.125,0.75\n"
+            "zoom,2,taa-prod,0.5,0.25\n"
+            "rotate,8,none,1.5,0.0625\n");
+  std::string html;
+  AppendSpeedSection(html, rep);
+  EXPECT_NE(html.find("id=\"speed-sweep\""), std::string::npos);
+  EXPECT_NE(html.find("<h3>zoom</h3>"), std::string::npos);
+  EXPECT_NE(html.find("<h3>rotate</h3>"), std::string::npos);
+  // No sweep scene: nothing (existing pages unchanged).
+  Report plain;
+  plain.rows.push_back(SweepRow("wedges", "none", 1.0, 1.0));
+  std::string none_html;
+  AppendSpeedSection(none_html, plain);
+  EXPECT_TRUE(none_html.empty());
 }
 
 }  // namespace
