@@ -28,6 +28,10 @@ std::vector<MethodEntry> SmaaMethods();
 /// (methods/render_scale.cpp).
 std::vector<MethodEntry> RenderScaleMethods();
 
+/// `scale43-easu`, `scale43-easu-rcas`, `scale43-fxaa-high-easu-rcas`, `rcas`: AMD FSR 1
+/// EASU upscaling and RCAS sharpening (methods/fsr1.cpp).
+std::vector<MethodEntry> Fsr1Methods();
+
 /// `aaa`, `aaa-length`, `aaa-fwidth`, `aaa-smoothstep`, `aaa-sqrt2`, `aaa-inside`,
 /// `aaa-fwidth-inside`, `aaa-3d`: analytical AA presets (methods/aaa.cpp).
 std::vector<MethodEntry> AaaMethods();

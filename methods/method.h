@@ -69,7 +69,8 @@ class TemporalState {
 using TemporalFactory = std::function<std::unique_ptr<TemporalState>()>;
 
 /// How the rendered/post-filtered frame is brought back to the output size.
-enum class Rescale { kNone, kBilinear, kBicubic };
+/// kEasu: AMD FSR 1's EASU upscaler (methods/fsr1.h).
+enum class Rescale { kNone, kBilinear, kBicubic, kEasu };
 
 /// A fully resolved method: everything the runner needs.
 struct MethodPlan {
@@ -80,6 +81,9 @@ struct MethodPlan {
   PostFilter post;           ///< empty when the method has no post filter
   std::vector<std::string> debug_views;  ///< views `post` supports ("" excluded)
   Rescale rescale = Rescale::kNone;
+  /// A filter run on the output-size frame after the rescale (FSR 1's RCAS after EASU);
+  /// empty for most methods. The runner times it with the rescale.
+  PostFilter sharpen;
   /// Methods with memory (TAA): makes the per-sequence state; empty for memoryless methods.
   /// The state's Step replaces the post filter stage.
   TemporalFactory make_state;
@@ -111,7 +115,7 @@ struct MethodPlan {
   bool NeedsHistory() const { return static_cast<bool>(make_state); }
   /// True when the method changes nothing: a plain 1x render, no post filter, no state, no rescale (`none`).
   bool IsIdentity() const {
-    return !post && !make_state && render.IsPlain1x() && rescale == Rescale::kNone;
+    return !post && !sharpen && !make_state && render.IsPlain1x() && rescale == Rescale::kNone;
   }
 };
 

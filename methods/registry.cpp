@@ -39,6 +39,9 @@ const std::vector<FamilyRow>& FamilyTable() {
       {RenderScaleMethods,
        {"render-scale", "render scale (default 4/3), rescaled to the output size; alone or with FXAA high at that size",
         "methods/render_scale.cpp, methods/rescale.cpp", "", "flick2021fxaa,lottes2011fxaa311", true}},
+      {Fsr1Methods,
+       {"fsr1", "AMD FSR 1: EASU upscaling from a lower render size (default 3/4), RCAS sharpening; alone or after FXAA high",
+        "methods/fsr1.cpp", "docs/fsr1.md", "amd2021fsr1", false}},
       {AaaMethods,
        {"aaa", "analytical AA (FrostKiwi's article): the shipped shader and its variants",
         "methods/aaa.cpp, scenes/analytic.cpp", "docs/analytic-aa.md", "frostkiwi2024aaa", false}},
@@ -86,6 +89,7 @@ const std::vector<MethodEntry>& MethodRegistry() {
     for (auto& r : all) {
       if (r.name == "fxaa-low" || r.name == "fxaa-medium" || r.name == "fxaa-high") r.source += ",flick2021fxaa";
       if (r.name == "fxaa-iter12") r.source += ",zeng_fxaa_notes";
+      if (r.name == "scale43-fxaa-high-easu-rcas") r.source += ",lottes2011fxaa311,flick2021fxaa";
     }
     return all;
   }();

@@ -26,6 +26,7 @@
 #include "harness/core/error.h"
 #include "harness/core/parallel.h"
 #include "harness/core/sampler.h"
+#include "methods/fsr1.h"
 
 namespace aalab {
 
@@ -74,6 +75,7 @@ Image8 RescaleFrameReference(const Image8& in, int out_w, int out_h, Rescale kin
                              SamplerArithmetic sampler) {
   AALAB_CHECK(in.Channels() == 4, "RescaleFrame needs an RGBA8 frame");
   AALAB_CHECK(out_w > 0 && out_h > 0, "RescaleFrame needs a positive output size");
+  if (kind == Rescale::kEasu) return Fsr1Easu(in, out_w, out_h, stats, sampler);
   if (kind == Rescale::kNone) {
     AALAB_CHECK(out_w == in.Width() && out_h == in.Height(),
                 "Rescale::kNone with a frame of another size");
@@ -190,6 +192,7 @@ Image8 RescaleFrame(const Image8& in, int out_w, int out_h, Rescale kind, PostSt
                     SamplerArithmetic sampler) {
   AALAB_CHECK(in.Channels() == 4, "RescaleFrame needs an RGBA8 frame");
   AALAB_CHECK(out_w > 0 && out_h > 0, "RescaleFrame needs a positive output size");
+  if (kind == Rescale::kEasu) return Fsr1Easu(in, out_w, out_h, stats, sampler);
   if (kind == Rescale::kNone || sampler != SamplerArithmetic::kGl) {
     return RescaleFrameReference(in, out_w, out_h, kind, stats, sampler);  // no fast path for kGpuTexture
   }

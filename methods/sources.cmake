@@ -13,6 +13,7 @@ set(AALAB_METHOD_SOURCES
   smaa_textures.cpp
   rescale.cpp
   render_scale.cpp
+  fsr1.cpp
   aaa.cpp
   taa.cpp
   taa_production.cpp

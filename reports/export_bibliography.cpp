@@ -28,6 +28,13 @@ const Bib kBibliography[] = {
   month       = feb,
   note        = {Version 1.0, released 25 January 2011}
 })"},
+    {"amd2021fsr1", R"(@misc{amd2021fsr1,
+  author       = {{Advanced Micro Devices}},
+  title        = {{AMD} {FidelityFX} Super Resolution 1 ({\texttt{ffx\_fsr1.h}}, {\texttt{ffx\_a.h}})},
+  howpublished = {Advanced Micro Devices, shader source, \url{https://github.com/GPUOpen-Effects/FidelityFX-FSR}},
+  year         = {2021},
+  note         = {Version 1.0.2 (commit a21ffb8f), {MIT} licence; {EASU} and {RCAS}}
+})"},
     {"lottes2011fxaa311", R"(@misc{lottes2011fxaa311,
   author       = {Timothy Lottes},
   title        = {{FXAA} 3.11 ({\texttt{Fxaa3\_11.h}}, {FXAA\_PC} quality path)},

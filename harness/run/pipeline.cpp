@@ -334,6 +334,11 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t 
     row.resample = TimeRepeats(repeat, [&] {
       PostStats st;
       scaled = RescaleFrame(frame, W, H, plan.rescale, &st, sampler);
+      if (plan.sharpen) {
+        PostOptions opt;
+        opt.sampler = sampler;
+        scaled = plan.sharpen(scaled, opt, &st);
+      }
       rescale_stats = st;
     });
     frame = std::move(scaled);

@@ -55,6 +55,9 @@ TEST(FxaaOnScenes, EveryPostFilterImprovesEdgesOnWedgesAndCircle) {
     for (const auto& e : MethodRegistry()) {
       const MethodPlan plan = MakeMethod(e.name);
       if (!plan.IsPostOnly()) continue;
+      // FSR 1's `rcas` is a sharpener, not an AA filter: it moves edge pixels away from the
+      // box-filtered coverage by design (docs/fsr1.md); tests/methods/fsr1_test.cpp checks it.
+      if (plan.family == "fsr1") continue;
       ++filters;
       const double m = EdgeMse(r, RunPlan(r, plan));
       EXPECT_LT(m, none) << scene << " " << e.name;
