@@ -224,9 +224,13 @@ std::vector<size_t> ParetoFront(const std::vector<double>& t, const std::vector<
     bool dominated = false;
     for (size_t j = 0; j < t.size() && !dominated; ++j) {
       if (j == i || !q[j]) continue;
-      // With noise: "as fast" is within the two points' spreads, "faster" beyond them.
-      const double n = noise.empty() ? 0.0 : noise[i] + noise[j];
-      dominated = t[j] <= t[i] + n && at_least(*q[j], *q[i]) && (t[j] < t[i] - n || strictly(*q[j], *q[i]));
+      // With noise: "as fast" is within the two points' spreads, "faster" beyond them. An
+      // unknown spread (NaN: fewer than 2 repeats) lets time rank only points of different
+      // quality: of two equally good points neither is "faster" on one sample.
+      const bool unknown = !noise.empty() && (std::isnan(noise[i]) || std::isnan(noise[j]));
+      const double n = noise.empty() || unknown ? 0.0 : noise[i] + noise[j];
+      const bool faster = !unknown && t[j] < t[i] - n;
+      dominated = t[j] <= t[i] + n && at_least(*q[j], *q[i]) && (faster || strictly(*q[j], *q[i]));
     }
     if (!dominated) front.push_back(i);
   }
@@ -453,6 +457,7 @@ void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
   res.best.clear();
   res.best_ties.clear();
   res.suggested_preset.clear();
+  std::vector<bool> noise_known;
   for (size_t p = 0; p < plans.size(); ++p) {
     SweepPoint pt;
     pt.spec = plans[p].spec;
@@ -463,22 +468,25 @@ void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
     }
     for (const auto& o : res.objectives) pt.objectives[o] = MeanOverScenes(per_point[p], o);
     double t = 0, spread = 0;
+    bool measured = true;  // every scene timed at least twice: a spread to go by
     for (const ResultRow* r : per_point[p]) {
       const Timing mt = MethodTime(*r);
       t += mt.median_ms;
       spread += mt.max_ms - mt.min_ms;
+      measured = measured && mt.samples_ms.size() >= 2;
     }
     const double n = static_cast<double>(per_point[p].size());
     pt.mean_time_ms = per_point[p].empty() ? 0.0 : t / n;
     pt.time_spread_ms = per_point[p].empty() ? 0.0 : spread / n;
+    noise_known.push_back(measured && !per_point[p].empty());
     res.points.push_back(pt);
   }
   const std::string& primary = res.objectives.front();
   const Better primary_dir = *MetricDirection(primary);
   std::vector<double> times, noise;
-  for (const auto& pt : res.points) {
-    times.push_back(pt.mean_time_ms);
-    noise.push_back(pt.time_spread_ms);
+  for (size_t p = 0; p < res.points.size(); ++p) {
+    times.push_back(res.points[p].mean_time_ms);
+    noise.push_back(noise_known[p] ? res.points[p].time_spread_ms : std::numeric_limits<double>::quiet_NaN());
   }
   {
     std::vector<std::optional<double>> q;
@@ -521,7 +529,10 @@ void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
     std::optional<size_t> pick;
     for (size_t p : tied) {
       bool slower = false;
-      for (size_t q : tied) slower = slower || times[q] < times[p] - (noise[p] + noise[q]);
+      for (size_t q : tied) {
+        // Time ranks tied points only when both spreads are measured (>= 2 repeats).
+        slower = slower || (!std::isnan(noise[p]) && !std::isnan(noise[q]) && times[q] < times[p] - (noise[p] + noise[q]));
+      }
       if (slower) continue;
       if (!pick || distance[p] < distance[*pick]) pick = p;
     }

@@ -61,7 +61,9 @@ std::vector<std::string> ExpandGrid(const std::string& base_spec, std::vector<Gr
 /// good, and strictly better in one), sorted by time then index. Points with an empty quality
 /// are excluded; +inf quality (identical) is the best possible. With `noise` (one time spread
 /// per point), two times within the sum of their points' spreads count as equal: j dominates
-/// i when t_j <= t_i + n and q_j is at least as good, and t_j < t_i − n or q_j is better.
+/// i when t_j <= t_i + n and q_j is at least as good, and t_j < t_i − n or q_j is better. A
+/// NaN spread (unknown: one repeat) makes n = 0 and never lets time alone rank two equally
+/// good points (both stay on the front).
 std::vector<size_t> ParetoFront(const std::vector<double>& time_ms, const std::vector<std::optional<double>>& quality,
                                 Better better, const std::vector<double>& noise = {});
 

@@ -282,7 +282,9 @@ TEST(SweepCli, RendersEachReferenceOnceAndWritesTheFront) {
     for (const auto& q : j["points"]) {
       const double pq = p["objectives"]["psnr_db"]["mean"], qq = q["objectives"]["psnr_db"]["mean"];
       const double pt = p["mean_time_ms"], qt = q["mean_time_ms"];
-      EXPECT_FALSE(qt <= pt && qq >= pq && (qt < pt || qq > pq)) << p["spec"] << " dominated by " << q["spec"];
+      // One repeat: the spreads are unknown, so only a better point no slower dominates
+      // (equally good points all stay; harness/run/sweep.h).
+      EXPECT_FALSE(qt <= pt && qq > pq) << p["spec"] << " dominated by " << q["spec"];
     }
   }
   // edge_threshold=1 turns FXAA off: the best psnr_db point has edge_threshold 0.125.

@@ -56,6 +56,10 @@ TEST(Sweep, ParetoFrontCountsTimesWithinTheSpreadsAsEqual) {
   EXPECT_EQ(ParetoFront(t, q, Better::kHigher, noise), (std::vector<size_t>{1}));
   // With larger spreads 2 is as fast as 1 (0.9 < 0.5 + 0.5): both stay.
   EXPECT_EQ(ParetoFront(t, q, Better::kHigher, {0.2, 0.5, 0.5}), (std::vector<size_t>{1, 2}));
+  // Unknown spreads (one repeat): time ranks points of different quality (exactly), never
+  // two equally good ones.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(ParetoFront(t, q, Better::kHigher, {nan, nan, nan}), (std::vector<size_t>{0, 1, 2}));
 }
 
 TEST(Sweep, DefaultsAreRuns) {
