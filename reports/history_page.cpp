@@ -189,7 +189,9 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
        "previous entry of the series (the rule of <code>aalab compare</code>: dB metrics more than "
     << FormatFixed(options.max_drop_db, 3) << " dB; time more than "
     << (options.check_time ? options.time_increase.Text("ms") : std::string("(off)"))
-    << " and more than the repeats' spread, on the same machine configuration): "
+    << ", the " << FormatFixed(options.time_floor_ms, 3)
+    << " ms floor and both repeats' spreads, on the same machine configuration; time crossings are marked whatever "
+       "compare's --fail-on): "
        "<span class=\"regression\">red = regression</span>, <span class=\"improved\">green = improvement</span>, "
        "<span class=\"not-judged\">orange = could not compare</span>. Hover a point for its values. "
        "&#8734; = identical to the reference (infinite PSNR); &#215; = null.</p>\n";
