@@ -101,11 +101,8 @@ Json SweepToJson(const SweepResult& res) {
                        {"suggested_spread_ms", c.suggested_spread_ms}});
   }
   j["scene_changes"] = changes;
-  Json crops = Json::array();
-  for (const auto& c : res.crops) {
-    crops.push_back({{"scene", c.scene}, {"role", c.role}, {"spec", c.spec}, {"window", c.window}, {"path", c.path}});
-  }
-  j["crops"] = crops;
+  // The crops (crops/, shown on the page) are not listed here: a merged sweep has none, and
+  // its sweep.json must equal the single sweep's (aalab same-results).
   j["scenes"] = rep["scenes"];
   Json rows = rep["rows"];
   for (size_t i = 0; i < rows.size(); ++i) rows[i]["point"] = res.row_point[i];
