@@ -231,6 +231,68 @@ void ValidateCompareOptions(const CompareOptions& o) {
   if (o.time_increase.value < 0 || !std::isfinite(o.time_increase.value)) {
     throw UserError("--max-time-increase must be non-negative");
   }
+  if (!std::isfinite(o.warn_drop_db) || o.warn_drop_db < 0 || o.warn_drop_db > o.max_drop_db) {
+    throw UserError("--warn-drop-db " + FormatFixed(o.warn_drop_db, 3) + " must be a number of dB from 0 to --max-drop-db (" +
+                    FormatFixed(o.max_drop_db, 3) + ")");
+  }
+  if (!std::isfinite(o.time_floor_ms) || o.time_floor_ms < 0) {
+    throw UserError("--time-floor must be a non-negative duration");
+  }
+  if (!o.check_time && o.fail_on != CompareOptions::FailOn::kQuality) {
+    throw UserError(std::string("--fail-on ") + FailOnName(o.fail_on) +
+                    " gates time, but --max-time-increase is off: give a time threshold or use --fail-on quality");
+  }
+}
+
+CompareOptions::FailOn ParseFailOn(const std::string& text) {
+  if (text == "quality") return CompareOptions::FailOn::kQuality;
+  if (text == "time") return CompareOptions::FailOn::kTime;
+  if (text == "any") return CompareOptions::FailOn::kAny;
+  throw UserError("--fail-on '" + text + "' is not one of: quality (default), time, any");
+}
+
+const char* FailOnName(CompareOptions::FailOn f) {
+  switch (f) {
+    case CompareOptions::FailOn::kQuality: return "quality";
+    case CompareOptions::FailOn::kTime: return "time";
+    case CompareOptions::FailOn::kAny: return "any";
+  }
+  return "?";
+}
+
+// "name" or "name:k=v,k=v" (each override with exactly one '=').
+static bool LooksLikeSpec(const std::string& s) {
+  const auto colon = s.find(':');
+  const std::string name = s.substr(0, colon);
+  if (name.empty() || name.find('=') != std::string::npos || name.find(',') != std::string::npos) return false;
+  if (colon == std::string::npos) return true;
+  std::stringstream ss(s.substr(colon + 1));
+  std::string item;
+  int n = 0;
+  while (std::getline(ss, item, ',')) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == item.size() || item.find('=', eq + 1) != std::string::npos ||
+        item.find(':') != std::string::npos) {
+      return false;
+    }
+    ++n;
+  }
+  return n > 0 && s.back() != ',';
+}
+
+void AddSpecMapping(const std::string& text, std::map<std::string, std::string>* map) {
+  // A spec may hold '=' itself (fxaa311-p39:subpix=0): the split is the one '=' that leaves
+  // a well-formed spec on both sides.
+  std::vector<size_t> splits;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '=' && LooksLikeSpec(text.substr(0, i)) && LooksLikeSpec(text.substr(i + 1))) splits.push_back(i);
+  }
+  if (splits.size() != 1) {
+    throw UserError("--map '" + text + "' is not OLD=NEW (the baseline row's method spec, '=', the current row's; "
+                    "e.g. fxaa311-p39=fxaa311-p39:subpix=0)");
+  }
+  const std::string from = text.substr(0, splits[0]), to = text.substr(splits[0] + 1);
+  if (!map->emplace(from, to).second) throw UserError("--map: '" + from + "' is mapped twice");
 }
 
 const char* VerdictName(Verdict v) {
@@ -240,6 +302,7 @@ const char* VerdictName(Verdict v) {
     case Verdict::kImproved: return "improved";
     case Verdict::kRegression: return "REGRESSION";
     case Verdict::kNotJudged: return "not judged";
+    case Verdict::kWarning: return "warning";
   }
   return "?";
 }
@@ -251,7 +314,8 @@ int CompareResult::ExitCode() const {
   if (!cannot_compare.empty() || !missing_rows.empty() || !extra_rows.empty()) {
     return ToInt(aalab::ExitCode::kCouldNotCompare);
   }
-  return ToInt(regressions > 0 ? aalab::ExitCode::kFailure : aalab::ExitCode::kOk);
+  const bool fail = regressions > 0 || (strict && !capture_warnings.empty());
+  return ToInt(fail ? aalab::ExitCode::kFailure : aalab::ExitCode::kOk);
 }
 
 std::string SettingValue(const Report& report, const std::string& key) {
@@ -352,12 +416,41 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
   };
   const auto base_idx = index(base, "baseline");
   const auto cur_idx = index(cur, "current");
+  // --map OLD=NEW: the baseline's OLD rows are matched with the current NEW rows.
+  auto mapped = [&o](const std::string& spec) {
+    auto it = o.map.find(spec);
+    return it == o.map.end() ? spec : it->second;
+  };
+  for (const auto& [from, to] : o.map) {
+    bool in_base = false, in_cur = false;
+    for (const auto& row : base.rows) in_base = in_base || row.spec == from;
+    for (const auto& row : cur.rows) in_cur = in_cur || row.spec == to;
+    if (!in_base || !in_cur) {
+      std::set<std::string> specs;
+      for (const auto& row : (in_base ? cur : base).rows) specs.insert(row.spec);
+      std::string list;
+      for (const auto& x : specs) list += (list.empty() ? "" : ", ") + x;
+      res.cannot_compare.push_back("--map " + from + "=" + to + ": the " + (in_base ? "current" : "baseline") +
+                                   " report has no row of spec '" + (in_base ? to : from) + "' (its specs: " + list + ")");
+    }
+  }
+  std::set<std::pair<std::string, std::string>> matched_cur;
   for (const auto& row : base.rows) {
-    if (!cur_idx.count({row.scene, row.spec})) res.missing_rows.push_back(RowName(row.scene, row.spec));
+    const auto key = std::make_pair(row.scene, mapped(row.spec));
+    if (!cur_idx.count(key)) {
+      res.missing_rows.push_back(RowName(row.scene, row.spec));
+    } else {
+      matched_cur.insert(key);
+    }
   }
   for (const auto& row : cur.rows) {
-    if (!base_idx.count({row.scene, row.spec})) res.extra_rows.push_back(RowName(row.scene, row.spec));
+    if (!matched_cur.count({row.scene, row.spec})) res.extra_rows.push_back(RowName(row.scene, row.spec));
   }
+  for (const auto& sc : cur.scenes) {
+    for (const auto& w : sc.warnings) res.capture_warnings.push_back(sc.name + ": " + w);
+  }
+  res.strict = o.strict;
+  res.fail_on = o.fail_on;
 
   // Timing judged only on the same machine configuration.
   bool judge_time = o.check_time;
@@ -392,20 +485,30 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
   std::string bit_identical_example;
   bool few_samples = false;
 
+  const bool gate_quality = o.fail_on != CompareOptions::FailOn::kTime;
+  const bool gate_time = o.fail_on != CompareOptions::FailOn::kQuality;
+  std::set<std::string> mapped_notes;
   for (const auto& brow : base.rows) {
-    auto it = cur_idx.find({brow.scene, brow.spec});
+    const std::string cur_spec = mapped(brow.spec);
+    auto it = cur_idx.find({brow.scene, cur_spec});
     if (it == cur_idx.end()) continue;
     const ResultRow& crow = cur.rows[static_cast<size_t>(it->second)];
-    const std::string name = RowName(brow.scene, brow.spec);
+    const std::string name = RowName(brow.scene, brow.spec) + (cur_spec == brow.spec ? "" : " -> " + cur_spec);
     const std::string pdiff = ParamsDiff(brow, crow);
-    if (!pdiff.empty()) {
+    if (!pdiff.empty() && cur_spec == brow.spec) {
       res.cannot_compare.push_back("row " + name + ": resolved parameters differ (" + pdiff +
-                                   "); the method's defaults changed, so the rows measure different settings");
+                                   "); the method's defaults changed, so the rows measure different settings (a "
+                                   "deliberate change: compare them anyway with --map, or accept a new baseline)");
       continue;
+    }
+    if (cur_spec != brow.spec && mapped_notes.insert(brow.spec).second) {
+      res.notes.push_back("mapped " + brow.spec + " (baseline) -> " + cur_spec + " (current)" +
+                          (pdiff.empty() ? std::string(": same parameters") : ": parameters " + pdiff));
     }
     RowMatch match;
     match.scene = brow.scene;
-    match.spec = brow.spec;
+    match.spec = cur_spec;
+    match.base_spec = brow.spec;
     match.base_index = base_idx.at({brow.scene, brow.spec});
     match.current_index = it->second;
     match.bit_identical = !brow.output_hash.empty() && brow.output_hash == crow.output_hash;
@@ -425,7 +528,9 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
       const Better better = *MetricDirection(metric);
       CompareLine l;
       l.scene = brow.scene;
-      l.spec = brow.spec;
+      l.spec = cur_spec;
+      l.base_spec = brow.spec;
+      l.gated = gate_quality;
       l.quantity = metric;
       l.base = a.value;
       l.current = b.value;
@@ -436,9 +541,10 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
         if (!l.base && a.null_reason == "identical") l.base = kInf;
         if (!l.current && b.null_reason == "identical") l.current = kInf;
       }
-      Threshold tol;
+      Threshold tol, warn;
       if (IsDbMetric(metric)) {
         tol = Threshold{o.max_drop_db, false};
+        warn = Threshold{o.warn_drop_db, false};
         l.threshold = (better == Better::kHigher ? "-" : "+") + FormatFixed(o.max_drop_db, 3) + " dB";
       } else {
         auto t = o.metric_change.find(metric);
@@ -449,6 +555,7 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
           AALAB_CHECK(t != o.metric_change.end(), "validated options must give every non-dB metric a tolerance");
           tol = t->second;
         }
+        warn = Threshold{tol.value / 2, tol.relative};
         l.threshold = (better == Better::kHigher ? "-" : "+") + tol.Text();
       }
       const bool same_value = (l.base == l.current) && (l.base_null == l.current_null);
@@ -480,6 +587,11 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
                       : gain < -allowed ? Verdict::kRegression
                       : gain > allowed  ? Verdict::kImproved
                                         : Verdict::kWithin;
+          if (l.verdict == Verdict::kWithin && gain < -warn.Allowed(*l.base)) {
+            l.verdict = Verdict::kWarning;
+            l.note = "worse beyond the warn level " + (IsDbMetric(metric) ? FormatFixed(o.warn_drop_db, 3) + " dB"
+                                                                           : warn.Text());
+          }
         }
       } else if (l.base && !l.current) {
         l.verdict = Verdict::kRegression;
@@ -499,27 +611,34 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
       if (ta.samples_ms.size() < 2 || tb.samples_ms.size() < 2) few_samples = true;
       CompareLine l;
       l.scene = brow.scene;
-      l.spec = brow.spec;
+      l.spec = cur_spec;
+      l.base_spec = brow.spec;
+      l.gated = gate_time;
       l.quantity = "time_ms";
       l.base = ta.median_ms;
       l.current = tb.median_ms;
       l.delta = tb.median_ms - ta.median_ms;
       const double allowed = o.time_increase.Allowed(ta.median_ms);
-      const double noise = std::max(ta.max_ms - ta.min_ms, tb.max_ms - tb.min_ms);
+      const double noise = (ta.max_ms - ta.min_ms) + (tb.max_ms - tb.min_ms);
+      const double need = std::max({allowed, noise, o.time_floor_ms});
       l.threshold = "+" + o.time_increase.Text("ms") + (o.time_increase.relative ? " (" + FormatFixed(allowed, 3) + "ms)" : "") +
-                    " & >spread " + FormatFixed(noise, 3) + "ms";
+                    ", >spreads " + FormatFixed(noise, 3) + "ms, >floor " + FormatFixed(o.time_floor_ms, 3) +
+                    "ms, ranges apart";
       const double d = *l.delta;
+      const bool slower_apart = tb.min_ms > ta.max_ms, faster_apart = tb.max_ms < ta.min_ms;
       if (d == 0.0) {
         l.verdict = Verdict::kUnchanged;
       } else if (!judge_time) {
         l.verdict = Verdict::kNotJudged;
-      } else if (d > allowed && d > noise) {
+      } else if (d > need && slower_apart) {
         l.verdict = Verdict::kRegression;
-      } else if (-d > allowed && -d > noise) {
+      } else if (-d > need && faster_apart) {
         l.verdict = Verdict::kImproved;
       } else {
         l.verdict = Verdict::kWithin;
-        if (d > allowed) l.note = "increase within the repeats' spread (noise)";
+        if (d > allowed) {
+          l.note = d <= o.time_floor_ms ? "increase below the floor" : "increase within the runs' noise (spreads or overlapping ranges)";
+        }
       }
       res.lines.push_back(l);
     }
@@ -537,17 +656,29 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
                         " value(s) of rows with bit-identical output differ (so the reference or a metric changed, "
                         "not the method); counted as unchanged. E.g. " + bit_identical_example);
   }
-  if (few_samples && judge_time) {
+  if (o.check_time && !gate_time) {
+    res.notes.push_back("time is shown, not gated (--fail-on quality, the default): a time change beyond the noise "
+                        "test is a warning; gate it with --fail-on time or any");
+  }
+  if (few_samples && judge_time && gate_time) {
     res.notes.push_back("some rows have fewer than 2 timed repeats: their timing spread is 0, so any increase beyond "
                         "the threshold counts (run with --repeat 3 or more)");
   }
 
+  // A regression on a line that is not gated is a warning.
+  for (auto& l : res.lines) {
+    if (l.verdict == Verdict::kRegression && !l.gated) {
+      l.verdict = Verdict::kWarning;
+      l.note = std::string("worse beyond the threshold, not gated (--fail-on ") + FailOnName(o.fail_on) + ")" +
+               (l.note.empty() ? "" : "; " + l.note);
+    }
+  }
   // Per-row flags and totals.
   for (auto& m : res.rows) {
     for (const auto& l : res.lines) {
-      if (l.scene != m.scene || l.spec != m.spec) continue;
+      if (l.scene != m.scene || l.spec != m.spec || l.base_spec != m.base_spec) continue;
       if (l.verdict == Verdict::kRegression) m.regression = true;
-      if (l.verdict == Verdict::kRegression || l.verdict == Verdict::kImproved ||
+      if (l.verdict == Verdict::kRegression || l.verdict == Verdict::kImproved || l.verdict == Verdict::kWarning ||
           (IsQualityLine(l) && l.verdict != Verdict::kUnchanged)) {
         m.changed = true;
       }
@@ -561,6 +692,7 @@ CompareResult CompareReports(const Report& base, const Report& cur, const Compar
   for (const auto& l : res.lines) {
     if (l.verdict == Verdict::kRegression) ++res.regressions;
     if (l.verdict == Verdict::kImproved) ++res.improvements;
+    if (l.verdict == Verdict::kWarning) ++res.warnings;
   }
   return res;
 }

@@ -18,14 +18,25 @@
 ///   tolerance. A null with reason `identical` on a higher-is-better metric is +infinity
 ///   (better than any number); a value that became null for another reason is a regression
 ///   with that reason. Rows with equal `output_hash` are unchanged for quality at once.
+///   Warn level: a drop beyond `warn_drop_db` (dB metrics) or half the tolerance (others)
+///   but within the tolerance is a warning (exit 0), as idiff's -warn below its -fail.
 /// - Time: the method's own time per repeat (post + resample, plus render unless the render
 ///   is the 1x frame shared with `none`), median over repeats. increase = median_cur −
-///   median_base; it is a regression only when it exceeds the allowed increase (a percentage
-///   of the baseline median, or milliseconds) AND the repeats' spread (max − min of either
-///   run's samples). Improvement symmetric. Time is judged only when both reports come from
-///   the same CPU model, thread count and build type (else: not judged, with a note).
+///   median_base; it is a regression only when it exceeds all of: the allowed increase (a
+///   percentage of the baseline median, or milliseconds), the absolute floor `time_floor_ms`,
+///   and the sum of both runs' spreads (max − min of their samples); AND the runs' ranges do
+///   not overlap (the current run's fastest repeat is slower than the baseline's slowest).
+///   Improvement symmetric. Time is judged only when both reports come from the same CPU
+///   model, thread count and build type (else: not judged, with a note).
+/// - Gating (`fail_on`): quality lines count towards exit 1 under kQuality and kAny, time
+///   lines under kTime and kAny. A regression on a line that is not gated is reported as a
+///   warning ("not gated"). Default: quality only, since quality is deterministic and
+///   time on a shared machine is not.
+/// - Renamed rows (`map`): a baseline row of spec OLD is matched with the current row of
+///   spec NEW on the same scene; their parameters may differ (said in a note).
 /// - Exit code: 2 when anything could not be compared (settings, missing/extra rows,
-///   parameters, missing metrics), else 1 when a regression was found, else 0.
+///   parameters, missing metrics), else 1 when a gated regression was found (or, with
+///   `strict`, the current report has capture warnings), else 0.
 #pragma once
 #include <map>
 #include <optional>
@@ -81,7 +92,26 @@ struct CompareOptions {
   Threshold time_increase{0.10, true};
   /// Judge time even when the reports come from different machines / thread counts.
   bool time_across_machines = false;
+  /// The absolute floor below which no time change counts, in milliseconds.
+  double time_floor_ms = 0.5;
+  /// Which lines make exit 1.
+  enum class FailOn { kQuality, kTime, kAny } fail_on = FailOn::kQuality;
+  /// The warn level for dB metrics (a drop beyond it but within max_drop_db is a warning);
+  /// must not exceed max_drop_db. Non-dB metrics warn at half their tolerance.
+  double warn_drop_db = 0.02;
+  /// Fail (exit 1) when the current report's scenes carry capture warnings.
+  bool strict = false;
+  /// Renamed rows: baseline spec → current spec (`--map OLD=NEW`).
+  std::map<std::string, std::string> map;
 };
+
+/// Parses --fail-on: quality, time or any. UserError otherwise.
+CompareOptions::FailOn ParseFailOn(const std::string& text);
+const char* FailOnName(CompareOptions::FailOn f);
+
+/// Parses one --map value "OLD=NEW" into `map` (both non-empty; OLD given once). UserError
+/// otherwise.
+void AddSpecMapping(const std::string& text, std::map<std::string, std::string>* map);
 
 /// Parses --max-metric-change: "0.005", "2%" (every non-dB metric) or
 /// "ssim=0.002,mse=5%" (per metric; names must be known). UserError otherwise.
@@ -103,6 +133,7 @@ enum class Verdict {
   kImproved,    ///< better by more than the tolerance
   kRegression,  ///< worse by more than the tolerance
   kNotJudged,   ///< changed but no rule applies (timing across machines; null → number)
+  kWarning,     ///< worse beyond the warn level but within the tolerance, or a regression not gated
 };
 const char* VerdictName(Verdict v);
 
@@ -116,6 +147,8 @@ struct CompareLine {
   std::string threshold;                ///< the rule applied, as text
   Verdict verdict = Verdict::kUnchanged;
   std::string note;                     ///< why, when the numbers alone do not say
+  std::string base_spec;                ///< the baseline row's spec (differs from spec under --map)
+  bool gated = true;                    ///< counts towards the exit code (CompareOptions::fail_on)
 };
 
 /// True for a metric's line, false for the time line ("time_ms").
@@ -124,6 +157,7 @@ bool IsQualityLine(const CompareLine& line);
 /// A matched row pair.
 struct RowMatch {
   std::string scene, spec;
+  std::string base_spec;                    ///< the baseline row's spec (differs from spec under --map)
   int base_index = -1, current_index = -1;  ///< into the reports' rows
   bool bit_identical = false;               ///< equal output_hash
   bool regression = false, changed = false; ///< any line regressed / any line not unchanged
@@ -135,12 +169,16 @@ struct CompareResult {
   std::vector<std::string> missing_rows;     ///< "scene / spec" only in the baseline
   std::vector<std::string> extra_rows;       ///< "scene / spec" only in the current report
   std::vector<std::string> notes;            ///< said once (timing not judged, noise unknown)
+  std::vector<std::string> capture_warnings; ///< "scene: warning" of the current report's scenes
+  bool strict = false;                       ///< capture warnings fail (exit 1)
+  CompareOptions::FailOn fail_on = CompareOptions::FailOn::kQuality;
   std::vector<RowMatch> rows;
   std::vector<CompareLine> lines;            ///< every compared value, unchanged ones included
-  int regressions = 0, improvements = 0;
+  int regressions = 0, improvements = 0, warnings = 0;  ///< regressions: gated ones only
 
   /// 2 could not compare (anything in cannot_compare / missing_rows / extra_rows), 1 at
-  /// least one regression, 0 otherwise (ExitCode, harness/core/exit_code.h, as an int).
+  /// least one gated regression (or, strict, a capture warning), 0 otherwise (ExitCode,
+  /// harness/core/exit_code.h, as an int).
   int ExitCode() const;
 };
 

@@ -53,11 +53,12 @@ std::string FormatCompareText(const CompareResult& r, const Report& base, const 
   table.push_back({"scene", "method", "metric", "baseline", "current", "delta", "threshold", "verdict"});
   for (const auto& l : r.lines) {
     const bool show = all || l.verdict == Verdict::kRegression || l.verdict == Verdict::kImproved ||
-                      (IsQualityLine(l) && l.verdict != Verdict::kUnchanged);
+                      l.verdict == Verdict::kWarning || (IsQualityLine(l) && l.verdict != Verdict::kUnchanged);
     if (!show) continue;
     std::string verdict = VerdictName(l.verdict);
     if (!l.note.empty()) verdict += ": " + l.note;
-    table.push_back({l.scene, l.spec, l.quantity, LineValueText(l, true), LineValueText(l, false),
+    const std::string spec = l.base_spec.empty() || l.base_spec == l.spec ? l.spec : l.base_spec + " -> " + l.spec;
+    table.push_back({l.scene, spec, l.quantity, LineValueText(l, true), LineValueText(l, false),
                      l.delta ? CompareDeltaText(l.quantity, *l.delta) : "-", l.threshold, verdict});
   }
   if (table.size() > 1) {
@@ -90,6 +91,11 @@ std::string FormatCompareText(const CompareResult& r, const Report& base, const 
     for (const auto& s : r.extra_rows) out << "  " << s << "\n";
   }
   for (const auto& n : r.notes) out << "note: " << n << "\n";
+  if (!r.capture_warnings.empty()) {
+    out << "capture warnings in the current report (" << r.capture_warnings.size() << ")"
+        << (r.strict ? ", failing (--strict)" : ", not failing (pass --strict to fail on them)") << ":\n";
+    for (const auto& w : r.capture_warnings) out << "  " << w << "\n";
+  }
   int identical = 0;
   for (const auto& m : r.rows) identical += m.bit_identical ? 1 : 0;
   std::string metrics;
@@ -97,7 +103,8 @@ std::string FormatCompareText(const CompareResult& r, const Report& base, const 
   const int code = r.ExitCode();
   out << "summary: " << r.rows.size() << " rows compared on " << (metrics.empty() ? "(none)" : metrics)
       << (r.lines.empty() || r.lines.back().quantity != "time_ms" ? "" : " and time") << " (" << identical
-      << " bit-identical outputs); " << r.regressions << " regression(s), " << r.improvements << " improvement(s); exit "
+      << " bit-identical outputs); gating " << FailOnName(r.fail_on) << "; " << r.regressions << " regression(s), "
+      << r.warnings << " warning(s), " << r.improvements << " improvement(s); exit "
       << code << (code == 0 ? " (no regression)" : code == 1 ? " (regression)" : " (could not compare)") << "\n";
   return out.str();
 }

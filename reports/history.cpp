@@ -48,6 +48,11 @@ HistoryEntry EntryFromJson(const Json& j, const std::string& where) {
     e.commit = j.at("commit").get<std::string>();
     e.date = j.at("date").get<std::string>();
     e.source = j.at("source").get<std::string>();
+    if (j.contains("accepted")) {
+      const auto& a = j.at("accepted");
+      e.accepted = HistoryEntry::Acceptance{a.at("by").get<std::string>(), a.at("at").get<std::string>(),
+                                            a.at("why").get<std::string>(), a.at("baseline").get<std::string>()};
+    }
     for (auto it = j.at("settings").begin(); it != j.at("settings").end(); ++it) {
       e.report.settings.emplace_back(it.key(), it.value().get<std::string>());
     }
@@ -192,6 +197,10 @@ std::string HistoryLine(const HistoryEntry& e) {
     rows.push_back(jr);
   }
   j["rows"] = rows;
+  if (e.accepted) {
+    j["accepted"] = {{"by", e.accepted->by}, {"at", e.accepted->at}, {"why", e.accepted->why},
+                     {"baseline", e.accepted->baseline}};
+  }
   return j.dump();
 }
 
@@ -232,6 +241,26 @@ std::vector<HistoryEntry> ReadHistoryFile(const std::string& path, bool missing_
 }
 
 void CheckSeriesCompatible(const std::vector<HistoryEntry>& entries, const HistoryEntry& e) {
+  // The same report twice (under another commit or date): its content without the entry's
+  // own labels.
+  auto content = [](const HistoryEntry& h) {
+    HistoryEntry c = h;
+    c.series = "s";
+    c.commit = "c";
+    c.date = "d";
+    c.source.clear();
+    c.accepted.reset();
+    return HistoryLine(c);
+  };
+  const std::string mine = content(e);
+  for (const auto& x : entries) {
+    const bool same_label = x.series == e.series && x.commit == e.commit && x.date == e.date;  // said below
+    if (!same_label && content(x) == mine) {
+      throw UserError("the history already holds this report (line " + std::to_string(x.line) + ", series '" + x.series +
+                      "', commit " + x.commit + ", from '" + x.source +
+                      "'): the same rows, output hashes and timing samples; a report is added once");
+    }
+  }
   const HistoryEntry* last = nullptr;
   for (const auto& x : entries) {
     if (x.series != e.series) continue;

@@ -8,7 +8,10 @@
 ///    "rows":[{"scene","method","spec","params":{},"metrics":{},"null_reasons":{},
 ///             "output_hash","render_shared_with_none":bool,
 ///             "timing":{"render":[ms...],"post":[...],"resample":[...],"total":[...]}}]}
+///   optionally followed by "accepted":{"by":WHO,"at":WHEN,"why":TEXT,"baseline":DIR}: the
+///   report was accepted as the new baseline DIR (`aalab baseline accept`).
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +30,12 @@ struct HistoryEntry {
   std::string date;      ///< when the report was made (ISO 8601, UTC)
   std::string source;    ///< path of the report file as given to `history add`
   Report report;         ///< settings, context and rows (no scenes, no images)
+  /// Set when the report was accepted as a baseline (`aalab baseline accept`): who, when
+  /// (UTC), why, and the baseline folder.
+  struct Acceptance {
+    std::string by, at, why, baseline;
+  };
+  std::optional<Acceptance> accepted;
 };
 
 /// The settings that must agree within a series.
@@ -58,8 +67,10 @@ std::vector<HistoryEntry> ParseHistory(const std::string& text, const std::strin
 std::vector<HistoryEntry> ReadHistoryFile(const std::string& path, bool missing_ok);
 
 /// Checks that `entry` may be appended: its settings (HistorySeriesKeys) equal those of the
-/// series' last entry, and no entry of the series has the same commit and date. UserError
-/// listing the differing settings and suggesting --series NAME otherwise.
+/// series' last entry, no entry of the series has the same commit and date, and no entry of
+/// any series holds the same report (equal context, rows, hashes and timing samples: the
+/// same report.json added twice). UserError listing the differing settings and suggesting
+/// --series NAME, or naming the line that holds the report, otherwise.
 void CheckSeriesCompatible(const std::vector<HistoryEntry>& entries, const HistoryEntry& entry);
 
 /// Series names in order of first appearance.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <optional>
@@ -24,8 +25,11 @@ struct TrendPoint {
   std::string tooltip;
 };
 
+// `tol`: the comparison's tolerance in the chart's unit (0: none); the axis spans at least
+// 4 tolerances (a change far below the threshold does not look like a cliff), and a band of
+// ± tol around the latest value shows where the next entry would pass.
 std::string SvgTrend(const std::string& title, const std::string& unit, const std::vector<TrendPoint>& pts,
-                     const std::vector<std::string>& labels) {
+                     const std::vector<std::string>& labels, double tol = 0) {
   const double W = 420, H = 160, L = 58, R = 12, T = 20, B = 26;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& p : pts) {
@@ -37,7 +41,16 @@ std::string SvgTrend(const std::string& title, const std::string& unit, const st
     }
   }
   if (!(lo <= hi)) lo = 0, hi = 1;
-  if (hi - lo < 1e-9 * std::max(1.0, std::fabs(hi))) {
+  const bool non_negative = lo >= 0;
+  std::optional<double> latest;
+  for (const auto& p : pts) {
+    if (p.value && std::isfinite(*p.value)) latest = *p.value;
+  }
+  if (tol > 0 && hi - lo < 4 * tol) {
+    const double mid = (hi + lo) / 2;
+    lo = mid - 2 * tol;
+    hi = mid + 2 * tol;
+  } else if (hi - lo < 1e-9 * std::max(1.0, std::fabs(hi))) {
     const double pad = std::max(1e-3, std::fabs(hi) * 0.01);
     lo -= pad;
     hi += pad;
@@ -45,6 +58,10 @@ std::string SvgTrend(const std::string& title, const std::string& unit, const st
     const double pad = (hi - lo) * 0.08;
     lo -= pad;
     hi += pad;
+  }
+  if (non_negative && lo < 0) {  // times and errors: no negative axis
+    hi -= lo;
+    lo = 0;
   }
   const size_t n = pts.size();
   const double inset = 10;  // keep the first point off the axis
@@ -73,6 +90,12 @@ std::string SvgTrend(const std::string& title, const std::string& unit, const st
         << HtmlEscape(labels.back()) << "</text>";
     }
     s << "\n";
+  }
+  if (tol > 0 && latest) {
+    const double b0 = std::max(lo, *latest - tol), b1 = std::min(hi, *latest + tol);
+    s << "<rect class=\"band\" x=\"" << L << "\" y=\"" << Y(b1) << "\" width=\"" << W - L - R << "\" height=\""
+      << std::max(0.0, Y(b0) - Y(b1)) << "\" fill=\"#2060c0\" fill-opacity=\"0.08\"><title>threshold band: the latest "
+      << "value &#177; " << FormatFixed(tol, 3) << " " << HtmlEscape(unit) << "</title></rect>\n";
   }
   // Min–max bars.
   for (size_t i = 0; i < n; ++i) {
@@ -120,12 +143,35 @@ std::string SvgTrend(const std::string& title, const std::string& unit, const st
   return s.str();
 }
 
-std::string Short(const std::string& commit) { return commit.substr(0, std::min<size_t>(commit.size(), 10)); }
+// A commit as people write it: 7 hex digits, then the subject when the report has one.
+std::string Short(const HistoryEntry& e) {
+  std::string s = e.commit.substr(0, std::min<size_t>(e.commit.size(), 7));
+  auto it = e.report.context.find("git_subject");
+  if (it != e.report.context.end() && !it->second.empty()) s += " " + it->second.substr(0, 40);
+  return s;
+}
+
+// The maps that apply between two entries: OLD in the earlier one, NEW (and not OLD) in the
+// later one.
+std::map<std::string, std::string> MapsBetween(const Report& a, const Report& b,
+                                               const std::map<std::string, std::string>& maps) {
+  std::map<std::string, std::string> out;
+  auto has = [](const Report& r, const std::string& spec) {
+    for (const auto& row : r.rows) {
+      if (row.spec == spec) return true;
+    }
+    return false;
+  };
+  for (const auto& [from, to] : maps) {
+    if (has(a, from) && has(b, to) && !has(b, from)) out[from] = to;
+  }
+  return out;
+}
 
 }  // namespace
 
 HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::string& only_series,
-                        const CompareOptions& options) {
+                        const CompareOptions& options, const std::string& out_dir) {
   HistoryPage page;
   std::vector<std::string> names = HistorySeriesNames(entries);
   if (entries.empty()) throw UserError("the history database holds no entries");
@@ -143,7 +189,9 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
        "previous entry of the series (the rule of <code>aalab compare</code>: dB metrics more than "
     << FormatFixed(options.max_drop_db, 3) << " dB; time more than "
     << (options.check_time ? options.time_increase.Text("ms") : std::string("(off)"))
-    << " and more than the repeats' spread, on the same machine configuration): "
+    << ", the " << FormatFixed(options.time_floor_ms, 3)
+    << " ms floor and both repeats' spreads, on the same machine configuration; time crossings are marked whatever "
+       "compare's --fail-on): "
        "<span class=\"regression\">red = regression</span>, <span class=\"improved\">green = improvement</span>, "
        "<span class=\"not-judged\">orange = could not compare</span>. Hover a point for its values. "
        "&#8734; = identical to the reference (infinite PSNR); &#215; = null.</p>\n";
@@ -152,6 +200,8 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
     for (const auto& e : entries) {
       if (e.series == series) es.push_back(&e);
     }
+    // Date order (ISO 8601 text sorts by date); entries of one date keep the file's order.
+    std::stable_sort(es.begin(), es.end(), [](const HistoryEntry* a, const HistoryEntry* b) { return a->date < b->date; });
     ++page.series;
     page.entries += static_cast<int>(es.size());
     bool has_edge = true;
@@ -176,9 +226,11 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
     CompareOptions opt = options;
     opt.metrics = metrics;
     opt.metric_change.clear();
+    opt.fail_on = options.check_time ? CompareOptions::FailOn::kAny : CompareOptions::FailOn::kQuality;  // mark both
     // Consecutive comparisons.
     std::vector<CompareResult> cmp(es.size());
     for (size_t i = 1; i < es.size(); ++i) {
+      opt.map = MapsBetween(es[i - 1]->report, es[i]->report, options.map);
       cmp[i] = CompareReports(es[i - 1]->report, es[i]->report, opt);
       page.regressions += cmp[i].regressions;
       page.improvements += cmp[i].improvements;
@@ -189,11 +241,28 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
     for (const auto& k : HistorySeriesKeys()) {
       h << " " << HtmlEscape(k) << " <code>" << HtmlEscape(HistorySettingText(es.front()->report, k)) << "</code>";
     }
-    h << "</p>\n<table><tr><th>#</th><th class=\"l\">commit</th><th class=\"l\">date</th><th>regressions</th>"
-         "<th>improvements</th><th class=\"l\">could not compare / notes</th></tr>\n";
+    h << "</p>\n<table><tr><th>#</th><th class=\"l\">commit</th><th class=\"l\">date</th><th class=\"l\">report</th>"
+         "<th>regressions</th><th>improvements</th><th class=\"l\">could not compare / notes</th></tr>\n";
     for (size_t i = 0; i < es.size(); ++i) {
-      h << "<tr><td>" << i + 1 << "</td><td class=\"l\"><code>" << HtmlEscape(es[i]->commit) << "</code></td><td class=\"l\">"
-        << HtmlEscape(es[i]->date) << "</td>";
+      h << "<tr><td>" << i + 1 << "</td><td class=\"l\"><code title=\"" << HtmlEscape(es[i]->commit) << "\">"
+        << HtmlEscape(Short(*es[i])) << "</code></td><td class=\"l\">" << HtmlEscape(es[i]->date) << "</td><td class=\"l\">";
+      {
+        // The run's own page, when it is still next to its report.
+        std::error_code ec;
+        const std::filesystem::path page = std::filesystem::absolute(es[i]->source, ec).parent_path() / "index.html";
+        if (!out_dir.empty() && std::filesystem::is_regular_file(page, ec)) {
+          const auto rel = std::filesystem::relative(page, std::filesystem::absolute(out_dir), ec);
+          h << "<a href=\"" << HtmlEscape(ec ? page.string() : rel.string()) << "\">report</a>";
+        } else {
+          h << "<span title=\"" << HtmlEscape(es[i]->source) << "\">-</span>";
+        }
+        if (es[i]->accepted) {
+          const auto& a = *es[i]->accepted;
+          h << " <b>accepted as baseline</b> " << HtmlEscape(a.baseline) << " by " << HtmlEscape(a.by) << " at "
+            << HtmlEscape(a.at) << ": " << HtmlEscape(a.why);
+        }
+      }
+      h << "</td>";
       if (i == 0) {
         h << "<td>-</td><td>-</td><td class=\"l\">first entry</td></tr>\n";
         continue;
@@ -208,15 +277,20 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
     }
     h << "</table>\n";
     // Rows in the order of the latest entry, then any only in earlier ones.
+    // A mapped OLD spec is charted on its NEW spec's line.
+    auto canonical = [&options](const std::string& spec) {
+      auto it = options.map.find(spec);
+      return it == options.map.end() ? spec : it->second;
+    };
     std::vector<std::pair<std::string, std::string>> keys;
     for (auto it = es.rbegin(); it != es.rend(); ++it) {
       for (const auto& r : (*it)->report.rows) {
-        const auto key = std::make_pair(r.scene, r.spec);
+        const auto key = std::make_pair(r.scene, canonical(r.spec));
         if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
       }
     }
     std::vector<std::string> labels;
-    for (const auto* e : es) labels.push_back(Short(e->commit));
+    for (const auto* e : es) labels.push_back(Short(*e).substr(0, 7));
     for (const auto& [scene, spec] : keys) {
       h << "<h3>" << HtmlEscape(scene) << " / " << HtmlEscape(spec) << "</h3>\n<div>";
       std::vector<std::string> quantities = metrics;
@@ -228,6 +302,9 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
           const ResultRow* row = nullptr;
           for (const auto& r : es[i]->report.rows) {
             if (r.scene == scene && r.spec == spec) row = &r;
+          }
+          for (const auto& r : es[i]->report.rows) {
+            if (!row && r.scene == scene && canonical(r.spec) == spec) row = &r;
           }
           p.tooltip = es[i]->commit + " " + es[i]->date + ": ";
           if (!row) {
@@ -288,7 +365,8 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
           pts.push_back(p);
         }
         const std::string title = q == "time_ms" ? "method time" : q;
-        h << SvgTrend(title, q == "time_ms" ? "ms" : "dB", pts, labels);
+        const double tol = q == "time_ms" ? 0.0 : IsDbMetric(q) ? options.max_drop_db : 0.0;
+        h << SvgTrend(title, q == "time_ms" ? "ms" : IsDbMetric(q) ? "dB" : "", pts, labels, tol);
         ++page.charts;
       }
       h << "</div>\n";

@@ -22,7 +22,12 @@ struct HistoryPage {
 /// marked (red regression, green improvement, orange could not compare; the reason in the
 /// point's tooltip and in a table). `only_series` empty: every series, else that one
 /// (UserError when unknown). `options.metrics` is ignored (the charted metrics are used).
+/// Entries are charted in date order; each chart of a dB metric spans at least 4× the
+/// tolerance and shades ± tolerance around the latest value; time and other non-negative
+/// quantities never get a negative axis. `options.map` (OLD → NEW) charts a renamed row as
+/// one line and compares it across the rename. `out_dir` (the page's folder) is used to link
+/// each entry's run page (index.html beside its report, when it exists).
 HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::string& only_series,
-                        const CompareOptions& options);
+                        const CompareOptions& options, const std::string& out_dir = "");
 
 }  // namespace aalab

@@ -190,8 +190,81 @@ std::string SweepHtml(const SweepResult& r) {
       << "</td><td class=\"l\"><code>" << HtmlEscape(p.spec) << "</code></td></tr>\n";
   }
   h << "</table>\n";
+  for (const auto& d : r.disagreements) {
+    h << "<p class=\"disagree\" style=\"border:2px solid #d00020;padding:4px 8px;font-weight:bold\">&#9888; "
+      << HtmlEscape(d) << "</p>\n";
+  }
   if (!r.suggested_preset.empty()) {
-    h << "<p>Suggested preset: <code>" << HtmlEscape(r.suggested_preset) << "</code></p>\n";
+    h << "<p>Suggested preset: <code>" << HtmlEscape(r.suggested_preset) << "</code> (" << HtmlEscape(r.suggestion_rule)
+      << ")</p>\n";
+  }
+  // The suggestion against the shipped default, per scene.
+  h << "<h2>Suggestion against the default</h2>\n";
+  if (!r.default_point) {
+    h << "<p>" << HtmlEscape(r.default_note) << "</p>\n";
+  } else if (r.suggested && *r.suggested == *r.default_point) {
+    h << "<p>The suggestion is the default (<code>" << HtmlEscape(r.points[*r.default_point].spec) << "</code>).</p>\n";
+  } else if (!r.scene_changes.empty()) {
+    h << "<table class=\"scene-change\"><tr><th class=\"l\">scene</th>";
+    for (const auto& o : r.objectives) h << "<th>" << HtmlEscape(o) << " default</th><th>suggested</th><th>change</th>";
+    h << "<th>time default (ms)</th><th>suggested</th><th>spreads</th></tr>\n";
+    for (const auto& c : r.scene_changes) {
+      h << "<tr><td class=\"l\">" << HtmlEscape(c.scene) << "</td>";
+      for (const auto& v : c.values) {
+        auto txt = [&v](const std::optional<double>& x) { return x ? SweepValueText(v.objective, *x) : std::string("null"); };
+        std::string delta = "-";
+        if (v.at_default && v.suggested && std::isfinite(*v.at_default) && std::isfinite(*v.suggested)) {
+          const double d = *v.suggested - *v.at_default;
+          delta = (d >= 0 ? "+" : "") + SweepValueText(v.objective, d);
+        }
+        h << "<td>" << txt(v.at_default) << "</td><td>" << txt(v.suggested) << "</td><td>" << delta << "</td>";
+      }
+      h << "<td>" << FormatFixed(c.default_ms, 3) << "</td><td>" << FormatFixed(c.suggested_ms, 3) << "</td><td>"
+        << FormatFixed(c.default_spread_ms, 3) << ", " << FormatFixed(c.suggested_spread_ms, 3) << "</td></tr>\n";
+    }
+    h << "</table>\n";
+  }
+  // Crops: the reference, the default, the suggestion, each objective's pick and the extremes.
+  h << "<h2>Crops</h2>\n";
+  if (r.crops.empty()) {
+    h << "<p>No crops (a merged sweep: crops are written by an unsharded sweep only).</p>\n";
+  } else {
+    h << "<p>Each scene's crop windows (where <code>none</code> is furthest from the reference on edges), "
+         "enlarged nearest-neighbour to 192 px; hover for the spec.</p>\n";
+    std::vector<std::string> scenes;
+    for (const auto& c : r.crops) {
+      if (std::find(scenes.begin(), scenes.end(), c.scene) == scenes.end()) scenes.push_back(c.scene);
+    }
+    for (const auto& sc : scenes) {
+      std::vector<std::pair<std::string, std::string>> cols;  // role, spec
+      int windows = 0;
+      for (const auto& c : r.crops) {
+        if (c.scene != sc) continue;
+        windows = std::max(windows, c.window + 1);
+        if (std::find(cols.begin(), cols.end(), std::make_pair(c.role, c.spec)) == cols.end()) cols.emplace_back(c.role, c.spec);
+      }
+      h << "<h3>" << HtmlEscape(sc) << "</h3>\n<table class=\"sweep-crops\"><tr>";
+      for (const auto& [role, spec] : cols) {
+        h << "<th title=\"" << HtmlEscape(spec) << "\">" << HtmlEscape(role) << "<br><code style=\"font-weight:normal\">"
+          << HtmlEscape(spec.empty() ? std::string("reference") : spec) << "</code></th>";
+      }
+      h << "</tr>\n";
+      for (int w = 0; w < windows; ++w) {
+        h << "<tr>";
+        for (const auto& [role, spec] : cols) {
+          h << "<td>";
+          for (const auto& c : r.crops) {
+            if (c.scene == sc && c.role == role && c.spec == spec && c.window == w) {
+              h << "<img src=\"" << HtmlEscape(c.path) << "\" alt=\"" << HtmlEscape(role) << "\" title=\""
+                << HtmlEscape(spec) << "\" style=\"width:192px;image-rendering:pixelated\">";
+            }
+          }
+          h << "</td>";
+        }
+        h << "</tr>\n";
+      }
+      h << "</table>\n";
+    }
   }
   h << "<h2>Pareto front: " << HtmlEscape(primary) << " vs time</h2>\n" << ParetoSvg(r) << "\n";
   h << "<h2>Heatmaps of " << HtmlEscape(primary) << "</h2>\n";

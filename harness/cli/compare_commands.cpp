@@ -1,11 +1,14 @@
 // `aalab compare` and `aalab history`: thin CLI over reports/compare.h and reports/history.h.
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "harness/cli/commands.h"
@@ -14,7 +17,9 @@
 #include "harness/core/params.h"
 #include "harness/core/cleanup.h"
 #include "harness/io/image_io.h"
+#include "harness/run/out_folder.h"
 #include "reports/compare.h"
+#include "reports/compare_export.h"
 #include "reports/compare_page.h"
 #include "reports/compare_text.h"
 #include "reports/history.h"
@@ -35,14 +40,22 @@ constexpr const char* kCompareRules = R"(Rules:
   (absolute, or N% of the baseline value). A null PSNR with reason 'identical' is
   +infinity (better than any number); a value that became null for another reason is a
   regression. Rows whose output_hash is unchanged are unchanged for quality at once.
+  Warn level: a dB metric that drops by more than --warn-drop-db but not more than
+  --max-drop-db is a warning (other metrics: half their tolerance); warnings never fail.
   Time: the method's own time (post + resample, plus render unless it is the 1x frame
   shared with 'none'), median over the timed repeats. An increase is a regression only
-  when it exceeds --max-time-increase AND the repeats' spread, max - min of samples_ms of
-  either run. Time is judged only when both reports come from the same CPU model, thread
-  count and build type (else a note says so; --time-across-machines judges it anyway).
-Exit codes: 0 no regression; 1 regression; 2 could not compare (different settings or
-  schema, missing/extra rows, changed parameters, missing metrics, unreadable input, bad
-  option values); 3 internal error; >= 100 command-line syntax errors.)";
+  when it exceeds --max-time-increase, --time-floor AND the sum of both runs' repeat
+  spreads (max - min of samples_ms), and the runs' ranges do not overlap (the current
+  run's fastest repeat is slower than the baseline's slowest). Time is judged only when
+  both reports come from the same CPU model, thread count and build type (else a note
+  says so; --time-across-machines judges it anyway).
+  Gating: --fail-on quality (default) fails on quality only: time is shown and a time
+  regression is a warning. --fail-on time / any gate time / both.
+  Renamed rows: --map OLD=NEW compares the baseline's OLD rows with the current NEW rows
+  (e.g. --map fxaa311-p39=fxaa311-p39:subpix=0); their parameters may differ.
+Exit codes: 0 no regression; 1 regression (gated), or a capture warning with --strict;
+  2 could not compare (different settings or schema, missing/extra rows, changed
+  parameters, missing metrics, unreadable input, bad options or usage); 3 internal error.)";
 
 std::string FolderOf(const std::string& path) {
   const fs::path p = fs::path(path).parent_path();
@@ -50,15 +63,28 @@ std::string FolderOf(const std::string& path) {
 }
 
 struct CompareArgs {
-  std::string baseline, current, metrics, metric_change, time_increase = "10%", html;
-  double max_drop_db = 0.1;
-  bool all = false, time_across_machines = false;
+  std::string baseline, current, metrics, metric_change, time_increase = "10%", html, json, junit;
+  std::string fail_on = "quality", time_floor = "0.5ms";
+  std::vector<std::string> maps;
+  double max_drop_db = 0.1, warn_drop_db = 0.02;
+  bool all = false, time_across_machines = false, strict = false;
 };
 
 CompareOptions BuildOptions(double max_drop_db, const std::string& metrics, const std::string& metric_change,
-                            const std::string& time_increase, bool across) {
+                            const std::string& time_increase, bool across, const std::vector<std::string>& maps = {},
+                            double warn_drop_db = -1, const std::string& fail_on = "quality",
+                            const std::string& time_floor = "0.5ms", bool strict = false) {
   CompareOptions o;
   o.max_drop_db = max_drop_db;
+  o.warn_drop_db = warn_drop_db < 0 ? std::min(o.warn_drop_db, max_drop_db) : warn_drop_db;
+  o.fail_on = ParseFailOn(fail_on);
+  o.strict = strict;
+  for (const auto& m : maps) AddSpecMapping(m, &o.map);
+  {
+    const Threshold floor = ParseTimeThreshold(time_floor, "--time-floor");
+    if (floor.relative) throw UserError("--time-floor '" + time_floor + "' must be a duration in ms (e.g. 0.5ms)");
+    o.time_floor_ms = floor.value;
+  }
   if (!metrics.empty()) o.metrics = SplitCommaList(metrics, "--metrics");
   if (!metric_change.empty()) o.metric_change = ParseMetricChangeOption(metric_change);
   if (time_increase == "off") {
@@ -144,13 +170,28 @@ void WriteCompareHtml(const std::string& out, const CompareResult& res, const Re
 
 int CompareCommand(const CompareArgs& a) {
   try {
-    const CompareOptions o =
-        BuildOptions(a.max_drop_db, a.metrics, a.metric_change, a.time_increase, a.time_across_machines);
+    const CompareOptions o = BuildOptions(a.max_drop_db, a.metrics, a.metric_change, a.time_increase,
+                                          a.time_across_machines, a.maps, a.warn_drop_db, a.fail_on, a.time_floor,
+                                          a.strict);
+    // The result files may not overwrite an input, nor each other.
+    std::vector<std::string> inputs = {a.baseline, a.current};
+    for (const std::string* out : {&a.json, &a.junit, &a.html}) {
+      if (out->empty()) continue;
+      inputs.push_back(CheckOutFile(*out, inputs));
+    }
     const Report base = ReadReportFile(a.baseline);
     const Report cur = ReadReportFile(a.current);
     const CompareResult res = CompareReports(base, cur, o);
     std::fputs(FormatCompareText(res, base, cur, a.baseline, a.current, a.all).c_str(), stdout);
     std::fflush(stdout);
+    if (!a.json.empty()) {
+      WriteTextFile(a.json, CompareToJson(res, a.baseline, a.current).dump(2) + "\n");
+      std::printf("wrote %s\n", a.json.c_str());
+    }
+    if (!a.junit.empty()) {
+      WriteTextFile(a.junit, CompareToJUnit(res, a.baseline, a.current));
+      std::printf("wrote %s\n", a.junit.c_str());
+    }
     if (!a.html.empty()) WriteCompareHtml(a.html, res, base, cur, a);
     return res.ExitCode();
   } catch (const UserError& e) {
@@ -246,15 +287,16 @@ int HistoryAdd(const HistoryAddArgs& a) {
 }
 
 struct HistoryReportArgs {
+  std::vector<std::string> maps;
   std::string db, out, series, time_increase = "10%";
   double max_drop_db = 0.1;
   bool time_across_machines = false;
 };
 
 int HistoryReport(const HistoryReportArgs& a) {
-  const CompareOptions o = BuildOptions(a.max_drop_db, "", "", a.time_increase, a.time_across_machines);
+  const CompareOptions o = BuildOptions(a.max_drop_db, "", "", a.time_increase, a.time_across_machines, a.maps);
   const std::vector<HistoryEntry> entries = ReadHistoryFile(a.db, false);
-  const HistoryPage page = HistoryHtml(entries, a.series, o);
+  const HistoryPage page = HistoryHtml(entries, a.series, o, a.out);
   if (a.out.empty()) throw UserError("--out must name a folder");
   fs::create_directories(a.out);
   const fs::path index = fs::path(a.out) / "index.html";
@@ -266,9 +308,133 @@ int HistoryReport(const HistoryReportArgs& a) {
   return ToInt(ExitCode::kOk);
 }
 
+struct BaselineAcceptArgs {
+  std::string run_dir, to, why, by, db, series = "default", commit;
+};
+
+/// The user accepting a baseline: --by, else $USER / $LOGNAME, else "unknown".
+std::string WhoAccepts(const std::string& by) {
+  if (!by.empty()) return by;
+  for (const char* var : {"GITHUB_ACTOR", "USER", "LOGNAME"}) {
+    const char* v = std::getenv(var);
+    if (v && *v) return v;
+  }
+  return "unknown";
+}
+
+int BaselineAccept(const BaselineAcceptArgs& a) {
+  if (a.why.empty()) throw UserError("--why must say why the numbers moved (it is recorded with the baseline)");
+  const fs::path src = fs::path(a.run_dir);
+  const fs::path report_path = src / "report.json";
+  if (!fs::is_directory(src) || !fs::is_regular_file(report_path)) {
+    throw UserError("'" + a.run_dir + "' is not a run folder (no report.json in it): give the folder of an aalab run "
+                    "(its --out)");
+  }
+  const Report report = ReadReportFile(report_path.string());  // a malformed report is refused before any change
+  if (!a.db.empty()) ValidateSeriesName(a.series);
+  // The history database is checked (readable, well-formed) before the baseline changes.
+  std::string raw;
+  std::vector<HistoryEntry> entries;
+  if (!a.db.empty() && fs::exists(a.db)) {
+    std::ifstream f(a.db, std::ios::binary);
+    if (!f) throw UserError("history database '" + a.db + "' cannot be read");
+    std::stringstream ss;
+    ss << f.rdbuf();
+    raw = ss.str();
+    entries = ParseHistory(raw, "history database '" + a.db + "'");
+  }
+  const std::string now = UtcDate(std::time(nullptr));
+  std::optional<HistoryEntry> entry;
+  if (!a.db.empty()) {
+    std::string commit = a.commit;
+    if (commit.empty()) {
+      auto it = report.context.find("git_commit");
+      commit = it == report.context.end() ? "" : it->second;
+    }
+    auto it = report.context.find("date");
+    std::string date = it == report.context.end() ? now : it->second;
+    try {
+      ValidateHistoryDate(date);
+    } catch (const UserError&) {
+      date = now;
+    }
+    entry = HistoryEntryFromReport(report, a.series, commit, date, report_path.string());
+  }
+  // The baseline folder: the output rule (replaced only when it is an earlier aalab output
+  // holding nothing else; written through DIR.partial).
+  OutFolder out(a.to, "run", {src.string()});
+  const fs::path tmp = out.Begin();
+  int files = 0;
+  for (auto it = fs::recursive_directory_iterator(src); it != fs::recursive_directory_iterator(); ++it) {
+    const fs::path rel = fs::relative(it->path(), src);
+    const std::string name = rel.filename().string();
+    if (name == kOutputMarker || name == ".aalab-lock") continue;
+    if (it->is_directory()) {
+      fs::create_directories(tmp / rel);
+    } else if (it->is_regular_file()) {
+      fs::create_directories((tmp / rel).parent_path());
+      CopyFileChecked(it->path().string(), (tmp / rel).string());
+      ++files;
+    }
+  }
+  WriteTextFile((tmp / "BASELINE.txt").string(), "accepted " + now + " by " + WhoAccepts(a.by) + " from " +
+                                                     fs::absolute(src).string() + "\nwhy: " + a.why + "\n");
+  out.Commit();
+  std::printf("baseline %s replaced by %s (%d files, %zu rows); accepted by %s at %s: %s\n", out.Dir().string().c_str(),
+              a.run_dir.c_str(), files, report.rows.size(), WhoAccepts(a.by).c_str(), now.c_str(), a.why.c_str());
+  if (entry) {
+    entry->accepted = HistoryEntry::Acceptance{WhoAccepts(a.by), now, a.why, out.Dir().string()};
+    // The report already in the history (added by `history add`): that entry is marked.
+    for (const auto& x : entries) {
+      HistoryEntry mine = *entry, theirs = x;
+      for (HistoryEntry* h : {&mine, &theirs}) {
+        h->series = "s";
+        h->commit = "c";
+        h->date = "d";
+        h->source.clear();
+        h->accepted.reset();
+      }
+      if (HistoryLine(mine) != HistoryLine(theirs)) continue;
+      HistoryEntry marked = x;
+      marked.accepted = entry->accepted;
+      std::stringstream in(raw);
+      std::string line, text;
+      for (int n = 1; std::getline(in, line); ++n) text += (n == x.line ? HistoryLine(marked) : line) + "\n";
+      WriteTextFile(a.db, text);
+      std::printf("recorded in %s: line %d (commit %s) marked as accepted\n", a.db.c_str(), x.line, x.commit.c_str());
+      return ToInt(ExitCode::kOk);
+    }
+    CheckSeriesCompatible(entries, *entry);
+    std::string text = raw;
+    if (!text.empty() && text.back() != '\n') text += '\n';
+    text += HistoryLine(*entry) + "\n";
+    WriteTextFile(a.db, text);
+    std::printf("recorded in %s: commit %s added to series '%s' as the accepted baseline\n", a.db.c_str(),
+                entry->commit.c_str(), entry->series.c_str());
+  }
+  return ToInt(ExitCode::kOk);
+}
+
 }  // namespace
 
 void RegisterCompareCommands(CLI::App& app, Commands& commands) {
+  // baseline accept
+  auto* bl = app.add_subcommand("baseline", "manage the baseline that aalab compare gates against");
+  bl->require_subcommand(1);
+  auto* acc = bl->add_subcommand(
+      "accept", "replace the baseline folder with a run's folder (the output rule applies) and record who, when and why");
+  auto ba = std::make_shared<BaselineAcceptArgs>();
+  acc->add_option("run", ba->run_dir, "the run folder to accept (holds report.json)")->required();
+  acc->add_option("--to", ba->to, "the baseline folder (e.g. ci/baseline): replaced only when it is an earlier aalab "
+                                  "output holding nothing else")
+      ->required();
+  acc->add_option("--why", ba->why, "why the numbers moved (recorded in BASELINE.txt and the history)")->required();
+  acc->add_option("--by", ba->by, "who accepts (default: $GITHUB_ACTOR, $USER or $LOGNAME)");
+  acc->add_option("--db", ba->db, "history database (.jsonl) to record the acceptance in (optional)");
+  acc->add_option("--series", ba->series, "history series (with --db)")->capture_default_str();
+  acc->add_option("--commit", ba->commit, "git commit (with --db; default: the report's context.git_commit)");
+  acc->callback([&commands, ba] { commands.action = [ba] { return BaselineAccept(*ba); }; });
+
   // compare
   auto* cmp = app.add_subcommand(
       "compare", "compare CURRENT against BASELINE; exit 0 no regression, 1 regression, 2 could not compare");
@@ -291,6 +457,22 @@ void RegisterCompareCommands(CLI::App& app, Commands& commands) {
   cmp->add_option("--html", ca->html,
                   "also write an HTML page with the changed rows' images (copied into OUT's folder as <name>_files/)");
   cmp->add_flag("--all", ca->all, "list every compared value, not only the changed ones");
+  cmp->add_option("--fail-on", ca->fail_on,
+                  "what makes exit 1: quality (default; time is shown, a time regression is a warning), time, or any")
+      ->capture_default_str();
+  cmp->add_option("--warn-drop-db", ca->warn_drop_db,
+                  "a dB metric's drop beyond this but within --max-drop-db is a warning (exit 0); non-dB metrics warn "
+                  "at half their tolerance")
+      ->capture_default_str();
+  cmp->add_option("--time-floor", ca->time_floor,
+                  "absolute floor: a time change of at most this many ms never counts (e.g. 0.5ms)")
+      ->capture_default_str();
+  cmp->add_option("--map", ca->maps,
+                  "OLD=NEW: compare the baseline's rows of method spec OLD with the current rows of spec NEW (a "
+                  "renamed row or a deliberately changed preset; repeatable)");
+  cmp->add_option("--json", ca->json, "also write the result as JSON (every compared value, verdicts, exit code)");
+  cmp->add_option("--junit", ca->junit, "also write the result as JUnit XML (one test case per scene x method)");
+  cmp->add_flag("--strict", ca->strict, "also fail (exit 1) when the current report's scenes carry capture warnings");
   cmp->footer(kCompareRules);
   cmp->callback([&commands, ca] { commands.action = [ca] { return CompareCommand(*ca); }; });
 
@@ -321,6 +503,8 @@ void RegisterCompareCommands(CLI::App& app, Commands& commands) {
   rep->add_option("--max-time-increase", hr->time_increase, "as in aalab compare ('off' to leave time out)")
       ->capture_default_str();
   rep->add_flag("--time-across-machines", hr->time_across_machines, "as in aalab compare");
+  rep->add_option("--map", hr->maps,
+                  "OLD=NEW: as in aalab compare; consecutive entries' rows of spec OLD and NEW are one trend line");
   rep->callback([&commands, hr] { commands.action = [hr] { return HistoryReport(*hr); }; });
 }
 

@@ -113,6 +113,11 @@ int main(int argc, char** argv) {
     // --help and --version end parsing with CLI11's "success" code: printed as CLI11 does.
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
     std::fprintf(stderr, "aalab: error: %s\n", DescribeParseError(app, e).c_str());
+    // compare and same-results: exit 1 means "regression" / "different", so a usage error
+    // there is "could not compare" (exit 2).
+    for (const CLI::App* sub : app.get_subcommands()) {
+      if (sub->get_name() == "compare" || sub->get_name() == "same-results") return ToInt(ExitCode::kCouldNotCompare);
+    }
     return ToInt(ExitCode::kFailure);
   }
   try {

@@ -19,11 +19,16 @@ namespace {
 constexpr const char* kSweepNotes = R"(Each scene's reference and 1x frame are rendered once and reused for every grid point.
 Grid values go through the method's parameter table (unknown parameter or out-of-range value:
 the method's own error); a parameter given twice is an error; at most 1024 points.
-Objective: mean over scenes (a null 'identical' PSNR counts as +infinity; any other null
-makes the point's mean null). Time: the method's own time (post + resample, plus render unless
-shared with 'none'), median over repeats, mean over scenes. Best: the best mean, ties broken by
-grid order. Pareto front: points no other point beats on both objective and time.
-Writes DIR/sweep.json and DIR/index.html (via DIR.partial).)";
+Objectives (default flip_mean, then edge_psnr_db: squared-error objectives reward blur):
+mean over scenes (a null 'identical' PSNR counts as +infinity; any other null makes the
+point's mean null). Time: the method's own time (post + resample, plus render unless shared
+with 'none'), median over repeats, mean over scenes; its spread (max - min over repeats)
+is the noise. Best per objective: the best mean, ties to the point closest to the defaults,
+then grid order. Pareto front (first objective vs time): times within both points' spreads
+count as equal. Suggested preset: the first objective's best; among ties, one that another
+is faster than beyond the spreads is dropped, then the closest to the defaults. Printed:
+every objective's pick, a NOTE when they disagree, the suggestion against the default point
+per scene. Writes DIR/sweep.json, DIR/index.html and DIR/crops/ (via DIR.partial).)";
 
 }  // namespace
 
@@ -42,16 +47,16 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
       ->required();
   sw->add_option("--objective", a->objectives,
                  "comma-separated metrics to optimise, the first drives the Pareto front, heatmaps and suggested "
-                 "preset (default: edge_psnr_db when computed, else psnr_db)");
+                 "preset (default: flip_mean,edge_psnr_db; psnr_db when edge PSNR is not computed)");
   sw->add_option("--out", a->s.out_dir, "output folder")->capture_default_str();
   sw->add_option("--size", a->size, "output size WxH")->capture_default_str();
-  sw->add_option("--ref-spp", a->s.ref_spp, "reference samples per pixel: n*n, n even (4, 16, 64, 256, 1024)")
+  sw->add_option("--ref-spp", a->s.ref_spp, "reference samples per pixel: n*n, n even (4, 16, 64, 256, 1024); default as aalab run")
       ->capture_default_str();
   sw->add_option("--reference", a->s.reference,
                  "sampled (--ref-spp stratified samples) or exact (closed-form coverage; flat unlit orthographic scenes)")
       ->capture_default_str();
   sw->add_option("--seed", a->s.seed, "jitter seed")->capture_default_str();
-  sw->add_option("--repeat", a->s.repeat, "timed repeats after one warm-up")->capture_default_str();
+  sw->add_option("--repeat", a->s.repeat, "timed repeats after one warm-up (default as aalab run; 3+ gives the time spread the suggestion uses)")->capture_default_str();
   sw->add_option("--threads", a->s.threads, "worker threads (0 = all hardware threads)")->capture_default_str();
   sw->add_option("--viewing", a->s.viewing,
                  "viewing condition PRESET[:key=value,...] for FLIP (default: 'default', 67 px/deg; aalab list viewing)");

@@ -4,6 +4,8 @@
 #include "harness/run/sweep.h"
 
 #include <algorithm>
+#include <cctype>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -51,6 +53,65 @@ void Progress(bool quiet, int done, int total, const std::string& what, const St
   const double eta = done > 0 ? elapsed / done * (total - done) : 0.0;
   std::fprintf(stderr, "[%4d/%d] %-52s elapsed %6.1fs  eta %6.1fs\n", done, total, what.c_str(), elapsed, eta);
   std::fflush(stderr);
+}
+
+// The pixels of window [x, y, w, h] (clipped to the image).
+Image8 CropImage(const Image8& img, const std::array<int, 4>& win) {
+  const int x0 = std::clamp(win[0], 0, img.Width()), y0 = std::clamp(win[1], 0, img.Height());
+  const int w = std::clamp(win[2], 0, img.Width() - x0), h = std::clamp(win[3], 0, img.Height() - y0);
+  Image8 out(std::max(w, 1), std::max(h, 1), img.Channels());
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      for (int c = 0; c < img.Channels(); ++c) out.At(x, y, c) = img.At(x0 + x, y0 + y, c);
+    }
+  }
+  return out;
+}
+
+// Writes crops/<scene>/reference-w<k>.png and crops/<scene>/p<point>-w<k>.png for the default,
+// the suggestion, each objective's pick and the grid's first and last points (one file per
+// point; its roles joined), and lists them in res->crops.
+void WriteSweepCrops(SweepResult* res, const std::vector<std::vector<std::vector<Image8>>>& point_crops,
+                     const std::vector<std::vector<Image8>>& reference_crops, const fs::path& dir) {
+  std::vector<std::pair<size_t, std::string>> roles;
+  auto add = [&roles](size_t p, const std::string& role) {
+    for (auto& [q, r] : roles) {
+      if (q == p) {
+        r += ", " + role;
+        return;
+      }
+    }
+    roles.emplace_back(p, role);
+  };
+  if (res->default_point) add(*res->default_point, "default");
+  if (res->suggested) add(*res->suggested, "suggested");
+  for (const auto& o : res->objectives) {
+    if (res->best.count(o)) add(res->best.at(o), "best " + o);
+  }
+  if (!res->points.empty()) {
+    add(0, "extreme " + JoinOverrides(res->points.front().overrides));
+    add(res->points.size() - 1, "extreme " + JoinOverrides(res->points.back().overrides));
+  }
+  res->crops.clear();
+  for (size_t si = 0; si < point_crops.size() && si < res->report.scenes.size(); ++si) {
+    const std::string& scene = res->report.scenes[si].name;
+    std::string folder;  // scene names may be paths: keep letters, digits, '-', '_', '.'
+    for (char c : scene) folder += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ? c : '_';
+    folder = "s" + std::to_string(si) + "-" + folder;
+    fs::create_directories(dir / "crops" / folder);
+    for (size_t k = 0; k < reference_crops[si].size(); ++k) {
+      const std::string rel = "crops/" + folder + "/reference-w" + std::to_string(k) + ".png";
+      WriteImage8((dir / rel).string(), reference_crops[si][k]);
+      res->crops.push_back({scene, "reference", "", static_cast<int>(k), rel});
+    }
+    for (const auto& [p, role] : roles) {
+      for (size_t k = 0; k < point_crops[si][p].size(); ++k) {
+        const std::string rel = "crops/" + folder + "/p" + std::to_string(p) + "-w" + std::to_string(k) + ".png";
+        WriteImage8((dir / rel).string(), point_crops[si][p][k]);
+        res->crops.push_back({scene, role, res->points[p].spec, static_cast<int>(k), rel});
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -151,8 +212,10 @@ std::vector<std::string> ExpandGrid(const std::string& base_spec, std::vector<Gr
   return specs;
 }
 
-std::vector<size_t> ParetoFront(const std::vector<double>& t, const std::vector<std::optional<double>>& q, Better better) {
+std::vector<size_t> ParetoFront(const std::vector<double>& t, const std::vector<std::optional<double>>& q, Better better,
+                                const std::vector<double>& noise) {
   AALAB_CHECK(t.size() == q.size(), "one time per quality");
+  AALAB_CHECK(noise.empty() || noise.size() == t.size(), "one noise per time");
   auto at_least = [better](double a, double b) { return better == Better::kHigher ? a >= b : a <= b; };
   auto strictly = [better](double a, double b) { return better == Better::kHigher ? a > b : a < b; };
   std::vector<size_t> front;
@@ -161,7 +224,13 @@ std::vector<size_t> ParetoFront(const std::vector<double>& t, const std::vector<
     bool dominated = false;
     for (size_t j = 0; j < t.size() && !dominated; ++j) {
       if (j == i || !q[j]) continue;
-      dominated = t[j] <= t[i] && at_least(*q[j], *q[i]) && (t[j] < t[i] || strictly(*q[j], *q[i]));
+      // With noise: "as fast" is within the two points' spreads, "faster" beyond them. An
+      // unknown spread (NaN: fewer than 2 repeats) lets time rank only points of different
+      // quality: of two equally good points neither is "faster" on one sample.
+      const bool unknown = !noise.empty() && (std::isnan(noise[i]) || std::isnan(noise[j]));
+      const double n = noise.empty() || unknown ? 0.0 : noise[i] + noise[j];
+      const bool faster = !unknown && t[j] < t[i] - n;
+      dominated = t[j] <= t[i] + n && at_least(*q[j], *q[i]) && (faster || strictly(*q[j], *q[i]));
     }
     if (!dominated) front.push_back(i);
   }
@@ -232,9 +301,13 @@ SweepResult RunSweep(const SweepSettings& s) {
   };
   res.objectives = s.objectives;
   if (res.objectives.empty()) {
-    res.objectives = {is_produced("edge_psnr_db") ? "edge_psnr_db" : "psnr_db"};
-    if (res.objectives[0] != "edge_psnr_db") {
-      res.objective_note = "objective psnr_db: the default edge_psnr_db is not computed by this build";
+    // FLIP first: edge PSNR (a mean squared error) is lowest for the conditional mean, so it
+    // rewards blur; FLIP's feature term penalises lost edges (docs/regression.md). Edge PSNR
+    // second, so its pick and any disagreement are shown.
+    if (is_produced("flip_mean")) res.objectives.push_back("flip_mean");
+    res.objectives.push_back(is_produced("edge_psnr_db") ? "edge_psnr_db" : "psnr_db");
+    if (res.objectives[0] != "flip_mean") {
+      res.objective_note = "objective " + res.objectives[0] + ": the default flip_mean is not computed by this build";
     }
   }
   for (size_t i = 0; i < res.objectives.size(); ++i) {
@@ -298,6 +371,11 @@ SweepResult RunSweep(const SweepSettings& s) {
   int done = 0;
   Stopwatch clock;
   report.rows.reserve(scenes.size() * share.size());
+  // Crops of every point's output in the scene's crop windows (small; the sweep writes those of
+  // the default, the suggestion, each objective's pick and the grid's extremes), and of the
+  // reference. A shard keeps none: the merge writes no crops.
+  std::vector<std::vector<std::vector<Image8>>> point_crops;  // [scene][point][window]
+  std::vector<std::vector<Image8>> reference_crops;           // [scene][window]
   for (auto& source : scenes) {
     if (share.empty()) break;  // a shard beyond the grid's points: nothing to render
     const std::string name = source.Name();
@@ -306,8 +384,18 @@ SweepResult RunSweep(const SweepSettings& s) {
     if (prepared->tracer) ++res.reference_renders;  // an image-scene view renders nothing
     report.scenes.push_back(prepared->info);
     Progress(s.quiet, ++done, total, name + " reference", clock);
+    const auto& windows = prepared->info.crops;
+    if (!s.shard.Active()) {
+      point_crops.emplace_back(plans.size());
+      reference_crops.emplace_back();
+      const Image8 ref8 = ToUnorm8(prepared->ref.image);
+      for (const auto& w : windows) reference_crops.back().push_back(CropImage(ref8, w));
+    }
     for (size_t p : share) {
       MethodOutput mo = RunMethod(*prepared, plans[p], s.seed, s.repeat);
+      if (!s.shard.Active()) {
+        for (const auto& w : windows) point_crops.back()[p].push_back(CropImage(mo.output, w));
+      }
       report.rows.push_back(std::move(mo.row));
       res.row_point.push_back(p);
       Progress(s.quiet, ++done, total, name + " " + plans[p].spec, clock);
@@ -321,6 +409,7 @@ SweepResult RunSweep(const SweepSettings& s) {
     WriteTextFile((tmp / "sweep.json").string(), SweepToJson(res).dump(2) + "\n");
   } else {
     SummarizeSweep(&res, plans);
+    WriteSweepCrops(&res, point_crops, reference_crops, tmp);
     WriteTextFile((tmp / "sweep.json").string(), SweepToJson(res).dump(2) + "\n");
     WriteTextFile((tmp / "index.html").string(), SweepHtml(res));
   }
@@ -368,6 +457,7 @@ void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
   res.best.clear();
   res.best_ties.clear();
   res.suggested_preset.clear();
+  std::vector<bool> noise_known;
   for (size_t p = 0; p < plans.size(); ++p) {
     SweepPoint pt;
     pt.spec = plans[p].spec;
@@ -377,21 +467,31 @@ void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
       }
     }
     for (const auto& o : res.objectives) pt.objectives[o] = MeanOverScenes(per_point[p], o);
-    double t = 0;
-    for (const ResultRow* r : per_point[p]) t += MethodTime(*r).median_ms;
-    pt.mean_time_ms = per_point[p].empty() ? 0.0 : t / static_cast<double>(per_point[p].size());
+    double t = 0, spread = 0;
+    bool measured = true;  // every scene timed at least twice: a spread to go by
+    for (const ResultRow* r : per_point[p]) {
+      const Timing mt = MethodTime(*r);
+      t += mt.median_ms;
+      spread += mt.max_ms - mt.min_ms;
+      measured = measured && mt.samples_ms.size() >= 2;
+    }
+    const double n = static_cast<double>(per_point[p].size());
+    pt.mean_time_ms = per_point[p].empty() ? 0.0 : t / n;
+    pt.time_spread_ms = per_point[p].empty() ? 0.0 : spread / n;
+    noise_known.push_back(measured && !per_point[p].empty());
     res.points.push_back(pt);
   }
   const std::string& primary = res.objectives.front();
   const Better primary_dir = *MetricDirection(primary);
+  std::vector<double> times, noise;
+  for (size_t p = 0; p < res.points.size(); ++p) {
+    times.push_back(res.points[p].mean_time_ms);
+    noise.push_back(noise_known[p] ? res.points[p].time_spread_ms : std::numeric_limits<double>::quiet_NaN());
+  }
   {
-    std::vector<double> t;
     std::vector<std::optional<double>> q;
-    for (const auto& pt : res.points) {
-      t.push_back(pt.mean_time_ms);
-      q.push_back(pt.objectives.at(primary).mean);
-    }
-    res.pareto_front = ParetoFront(t, q, primary_dir);
+    for (const auto& pt : res.points) q.push_back(pt.objectives.at(primary).mean);
+    res.pareto_front = ParetoFront(times, q, primary_dir, noise);
     for (size_t i : res.pareto_front) res.points[i].pareto = true;
   }
   // Ties go to the point closest to the preset it sweeps from (--method: its defaults and
@@ -417,7 +517,90 @@ void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
       res.best_ties[o] = ties;
     }
   }
-  if (res.best.count(primary)) res.suggested_preset = res.points[res.best.at(primary)].spec;
+  // The suggestion: the best mean of the first objective; among tied points, those no tied
+  // point is faster than beyond both points' time spreads (so the suggestion is on the
+  // noise-aware front), then the closest to the defaults, then grid order.
+  if (res.best.count(primary)) {
+    const auto best_mean = res.points[res.best.at(primary)].objectives.at(primary).mean;
+    std::vector<size_t> tied;
+    for (size_t p = 0; p < res.points.size(); ++p) {
+      if (res.points[p].objectives.at(primary).mean == best_mean) tied.push_back(p);
+    }
+    std::optional<size_t> pick;
+    for (size_t p : tied) {
+      bool slower = false;
+      for (size_t q : tied) {
+        // Time ranks tied points only when both spreads are measured (>= 2 repeats).
+        slower = slower || (!std::isnan(noise[p]) && !std::isnan(noise[q]) && times[q] < times[p] - (noise[p] + noise[q]));
+      }
+      if (slower) continue;
+      if (!pick || distance[p] < distance[*pick]) pick = p;
+    }
+    AALAB_CHECK(pick.has_value(), "the fastest tied point is never slower than another");
+    AALAB_CHECK(res.points[*pick].pareto, "the suggestion lies on the noise-aware front");
+    res.suggested = *pick;
+    res.suggested_preset = res.points[*pick].spec;
+    res.suggestion_rule = "the best " + primary + " mean" +
+                          (tied.size() > 1 ? " (" + std::to_string(tied.size()) +
+                                                 " points tie: the faster beyond the repeats' time spread, then the "
+                                                 "closest to the defaults)"
+                                           : std::string()) +
+                          "; on the " + primary + " vs time front, times within the repeats' spread counted as equal";
+  }
+  // The shipped default: the point whose swept values are the --method's own.
+  res.default_point.reset();
+  res.default_note.clear();
+  for (size_t p = 0; p < res.points.size(); ++p) {
+    if (distance[p] == 0.0 && !res.default_point) res.default_point = p;
+  }
+  if (!res.default_point) {
+    std::string vals;
+    for (const auto& a : res.axes) {
+      for (const auto& [k, v] : defaults) {
+        if (k == a.name) vals += (vals.empty() ? "" : ",") + k + "=" + v;
+      }
+    }
+    res.default_note = "the defaults (" + vals + ") are not on the grid: add them to compare the suggestion with them";
+  }
+  // Objectives that disagree with the first one.
+  res.disagreements.clear();
+  if (res.best.count(primary)) {
+    for (const auto& o : res.objectives) {
+      if (o == primary || !res.best.count(o)) continue;
+      const size_t pick = *res.suggested, other = res.best.at(o);
+      if (res.points[pick].objectives.at(o).mean == res.points[other].objectives.at(o).mean) continue;  // tied there
+      res.disagreements.push_back(o + " picks " + JoinOverrides(res.points[other].overrides) + " (" +
+                                  SweepMeanText(o, res.points[other].objectives.at(o)) + "), " + primary + " picks " +
+                                  JoinOverrides(res.points[pick].overrides) + " (" + o + " there " +
+                                  SweepMeanText(o, res.points[pick].objectives.at(o)) +
+                                  "): the objectives disagree, look at the crops before choosing");
+    }
+  }
+  // Per scene: the suggestion against the default.
+  res.scene_changes.clear();
+  if (res.default_point && res.suggested) {
+    for (const auto& sc : report.scenes) {
+      const ResultRow *d = nullptr, *g = nullptr;
+      for (size_t i = 0; i < report.rows.size(); ++i) {
+        if (report.rows[i].scene != sc.name) continue;
+        if (res.row_point[i] == *res.default_point) d = &report.rows[i];
+        if (res.row_point[i] == *res.suggested) g = &report.rows[i];
+      }
+      if (!d || !g) continue;
+      SweepSceneChange c;
+      c.scene = sc.name;
+      for (const auto& o : res.objectives) {
+        const ObjectiveMean a = MeanOverScenes({d}, o), b = MeanOverScenes({g}, o);
+        c.values.push_back({o, a.mean, b.mean});
+      }
+      const Timing td = MethodTime(*d), tg = MethodTime(*g);
+      c.default_ms = td.median_ms;
+      c.suggested_ms = tg.median_ms;
+      c.default_spread_ms = td.max_ms - td.min_ms;
+      c.suggested_spread_ms = tg.max_ms - tg.min_ms;
+      res.scene_changes.push_back(c);
+    }
+  }
 }
 
 std::string SweepSummaryText(const SweepResult& r) {
@@ -448,11 +631,36 @@ std::string SweepSummaryText(const SweepResult& r) {
     o << "  " << FormatFixed(p.mean_time_ms, 3) << " ms  " << SweepMeanText(primary, p.objectives.at(primary)) << "  "
       << JoinOverrides(p.overrides) << "\n";
   }
+  for (const auto& d : r.disagreements) o << "NOTE: " << d << "\n";
   if (r.suggested_preset.empty()) {
     o << "suggested preset: none (no point has a defined " << primary << ")\n";
   } else {
-    o << "suggested preset: " << r.suggested_preset << "\n";
+    o << "suggested preset: " << r.suggested_preset << " (" << r.suggestion_rule << ")\n";
   }
+  if (!r.default_point) {
+    o << "against the default: " << r.default_note << "\n";
+  } else if (r.suggested && *r.suggested == *r.default_point) {
+    o << "against the default: the suggestion is the default (" << r.points[*r.default_point].spec << ")\n";
+  } else {
+    o << "against the default (" << JoinOverrides(r.points[*r.default_point].overrides) << "), per scene:\n";
+    for (const auto& c : r.scene_changes) {
+      o << "  " << c.scene << ":";
+      for (const auto& v : c.values) {
+        o << " " << v.objective << " ";
+        if (v.at_default && v.suggested) {
+          const double d = *v.suggested - *v.at_default;
+          o << SweepValueText(v.objective, *v.at_default) << " -> " << SweepValueText(v.objective, *v.suggested) << " ("
+            << (d >= 0 ? "+" : "") << SweepValueText(v.objective, d) << ")";
+        } else {
+          o << "null";
+        }
+        o << ";";
+      }
+      o << " time " << FormatFixed(c.default_ms, 3) << " -> " << FormatFixed(c.suggested_ms, 3) << " ms (spreads "
+        << FormatFixed(c.default_spread_ms, 3) << ", " << FormatFixed(c.suggested_spread_ms, 3) << ")\n";
+    }
+  }
+  if (!r.crops.empty()) o << "crops: " << r.crops.size() << " images in crops/ (default, suggested, each objective's pick, extremes)\n";
   return o.str();
 }
 

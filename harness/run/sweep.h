@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/run/runner.h"
 #include "harness/run/shard.h"
 #include "methods/method.h"
 #include "reports/compare.h"
@@ -28,12 +29,14 @@ struct SweepSettings {
   std::vector<std::string> scenes;      ///< names or paths (required)
   std::string method;                   ///< base spec; may override parameters not in the grid
   std::vector<std::string> grid;        ///< one "name=v1,v2,..." per --grid
-  std::vector<std::string> objectives;  ///< empty: edge_psnr_db when a metric produces it, else psnr_db
+  std::vector<std::string> objectives;  ///< empty: flip_mean then edge_psnr_db (psnr_db when edge PSNR is not computed)
   int width = 960, height = 540;
-  int ref_spp = 256;
+  /// `run`'s defaults (harness/run/runner.h), so a sweep and a run at their defaults measure
+  /// the same way and their reports can be compared.
+  int ref_spp = RunSettings{}.ref_spp;
   std::string reference = "sampled";  ///< "sampled" or "exact" (as `run --reference`)
   uint64_t seed = 1;
-  int repeat = 3;
+  int repeat = RunSettings{}.repeat;
   int threads = 0;
   std::string out_dir = "sweep";
   bool quiet = false;
@@ -56,9 +59,13 @@ std::vector<std::string> ExpandGrid(const std::string& base_spec, std::vector<Gr
 
 /// Indices of the Pareto-optimal points (no other point is at least as fast and at least as
 /// good, and strictly better in one), sorted by time then index. Points with an empty quality
-/// are excluded; +inf quality (identical) is the best possible.
+/// are excluded; +inf quality (identical) is the best possible. With `noise` (one time spread
+/// per point), two times within the sum of their points' spreads count as equal: j dominates
+/// i when t_j <= t_i + n and q_j is at least as good, and t_j < t_i − n or q_j is better. A
+/// NaN spread (unknown: one repeat) makes n = 0 and never lets time alone rank two equally
+/// good points (both stay on the front).
 std::vector<size_t> ParetoFront(const std::vector<double>& time_ms, const std::vector<std::optional<double>>& quality,
-                                Better better);
+                                Better better, const std::vector<double>& noise = {});
 
 /// How far a point lies from the method's defaults: over its swept parameters, |value −
 /// default| divided by the span of the axis's values and the default (numbers), or 0 / 1
@@ -79,8 +86,11 @@ SweepResult RunSweep(const SweepSettings& settings);
 /// `*cached` gets the number already cached.
 int RenderSweepReferences(const SweepSettings& settings, int* cached = nullptr);
 
-/// Fills points, the Pareto front, best and suggested preset from result->report.rows and
-/// row_point; `plans[p]` is grid point p (its spec and parameters).
+/// Fills points, the noise-aware Pareto front, every objective's best, the suggested point
+/// (the first objective's best; ties: faster beyond the time spreads, then closest to the
+/// defaults), the default point, the objectives' disagreements and the per-scene change of
+/// the suggestion against the default, from result->report.rows and row_point; `plans[p]` is
+/// grid point p (its spec and parameters).
 void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans);
 
 /// sweep.json: the summary (absent for a shard), then scenes and rows in the report schema,

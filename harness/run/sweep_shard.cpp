@@ -68,6 +68,7 @@ Json SweepToJson(const SweepResult& res) {
     for (const auto& o : res.objectives) obj[o] = mean_json(pt.objectives.at(o));
     x["objectives"] = obj;
     x["mean_time_ms"] = pt.mean_time_ms;
+    x["time_spread_ms"] = pt.time_spread_ms;
     x["pareto"] = pt.pareto;
     points.push_back(x);
   }
@@ -83,6 +84,25 @@ Json SweepToJson(const SweepResult& res) {
   }
   j["best"] = best;
   j["suggested_preset"] = res.suggested_preset.empty() ? Json(nullptr) : Json(res.suggested_preset);
+  j["suggested_point"] = res.suggested ? Json(*res.suggested) : Json(nullptr);
+  j["suggestion_rule"] = res.suggestion_rule;
+  j["default_point"] = res.default_point ? Json(*res.default_point) : Json(nullptr);
+  if (!res.default_note.empty()) j["default_note"] = res.default_note;
+  j["disagreements"] = res.disagreements;
+  Json changes = Json::array();
+  for (const auto& c : res.scene_changes) {
+    Json vals = Json::object();
+    auto num = [](const std::optional<double>& v) {
+      return v && std::isfinite(*v) ? Json(*v) : v ? Json("inf") : Json(nullptr);
+    };
+    for (const auto& v : c.values) vals[v.objective] = {{"default", num(v.at_default)}, {"suggested", num(v.suggested)}};
+    changes.push_back({{"scene", c.scene}, {"objectives", vals}, {"default_ms", c.default_ms},
+                       {"suggested_ms", c.suggested_ms}, {"default_spread_ms", c.default_spread_ms},
+                       {"suggested_spread_ms", c.suggested_spread_ms}});
+  }
+  j["scene_changes"] = changes;
+  // The crops (crops/, shown on the page) are not listed here: a merged sweep has none, and
+  // its sweep.json must equal the single sweep's (aalab same-results).
   j["scenes"] = rep["scenes"];
   Json rows = rep["rows"];
   for (size_t i = 0; i < rows.size(); ++i) rows[i]["point"] = res.row_point[i];

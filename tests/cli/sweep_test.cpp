@@ -45,6 +45,29 @@ TEST(Sweep, ParetoFrontByHand) {
   EXPECT_EQ(ParetoFront(t, q, Better::kHigher), (std::vector<size_t>{1, 5, 3, 4}));
 }
 
+TEST(Sweep, ParetoFrontCountsTimesWithinTheSpreadsAsEqual) {
+  // time 1.0, 1.1, 2.0; quality 30, 31, 31; spreads 0.2, 0.2, 0.1.
+  const std::vector<double> t = {1.0, 1.1, 2.0}, noise = {0.2, 0.2, 0.1};
+  const std::vector<std::optional<double>> q = {30.0, 31.0, 31.0};
+  // Exact: 0 is the fastest, 1 the best; 2 is dominated by 1.
+  EXPECT_EQ(ParetoFront(t, q, Better::kHigher), (std::vector<size_t>{0, 1}));
+  // With noise: 1 is better and slower than 0 by 0.1 ms < 0.2 + 0.2, so it dominates 0; 2 is
+  // slower than 1 by 0.9 > 0.3.
+  EXPECT_EQ(ParetoFront(t, q, Better::kHigher, noise), (std::vector<size_t>{1}));
+  // With larger spreads 2 is as fast as 1 (0.9 < 0.5 + 0.5): both stay.
+  EXPECT_EQ(ParetoFront(t, q, Better::kHigher, {0.2, 0.5, 0.5}), (std::vector<size_t>{1, 2}));
+  // Unknown spreads (one repeat): time ranks points of different quality (exactly), never
+  // two equally good ones.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(ParetoFront(t, q, Better::kHigher, {nan, nan, nan}), (std::vector<size_t>{0, 1, 2}));
+}
+
+TEST(Sweep, DefaultsAreRuns) {
+  // One set of default reference spp and repeats for run and sweep.
+  EXPECT_EQ(SweepSettings{}.ref_spp, RunSettings{}.ref_spp);
+  EXPECT_EQ(SweepSettings{}.repeat, RunSettings{}.repeat);
+}
+
 TEST(Sweep, MeanOverScenes) {
   ResultRow a, b;
   a.scene = "wedges";

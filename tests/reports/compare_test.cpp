@@ -1,5 +1,6 @@
 // compare: the rules of reports/compare.h on reports built in code with hand-picked numbers.
 #include "reports/compare.h"
+#include "reports/compare_export.h"
 #include "reports/compare_page.h"
 #include "reports/compare_text.h"
 
@@ -108,10 +109,11 @@ TEST(Compare, QualityDropBeyondThresholdIsARegression) {
   o.max_drop_db = 0.25;
   r = CompareReports(a, Rep({Row("wedges", "fxaa1-p3", 29.75, "h2")}), o);
   EXPECT_EQ(r.ExitCode(), 0);
-  EXPECT_EQ(Find(r, "wedges", "fxaa1-p3", "psnr_db")->verdict, Verdict::kWithin);
-  // A small drop within the tolerance, and an improvement.
+  // (beyond the 0.02 dB warn level: a warning, which never fails)
+  EXPECT_EQ(Find(r, "wedges", "fxaa1-p3", "psnr_db")->verdict, Verdict::kWarning);
+  // A small drop within the tolerance (a warning: beyond 0.02 dB), and an improvement.
   r = CompareReports(a, Rep({Row("wedges", "fxaa1-p3", 29.9375, "h2")}), NoTime());
-  EXPECT_EQ(Find(r, "wedges", "fxaa1-p3", "psnr_db")->verdict, Verdict::kWithin);
+  EXPECT_EQ(Find(r, "wedges", "fxaa1-p3", "psnr_db")->verdict, Verdict::kWarning);
   EXPECT_EQ(r.ExitCode(), 0);
   r = CompareReports(a, Rep({Row("wedges", "fxaa1-p3", 30.5, "h2")}), NoTime());
   EXPECT_EQ(Find(r, "wedges", "fxaa1-p3", "psnr_db")->verdict, Verdict::kImproved);
@@ -294,46 +296,191 @@ TEST(Compare, NonDbMetricsNeedATolerance) {
   auto verdict = [&](double cur) {
     return Find(CompareReports(with_mse(0.01, "a"), with_mse(cur, "b"), o), "wedges", "fxaa1-p3", "mse")->verdict;
   };
-  EXPECT_EQ(verdict(0.0104), Verdict::kWithin);
+  EXPECT_EQ(verdict(0.0104), Verdict::kWarning);  // beyond half the tolerance (2.5%): a warning
+  EXPECT_EQ(verdict(0.0102), Verdict::kWithin);
   EXPECT_EQ(verdict(0.0106), Verdict::kRegression);
   EXPECT_EQ(verdict(0.0094), Verdict::kImproved);
   // Absolute tolerance for every non-dB metric.
   o.metric_change = ParseMetricChangeOption("0.001");
-  EXPECT_EQ(verdict(0.0109), Verdict::kWithin);
+  EXPECT_EQ(verdict(0.0109), Verdict::kWarning);
+  EXPECT_EQ(verdict(0.0104), Verdict::kWithin);
   EXPECT_EQ(verdict(0.0111), Verdict::kRegression);
 }
 
+CompareOptions GateAny() {
+  CompareOptions o;
+  o.fail_on = CompareOptions::FailOn::kAny;
+  return o;
+}
+
 TEST(Compare, TimeIncreaseWithinTheRepeatsSpreadIsNoise) {
-  auto time_verdict = [](std::vector<double> base, std::vector<double> cur, CompareOptions o = CompareOptions{}) {
+  auto time_verdict = [](std::vector<double> base, std::vector<double> cur, CompareOptions o = GateAny()) {
     const CompareResult r = CompareReports(Rep({Row("wedges", "fxaa1-p3", 22.0, "h", base)}),
                                            Rep({Row("wedges", "fxaa1-p3", 22.0, "h", cur)}), o);
     return Find(r, "wedges", "fxaa1-p3", "time_ms")->verdict;
   };
-  // Median 1.1 -> 1.35 (+0.25 > 10% = 0.11); spreads 0.2 and 0.1: regression.
-  EXPECT_EQ(time_verdict({1.0, 1.1, 1.2}, {1.3, 1.35, 1.4}), Verdict::kRegression);
+  // Median 1.1 -> 2.05 (+0.95): beyond 10% (0.11), the spreads' sum (0.2 + 0.1) and the
+  // 0.5 ms floor: regression.
+  EXPECT_EQ(time_verdict({1.0, 1.1, 1.2}, {2.0, 2.05, 2.1}), Verdict::kRegression);
+  // +0.25 ms is under the 0.5 ms floor however steady the runs are ...
+  EXPECT_EQ(time_verdict({1.0, 1.1, 1.2}, {1.3, 1.35, 1.4}), Verdict::kWithin);
+  // ... and without a floor, under the spreads' sum (0.2 + 0.1 = 0.3 ms).
+  CompareOptions no_floor = GateAny();
+  no_floor.time_floor_ms = 0;
+  EXPECT_EQ(time_verdict({1.0, 1.1, 1.2}, {1.3, 1.35, 1.4}, no_floor), Verdict::kWithin);
+  // +0.45 ms > 0.3 ms: regression without the floor.
+  EXPECT_EQ(time_verdict({1.0, 1.1, 1.2}, {1.5, 1.55, 1.6}, no_floor), Verdict::kRegression);
   // Same medians, but the baseline's repeats spread over 0.6 ms (1.0..1.6): noise.
-  EXPECT_EQ(time_verdict({1.0, 1.1, 1.6}, {1.3, 1.35, 1.4}), Verdict::kWithin);
-  // ... or the current run's (1.2..1.9).
-  EXPECT_EQ(time_verdict({1.0, 1.1, 1.2}, {1.2, 1.35, 1.9}), Verdict::kWithin);
+  EXPECT_EQ(time_verdict({1.0, 1.1, 1.6}, {1.5, 1.55, 1.6}, no_floor), Verdict::kWithin);
+  // ... or the current run's (1.2..2.1).
+  EXPECT_EQ(time_verdict({1.0, 1.1, 1.2}, {1.2, 1.55, 2.1}, no_floor), Verdict::kWithin);
   // +5% is below the 10% threshold however steady the runs are.
   EXPECT_EQ(time_verdict({10.0, 10.0, 10.0}, {10.5, 10.5, 10.5}), Verdict::kWithin);
-  // Faster beyond both: improved.
-  EXPECT_EQ(time_verdict({1.3, 1.35, 1.4}, {1.0, 1.1, 1.2}), Verdict::kImproved);
+  // Faster beyond everything: improved.
+  EXPECT_EQ(time_verdict({2.0, 2.05, 2.1}, {1.0, 1.1, 1.2}), Verdict::kImproved);
   // Absolute threshold in ms.
-  CompareOptions o;
-  o.time_increase = ParseTimeThreshold("0.3ms", "--max-time-increase");
-  EXPECT_EQ(time_verdict({1.0, 1.1, 1.2}, {1.3, 1.35, 1.4}, o), Verdict::kWithin);
-  o.time_increase = ParseTimeThreshold("0.2ms", "--max-time-increase");
-  EXPECT_EQ(time_verdict({1.0, 1.1, 1.2}, {1.3, 1.35, 1.4}, o), Verdict::kRegression);
+  CompareOptions o = no_floor;
+  o.time_increase = ParseTimeThreshold("0.5ms", "--max-time-increase");
+  EXPECT_EQ(time_verdict({1.0, 1.1, 1.2}, {1.5, 1.55, 1.6}, o), Verdict::kWithin);
+  o.time_increase = ParseTimeThreshold("0.4ms", "--max-time-increase");
+  EXPECT_EQ(time_verdict({1.0, 1.1, 1.2}, {1.5, 1.55, 1.6}, o), Verdict::kRegression);
   EXPECT_THROW(ParseTimeThreshold("10", "--max-time-increase"), UserError);
   EXPECT_THROW(ParseTimeThreshold("x%", "--max-time-increase"), UserError);
   EXPECT_THROW(ParseTimeThreshold("-5%", "--max-time-increase"), UserError);
-  // Bit-identical outputs: quality unchanged at once, time still checked.
-  const CompareResult r = CompareReports(Rep({Row("wedges", "fxaa1-p3", 22.0, "same", {1.0, 1.1, 1.2})}),
-                                         Rep({Row("wedges", "fxaa1-p3", 22.0, "same", {1.3, 1.35, 1.4})}), CompareOptions{});
+  // Bit-identical outputs: quality unchanged at once, time still checked when gated.
+  const Report a = Rep({Row("wedges", "fxaa1-p3", 22.0, "same", {1.0, 1.1, 1.2})});
+  const Report b = Rep({Row("wedges", "fxaa1-p3", 22.0, "same", {2.0, 2.05, 2.1})});
+  CompareResult r = CompareReports(a, b, GateAny());
   EXPECT_TRUE(r.rows[0].bit_identical);
   EXPECT_EQ(r.ExitCode(), 1);
   EXPECT_EQ(r.regressions, 1);
+  // The default gates quality only: the same time regression is a warning, exit 0.
+  r = CompareReports(a, b, CompareOptions{});
+  EXPECT_EQ(r.ExitCode(), 0);
+  EXPECT_EQ(r.regressions, 0);
+  EXPECT_EQ(r.warnings, 1);
+  const CompareLine* l = Find(r, "wedges", "fxaa1-p3", "time_ms");
+  EXPECT_EQ(l->verdict, Verdict::kWarning);
+  EXPECT_FALSE(l->gated);
+  EXPECT_NE(l->note.find("not gated (--fail-on quality)"), std::string::npos) << l->note;
+  // --fail-on time: a quality regression is then a warning.
+  CompareOptions t;
+  t.fail_on = CompareOptions::FailOn::kTime;
+  r = CompareReports(Rep({Row("wedges", "fxaa1-p3", 30.0, "h1")}), Rep({Row("wedges", "fxaa1-p3", 29.0, "h2")}), t);
+  EXPECT_EQ(r.ExitCode(), 0);
+  EXPECT_EQ(Find(r, "wedges", "fxaa1-p3", "psnr_db")->verdict, Verdict::kWarning);
+  EXPECT_EQ(ParseFailOn("any"), CompareOptions::FailOn::kAny);
+  EXPECT_THROW(ParseFailOn("all"), UserError);
+  // Gating time with time off is a contradiction.
+  CompareOptions bad = GateAny();
+  bad.check_time = false;
+  EXPECT_THROW(ValidateCompareOptions(bad), UserError);
+}
+
+TEST(Compare, WarnLevelBelowTheFailLevel) {
+  const Report a = Rep({Row("wedges", "fxaa1-p3", 30.0, "h1")});
+  // -0.0625 dB: beyond the 0.02 dB warn level, within the 0.1 dB fail level.
+  CompareResult r = CompareReports(a, Rep({Row("wedges", "fxaa1-p3", 29.9375, "h2")}), NoTime());
+  EXPECT_EQ(Find(r, "wedges", "fxaa1-p3", "psnr_db")->verdict, Verdict::kWarning);
+  EXPECT_EQ(r.warnings, 1);
+  EXPECT_EQ(r.ExitCode(), 0);
+  // -0.015625 dB: within both.
+  r = CompareReports(a, Rep({Row("wedges", "fxaa1-p3", 29.984375, "h2")}), NoTime());
+  EXPECT_EQ(Find(r, "wedges", "fxaa1-p3", "psnr_db")->verdict, Verdict::kWithin);
+  // Non-dB metrics warn at half their tolerance: mse 10% tolerance, +6% is a warning.
+  CompareOptions o = NoTime();
+  o.metrics = {"mse"};
+  o.metric_change["mse"] = Threshold{0.10, true};
+  Report m1 = a, m2 = a;
+  m2.rows[0].output_hash = "h2";
+  m2.rows[0].metrics[1].value = *m1.rows[0].metrics[1].value * 1.06;
+  r = CompareReports(m1, m2, o);
+  EXPECT_EQ(Find(r, "wedges", "fxaa1-p3", "mse")->verdict, Verdict::kWarning);
+  m2.rows[0].metrics[1].value = *m1.rows[0].metrics[1].value * 1.04;
+  EXPECT_EQ(Find(CompareReports(m1, m2, o), "wedges", "fxaa1-p3", "mse")->verdict, Verdict::kWithin);
+  // The warn level may not exceed the fail level.
+  o = NoTime();
+  o.warn_drop_db = 0.2;
+  EXPECT_THROW(ValidateCompareOptions(o), UserError);
+}
+
+TEST(Compare, MapComparesRenamedRows) {
+  std::map<std::string, std::string> map;
+  AddSpecMapping("fxaa311-p39=fxaa311-p39:subpix=0", &map);
+  AddSpecMapping("a:x=1,y=2=b:z=3", &map);
+  EXPECT_EQ(map.at("fxaa311-p39"), "fxaa311-p39:subpix=0");
+  EXPECT_EQ(map.at("a:x=1,y=2"), "b:z=3");
+  for (const char* bad : {"fxaa311-p39", "=b", "a=", "a:x=b"}) {
+    std::map<std::string, std::string> m;
+    EXPECT_THROW(AddSpecMapping(bad, &m), UserError) << bad;
+  }
+  EXPECT_THROW(AddSpecMapping("fxaa311-p39=c", &map), UserError);  // mapped twice
+
+  const Report base = Rep({Row("wedges", "none", 20.0, "n"), Row("wedges", "fxaa311-p39", 30.0, "h1")});
+  ResultRow renamed = Row("wedges", "fxaa311-p39:subpix=0", 29.5, "h2");
+  renamed.params.emplace_back("subpix", "0");
+  const Report cur = Rep({Row("wedges", "none", 20.0, "n"), renamed});
+  // Without the map: one missing, one extra row.
+  CompareResult r = CompareReports(base, cur, NoTime());
+  EXPECT_EQ(r.ExitCode(), 2);
+  ASSERT_EQ(r.missing_rows.size(), 1u);
+  EXPECT_EQ(r.missing_rows[0], "wedges / fxaa311-p39");
+  // With it: compared (-0.5 dB: a regression), the parameter change said in a note.
+  CompareOptions o = NoTime();
+  o.map = {{"fxaa311-p39", "fxaa311-p39:subpix=0"}};
+  r = CompareReports(base, cur, o);
+  EXPECT_EQ(r.ExitCode(), 1);
+  const CompareLine* l = Find(r, "wedges", "fxaa311-p39:subpix=0", "psnr_db");
+  ASSERT_NE(l, nullptr);
+  EXPECT_EQ(l->base_spec, "fxaa311-p39");
+  EXPECT_DOUBLE_EQ(*l->delta, -0.5);
+  bool noted = false;
+  for (const auto& n : r.notes) noted = noted || n.find("mapped fxaa311-p39 (baseline) -> fxaa311-p39:subpix=0 (current): parameters subpix (absent) -> 0") != std::string::npos;
+  EXPECT_TRUE(noted);
+  EXPECT_NE(FormatCompareText(r, base, cur, "a", "b", false).find("fxaa311-p39 -> fxaa311-p39:subpix=0"), std::string::npos);
+  // A map naming a row that is not there cannot compare, and lists the specs there are.
+  o.map = {{"fxaa311-p39", "fxaa311-p39:subpix=1"}};
+  r = CompareReports(base, cur, o);
+  EXPECT_EQ(r.ExitCode(), 2);
+  ASSERT_FALSE(r.cannot_compare.empty());
+  EXPECT_NE(r.cannot_compare[0].find("no row of spec 'fxaa311-p39:subpix=1' (its specs: fxaa311-p39:subpix=0, none)"),
+            std::string::npos) << r.cannot_compare[0];
+}
+
+TEST(Compare, StrictFailsOnCaptureWarningsAndMachineReadableResults) {
+  const Report a = Rep({Row("wedges", "fxaa1-p3", 30.0, "h1")});
+  Report b = Rep({Row("wedges", "fxaa1-p3", 29.5, "h2")});
+  b.scenes[0].warnings = {"mean interior bias 0.03"};
+  CompareOptions o = NoTime();
+  o.max_drop_db = 1.0;
+  CompareResult r = CompareReports(a, b, o);
+  EXPECT_EQ(r.ExitCode(), 0);
+  ASSERT_EQ(r.capture_warnings.size(), 1u);
+  EXPECT_EQ(r.capture_warnings[0], "wedges: mean interior bias 0.03");
+  o.strict = true;
+  r = CompareReports(a, b, o);
+  EXPECT_EQ(r.ExitCode(), 1);
+  const auto j = CompareToJson(r, "base.json", "cur.json");
+  EXPECT_EQ(j["exit_code"], 1);
+  EXPECT_EQ(j["verdict"], "regression");
+  EXPECT_EQ(j["fail_on"], "quality");
+  EXPECT_EQ(j["lines"][0]["quantity"], "psnr_db");
+  EXPECT_DOUBLE_EQ(j["lines"][0]["delta"].get<double>(), -0.5);
+  EXPECT_EQ(j["lines"][0]["verdict"], "warning");  // -0.5 dB: beyond 0.02 dB, within 1 dB
+  const std::string x = CompareToJUnit(r, "base.json", "cur.json");
+  EXPECT_NE(x.find("<testsuite name=\"aalab compare\" tests=\"3\" failures=\"1\" errors=\"0\""), std::string::npos) << x;
+  EXPECT_NE(x.find("<testcase classname=\"wedges\" name=\"fxaa1-p3\">"), std::string::npos) << x;
+  EXPECT_NE(x.find("<failure type=\"capture warning\" message=\"wedges: mean interior bias 0.03\"/>"), std::string::npos);
+  // A gated regression is a <failure> of its row; could-not-compare items are <error>s.
+  o.max_drop_db = 0.1;
+  o.strict = false;
+  r = CompareReports(a, Rep({Row("wedges", "fxaa1-p3", 29.5, "h2"), Row("circle", "none", 1.0, "z")}), o);
+  const std::string y = CompareToJUnit(r, "a", "b");
+  EXPECT_NE(y.find("<failure type=\"regression\" message=\"psnr_db 30.000 -&gt; 29.500 (-0.500), threshold -0.100 dB\"/>"),
+            std::string::npos) << y;
+  EXPECT_NE(y.find("<error type=\"could not compare\" message=\"row not in the baseline: circle / none\"/>"),
+            std::string::npos) << y;
+  EXPECT_EQ(CompareToJson(r, "a", "b")["exit_code"], 2);
 }
 
 TEST(Compare, MethodTimeExcludesTheSharedRender) {
@@ -349,7 +496,8 @@ TEST(Compare, MethodTimeExcludesTheSharedRender) {
   a.rows[0] = own;
   b.rows[0] = own;
   b.rows[0].render = T({50.0, 50.0, 50.0});
-  EXPECT_EQ(CompareReports(a, b, CompareOptions{}).ExitCode(), 1);
+  EXPECT_EQ(CompareReports(a, b, GateAny()).ExitCode(), 1);
+  EXPECT_EQ(CompareReports(a, b, CompareOptions{}).ExitCode(), 0);  // time is not gated by default
 }
 
 TEST(Compare, TimeIsNotJudgedAcrossMachines) {
@@ -362,7 +510,7 @@ TEST(Compare, TimeIsNotJudgedAcrossMachines) {
   ASSERT_FALSE(r.notes.empty());
   EXPECT_NE(r.notes[0].find("time not judged"), std::string::npos);
   EXPECT_NE(r.notes[0].find("Other CPU"), std::string::npos);
-  CompareOptions o;
+  CompareOptions o = GateAny();
   o.time_across_machines = true;
   EXPECT_EQ(CompareReports(a, b, o).ExitCode(), 1);
   b.context["cpu"] = "Test CPU";
