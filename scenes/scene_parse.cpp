@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -268,6 +269,14 @@ void AddGltfObject(Scene& s, const JsonField& o, const std::string& base_dir, st
     file.Fail(e.what());
   }
   if (o.Has("motion")) o.Child("motion").Fail("glTF objects do not move yet (animate the camera instead)");
+  // One warning per file for what is loaded but not drawn as written (scenes/gltf_load.h).
+  for (const std::string& note : g.notes) {
+    std::cerr << "aalab: warning: glTF file '" << p.string() << "': " << note << "\n";
+    s.notes.push_back(p.filename().string() + ": " + note);
+  }
+  s.files_read.push_back(p.string());
+  s.files_read.insert(s.files_read.end(), g.files_read.begin(), g.files_read.end());
+  s.load.push_back({p.filename().string(), g.load_seconds, g.texture_bytes, g.texture_bytes8, g.triangles});
   const glm::mat4 m = o.Has("transform") ? ParseTransform(o.Child("transform")) : glm::mat4(1.0f);
   const int mat_base = static_cast<int>(s.materials.size());
   const int img_base = static_cast<int>(s.images.size());
