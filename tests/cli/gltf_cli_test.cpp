@@ -86,7 +86,7 @@ TEST(GltfCli, BadFileIsRefusedAndNothingIsWritten) {
                             (dir / "out.png").string());
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("/objects/0/file"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("buffer 0"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("at /buffers/0/uri"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("gone.bin' not found"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out.png"));
   const CmdResult run = Aalab("run --scenes " + (dir / "scene.json").string() + " --size 32x16 --out " +
