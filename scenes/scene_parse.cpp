@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -273,6 +274,12 @@ void AddGltfObject(Scene& s, const JsonField& o, const std::string& base_dir, st
   for (const std::string& note : g.notes) {
     std::cerr << "aalab: warning: glTF file '" << p.string() << "': " << note << "\n";
     s.notes.push_back(p.filename().string() + ": " + note);
+  }
+  {
+    char line[256];
+    std::snprintf(line, sizeof line, "loaded in %.3f s: %zu triangles, %zu textures (%.1f MB as stored, %.1f MB as RGBA8)",
+                  g.load_seconds, g.triangles, g.images.size(), g.texture_bytes / 1e6, g.texture_bytes8 / 1e6);
+    std::cerr << "aalab: glTF file '" << p.string() << "' " << line << "\n";
   }
   s.files_read.push_back(p.string());
   s.files_read.insert(s.files_read.end(), g.files_read.begin(), g.files_read.end());
