@@ -15,6 +15,7 @@
 #include "harness/io/image_io.h"
 #include "scenes/gltf_load.h"
 #include "scenes/library.h"
+#include "scenes/texture_image.h"
 #include "tests/temp_dir.h"
 
 namespace aalab {
@@ -301,6 +302,66 @@ TEST(GltfLoad, KhronosEngineFromAssimpTestmodels) {
   const GltfContent g = LoadGltf(p);
   EXPECT_GT(g.shapes.size(), 50u);  // hundreds of parts: one shape per primitive instance
   EXPECT_GT(g.triangles, 50000u);
+}
+
+TEST(GltfSampler, FiltersAsOpenGlDefinesThem) {
+  // A 4 × 2 level 0 whose texel (i, j) holds i + 10·j, then levels holding 100, 200 (2 × 1, 1 × 1).
+  MipChain c;
+  MipLevel l0;
+  l0.width = 4;
+  l0.height = 2;
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 4; ++i) l0.texels.push_back(glm::vec4(static_cast<float>(i + 10 * j)));
+  }
+  c.levels.push_back(l0);
+  c.levels.push_back({2, 1, {glm::vec4(100.0f), glm::vec4(100.0f)}});
+  c.levels.push_back({1, 1, {glm::vec4(200.0f)}});
+  const glm::vec2 uv(0.3f, 0.6f);  // texel (⌊1.2⌋, ⌊1.2⌋) = (1, 1) → 11
+  auto with_lambda = [](float lambda) {  // ρ = 2^λ texels per step along x (W = 4)
+    UvDerivs d;
+    d.dx = glm::vec2(std::exp2(lambda) / 4.0f, 0.0f);
+    d.dy = glm::vec2(0.0f, 1e-6f);
+    return d;
+  };
+  const TextureFilter gpu;  // not level0_only
+  const WrapMode r = WrapMode::kRepeat;
+  // NEAREST magnification: the texel itself, no blend (bilinear would give 0.7 + 10·0.7 = 7.7).
+  EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(-1.0f), r, r, SamplerFilterOf(9728, 9987), gpu).x, 11.0f);
+  EXPECT_NEAR(SampleTextureFiltered(c, uv, with_lambda(-1.0f), r, r, SamplerFilterOf(9729, 9987), gpu).x, 7.7f, 1e-5f);
+  // minFilter NEAREST (no mip) under minification: still level 0's texel.
+  EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(1.6f), r, r, SamplerFilterOf(9729, 9728), gpu).x, 11.0f);
+  // NEAREST_MIPMAP_NEAREST: level ⌈λ + ½⌉ − 1: λ = 1.4 → level 1 (100), λ = 1.6 → level 2 (200).
+  EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(1.4f), r, r, SamplerFilterOf(9729, 9984), gpu).x, 100.0f);
+  EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(1.6f), r, r, SamplerFilterOf(9729, 9984), gpu).x, 200.0f);
+  // NEAREST_MIPMAP_LINEAR (9986, COLLADA2GLTF's default): λ = 0.25 → ¾ · texel 11 + ¼ · 100.
+  EXPECT_NEAR(SampleTextureFiltered(c, uv, with_lambda(0.25f), r, r, SamplerFilterOf(9729, 9986), gpu).x, 0.75f * 11 + 25, 1e-4f);
+  // The reference (level 0 at every sub-sample) honours the magnification filter.
+  TextureFilter truth;
+  truth.level0_only = true;
+  EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(3.0f), r, r, SamplerFilterOf(9728, 9984), truth).x, 11.0f);
+}
+
+TEST(GltfLoad, TextureTransformAndSecondUvSetAreRead) {
+  const fs::path d = TestDir();
+  WriteImage8((d / "grey2.png").string(), Image8(1, 1, 4, 104));
+  TriangleFile f;
+  f.doc["images"] = Json::parse(R"([{"uri": "grey2.png"}])");
+  f.doc["samplers"] = Json::parse(R"([{"magFilter": 9728, "minFilter": 9986}])");
+  f.doc["textures"] = Json::parse(R"([{"source": 0, "sampler": 0}])");
+  f.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  f.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = Json::parse(
+      R"({"index": 0, "texCoord": 0, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0], "rotation": 1.5707963267948966, "scale": [2, 1], "texCoord": 1}}})");
+  f.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 1;
+  const GltfContent g = LoadGltf(f.Write(d, "xform").string());
+  const TextureRef& t = g.materials[0].gltf->base_tex;
+  EXPECT_EQ(t.texcoord, 1);  // the extension's texCoord overrides the textureInfo's
+  EXPECT_EQ(t.filter, SamplerFilterOf(9728, 9986));
+  ASSERT_TRUE(t.transformed);
+  // uv' = T · R · S · uv: (1, 0) → S (2, 0) → R(90°) (0, −2) → T (0.5, −2).
+  const glm::vec2 p = t.uv_transform * glm::vec3(1, 0, 1);
+  EXPECT_NEAR(p.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(p.y, -2.0f, 1e-6f);
+  EXPECT_EQ(g.shapes[0].uvs1, g.shapes[0].uvs);  // TEXCOORD_1 read (the same accessor here)
 }
 
 }  // namespace
