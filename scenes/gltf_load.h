@@ -1,5 +1,5 @@
 /// glTF 2.0 files (.gltf with its buffers and images, or .glb), read as written (on the
-/// project's nlohmann-json; docs/real-content.md "Why our own reader" says why not Assimp):
+/// project's nlohmann-json; docs/real-content.md "Why aalab reads glTF itself" says why not Assimp or tinygltf):
 /// triangle meshes placed by the node hierarchy (the static pose: nodes' own transforms,
 /// skins posed by their joints' nodes, morph targets at the default weights),
 /// metallic-roughness materials with their textures and samplers, cameras. What is drawn,
