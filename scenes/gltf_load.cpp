@@ -415,55 +415,6 @@ class MaterialReader {
   std::map<std::pair<long long, bool>, int> images_;
 };
 
-/// Where image `index`'s bytes are: a file, or memory (bufferView or data URI).
-struct ImageSource {
-  std::string name, file, hint;
-  std::vector<uint8_t> data;
-};
-
-ImageSource LocateImage(const GltfDoc& d, long long index) {
-  const Json& im = d.j["images"][static_cast<size_t>(index)];
-  const std::string at = At("/images", static_cast<size_t>(index));
-  ImageSource s;
-  const std::string mime = im.contains("mimeType") && im["mimeType"].is_string() ? im["mimeType"].get<std::string>() : "";
-  s.hint = mime == "image/jpeg" ? "jpg" : "png";
-  if (im.contains("bufferView")) {
-    const long long v = Index(d, im, "bufferView", at, "bufferViews");
-    size_t size = 0;
-    const uint8_t* p = d.ViewBytes(v, &size);
-    s.data.assign(p, p + size);
-    s.name = "image " + std::to_string(index) + " embedded in '" + d.path + "'";
-    return s;
-  }
-  if (!im.contains("uri") || !im["uri"].is_string()) d.Fail(at, "needs a uri or a bufferView");
-  const std::string uri = im["uri"].get<std::string>();
-  if (uri.rfind("data:", 0) == 0) {
-    const size_t comma = uri.find(',');
-    if (uri.rfind("data:image/jpeg", 0) == 0) s.hint = "jpg";
-    static const std::string kB64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    uint32_t acc = 0;
-    int bits = 0;
-    for (size_t i = comma == std::string::npos ? uri.size() : comma + 1; i < uri.size() && uri[i] != '='; ++i) {
-      const size_t v = kB64.find(uri[i]);
-      if (v == std::string::npos) d.Fail(At(at, "uri"), "is a data URI that is not valid base64");
-      acc = (acc << 6) | static_cast<uint32_t>(v);
-      bits += 6;
-      if (bits >= 8) {
-        bits -= 8;
-        s.data.push_back(static_cast<uint8_t>((acc >> bits) & 0xFF));
-      }
-    }
-    s.name = "image " + std::to_string(index) + " (data URI) in '" + d.path + "'";
-    return s;
-  }
-  const fs::path p = fs::path(d.path).parent_path() / uri;
-  std::error_code ec;
-  if (!fs::is_regular_file(p, ec)) d.Fail(At(at, "uri"), "image '" + p.string() + "' not found");
-  s.file = p.string();
-  s.name = "'" + p.string() + "'";
-  return s;
-}
-
 std::string JoinList(const std::vector<std::string>& v) {
   std::string s;
   for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
@@ -605,41 +556,10 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
   // (KHR_lights_punctual: the file's lights are read here, from d.j and graph.world, by
   // scenes/gltf_lights.h once it lands.)
 
-  // Textures: every header and the budget first, then the decodes.
+  // Textures: every header and the budget first, then the decodes (scenes/gltf_images.cpp).
   std::vector<std::pair<long long, bool>> wanted(mats.Images().size());
   for (const auto& [key, idx] : mats.Images()) wanted[static_cast<size_t>(idx)] = key;
-  std::vector<ImageSource> sources;
-  size_t budget = 0;
-  for (const auto& [img, srgb] : wanted) {
-    ImageSource src = LocateImage(d, img);
-    if (!src.file.empty()) out.files_read.push_back(src.file);
-    if (options.decode_images) {
-      const TextureHeader h = ProbeTextureImage(src.name, src.file, src.file.empty() ? src.data.data() : nullptr, src.data.size(), src.hint);
-      budget += h.Bytes8Chain();
-      if (budget > kMaxGltfTextureBytes8) {
-        d.Fail(At("/images", static_cast<size_t>(img)), "the textures' RGBA8 mip chains exceed the budget of " +
-                                                            std::to_string(kMaxGltfTextureBytes8 >> 20) + " MiB");
-      }
-    }
-    sources.push_back(std::move(src));
-  }
-  if (options.decode_images) {
-    for (size_t k = 0; k < sources.size(); ++k) {
-      const ImageSource& src = sources[k];
-      MipLevel level = DecodeTextureImage(src.name, src.file, src.file.empty() ? src.data.data() : nullptr, src.data.size(), src.hint, wanted[k].second);
-      out.images.push_back(std::make_shared<const MipChain>(BuildMipChain(std::move(level), src.name)));
-      out.texture_bytes += out.images.back()->Bytes();
-      out.texture_bytes8 += out.images.back()->Bytes8();
-    }
-  } else {
-    // No decode: a 1 × 1 white image per texture keeps every TextureRef valid.
-    for (size_t k = 0; k < sources.size(); ++k) {
-      MipLevel l;
-      l.width = l.height = 1;
-      l.texels = {glm::vec4(1.0f)};
-      out.images.push_back(std::make_shared<const MipChain>(BuildMipChain(std::move(l), sources[k].name)));
-    }
-  }
+  gltf_detail::ReadGltfImages(d, wanted, options.decode_images, out);
   for (const Json& b : GltfArray(d, d.j, "buffers", "")) {
     if (b.is_object() && b.contains("uri") && b["uri"].is_string() && b["uri"].get<std::string>().rfind("data:", 0) != 0) {
       out.files_read.push_back((fs::path(path).parent_path() / b["uri"].get<std::string>()).string());

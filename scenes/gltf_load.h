@@ -49,4 +49,12 @@ inline constexpr size_t kMaxGltfTextureBytes8 = size_t{4} << 30;
 /// budget, and a file with no triangles.
 GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options = {});
 
+namespace gltf_detail {
+/// The images `wanted` ((image index, sRGB) in content order) into out.images, files into
+/// out.files_read: headers and budget first, then (with `decode`) the decodes; without
+/// `decode`, a 1 × 1 white image each. Part of LoadGltf (scenes/gltf_images.cpp).
+void ReadGltfImages(const GltfDoc& d, const std::vector<std::pair<long long, bool>>& wanted, bool decode,
+                    GltfContent& out);
+}  // namespace gltf_detail
+
 }  // namespace aalab
