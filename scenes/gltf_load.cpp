@@ -1,499 +1,571 @@
-// glTF 2.0 through Assimp (scenes/gltf_load.h). Two passes: the file's JSON is checked first
-// (buffers present and long enough, accessors inside their buffer views, counts bounded,
-// features aalab does not render named), so that Assimp only ever reads a file whose byte
-// ranges are sound; then Assimp's glTF2 importer builds the meshes, the node hierarchy,
-// materials and cameras, and the result is checked again (indices, finite positions).
+// glTF 2.0 scenes (scenes/gltf_load.h), built from the file as written (scenes/gltf_doc.h).
+// Order: the document and every byte range are checked (ReadGltfDoc); the node graph
+// (indices, one parent each, no cycles, depth, walked with an explicit stack); meshes into
+// shapes (indices against their vertices, finite positions); materials; cameras; and only
+// then the textures: every header read and the budget summed before the first decode, so a
+// refusal never waits on texture decoding.
+//
+// Static pose (glTF 2.0 §3.7, §3.8): nodes' own TRS or matrix; a skinned mesh's vertices
+// by Σ wᵢ · world(jointᵢ) · inverseBindMatrixᵢ (the node transforms as stored, i.e. the pose
+// the file is in with no animation playing); morph targets at node.weights, else
+// mesh.weights, else 0. Animations are not sampled.
 #include "scenes/gltf_load.h"
 
-#include <assimp/GltfMaterial.h>
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-
+#include <algorithm>
+#include <chrono>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
-#include <nlohmann/json.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "harness/core/error.h"
 
 namespace aalab {
 namespace fs = std::filesystem;
+using Json = nlohmann::json;
 
 namespace {
 
-using Json = nlohmann::json;
+std::string At(const std::string& base, const std::string& key) { return base + "/" + key; }
+std::string At(const std::string& base, size_t i) { return base + "/" + std::to_string(i); }
 
-[[noreturn]] void Refuse(const std::string& path, const std::string& what) {
-  throw UserError("glTF file '" + path + "': " + what);
-}
-
-std::string ReadBytes(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) Refuse(path, "cannot be read");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-uint32_t Le32(const std::string& b, size_t at) {
-  uint32_t v = 0;
-  std::memcpy(&v, b.data() + at, 4);
-  return v;
-}
-
-/// The JSON document of a .gltf or .glb file, and the length of a .glb's BIN chunk (-1: none).
-struct GltfJson {
-  Json doc;
-  long long glb_bin = -1;
-};
-
-GltfJson ParseGltfJson(const std::string& path) {
-  const std::string bytes = ReadBytes(path);
-  GltfJson out;
-  std::string text = bytes;
-  if (bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0) {
-    if (bytes.size() < 20) Refuse(path, "truncated GLB header");
-    if (Le32(bytes, 4) != 2) Refuse(path, "GLB container version " + std::to_string(Le32(bytes, 4)) + " (allowed: 2)");
-    const uint32_t json_len = Le32(bytes, 12);
-    if (Le32(bytes, 16) != 0x4E4F534Au || 20ull + json_len > bytes.size()) Refuse(path, "GLB has no complete JSON chunk");
-    text = bytes.substr(20, json_len);
-    const size_t bin_at = 20ull + json_len;
-    if (bin_at + 8 <= bytes.size() && Le32(bytes, bin_at + 4) == 0x004E4942u) {
-      const uint32_t bin_len = Le32(bytes, bin_at);
-      if (bin_at + 8 + bin_len > bytes.size()) Refuse(path, "GLB BIN chunk is truncated");
-      out.glb_bin = bin_len;
-    }
-  }
-  try {
-    out.doc = Json::parse(text);
-  } catch (const Json::exception& e) {
-    Refuse(path, std::string("not valid glTF JSON: ") + e.what());
-  }
-  if (!out.doc.is_object()) Refuse(path, "the JSON document is not an object");
-  return out;
-}
-
-long long IntAt(const Json& o, const char* key, long long fallback) {
-  if (!o.is_object() || !o.contains(key)) return fallback;
+long long Index(const GltfDoc& d, const Json& o, const char* key, const std::string& at, const char* list) {
+  const long long n = static_cast<long long>(GltfArray(d, d.j, list, "").size());
+  if (!o.is_object() || !o.contains(key)) return -1;
   const Json& v = o.at(key);
-  if (!v.is_number_integer() && !v.is_number_unsigned()) return -2;
+  if (!v.is_number_integer() && !v.is_number_unsigned()) d.Fail(At(at, key), "must be an integer index into /" + std::string(list));
+  if (v.is_number_unsigned() ? v.get<unsigned long long>() >= static_cast<unsigned long long>(n) : (v.get<long long>() < 0 || v.get<long long>() >= n)) {
+    d.Fail(At(at, key), "names " + std::string(list) + " " + v.dump() + ", which does not exist (" + std::to_string(n) +
+                            " defined) (rule: index out of range)");
+  }
   return v.get<long long>();
 }
 
-int ComponentBytes(long long type) {
-  switch (type) {
-    case 5120: case 5121: return 1;
-    case 5122: case 5123: return 2;
-    case 5125: case 5126: return 4;
-    default: return 0;
+/// A node's local transform (matrix, or T · R · S), in double.
+glm::dmat4 LocalMatrix(const GltfDoc& d, const Json& n, const std::string& at) {
+  if (n.contains("matrix")) {
+    const std::vector<double> m = GltfNumbers(d, n, "matrix", at, 16, {});
+    glm::dmat4 r;
+    for (int c = 0; c < 4; ++c) {
+      for (int k = 0; k < 4; ++k) r[c][k] = m[static_cast<size_t>(c * 4 + k)];  // column-major, as glTF stores it
+    }
+    return r;
   }
+  const std::vector<double> t = GltfNumbers(d, n, "translation", at, 3, {0, 0, 0});
+  const std::vector<double> q = GltfNumbers(d, n, "rotation", at, 4, {0, 0, 0, 1});
+  const std::vector<double> s = GltfNumbers(d, n, "scale", at, 3, {1, 1, 1});
+  glm::dquat rot(q[3], q[0], q[1], q[2]);  // glTF stores x, y, z, w
+  const double len = glm::length(rot);
+  rot = len > 0.0 ? rot / len : glm::dquat(1, 0, 0, 0);
+  glm::dmat4 m = glm::mat4_cast(rot);
+  for (int c = 0; c < 3; ++c) m[c] *= s[static_cast<size_t>(c)];
+  m[3] = glm::dvec4(t[0], t[1], t[2], 1.0);
+  return m;
 }
 
-int TypeComponents(const std::string& t) {
-  static const std::map<std::string, int> k = {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4},
-                                               {"MAT2", 4},   {"MAT3", 9}, {"MAT4", 16}};
-  auto it = k.find(t);
-  return it == k.end() ? 0 : it->second;
-}
+/// World matrices of every node reachable from the scene's roots, and the order to visit
+/// them (depth first, children in file order). Checks the graph without recursion.
+struct NodeGraph {
+  std::vector<glm::dmat4> world;
+  std::vector<char> reached;
+  std::vector<size_t> order;
+};
 
-/// The checks on the JSON (see the file comment); fills the cameras' projections.
-void CheckGltfJson(const std::string& path, const GltfJson& g, std::vector<Camera>& cams) {
-  const Json& d = g.doc;
-  const std::string version = d.contains("asset") && d["asset"].contains("version") && d["asset"]["version"].is_string()
-                                  ? d["asset"]["version"].get<std::string>() : "";
-  if (version.empty() || version[0] != '2') Refuse(path, "asset.version '" + version + "' (allowed: 2.x)");
-  for (const char* list : {"extensionsRequired", "extensionsUsed"}) {
-    if (!d.contains(list)) continue;
-    for (const Json& e : d[list]) {
-      const std::string name = e.is_string() ? e.get<std::string>() : "?";
-      if (name != "KHR_materials_unlit") {
-        Refuse(path, std::string(list) + " names '" + name + "', which aalab does not render (supported: KHR_materials_unlit)");
+NodeGraph WalkNodes(const GltfDoc& d) {
+  const Json& nodes = GltfArray(d, d.j, "nodes", "");
+  const size_t n = nodes.size();
+  std::vector<long long> parent(n, -1);
+  for (size_t i = 0; i < n; ++i) {
+    const std::string at = At("/nodes", i);
+    if (!nodes[i].is_object()) d.Fail(at, "must be an object");
+    const Json& ch = GltfArray(d, nodes[i], "children", at);
+    for (size_t k = 0; k < ch.size(); ++k) {
+      if (!ch[k].is_number_integer() || ch[k].get<long long>() < 0 || ch[k].get<long long>() >= static_cast<long long>(n)) {
+        d.Fail(At(At(at, "children"), k), "names node " + ch[k].dump() + ", which does not exist (rule: index out of range)");
       }
+      const size_t c = ch[k].get<size_t>();
+      if (c == i) d.Fail(At(At(at, "children"), k), "a node is its own child (rule: recursive nodes)");
+      if (parent[c] >= 0) {
+        d.Fail(At(At(at, "children"), k), "node " + std::to_string(c) + " already has parent " + std::to_string(parent[c]) +
+                                              " (rule: a node has one parent; shared or recursive nodes are invalid)");
+      }
+      parent[c] = static_cast<long long>(i);
     }
   }
-  for (const char* part : {"animations", "skins"}) {
-    if (d.contains(part) && d[part].is_array() && !d[part].empty()) {
-      Refuse(path, std::string("has ") + part + ", which aalab does not render (a still pose would be a different picture)");
+  // A cycle: following parents from a node never reaches a root. Walk each chain once.
+  std::vector<char> state(n, 0);  // 0 unvisited, 1 on the current chain, 2 known to reach a root
+  for (size_t i = 0; i < n; ++i) {
+    std::vector<size_t> chain;
+    size_t c = i;
+    while (state[c] == 0) {
+      state[c] = 1;
+      chain.push_back(c);
+      if (parent[c] < 0) break;
+      c = static_cast<size_t>(parent[c]);
+    }
+    // Stopped on a node of this same chain that has a parent: the chain closed on itself.
+    if (state[c] == 1 && parent[c] >= 0) d.Fail(At("/nodes", c), "is its own ancestor (rule: recursive nodes)");
+    for (size_t k : chain) state[k] = 2;
+  }
+  // Roots: the scene's nodes (`scene`, else scene 0), else every parentless node.
+  std::vector<size_t> roots;
+  const Json& scenes = GltfArray(d, d.j, "scenes", "");
+  if (!scenes.empty()) {
+    const long long si = d.j.contains("scene") ? Index(d, d.j, "scene", "", "scenes") : 0;
+    const std::string at = At("/scenes", static_cast<size_t>(si));
+    if (!scenes[static_cast<size_t>(si)].is_object()) d.Fail(at, "must be an object");
+    const Json& sn = GltfArray(d, scenes[static_cast<size_t>(si)], "nodes", at);
+    for (size_t k = 0; k < sn.size(); ++k) {
+      if (!sn[k].is_number_integer() || sn[k].get<long long>() < 0 || sn[k].get<long long>() >= static_cast<long long>(n)) {
+        d.Fail(At(At(at, "nodes"), k), "names node " + sn[k].dump() + ", which does not exist (rule: index out of range)");
+      }
+      const size_t r = sn[k].get<size_t>();
+      if (parent[r] >= 0) d.Fail(At(At(at, "nodes"), k), "node " + std::to_string(r) + " is not a root (it has parent " + std::to_string(parent[r]) + ")");
+      roots.push_back(r);
+    }
+  } else {
+    for (size_t i = 0; i < n; ++i) {
+      if (parent[i] < 0) roots.push_back(i);
     }
   }
-  const fs::path dir = fs::path(path).parent_path();
-  std::vector<long long> buffer_len;
-  if (d.contains("buffers")) {
-    for (size_t i = 0; i < d["buffers"].size(); ++i) {
-      const Json& b = d["buffers"][i];
-      const long long len = IntAt(b, "byteLength", -1);
-      const std::string where = "buffer " + std::to_string(i);
-      if (len < 1) Refuse(path, where + " has no valid byteLength");
-      if (!b.contains("uri")) {
-        if (g.glb_bin < 0 || i != 0) Refuse(path, where + " has no uri and no GLB BIN chunk holds it");
-        if (len > g.glb_bin) Refuse(path, where + " declares " + std::to_string(len) + " bytes but the GLB BIN chunk has " + std::to_string(g.glb_bin));
-      } else {
-        const std::string uri = b["uri"].is_string() ? b["uri"].get<std::string>() : "";
-        if (uri.rfind("data:", 0) != 0) {
-          const fs::path bp = dir / uri;
-          std::error_code ec;
-          if (!fs::is_regular_file(bp, ec)) Refuse(path, where + ": file '" + bp.string() + "' not found");
-          const auto size = static_cast<long long>(fs::file_size(bp, ec));
-          if (ec || size < len) {
-            Refuse(path, where + ": file '" + bp.string() + "' has " + std::to_string(size) + " bytes, byteLength declares " + std::to_string(len));
-          }
-        }
-      }
-      buffer_len.push_back(len);
-    }
-  }
-  std::vector<long long> view_len;
-  if (d.contains("bufferViews")) {
-    for (size_t i = 0; i < d["bufferViews"].size(); ++i) {
-      const Json& v = d["bufferViews"][i];
-      const long long b = IntAt(v, "buffer", -1), off = IntAt(v, "byteOffset", 0), len = IntAt(v, "byteLength", -1);
-      const std::string where = "bufferView " + std::to_string(i);
-      if (b < 0 || b >= static_cast<long long>(buffer_len.size())) Refuse(path, where + " names buffer " + std::to_string(b) + ", which does not exist");
-      if (off < 0 || len < 1 || off + len > buffer_len[static_cast<size_t>(b)]) {
-        Refuse(path, where + " (bytes " + std::to_string(off) + ".." + std::to_string(off + len) + ") lies outside buffer " +
-                         std::to_string(b) + " (" + std::to_string(buffer_len[static_cast<size_t>(b)]) + " bytes)");
-      }
-      view_len.push_back(len);
-    }
-  }
-  if (d.contains("accessors")) {
-    for (size_t i = 0; i < d["accessors"].size(); ++i) {
-      const Json& a = d["accessors"][i];
-      const std::string where = "accessor " + std::to_string(i);
-      const long long count = IntAt(a, "count", -1);
-      if (count < 1 || count > kMaxGltfAccessorCount) {
-        Refuse(path, where + " declares count " + std::to_string(count) + " (allowed: 1 to " + std::to_string(kMaxGltfAccessorCount) + ")");
-      }
-      if (a.contains("sparse")) Refuse(path, where + " is sparse, which aalab does not read");
-      const int cb = ComponentBytes(IntAt(a, "componentType", -1));
-      const int nc = TypeComponents(a.contains("type") && a["type"].is_string() ? a["type"].get<std::string>() : "");
-      if (cb == 0 || nc == 0) Refuse(path, where + " has an invalid componentType or type");
-      if (!a.contains("bufferView")) continue;  // all zeros
-      const long long v = IntAt(a, "bufferView", -1);
-      if (v < 0 || v >= static_cast<long long>(view_len.size())) Refuse(path, where + " names bufferView " + std::to_string(v) + ", which does not exist");
-      const Json& bv = d["bufferViews"][static_cast<size_t>(v)];
-      const long long elem = static_cast<long long>(cb) * nc;
-      const long long stride = IntAt(bv, "byteStride", elem);
-      const long long off = IntAt(a, "byteOffset", 0);
-      const long long need = off + (count - 1) * std::max(stride, elem) + elem;
-      if (off < 0 || need > view_len[static_cast<size_t>(v)]) {
-        Refuse(path, where + " reads " + std::to_string(count) + " elements (" + std::to_string(need) + " bytes) beyond bufferView " +
-                         std::to_string(v) + " (" + std::to_string(view_len[static_cast<size_t>(v)]) + " bytes)");
-      }
-    }
-  }
-  if (d.contains("meshes")) {
-    for (size_t m = 0; m < d["meshes"].size(); ++m) {
-      const Json& mesh = d["meshes"][m];
-      if (!mesh.contains("primitives")) continue;
-      for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
-        const Json& pr = mesh["primitives"][p];
-        const std::string where = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
-        const long long mode = IntAt(pr, "mode", 4);
-        if (mode < 4 || mode > 6) Refuse(path, where + " has mode " + std::to_string(mode) + " (points or lines; aalab renders triangles: modes 4, 5, 6)");
-        if (pr.contains("targets")) Refuse(path, where + " has morph targets, which aalab does not render");
-        if (pr.contains("attributes") && pr["attributes"].contains("COLOR_0")) {
-          Refuse(path, where + " has vertex colours (COLOR_0), which aalab does not render");
-        }
-      }
-    }
-  }
-  if (d.contains("materials")) {
-    for (size_t m = 0; m < d["materials"].size(); ++m) {
-      const Json& mat = d["materials"][m];
-      std::vector<const Json*> infos;
-      if (mat.contains("pbrMetallicRoughness")) {
-        for (const char* k : {"baseColorTexture", "metallicRoughnessTexture"}) {
-          if (mat["pbrMetallicRoughness"].contains(k)) infos.push_back(&mat["pbrMetallicRoughness"][k]);
-        }
-      }
-      for (const char* k : {"normalTexture", "occlusionTexture", "emissiveTexture"}) {
-        if (mat.contains(k)) infos.push_back(&mat[k]);
-      }
-      for (const Json* t : infos) {
-        if (IntAt(*t, "texCoord", 0) != 0) {
-          Refuse(path, "material " + std::to_string(m) + " uses texture coordinate set " + std::to_string(IntAt(*t, "texCoord", 0)) +
-                           " (aalab reads TEXCOORD_0 only)");
-        }
-      }
-    }
-  }
-  if (d.contains("samplers")) {
-    for (size_t s = 0; s < d["samplers"].size(); ++s) {
-      const Json& sm = d["samplers"][s];
-      const long long mag = IntAt(sm, "magFilter", 9729), min = IntAt(sm, "minFilter", 9987);
-      if (mag != 9729 || (min != 9987 && min != 9729 && min != 9985)) {
-        Refuse(path, "sampler " + std::to_string(s) + " asks for filters mag " + std::to_string(mag) + " / min " + std::to_string(min) +
-                         " (aalab samples trilinear: mag LINEAR 9729, min LINEAR_MIPMAP_LINEAR 9987, LINEAR_MIPMAP_NEAREST 9985 or LINEAR 9729 are accepted and all filtered trilinear)");
-      }
-    }
-  }
-  if (d.contains("cameras")) {
-    for (size_t c = 0; c < d["cameras"].size(); ++c) {
-      const Json& cj = d["cameras"][c];
-      Camera cam;
-      const std::string type = cj.contains("type") && cj["type"].is_string() ? cj["type"].get<std::string>() : "";
-      const std::string where = "camera " + std::to_string(c);
-      if (type == "perspective" && cj.contains("perspective") && cj["perspective"].contains("yfov") && cj["perspective"]["yfov"].is_number()) {
-        cam.type = CameraType::kPerspective;
-        const double yfov = cj["perspective"]["yfov"].get<double>();
-        if (!(yfov > 0.0 && yfov < 3.12)) Refuse(path, where + " has yfov " + std::to_string(yfov) + " (allowed: (0, 3.12) radians)");
-        cam.fov_y_deg = static_cast<float>(yfov * 57.29577951308232);
-      } else if (type == "orthographic" && cj.contains("orthographic") && cj["orthographic"].contains("ymag") && cj["orthographic"]["ymag"].is_number()) {
-        cam.type = CameraType::kOrthographic;
-        const double ymag = cj["orthographic"]["ymag"].get<double>();
-        if (!(ymag > 0.0 && ymag < 1e9)) Refuse(path, where + " has ymag " + std::to_string(ymag) + " (allowed: > 0)");
-        cam.height = static_cast<float>(2.0 * ymag);
-      } else {
-        Refuse(path, where + " is neither a valid perspective (yfov) nor an orthographic (ymag) camera");
-      }
-      cams.push_back(cam);
-    }
-  }
-}
-
-glm::mat4 ToGlm(const aiMatrix4x4& m) {
-  glm::mat4 g;
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) g[c][r] = m[r][c];
+  NodeGraph g;
+  g.world.assign(n, glm::dmat4(1.0));
+  g.reached.assign(n, 0);
+  std::vector<size_t> stack(roots.rbegin(), roots.rend());
+  std::vector<int> depth(n, 0);
+  while (!stack.empty()) {
+    const size_t i = stack.back();
+    stack.pop_back();
+    if (g.reached[i]) d.Fail(At("/nodes", i), "is reached twice from the scene (rule: a node has one parent)");
+    g.reached[i] = 1;
+    if (parent[i] >= 0) depth[i] = depth[static_cast<size_t>(parent[i])] + 1;
+    if (depth[i] > kMaxGltfNodeDepth) d.Fail(At("/nodes", i), "lies " + std::to_string(depth[i]) + " nodes deep (rule: node depth, at most " + std::to_string(kMaxGltfNodeDepth) + ")");
+    const glm::dmat4 local = LocalMatrix(d, nodes[i], At("/nodes", i));
+    g.world[i] = parent[i] >= 0 ? g.world[static_cast<size_t>(parent[i])] * local : local;
+    g.order.push_back(i);
+    const Json& ch = GltfArray(d, nodes[i], "children", "");
+    for (size_t k = ch.size(); k-- > 0;) stack.push_back(ch[k].get<size_t>());
   }
   return g;
 }
 
-glm::mat4 NodeWorld(const aiNode* n) {
-  glm::mat4 m(1.0f);
-  for (; n; n = n->mParent) m = ToGlm(n->mTransformation) * m;
-  return m;
+/// The vertex streams of primitive `pr` (plain accessors or Draco).
+GltfPrimData ReadPrimitive(const GltfDoc& d, const Json& pr, const std::string& at, std::vector<std::string>& notes) {
+  static const std::map<std::string, int> kComps = {{"POSITION", 3},   {"NORMAL", 3},   {"TANGENT", 4},  {"TEXCOORD_0", 2},
+                                                    {"TEXCOORD_1", 2}, {"JOINTS_0", 4}, {"WEIGHTS_0", 4}};
+  GltfPrimData p;
+  if (!pr.contains("attributes") || !pr["attributes"].is_object()) d.Fail(At(at, "attributes"), "is required (an object)");
+  const Json& attrs = pr["attributes"];
+  if (!attrs.contains("POSITION")) d.Fail(At(at, "attributes"), "has no POSITION");
+  const bool draco = pr.contains("extensions") && pr["extensions"].is_object() && pr["extensions"].contains("KHR_draco_mesh_compression");
+  if (draco) {
+    DecodeGltfDraco(d, pr["extensions"]["KHR_draco_mesh_compression"], At(at, "extensions/KHR_draco_mesh_compression"), kComps, p);
+  }
+  for (const auto& [name, comps] : kComps) {
+    if (!attrs.contains(name) || p.attr.count(name)) continue;
+    const long long a = Index(d, attrs, name.c_str(), At(at, "attributes"), "accessors");
+    if (name == "JOINTS_0") {
+      const std::vector<uint32_t> u = ReadGltfUints(d, a, At(At(at, "attributes"), name), 4);
+      p.attr[name].assign(u.begin(), u.end());
+    } else {
+      p.attr[name] = ReadGltfFloats(d, a, At(At(at, "attributes"), name), comps);
+    }
+  }
+  p.vertices = static_cast<long long>(p.attr["POSITION"].size() / 3);
+  for (const auto& [name, v] : p.attr) {
+    if (static_cast<long long>(v.size()) != p.vertices * kComps.at(name)) {
+      d.Fail(At(At(at, "attributes"), name), "has " + std::to_string(v.size() / kComps.at(name)) + " elements but POSITION has " +
+                                                 std::to_string(p.vertices) + " (rule: attribute counts must match)");
+    }
+  }
+  if (attrs.contains("COLOR_0")) notes.push_back(at + ": vertex colours (COLOR_0) are not drawn");
+  if (!draco && pr.contains("indices")) {
+    const long long a = Index(d, pr, "indices", at, "accessors");
+    p.indices = ReadGltfUints(d, a, At(at, "indices"), 1);
+    p.has_indices = true;
+  }
+  return p;
 }
 
-WrapMode ToWrap(int mode) {
-  switch (mode) {
-    case aiTextureMapMode_Clamp: return WrapMode::kClampToEdge;
-    case aiTextureMapMode_Mirror: return WrapMode::kMirroredRepeat;
-    default: return WrapMode::kRepeat;
+/// Applies morph targets at `weights` to POSITION, NORMAL and TANGENT (xyz).
+void ApplyMorph(const GltfDoc& d, const Json& pr, const std::string& at, const std::vector<double>& weights, GltfPrimData& p) {
+  const Json& targets = GltfArray(d, pr, "targets", at);
+  for (size_t t = 0; t < targets.size() && t < weights.size(); ++t) {
+    if (weights[t] == 0.0) continue;
+    const std::string tat = At(At(at, "targets"), t);
+    for (const char* name : {"POSITION", "NORMAL", "TANGENT"}) {
+      if (!targets[t].is_object() || !targets[t].contains(name) || !p.attr.count(name)) continue;
+      const std::vector<float> delta = ReadGltfFloats(d, Index(d, targets[t], name, tat, "accessors"), At(tat, name), 3);
+      std::vector<float>& v = p.attr[name];
+      const int comps = std::string(name) == "TANGENT" ? 4 : 3;
+      if (static_cast<long long>(delta.size() / 3) != p.vertices) d.Fail(At(tat, name), "count differs from POSITION's (rule: attribute counts must match)");
+      for (long long i = 0; i < p.vertices; ++i) {
+        for (int c = 0; c < 3; ++c) v[static_cast<size_t>(i * comps + c)] += static_cast<float>(weights[t]) * delta[static_cast<size_t>(i * 3 + c)];
+      }
+    }
   }
 }
 
-/// Reads the file's materials and decodes their textures (each image once per colour space).
-class MaterialReader {
- public:
-  MaterialReader(const std::string& path, const aiScene* sc, GltfContent& out) : path_(path), sc_(sc), out_(out) {}
+glm::vec3 V3(const std::vector<float>& v, size_t i) { return {v[i * 3], v[i * 3 + 1], v[i * 3 + 2]}; }
 
-  Material Read(unsigned index) {
-    const aiMaterial* am = sc_->mMaterials[index];
-    Material m;
-    aiString name;
-    m.name = fs::path(path_).filename().string() + "#" + std::to_string(index);
-    if (am->Get(AI_MATKEY_NAME, name) == AI_SUCCESS && name.length > 0) m.name += ":" + std::string(name.C_Str());
-    GltfMaterial g;
-    aiColor4D base(1, 1, 1, 1);
-    if (am->Get(AI_MATKEY_BASE_COLOR, base) != AI_SUCCESS) am->Get(AI_MATKEY_COLOR_DIFFUSE, base);
-    g.base_factor = {base.r, base.g, base.b, base.a};
-    g.base_tex = Tex(am, aiTextureType_BASE_COLOR, true);
-    if (!g.base_tex.Has()) g.base_tex = Tex(am, aiTextureType_DIFFUSE, true);
-    am->Get(AI_MATKEY_METALLIC_FACTOR, g.metallic);
-    am->Get(AI_MATKEY_ROUGHNESS_FACTOR, g.roughness);
-    g.mr_tex = Tex(am, aiTextureType_UNKNOWN, false);
-    if (!g.mr_tex.Has()) g.mr_tex = Tex(am, aiTextureType_METALNESS, false);
-    g.normal_tex = Tex(am, aiTextureType_NORMALS, false);
-    am->Get(AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), g.normal_scale);
-    aiColor3D em(0, 0, 0);
-    am->Get(AI_MATKEY_COLOR_EMISSIVE, em);
-    g.emissive = {em.r, em.g, em.b};
-    g.emissive_tex = Tex(am, aiTextureType_EMISSIVE, true);
-    g.occlusion_tex = Tex(am, aiTextureType_LIGHTMAP, false);
-    am->Get(AI_MATKEY_GLTF_TEXTURE_STRENGTH(aiTextureType_LIGHTMAP, 0), g.occlusion_strength);
-    aiString mode;
-    if (am->Get(AI_MATKEY_GLTF_ALPHAMODE, mode) == AI_SUCCESS) {
-      const std::string s = mode.C_Str();
-      g.alpha_mode = s == "MASK" ? AlphaMode::kMask : s == "BLEND" ? AlphaMode::kBlend : AlphaMode::kOpaque;
-      if (g.alpha_mode == AlphaMode::kBlend) {
-        Refuse(path_, "material '" + m.name + "' has alphaMode BLEND, which aalab does not render yet (OPAQUE and MASK are supported)");
+/// One primitive placed by `world` (or skinned by `joints`) as one triangle shape.
+Shape BuildShape(const GltfDoc& d, const GltfPrimData& p, const std::string& at, long long mode, const glm::dmat4& world,
+                 const std::vector<glm::dmat4>* joints) {
+  Shape s;
+  s.kind = ShapeKind::kTriangles;
+  s.source = "gltf";
+  const size_t nv = static_cast<size_t>(p.vertices);
+  const auto& pos = p.attr.at("POSITION");
+  const bool has_n = p.attr.count("NORMAL") > 0, has_t = has_n && p.attr.count("TANGENT") > 0;
+  s.positions.resize(nv);
+  s.uvs.assign(nv, glm::vec2(0.0f));
+  if (p.attr.count("TEXCOORD_1")) s.uvs1.resize(nv);
+  if (has_n) s.normals.resize(nv);
+  if (has_t) s.tangents.resize(nv);
+  for (size_t i = 0; i < nv; ++i) {
+    glm::dmat4 m = world;
+    if (joints) {
+      const auto& jn = p.attr.at("JOINTS_0");
+      const auto& wt = p.attr.at("WEIGHTS_0");
+      m = glm::dmat4(0.0);
+      for (int k = 0; k < 4; ++k) {
+        const size_t j = static_cast<size_t>(jn[i * 4 + k]);
+        const double w = wt[i * 4 + k];
+        if (w == 0.0) continue;
+        if (j >= joints->size()) d.Fail(At(at, "attributes/JOINTS_0"), "vertex " + std::to_string(i) + " names joint " + std::to_string(j) + " beyond the skin's " + std::to_string(joints->size()) + " (rule: index out of range)");
+        m += (*joints)[j] * w;
       }
     }
-    m.alpha_cutoff = 0.5f;
-    am->Get(AI_MATKEY_GLTF_ALPHACUTOFF, m.alpha_cutoff);
-    int two = 0;  // glTF's default is single-sided (doubleSided false)
-    g.double_sided = am->Get(AI_MATKEY_TWOSIDED, two) == AI_SUCCESS && two != 0;
-    int model = 0;
-    const bool unlit = am->Get(AI_MATKEY_SHADING_MODEL, model) == AI_SUCCESS && model == aiShadingMode_Unlit;
-    m.shading = unlit ? Shading::kUnlit : Shading::kPbr;
-    m.color = glm::vec3(g.base_factor);
-    for (float v : {g.base_factor.x, g.base_factor.y, g.base_factor.z, g.base_factor.w, g.metallic, g.roughness,
-                    g.emissive.x, g.emissive.y, g.emissive.z, m.alpha_cutoff, g.normal_scale, g.occlusion_strength}) {
-      if (!std::isfinite(v) || v < -1e7f || v > 1e7f) Refuse(path_, "material '" + m.name + "' has a non-finite or huge factor");
+    const glm::dmat3 lin(m);
+    const glm::dvec3 q = glm::dvec3(m * glm::dvec4(glm::dvec3(V3(pos, i)), 1.0));
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(q[c]) || std::fabs(q[c]) > 1e8) {
+        d.Fail(At(at, "attributes/POSITION"), "vertex " + std::to_string(i) + " has a NaN, infinite or out-of-range (|x| > 1e8) position");
+      }
     }
+    s.positions[i] = glm::vec3(q);
+    if (p.attr.count("TEXCOORD_0")) {
+      const auto& uv = p.attr.at("TEXCOORD_0");
+      s.uvs[i] = {uv[i * 2], uv[i * 2 + 1]};
+      if (!std::isfinite(s.uvs[i].x) || !std::isfinite(s.uvs[i].y)) d.Fail(At(at, "attributes/TEXCOORD_0"), "has a non-finite texture coordinate");
+    }
+    if (!s.uvs1.empty()) {
+      const auto& uv = p.attr.at("TEXCOORD_1");
+      s.uvs1[i] = {uv[i * 2], uv[i * 2 + 1]};
+      if (!std::isfinite(s.uvs1[i].x) || !std::isfinite(s.uvs1[i].y)) d.Fail(At(at, "attributes/TEXCOORD_1"), "has a non-finite texture coordinate");
+    }
+    if (has_n) {
+      const glm::dmat3 nrm = glm::transpose(glm::inverse(lin));
+      const glm::vec3 wn = glm::vec3(nrm * glm::dvec3(V3(p.attr.at("NORMAL"), i)));
+      const float len = glm::length(wn);
+      s.normals[i] = (len > 0.0f && std::isfinite(len)) ? wn / len : glm::vec3(0, 0, 1);
+      if (has_t) {
+        const auto& t = p.attr.at("TANGENT");
+        const glm::vec3 wt = glm::vec3(lin * glm::dvec3(t[i * 4], t[i * 4 + 1], t[i * 4 + 2]));
+        const float tl = glm::length(wt);
+        s.tangents[i] = glm::vec4((tl > 0.0f && std::isfinite(tl)) ? wt / tl : glm::vec3(1, 0, 0), t[i * 4 + 3] < 0.0f ? -1.0f : 1.0f);
+      }
+    }
+  }
+  std::vector<uint32_t> idx = p.indices;
+  if (!p.has_indices) {
+    idx.resize(nv);
+    for (size_t i = 0; i < nv; ++i) idx[i] = static_cast<uint32_t>(i);
+  }
+  for (size_t k = 0; k < idx.size(); ++k) {
+    if (idx[k] >= nv) {
+      d.Fail(At(at, "indices"), "element " + std::to_string(k) + " is index " + std::to_string(idx[k]) + ", beyond the primitive's " +
+                                    std::to_string(nv) + " vertices (rule: index out of range)");
+    }
+  }
+  if (mode == 4) {
+    for (size_t k = 0; k + 2 < idx.size(); k += 3) s.triangles.emplace_back(idx[k], idx[k + 1], idx[k + 2]);
+  } else if (mode == 5) {  // strip: the winding alternates (glTF 2.0 §3.7.2.1)
+    for (size_t k = 0; k + 2 < idx.size(); ++k) {
+      s.triangles.push_back(k % 2 == 0 ? glm::uvec3(idx[k], idx[k + 1], idx[k + 2]) : glm::uvec3(idx[k + 1], idx[k], idx[k + 2]));
+    }
+  } else {  // fan
+    for (size_t k = 1; k + 1 < idx.size(); ++k) s.triangles.emplace_back(idx[k], idx[k + 1], idx[0]);
+  }
+  return s;
+}
+
+/// glTF sampler wrap enums to WrapMode.
+WrapMode ToWrap(long long mode) {
+  return mode == 33071 ? WrapMode::kClampToEdge : mode == 33648 ? WrapMode::kMirroredRepeat : WrapMode::kRepeat;
+}
+
+/// Reads materials and collects the images they use (decoded later, in LoadGltf).
+class MaterialReader {
+ public:
+  explicit MaterialReader(const GltfDoc& d) : d_(d) {}
+
+  Material Read(long long index) {
+    Material m;
+    GltfMaterial g;
+    m.name = fs::path(d_.path).filename().string() + "#" + (index < 0 ? std::string("default") : std::to_string(index));
+    m.shading = Shading::kPbr;
+    m.alpha_cutoff = 0.5f;
+    g.double_sided = false;
+    if (index >= 0) {
+      const Json& mat = d_.j["materials"][static_cast<size_t>(index)];
+      const std::string at = At("/materials", static_cast<size_t>(index));
+      if (!mat.is_object()) d_.Fail(at, "must be an object");
+      if (mat.contains("name") && mat["name"].is_string() && !mat["name"].get<std::string>().empty()) m.name += ":" + mat["name"].get<std::string>();
+      for (const char* k : {"pbrMetallicRoughness", "normalTexture", "occlusionTexture", "emissiveTexture"}) {
+        if (mat.contains(k) && !mat[k].is_object()) d_.Fail(At(at, k), "must be an object");
+      }
+      if (mat.contains("pbrMetallicRoughness")) {
+        const Json& pbr = mat["pbrMetallicRoughness"];
+        const std::string pat = At(at, "pbrMetallicRoughness");
+        const std::vector<double> b = GltfNumbers(d_, pbr, "baseColorFactor", pat, 4, {1, 1, 1, 1});
+        g.base_factor = glm::vec4(b[0], b[1], b[2], b[3]);
+        g.metallic = static_cast<float>(GltfNum(d_, pbr, "metallicFactor", pat, 1.0, 0.0, 1.0));
+        g.roughness = static_cast<float>(GltfNum(d_, pbr, "roughnessFactor", pat, 1.0, 0.0, 1.0));
+        g.base_tex = Tex(pbr, "baseColorTexture", pat, true);
+        g.mr_tex = Tex(pbr, "metallicRoughnessTexture", pat, false);
+      }
+      g.normal_tex = Tex(mat, "normalTexture", at, false);
+      if (g.normal_tex.Has()) g.normal_scale = static_cast<float>(GltfNum(d_, mat["normalTexture"], "scale", At(at, "normalTexture"), 1.0, -1e7, 1e7));
+      g.occlusion_tex = Tex(mat, "occlusionTexture", at, false);
+      if (g.occlusion_tex.Has()) g.occlusion_strength = static_cast<float>(GltfNum(d_, mat["occlusionTexture"], "strength", At(at, "occlusionTexture"), 1.0, 0.0, 1.0));
+      g.emissive_tex = Tex(mat, "emissiveTexture", at, true);
+      const std::vector<double> e = GltfNumbers(d_, mat, "emissiveFactor", at, 3, {0, 0, 0});
+      double strength = 1.0;
+      if (mat.contains("extensions") && mat["extensions"].is_object()) {
+        const Json& x = mat["extensions"];
+        if (x.contains("KHR_materials_unlit")) m.shading = Shading::kUnlit;
+        if (x.contains("KHR_materials_emissive_strength")) {
+          strength = GltfNum(d_, x["KHR_materials_emissive_strength"], "emissiveStrength", At(at, "extensions/KHR_materials_emissive_strength"), 1.0, 0.0, 1e7);
+        }
+      }
+      g.emissive = glm::vec3(glm::dvec3(e[0], e[1], e[2]) * strength);
+      const std::string mode = mat.contains("alphaMode") && mat["alphaMode"].is_string() ? mat["alphaMode"].get<std::string>() : "OPAQUE";
+      if (mode != "OPAQUE" && mode != "MASK" && mode != "BLEND") d_.Fail(At(at, "alphaMode"), "'" + mode + "' (allowed: OPAQUE, MASK, BLEND)");
+      g.alpha_mode = mode == "MASK" ? AlphaMode::kMask : mode == "BLEND" ? AlphaMode::kBlend : AlphaMode::kOpaque;
+      m.alpha_cutoff = static_cast<float>(GltfNum(d_, mat, "alphaCutoff", at, 0.5, 0.0, 1e7));
+      if (mat.contains("doubleSided")) {
+        if (!mat["doubleSided"].is_boolean()) d_.Fail(At(at, "doubleSided"), "must be a boolean");
+        g.double_sided = mat["doubleSided"].get<bool>();
+      }
+      for (float v : {g.base_factor.x, g.base_factor.y, g.base_factor.z, g.base_factor.w, g.emissive.x, g.emissive.y, g.emissive.z}) {
+        if (!std::isfinite(v) || v < -1e7f || v > 1e7f) d_.Fail(at, "has a non-finite or huge factor");
+      }
+    }
+    m.color = glm::vec3(g.base_factor);
     m.gltf = g;
     return m;
   }
 
+  /// The images to decode: (texture's image index, sRGB) → content image index.
+  const std::map<std::pair<long long, bool>, int>& Images() const { return images_; }
+
  private:
-  TextureRef Tex(const aiMaterial* am, aiTextureType type, bool srgb) {
+  TextureRef Tex(const Json& parent, const char* key, const std::string& at, bool srgb) {
     TextureRef ref;
-    if (am->GetTextureCount(type) == 0) return ref;
-    aiString file;
-    aiTextureMapMode modes[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
-    if (am->GetTexture(type, 0, &file, nullptr, nullptr, nullptr, nullptr, modes) != AI_SUCCESS) return ref;
-    int ms = aiTextureMapMode_Wrap, mt = aiTextureMapMode_Wrap;
-    am->Get(AI_MATKEY_MAPPINGMODE_U(type, 0), ms);
-    am->Get(AI_MATKEY_MAPPINGMODE_V(type, 0), mt);
-    ref.wrap_s = ToWrap(ms);
-    ref.wrap_t = ToWrap(mt);
-    ref.image = Image(file.C_Str(), srgb);
+    if (!parent.contains(key)) return ref;
+    const Json& info = parent[key];
+    const std::string iat = At(at, key);
+    if (!info.is_object()) d_.Fail(iat, "must be an object (a textureInfo)");
+    const long long tex = Index(d_, info, "index", iat, "textures");
+    if (tex < 0) d_.Fail(At(iat, "index"), "is required");
+    ref.texcoord = static_cast<int>(GltfInt(d_, info, "texCoord", iat, 0, 0, 1 << 20));
+    if (info.contains("extensions") && info["extensions"].is_object() && info["extensions"].contains("KHR_texture_transform")) {
+      const Json& x = info["extensions"]["KHR_texture_transform"];
+      const std::string xat = At(iat, "extensions/KHR_texture_transform");
+      const std::vector<double> off = GltfNumbers(d_, x, "offset", xat, 2, {0, 0});
+      const std::vector<double> sc = GltfNumbers(d_, x, "scale", xat, 2, {1, 1});
+      const double r = GltfNum(d_, x, "rotation", xat, 0.0, -1e7, 1e7);
+      ref.texcoord = static_cast<int>(GltfInt(d_, x, "texCoord", xat, ref.texcoord, 0, 1 << 20));
+      // uv' = T · R · S · uv with R = [[cos r, sin r], [−sin r, cos r]] (rows), as the
+      // Khronos sample viewer and three.js apply it (counter-clockwise in the image, v down).
+      const double c = std::cos(r), s = std::sin(r);
+      ref.uv_transform = glm::mat3x2(glm::vec2(c * sc[0], -s * sc[0]), glm::vec2(s * sc[1], c * sc[1]), glm::vec2(off[0], off[1]));
+      ref.transformed = true;
+    }
+    if (ref.texcoord > 1) d_.Fail(At(iat, "texCoord"), "TEXCOORD_" + std::to_string(ref.texcoord) + " (aalab reads sets 0 and 1)");
+    const Json& t = d_.j["textures"][static_cast<size_t>(tex)];
+    const std::string tat = At("/textures", static_cast<size_t>(tex));
+    const long long source = Index(d_, t, "source", tat, "images");
+    if (source < 0) d_.Fail(tat, "has no source image that aalab can read (a PNG or JPEG 'source')");
+    const long long sampler = Index(d_, t, "sampler", tat, "samplers");
+    if (sampler >= 0) {
+      const Json& sm = d_.j["samplers"][static_cast<size_t>(sampler)];
+      const std::string sat = At("/samplers", static_cast<size_t>(sampler));
+      const long long mag = GltfInt(d_, sm, "magFilter", sat, 9729, 9728, 9729);
+      const long long min = GltfInt(d_, sm, "minFilter", sat, 9987, 9728, 9987);
+      if (min > 9729 && min < 9984) d_.Fail(At(sat, "minFilter"), std::to_string(min) + " (allowed: 9728, 9729, 9984, 9985, 9986, 9987)");
+      ref.filter = SamplerFilterOf(static_cast<int>(mag), static_cast<int>(min));
+      for (const char* w : {"wrapS", "wrapT"}) {
+        const long long v = GltfInt(d_, sm, w, sat, 10497, 10497, 33648);
+        if (v != 10497 && v != 33071 && v != 33648) d_.Fail(At(sat, w), std::to_string(v) + " (allowed: 10497, 33071, 33648)");
+        (std::string(w) == "wrapS" ? ref.wrap_s : ref.wrap_t) = ToWrap(v);
+      }
+    }
+    const auto image_key = std::make_pair(source, srgb);
+    auto it = images_.find(image_key);
+    if (it == images_.end()) it = images_.emplace(image_key, static_cast<int>(images_.size())).first;
+    ref.image = it->second;
     return ref;
   }
 
-  int Image(const std::string& uri, bool srgb) {
-    const std::string key = uri + (srgb ? "|srgb" : "|linear");
-    if (auto it = cache_.find(key); it != cache_.end()) return it->second;
-    MipLevel level;
-    if (const aiTexture* t = sc_->GetEmbeddedTexture(uri.c_str())) {
-      const std::string name = "'" + uri + "' embedded in '" + path_ + "'";
-      if (t->mHeight != 0) Refuse(path_, "texture " + name + " is stored uncompressed, which aalab does not read");
-      level = DecodeTextureImage(name, "", reinterpret_cast<const uint8_t*>(t->pcData), t->mWidth, t->achFormatHint, srgb);
-    } else {
-      const fs::path p = fs::path(path_).parent_path() / uri;
-      std::error_code ec;
-      if (!fs::is_regular_file(p, ec)) Refuse(path_, "image '" + p.string() + "' not found");
-      level = DecodeTextureImage("'" + p.string() + "'", p.string(), nullptr, 0, "", srgb);
-    }
-    const int index = static_cast<int>(out_.images.size());
-    out_.images.push_back(std::make_shared<const MipChain>(BuildMipChain(std::move(level), uri)));
-    cache_[key] = index;
-    return index;
-  }
-
-  const std::string& path_;
-  const aiScene* sc_;
-  GltfContent& out_;
-  std::map<std::string, int> cache_;
+  const GltfDoc& d_;
+  std::map<std::pair<long long, bool>, int> images_;
 };
 
-/// The primitive `mesh` placed by `world` as one triangle shape.
-Shape MeshShape(const std::string& path, const aiMesh* mesh, const glm::mat4& world) {
-  if (mesh->mPrimitiveTypes & (aiPrimitiveType_POINT | aiPrimitiveType_LINE)) {
-    Refuse(path, "mesh '" + std::string(mesh->mName.C_Str()) + "' has points or lines (aalab renders triangles)");
-  }
-  Shape s;
-  s.kind = ShapeKind::kTriangles;
-  s.source = "gltf";
-  const glm::mat3 lin(world);
-  const glm::mat3 nrm = glm::transpose(glm::inverse(lin));
-  const bool has_n = mesh->HasNormals(), has_uv = mesh->HasTextureCoords(0), has_t = mesh->HasTangentsAndBitangents();
-  s.positions.resize(mesh->mNumVertices);
-  s.uvs.resize(mesh->mNumVertices, glm::vec2(0.0f));
-  if (has_n) s.normals.resize(mesh->mNumVertices);
-  if (has_t && has_n) s.tangents.resize(mesh->mNumVertices);
-  for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
-    const aiVector3D& v = mesh->mVertices[i];
-    const glm::vec3 p = glm::vec3(world * glm::vec4(v.x, v.y, v.z, 1.0f));
-    for (int c = 0; c < 3; ++c) {
-      if (!std::isfinite(p[c]) || std::fabs(p[c]) > 1e8f) {
-        Refuse(path, "mesh '" + std::string(mesh->mName.C_Str()) + "' vertex " + std::to_string(i) +
-                         " has a NaN, infinite or out-of-range (|x| > 1e8) position");
-      }
-    }
-    s.positions[i] = p;
-    if (has_uv) {
-      const glm::vec2 uv(mesh->mTextureCoords[0][i].x, mesh->mTextureCoords[0][i].y);
-      if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) Refuse(path, "mesh '" + std::string(mesh->mName.C_Str()) + "' has a non-finite texture coordinate");
-      s.uvs[i] = uv;
-    }
-    if (has_n) {
-      const aiVector3D& n = mesh->mNormals[i];
-      const glm::vec3 wn = nrm * glm::vec3(n.x, n.y, n.z);
-      const float len = glm::length(wn);
-      s.normals[i] = (len > 0.0f && std::isfinite(len)) ? wn / len : glm::vec3(0, 0, 1);
-      if (!s.tangents.empty()) {
-        const glm::vec3 t(mesh->mTangents[i].x, mesh->mTangents[i].y, mesh->mTangents[i].z);
-        const glm::vec3 b(mesh->mBitangents[i].x, mesh->mBitangents[i].y, mesh->mBitangents[i].z);
-        const float w = glm::dot(glm::cross(glm::vec3(n.x, n.y, n.z), t), b) < 0.0f ? -1.0f : 1.0f;
-        const glm::vec3 wt = lin * t;
-        const float tl = glm::length(wt);
-        s.tangents[i] = glm::vec4((tl > 0.0f && std::isfinite(tl)) ? wt / tl : glm::vec3(1, 0, 0), w);
-      }
-    }
-  }
-  for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-    const aiFace& face = mesh->mFaces[f];
-    if (face.mNumIndices != 3) continue;  // POINT/LINE were refused; nothing else remains
-    glm::uvec3 tri(face.mIndices[0], face.mIndices[1], face.mIndices[2]);
-    for (int k = 0; k < 3; ++k) {
-      if (tri[k] >= mesh->mNumVertices) {
-        Refuse(path, "mesh '" + std::string(mesh->mName.C_Str()) + "' triangle " + std::to_string(f) + " has index " +
-                         std::to_string(tri[k]) + " beyond its " + std::to_string(mesh->mNumVertices) + " vertices");
-      }
-    }
-    s.triangles.push_back(tri);
-  }
+std::string JoinList(const std::vector<std::string>& v) {
+  std::string s;
+  for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
   return s;
 }
 
 }  // namespace
 
-GltfContent LoadGltf(const std::string& path) {
+GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw UserError("glTF file '" + path + "' not found");
+  const GltfDoc d = ReadGltfDoc(path);
   GltfContent out;
-  std::vector<Camera> cams;
-  CheckGltfJson(path, ParseGltfJson(path), cams);
-
-  Assimp::Importer importer;
-  const unsigned flags = aiProcess_Triangulate | aiProcess_CalcTangentSpace | aiProcess_ValidateDataStructure |
-                         aiProcess_FlipUVs;  // Assimp stores v flipped; FlipUVs restores glTF's (0,0) = top-left
-  const aiScene* sc = importer.ReadFile(path, flags);
-  if (!sc || (sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !sc->mRootNode) {
-    Refuse(path, std::string("Assimp could not read it: ") + importer.GetErrorString());
+  if (!d.ignored_extensions.empty()) {
+    out.notes.push_back("extensions used but not drawn (ignored, as glTF allows): " + JoinList(d.ignored_extensions));
   }
-  // Only the materials some primitive uses, in the order of their first use (Assimp adds a
-  // default material that no primitive of a glTF file may use).
-  MaterialReader mats(path, sc, out);
-  std::map<unsigned, int> material_of;
-  auto material_index = [&](unsigned ai) {
-    if (ai >= sc->mNumMaterials) Refuse(path, "a mesh names material " + std::to_string(ai) + ", which does not exist");
-    auto it = material_of.find(ai);
-    if (it != material_of.end()) return it->second;
-    const int k = static_cast<int>(out.materials.size());
-    out.materials.push_back(mats.Read(ai));
-    material_of[ai] = k;
-    return k;
-  };
-  // Meshes in node order (depth first, children in file order): deterministic shape order.
-  std::vector<const aiNode*> stack = {sc->mRootNode};
-  while (!stack.empty()) {
-    const aiNode* n = stack.back();
-    stack.pop_back();
-    const glm::mat4 world = NodeWorld(n);
-    for (unsigned k = 0; k < n->mNumMeshes; ++k) {
-      const aiMesh* mesh = sc->mMeshes[n->mMeshes[k]];
-      if (mesh->mNumAnimMeshes > 0) Refuse(path, "mesh '" + std::string(mesh->mName.C_Str()) + "' has morph targets");
-      Shape s = MeshShape(path, mesh, world);
+  for (const char* part : {"animations", "skins"}) {
+    if (!GltfArray(d, d.j, part, "").empty()) {
+      out.notes.push_back(std::string("has ") + part + ": drawn at the static pose (nodes' own transforms; no animation sampled)");
+    }
+  }
+  const NodeGraph graph = WalkNodes(d);
+  const Json& nodes = GltfArray(d, d.j, "nodes", "");
+  const Json& meshes = GltfArray(d, d.j, "meshes", "");
+  MaterialReader mats(d);
+  std::map<long long, int> material_of;  // file material (-1: default) -> content index, first use order
+  bool morphed = false, skipped = false;
+  for (size_t ni : graph.order) {
+    const Json& node = nodes[ni];
+    const std::string nat = At("/nodes", ni);
+    const long long mi = Index(d, node, "mesh", nat, "meshes");
+    if (mi < 0) continue;
+    const std::string mat_at = At("/meshes", static_cast<size_t>(mi));
+    const Json& mesh = meshes[static_cast<size_t>(mi)];
+    if (!mesh.is_object()) d.Fail(mat_at, "must be an object");
+    // Skin: each joint's world matrix times its inverse bind matrix.
+    std::vector<glm::dmat4> joints;
+    const long long ski = Index(d, node, "skin", nat, "skins");
+    if (ski >= 0) {
+      const Json& skin = d.j["skins"][static_cast<size_t>(ski)];
+      const std::string sat = At("/skins", static_cast<size_t>(ski));
+      const Json& js = GltfArray(d, skin, "joints", sat);
+      std::vector<float> ibm;
+      const long long ia = Index(d, skin, "inverseBindMatrices", sat, "accessors");
+      if (ia >= 0) ibm = ReadGltfFloats(d, ia, At(sat, "inverseBindMatrices"), 16);
+      if (!ibm.empty() && ibm.size() / 16 < js.size()) d.Fail(At(sat, "inverseBindMatrices"), "has fewer matrices than the skin has joints");
+      for (size_t k = 0; k < js.size(); ++k) {
+        if (!js[k].is_number_integer() || js[k].get<long long>() < 0 || js[k].get<size_t>() >= nodes.size()) {
+          d.Fail(At(At(sat, "joints"), k), "names node " + js[k].dump() + ", which does not exist (rule: index out of range)");
+        }
+        glm::dmat4 b(1.0);
+        for (int c = 0; c < 16 && !ibm.empty(); ++c) b[c / 4][c % 4] = ibm[k * 16 + static_cast<size_t>(c)];
+        joints.push_back(graph.world[js[k].get<size_t>()] * b);
+      }
+    }
+    std::vector<double> weights = GltfNumbers(d, mesh, "weights", mat_at, GltfArray(d, mesh, "weights", mat_at).size(), {});
+    if (node.contains("weights")) weights = GltfNumbers(d, node, "weights", nat, GltfArray(d, node, "weights", nat).size(), {});
+    const Json& prims = GltfArray(d, mesh, "primitives", mat_at);
+    for (size_t pi = 0; pi < prims.size(); ++pi) {
+      const Json& pr = prims[pi];
+      const std::string at = At(At(mat_at, "primitives"), pi);
+      if (!pr.is_object()) d.Fail(at, "must be an object");
+      const long long mode = GltfInt(d, pr, "mode", at, 4, 0, 6);
+      if (mode < 4) {
+        skipped = true;
+        continue;
+      }
+      GltfPrimData p = ReadPrimitive(d, pr, at, out.notes);
+      if (pr.contains("targets")) {
+        morphed = true;
+        ApplyMorph(d, pr, at, weights, p);
+      }
+      const bool skinned = !joints.empty() && p.attr.count("JOINTS_0") && p.attr.count("WEIGHTS_0");
+      Shape s = BuildShape(d, p, at, mode, graph.world[ni], skinned ? &joints : nullptr);
       if (s.triangles.empty()) continue;
-      s.material = material_index(mesh->mMaterialIndex);
+      const long long fm = Index(d, pr, "material", at, "materials");
+      auto it = material_of.find(fm);
+      if (it == material_of.end()) {
+        it = material_of.emplace(fm, static_cast<int>(out.materials.size())).first;
+        out.materials.push_back(mats.Read(fm));
+      }
+      s.material = it->second;
       out.triangles += s.triangles.size();
       out.shapes.push_back(std::move(s));
     }
-    for (unsigned c = n->mNumChildren; c-- > 0;) stack.push_back(n->mChildren[c]);
   }
-  if (out.shapes.empty()) Refuse(path, "has no triangles in its scene");
-  // Cameras: the projection from the JSON (CheckGltfJson), the placement from the node.
-  for (unsigned i = 0; i < sc->mNumCameras && i < cams.size(); ++i) {
-    const aiCamera* ac = sc->mCameras[i];
-    const aiNode* node = sc->mRootNode->FindNode(ac->mName);
-    const glm::mat4 world = node ? NodeWorld(node) : glm::mat4(1.0f);
-    Camera& c = cams[i];
-    c.position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
-    const glm::vec3 fwd = glm::normalize(glm::mat3(world) * glm::vec3(0, 0, -1));  // glTF cameras look down −Z
-    c.look_at = c.position + fwd;
-    c.up = glm::normalize(glm::mat3(world) * glm::vec3(0, 1, 0));
+  if (morphed) out.notes.push_back("has morph targets: drawn at the default weights (node.weights, else mesh.weights)");
+  if (skipped) out.notes.push_back("points and lines primitives are not drawn (aalab renders triangles)");
+  if (out.shapes.empty()) d.Fail("/scenes", "the scene has no triangles to draw");
+  // A material sampling TEXCOORD_1 on a primitive without it samples (0, 0), as a GPU reading
+  // an unbound attribute would; name it instead.
+  for (const Shape& s : out.shapes) {
+    const GltfMaterial& g = *out.materials[static_cast<size_t>(s.material)].gltf;
+    for (const TextureRef* t : {&g.base_tex, &g.mr_tex, &g.normal_tex, &g.emissive_tex, &g.occlusion_tex}) {
+      if (t->Has() && t->texcoord == 1 && s.uvs1.empty()) {
+        d.Fail("/materials", "material '" + out.materials[static_cast<size_t>(s.material)].name +
+                                 "' samples TEXCOORD_1 on a primitive that has none");
+      }
+    }
   }
-  out.cameras = cams;
+  out.bounds_min = glm::vec3(std::numeric_limits<float>::max());
+  out.bounds_max = glm::vec3(-std::numeric_limits<float>::max());
+  for (const Shape& s : out.shapes) {
+    for (const glm::uvec3& t : s.triangles) {
+      for (int k = 0; k < 3; ++k) {
+        out.bounds_min = glm::min(out.bounds_min, s.positions[t[k]]);
+        out.bounds_max = glm::max(out.bounds_max, s.positions[t[k]]);
+      }
+    }
+  }
+  // Cameras: projection from the JSON, placement from the node (glTF cameras look down −Z).
+  const Json& cams = GltfArray(d, d.j, "cameras", "");
+  for (size_t ni : graph.order) {
+    const long long ci = Index(d, nodes[ni], "camera", At("/nodes", ni), "cameras");
+    if (ci < 0) continue;
+    const Json& cj = cams[static_cast<size_t>(ci)];
+    const std::string at = At("/cameras", static_cast<size_t>(ci));
+    Camera cam;
+    const std::string type = cj.contains("type") && cj["type"].is_string() ? cj["type"].get<std::string>() : "";
+    if (type == "perspective" && cj.contains("perspective")) {
+      cam.type = CameraType::kPerspective;
+      cam.fov_y_deg = static_cast<float>(GltfNum(d, cj["perspective"], "yfov", At(at, "perspective"), -1.0, 1e-6, 3.12) * 57.29577951308232);
+      if (!(cam.fov_y_deg > 0.0f)) d.Fail(At(at, "perspective/yfov"), "is required (radians in (0, 3.12))");
+    } else if (type == "orthographic" && cj.contains("orthographic")) {
+      cam.type = CameraType::kOrthographic;
+      cam.height = static_cast<float>(2.0 * GltfNum(d, cj["orthographic"], "ymag", At(at, "orthographic"), -1.0, -1e9, 1e9));
+      if (!(cam.height != 0.0f)) d.Fail(At(at, "orthographic/ymag"), "is required (non-zero)");
+      cam.height = std::fabs(cam.height);
+    } else {
+      d.Fail(at, "is neither a perspective (yfov) nor an orthographic (ymag) camera");
+    }
+    const glm::dmat4& w = graph.world[ni];
+    cam.position = glm::vec3(w * glm::dvec4(0, 0, 0, 1));
+    cam.look_at = cam.position + glm::vec3(glm::normalize(glm::dmat3(w) * glm::dvec3(0, 0, -1)));
+    cam.up = glm::vec3(glm::normalize(glm::dmat3(w) * glm::dvec3(0, 1, 0)));
+    out.cameras.push_back(cam);
+  }
+  // (KHR_lights_punctual: the file's lights are read here, from d.j and graph.world, by
+  // scenes/gltf_lights.h once it lands.)
+
+  // Textures: every header and the budget first, then the decodes (scenes/gltf_images.cpp).
+  std::vector<std::pair<long long, bool>> wanted(mats.Images().size());
+  for (const auto& [key, idx] : mats.Images()) wanted[static_cast<size_t>(idx)] = key;
+  gltf_detail::ReadGltfImages(d, wanted, options.decode_images, out);
+  for (const Json& b : GltfArray(d, d.j, "buffers", "")) {
+    if (b.is_object() && b.contains("uri") && b["uri"].is_string() && b["uri"].get<std::string>().rfind("data:", 0) != 0) {
+      out.files_read.push_back((fs::path(path).parent_path() / b["uri"].get<std::string>()).string());
+    }
+  }
+  out.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
 

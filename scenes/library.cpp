@@ -10,6 +10,7 @@
 
 #include "harness/core/error.h"
 #include "harness/core/params.h"
+#include "scenes/model_scene.h"
 
 namespace aalab {
 namespace fs = std::filesystem;
@@ -79,6 +80,7 @@ std::vector<std::string> SuiteScenes(const std::string& suite) {
 }
 
 Scene LoadScene(const std::string& name) {
+  if (IsModelPath(name)) return LoadModelScene(name);  // a .glb / .gltf given as a scene
   const bool is_path = name.find('/') != std::string::npos ||
                        (name.size() > 5 && name.substr(name.size() - 5) == ".json");
   if (is_path) return LoadSceneFile(name);

@@ -46,10 +46,17 @@ enum class Shading { kUnlit, kLambert, kPbr };
 /// glTF alpha modes: opaque, cut-out at alphaCutoff, blended over what lies behind.
 enum class AlphaMode { kOpaque, kMask, kBlend };
 
-/// A material's use of an image texture: which of Scene::images, with the sampler's wraps.
+/// A material's use of an image texture: which of Scene::images, with the sampler's wraps
+/// and filters, the texture coordinate set and the KHR_texture_transform.
 struct TextureRef {
   int image = -1;  ///< index into Scene::images (-1: none)
   WrapMode wrap_s = WrapMode::kRepeat, wrap_t = WrapMode::kRepeat;
+  SamplerFilter filter;  ///< the sampler's magFilter / minFilter
+  int texcoord = 0;      ///< TEXCOORD_n: 0 (Shape::uvs) or 1 (Shape::uvs1)
+  /// KHR_texture_transform as the 2 × 3 affine map uv' = m · (u, v, 1) (identity: none);
+  /// UV derivatives map through its linear part.
+  glm::mat3x2 uv_transform{1.0f};
+  bool transformed = false;
   bool Has() const { return image >= 0; }
 };
 
@@ -62,7 +69,7 @@ struct GltfMaterial {
   TextureRef mr_tex;            ///< metallicRoughnessTexture: B = metallic, G = roughness
   TextureRef normal_tex;        ///< normalTexture (tangent space, linear)
   float normal_scale = 1.0f;
-  glm::vec3 emissive{0.0f};     ///< emissiveFactor
+  glm::vec3 emissive{0.0f};     ///< emissiveFactor × KHR_materials_emissive_strength
   TextureRef emissive_tex;      ///< emissiveTexture (sRGB)
   TextureRef occlusion_tex;     ///< occlusionTexture (R), applied to the ambient term only
   float occlusion_strength = 1.0f;
@@ -121,6 +128,7 @@ struct Shape {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  ///< per vertex (empty: flat shading)
   std::vector<glm::vec2> uvs;      ///< per vertex
+  std::vector<glm::vec2> uvs1;     ///< per vertex, glTF TEXCOORD_1 (empty: none)
   std::vector<glm::vec4> tangents; ///< per vertex, xyz + handedness w (glTF meshes; may be empty)
   std::vector<glm::uvec3> triangles;
   // kSphere / kDisk: centre + radius (+ normal for the disk, + frame for uv)
@@ -188,6 +196,16 @@ struct Scene {
   /// file for the scene appends it here; the output-folder rule treats each as an input
   /// that `--out` may not equal, contain or replace.
   std::vector<std::string> files_read;
+  /// What loading noticed and the user should know (glTF extensions used but not drawn, a
+  /// static pose drawn for an animated file); printed when read, carried into the report.
+  std::vector<std::string> notes;
+  /// Per glTF file loaded: its name, load wall time and texture bytes (stored / as RGBA8).
+  struct FileLoad {
+    std::string file;
+    double seconds = 0.0;
+    size_t texture_bytes = 0, texture_bytes8 = 0, triangles = 0;
+  };
+  std::vector<FileLoad> load;
 
   bool Has(Effect e) const { return effects[static_cast<int>(e)]; }
   /// Names of the declared effects, in enum order.

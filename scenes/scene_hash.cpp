@@ -119,13 +119,26 @@ uint64_t SceneContentHash(const Scene& s) {
     h.I(static_cast<int64_t>(g.alpha_mode));
     for (const TextureRef* t : {&g.base_tex, &g.mr_tex, &g.normal_tex, &g.emissive_tex, &g.occlusion_tex}) {
       h.I(t->image), h.I(static_cast<int64_t>(t->wrap_s)), h.I(static_cast<int64_t>(t->wrap_t));
+      // Sampler filters, coordinate set and transform: only where they differ from the
+      // defaults, so fingerprints of files without them stay as they were.
+      if (!(t->filter == SamplerFilter{}) || t->texcoord != 0 || t->transformed) {
+        h.S("texref");
+        h.I(t->filter.mag_nearest), h.I(t->filter.min_nearest), h.I(static_cast<int64_t>(t->filter.mip)), h.I(t->texcoord);
+        for (int c = 0; c < 3; ++c) h.V2(t->uv_transform[c]);
+      }
     }
+    if (g.alpha_mode == AlphaMode::kBlend) h.S("blend");
   }
   for (const auto& img : s.images) {
     h.S("image");
     const MipLevel& l0 = img->levels[0];
     h.I(l0.width), h.I(l0.height);
     for (const glm::vec4& t : l0.texels) h.V3(glm::vec3(t)), h.F(t.w);
+  }
+  for (const Shape& sh : s.shapes) {
+    if (sh.uvs1.empty()) continue;
+    h.S("uvs1");
+    for (const auto& uv : sh.uvs1) h.V2(uv);
   }
   for (const Shape& sh : s.shapes) {
     if (sh.tangents.empty()) continue;

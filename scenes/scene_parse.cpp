@@ -4,8 +4,10 @@
 #include <cmath>
 #include <filesystem>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -268,6 +270,20 @@ void AddGltfObject(Scene& s, const JsonField& o, const std::string& base_dir, st
     file.Fail(e.what());
   }
   if (o.Has("motion")) o.Child("motion").Fail("glTF objects do not move yet (animate the camera instead)");
+  // One warning per file for what is loaded but not drawn as written (scenes/gltf_load.h).
+  for (const std::string& note : g.notes) {
+    std::cerr << "aalab: warning: glTF file '" << p.string() << "': " << note << "\n";
+    s.notes.push_back(p.filename().string() + ": " + note);
+  }
+  {
+    char line[256];
+    std::snprintf(line, sizeof line, "loaded in %.3f s: %zu triangles, %zu textures (%.1f MB as stored, %.1f MB as RGBA8)",
+                  g.load_seconds, g.triangles, g.images.size(), g.texture_bytes / 1e6, g.texture_bytes8 / 1e6);
+    std::cerr << "aalab: glTF file '" << p.string() << "' " << line << "\n";
+  }
+  s.files_read.push_back(p.string());
+  s.files_read.insert(s.files_read.end(), g.files_read.begin(), g.files_read.end());
+  s.load.push_back({p.filename().string(), g.load_seconds, g.texture_bytes, g.texture_bytes8, g.triangles});
   const glm::mat4 m = o.Has("transform") ? ParseTransform(o.Child("transform")) : glm::mat4(1.0f);
   const int mat_base = static_cast<int>(s.materials.size());
   const int img_base = static_cast<int>(s.images.size());

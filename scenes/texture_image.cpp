@@ -54,6 +54,54 @@ MipChain BuildMipChain(MipLevel level0, std::string name) {
   return chain;
 }
 
+namespace {
+
+std::unique_ptr<OIIO::ImageInput> OpenImage(OIIO::Filesystem::IOMemReader& mem, const std::string& name,
+                                            const std::string& path, const uint8_t* data, const std::string& hint) {
+  std::unique_ptr<OIIO::ImageInput> in;
+  if (data) {
+    const std::string fake = "embedded." + (hint.empty() ? std::string("png") : hint);
+    OIIO::ImageSpec config;
+    void* proxy = &mem;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    in = OIIO::ImageInput::open(fake, &config, &mem);
+  } else {
+    in = OIIO::ImageInput::open(path);
+  }
+  if (!in) {
+    const std::string why = OIIO::geterror();
+    throw UserError("texture " + name + " cannot be decoded" + (why.empty() ? std::string() : ": " + why));
+  }
+  return in;
+}
+
+}  // namespace
+
+size_t TextureHeader::Bytes8Chain() const {
+  size_t n = 0;
+  for (int w = width, h = height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
+    n += static_cast<size_t>(w) * static_cast<size_t>(h) * 4;
+    if (w == 1 && h == 1) break;
+  }
+  return n;
+}
+
+TextureHeader ProbeTextureImage(const std::string& name, const std::string& path, const uint8_t* data, size_t size,
+                                const std::string& hint) {
+  OIIO::Filesystem::IOMemReader mem(const_cast<uint8_t*>(data), size);
+  const std::unique_ptr<OIIO::ImageInput> in = OpenImage(mem, name, path, data, hint);
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSize || spec.height > kMaxTextureSize) {
+    throw UserError("texture " + name + " has size " + std::to_string(spec.width) + "x" +
+                    std::to_string(spec.height) + " (allowed: 1 to " + std::to_string(kMaxTextureSize) +
+                    " texels a side)");
+  }
+  if (spec.nchannels < 1 || spec.nchannels > 4) {
+    throw UserError("texture " + name + " has " + std::to_string(spec.nchannels) + " channels (allowed: 1 to 4)");
+  }
+  return {spec.width, spec.height, spec.nchannels};
+}
+
 MipLevel DecodeTextureImage(const std::string& name, const std::string& path, const uint8_t* data, size_t size,
                             const std::string& hint, bool srgb) {
   // The memory reader outlives the input (declared first, destroyed last). OpenImageIO 2.4's
@@ -202,6 +250,55 @@ glm::vec4 SampleTexture(const MipChain& chain, glm::vec2 uv, const UvDerivs& d, 
     sum += SampleLevelLerp(chain, uv + major * t, lambda, wrap_s, wrap_t);
   }
   return sum / static_cast<float>(n);
+}
+
+SamplerFilter SamplerFilterOf(int mag, int min) {
+  SamplerFilter f;
+  f.mag_nearest = mag == 9728;
+  f.min_nearest = min == 9728 || min == 9984 || min == 9986;
+  f.mip = (min == 9728 || min == 9729) ? SamplerFilter::Mip::kNone
+          : (min == 9984 || min == 9985) ? SamplerFilter::Mip::kNearest
+                                         : SamplerFilter::Mip::kLinear;
+  return f;
+}
+
+glm::vec4 SampleNearest(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t) {
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return level.texels[0];
+  const double x = FoldCoord(static_cast<double>(uv.x) * level.width, level.width, wrap_s);
+  const double y = FoldCoord(static_cast<double>(uv.y) * level.height, level.height, wrap_t);
+  const int i = WrapIndex(static_cast<int>(std::floor(x)), level.width, wrap_s);
+  const int j = WrapIndex(static_cast<int>(std::floor(y)), level.height, wrap_t);
+  return level.texels[static_cast<size_t>(j) * level.width + i];
+}
+
+glm::vec4 SampleTextureFiltered(const MipChain& chain, glm::vec2 uv, const UvDerivs& d, WrapMode wrap_s,
+                                WrapMode wrap_t, const SamplerFilter& sampler, const TextureFilter& filter) {
+  if (sampler == SamplerFilter{}) return SampleTexture(chain, uv, d, wrap_s, wrap_t, filter);
+  auto tap = [&](const MipLevel& l, bool nearest) {
+    return nearest ? SampleNearest(l, uv, wrap_s, wrap_t) : SampleBilinear(l, uv, wrap_s, wrap_t);
+  };
+  if (filter.level0_only) return tap(chain.levels[0], sampler.mag_nearest);
+  const MipLevel& l0 = chain.levels[0];
+  const float lambda = MipLambda(d, l0.width, l0.height);
+  if (!(lambda > 0.0f)) return tap(l0, sampler.mag_nearest);  // magnification (and NaN)
+  const int last = static_cast<int>(chain.levels.size()) - 1;
+  switch (sampler.mip) {
+    case SamplerFilter::Mip::kNone:
+      return tap(l0, sampler.min_nearest);
+    case SamplerFilter::Mip::kNearest: {
+      // OpenGL 4.6 eq. 8.13: level ⌈λ + ½⌉ − 1 (round half down), clamped to the chain.
+      const int k = std::clamp(static_cast<int>(std::ceil(lambda + 0.5f)) - 1, 0, last);
+      return tap(chain.levels[static_cast<size_t>(k)], sampler.min_nearest);
+    }
+    case SamplerFilter::Mip::kLinear:
+      break;
+  }
+  if (lambda >= static_cast<float>(last)) return tap(chain.levels[static_cast<size_t>(last)], sampler.min_nearest);
+  const int k = static_cast<int>(std::floor(lambda));
+  const float f = lambda - static_cast<float>(k);
+  const glm::vec4 a = tap(chain.levels[static_cast<size_t>(k)], sampler.min_nearest);
+  if (f == 0.0f) return a;
+  return a * (1.0f - f) + tap(chain.levels[static_cast<size_t>(k) + 1], sampler.min_nearest) * f;
 }
 
 }  // namespace aalab

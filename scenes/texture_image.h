@@ -52,6 +52,20 @@ inline constexpr int kMaxTextureSize = 16384;
 MipLevel DecodeTextureImage(const std::string& name, const std::string& path, const uint8_t* data, size_t size,
                             const std::string& hint, bool srgb);
 
+/// What an image's header declares, read before any texel is decoded.
+struct TextureHeader {
+  int width = 0, height = 0, channels = 0;
+  /// Bytes of its RGBA8 mip chain (4 bytes a texel, about 4/3 of level 0).
+  size_t Bytes8Chain() const;
+};
+
+/// Opens the image (file, or memory as DecodeTextureImage) and reads its header only; throws
+/// UserError naming `name` for an unreadable header, a size outside 1..kMaxTextureSize or
+/// more than 4 channels. The one place the header rules live (issue #39's image decode
+/// budget replaces its body when it lands).
+TextureHeader ProbeTextureImage(const std::string& name, const std::string& path, const uint8_t* data, size_t size,
+                                const std::string& hint);
+
 /// UV derivatives of one shading sample: how far (u, v) moves for one footprint step along
 /// image x and along image y.
 struct UvDerivs {
@@ -69,6 +83,20 @@ int WrapIndex(int i, int n, WrapMode mode);
 /// Bilinear tap of one level at (u, v): texel centres at ((i + 0.5)/W, (j + 0.5)/H).
 glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t);
 
+/// A glTF sampler's filters (OpenGL enums): magFilter NEAREST 9728 / LINEAR 9729; minFilter
+/// NEAREST 9728, LINEAR 9729, NEAREST_MIPMAP_NEAREST 9984, LINEAR_MIPMAP_NEAREST 9985,
+/// NEAREST_MIPMAP_LINEAR 9986, LINEAR_MIPMAP_LINEAR 9987 (the default when absent, as engines
+/// choose). Sampled as the OpenGL 4.6 §8.14–8.15 rules define each.
+struct SamplerFilter {
+  bool mag_nearest = false;  ///< magnification: nearest texel (else bilinear)
+  bool min_nearest = false;  ///< minification within a level: nearest texel (else bilinear)
+  enum class Mip { kNone, kNearest, kLinear } mip = Mip::kLinear;  ///< between levels
+  bool operator==(const SamplerFilter&) const = default;
+};
+
+/// The filter of glTF minFilter / magFilter values (already checked to be valid enums).
+SamplerFilter SamplerFilterOf(int mag, int min);
+
 /// How a texture sample filters.
 struct TextureFilter {
   bool level0_only = false;  ///< bilinear on level 0 at every sample (the reference's truth)
@@ -81,5 +109,17 @@ struct TextureFilter {
 /// magnification (bilinear on level 0). With filter.level0_only: bilinear on level 0.
 glm::vec4 SampleTexture(const MipChain& chain, glm::vec2 uv, const UvDerivs& d, WrapMode wrap_s, WrapMode wrap_t,
                         const TextureFilter& filter);
+
+/// SampleTexture under a glTF sampler's filters: the default filter (LINEAR / trilinear)
+/// is exactly SampleTexture. Otherwise λ decides magnification (λ ≤ 0: magFilter on level 0)
+/// or minification (minFilter: within a level nearest or bilinear; mip none = level 0,
+/// nearest = level round(λ), linear = lerp of ⌊λ⌋ and ⌊λ⌋ + 1). With filter.level0_only
+/// (the reference's truth), level 0 with the magnification filter at every sample: what a
+/// supersampled GPU converges to for that sampler.
+glm::vec4 SampleTextureFiltered(const MipChain& chain, glm::vec2 uv, const UvDerivs& d, WrapMode wrap_s,
+                                WrapMode wrap_t, const SamplerFilter& sampler, const TextureFilter& filter);
+
+/// Nearest-texel tap of one level at (u, v) (OpenGL: texel ⌊u·W⌋, ⌊v·H⌋, wrapped).
+glm::vec4 SampleNearest(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t);
 
 }  // namespace aalab

@@ -424,6 +424,7 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
 
   // 3. One shading per sample.
   ShadeHits(im, sc, alpha, hits, org, dir, count, S.shade, out, local, fp);
+  CompositeBlended(im, sc, alpha, hits, org, dir, count, out, local, fp);
   if (counters) *counters += local;
 }
 

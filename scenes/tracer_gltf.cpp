@@ -4,7 +4,10 @@
 // specification, appendix B: Lambert diffuse, GGX distribution, separable Smith-GGX
 // visibility, Schlick Fresnel). Only scenes with glTF materials reach this file, so the
 // shading of every other scene is untouched.
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "scenes/specular_aa.h"
 #include "scenes/tracer_internal.h"
@@ -73,12 +76,13 @@ bool BaryOnPlane(const Shape& s, unsigned prim, const Ray& r, double* w1, double
 }
 
 /// The texture coordinate where ray r meets the plane of triangle `prim` (BaryOnPlane).
-bool UvOnPlane(const Shape& s, unsigned prim, const Ray& r, glm::dvec2* uv) {
+bool UvOnPlane(const Shape& s, unsigned prim, const Ray& r, glm::dvec2* uv, int set = 0) {
   double b1, b2;
   if (!BaryOnPlane(s, prim, r, &b1, &b2)) return false;
   const glm::uvec3 tri = s.triangles[prim];
-  const glm::dvec2 uv0(s.uvs[tri.x]);
-  *uv = uv0 + b1 * (glm::dvec2(s.uvs[tri.y]) - uv0) + b2 * (glm::dvec2(s.uvs[tri.z]) - uv0);
+  const std::vector<glm::vec2>& uvs = set == 1 ? s.uvs1 : s.uvs;
+  const glm::dvec2 uv0(uvs[tri.x]);
+  *uv = uv0 + b1 * (glm::dvec2(uvs[tri.y]) - uv0) + b2 * (glm::dvec2(uvs[tri.z]) - uv0);
   return std::isfinite(uv->x) && std::isfinite(uv->y);
 }
 
@@ -152,7 +156,7 @@ bool BackFaceCulled(const Scene& sc, const Material& m, const Hit& h, glm::vec3 
 }
 
 UvDerivs HitUvDerivs(const Tracer::Impl& im, const Scene& sc, const Hit& h, glm::vec3 org, glm::vec3 dir,
-                     const Footprint& fp) {
+                     const Footprint& fp, int set) {
   UvDerivs d;
   if (!(fp.tex.px > 0.0f)) return d;
   const Shape& s = sc.shapes[h.shape];
@@ -160,12 +164,12 @@ UvDerivs HitUvDerivs(const Tracer::Impl& im, const Scene& sc, const Hit& h, glm:
   Ray rx, ry;
   glm::dvec2 uv, ux, uy;
   constexpr float kHuge = 1e30f;  // an offset ray beyond the plane: the coarsest level
-  if (!OffsetRays(im, sc.camera, org, dir, fp, &rx, &ry) || !UvOnPlane(s, h.prim, {org, dir}, &uv)) {
+  if (!OffsetRays(im, sc.camera, org, dir, fp, &rx, &ry) || !UvOnPlane(s, h.prim, {org, dir}, &uv, set)) {
     d.dx = d.dy = glm::vec2(kHuge, 0.0f);
     return d;
   }
-  d.dx = UvOnPlane(s, h.prim, rx, &ux) ? glm::vec2(ux - uv) : glm::vec2(kHuge, 0.0f);
-  d.dy = UvOnPlane(s, h.prim, ry, &uy) ? glm::vec2(uy - uv) : glm::vec2(kHuge, 0.0f);
+  d.dx = UvOnPlane(s, h.prim, rx, &ux, set) ? glm::vec2(ux - uv) : glm::vec2(kHuge, 0.0f);
+  d.dy = UvOnPlane(s, h.prim, ry, &uy, set) ? glm::vec2(uy - uv) : glm::vec2(kHuge, 0.0f);
   return d;
 }
 
@@ -173,7 +177,33 @@ glm::vec4 FetchTexture(const Scene& sc, const TextureRef& t, glm::vec2 uv, const
   TextureFilter f;
   f.level0_only = !(fp.tex.px > 0.0f);
   f.max_aniso = fp.tex.max_aniso;
-  return SampleTexture(*sc.images[static_cast<size_t>(t.image)], uv, d, t.wrap_s, t.wrap_t, f);
+  if (!t.transformed) {
+    return SampleTextureFiltered(*sc.images[static_cast<size_t>(t.image)], uv, d, t.wrap_s, t.wrap_t, t.filter, f);
+  }
+  // KHR_texture_transform: the affine map on uv, its linear part on the derivatives.
+  const glm::mat2 lin(t.uv_transform[0], t.uv_transform[1]);
+  UvDerivs td;
+  td.dx = lin * d.dx;
+  td.dy = lin * d.dy;
+  return SampleTextureFiltered(*sc.images[static_cast<size_t>(t.image)], lin * uv + t.uv_transform[2], td, t.wrap_s,
+                               t.wrap_t, t.filter, f);
+}
+
+glm::vec4 HitTextures::Fetch(const TextureRef& t) {
+  const int set = t.texcoord == 1 ? 1 : 0;
+  if (!derivs[set]) {
+    d[set] = footprint ? HitUvDerivs(im, sc, h, org, dir, fp, set) : UvDerivs{};
+    derivs[set] = true;
+  }
+  if (set == 1 && !uv1_done) {
+    const Shape& s = sc.shapes[h.shape];
+    if (s.kind == ShapeKind::kTriangles && !s.uvs1.empty()) {
+      const glm::uvec3 tri = s.triangles[h.prim];
+      uv1 = s.uvs1[tri.x] * (1.0f - h.u - h.v) + s.uvs1[tri.y] * h.u + s.uvs1[tri.z] * h.v;
+    }
+    uv1_done = true;
+  }
+  return FetchTexture(sc, t, set == 1 ? uv1 : srf.uv, d[set], fp);
 }
 
 float CutoutAlpha(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
@@ -181,7 +211,7 @@ float CutoutAlpha(const Tracer::Impl& im, const Scene& sc, const Material& m, co
   if (m.alpha) return EvaluatePattern(*m.alpha, srf.uv);
   const GltfMaterial& g = *m.gltf;
   float a = g.base_factor.w;
-  if (g.base_tex.Has()) a *= FetchTexture(sc, g.base_tex, srf.uv, HitUvDerivs(im, sc, h, org, dir, fp), fp).w;
+  if (g.base_tex.Has()) a *= HitTextures(im, sc, h, srf, org, dir, fp).Fetch(g.base_tex).w;
   return a;
 }
 
@@ -190,7 +220,7 @@ bool CutoutKeeps(const Tracer::Impl& im, const Scene& sc, const Material& m, con
   if (m.alpha) return EvaluatePattern(*m.alpha, srf.uv) >= m.alpha_cutoff;
   const GltfMaterial& g = *m.gltf;
   float a = g.base_factor.w;
-  if (g.base_tex.Has()) a *= FetchTexture(sc, g.base_tex, srf.uv, HitUvDerivs(im, sc, h, org, dir, fp), fp).w;
+  if (g.base_tex.Has()) a *= HitTextures(im, sc, h, srf, org, dir, fp).Fetch(g.base_tex).w;
   return a >= m.alpha_cutoff;
 }
 
@@ -200,10 +230,10 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
   const bool textures = sc.Has(Effect::kTextures);
   const bool any_tex = textures && (g.base_tex.Has() || g.mr_tex.Has() || g.emissive_tex.Has() ||
                                     g.occlusion_tex.Has() || g.normal_tex.Has());
-  const UvDerivs d = any_tex ? HitUvDerivs(im, sc, h, org, dir, fp) : UvDerivs{};
+  HitTextures tex(im, sc, h, srf, org, dir, fp, any_tex);
   auto fetch = [&](const TextureRef& t) {
     ++local.texture_lookups;
-    return FetchTexture(sc, t, srf.uv, d, fp);
+    return tex.Fetch(t);
   };
   glm::vec4 base = g.base_factor;
   if (textures && g.base_tex.Has()) base *= fetch(g.base_tex);
@@ -236,6 +266,9 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
       const glm::vec3 n_hit = VertexNormal(shape, h.prim, h.u, h.v, h.ng);
       const bool back = glm::dot(n_hit, srf.n) < 0.0f;
       const bool mapped = sc.Has(Effect::kNormalMap) && g.normal_tex.Has();
+      // The normal texture's own footprint (of its coordinate set), as fetched above.
+      const int nset = g.normal_tex.texcoord == 1 ? 1 : 0;
+      const UvDerivs d = !mapped || !any_tex ? UvDerivs{} : tex.derivs[nset] ? tex.d[nset] : HitUvDerivs(im, sc, h, org, dir, fp, nset);
       auto normal_at = [&](const Ray& r, glm::vec3* out) {
         double w1, w2;
         if (!BaryOnPlane(shape, h.prim, r, &w1, &w2)) return false;
@@ -250,7 +283,8 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
           return true;
         }
         const glm::uvec3 tri = shape.triangles[h.prim];
-        s2.uv = shape.uvs[tri.x] * (1.0f - h2.u - h2.v) + shape.uvs[tri.y] * h2.u + shape.uvs[tri.z] * h2.v;
+        const std::vector<glm::vec2>& uvs = g.normal_tex.texcoord == 1 ? shape.uvs1 : shape.uvs;
+        s2.uv = uvs[tri.x] * (1.0f - h2.u - h2.v) + uvs[tri.y] * h2.u + uvs[tri.z] * h2.v;
         ++local.texture_lookups;
         *out = NormalMapped(shape, h2, s2, glm::vec3(FetchTexture(sc, g.normal_tex, s2.uv, d, fp)), g.normal_scale);
         return true;
@@ -300,6 +334,52 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
   glm::vec3 emissive = g.emissive;
   if (textures && g.emissive_tex.Has() && emissive != glm::vec3(0.0f)) emissive *= glm::vec3(fetch(g.emissive_tex));
   return c + emissive;
+}
+
+void CompositeBlended(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* hits, const glm::vec3* org,
+                      const glm::vec3* dir, int n, SampleResult* out, TraceCounters& local, const Footprint& fp,
+                      int depth) {
+  if (!im.any_blend || depth + 1 >= kMaxBlendLayers) return;
+  std::vector<int> who;
+  std::vector<float> a;
+  for (int i = 0; i < n; ++i) {
+    if (hits[i].shape < 0) continue;
+    const Material& m = sc.materials[sc.shapes[hits[i].shape].material];
+    if (!m.Blended()) continue;
+    const Surface srf = SurfaceAt(sc, hits[i], org[i], dir[i]);
+    float ai = m.gltf->base_factor.w;
+    if (m.gltf->base_tex.Has()) {
+      ++local.texture_lookups;
+      ai *= HitTextures(im, sc, hits[i], srf, org[i], dir[i], fp).Fetch(m.gltf->base_tex).w;
+    }
+    ai = std::clamp(ai, 0.0f, 1.0f);
+    if (ai >= 1.0f) continue;  // opaque where alpha is 1: nothing behind shows
+    who.push_back(i);
+    a.push_back(ai);
+  }
+  if (who.empty()) return;
+  const size_t m = who.size();
+  std::vector<glm::vec3> o(m), d(m);
+  std::vector<float> tn(m), tf(m, std::numeric_limits<float>::infinity());
+  std::vector<Hit> behind(m);
+  for (size_t k = 0; k < m; ++k) {
+    const int i = who[k];
+    o[k] = org[i];
+    d[k] = dir[i];
+    tn[k] = ContinuePast(hits[i].t);
+  }
+  LayerScratch ls;
+  ClosestVisibleHits(im, sc, alpha, o.data(), d.data(), static_cast<int>(m), tn.data(), tf.data(), behind.data(), ls,
+                     local, fp);
+  ShadeScratch scratch;
+  std::vector<SampleResult> back(m);
+  ShadeHits(im, sc, alpha, behind.data(), o.data(), d.data(), static_cast<int>(m), scratch, back.data(), local, fp);
+  CompositeBlended(im, sc, alpha, behind.data(), o.data(), d.data(), static_cast<int>(m), back.data(), local, fp,
+                   depth + 1);
+  for (size_t k = 0; k < m; ++k) {
+    SampleResult& r = out[who[k]];
+    for (int c = 0; c < 3; ++c) r.rgb[c] = a[k] * r.rgb[c] + (1.0f - a[k]) * back[k].rgb[c];
+  }
 }
 
 }  // namespace tracer_detail

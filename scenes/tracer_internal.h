@@ -122,16 +122,54 @@ bool BackFaceCulled(const Scene& sc, const Material& m, const Hit& h, glm::vec3 
 
 /// UV derivatives of a camera ray's hit on a triangle shape (Footprint's rule; zero with
 /// fp.tex.px == 0; huge when an offset ray misses the triangle's plane).
+/// `set`: the texture coordinate set (0: Shape::uvs, 1: Shape::uvs1).
 UvDerivs HitUvDerivs(const Tracer::Impl& im, const Scene& sc, const Hit& h, glm::vec3 org, glm::vec3 dir,
-                     const Footprint& fp);
+                     const Footprint& fp, int set = 0);
 
-/// A texture fetch of material texture `t` at uv with derivatives d (Footprint's filter).
+/// A texture fetch of material texture `t` at uv with derivatives d (of t's coordinate set,
+/// before its KHR_texture_transform, which is applied here), with t's sampler filters and
+/// Footprint's filter.
 glm::vec4 FetchTexture(const Scene& sc, const TextureRef& t, glm::vec2 uv, const UvDerivs& d, const Footprint& fp);
+
+/// Texture fetches of one hit: the coordinates and footprint of each set, computed once.
+struct HitTextures {
+  HitTextures(const Tracer::Impl& im_, const Scene& sc_, const Hit& h_, const Surface& srf_, glm::vec3 org_,
+              glm::vec3 dir_, const Footprint& fp_, bool footprint_ = true)
+      : im(im_), sc(sc_), h(h_), srf(srf_), org(org_), dir(dir_), fp(fp_), footprint(footprint_) {}
+  const Tracer::Impl& im;
+  const Scene& sc;
+  const Hit& h;
+  const Surface& srf;
+  glm::vec3 org, dir;
+  const Footprint& fp;
+  bool footprint = true;  ///< false: zero derivatives (level 0), as ShadeGltf without textures
+  bool derivs[2] = {false, false};
+  UvDerivs d[2];
+  bool uv1_done = false;
+  glm::vec2 uv1{0.0f};
+  /// Fetches material texture t at this hit.
+  glm::vec4 Fetch(const TextureRef& t);
+};
 
 /// Radiance of a glTF material (unlit or the metallic-roughness BRDF) at a camera-ray hit,
 /// with `blocked` the shadowed-light bits. Adds its texture fetches to counters.
 glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
                     glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& counters);
+
+/// Deepest chain of blended (glTF BLEND) surfaces composited along one ray; the last one
+/// is drawn opaque.
+constexpr int kMaxBlendLayers = 16;
+
+/// glTF BLEND, as an engine draws transparent surfaces after the opaque ones, sorted and
+/// over-composited: for every out[i] whose hit is a blended material, the ray continues past
+/// the hit (cut-outs and culling as for camera rays), what it sees is shaded (recursively
+/// composited, up to kMaxBlendLayers) and out[i].rgb = a · front + (1 − a) · behind, a the
+/// material's alpha (baseColorFactor.a × the base texture's alpha, filtered with the
+/// footprint). out[i]'s surface, depth and position stay the front surface's. Nothing
+/// happens in a scene without blended materials.
+void CompositeBlended(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* hits, const glm::vec3* org,
+                      const glm::vec3* dir, int n, SampleResult* out, TraceCounters& counters, const Footprint& fp,
+                      int depth = 0);
 
 /// Surface attributes of a hit on the ray (org, dir). With `uv` false the texture
 /// coordinates are left at 0, with `normals` false n and ng are left at 0 (what a caller

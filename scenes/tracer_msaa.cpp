@@ -308,6 +308,7 @@ void Tracer::TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos,
   }
   SampleResult* shaded = Sized(S.shade_out, nf);
   ShadeHits(im, sc, alpha, shade_hits, shade_org, shade_dir, n_shade, S.shade, shaded, local, fp);
+  CompositeBlended(im, sc, alpha, shade_hits, shade_org, shade_dir, n_shade, shaded, local, fp);
   local.shading_evals += discarded;  // a discarded fragment ran its shader up to the alpha test
   SampleResult background;
   background.rgb[0] = sc.background.x;

@@ -296,6 +296,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   RegisterGpuCommands(app, commands);
   RegisterClusterCommands(app, commands);
   RegisterExportCommand(app, commands);
+  RegisterSceneCommand(app, commands);
 }
 
 }  // namespace aalab

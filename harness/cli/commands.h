@@ -42,4 +42,7 @@ void RegisterClusterCommands(CLI::App& app, Commands& commands);
 /// Adds `export` (export_command.cpp; docs/publishing.md).
 void RegisterExportCommand(CLI::App& app, Commands& commands);
 
+/// Adds `scene` (scene_command.cpp; docs/real-content.md "A model as a scene").
+void RegisterSceneCommand(CLI::App& app, Commands& commands);
+
 }  // namespace aalab

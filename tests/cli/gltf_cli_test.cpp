@@ -86,7 +86,7 @@ TEST(GltfCli, BadFileIsRefusedAndNothingIsWritten) {
                             (dir / "out.png").string());
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("/objects/0/file"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("buffer 0"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("at /buffers/0/uri"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("gone.bin' not found"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out.png"));
   const CmdResult run = Aalab("run --scenes " + (dir / "scene.json").string() + " --size 32x16 --out " +
@@ -108,6 +108,43 @@ TEST(GltfCli, UndeclaredEffectOfAGltfMaterialIsNamed) {
   EXPECT_NE(r.output.find("alphaMode MASK"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("alpha_test"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out.png"));
+  fs::remove_all(dir);
+}
+
+TEST(GltfCli, AModelIsASceneAndSceneWritesItsFile) {
+  const std::string model = "/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb";
+  if (!fs::exists(model)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  const fs::path dir = TempDir("gltf-model");
+  // aalab scene: the scene file, with the effects the file's textured PBR material needs and
+  // a camera framing the box (the file has none); never overwritten.
+  const CmdResult w = Aalab("scene " + model + " --out " + (dir / "box.json").string());
+  ASSERT_EQ(w.code, 0) << w.output;
+  std::ifstream f(dir / "box.json");
+  const auto j = nlohmann::json::parse(f);
+  EXPECT_EQ(j["name"], "box-textured");
+  EXPECT_EQ(j["effects"], nlohmann::json({"lambert", "shadows", "specular", "textures"}));
+  EXPECT_EQ(j["camera"]["type"], "perspective");
+  EXPECT_EQ(j["objects"][0]["file"], model);
+  const CmdResult again = Aalab("scene " + model + " --out " + (dir / "box.json").string());
+  EXPECT_EQ(again.code, 1) << again.output;
+  EXPECT_NE(again.output.find("does not overwrite"), std::string::npos) << again.output;
+  // run --scenes MODEL.glb: the same scene as that file, the effects printed.
+  const std::string args = " --methods none --size 48x27 --ref-spp 4 --repeat 1 --quiet --out ";
+  const CmdResult r1 = Aalab("run --scenes " + model + args + (dir / "a").string());
+  ASSERT_EQ(r1.code, 0) << r1.output;
+  EXPECT_NE(r1.output.find("effects lambert, shadows, specular, textures"), std::string::npos) << r1.output;
+  const CmdResult r2 = Aalab("run --scenes " + (dir / "box.json").string() + args + (dir / "b").string());
+  ASSERT_EQ(r2.code, 0) << r2.output;
+  auto hash = [](const fs::path& report) {
+    std::ifstream in(report);
+    const auto doc = nlohmann::json::parse(in);
+    return doc["rows"][0]["output_hash"].get<std::string>();
+  };
+  EXPECT_EQ(hash(dir / "a" / "report.json"), hash(dir / "b" / "report.json"));
+  // Not a model: refused with what is allowed.
+  const CmdResult bad = Aalab("scene " + (dir / "box.json").string());
+  EXPECT_EQ(bad.code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("allowed: a .glb or .gltf file"), std::string::npos) << bad.output;
   fs::remove_all(dir);
 }
 

@@ -15,6 +15,7 @@
 #include "harness/io/image_io.h"
 #include "scenes/gltf_load.h"
 #include "scenes/library.h"
+#include "scenes/texture_image.h"
 #include "tests/temp_dir.h"
 
 namespace aalab {
@@ -165,43 +166,85 @@ TEST(GltfLoad, MirroredRepeatSamplerOnAFileWrittenHere) {
   EXPECT_NEAR(g.images[0]->levels[0].texels[0].x, std::pow((104 / 255.0 + 0.055) / 1.055, 2.4), 1e-5);
 }
 
-TEST(GltfBadFiles, OneClearMessageEach) {
+TEST(GltfBadFiles, OneClearMessageEachWithJsonPathAndRule) {
   const fs::path d = TestDir();
+  auto refused = [&](const TriangleFile& f, const std::string& name, const std::vector<std::string>& parts) {
+    const fs::path p = f.Write(d, name);
+    const std::string e = LoadError(p);
+    EXPECT_NE(e.find("glTF file '" + p.string() + "'"), std::string::npos) << e;
+    for (const std::string& part : parts) EXPECT_NE(e.find(part), std::string::npos) << "want '" << part << "' in: " << e;
+  };
   {  // a missing buffer
     TriangleFile f;
     f.doc["buffers"][0]["uri"] = "nowhere.bin";
-    const std::string e = LoadError(f.Write(d, "nobuf"));
-    EXPECT_NE(e.find("buffer 0"), std::string::npos) << e;
-    EXPECT_NE(e.find("not found"), std::string::npos) << e;
+    refused(f, "nobuf", {"at /buffers/0/uri:", "not found"});
   }
   {  // an accessor beyond its buffer view
     TriangleFile f;
     f.doc["accessors"][0]["count"] = 4;
-    const std::string e = LoadError(f.Write(d, "range"));
-    EXPECT_NE(e.find("accessor 0"), std::string::npos) << e;
-    EXPECT_NE(e.find("beyond bufferView 0"), std::string::npos) << e;
+    refused(f, "range", {"at /accessors/0:", "reads 4 elements beyond bufferView 0 (36 bytes)", "rule: accessor bounds"});
   }
   {  // a huge declared count
     TriangleFile f;
     f.doc["accessors"][1]["count"] = 1000000000000LL;
-    const std::string e = LoadError(f.Write(d, "huge"));
-    EXPECT_NE(e.find("accessor 1 declares count 1000000000000"), std::string::npos) << e;
+    refused(f, "huge", {"at /accessors/1/count: 1000000000000 is out of range (allowed: 1 to 134217728)"});
+  }
+  {  // byteStride 2^62: refused by its range, no overflow
+    TriangleFile f;
+    f.doc["bufferViews"][0]["byteStride"] = 1LL << 62;
+    refused(f, "stride", {"at /bufferViews/0/byteStride: 4611686018427387904 is out of range (allowed: 4 to 252)"});
+  }
+  {  // byteOffset near 2^62 with a legal stride: the end (offset + (count−1)·stride + size) computed
+     // in 128 bits, so the accessor is refused for its bounds and never wraps around to "fits"
+    TriangleFile f;
+    f.doc["accessors"][0]["byteOffset"] = (1LL << 62) - 4;
+    refused(f, "offset", {"at /accessors/0:", "rule: accessor bounds"});
+  }
+  {  // an unsigned value beyond 2^63
+    TriangleFile f;
+    f.doc["accessors"][0]["byteOffset"] = 18446744073709551615ULL;
+    refused(f, "u64", {"at /accessors/0/byteOffset: 18446744073709551615 is out of range"});
   }
   {  // NaN vertices
     TriangleFile f;
     f.pos[4] = std::nanf("");
     f.doc["accessors"][0].erase("min");
     f.doc["accessors"][0].erase("max");
-    const std::string e = LoadError(f.Write(d, "nan"));
-    EXPECT_NE(e.find("NaN"), std::string::npos) << e;
+    refused(f, "nan", {"at /meshes/0/primitives/0/attributes/POSITION:", "vertex 1 has a NaN"});
   }
-  {  // an index beyond the vertices
+  {  // an index beyond the vertices: refused, never a triangle silently dropped
     TriangleFile f;
     f.idx[2] = 7;
-    const std::string e = LoadError(f.Write(d, "index"));
-    EXPECT_NE(e.find("ok"), 0u);
-    EXPECT_FALSE(e.empty());
-    EXPECT_TRUE(e.find("index") != std::string::npos || e.find("Index") != std::string::npos) << e;
+    refused(f, "index", {"at /meshes/0/primitives/0/indices: element 2 is index 7, beyond the primitive's 3 vertices",
+                         "rule: index out of range"});
+  }
+  {  // a material index out of range
+    TriangleFile f;
+    f.doc["meshes"][0]["primitives"][0]["material"] = 5;
+    refused(f, "material", {"at /meshes/0/primitives/0/material: names materials 5, which does not exist (1 defined)"});
+  }
+  {  // a numeric version
+    TriangleFile f;
+    f.doc["asset"]["version"] = 2.0;
+    refused(f, "version", {"at /asset/version: must be a string"});
+  }
+  {  // a wrong JSON type deep in the tree: a message, never a raw json.exception
+    TriangleFile f;
+    f.doc["nodes"][0]["translation"] = "far";
+    refused(f, "type", {"at /nodes/0/translation: must be an array of 3 numbers"});
+  }
+  {  // recursive nodes
+    TriangleFile f;
+    f.doc["nodes"].push_back(Json::parse(R"({"children": [2]})"));
+    f.doc["nodes"].push_back(Json::parse(R"({"children": [1]})"));
+    refused(f, "cycle", {"rule: recursive nodes"});
+  }
+  {  // a node with two parents
+    TriangleFile f;
+    f.doc["nodes"].push_back(Json::parse(R"({"children": [0]})"));
+    f.doc["nodes"].push_back(Json::parse(R"({"children": [0]})"));
+    f.doc["scenes"][0]["nodes"] = {1};
+    refused(f, "twoparents", {"at /nodes/2/children/0: node 0 already has parent 1", "rule: a node has one parent"});
   }
   {  // a texture that does not decode
     std::ofstream(d / "broken.png") << "this is not a PNG";
@@ -213,24 +256,44 @@ TEST(GltfBadFiles, OneClearMessageEach) {
     EXPECT_NE(e.find("broken.png"), std::string::npos) << e;
     EXPECT_NE(e.find("cannot be decoded"), std::string::npos) << e;
   }
-  {  // an unsupported feature is named
+  {  // every required extension aalab does not draw, in one message
     TriangleFile f;
-    f.doc["extensionsUsed"] = {"KHR_texture_transform"};
-    const std::string e = LoadError(f.Write(d, "ext"));
-    EXPECT_NE(e.find("KHR_texture_transform"), std::string::npos) << e;
+    f.doc["extensionsUsed"] = {"KHR_texture_transform", "EXT_a", "EXT_b"};
+    f.doc["extensionsRequired"] = {"EXT_a", "KHR_texture_transform", "EXT_b"};
+    refused(f, "required", {"at /extensionsRequired: requires EXT_a, EXT_b, which aalab does not draw"});
   }
-  {  // BLEND is named, not drawn as something else
-    TriangleFile f;
-    f.doc["materials"][0]["alphaMode"] = "BLEND";
-    const std::string e = LoadError(f.Write(d, "blend"));
-    EXPECT_NE(e.find("alphaMode BLEND"), std::string::npos) << e;
-  }
-  {  // points
+  {  // points only: nothing to draw
     TriangleFile f;
     f.doc["meshes"][0]["primitives"][0]["mode"] = 0;
-    const std::string e = LoadError(f.Write(d, "points"));
-    EXPECT_NE(e.find("mode 0"), std::string::npos) << e;
+    refused(f, "points", {"the scene has no triangles to draw"});
   }
+}
+
+TEST(GltfLoad, UsedExtensionsBlendAnimationsLoadWithOneNoteEach) {
+  const fs::path d = TestDir();
+  TriangleFile f;
+  f.doc["extensionsUsed"] = {"KHR_materials_ior", "KHR_texture_transform", "KHR_materials_specular"};
+  f.doc["materials"][0]["alphaMode"] = "BLEND";
+  f.doc["animations"] = Json::parse(R"([{"channels": [], "samplers": []}])");
+  const GltfContent g = LoadGltf(f.Write(d, "used").string());
+  EXPECT_EQ(g.materials[0].gltf->alpha_mode, AlphaMode::kBlend);
+  ASSERT_EQ(g.notes.size(), 2u);
+  EXPECT_EQ(g.notes[0], "extensions used but not drawn (ignored, as glTF allows): KHR_materials_ior, KHR_materials_specular");
+  EXPECT_NE(g.notes[1].find("animations: drawn at the static pose"), std::string::npos) << g.notes[1];
+}
+
+TEST(GltfLoad, TwentyThousandNestedNodesLoadWithoutRecursion) {
+  const fs::path d = TestDir();
+  TriangleFile f;
+  // node k's child is node k + 1; the mesh sits at the bottom, each level translates by +1 in x.
+  Json nodes = Json::array();
+  const int depth = 20000;
+  for (int k = 0; k < depth; ++k) nodes.push_back({{"children", {k + 1}}, {"translation", {1, 0, 0}}});
+  nodes.push_back({{"mesh", 0}});
+  f.doc["nodes"] = nodes;
+  const GltfContent g = LoadGltf(f.Write(d, "deep").string());
+  ASSERT_EQ(g.shapes.size(), 1u);
+  EXPECT_EQ(g.shapes[0].positions[1], glm::vec3(depth + 1, 0, 0));  // (1,0,0) + 20000 translations
 }
 
 TEST(GltfLoad, KhronosEngineFromAssimpTestmodels) {
@@ -239,6 +302,66 @@ TEST(GltfLoad, KhronosEngineFromAssimpTestmodels) {
   const GltfContent g = LoadGltf(p);
   EXPECT_GT(g.shapes.size(), 50u);  // hundreds of parts: one shape per primitive instance
   EXPECT_GT(g.triangles, 50000u);
+}
+
+TEST(GltfSampler, FiltersAsOpenGlDefinesThem) {
+  // A 4 × 2 level 0 whose texel (i, j) holds i + 10·j, then levels holding 100, 200 (2 × 1, 1 × 1).
+  MipChain c;
+  MipLevel l0;
+  l0.width = 4;
+  l0.height = 2;
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 4; ++i) l0.texels.push_back(glm::vec4(static_cast<float>(i + 10 * j)));
+  }
+  c.levels.push_back(l0);
+  c.levels.push_back({2, 1, {glm::vec4(100.0f), glm::vec4(100.0f)}});
+  c.levels.push_back({1, 1, {glm::vec4(200.0f)}});
+  const glm::vec2 uv(0.3f, 0.6f);  // texel (⌊1.2⌋, ⌊1.2⌋) = (1, 1) → 11
+  auto with_lambda = [](float lambda) {  // ρ = 2^λ texels per step along x (W = 4)
+    UvDerivs d;
+    d.dx = glm::vec2(std::exp2(lambda) / 4.0f, 0.0f);
+    d.dy = glm::vec2(0.0f, 1e-6f);
+    return d;
+  };
+  const TextureFilter gpu;  // not level0_only
+  const WrapMode r = WrapMode::kRepeat;
+  // NEAREST magnification: the texel itself, no blend (bilinear would give 0.7 + 10·0.7 = 7.7).
+  EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(-1.0f), r, r, SamplerFilterOf(9728, 9987), gpu).x, 11.0f);
+  EXPECT_NEAR(SampleTextureFiltered(c, uv, with_lambda(-1.0f), r, r, SamplerFilterOf(9729, 9987), gpu).x, 7.7f, 1e-5f);
+  // minFilter NEAREST (no mip) under minification: still level 0's texel.
+  EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(1.6f), r, r, SamplerFilterOf(9729, 9728), gpu).x, 11.0f);
+  // NEAREST_MIPMAP_NEAREST: level ⌈λ + ½⌉ − 1: λ = 1.4 → level 1 (100), λ = 1.6 → level 2 (200).
+  EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(1.4f), r, r, SamplerFilterOf(9729, 9984), gpu).x, 100.0f);
+  EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(1.6f), r, r, SamplerFilterOf(9729, 9984), gpu).x, 200.0f);
+  // NEAREST_MIPMAP_LINEAR (9986, COLLADA2GLTF's default): λ = 0.25 → ¾ · texel 11 + ¼ · 100.
+  EXPECT_NEAR(SampleTextureFiltered(c, uv, with_lambda(0.25f), r, r, SamplerFilterOf(9729, 9986), gpu).x, 0.75f * 11 + 25, 1e-4f);
+  // The reference (level 0 at every sub-sample) honours the magnification filter.
+  TextureFilter truth;
+  truth.level0_only = true;
+  EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(3.0f), r, r, SamplerFilterOf(9728, 9984), truth).x, 11.0f);
+}
+
+TEST(GltfLoad, TextureTransformAndSecondUvSetAreRead) {
+  const fs::path d = TestDir();
+  WriteImage8((d / "grey2.png").string(), Image8(1, 1, 4, 104));
+  TriangleFile f;
+  f.doc["images"] = Json::parse(R"([{"uri": "grey2.png"}])");
+  f.doc["samplers"] = Json::parse(R"([{"magFilter": 9728, "minFilter": 9986}])");
+  f.doc["textures"] = Json::parse(R"([{"source": 0, "sampler": 0}])");
+  f.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  f.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = Json::parse(
+      R"({"index": 0, "texCoord": 0, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0], "rotation": 1.5707963267948966, "scale": [2, 1], "texCoord": 1}}})");
+  f.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 1;
+  const GltfContent g = LoadGltf(f.Write(d, "xform").string());
+  const TextureRef& t = g.materials[0].gltf->base_tex;
+  EXPECT_EQ(t.texcoord, 1);  // the extension's texCoord overrides the textureInfo's
+  EXPECT_EQ(t.filter, SamplerFilterOf(9728, 9986));
+  ASSERT_TRUE(t.transformed);
+  // uv' = T · R · S · uv: (1, 0) → S (2, 0) → R(90°) (0, −2) → T (0.5, −2).
+  const glm::vec2 p = t.uv_transform * glm::vec3(1, 0, 1);
+  EXPECT_NEAR(p.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(p.y, -2.0f, 1e-6f);
+  EXPECT_EQ(g.shapes[0].uvs1, g.shapes[0].uvs);  // TEXCOORD_1 read (the same accessor here)
 }
 
 }  // namespace
