@@ -112,8 +112,9 @@ void CheckGltfJson(const std::string& path, const GltfJson& g, std::vector<Camer
     if (!d.contains(list)) continue;
     for (const Json& e : d[list]) {
       const std::string name = e.is_string() ? e.get<std::string>() : "?";
-      if (name != "KHR_materials_unlit") {
-        Refuse(path, std::string(list) + " names '" + name + "', which aalab does not render (supported: KHR_materials_unlit)");
+      if (name != "KHR_materials_unlit" && name != "KHR_lights_punctual") {
+        Refuse(path, std::string(list) + " names '" + name +
+                         "', which aalab does not render (supported: KHR_materials_unlit, KHR_lights_punctual)");
       }
     }
   }
