@@ -28,6 +28,15 @@ MipChain UnitNormalChain(const MipChain& normal_texture) {
   return BuildMipChain(std::move(l0), normal_texture.name + " (unit normals)");
 }
 
+MipChain ToksvigAlpha2Chain(const MipChain& normal_texture) {
+  MipChain c = UnitNormalChain(normal_texture);
+  c.name = normal_texture.name + " (Toksvig alpha^2)";
+  for (MipLevel& l : c.levels) {
+    for (glm::vec4& t : l.texels) t = glm::vec4(ToksvigAlpha2(glm::length(glm::vec3(t))), 0.0f, 0.0f, 1.0f);
+  }
+  return c;
+}
+
 float ToksvigAlpha2(float r) {
   if (!(r < 1.0f)) return 0.0f;
   if (!(r > 0.0f)) return 1.0f;
@@ -42,7 +51,7 @@ const MipChain& ToksvigChains::Get(const Scene& sc, int image) const {
     for (const Material& m : sc.materials) {
       if (!m.gltf || !m.gltf->normal_tex.Has()) continue;
       const auto i = static_cast<size_t>(m.gltf->normal_tex.image);
-      if (!chains_[i]) chains_[i] = std::make_shared<const MipChain>(UnitNormalChain(*sc.images[i]));
+      if (!chains_[i]) chains_[i] = std::make_shared<const MipChain>(ToksvigAlpha2Chain(*sc.images[i]));
     }
   });
   return *chains_[static_cast<size_t>(image)];

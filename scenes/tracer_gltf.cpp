@@ -268,11 +268,11 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
     }
     if (mapped && textures && fp.tex.gsaa_toksvig > 0.0f) {
       ++local.texture_lookups;
-      const MipChain& unit = im.toksvig.Get(sc, g.normal_tex.image);
+      const MipChain& tox = im.toksvig.Get(sc, g.normal_tex.image);
       TextureFilter tf;
       tf.max_aniso = fp.tex.max_aniso;
-      const float r = glm::length(glm::vec3(SampleTexture(unit, srf.uv, d, g.normal_tex.wrap_s, g.normal_tex.wrap_t, tf)));
-      a2 = std::min(1.0f, a2 + fp.tex.gsaa_toksvig * ToksvigAlpha2(r));
+      const float add = SampleTexture(tox, srf.uv, d, g.normal_tex.wrap_s, g.normal_tex.wrap_t, tf).x;
+      a2 = std::min(1.0f, a2 + std::min(fp.tex.gsaa_toksvig * add, fp.tex.gsaa_toksvig_max));
     }
   }
   const glm::vec3 base_rgb(base);

@@ -105,6 +105,9 @@ struct SpecularAaSpec {
   bool mapped_derivatives = false;
   /// Weight of the normal map's own variance (Toksvig / vMF, scenes/toksvig.h): 0 off, 1 on.
   double toksvig = 1.0;
+  /// Clamp of the texture term's added α² (HDRP clamps its normal-filtering widening by the
+  /// material's threshold², default 0.2² = 0.04).
+  double toksvig_max = 0.04;
 };
 
 /// The render a method asks for. Samples are tonemapped each, averaged in linear light with
