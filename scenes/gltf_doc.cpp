@@ -25,7 +25,8 @@ using u128 = unsigned __int128;
 const std::vector<std::string>& GltfSupportedExtensions() {
   static const std::vector<std::string> k = {
       "KHR_materials_unlit",        "KHR_texture_transform",   "KHR_materials_emissive_strength",
-      "KHR_mesh_quantization",      "EXT_meshopt_compression", "KHR_draco_mesh_compression"};
+      "KHR_mesh_quantization",      "EXT_meshopt_compression", "KHR_draco_mesh_compression",
+      "KHR_lights_punctual"};
   return k;
 }
 

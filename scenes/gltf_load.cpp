@@ -553,8 +553,8 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
     cam.up = glm::vec3(glm::normalize(glm::dmat3(w) * glm::dvec3(0, 1, 0)));
     out.cameras.push_back(cam);
   }
-  // (KHR_lights_punctual: the file's lights are read here, from d.j and graph.world, by
-  // scenes/gltf_lights.h once it lands.)
+  // KHR_lights_punctual: read by scenes/gltf_lights.h (GltfPunctualLights) where the scene
+  // file's object places the model (AddGltfObject in scene_parse.cpp).
 
   // Textures: every header and the budget first, then the decodes (scenes/gltf_images.cpp).
   std::vector<std::pair<long long, bool>> wanted(mats.Images().size());

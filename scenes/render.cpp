@@ -221,6 +221,10 @@ void TraceFrameSamples(const Tracer& tracer, int width, int height, const Render
   if (spec.specular_aa.enabled) {
     footprint.gsaa_sigma2 = static_cast<float>(spec.specular_aa.sigma2);
     footprint.gsaa_kappa = static_cast<float>(spec.specular_aa.kappa);
+    footprint.gsaa = true;
+    footprint.gsaa_mapped = spec.specular_aa.mapped_derivatives;
+    footprint.gsaa_toksvig = static_cast<float>(spec.specular_aa.toksvig);
+    footprint.gsaa_toksvig_max = static_cast<float>(spec.specular_aa.toksvig_max);
   }
   if (spec.msaa.On()) {
     TraceMsaaTiles(tracer, width, height, spec.msaa, resolve, counters, stats, footprint);

@@ -95,16 +95,27 @@ struct Material {
   bool Blended() const { return gltf && gltf->alpha_mode == AlphaMode::kBlend; }
 };
 
-enum class LightType { kDirectional, kPoint };
+enum class LightType { kDirectional, kPoint, kSpot };
 
+/// A punctual light. `intensity` is held in aalab's internal unit, the glTF / Blender value
+/// divided by π (docs/lighting.md "Units"): a white Lambert surface facing a light of internal
+/// intensity E reflects radiance E. Scene files and glTF files state lux (directional) and
+/// candela (point, spot); ParseScene and GltfPunctualLights divide by π.
 struct Light {
   LightType type = LightType::kDirectional;
-  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< directional: the direction light travels
-  glm::vec3 position{0.0f};                ///< point: position
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< directional, spot: the direction light travels
+  glm::vec3 position{0.0f};                ///< point, spot: position
   glm::vec3 color{1.0f};
-  float intensity = 1.0f;                  ///< directional: irradiance; point: intensity (/d²)
+  float intensity = 1.0f;                  ///< directional: irradiance / π; point, spot: intensity / π (/d²)
   bool shadows = false;                    ///< casts shadows (needs `shadows`)
+  /// Spot: cosines of KHR_lights_punctual's innerConeAngle and outerConeAngle.
+  float cos_inner = 1.0f, cos_outer = 0.70710678f;
+  /// Point, spot: KHR_lights_punctual `range` (0: infinite; else the smooth window
+  /// clamp(1 − (d/range)⁴, 0, 1) of the specification's recommended falloff).
+  float range = 0.0f;
 };
+
+struct Environment;  // scenes/ibl.h: an image-based lighting environment, prefiltered
 
 enum class CameraType { kPerspective, kOrthographic };
 
@@ -186,6 +197,9 @@ struct Scene {
   glm::vec3 ambient{0.0f};  ///< added to lambert lighting
   std::vector<Material> materials;
   std::vector<Light> lights;
+  /// Image-based lighting (scene file "environment"); null: none (the scene renders as
+  /// before environments existed, bit for bit).
+  std::shared_ptr<const Environment> environment;
   std::vector<Shape> shapes;
   /// Decoded image textures (glTF), shared by copies of the scene (SceneAtFrame).
   std::vector<std::shared_ptr<const MipChain>> images;

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "harness/core/hash.h"
+#include "scenes/ibl.h"
 
 namespace aalab {
 
@@ -144,6 +145,22 @@ uint64_t SceneContentHash(const Scene& s) {
     if (sh.tangents.empty()) continue;
     h.S("tangents");
     for (const glm::vec4& t : sh.tangents) h.V3(glm::vec3(t)), h.F(t.w);
+  }
+  // Spot lights, ranges and the environment (absent from scenes written before them, whose
+  // fingerprint this leaves unchanged).
+  for (const Light& l : s.lights) {
+    if (l.type != LightType::kSpot && l.range == 0.0f) continue;
+    h.S("light-cone-range");
+    h.F(l.cos_inner), h.F(l.cos_outer), h.F(l.range);
+  }
+  if (s.environment) {
+    const Environment& e = *s.environment;
+    h.S("environment");
+    h.S(e.name);
+    h.F(e.intensity), h.F(e.rotation_deg);
+    const EquirectMap& m = e.specular[0];
+    h.I(m.width), h.I(m.height);
+    for (const glm::vec3& t : m.texels) h.V3(t);
   }
   const Animation& a = s.animation;
   h.I(a.frames);

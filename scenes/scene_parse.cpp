@@ -13,7 +13,9 @@
 
 #include "harness/core/error.h"
 #include "harness/core/params.h"
+#include "scenes/gltf_lights.h"
 #include "scenes/gltf_load.h"
+#include "scenes/lighting_parse.h"
 #include "scenes/json_fields.h"
 #include "scenes/motion_parse.h"
 #include "scenes/scene.h"
@@ -92,12 +94,13 @@ Material ParseMaterial(const JsonField& f, const std::string& name) {
   return m;
 }
 
-Light ParseLight(const JsonField& f) {
-  f.RequireObject({"type", "direction", "position", "color", "intensity", "shadows"});
+Light ParseLight(const JsonField& f, LightUnits units) {
+  f.RequireObject({"type", "direction", "position", "color", "intensity", "shadows", "inner_cone_deg",
+                   "outer_cone_deg", "range"});
   Light l;
-  const std::string type = f.Child("type").Choice({"directional", "point"});
-  if (type == "directional") {
-    l.type = LightType::kDirectional;
+  const std::string type = f.Child("type").Choice({"directional", "point", "spot"});
+  if (type == "directional" || type == "spot") {
+    l.type = type == "directional" ? LightType::kDirectional : LightType::kSpot;
     // Normalised in double: in float the squared length of (1e30, 1e30, 1e30) overflows and
     // normalize() silently returns the zero vector.
     const glm::dvec3 d(f.Child("direction").Vec3());
@@ -105,14 +108,29 @@ Light ParseLight(const JsonField& f) {
     if (!(len > 0.0)) f.Child("direction").Fail("direction must not be zero");
     l.direction = glm::vec3(d / len);
     if (glm::length(l.direction) < 0.5f) f.Child("direction").Fail("direction is too small to normalise");
+  }
+  if (type == "directional") {
     if (f.Has("position")) f.Child("position").Fail("a directional light has no position");
+    if (f.Has("range")) f.Child("range").Fail("a directional light has no range");
   } else {
-    l.type = LightType::kPoint;
+    if (type == "point") l.type = LightType::kPoint;
     l.position = f.Child("position").Vec3(-kMaxCoord, kMaxCoord);
-    if (f.Has("direction")) f.Child("direction").Fail("a point light has no direction");
+    if (type == "point" && f.Has("direction")) f.Child("direction").Fail("a point light has no direction");
+    if (f.Has("range")) l.range = static_cast<float>(f.Child("range").Number(0.0, 1e12, true));
+  }
+  if (type == "spot") {
+    const double inner = f.NumberOr("inner_cone_deg", 0.0, 0.0, 90.0);
+    const double outer = f.NumberOr("outer_cone_deg", 45.0, 0.0, 90.0, true);
+    if (!(inner < outer)) f.Fail("a spot light needs inner_cone_deg < outer_cone_deg (KHR_lights_punctual: 0 <= inner < outer <= 90)");
+    l.cos_inner = static_cast<float>(std::cos(inner * 3.14159265358979323846 / 180.0));
+    l.cos_outer = static_cast<float>(std::cos(outer * 3.14159265358979323846 / 180.0));
+  } else {
+    for (const char* k : {"inner_cone_deg", "outer_cone_deg"}) {
+      if (f.Has(k)) f.Child(k).Fail("only a spot light has cone angles");
+    }
   }
   l.color = f.Vec3Or("color", glm::vec3(1.0f), 0.0, 1e7);
-  l.intensity = static_cast<float>(f.NumberOr("intensity", 1.0, 0.0, 1e12));
+  l.intensity = InternalIntensity(f.NumberOr("intensity", 1.0, 0.0, 1e12), units);
   l.shadows = f.BoolOr("shadows", false);
   return l;
 }
@@ -307,6 +325,20 @@ void AddGltfObject(Scene& s, const JsonField& o, const std::string& base_dir, st
     }
     s.shapes.push_back(std::move(sh));
   }
+  // The file's KHR_lights_punctual lights, placed by the object's transform (the extension's
+  // own units: scenes/gltf_lights.h).
+  try {
+    for (Light l : GltfPunctualLights(ReadGltfJson(p.string()))) {
+      l.position = glm::vec3(m * glm::vec4(l.position, 1.0f));
+      const glm::vec3 d = glm::mat3(m) * l.direction;
+      if (glm::length(d) > 0.0f) l.direction = glm::normalize(d);
+      s.lights.push_back(l);
+    }
+  } catch (const UserError& e) {
+    file.Fail(e.what());
+  } catch (const nlohmann::json::exception& e) {
+    file.Fail(std::string("KHR_lights_punctual: malformed node or light (") + e.what() + ")");
+  }
   if (cameras.empty()) {
     for (Camera c : g.cameras) {
       c.position = glm::vec3(m * glm::vec4(c.position, 1.0f));
@@ -357,7 +389,7 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
   }
   const JsonField root(doc, origin, "");
   root.RequireObject({"name", "description", "effects", "camera", "display", "background", "ambient",
-                      "materials", "lights", "objects", "animation"});
+                      "materials", "lights", "light_units", "environment", "objects", "animation"});
   Scene s;
   s.name = root.Child("name").String();
   for (char c : s.name) {
@@ -412,10 +444,12 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
     s.materials.push_back(ParseMaterial(mats.Child(it.key()), it.key()));
   }
 
+  const LightUnits units = ParseLightUnits(root, root.Has("lights") && root.Child("lights").ArraySize() > 0);
   if (root.Has("lights")) {
     const JsonField lights = root.Child("lights");
-    for (size_t i = 0; i < lights.ArraySize(); ++i) s.lights.push_back(ParseLight(lights.At(i)));
+    for (size_t i = 0; i < lights.ArraySize(); ++i) s.lights.push_back(ParseLight(lights.At(i), units));
   }
+  if (root.Has("environment")) s.environment = ParseEnvironment(root.Child("environment"), base_dir, &s.files_read);
 
   if (root.Has("animation")) s.animation = ParseAnimation(root.Child("animation"));
 
@@ -506,10 +540,11 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
       used[static_cast<int>(Effect::kShadows)] = true;
     }
   }
-  if (lit && s.lights.empty() && s.ambient == glm::vec3(0.0f)) {
-    root.Fail("lambert materials need lights or an ambient term (the scene would be black)");
+  if (lit && s.lights.empty() && s.ambient == glm::vec3(0.0f) && !s.environment) {
+    root.Fail("lambert materials need lights, an ambient term or an environment (the scene would be black)");
   }
-  if (!lit && !s.lights.empty()) root.Child("lights").Fail("lights without any lambert material light nothing");
+  if (!lit && !s.lights.empty() && root.Has("lights")) root.Child("lights").Fail("lights without any lambert material light nothing");
+  if (!lit && s.environment) root.Child("environment").Fail("an environment without any lambert or glTF PBR material lights nothing");
   for (int e = 0; e < kEffectCount; ++e) {
     if (s.effects[e] && !used[e]) {
       effects.Fail("effect '" + std::string(EffectName(static_cast<Effect>(e))) +

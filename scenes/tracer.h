@@ -61,6 +61,10 @@ struct TextureFootprint {
   /// derivatives are taken over the same footprint as the texture's.
   float gsaa_sigma2 = 0.0f;
   float gsaa_kappa = 0.0f;
+  bool gsaa = false;           ///< specular AA on (RenderSpec::specular_aa.enabled)
+  bool gsaa_mapped = false;    ///< derivatives of the normal-mapped normal (else the vertex normal)
+  float gsaa_toksvig = 0.0f;   ///< weight of the normal map's variance (scenes/toksvig.h)
+  float gsaa_toksvig_max = 0.0f;  ///< clamp of the normal map's added α²
 };
 
 /// The alpha-to-coverage mask of `samples` MSAA samples at pixel (px, py): the first

@@ -9,6 +9,8 @@
 #include <limits>
 #include <vector>
 
+#include "scenes/ibl.h"
+#include "scenes/light_eval.h"
 #include "scenes/specular_aa.h"
 #include "scenes/tracer_internal.h"
 
@@ -255,20 +257,23 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
   // α = roughness², floored so that D stays finite in float at roughness 0 (a mirror).
   const float alpha = std::max(roughness * roughness, 1e-3f);
   float a2 = alpha * alpha;
-  if (fp.tex.gsaa_sigma2 > 0.0f && fp.tex.px > 0.0f) {
-    // Geometric specular AA (RenderSpec::specular_aa): the shading normal where the rays one
-    // footprint step right and down meet the triangle's plane, as a pixel shader's ddx(N),
-    // ddy(N) of the final (normal-mapped) normal; α'² = min(1, α² + min(σ²·(|dN/dx|² +
-    // |dN/dy|²), κ)) (Tokuyoshi & Kaplanyan 2021, listing 5).
+  if (fp.tex.gsaa && fp.tex.px > 0.0f) {
+    // Specular AA (RenderSpec::specular_aa, methods/specular_aa.cpp). Geometric term: the
+    // normal where the rays one footprint step right and down meet the triangle's plane, as a
+    // pixel shader's ddx(N), ddy(N): α'² = min(1, α² + min(σ²·(|dN/dx|² + |dN/dy|²), κ))
+    // (Tokuyoshi & Kaplanyan 2021, listing 5), of the interpolated vertex normal (the paper's
+    // choice) or, with gsaa_mapped, of the final normal-mapped normal. Texture term: the
+    // normal map's own variance over the footprint (scenes/toksvig.h), α'² += 1/(2κ_vMF).
     const Shape& shape = sc.shapes[h.shape];
+    const bool mapped = sc.Has(Effect::kNormalMap) && g.normal_tex.Has();
+    // The normal texture's own coordinate set and footprint, as fetched above.
+    const int nset = g.normal_tex.texcoord == 1 ? 1 : 0;
+    const UvDerivs d = !mapped || !any_tex ? UvDerivs{} : tex.derivs[nset] ? tex.d[nset] : HitUvDerivs(im, sc, h, org, dir, fp, nset);
     Ray rx, ry;
     if (shape.kind == ShapeKind::kTriangles && OffsetRays(im, sc.camera, org, dir, fp, &rx, &ry)) {
       const glm::vec3 n_hit = VertexNormal(shape, h.prim, h.u, h.v, h.ng);
       const bool back = glm::dot(n_hit, srf.n) < 0.0f;
-      const bool mapped = sc.Has(Effect::kNormalMap) && g.normal_tex.Has();
-      // The normal texture's own footprint (of its coordinate set), as fetched above.
-      const int nset = g.normal_tex.texcoord == 1 ? 1 : 0;
-      const UvDerivs d = !mapped || !any_tex ? UvDerivs{} : tex.derivs[nset] ? tex.d[nset] : HitUvDerivs(im, sc, h, org, dir, fp, nset);
+      const bool use_map = mapped && fp.tex.gsaa_mapped;
       auto normal_at = [&](const Ray& r, glm::vec3* out) {
         double w1, w2;
         if (!BaryOnPlane(shape, h.prim, r, &w1, &w2)) return false;
@@ -278,7 +283,7 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
         const glm::vec3 n0 = VertexNormal(shape, h.prim, h2.u, h2.v, h.ng);
         Surface s2 = srf;
         s2.n = back ? -n0 : n0;
-        if (!mapped) {
+        if (!use_map) {
           *out = s2.n;
           return true;
         }
@@ -291,8 +296,26 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
       };
       glm::vec3 nx, ny;
       if (normal_at(rx, &nx) && normal_at(ry, &ny)) {
-        a2 = FilteredAlpha2(a2, nx - n, ny - n, fp.tex.gsaa_sigma2, fp.tex.gsaa_kappa);
+        const glm::vec3 n_base = use_map ? n : (back ? -n_hit : n_hit);
+        a2 = FilteredAlpha2(a2, nx - n_base, ny - n_base, fp.tex.gsaa_sigma2, fp.tex.gsaa_kappa);
       }
+    }
+    if (mapped && textures && fp.tex.gsaa_toksvig > 0.0f) {
+      ++local.texture_lookups;
+      const MipChain& tox = im.toksvig.Get(sc, g.normal_tex.image);
+      TextureFilter tf;
+      tf.max_aniso = fp.tex.max_aniso;
+      // The variance chain in the normal map's own coordinates (its set and KHR_texture_transform).
+      glm::vec2 nuv = nset == 1 ? tex.uv1 : srf.uv;
+      UvDerivs nd = d;
+      if (g.normal_tex.transformed) {
+        const glm::mat2 lin(g.normal_tex.uv_transform[0], g.normal_tex.uv_transform[1]);
+        nuv = lin * nuv + g.normal_tex.uv_transform[2];
+        nd.dx = lin * d.dx;
+        nd.dy = lin * d.dy;
+      }
+      const float add = SampleTexture(tox, nuv, nd, g.normal_tex.wrap_s, g.normal_tex.wrap_t, tf).x;
+      a2 = std::min(1.0f, a2 + std::min(fp.tex.gsaa_toksvig * add, fp.tex.gsaa_toksvig_max));
     }
   }
   const glm::vec3 base_rgb(base);
@@ -302,19 +325,14 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
   const float nv = std::max(glm::dot(n, v), 1e-4f);
   const float vis_v = nv + std::sqrt(a2 + (1.0f - a2) * nv * nv);
   glm::vec3 c = sc.ambient * (c_diff + f0) * occlusion;
+  // Image-based light (scenes/ibl.h), at the roughness the specular AA left: occlusion applies
+  // to it as to every indirect term (glTF 2.0 occlusionTexture).
+  if (sc.environment) c += IblShadePbr(*sc.environment, n, v, nv, c_diff, f0, std::sqrt(std::sqrt(a2))) * occlusion;
   for (size_t l = 0; l < sc.lights.size(); ++l) {
     const Light& light = sc.lights[l];
     glm::vec3 L;
     float falloff = 1.0f;
-    if (light.type == LightType::kDirectional) {
-      L = -light.direction;
-    } else {
-      L = light.position - srf.p;
-      const float d2 = glm::dot(L, L);
-      if (!(d2 > 0.0f)) continue;
-      L /= std::sqrt(d2);
-      falloff = 1.0f / d2;
-    }
+    if (!LightIncidence(light, srf.p, &L, &falloff)) continue;
     const float nl = glm::dot(n, L);
     if (nl <= 0.0f || glm::dot(srf.ng, L) <= 0.0f) continue;  // below the shading or the geometric surface
     if (l < 32 && (blocked >> l) & 1u) continue;
@@ -327,8 +345,8 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
     const float D = a2 / (kPi * dd * dd);
     const float vis = 1.0f / ((nl + std::sqrt(a2 + (1.0f - a2) * nl * nl)) * vis_v);
     const glm::vec3 f = (glm::vec3(1.0f) - F) * c_diff / kPi + F * (D * vis);
-    // aalab's light convention (scenes/README.md): a white Lambert surface facing a light of
-    // intensity E reflects E, so the BRDF is scaled by π: π · f · E · (N·L).
+    // Light::intensity is the glTF value / π (scenes/scene.h), so π · f · E · (N·L) is the
+    // glTF radiance f · E_gltf · (N·L): a white Lambert surface reflects E_gltf / π.
     c += kPi * f * light.color * (light.intensity * falloff) * nl;
   }
   glm::vec3 emissive = g.emissive;

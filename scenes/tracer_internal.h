@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "scenes/toksvig.h"
 #include "scenes/tracer.h"
 
 namespace aalab {
@@ -26,6 +27,7 @@ struct Tracer::Impl {
   bool any_blend = false;
   bool any_cull = false;  // a single-sided glTF material: camera rays skip its back faces
   bool any_gltf = false;  // a glTF material (its shading reads every surface attribute)
+  ToksvigChains toksvig;  // unit-normal chains of the normal maps, built when specular AA asks
   // camera basis
   glm::vec3 origin{0.0f}, forward{0.0f}, right{0.0f}, up{0.0f};
 

@@ -3,6 +3,8 @@
 // Tracer::TraceMsaa one shading point per primitive and pixel.
 #include <cmath>
 
+#include "scenes/ibl.h"
+#include "scenes/light_eval.h"
 #include "scenes/tracer_internal.h"
 
 namespace aalab::tracer_detail {
@@ -237,19 +239,13 @@ void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* h
         c = base;
       } else {
         c = sc.ambient * base;
+        // Image-based diffuse: the environment's irradiance / π (scenes/ibl.h).
+        if (sc.environment) c += base * sc.environment->Diffuse(surf[i].n);
         for (size_t l = 0; l < sc.lights.size(); ++l) {
           const Light& light = sc.lights[l];
           glm::vec3 L;
           float falloff = 1.0f;
-          if (light.type == LightType::kDirectional) {
-            L = -light.direction;
-          } else {
-            L = light.position - surf[i].p;
-            const float d2 = glm::dot(L, L);
-            if (!(d2 > 0.0f)) continue;
-            L /= std::sqrt(d2);
-            falloff = 1.0f / d2;
-          }
+          if (!LightIncidence(light, surf[i].p, &L, &falloff)) continue;
           const float ndotl = glm::dot(surf[i].n, L);
           if (ndotl <= 0.0f) continue;
           if (l < 32 && (blocked[i] >> l) & 1u) continue;

@@ -381,6 +381,7 @@ def scene_json(name, description, effects, glb, camera=None, lights=None, ambien
         s["ambient"] = ambient
     s["materials"] = {}
     if lights:
+        s["light_units"] = "gltf"
         s["lights"] = lights
     s["objects"] = [{"shape": "gltf", "file": glb}]
     if animation:
@@ -388,8 +389,20 @@ def scene_json(name, description, effects, glb, camera=None, lights=None, ambien
     return s
 
 
+def gltf_lux(legacy):
+    """The glTF-unit literal (lux) of a sun stated in aalab's pre-2026-11 convention (pi times
+    smaller): the shortest decimal of legacy * pi that aalab reads back to the same float
+    (docs/lighting.md "Units"), so the scenes render with the same bits as before."""
+    target = struct.unpack("f", struct.pack("f", legacy))[0]
+    for digits in range(6, 18):
+        text = "%.*g" % (digits, legacy * math.pi)
+        if struct.unpack("f", struct.pack("f", float(text) / math.pi))[0] == target:
+            return float(text)
+    raise ValueError(legacy)
+
+
 def sun(direction, intensity=2.5, shadows=False):
-    return {"type": "directional", "direction": direction, "color": [1.0, 0.95, 0.85], "intensity": intensity,
+    return {"type": "directional", "direction": direction, "color": [1.0, 0.95, 0.85], "intensity": gltf_lux(intensity),
             "shadows": shadows}
 
 
@@ -538,11 +551,30 @@ def make_engine():
     return s
 
 
+def ibl_variant(scene, name, description):
+    """The scene lit by aalab's studio environment instead of its sun and ambient."""
+    out = {}
+    for k, v in scene.items():
+        if k in ("lights", "light_units", "ambient"):
+            continue
+        if k == "objects":
+            out["environment"] = {"map": "studio", "intensity": 1.0}
+        out[k] = v
+    out["name"] = name
+    out["description"] = description
+    return out
+
+
 def main():
     os.makedirs(GLB_DIR, exist_ok=True)
-    scenes = [make_foliage(), make_fence(), make_wires(), make_grazing(), make_glossy(), make_windows(), make_engine()]
+    glossy = make_glossy()
+    glossy_ibl = ibl_variant(glossy, "real-glossy-ibl",
+                             "the normal-mapped glossy floor (roughness 0.09-0.18) lit by the studio environment "
+                             "(image-based lighting): specular aliasing of reflected softboxes")
+    scenes = [make_foliage(), make_fence(), make_wires(), make_grazing(), glossy, glossy_ibl, make_windows(), make_engine()]
     # Moving versions for the motion suite: sub-pixel camera pans (64 frames).
-    for base, offset in (("real-fence", [0.08, 0.0, 0.0]), ("real-glossy", [0.0, 0.0, -0.5]), ("real-foliage", [0.12, 0.0, 0.0])):
+    for base, offset in (("real-fence", [0.08, 0.0, 0.0]), ("real-glossy", [0.0, 0.0, -0.5]),
+                         ("real-glossy-ibl", [0.0, 0.0, -0.5]), ("real-foliage", [0.12, 0.0, 0.0])):
         s = dict(next(x for x in scenes if x["name"] == base))
         s["name"] = base + "-pan"
         s["description"] = s["description"].split(":")[0] + ", under a slow camera pan (64 frames)"

@@ -100,6 +100,14 @@ struct SpecularAaSpec {
   bool enabled = false;
   double sigma2 = 0.15915494309189535;  ///< variance of the pixel filter kernel (1/(2π))
   double kappa = 0.18;                  ///< clamp of the added α²
+  /// Whose derivatives the geometric term takes: false, the interpolated vertex normal (the
+  /// paper's listing); true, the final normal-mapped normal (aalab's `gsaa` before 2026-11).
+  bool mapped_derivatives = false;
+  /// Weight of the normal map's own variance (Toksvig / vMF, scenes/toksvig.h): 0 off, 1 on.
+  double toksvig = 1.0;
+  /// Clamp of the texture term's added α² (HDRP clamps its normal-filtering widening by the
+  /// material's threshold², default 0.2² = 0.04).
+  double toksvig_max = 0.04;
 };
 
 /// The render a method asks for. Samples are tonemapped each, averaged in linear light with

@@ -52,27 +52,33 @@ TEST(GltfCli, RealSceneIsIdenticalAtOneAndTwoThreads) {
   fs::remove_all(dir);
 }
 
-/// The output hash of `method` on `scene` in a report.
+/// The output hash of method spec `method` on `scene` in a report.
 std::string OutputHash(const nlohmann::json& doc, const std::string& scene, const std::string& method) {
   for (const auto& r : doc["rows"]) {
-    if (r["scene"] == scene && r["method"] == method) return r["output_hash"].get<std::string>();
+    if (r["scene"] == scene && r["spec"] == method) return r["output_hash"].get<std::string>();
   }
   return "";
 }
 
 TEST(GltfCli, SpecularAaChangesOnlyWhereTheNormalVaries) {
   // real-grazing: flat planes, constant vertex normals, no normal map: the widening is zero
-  // and gsaa renders the none frame's bytes. real-glossy: the normal map varies within every
-  // pixel: gsaa differs.
+  // and gsaa renders the none frame's bytes. real-glossy: a flat floor too, so plain gsaa
+  // (vertex-normal derivatives, the paper's listing) renders none's bytes; the normal map
+  // varies within every pixel, so its variance term (toksvig=1) and the old derivatives of the
+  // mapped normal (derivatives=mapped) differ.
   const fs::path dir = TempDir("gltf-gsaa");
-  const CmdResult r = Aalab("run --scenes real-grazing,real-glossy --methods none,gsaa --size 96x54 --ref-spp 4 "
+  const CmdResult r = Aalab("run --scenes real-grazing,real-glossy --methods none,gsaa,gsaa:toksvig=1,gsaa:derivatives=mapped "
+                            "--size 96x54 --ref-spp 4 "
                             "--repeat 1 --quiet --out " + (dir / "out").string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream f(dir / "out" / "report.json");
   const auto doc = nlohmann::json::parse(f);
   EXPECT_EQ(OutputHash(doc, "real-grazing", "gsaa"), OutputHash(doc, "real-grazing", "none"));
-  EXPECT_NE(OutputHash(doc, "real-glossy", "gsaa"), OutputHash(doc, "real-glossy", "none"));
+  EXPECT_EQ(OutputHash(doc, "real-glossy", "gsaa"), OutputHash(doc, "real-glossy", "none"));
+  EXPECT_NE(OutputHash(doc, "real-glossy", "gsaa:toksvig=1"), OutputHash(doc, "real-glossy", "none"));
+  EXPECT_NE(OutputHash(doc, "real-glossy", "gsaa:derivatives=mapped"), OutputHash(doc, "real-glossy", "none"));
   EXPECT_FALSE(OutputHash(doc, "real-glossy", "none").empty());
+  EXPECT_FALSE(OutputHash(doc, "real-glossy", "gsaa:toksvig=1").empty());
   fs::remove_all(dir);
 }
 

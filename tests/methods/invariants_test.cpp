@@ -573,13 +573,13 @@ TEST(SsaaInvariants, EverySupersamplingMethodEqualsNoneWithoutEdgesOrTexture) {
       {"lit by a directional light + ambient, tonemapped",
        FlatScene(R"(["lambert"])", R"({"shading": "lambert", "color": [0.8, 0.6, 0.4]})",
                  R"(, "ambient": [0.05, 0.05, 0.1], "display": {"exposure": 1.7, "tonemap": "aces"},
-                    "lights": [{"type": "directional", "direction": [0.3, -0.2, -1], "intensity": 1.5}])"),
+                    "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0.3, -0.2, -1], "intensity": 1.5}])"),
        0},
       // A point light makes smooth shading: the box average over a pixel differs from the
       // centre sample by a second-order term, well below one 8-bit step.
       {"lit by a distant point light",
        FlatScene(R"(["lambert"])", R"({"shading": "lambert", "color": [0.9, 0.9, 0.9]})",
-                 R"(, "lights": [{"type": "point", "position": [3, 2, 40], "intensity": 1500}])"),
+                 R"(, "light_units": "aalab-pi", "lights": [{"type": "point", "position": [3, 2, 40], "intensity": 1500}])"),
        1},
   };
   for (const auto& c : cases) {

@@ -111,7 +111,7 @@ TEST(ExactReference, RefusesWhatItCannotComputeNamingTheField) {
   EXPECT_NE(RefusalOf(persp).find("/camera/type"), std::string::npos);
   EXPECT_NE(RefusalOf(MakeScene(R"(["lambert"])", R"({"m": {"shading": "lambert", "color": [1,1,1]}})",
                                 R"([{"shape": "disk", "radius": 1, "material": "m"}])",
-                                R"(, "lights": [{"type": "directional", "direction": [0,0,-1]}])"))
+                                R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1]}])"))
                 .find("/effects declares 'lambert'"),
             std::string::npos);
   EXPECT_NE(RefusalOf(MakeScene(R"(["unlit"])", mat,

@@ -39,7 +39,7 @@ TEST(Effects, UnlitCostsOnePrimaryRayAndNothingElse) {
 }
 
 TEST(Effects, LightsWithoutShadowsTraceNoShadowRays) {
-  const std::string light = R"(, "lights": [{"type": "directional", "direction": [0,0,-1]}])";
+  const std::string light = R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1]}])";
   const Scene s = ParseText(MakeScene(R"(["lambert"])", R"({"w": {"shading": "lambert"}})", kQuadBig, light));
   const TraceCounters c = CountFrame(s, 16, 8, 1);
   EXPECT_EQ(c.shadow_rays, 0u);
@@ -48,7 +48,7 @@ TEST(Effects, LightsWithoutShadowsTraceNoShadowRays) {
 
 TEST(Effects, ShadowsCostOneRayPerLitSampleAndLight) {
   // The quad fills the view and faces the light: every sample sends exactly one shadow ray.
-  const std::string light = R"(, "lights": [{"type": "directional", "direction": [0,0,-1], "shadows": true}])";
+  const std::string light = R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1], "shadows": true}])";
   const Scene s = ParseText(MakeScene(R"(["lambert", "shadows"])", R"({"w": {"shading": "lambert"}})", kQuadBig, light));
   const TraceCounters c = CountFrame(s, 16, 8, 2);
   EXPECT_EQ(c.shadow_rays, 16u * 8u * 4u);

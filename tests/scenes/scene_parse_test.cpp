@@ -97,11 +97,11 @@ TEST(SceneParse, UndeclaredEffectsAreErrorsNotDowngrades) {
   const std::string textured = R"({"w": {"shading": "unlit", "texture": {"pattern": "checker"}}})";
   ExpectError(MakeScene(R"(["unlit"])", textured, kQuad), {"/materials/w/texture", "needs effect 'textures'"});
   const std::string lit = R"({"w": {"shading": "lambert"}})";
-  const std::string shadow_light = R"(, "lights": [{"type": "directional", "direction": [0,0,-1], "shadows": true}])";
+  const std::string shadow_light = R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1], "shadows": true}])";
   ExpectError(MakeScene(R"(["lambert"])", lit, kQuad, shadow_light), {"/lights/0/shadows", "needs effect 'shadows'"});
   ExpectError(MakeScene(R"(["unlit"])", lit, kQuad, shadow_light), {"needs effect 'lambert'"});
   const std::string spec = R"({"w": {"shading": "lambert", "specular": [1,1,1], "shininess": 50}})";
-  const std::string light = R"(, "lights": [{"type": "directional", "direction": [0,0,-1]}])";
+  const std::string light = R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1]}])";
   ExpectError(MakeScene(R"(["lambert"])", spec, kQuad, light), {"needs effect 'specular'"});
   const std::string cut = R"({"w": {"shading": "unlit", "alpha": {"pattern": "stripes"}}})";
   ExpectError(MakeScene(R"(["unlit"])", cut, kQuad), {"needs effect 'alpha_test'"});
@@ -232,12 +232,12 @@ TEST(SceneBadInput, ExtremeButValidVectorsStayFinite) {
   // normalised to zero (light silently gone) and up = [1e30, 0, 0] was called "parallel".
   const std::string lit = R"({"w": {"shading": "lambert"}})";
   const Scene s = ParseText(MakeScene(R"(["lambert"])", lit, kQuad,
-                                      R"(, "lights": [{"type": "directional", "direction": [1e30, 1e30, -1e30]}])"));
+                                      R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [1e30, 1e30, -1e30]}])"));
   ASSERT_EQ(s.lights.size(), 1u);
   EXPECT_NEAR(glm::length(s.lights[0].direction), 1.0f, 1e-6f);
   EXPECT_NEAR(s.lights[0].direction.x, 1.0f / std::sqrt(3.0f), 1e-6f);
   const Scene tiny = ParseText(MakeScene(R"(["lambert"])", lit, kQuad,
-                                         R"(, "lights": [{"type": "directional", "direction": [0, 0, -1e-30]}])"));
+                                         R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0, 0, -1e-30]}])"));
   EXPECT_NEAR(tiny.lights[0].direction.z, -1.0f, 1e-6f);
   const Scene up = ParseText(Replace(kOrtho, "\"look_at\": [0,0,0]", "\"look_at\": [0,0,0], \"up\": [0,1e30,0]"));
   EXPECT_NEAR(glm::length(up.camera.up), 1.0f, 1e-6f);
