@@ -83,15 +83,18 @@ Json ModelSceneJson(const std::string& path) {
     camera = {{"type", "perspective"}, {"position", {p.x, p.y, p.z}}, {"look_at", {c.x, c.y, c.z}}, {"fov_y", 40}};
   }
   return Json{{"name", KebabName(fs::path(path).stem().string())},
-              {"description", "the glTF model " + fs::path(path).filename().string() + " with aalab's default sun and sky"},
+              {"description", "the glTF model " + fs::path(path).filename().string() + " with aalab's default sun and studio environment"},
               {"effects", effects},
               {"camera", camera},
               {"display", {{"exposure", 1.0}, {"tonemap", "aces"}}},
               {"background", {0.55, 0.6, 0.7}},
-              {"ambient", {0.15, 0.15, 0.18}},
               {"materials", Json::object()},
+              // The default studio environment (image-based lighting, docs/lighting.md) in place
+              // of a flat ambient term, and a sun of 1.2π lux (glTF units).
+              {"environment", {{"map", "studio"}, {"intensity", 1.0}}},
+              {"light_units", "gltf"},
               {"lights", {{{"type", "directional"}, {"direction", {0.4, -1.0, -0.6}}, {"color", {1.0, 0.95, 0.85}},
-                           {"intensity", 1.2}, {"shadows", lit}}}},
+                           {"intensity", 3.7699112}, {"shadows", lit}}}},
               {"objects", {{{"shape", "gltf"}, {"file", fs::absolute(path).lexically_normal().string()}}}}};
 }
 

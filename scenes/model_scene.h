@@ -1,7 +1,6 @@
 /// A glTF model (.glb / .gltf) as a scene of its own, so that `aalab run --scenes model.glb`
 /// works with no scene file: the file's first camera, else one framing the model's bounds;
-/// a default sun and sky (the lighting half of issue #35 replaces them with the default
-/// environment); the effects inferred from the file's materials. `aalab scene model.glb`
+/// the default studio environment (image-based lighting) and a sun; the effects inferred from the file's materials. `aalab scene model.glb`
 /// writes the same scene file, to edit.
 #pragma once
 #include <string>
