@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/core/error.h"
+#include "harness/core/input_files.h"
 
 namespace aalab {
 namespace fs = std::filesystem;
@@ -139,6 +140,7 @@ void CheckGltfJson(const std::string& path, const GltfJson& g, std::vector<Camer
           const fs::path bp = dir / uri;
           std::error_code ec;
           if (!fs::is_regular_file(bp, ec)) Refuse(path, where + ": file '" + bp.string() + "' not found");
+          NoteInputFile(bp.string());  // an input of the run (harness/core/input_files.h)
           const auto size = static_cast<long long>(fs::file_size(bp, ec));
           if (ec || size < len) {
             Refuse(path, where + ": file '" + bp.string() + "' has " + std::to_string(size) + " bytes, byteLength declares " + std::to_string(len));
@@ -361,6 +363,7 @@ class MaterialReader {
       const fs::path p = fs::path(path_).parent_path() / uri;
       std::error_code ec;
       if (!fs::is_regular_file(p, ec)) Refuse(path_, "image '" + p.string() + "' not found");
+      NoteInputFile(p.string());  // an input of the run (harness/core/input_files.h)
       level = DecodeTextureImage("'" + p.string() + "'", p.string(), nullptr, 0, "", srgb);
     }
     const int index = static_cast<int>(out_.images.size());

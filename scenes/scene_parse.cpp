@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "harness/core/error.h"
+#include "harness/core/input_files.h"
 #include "harness/core/params.h"
 #include "scenes/gltf_load.h"
 #include "scenes/json_fields.h"
@@ -219,7 +220,10 @@ Shape ParseShape(const JsonField& f, const std::string& base_dir) {
     allow({"file"});
     const JsonField file = f.Child("file");
     const fs::path p = fs::path(base_dir) / file.String();
-    if (!fs::is_regular_file(p)) file.Fail("mesh file '" + p.string() + "' not found");
+    if (const std::string what = WhatIsAt(p.string()); !what.empty()) {
+      file.Fail("mesh file '" + p.string() + "' " + what + " (an .obj file is expected)");
+    }
+    NoteInputFile(p.string());  // an input: --out may not hold it (harness/core/input_files.h)
     try {
       return LoadObjMesh(p.string());
     } catch (const UserError& e) {
@@ -260,7 +264,11 @@ void AddGltfObject(Scene& s, const JsonField& o, const std::string& base_dir, st
   o.RequireObject({"shape", "file", "transform", "name", "motion"});
   const JsonField file = o.Child("file");
   const fs::path p = fs::path(base_dir) / file.String();
-  if (!fs::is_regular_file(p)) file.Fail("glTF file '" + p.string() + "' not found");
+  if (const std::string what = WhatIsAt(p.string()); !what.empty()) {
+    file.Fail("glTF file '" + p.string() + "' " + what + " (a .gltf or .glb file is expected)");
+  }
+  NoteInputFile(p.string());  // an input: --out may not hold it (harness/core/input_files.h)
+  s.files_read.push_back(p.string());
   GltfContent g;
   try {
     g = LoadGltf(p.string());
