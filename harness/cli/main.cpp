@@ -12,6 +12,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -126,9 +127,12 @@ void RefuseNegativeUnsigned(CLI::App& app) {
       if (opt->get_type_name() != "UINT") continue;
       opt->check(CLI::Validator(
           [](std::string& v) {
-            return v.find_first_not_of("0123456789") == std::string::npos && !v.empty()
-                       ? std::string()
-                       : "'" + v + "' is not a whole number >= 0";
+            if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos) {
+              return "'" + v + "' is not a whole number >= 0";
+            }
+            errno = 0;
+            std::strtoull(v.c_str(), nullptr, 10);  // 2^64 and beyond: ERANGE, not a wrap
+            return errno == ERANGE ? "'" + v + "' is larger than 18446744073709551615 (2^64-1)" : std::string();
           },
           "", "non-negative"));
     }

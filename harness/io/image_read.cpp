@@ -198,6 +198,11 @@ OpenedImage Open(const std::string& path, const uint8_t* data = nullptr, size_t 
   // of TIFF files with unassociated alpha into their colour channels on read.
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
+  if (f.memory) {
+    // OIIO 2.4's readers take the proxy from the open() config (they reset it otherwise).
+    void* proxy = f.memory.get();
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  }
   f.in = OIIO::ImageInput::open(path, &config, f.memory.get());
   if (!f.in) {
     throw UserError("cannot read image '" + path + "': " + OIIO::geterror() + " (readable: PNG, JPEG, TIFF, EXR; " +

@@ -37,7 +37,8 @@ std::filesystem::path NormaliseOutPath(const std::string& dir, const std::string
 
 class OutFolder {
  public:
-  /// Checks `dir` as above for an output of `kind` ("run", "sweep", "frames", "export", "sequences"); `inputs` are
+  /// Checks `dir` as above for an output of `kind` ("run", "sweep", "frames", "export", "sequences",
+  /// "history"); `inputs` are
   /// the files and folders the command reads or creates (a --ref-cache that does not exist yet
   /// counts too; callers pass scene names only when they are files). Takes the
   /// lock and creates DIR.partial. UserError naming the folder and what to do otherwise.

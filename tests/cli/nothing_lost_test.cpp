@@ -407,6 +407,8 @@ TEST(NothingLost, OptionErrorsExitWithEachCommandsOwnCode) {
   ExpectFail(Aalab("export " + r + " --out " + (dir / "x").string() + " --zoom 0"), 1, {"--zoom", "1..32"}, "zoom 0");
   ExpectFail(Aalab("run --seed=-1 --out " + (dir / "x").string()), 1, {"--seed", "not a whole number >= 0"}, "seed -1");
   ExpectFail(Aalab("render --scene circle --seed=-5 --out " + (dir / "x.png").string()), 1, {"--seed"}, "render seed");
+  ExpectFail(Aalab("run --seed 18446744073709551616 --out " + (dir / "x").string()), 1, {"--seed", "larger than"},
+             "seed 2^64");
   EXPECT_FALSE(fs::exists(dir / "x"));
   const CmdResult h = Aalab("history");
   EXPECT_EQ(h.code, 1) << h.output;
