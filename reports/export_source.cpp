@@ -193,10 +193,16 @@ std::string ConditionsSentence(const Report& r, const std::string& metric, bool 
   out += " Size " + SettingOf(r, "size") + ".";
   const std::string frames = SettingOf(r, "frames");
   if (!frames.empty() && frames != "1") out += " " + frames + " frames per scene; metrics pooled over frames.";
-  if (metric.rfind("flip", 0) == 0) {
-    char ppd[32];
-    std::snprintf(ppd, sizeof ppd, "%g", kFlipDefaultPpd);
-    out += std::string(" FLIP viewing condition: ") + ppd + " pixels per degree.";
+  // The report's own conditions (absent in older reports: the defaults they were run with).
+  {
+    char def_ppd[32];
+    std::snprintf(def_ppd, sizeof def_ppd, "%g", kFlipDefaultPpd);
+    std::string ppd = SettingOf(r, "ppd"), viewing = SettingOf(r, "viewing"), sampler = SettingOf(r, "sampler");
+    if (ppd.empty()) ppd = def_ppd;
+    if (viewing.empty()) viewing = "default";
+    if (sampler.empty()) sampler = "gl";
+    out += " Viewing condition (FLIP, temporal error): " + viewing + ", " + ppd + " pixels per degree.";
+    out += " Post-filter sampler: " + sampler + ".";
   }
   if (!timing) return out;
   out += " Times: median over " + SettingOf(r, "repeat") + " timed run(s) after " + SettingOf(r, "warmup") +

@@ -94,12 +94,17 @@ HistoryEntry EntryFromJson(const Json& j, const std::string& where) {
 }  // namespace
 
 const std::vector<std::string>& HistorySeriesKeys() {
-  static const std::vector<std::string> keys = {"size", "ref_spp", "seed", "scenes", "methods", "frames"};
+  static const std::vector<std::string> keys = {"size", "ref_spp", "seed", "scenes", "methods", "frames",
+                                                "sampler", "ppd", "fps"};
   return keys;
 }
 
 std::string HistorySettingText(const Report& r, const std::string& k) {
   const std::string v = SettingValue(r, k);
+  // Conditions absent from older reports have their defaults (as compare reads them).
+  if (v.empty() && k == "sampler") return "gl";
+  if (v.empty() && k == "ppd") return "67";
+  if (v.empty() && k == "fps") return "60";
   return v.empty() ? "(absent)" : v;
 }
 
@@ -281,7 +286,7 @@ void CheckSeriesCompatible(const std::vector<HistoryEntry>& entries, const Histo
     for (size_t i = 0; i < diffs.size(); ++i) s += (i ? "; " : "") + diffs[i];
     throw UserError("report '" + e.source + "' does not match series '" + e.series + "' (line " +
                     std::to_string(last->line) + "): " + s +
-                    ". Entries of a series must agree on size, ref_spp, seed, scenes and methods; start another series "
+                    ". Entries of a series must agree on size, ref_spp, seed, scenes, methods, frames, the sampler and the viewing condition (ppd, fps); start another series "
                     "with --series NAME");
   }
 }

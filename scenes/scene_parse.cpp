@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "harness/core/error.h"
+#include "harness/core/input_files.h"
 #include "harness/core/params.h"
 #include "scenes/gltf_lights.h"
 #include "scenes/gltf_load.h"
@@ -239,7 +240,10 @@ Shape ParseShape(const JsonField& f, const std::string& base_dir) {
     allow({"file"});
     const JsonField file = f.Child("file");
     const fs::path p = fs::path(base_dir) / file.String();
-    if (!fs::is_regular_file(p)) file.Fail("mesh file '" + p.string() + "' not found");
+    if (const std::string what = WhatIsAt(p.string()); !what.empty()) {
+      file.Fail("mesh file '" + p.string() + "' " + what + " (an .obj file is expected)");
+    }
+    NoteInputFile(p.string());  // an input: --out may not hold it (harness/core/input_files.h)
     try {
       return LoadObjMesh(p.string());
     } catch (const UserError& e) {
@@ -280,7 +284,10 @@ void AddGltfObject(Scene& s, const JsonField& o, const std::string& base_dir, st
   o.RequireObject({"shape", "file", "transform", "name", "motion"});
   const JsonField file = o.Child("file");
   const fs::path p = fs::path(base_dir) / file.String();
-  if (!fs::is_regular_file(p)) file.Fail("glTF file '" + p.string() + "' not found");
+  if (const std::string what = WhatIsAt(p.string()); !what.empty()) {
+    file.Fail("glTF file '" + p.string() + "' " + what + " (a .gltf or .glb file is expected)");
+  }
+  NoteInputFile(p.string());  // an input: --out may not hold it (harness/core/input_files.h)
   GltfContent g;
   try {
     g = LoadGltf(p.string());
@@ -301,6 +308,7 @@ void AddGltfObject(Scene& s, const JsonField& o, const std::string& base_dir, st
   }
   s.files_read.push_back(p.string());
   s.files_read.insert(s.files_read.end(), g.files_read.begin(), g.files_read.end());
+  for (const std::string& f : g.files_read) NoteInputFile(f);  // buffers and images: inputs too
   s.load.push_back({p.filename().string(), g.load_seconds, g.texture_bytes, g.texture_bytes8, g.triangles});
   const glm::mat4 m = o.Has("transform") ? ParseTransform(o.Child("transform")) : glm::mat4(1.0f);
   const int mat_base = static_cast<int>(s.materials.size());
@@ -449,7 +457,10 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
     const JsonField lights = root.Child("lights");
     for (size_t i = 0; i < lights.ArraySize(); ++i) s.lights.push_back(ParseLight(lights.At(i), units));
   }
-  if (root.Has("environment")) s.environment = ParseEnvironment(root.Child("environment"), base_dir, &s.files_read);
+  if (root.Has("environment")) {
+    s.environment = ParseEnvironment(root.Child("environment"), base_dir, &s.files_read);
+    for (const std::string& f : s.files_read) NoteInputFile(f);  // an environment map is an input too
+  }
 
   if (root.Has("animation")) s.animation = ParseAnimation(root.Child("animation"));
 

@@ -13,6 +13,9 @@
 
 #include "harness/cli/commands.h"
 #include "harness/core/error.h"
+#include "harness/core/input_files.h"
+#include "harness/io/safe_path.h"
+#include "harness/run/out_folder.h"
 #include "harness/core/exit_code.h"
 #include "harness/core/params.h"
 #include "harness/core/cleanup.h"
@@ -105,6 +108,20 @@ void WriteCompareHtml(const std::string& out, const CompareResult& res, const Re
     throw UserError("--html '" + out + "' must name a .html file");
   }
   const fs::path dir = page.parent_path().empty() ? fs::path(".") : page.parent_path();
+  // The same file rule as run's folders: an existing page is replaced only when aalab compare
+  // wrote it (it carries the page's heading); a user's file, a run folder's index.html or any
+  // other page is refused before anything is written.
+  CheckOutFile(out, {a.baseline, a.current});
+  if (fs::exists(fs::symlink_status(page))) {
+    std::ifstream f(page, std::ios::binary);
+    std::string head(4096, '\0');
+    f.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<size_t>(f.gcount()));
+    if (!fs::is_regular_file(page) || head.find("<h1>aalab compare</h1>") == std::string::npos) {
+      throw UserError("--html '" + out + "' exists and was not written by aalab compare; refusing to replace it "
+                      "(aalab never overwrites a file it did not write): give another file name");
+    }
+  }
   fs::create_directories(dir);
   const std::string files_name = page.stem().string() + "_files";
   const fs::path files = dir / files_name;
@@ -114,6 +131,16 @@ void WriteCompareHtml(const std::string& out, const CompareResult& res, const Re
   }
   std::vector<std::vector<HtmlImage>> images =
       CompareHtmlImages(res, base, cur, FolderOf(a.baseline), FolderOf(a.current));
+  // The reports name their images: each must lie inside its report's folder (safe_path.h).
+  for (const auto& row : images) {
+    for (const auto& im : row) {
+      if (im.source.empty()) continue;
+      const bool from_base = im.label.rfind("baseline", 0) == 0;
+      const fs::path folder = FolderOf(from_base ? a.baseline : a.current);
+      ResolveInside(folder, fs::path(im.source).lexically_relative(folder).string(),
+                    "image path (" + im.label + ") in report '" + (from_base ? a.baseline : a.current) + "'");
+    }
+  }
   const fs::path staging = files.string() + ".partial";
   // Only a leftover of an earlier compare (it holds the marker) is removed.
   if (fs::exists(fs::symlink_status(staging)) && !fs::exists(staging / ".aalab-compare")) {
@@ -225,6 +252,7 @@ struct HistoryAddArgs {
 int HistoryAdd(const HistoryAddArgs& a) {
   ValidateSeriesName(a.series);
   if (a.db.empty()) throw UserError("--db must name a .jsonl file");
+  if (fs::exists(fs::symlink_status(a.db))) RequireRegularFile(a.db, "history database", "a .jsonl file is expected");
   // Validate the whole database first: a malformed line is an error naming its number.
   std::string raw;
   std::vector<HistoryEntry> entries;
@@ -295,12 +323,16 @@ struct HistoryReportArgs {
 
 int HistoryReport(const HistoryReportArgs& a) {
   const CompareOptions o = BuildOptions(a.max_drop_db, "", "", a.time_increase, a.time_across_machines, a.maps);
+  if (a.out.empty()) throw UserError("--out must name a folder");
+  RequireRegularFile(a.db, "history database", "a .jsonl file written by aalab history add is expected");
   const std::vector<HistoryEntry> entries = ReadHistoryFile(a.db, false);
   const HistoryPage page = HistoryHtml(entries, a.series, o, a.out);
-  if (a.out.empty()) throw UserError("--out must name a folder");
-  fs::create_directories(a.out);
+  // The folder rule of run (harness/run/out_folder.h): only an earlier history page's folder
+  // is replaced, never a user's page or a run folder's index.html.
+  OutFolder folder(a.out, "history", {a.db});
+  WriteTextFile((folder.Begin() / "index.html").string(), page.html);
+  folder.Commit();
   const fs::path index = fs::path(a.out) / "index.html";
-  WriteTextFile(index.string(), page.html);
   std::printf("wrote %s: %d series, %d entries, %d charts; threshold crossings between consecutive entries: "
               "%d regression(s), %d improvement(s), %d could-not-compare item(s)\n",
               index.string().c_str(), page.series, page.entries, page.charts, page.regressions, page.improvements,

@@ -14,6 +14,7 @@
 #include "harness/core/error.h"
 #include "harness/core/exit_code.h"
 #include "harness/io/image_io.h"
+#include "harness/io/safe_path.h"
 #include "harness/io/text_draw.h"
 #include "harness/run/out_folder.h"
 #include "methods/registry.h"
@@ -141,7 +142,14 @@ std::string FigureLatex(const std::vector<ExportSource>& sources, const CropFigu
     caption += std::string(" Under each crop: the absolute error against the reference (mean over RGB of the 8-bit "
                            "values), viridis from 0 to ") + full + " and above.";
   }
-  caption += " " + ConditionsSentence(sources.front().report, "", false);
+  // Each report's own conditions (viewing, sampler, reference): the first's, then any other
+  // report's that differ, named by its label.
+  const std::string first = ConditionsSentence(sources.front().report, "", false);
+  caption += " " + (sources.size() > 1 ? sources.front().label + ": " : std::string()) + first;
+  for (size_t i = 1; i < sources.size(); ++i) {
+    const std::string own = ConditionsSentence(sources[i].report, "", false);
+    caption += " " + sources[i].label + ": " + (own == first ? std::string("the same conditions.") : own);
+  }
   std::string o_tex;
   for (const auto& line : provenance) o_tex += "% " + line + "\n";
   o_tex += "% Needs \\usepackage{graphicx}.\n\\begin{figure*}[tbp]\n\\centering\n"
@@ -189,7 +197,9 @@ int RunExport(const ExportArgs& a) {
   }
   const CropFigureOptions fig_opts = DefaultCropFigure(sources, sel, fig_asked);
   CropFigure fig = ComposeCropFigure(sources, fig_opts, [&](size_t s, const std::string& rel) {
-    return ReadImage8((fs::path(sources[s].dir) / rel).string());
+    // The report names the image; it must lie inside the report's folder (safe_path.h).
+    return ReadImage8(
+        ResolveInside(sources[s].dir, rel, "image path in report '" + (fs::path(sources[s].dir) / "report.json").string() + "'").string());
   });
   for (const auto& l : fig.labels) DrawText(fig.pixels, l.x, l.y, l.text, l.size);
 
@@ -283,7 +293,8 @@ void RegisterExportCommand(CLI::App& app, Commands& commands) {
   cmd->add_option("--crops", a->crops,
                   "crop windows: indices into the scene's crops (0 = where none errs most) or X:Y:W:H rectangles "
                   "(default: 0,1)");
-  cmd->add_option("--zoom", a->zoom, "pixel replication factor 1..32 (default: tiles of about 128 px)");
+  cmd->add_option("--zoom", a->zoom, "pixel replication factor 1..32 (default: tiles of about 128 px)")
+      ->check(CLI::Range(1, 32));
   cmd->add_flag("--heatmap", a->heatmap, "add a row of absolute-error heatmaps under each crop");
   cmd->callback([&commands, a] { commands.action = [a] { return RunExport(*a); }; });
 }

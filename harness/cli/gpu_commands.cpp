@@ -9,6 +9,7 @@
 
 #include "harness/cli/commands.h"
 #include "harness/core/error.h"
+#include "harness/core/input_files.h"
 #include "harness/core/exit_code.h"
 #include "harness/core/params.h"
 #include "harness/core/parallel.h"
@@ -97,7 +98,9 @@ int ExportFrames(const ExportArgs& a) {
     }
   }
   // The output folder rule (harness/run/out_folder.h): only an earlier frames folder is replaced.
-  OutFolder out(a.out, "frames", names);
+  std::vector<std::string> inputs = names;  // with every file the scenes were built from (input_files.h)
+  for (const auto& file : InputFilesRead()) inputs.push_back(file);
+  OutFolder out(a.out, "frames", inputs);
   const fs::path tmp = out.Begin();
   // The render request of scale43 at its defaults: the scaled frame is what it renders.
   const RenderSpec scaled = MakeMethod("scale43").render;
@@ -129,6 +132,7 @@ int ExportFrames(const ExportArgs& a) {
 int MergeGpu(const std::string& dir, const std::string& gpu_json) {
   const fs::path report_path = fs::path(dir) / "report.json";
   Report report = ReadReportFile(report_path.string());
+  RequireRegularFile(gpu_json, "GPU timings", "a JSON file written by aalab_gpu --json is expected");
   const GpuTimingsFile gpu = ReadGpuTimingsFile(gpu_json);
   const int matched = MergeGpuTimings(report, gpu);
   if (matched == 0) {

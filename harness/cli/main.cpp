@@ -1,14 +1,18 @@
 // aalab command line: list, render, run, apply (and more as issues land).
-// Exit codes: harness/core/exit_code.h (docs/cli.md). Signals: SIGINT and SIGTERM are taken by
-// one thread, which removes the command's unfinished output (harness/core/cleanup.h) and exits
-// 130 / 143 with one line.
+// Exit codes: harness/core/exit_code.h (docs/cli.md). Signals: SIGINT, SIGTERM and SIGHUP are
+// taken by one thread, which removes the command's unfinished output (harness/core/cleanup.h)
+// and exits 130 / 143 / 129 with one line. SIGPIPE is ignored: a closed stdout (`aalab run |
+// head`) makes the writes to stdout fail, never the command; its work is finished and kept,
+// and one line on stderr says what was not printed.
 #include <CLI/CLI.hpp>
 #include <pthread.h>
 #include <signal.h>
 #include <unistd.h>
 
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -23,12 +27,15 @@
 namespace aalab {
 namespace {
 
-/// Blocks SIGINT and SIGTERM in every thread (threads started later inherit the mask) and
+/// Blocks SIGINT, SIGTERM and SIGHUP in every thread (threads started later inherit the mask) and
 /// waits for them in one thread of their own, where cleaning up is safe.
 void HandleSignals() {
   sigset_t set;
   sigemptyset(&set);
-  for (int sig : {SIGINT, SIGTERM}) {
+  // A reader that goes away (`aalab run ... | head`) must not kill the run: writes to the
+  // closed pipe fail with EPIPE instead, and main() says so once at the end.
+  ::signal(SIGPIPE, SIG_IGN);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
     // A signal the caller ignores (nohup, a shell's background job) stays ignored.
     struct sigaction old {};
     if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
@@ -40,23 +47,24 @@ void HandleSignals() {
     while (sigwait(&set, &sig) != 0) {
     }
     const int removed = RemoveUnfinishedForExit();
-    const bool interrupted = sig == SIGINT;
-    const std::string line = std::string("aalab: ") + (interrupted ? "interrupted (SIGINT)" : "terminated (SIGTERM)") +
-                             ": stopped; removed " + std::to_string(removed) +
+    const char* what = sig == SIGINT ? "interrupted (SIGINT)" : sig == SIGHUP ? "hung up (SIGHUP)" : "terminated (SIGTERM)";
+    const ExitCode code = sig == SIGINT ? ExitCode::kInterrupted : sig == SIGHUP ? ExitCode::kHangup : ExitCode::kTerminated;
+    const std::string line = std::string("aalab: ") + what + ": stopped; removed " + std::to_string(removed) +
                              " unfinished output path(s), left everything that was there before as it was\n";
     if (::write(STDERR_FILENO, line.data(), line.size()) < 0) {
       // Nothing more to do: the exit status says it.
     }
-    ::_exit(ToInt(interrupted ? ExitCode::kInterrupted : ExitCode::kTerminated));
+    ::_exit(ToInt(code));
   }).detach();
 }
 
 /// How a value of `opt` is written, for parse error messages.
 std::string Allowed(const CLI::Option* opt) {
   const std::string type = opt->get_type_name();
-  std::string what = type == "INT"     ? "a whole number"
-                     : type == "UINT"  ? "a whole number >= 0"
-                     : type == "FLOAT" ? "a number"
+  // (A range check adds to CLI11's type name: "INT:INT in [1 - 32]".)
+  std::string what = type.rfind("INT", 0) == 0     ? "a whole number"
+                     : type.rfind("UINT", 0) == 0  ? "a whole number >= 0"
+                     : type.rfind("FLOAT", 0) == 0 ? "a number"
                      : opt->get_type_size() == 0 ? "no value (a flag)"
                                                  : "a value (" + (type.empty() ? std::string("text") : type) + ")";
   const std::string def = opt->get_default_str();
@@ -88,12 +96,60 @@ std::string DescribeParseError(CLI::App& app, const CLI::ParseError& e) {
     msg += " (a value that starts with '-' is read as an option: write --option=-value; see --help for the options)";
   } else if (msg.find("not expected") != std::string::npos) {
     msg += " (see 'aalab " + (apps.size() == 1 ? apps[0]->get_name() + " " : std::string()) + "--help' for the options)";
+  } else if (msg.find("subcommand is required") != std::string::npos && apps.size() == 1 &&
+             !apps[0]->get_subcommands({}).empty()) {
+    // `aalab history` alone: that command's own usage, not the top-level list.
+    std::string names;
+    for (CLI::App* sub : apps[0]->get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+    msg = "'aalab " + apps[0]->get_name() + "' needs a sub-command (" + names + ")\n" + apps[0]->help();
   } else if (msg.find("subcommand is required") != std::string::npos) {
     std::string names;
     for (CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
     msg += " (commands: " + names + ")";
   }
   return msg;
+}
+
+/// The exit code of an option error: the command's own "could not compare" for the commands
+/// whose 1 means a verdict (compare: regression, same-results: different), else 1.
+ExitCode OptionErrorCode(CLI::App& app) {
+  for (CLI::App* sub : app.get_subcommands()) {
+    if (sub->get_name() == "compare" || sub->get_name() == "same-results") return ExitCode::kCouldNotCompare;
+  }
+  return ExitCode::kFailure;
+}
+
+/// Unsigned options (--seed): CLI11 reads "-1" as 2^64-1; refused instead, naming the option.
+void RefuseNegativeUnsigned(CLI::App& app) {
+  for (CLI::App* sub : app.get_subcommands({})) {
+    RefuseNegativeUnsigned(*sub);
+    for (CLI::Option* opt : sub->get_options()) {
+      if (opt->get_type_name() != "UINT") continue;
+      opt->check(CLI::Validator(
+          [](std::string& v) {
+            if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos) {
+              return "'" + v + "' is not a whole number >= 0";
+            }
+            errno = 0;
+            std::strtoull(v.c_str(), nullptr, 10);  // 2^64 and beyond: ERANGE, not a wrap
+            return errno == ERANGE ? "'" + v + "' is larger than 18446744073709551615 (2^64-1)" : std::string();
+          },
+          "", "non-negative"));
+    }
+  }
+}
+
+/// When stdout was a pipe whose reader left (`aalab run | head`), what was printed after that
+/// is lost but the work is not: one line on stderr says so. The exit code stays the command's.
+void ReportClosedStdout() {
+  const bool flush_failed = std::fflush(stdout) != 0 && errno == EPIPE;
+  if (!flush_failed && !std::ferror(stdout)) return;
+  static const char line[] =
+      "aalab: standard output was closed before aalab finished writing to it (broken pipe); the command's work "
+      "finished and was kept, only the lines after the break were not printed\n";
+  if (::write(STDERR_FILENO, line, sizeof line - 1) < 0) {
+    // stderr closed too: the exit code says how the command ended.
+  }
 }
 
 }  // namespace
@@ -107,29 +163,28 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Commands commands;
   RegisterCommands(app, commands);
+  RefuseNegativeUnsigned(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version end parsing with CLI11's "success" code: printed as CLI11 does.
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
     std::fprintf(stderr, "aalab: error: %s\n", DescribeParseError(app, e).c_str());
-    // compare and same-results: exit 1 means "regression" / "different", so a usage error
-    // there is "could not compare" (exit 2).
-    for (const CLI::App* sub : app.get_subcommands()) {
-      if (sub->get_name() == "compare" || sub->get_name() == "same-results") return ToInt(ExitCode::kCouldNotCompare);
-    }
-    return ToInt(ExitCode::kFailure);
+    return ToInt(OptionErrorCode(app));
   }
+  int code = ToInt(ExitCode::kFailure);
   try {
-    return commands.Run();
+    code = commands.Run();
   } catch (const UserError& e) {
     std::fprintf(stderr, "aalab: error: %s\n", e.what());
-    return ToInt(ExitCode::kFailure);
+    code = ToInt(ExitCode::kFailure);
   } catch (const InternalError& e) {
     std::fprintf(stderr, "aalab: internal error (a bug, please report): %s\n", e.what());
-    return ToInt(ExitCode::kInternalError);
+    code = ToInt(ExitCode::kInternalError);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "aalab: error: %s\n", e.what());
-    return ToInt(ExitCode::kFailure);
+    code = ToInt(ExitCode::kFailure);
   }
+  ReportClosedStdout();
+  return code;
 }

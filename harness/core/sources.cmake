@@ -11,4 +11,5 @@ set(AALAB_CORE_SOURCES
   render_spec.cpp
   edge_mask.cpp
   cleanup.cpp
+  input_files.cpp
 )

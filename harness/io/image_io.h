@@ -17,6 +17,22 @@ namespace aalab {
 /// (2^28 = 268 million, e.g. 16384x16384; a 4-channel float image of that size is 4 GiB).
 inline constexpr size_t kMaxImagePixels = size_t{1} << 28;
 
+/// The decode budget: the pixels one command (one process) decodes through the reader, summed
+/// over every image it reads (frames, captures, references, masks, textures, environment
+/// maps), may not pass this many. It bounds what a hostile set of small valid files (a
+/// 216 KB PNG may hold 8192x8192 pixels) can make a run decode and hold. Default 2^32 pixels
+/// (4295 megapixels: e.g. 2,000 frames of 1920x1080 with 4 images each, 4 GiB of 8-bit RGBA,
+/// 64 GiB at 4-channel float); the environment variable AALAB_DECODE_BUDGET_MP=N sets N
+/// megapixels (0 = no budget). Past the budget: UserError naming the image, the total and the
+/// variable. Docs: docs/cli.md, "Bounded inputs".
+inline constexpr size_t kDefaultDecodeBudgetPixels = size_t{1} << 32;
+inline constexpr const char* kDecodeBudgetVariable = "AALAB_DECODE_BUDGET_MP";
+/// The budget in pixels (0 = none), read once from AALAB_DECODE_BUDGET_MP (UserError when it
+/// is not a whole number).
+size_t DecodeBudgetPixels();
+/// Pixels decoded so far by this process.
+size_t DecodedPixels();
+
 /// An image read from disk.
 struct LoadedImage {
   ImageF pixels;          ///< values as stored, converted to float (8-bit k → k/255)
@@ -52,6 +68,21 @@ ImageF ReadImageChannels(const std::string& path, const std::vector<std::string>
 /// (the message lists the channels the file has), and NaN/Inf pixels in the channels read
 /// (rejected; the message gives the first bad pixel).
 LoadedImage ReadImage(const std::string& path, size_t max_pixels = kMaxImagePixels);
+
+/// ReadImage for an image held in memory: a glTF's embedded texture, a GLB buffer view, a
+/// data: URI already decoded from base64. THE entry point for loaders that have bytes rather
+/// than a file (glTF textures, environment maps packed in a container): the same checks as a
+/// file — the reader chosen by `name`'s extension only (give "<uri>.png" for a mimeType
+/// image/png), the PNG chunk and EXR attribute sizes checked against `size`, the declared
+/// size against `max_pixels` and against `size` (a 70-byte PNG claiming 16384x16384 is
+/// refused before any allocation), pixels decoded in bounded bands, NaN/Inf refused — and
+/// the pixels charged to the same decode budget. `name` is used in messages only (nothing is
+/// opened by it). Loaders that have a FILE call ReadImage(path, max_pixels) (or
+/// ReadImageChannels) instead; both note the file as an input (harness/core/input_files.h).
+/// Result: float values as stored (8-bit k -> k/255), colour R,G,B (+A as stored, never
+/// premultiplied), grey expanded to RGB; `is_float` says whether the data was half/float.
+LoadedImage ReadImageFromMemory(const std::string& name, const uint8_t* data, size_t size,
+                                size_t max_pixels = kMaxImagePixels);
 
 /// Reads an 8-bit display image as RGBA8 (alpha as stored, 255 when the file has none). Float
 /// files are refused with a message pointing at the float path.

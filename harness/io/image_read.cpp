@@ -8,10 +8,14 @@
 //    fails after reading one band, never after allocating the whole image;
 //  - channels are taken by name, never by position; alpha is read as stored (OpenImageIO
 //    premultiplies PNG and unassociated-alpha TIFF on read unless told not to).
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <sstream>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -22,6 +26,7 @@
 
 #include "harness/core/color.h"
 #include "harness/core/error.h"
+#include "harness/core/input_files.h"
 #include "harness/io/image_io.h"
 
 namespace aalab {
@@ -52,12 +57,8 @@ std::string Join(const std::vector<std::string>& names) {
 /// they fit (or the file is not EXR at all: OpenEXR then says so), else what is wrong.
 /// OpenEXR 3.1 trusts a string attribute's size field: found by fuzzing, a 600-byte file
 /// claiming a 1.8 GB attribute made the reader allocate and zero 1.8 GB before failing.
-std::string CheckExrHeader(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
+std::string CheckExrHeader(std::istream& f, long long file_size) {
   if (!f) return "";
-  f.seekg(0, std::ios::end);
-  const long long file_size = static_cast<long long>(f.tellg());
-  f.seekg(0);
   unsigned char head[8] = {};
   if (!f.read(reinterpret_cast<char*>(head), 8)) return "";
   if (head[0] != 0x76 || head[1] != 0x2f || head[2] != 0x31 || head[3] != 0x01) return "";
@@ -100,12 +101,8 @@ std::string CheckExrHeader(const std::string& path) {
 /// a PNG at all: libpng then says so), else what is wrong. libpng allocates a chunk's
 /// claimed length before reading it: found by fuzzing, a 260-byte file whose tEXt chunk
 /// claimed 2 GB made aalab allocate and touch 2 GB before failing.
-std::string CheckPngChunks(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
+std::string CheckPngChunks(std::istream& f, long long file_size) {
   if (!f) return "";
-  f.seekg(0, std::ios::end);
-  const long long file_size = static_cast<long long>(f.tellg());
-  f.seekg(0);
   char sig[8] = {};
   if (!f.read(sig, 8) || std::string(sig, 8) != std::string("\x89PNG\r\n\x1a\n", 8)) return "";
   while (true) {
@@ -127,6 +124,24 @@ std::string CheckPngChunks(const std::string& path) {
   }
 }
 
+/// The extension's check and the container checks of the bytes in `f` (`size` of them).
+void CheckContainer(const std::string& path, const std::string& ext, std::istream& f, long long size) {
+  if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".tif" && ext != ".tiff" && ext != ".exr") {
+    throw UserError("image '" + path + "' has an unsupported file type '" + ext +
+                    "' (readable: .png, .jpg, .jpeg, .tif, .tiff, .exr)");
+  }
+  if (ext == ".exr") {
+    if (const std::string bad = CheckExrHeader(f, size); !bad.empty()) {
+      throw UserError("cannot read image '" + path + "': not a valid OpenEXR file: " + bad);
+    }
+  }
+  if (ext == ".png") {
+    if (const std::string bad = CheckPngChunks(f, size); !bad.empty()) {
+      throw UserError("cannot read image '" + path + "': not a valid PNG file: " + bad);
+    }
+  }
+}
+
 /// Everything checked before a decoder sees the file; returns the file's size in bytes.
 /// stat() (not open()) first: opening a FIFO for reading blocks until a writer appears.
 long long CheckInputFile(const std::string& path) {
@@ -140,21 +155,8 @@ long long CheckInputFile(const std::string& path) {
   if (!S_ISREG(st.st_mode)) {
     throw UserError("image '" + path + "' is not a regular file (a FIFO, device or socket); give an image file");
   }
-  const std::string ext = LowerExt(path);
-  if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".tif" && ext != ".tiff" && ext != ".exr") {
-    throw UserError("image '" + path + "' has an unsupported file type '" + ext +
-                    "' (readable: .png, .jpg, .jpeg, .tif, .tiff, .exr)");
-  }
-  if (ext == ".exr") {
-    if (const std::string bad = CheckExrHeader(path); !bad.empty()) {
-      throw UserError("cannot read image '" + path + "': not a valid OpenEXR file: " + bad);
-    }
-  }
-  if (ext == ".png") {
-    if (const std::string bad = CheckPngChunks(path); !bad.empty()) {
-      throw UserError("cannot read image '" + path + "': not a valid PNG file: " + bad);
-    }
-  }
+  std::ifstream f(path, std::ios::binary);
+  CheckContainer(path, LowerExt(path), f, static_cast<long long>(st.st_size));
   return static_cast<long long>(st.st_size);
 }
 
@@ -167,15 +169,26 @@ struct ChannelRef {
 
 /// An open image file with its parts and their channels.
 struct OpenedImage {
+  std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;  // for ReadImageFromMemory; outlives `in`
   std::unique_ptr<OIIO::ImageInput> in;
   std::vector<OIIO::ImageSpec> parts;
   std::vector<ChannelRef> channels;
   long long file_bytes = 0;
 };
 
-OpenedImage Open(const std::string& path) {
+/// Opens a file (`data` null) or `size` bytes in memory named `path` (its extension picks the
+/// reader) after the checks above.
+OpenedImage Open(const std::string& path, const uint8_t* data = nullptr, size_t size = 0) {
   OpenedImage f;
-  f.file_bytes = CheckInputFile(path);
+  if (data) {
+    std::istringstream bytes(std::string(reinterpret_cast<const char*>(data), size));
+    CheckContainer(path, LowerExt(path), bytes, static_cast<long long>(size));
+    f.file_bytes = static_cast<long long>(size);
+    f.memory = std::make_unique<OIIO::Filesystem::IOMemReader>(data, size);
+  } else {
+    f.file_bytes = CheckInputFile(path);
+    NoteInputFile(path);  // an input of the command: --out may not hold it (input_files.h)
+  }
   // Only the reader the extension names. By default OpenImageIO hands a file its reader
   // rejects to every other format plugin (DICOM, FITS, OpenVDB, video, ...): found by
   // fuzzing, a corrupt .exr then loaded ~2 GB of libraries and parsers aalab never needs.
@@ -185,7 +198,12 @@ OpenedImage Open(const std::string& path) {
   // of TIFF files with unassociated alpha into their colour channels on read.
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
-  f.in = OIIO::ImageInput::open(path, &config);
+  if (f.memory) {
+    // OIIO 2.4's readers take the proxy from the open() config (they reset it otherwise).
+    void* proxy = f.memory.get();
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  }
+  f.in = OIIO::ImageInput::open(path, &config, f.memory.get());
   if (!f.in) {
     throw UserError("cannot read image '" + path + "': " + OIIO::geterror() + " (readable: PNG, JPEG, TIFF, EXR; " +
                     "the content must match the file's extension)");
@@ -257,6 +275,22 @@ bool IsFloatType(OIIO::TypeDesc t) {
          t.basetype == OIIO::TypeDesc::DOUBLE;
 }
 
+std::atomic<size_t>& Decoded() {
+  static std::atomic<size_t> pixels{0};
+  return pixels;
+}
+
+/// Adds `pixels` to the command's decoded total; UserError naming `path` past the budget.
+void ChargeDecodeBudget(size_t pixels, const std::string& path) {
+  const size_t budget = DecodeBudgetPixels();
+  const size_t before = Decoded().fetch_add(pixels);
+  if (budget == 0 || before + pixels <= budget) return;
+  throw UserError("image '" + path + "' (" + std::to_string(pixels) + " pixels) would take the pixels this command " +
+                  "decodes to " + std::to_string(before + pixels) + ", past the budget of " + std::to_string(budget) +
+                  " (" + std::to_string(budget / 1000000) + " megapixels); set " + kDecodeBudgetVariable +
+                  "=MEGAPIXELS to allow more (0 = no budget)");
+}
+
 /// ReadImageChannels on an opened file; `is_float` (optional) says whether any channel read
 /// stores half/float data.
 ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<std::string>& names, size_t max_pixels,
@@ -290,6 +324,7 @@ ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<s
   if (spec.depth > 1) {
     throw UserError("image '" + path + "' is a volume (" + std::to_string(spec.depth) + " slices); 2-D images only");
   }
+  ChargeDecodeBudget(static_cast<size_t>(w) * static_cast<size_t>(h), path);
   for (const auto& c : want) {
     if (const std::string bad = CheckPlausibleSize(f, f.parts[c.part]); !bad.empty()) {
       throw UserError("cannot read image '" + path + "': " + bad);
@@ -388,8 +423,9 @@ ImageF ReadImageChannels(const std::string& path, const std::vector<std::string>
   return ReadChannels(f, path, names, max_pixels, allow_inf, nullptr);
 }
 
-LoadedImage ReadImage(const std::string& path, size_t max_pixels) {
-  OpenedImage f = Open(path);
+namespace {
+
+LoadedImage ReadOpened(OpenedImage& f, const std::string& path, size_t max_pixels) {
   const std::vector<std::string> all = Names(f);
   const std::string r = FindChannel(all, "R"), g = FindChannel(all, "G"), b = FindChannel(all, "B");
   const std::string a = FindChannel(all, "A");
@@ -426,6 +462,35 @@ LoadedImage ReadImage(const std::string& path, size_t max_pixels) {
   }
   return result;
 }
+
+}  // namespace
+
+LoadedImage ReadImage(const std::string& path, size_t max_pixels) {
+  OpenedImage f = Open(path);
+  return ReadOpened(f, path, max_pixels);
+}
+
+LoadedImage ReadImageFromMemory(const std::string& name, const uint8_t* data, size_t size, size_t max_pixels) {
+  if (!data || size == 0) throw UserError("image '" + name + "' is empty (0 bytes)");
+  OpenedImage f = Open(name, data, size);
+  return ReadOpened(f, name, max_pixels);
+}
+
+size_t DecodeBudgetPixels() {
+  static const size_t budget = [] {
+    const char* env = std::getenv(kDecodeBudgetVariable);
+    if (!env) return kDefaultDecodeBudgetPixels;
+    const std::string v = env;
+    if (v.empty() || v.size() > 12 || v.find_first_not_of("0123456789") != std::string::npos) {
+      throw UserError(std::string(kDecodeBudgetVariable) + "='" + v +
+                      "' must be a whole number of megapixels (0 = no budget)");
+    }
+    return static_cast<size_t>(std::stoull(v)) * 1000000;
+  }();
+  return budget;
+}
+
+size_t DecodedPixels() { return Decoded().load(); }
 
 Image8 ReadImage8(const std::string& path) {
   LoadedImage img = ReadImage(path);

@@ -11,6 +11,7 @@
 
 #include "harness/core/edge_mask.h"
 #include "harness/core/error.h"
+#include "harness/core/input_files.h"
 #include "harness/core/params.h"
 #include "harness/io/image_info.h"
 #include "harness/io/image_io.h"
@@ -63,7 +64,9 @@ Manifest ReadManifest(const std::string& manifest_path) {
   Manifest m;
   m.path = manifest_path;
   const std::string origin = "image scene '" + manifest_path + "'";
-  if (!fs::is_regular_file(manifest_path)) throw UserError(origin + " does not exist or is not a file");
+  if (const std::string what = WhatIsAt(manifest_path); !what.empty()) {
+    throw UserError(origin + " " + what + " (a JSON manifest file is expected)");
+  }
   try {
     m.doc = nlohmann::json::parse(ReadText(manifest_path));
   } catch (const nlohmann::json::exception& e) {

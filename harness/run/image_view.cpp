@@ -11,6 +11,7 @@
 #include "harness/core/params.h"
 #include "harness/io/image_info.h"
 #include "harness/io/image_io.h"
+#include "harness/io/safe_path.h"
 #include "harness/run/image_channels.h"
 #include "harness/run/image_sequence.h"
 #include "methods/registry.h"
@@ -71,7 +72,11 @@ ViewImage ReadViewImage(const FieldRef& f, const std::string& rel, const fs::pat
   ViewImage v;
   v.rel = rel;
   if (v.rel.empty()) f.field.Fail("an empty path (give an image file relative to the manifest)");
-  v.path = (base / v.rel).lexically_normal().string();
+  try {  // the one rule for paths read from a file (harness/io/safe_path.h)
+    v.path = ResolveInside(base.empty() ? fs::path(".") : base, v.rel, "the path").string();
+  } catch (const UserError& e) {
+    f.field.Fail(e.what());
+  }
   const std::string ext = LowerExt(v.path);
   if (std::find(exts.begin(), exts.end(), ext) == exts.end()) {
     f.field.Fail("'" + v.rel + "' has file type '" + ext + "'; allowed here: " + JoinNames(exts));
@@ -348,6 +353,14 @@ void CheckOutputName(const JsonField& f, const std::string& name) {
   for (char c : name) {
     if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-')) {
       f.Fail("output names are lowercase-kebab ([a-z0-9-]+, e.g. engine-taa), got '" + name + "'");
+    }
+  }
+  // Its images are written as images/<scene>/<name>.png beside the reference's: aalab's own
+  // file names are not for user rows (harness/io/safe_path.h).
+  for (const auto& reserved : ReservedOutputNames()) {
+    if (name == reserved) {
+      f.Fail("'" + name + "' is reserved for aalab's own files in the run folder (images/<scene>/" + name +
+             ".png); give your output another name (e.g. engine-" + name + ")");
     }
   }
   const std::vector<std::string> taken = MethodNames();

@@ -13,6 +13,7 @@
 
 #include "harness/core/error.h"
 #include "harness/io/image_io.h"
+#include "harness/io/safe_path.h"
 #include "harness/run/merge_internal.h"
 #include "harness/run/out_folder.h"
 #include "harness/run/shard.h"
@@ -211,8 +212,13 @@ MergeResult MergeRunFolders(const std::vector<std::string>& dirs, const std::str
   std::vector<std::pair<fs::path, std::string>> copies;  // source, relative path
   std::set<std::string> planned;
   for (size_t i = 0; i < reports.size(); ++i) {
+    const std::string origin = "report '" + (fs::path(dirs[i]) / "report.json").string() + "'";
+    for (const auto& sc : reports[i].scenes) CheckOutputName(sc.name, "scene name in " + origin);
     for (const auto& rel : ReportImages(reports[i])) {
-      const fs::path src = fs::path(dirs[i]) / rel;
+      // The report names both where the image is read and where its copy is written: both
+      // must stay inside their folders (a damaged or received report cannot reach out).
+      CheckOutputRelPath(rel, "image path in " + origin);
+      const fs::path src = ResolveInside(dirs[i], rel, "image path in " + origin);
       if (!fs::is_regular_file(src)) {
         throw UserError("merge: '" + dirs[i] + "' lacks " + rel + ", which its report links (copied incompletely?)");
       }

@@ -72,6 +72,17 @@ bool IsLegacyRunFolder(const fs::path& dir, const std::set<std::string>& files) 
   return std::all_of(files.begin(), files.end(), [&](const std::string& file) { return named.count(file) > 0; });
 }
 
+/// A `history report` folder of a build from before the marker: only index.html, which is
+/// aalab's history page.
+bool IsLegacyHistoryFolder(const fs::path& dir, const std::set<std::string>& files) {
+  if (files != std::set<std::string>{"index.html"} || !fs::is_regular_file(dir / "index.html")) return false;
+  std::ifstream f(dir / "index.html", std::ios::binary);
+  std::string head(8192, '\0');
+  f.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(f.gcount()));
+  return head.find("<h1>aalab history</h1>") != std::string::npos;
+}
+
 /// "" when `dir` (an existing folder) may be replaced by an output of `kind`, else why not.
 std::string WhyNotReplaceable(const fs::path& dir, const std::string& kind) {
   const std::set<std::string> files = FilesUnder(dir);
@@ -80,6 +91,7 @@ std::string WhyNotReplaceable(const fs::path& dir, const std::string& kind) {
   std::ifstream f(marker);
   std::string header, kind_line;
   if (!fs::exists(marker) && kind == "run" && IsLegacyRunFolder(dir, files)) return "";
+  if (!fs::exists(marker) && kind == "history" && IsLegacyHistoryFolder(dir, files)) return "";
   if (!f || !std::getline(f, header) || header != MarkerHeader() || !std::getline(f, kind_line)) {
     return "it is not empty and was not written by aalab (it has no " + std::string(kOutputMarker) +
            ", the list of files aalab wrote, and is not a run folder of an older aalab build holding only its report, page and the images the report names)";
@@ -91,11 +103,46 @@ std::string WhyNotReplaceable(const fs::path& dir, const std::string& kind) {
   std::set<std::string> listed;
   for (std::string line; std::getline(f, line);) listed.insert(line);
   for (const auto& file : files) {
-    if (file != kOutputMarker && file != kLockFile && !listed.count(file)) {
+    // (.aalab-lock is not exempt: aalab removes its lock at commit, so one in a finished
+    // folder is a user's file and is never deleted silently.)
+    if (file != kOutputMarker && !listed.count(file)) {
       return "it holds '" + file + "', which aalab did not write (aalab replaces the whole folder: move the file out)";
     }
   }
   return "";
+}
+
+/// Undoes /proc/self/mountinfo's octal escapes ("\040" for a space).
+std::string Unescape(const std::string& s) {
+  std::string out;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '\\' && i + 3 < s.size()) {
+      const std::string oct = s.substr(i + 1, 3);
+      if (oct.size() == 3 && oct.find_first_not_of("01234567") == std::string::npos) {
+        out += static_cast<char>(std::stoi(oct, nullptr, 8));
+        i += 3;
+        continue;
+      }
+    }
+    out += s[i];
+  }
+  return out;
+}
+
+/// Whether `dir` (normalised, symlinks resolved) is a mount point: listed in
+/// /proc/self/mountinfo (a bind mount of a folder of the same file system included), or on
+/// another device than its parent. Such a folder cannot be renamed (EBUSY) nor be the target
+/// of a rename from its parent's file system (EXDEV).
+bool IsMountPoint(const fs::path& dir) {
+  struct stat a {}, b {};
+  if (::stat(dir.c_str(), &a) == 0 && ::stat(dir.parent_path().c_str(), &b) == 0 && a.st_dev != b.st_dev) return true;
+  std::ifstream f("/proc/self/mountinfo");
+  for (std::string line; std::getline(f, line);) {
+    std::istringstream ss(line);
+    std::string id, parent, devno, root, mount_point;
+    if (ss >> id >> parent >> devno >> root >> mount_point && Unescape(mount_point) == dir.string()) return true;
+  }
+  return false;
 }
 
 bool Contains(const fs::path& outer, const fs::path& inner) {
@@ -138,6 +185,14 @@ OutFolder::OutFolder(const std::string& dir, const std::string& kind, const std:
   std::error_code ec;
   if (fs::exists(fs::symlink_status(dir_, ec))) {
     if (!fs::is_directory(dir_, ec)) throw UserError("--out " + shown + " exists and is not a folder");
+    // The finished output replaces DIR by a rename, which a mount point refuses: said now,
+    // before the work, not after it (no work lost).
+    if (IsMountPoint(dir_)) {
+      throw UserError("--out " + shown +
+                      " is a mount point (a bind mount or another file system): aalab builds the output beside it "
+                      "in DIR.partial and renames it into place at the end, which a mount point refuses. Give a "
+                      "folder inside it instead (e.g. --out " + (dir_ / "results").string() + ")");
+    }
     if (const std::string why = WhyNotReplaceable(dir_, kind); !why.empty()) {
       throw UserError("--out " + shown + " cannot be replaced: " + why +
                       ". Choose another --out (or empty the folder yourself)");
@@ -193,6 +248,14 @@ OutFolder::OutFolder(const std::string& dir, const std::string& kind, const std:
   throw UserError("--out " + shown + ": another command keeps creating '" + partial_.string() + "'");
 }
 
+void OutFolder::KeepPartial() {
+  // Finished work that could not be put in place is kept: no longer tracked for clean-up, and
+  // without its lock file, so a later command refuses (never removes) it as not aalab's.
+  committed_ = true;
+  UntrackUnfinished(partial_.string());
+  ::unlink((partial_ / kLockFile).c_str());
+}
+
 OutFolder::~OutFolder() {
   std::error_code ec;
   if (!committed_) {
@@ -214,19 +277,26 @@ void OutFolder::Commit() {
   if (fs::exists(fs::symlink_status(dir_, ec))) {
     // Files may have appeared during a long run: checked again just before the replacement.
     if (const std::string why = WhyNotReplaceable(dir_, kind_); !why.empty()) {
-      throw UserError("--out '" + dir_.string() + "' cannot be replaced: " + why + "; the finished output is not kept");
+      KeepPartial();
+      throw UserError("--out '" + dir_.string() + "' cannot be replaced: " + why + ". The finished output is kept in '" +
+                      partial_.string() + "': move it where you want it");
     }
   }
   auto lock = LockUnfinished();  // an interruption waits until the renames are done
   const fs::path old = dir_.string() + ".old-" + std::to_string(::getpid());
   const bool had_old = fs::exists(fs::symlink_status(dir_, ec));
   if (had_old && ::rename(dir_.c_str(), old.c_str()) != 0) {
-    throw UserError("cannot replace '" + dir_.string() + "': " + std::strerror(errno));
+    const int err = errno;
+    KeepPartial();
+    throw UserError("cannot replace '" + dir_.string() + "': " + std::strerror(err) + ". The finished output is kept in '" +
+                    partial_.string() + "': move it where you want it");
   }
   if (::rename(partial_.c_str(), dir_.c_str()) != 0) {
     const int err = errno;
     if (had_old) ::rename(old.c_str(), dir_.c_str());
-    throw UserError("cannot move '" + partial_.string() + "' to '" + dir_.string() + "': " + std::strerror(err));
+    KeepPartial();
+    throw UserError("cannot move '" + partial_.string() + "' to '" + dir_.string() + "': " + std::strerror(err) +
+                    ". The finished output is kept in '" + partial_.string() + "': move it where you want it");
   }
   committed_ = true;
   UntrackUnfinished(partial_.string());

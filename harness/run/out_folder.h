@@ -12,8 +12,15 @@
 ///  - DIR.partial is created at once and holds a lock (flock on DIR.partial/.aalab-lock): a
 ///    second command into the same folder is refused at its start. A DIR.partial left by a
 ///    killed command (lock free, marker present) is removed; one aalab did not create is refused.
-///  - Commit: DIR is moved aside, DIR.partial renamed to DIR, the old folder removed; an
-///    interruption (harness/core/cleanup.h) removes DIR.partial and leaves DIR as it was.
+///  - An existing DIR that is a mount point (a container's bind mount) is refused before any
+///    work: it cannot be replaced by a rename. A folder inside it is fine.
+///  - Commit: DIR is checked again (a file the user added during the run is never deleted),
+///    moved aside, DIR.partial renamed to DIR, the old folder removed; an interruption
+///    (harness/core/cleanup.h) removes DIR.partial and leaves DIR as it was. When the re-check
+///    or a rename fails, the finished output stays in DIR.partial (without its lock, so no
+///    later command removes it) and the error says where.
+///  - Every input counts: the files a scene was built from (Scene::files_read: meshes, glTF
+///    buffers and textures, image-scene frames and captures) are inputs like the scene file.
 #pragma once
 #include <filesystem>
 #include <string>
@@ -30,7 +37,8 @@ std::filesystem::path NormaliseOutPath(const std::string& dir, const std::string
 
 class OutFolder {
  public:
-  /// Checks `dir` as above for an output of `kind` ("run", "sweep", "frames", "export", "sequences"); `inputs` are
+  /// Checks `dir` as above for an output of `kind` ("run", "sweep", "frames", "export", "sequences",
+  /// "history"); `inputs` are
   /// the files and folders the command reads or creates (a --ref-cache that does not exist yet
   /// counts too; callers pass scene names only when they are files). Takes the
   /// lock and creates DIR.partial. UserError naming the folder and what to do otherwise.
@@ -47,9 +55,12 @@ class OutFolder {
   const std::filesystem::path& Dir() const { return dir_; }
   /// Lists the files written in DIR.partial/.aalab-output and replaces DIR with DIR.partial
   /// (checking again that DIR holds nothing aalab did not write).
+  /// Finished output that cannot be put in place (DIR changed during the run, a rename
+  /// refused) is kept in DIR.partial, and the UserError says so: no work is lost.
   void Commit();
 
  private:
+  void KeepPartial();
   std::filesystem::path dir_, partial_;
   std::string kind_;
   int lock_fd_ = -1;

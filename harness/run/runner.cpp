@@ -10,6 +10,7 @@
 
 #include "harness/core/color.h"
 #include "harness/core/error.h"
+#include "harness/core/input_files.h"
 #include "harness/core/parallel.h"
 #include "harness/core/params.h"
 #include "harness/core/timer.h"
@@ -186,6 +187,9 @@ Report RunSuite(const RunSettings& s) {
   for (const auto& name : s.scenes) {
     if (fs::exists(name)) inputs.push_back(name);  // a scene file or manifest (not a library name)
   }
+  // Every file the scenes were built from: meshes, glTF buffers and textures, image-scene
+  // frames and captures (harness/core/input_files.h).
+  for (const auto& file : InputFilesRead()) inputs.push_back(file);
   OutFolder out(s.out_dir, "run", inputs);
   std::optional<ReferenceCache> cache;  // created once every input has been checked
   if (!s.ref_cache.empty()) cache.emplace(s.ref_cache);

@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/core/error.h"
+#include "harness/core/input_files.h"
 #include "harness/io/image_io.h"
+#include "harness/io/safe_path.h"
 #include "harness/run/out_folder.h"
 #include "reports/report_json.h"
 
@@ -23,7 +25,7 @@ std::string FrameName(size_t t, const char* ext) {
 }
 
 /// A folder name from a method spec: ':' ',' → '_', '=' → '-' (as the run's image names).
-std::string FolderName(const std::string& spec) {
+std::string FolderName(const std::string& spec) {  // checked by CheckOutputName before use
   std::string s = spec;
   for (char& c : s) {
     if (c == ':' || c == ',') c = '_';
@@ -43,21 +45,33 @@ std::string Setting(const Report& r, const std::string& key, const std::string& 
 
 SequenceExport ExportSequences(const std::string& run_dir, const std::string& out_dir) {
   const fs::path run = run_dir;
+  if (const std::string what = WhatIsAt(run_dir); what != "is a folder") {
+    throw UserError("'" + run_dir + "' " + (what.empty() ? "is a file" : what) +
+                    ", not a run folder (give the folder that holds the motion run's report.json)");
+  }
   const Report report = ReadReportFile((run / "report.json").string());
   bool any = false;
   for (const auto& s : report.scenes) any = any || s.frames > 1;
   if (!any) {
     throw UserError("'" + run_dir + "' is not a motion run (no scene has frames > 1): run aalab run --frames N first");
   }
-  // Every input file must exist before anything is written.
-  auto need = [&run](const std::string& rel) {
-    if (!fs::is_regular_file(run / rel)) throw UserError("frame file '" + (run / rel).string() + "' is missing");
+  // Every input file must exist, inside the run folder, before anything is written; every
+  // name that becomes a folder under --out must be a plain name (harness/io/safe_path.h).
+  const std::string origin = "report '" + (run / "report.json").string() + "'";
+  auto need = [&run, &origin](const std::string& rel) {
+    const fs::path p = ResolveInside(run, rel, "frame path in " + origin);
+    if (!fs::is_regular_file(p)) throw UserError("frame file '" + p.string() + "' is missing");
   };
   for (const auto& s : report.scenes) {
+    if (s.frames > 1) CheckOutputName(s.name, "scene name in " + origin);
     for (const auto& f : s.frame_images) need(f);
     for (const auto& f : s.frame_exr_images) need(f);
   }
   for (const auto& row : report.rows) {
+    if (!row.frame_images.empty()) {
+      CheckOutputName(FolderName(row.spec), "method spec '" + row.spec + "' (row of scene '" + row.scene + "') in " + origin,
+                      {"reference"});
+    }
     for (const auto& f : row.frame_images) need(f);
   }
 

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/core/error.h"
+#include "harness/core/input_files.h"
 #include "harness/core/parallel.h"
 #include "harness/core/params.h"
 #include "harness/core/timer.h"
@@ -334,6 +335,9 @@ SweepResult RunSweep(const SweepSettings& s) {
   for (const auto& name : s.scenes) {
     if (fs::exists(name)) inputs.push_back(name);  // a scene file or manifest (not a library name)
   }
+  // Every file the scenes were built from: meshes, glTF buffers and textures, image-scene
+  // frames and captures (harness/core/input_files.h).
+  for (const auto& file : InputFilesRead()) inputs.push_back(file);
   OutFolder out(s.out_dir, "sweep", inputs);
   res.out_dir = s.out_dir;
 

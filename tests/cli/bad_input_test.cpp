@@ -88,7 +88,7 @@ TEST(CliBadInput, MalformedSceneFilesNameTheFileAndTheProblem) {
        "{\"name\": \"t\", \"effects\": [\"unlit\"], \"camera\": {\"type\": \"orthographic\", \"position\": [0,0,10], "
        "\"look_at\": [0,0,0], \"height\": 4}, \"materials\": {\"w\": {\"shading\": \"unlit\"}}, \"objects\": "
        "[{\"shape\": \"mesh\", \"file\": \"missing.obj\", \"material\": \"w\"}]}",
-       {"mesh.json", "/objects/0/file", "missing.obj", "not found"}},
+       {"mesh.json", "/objects/0/file", "missing.obj", "does not exist"}},
   };
   std::vector<std::string> inputs;
   for (const auto& c : cases) {

@@ -14,10 +14,12 @@
 #include <fstream>
 #include <functional>
 #include <future>
+#include <iterator>
 #include <limits>
 
 #include "harness/core/error.h"
 #include "harness/io/image_io.h"
+#include "harness/io/safe_path.h"
 #include "tests/temp_dir.h"
 
 namespace aalab {
@@ -231,6 +233,84 @@ TEST(ImageRead, ATinyFileClaimingAHugeImageFailsWithoutTakingTheMemory) {
   EXPECT_LT(seconds, 1.0);
   EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 64 * 1024) << "peak RSS grew by " << after.ru_maxrss - before.ru_maxrss
                                                           << " KiB";
+}
+
+
+std::string FileBytes(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+TEST(ImageRead, FromMemoryGoesThroughTheSameChecks) {
+  // A 3x2 RGBA PNG written by OIIO: the memory reader gives the file reader's exact values.
+  const std::vector<float> px = {0.0f, 1.0f, 0.2f, 1.0f, 0.6f, 0.4f, 1.0f, 0.0f, 0.8f, 0.0f, 0.0f, 1.0f,
+                                 1.0f, 1.0f, 1.0f, 0.2f, 0.0f, 0.0f, 0.0f, 1.0f, 0.4f, 0.2f, 0.6f, 0.8f};
+  WriteWithOiio(Dir() / "mem.png", 3, 2, {"R", "G", "B", "A"}, OIIO::TypeDesc::UINT8, px);
+  const std::string bytes = FileBytes(Dir() / "mem.png");
+  const LoadedImage a = ReadImage((Dir() / "mem.png").string());
+  const LoadedImage b =
+      ReadImageFromMemory("embedded.png", reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+  ASSERT_EQ(b.pixels.Width(), 3);
+  ASSERT_EQ(b.pixels.Height(), 2);
+  EXPECT_EQ(b.pixels.Data(), a.pixels.Data());
+  EXPECT_EQ(b.pixels.At(1, 0, 3), 0.0f);                  // alpha as stored, never multiplied in
+  EXPECT_NEAR(b.pixels.At(1, 0, 0), 153.0f / 255.0f, 1e-7);  // colour of that transparent pixel kept
+  EXPECT_EQ(b.format, "png");
+  // The 69-byte PNG claiming 16000x16000, held in memory: refused by the same size check.
+  const std::string huge = FileBytes(Dir() / "huge.png");
+  if (!huge.empty()) {
+    const std::string e = ErrorOf([&] {
+      ReadImageFromMemory("texture.png", reinterpret_cast<const uint8_t*>(huge.data()), huge.size());
+    });
+    EXPECT_NE(e.find("claims 16000x16000 pixels"), std::string::npos) << e;
+  }
+  // A PNG whose chunk claims more bytes than the buffer holds; a wrong extension; nothing.
+  std::string cut = bytes.substr(0, 45);  // the chunk after IHDR claims more than the 4 bytes left
+  EXPECT_NE(ErrorOf([&] { ReadImageFromMemory("t.png", reinterpret_cast<const uint8_t*>(cut.data()), cut.size()); })
+                .find("not a valid PNG file"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] { ReadImageFromMemory("t.gif", reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()); })
+                .find("unsupported file type '.gif'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] { ReadImageFromMemory("t.png", nullptr, 0); }).find("is empty"), std::string::npos);
+}
+
+TEST(SafePath, PathsFromFilesStayInsideTheirFolder) {
+  const fs::path base = Dir() / "base";
+  fs::create_directories(base / "sub");
+  EXPECT_EQ(ResolveInside(base, "sub/x.png", "f"), (base / "sub" / "x.png").lexically_normal());
+  EXPECT_EQ(ResolveInside(base, "sub/../y.png", "f"), (base / "y.png").lexically_normal());
+  for (const std::string& bad : {std::string("../x.png"), std::string("sub/../../x.png"), std::string("/etc/passwd"),
+                                 std::string(""), std::string(".")}) {
+    const std::string e = ErrorOf([&] { ResolveInside(base, bad, "field 'f' of 'r.json'"); });
+    EXPECT_NE(e.find("field 'f' of 'r.json'"), std::string::npos) << bad << ": " << e;
+    EXPECT_NE(e.find("must stay inside it"), std::string::npos) << bad << ": " << e;
+  }
+  // A symlink inside the folder that points out of it.
+  fs::create_directory_symlink(Dir(), base / "out-link");
+  EXPECT_NE(ErrorOf([&] { ResolveInside(base, "out-link/huge.png", "f"); }).find("through a symlink"),
+            std::string::npos);
+  // Relative base (".") works as the current folder.
+  EXPECT_EQ(ResolveInside(".", "a.png", "f"), fs::path("a.png"));
+}
+
+TEST(SafePath, OutputNamesArePlainAndReservedNamesRefused) {
+  for (const std::string& ok : {std::string("circle"), std::string("fxaa311-p39_subpix-0.5"), std::string("a.b")}) {
+    EXPECT_EQ(ErrorOf([&] { CheckOutputName(ok, "n"); }), "") << ok;
+  }
+  for (const std::string& bad : {std::string(""), std::string(".."), std::string("."), std::string("a/b"),
+                                 std::string("/abs"), std::string("a\\b"), std::string(".aalab-output"),
+                                 std::string("tab\there"), std::string(201, 'x')}) {
+    EXPECT_NE(ErrorOf([&] { CheckOutputName(bad, "scene name"); }).find("scene name: the name"), std::string::npos)
+        << bad;
+  }
+  EXPECT_NE(ErrorOf([&] { CheckOutputName("reference", "spec", {"reference"}); }).find("is reserved"),
+            std::string::npos);
+  EXPECT_EQ(CheckOutputRelPath("images/circle/none.png", "p"), "images/circle/none.png");
+  for (const std::string& bad : {std::string("images/../../x.png"), std::string("/tmp/x.png"), std::string("a//b"),
+                                 std::string("images/./x.png"), std::string("")}) {
+    EXPECT_NE(ErrorOf([&] { CheckOutputRelPath(bad, "p"); }), "") << bad;
+  }
 }
 
 }  // namespace

@@ -72,7 +72,7 @@ TEST(SceneParse, SyntaxAndTypeErrorsNameThePath) {
   ExpectError(MakeScene(R"(["unlit"])", kWhite, R"([{"shape": "quad", "size": [0,1], "material": "w"}])"),
               {"/objects/0/size", "> 0"});
   ExpectError(MakeScene(R"(["unlit"])", kWhite, R"([{"shape": "mesh", "file": "nope.obj", "material": "w"}])"),
-              {"/objects/0/file", "nope.obj", "not found"});
+              {"/objects/0/file", "nope.obj", "does not exist"});
   ExpectError(MakeScene(R"(["unlit"])", kWhite,
                         R"([{"shape": "polygon", "points": [[0,0,0],[2,0,0],[0.5,0.5,0],[0,2,0]], "material": "w"}])"),
               {"/objects/0/points", "not convex"});
@@ -274,8 +274,8 @@ TEST(SceneBadInput, MeshFilesThatAreMissingUnreadableOrBroken) {
     return std::string();
   };
   for (const auto& [file, want] : std::vector<std::pair<std::string, std::string>>{
-           {"missing.obj", "not found"},
-           {"adir.obj", "not found"},
+           {"missing.obj", "does not exist"},
+           {"adir.obj", "is a folder"},
            {"nan.obj", "non-finite vertex"},
            {"index.obj", "out of range"},
            {"empty.obj", "no triangles"},
