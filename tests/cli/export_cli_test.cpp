@@ -258,7 +258,7 @@ TEST(ExportCli, BadInputNamesTheProblemAndWritesNothing) {
   fails(run.string() + " --out " + out.string() + " --methods smaa-high", "method 'smaa-high' is not in report");
   fails(run.string() + " --out " + out.string() + " --crops 9", "--crops item '9'");
   fails(run.string() + " --out " + out.string() + " --crops 90:50:10:10", "must lie inside scene 'wedges'");
-  fails(run.string() + " --out " + out.string() + " --zoom 40", "--zoom 40 must be 1..32");
+  fails(run.string() + " --out " + out.string() + " --zoom 40", "not in range 1 to 32");
   fails(run.string() + " " + run.string() + " --out " + out.string(), "two reports are labelled");
   fails(run.string() + " --out " + out.string() + " --figure-scene detail-texture", "no crop windows");
   {

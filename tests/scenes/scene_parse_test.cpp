@@ -43,14 +43,14 @@ TEST(SceneParse, EveryLibrarySceneParsesAndDescribesItself) {
     EXPECT_EQ(s.name, n);
     EXPECT_FALSE(s.description.empty()) << n;
   }
-  // Every scene is in `default`, `hard`, `real` or (the moving ones, motion-* and real-*-pan)
-  // `motion`.
+  // Every scene is in `default`, `hard`, `real`, `speed` (the speed sweep's motion-speed-*) or
+  // (the other moving ones, motion-* and real-*-pan) `motion`.
   const auto motion = SuiteScenes("motion");
   const auto moving = std::count_if(motion.begin(), motion.end(), [](const std::string& n) {
     return n.rfind("motion-", 0) == 0 || (n.rfind("real-", 0) == 0 && n.size() > 4 && n.substr(n.size() - 4) == "-pan");
   });
   EXPECT_EQ(SuiteScenes("default").size() + SuiteScenes("hard").size() + SuiteScenes("real").size() +
-                static_cast<size_t>(moving),
+                SuiteScenes("speed").size() + static_cast<size_t>(moving),
             names.size());
   EXPECT_FALSE(SuiteScenes("quick").empty());
 }
