@@ -18,6 +18,7 @@
 #include "reports/html_assets.h"
 #include "reports/html_page.h"
 #include "reports/report_json.h"
+#include "reports/verdict.h"
 
 namespace aalab {
 
@@ -244,7 +245,23 @@ std::string FloorWarning(const SceneResult& s, const std::string& metric, double
 }
 
 void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index) {
-  const std::vector<std::string> metrics = MetricNames(r.rows, &s.name);
+  // Metrics null on every row of the scene get no column; the caption names them and why.
+  std::vector<std::string> metrics, hidden;
+  for (const auto& name : MetricNames(r.rows, &s.name)) {
+    bool any = false;
+    std::string reason;
+    for (const auto& row : r.rows) {
+      if (row.scene != s.name) continue;
+      const MetricResult* m = FindMetric(row, name);
+      if (m && m->value) any = true;
+      if (m && !m->value && reason.empty()) reason = m->null_reason;
+    }
+    if (any) {
+      metrics.push_back(name);
+    } else {
+      hidden.push_back(name + (reason.empty() ? "" : " (" + reason + ")"));
+    }
+  }
   h += "<div class=\"table-wrap\"><table class=\"metrics sortable\" id=\"table-" + Int(index) + "\" data-scene=\"" +
        Attr(s.name) + "\">\n<caption>Every method on <b>" + HtmlEscape(s.name) + "</b> against the reference (" +
        (s.kind == "image" ? std::string("the user's own") + (s.ref_spp > 0 ? ", " + Int(s.ref_spp) + " spp" : "")
@@ -253,7 +270,14 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
   h += s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db)
                            : std::string(s.kind == "image" ? "unknown" : s.ref_exact ? "infinite" : "none");
   h += "). <span class=\"warn\">⚠</span> marks a PSNR within " + Printf("%.0f", kNearFloorDb) +
-       " dB of the floor. Click or press Enter on a column header to sort.</caption>\n<thead><tr>"
+       " dB of the floor. Click or press Enter on a column header to sort." +
+       [&hidden] {
+         if (hidden.empty()) return std::string();
+         std::string t = " <span class=\"hidden-metrics\">Not shown, null on every row: ";
+         for (size_t i = 0; i < hidden.size(); ++i) t += (i ? "; " : "") + HtmlEscape(hidden[i]);
+         return t + ".</span>";
+       }() +
+       "</caption>\n<thead><tr>"
        "<th scope=\"col\" data-type=\"text\"><button type=\"button\">Method</button></th>";
   for (const auto& m : metrics) {
     const html::MetricInfo info = html::DescribeMetric(m);
@@ -348,10 +372,17 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
   h += "</tbody></table></div>\n";
 }
 
+/// The scene's one-line verdict (reports/verdict.h), marked when the two axes disagree.
+std::string VerdictHtml(const SceneVerdict& v) {
+  return "<p class=\"verdict" + std::string(v.disagree ? " disagree" : "") + "\" data-scene=\"" + Attr(v.scene) +
+         "\"><b>Verdict:</b> " + HtmlEscape(v.line) + "</p>\n";
+}
+
 void SceneSection(std::string& h, const Report& r, const SceneResult& s, int index) {
   h += "<section class=\"view\" id=\"view-scene-" + Attr(s.name) + "\" data-view=\"scene-" + Attr(s.name) +
        "\" data-scene=\"" + Attr(s.name) + "\">\n<h2>Scene <span class=\"name\">" + HtmlEscape(s.name) +
        "</span></h2>\n<p class=\"desc\">" + HtmlEscape(s.description) + "</p>\n";
+  h += VerdictHtml(VerdictForScene(r.rows, s.name));
   SceneFacts(h, s);
   h += "<h3>Quality vs cost</h3>\n";
   QualityCostBlock(h, "scene", &s.name);
@@ -467,6 +498,12 @@ std::string RenderHtmlReport(const Report& r) {
        "scenes where every method has a value of the chosen metric, so that every method is averaged over the "
        "same scenes; the scenes left out and why are listed with the chart). Per-scene details, tables and the "
        "gallery are in the scene tabs.</p>\n";
+  h += "<h3>Verdict per scene</h3>\n<ul class=\"verdicts\">\n";
+  for (const SceneVerdict& v : Verdicts(r)) {
+    h += "<li" + std::string(v.disagree ? " class=\"disagree\"" : "") + "><b>" + HtmlEscape(v.scene) + "</b>: " +
+         HtmlEscape(v.line) + "</li>\n";
+  }
+  h += "</ul>\n";
   QualityCostBlock(h, "suite", nullptr);
   h += html::GpuSummary(r);
   h += "</section>\n";

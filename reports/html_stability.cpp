@@ -58,12 +58,19 @@ void AppendStabilitySection(std::string& h, const Report& r) {
                   HtmlEscape(list) + "</li>";
       }
     }
+    // One status line per scene; the null values, their reasons and methods on demand.
     const bool hard = s->name.rfind("hard-", 0) == 0;
-    rows += "<tr" + std::string(hard ? " class=\"hard\"" : "") + "><th scope=\"row\">" + HtmlEscape(s->name) +
-            (hard ? " <span class=\"tag\">hard</span>" : "") + "</th><td class=\"num\">" + std::to_string(n_rows) +
-            "</td><td class=\"num\">" + std::to_string(finite) + "</td><td class=\"num\">" + std::to_string(nulls) +
-            "</td><td class=\"num\">" + (bad ? "<strong>" + std::to_string(bad) + "</strong>" : "0") +
-            "</td><td>" + (detail.empty() ? "none" : "<ul class=\"nulls\">" + detail + "</ul>") + "</td></tr>\n";
+    const std::string line =
+        std::string(bad ? "<span class=\"bad\">✗</span> " : "<span class=\"ok\">✓</span> ") + "<b>" +
+        HtmlEscape(s->name) + "</b>" + (hard ? " <span class=\"tag\">hard</span>" : "") + ": " +
+        std::to_string(n_rows) + " rows, " + std::to_string(finite) + " finite, " + std::to_string(nulls) +
+        " null" + (null_by_reason.empty() ? "" : " (" + std::to_string(null_by_reason.size()) +
+                                                                  (null_by_reason.size() == 1 ? " reason)" : " reasons)")) +
+        ", " + (bad ? "<strong>" + std::to_string(bad) + " invalid</strong>" : std::string("0 invalid"));
+    rows += "<li" + std::string(hard ? " class=\"hard\"" : "") + " data-scene=\"" + HtmlEscape(s->name) + "\">" +
+            (detail.empty() ? line
+                            : "<details><summary>" + line + "</summary><ul class=\"nulls\">" + detail + "</ul></details>") +
+            "</li>\n";
   }
   h += "<section id=\"stability\" class=\"prose\">\n<h2>Numerical stability</h2>\n<p>Every metric value of every "
        "row is either a finite number or <code>null</code> with a reason; NaN and Infinity never reach the "
@@ -71,10 +78,9 @@ void AppendStabilitySection(std::string& h, const Report& r) {
        std::to_string(total_values) + " metric values, " + std::to_string(total_null) + " null with a reason, " +
        std::to_string(total_bad) +
        " invalid (non-finite, or null without a reason; must be 0). Scenes of the <code>hard</code> suite "
-       "(<code>aalab run --suite hard</code>) come first.</p>\n<table class=\"stability\"><thead><tr><th>scene</th>"
-       "<th>rows</th><th>finite</th><th>null</th><th>invalid</th><th>null values (reason: methods)</th></tr>"
-       "</thead><tbody>\n" +
-       rows + "</tbody></table>\n</section>\n";
+       "(<code>aalab run --suite hard</code>) come first; open a scene's line for its null values, their "
+       "reasons and methods.</p>\n<ul class=\"stability\">\n" +
+       rows + "</ul>\n</section>\n";
 }
 
 }  // namespace aalab

@@ -19,6 +19,7 @@
 #include "methods/registry.h"
 #include "scenes/library.h"
 #include "harness/run/stage_clock.h"
+#include "reports/verdict.h"
 #include "scenes/render.h"
 
 namespace aalab {
@@ -216,6 +217,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
         return ToInt(ExitCode::kOk);
       }
       std::printf("%s", FormatTimeBreakdown(report.time_breakdown).c_str());
+      std::printf("%s", FormatVerdicts(Verdicts(report)).c_str());
       std::printf("wrote %zu results for %zu scenes\nhtml:   %s\nreport: %s\n", report.rows.size(), report.scenes.size(),
                   (fs::absolute(rs->out_dir) / "index.html").string().c_str(),
                   (fs::absolute(rs->out_dir) / "report.json").string().c_str());

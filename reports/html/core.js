@@ -48,6 +48,8 @@ const AA = (function () {
     abZoom: 0,  // 0 = auto
     cropZoom: 0,
     split: 50,
+    pairA: null, pairB: 'reference',  // the two rows compared in 'two rows' mode (null A: the selected method)
+    diffGain: 4,
   };
 
   // ---- helpers ----
@@ -193,6 +195,10 @@ const AA = (function () {
     window.addEventListener('hashchange', () => { const v = viewFromHash(); if (v) showView(v); });
     showView(viewFromHash() || 'suite');
     select(state.spec);
+    if (/pairtest/.test(location.hash)) {  // tests/reports/html_browser_test: any two rows side by side
+      if (document.readyState === 'complete') setTimeout(() => AA.pairTest(), 0);
+      else window.addEventListener('load', () => setTimeout(() => AA.pairTest(), 0));
+    }
     if (SELFTEST) {
       if (document.readyState === 'complete') setTimeout(() => AA.selfTest(), 0);
       else window.addEventListener('load', () => setTimeout(() => AA.selfTest(), 0));

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -111,6 +112,67 @@ TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
     EXPECT_GT(fs::file_size(shot), 20000u) << shot << " looks empty";
     std::printf("screenshot: %s\n", shot.c_str());
   }
+}
+
+// Any two rows side by side (the gallery's "two rows" mode, #pairtest drives it in the page):
+// A and B chosen with the selects, `f` flips between them, and the absolute-difference canvas is
+// blank for two identical images and not blank for two different methods. Chromium reads the
+// canvas back only with --allow-file-access-from-files (a page opened from disk may not read
+// its own images' pixels); without it the page says so instead of counting.
+TEST(HtmlBrowser, AnyTwoRowsSideBySideWithFlipAndDifference) {
+  if (!fs::exists(kChromium)) {
+    AALAB_SKIP_OR_FAIL_UNDER_CI(std::string(kChromium) + " is not installed, so the A/B page was NOT tested in a browser.");
+  }
+  const fs::path work = fs::path(AALAB_BINARY_DIR) / "html_browser_pair_test";
+  const fs::path out = work / "run";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  const CmdResult run = RunCommand(std::string(AALAB_BINARY_DIR) + "/aalab run --scenes wedges --methods "
+                                   "none,ssaa-2x2,fxaa1-p3 --size 64x36 --ref-spp 4 --repeat 1 --quiet --out " +
+                                   Quote(out.string()) + " 2>&1");
+  ASSERT_EQ(run.code, 0) << run.output;
+  // The terminal states the verdict too.
+  EXPECT_NE(run.output.find("  wedges: edge PSNR → "), std::string::npos) << run.output;
+  const std::string url = "file://" + fs::absolute(out / "index.html").string() + "#pairtest";
+  auto facts = [&](const std::string& name, const std::string& flags) {
+    const fs::path dom = work / (name + ".html"), log = work / (name + ".log");
+    const CmdResult r = RunCommand(Chromium(work / ("profile-" + name), flags + " --virtual-time-budget=20000 "
+                                                                        "--window-size=1400,1600 --dump-dom " + Quote(url)) +
+                                   " > " + Quote(dom.string()) + " 2> " + Quote(log.string()));
+    EXPECT_EQ(r.code, 0) << ReadFile(log);
+    std::smatch m;
+    const std::string text = ReadFile(dom);
+    if (!std::regex_search(text, m, std::regex("<pre id=\"pairtest\">([^<]*)</pre>"))) return std::string("no pairtest");
+    return std::string(m[1]);
+  };
+  const std::string png = "images/wedges/";
+  const std::string read = facts("read", "--allow-file-access-from-files");
+  EXPECT_NE(read.find("options=reference,none,ssaa-2x2,fxaa1-p3 "), std::string::npos) << read;
+  EXPECT_NE(read.find(" same=ssaa-2x2:0 "), std::string::npos) << read;  // A = B: blank
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(read, m, std::regex(" pair=ssaa-2x2:fxaa1-p3:([0-9]+):([0-9]+) "))) << read;
+  EXPECT_GT(std::stoi(m[1]), 0) << read;
+  EXPECT_GT(std::stoi(m[2]), 0) << read;
+  // The same count and largest difference as OpenImageIO's idiff on the two PNGs.
+  const CmdResult idiff = RunCommand("idiff -a " + Quote((out / png / "ssaa-2x2.png").string()) + " " +
+                                     Quote((out / png / "fxaa1-p3.png").string()) + " 2>&1");
+  std::smatch im;
+  ASSERT_TRUE(std::regex_search(idiff.output, im, std::regex("Max error += ([0-9.]+)"))) << idiff.output;
+  EXPECT_EQ(std::stoi(m[2]), static_cast<int>(std::lround(std::stod(im[1]) * 255))) << read << "\n" << idiff.output;
+  ASSERT_TRUE(std::regex_search(idiff.output, im, std::regex("([0-9]+) pixels \\([0-9.]+%\\) over"))) << idiff.output;
+  EXPECT_EQ(m[1].str(), im[1].str()) << read << "\n" << idiff.output;
+  // The split, then all of A, then all of B.
+  EXPECT_NE(read.find(" before=split f1=A:" + png + "ssaa-2x2"), std::string::npos) << read;
+  EXPECT_NE(read.find(" f2=B:" + png + "fxaa1-p3"), std::string::npos) << read;
+  ASSERT_TRUE(std::regex_search(read, m, std::regex(" ref=([0-9]+) "))) << read;
+  EXPECT_GT(std::stoi(m[1]), 0) << read;
+  EXPECT_NE(read.find(" errors=0"), std::string::npos) << read;
+  EXPECT_EQ(read.find("exception"), std::string::npos) << read;
+  // Opened from disk without the flag: the same interactions, the counts said to be unavailable.
+  const std::string plain = facts("plain", "");
+  EXPECT_NE(plain.find(" same=ssaa-2x2:unknown "), std::string::npos) << plain;
+  EXPECT_NE(plain.find(" f2=B:" + png + "fxaa1-p3"), std::string::npos) << plain;
+  EXPECT_NE(plain.find(" errors=0"), std::string::npos) << plain;
 }
 
 // The first screen of `make run`: the default suite (every default method, a scene without

@@ -200,6 +200,39 @@ TEST(HtmlReport, ShowsTimingAndCostColumnsAndContext) {
   }
 }
 
+TEST(HtmlReport, SaysTheVerdictPerScene) {
+  const std::string page = RenderHtmlReport(Sample());
+  // wedges: edge PSNR 25 (none), 41 (ssaa-2x2, 8 ms), 36.99; FLIP 0.05 on every row (a tie).
+  EXPECT_NE(page.find("<p class=\"verdict\" data-scene=\"wedges\"><b>Verdict:</b> edge PSNR → ssaa-2x2 41.00 dB "
+                      "(+16.00 dB over none, 8.00 ms, +6.00 ms over none); FLIP → none (tied with ssaa-2x2, " +
+                      HtmlEscape(kEvilMethod) + ") 0.0500 (no method beats none); both axes agree</p>"),
+            std::string::npos);
+  // The suite view lists the same line per scene.
+  EXPECT_NE(page.find("<li><b>wedges</b>: edge PSNR → ssaa-2x2 41.00 dB"), std::string::npos);
+  EXPECT_NE(page.find("<li><b>" + HtmlEscape(kEvilScene) + "</b>: edge PSNR → ssaa-2x2"), std::string::npos);
+}
+
+TEST(HtmlReport, HidesMetricsNullOnEveryRowOfAScene) {
+  Report r = Sample();
+  for (auto& row : r.rows) row.metrics.push_back({"temporal_flicker", std::nullopt, "a still run"});
+  for (auto& row : r.rows) {
+    if (row.scene == kEvilScene && row.spec == "none") row.metrics.back().value = 0.25;
+  }
+  const std::string page = RenderHtmlReport(r);
+  const std::string head = "<th scope=\"col\" data-metric=\"temporal_flicker\"";
+  const size_t wedges = page.find("<table class=\"metrics sortable\" id=\"table-0\"");
+  const size_t evil = page.find("<table class=\"metrics sortable\" id=\"table-1\"");
+  ASSERT_NE(wedges, std::string::npos);
+  ASSERT_NE(evil, std::string::npos);
+  // Only in the second scene's table, where one row has a value.
+  EXPECT_GT(page.find(head), evil);
+  EXPECT_EQ(page.find(head, page.find(head) + 1), std::string::npos);
+  const std::string caption = page.substr(wedges, page.find("</caption>", wedges) - wedges);
+  EXPECT_NE(caption.find("Not shown, null on every row: temporal_flicker (a still run)."), std::string::npos) << caption;
+  EXPECT_TRUE(CellHtml(RowHtml(page, "wedges", "none"), "temporal_flicker").empty());
+  EXPECT_FALSE(CellHtml(RowHtml(page, kEvilScene, "ssaa-2x2"), "temporal_flicker").empty());
+}
+
 TEST(HtmlReport, IsPure) { EXPECT_EQ(RenderHtmlReport(Sample()), RenderHtmlReport(Sample())); }
 
 TEST(HtmlReport, Helpers) {
@@ -238,11 +271,25 @@ TEST(HtmlStability, CountsFiniteAndNullValuesWithReasons) {
   // The hard scene is listed first, with its null value, reason and method.
   EXPECT_LT(h.find("hard-dark"), h.find("wedges"));
   EXPECT_NE(h.find("<code>psnr_db</code> null — identical: fxaa311-p39"), std::string::npos);
+  // One status line per scene; the scene with a null value has its details in a <details>, the
+  // other has none.
+  EXPECT_NE(h.find("<details><summary><span class=\"ok\">✓</span> <b>hard-dark</b> <span class=\"tag\">hard</span>: "
+                   "1 rows, 1 finite, 1 null (1 reason), 0 invalid</summary>"),
+            std::string::npos)
+      << h;
+  EXPECT_NE(h.find("<li data-scene=\"wedges\"><span class=\"ok\">✓</span> <b>wedges</b>: 1 rows, 2 finite, 0 null, "
+                   "0 invalid</li>"),
+            std::string::npos)
+      << h;
+  EXPECT_EQ(h.find("<table"), std::string::npos);
   // A null without a reason counts as invalid.
   r.rows[1].metrics[1] = {"ssim", std::nullopt, ""};
   h.clear();
   AppendStabilitySection(h, r);
   EXPECT_NE(h.find("1 invalid"), std::string::npos);
+  EXPECT_NE(h.find("<span class=\"bad\">✗</span> <b>wedges</b>: 1 rows, 1 finite, 1 null (1 reason), <strong>1 invalid"),
+            std::string::npos)
+      << h;
 }
 
 }  // namespace
