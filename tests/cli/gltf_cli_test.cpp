@@ -16,11 +16,6 @@ namespace aalab::clitest {
 namespace {
 namespace fs = std::filesystem;
 
-std::string Bytes(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), {});
-}
-
 TEST(GltfCli, RealSceneIsIdenticalAtOneAndTwoThreads) {
   const fs::path dir = TempDir("gltf-threads");
   const std::string common =

@@ -25,52 +25,28 @@
 #include "harness/core/image.h"
 #include "harness/io/image_io.h"
 #include "tests/cli/cli_util.h"
+#include "tests/cli/process_util.h"
 
 namespace aalab {
 namespace {
 namespace fs = std::filesystem;
 using clitest::Aalab;
+using clitest::Bytes;
 using clitest::CmdResult;
 using clitest::RunCommand;
+using clitest::SpawnAalab;
 using clitest::TempDir;
+using clitest::WaitForPath;
+using clitest::WriteText;
 
 const std::string kSmall = "--scenes circle --methods none,fxaa311-p39 --size 24x16 --ref-spp 4 --repeat 1 --quiet";
 
-std::string Bytes(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-}
-
-void Write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << text;
-}
-
 nlohmann::json ReadJson(const fs::path& p) { return nlohmann::json::parse(Bytes(p)); }
-void WriteJson(const fs::path& p, const nlohmann::json& j) { Write(p, j.dump(2)); }
+void WriteJson(const fs::path& p, const nlohmann::json& j) { WriteText(p, j.dump(2)); }
 
 void ExpectFail(const CmdResult& r, int code, const std::vector<std::string>& parts, const std::string& what) {
   EXPECT_EQ(r.code, code) << what << "\n" << r.output;
   for (const auto& p : parts) EXPECT_NE(r.output.find(p), std::string::npos) << what << "\nmissing: " << p << "\n" << r.output;
-}
-
-pid_t Spawn(const std::string& args, const fs::path& log) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    for (int sig : {SIGINT, SIGTERM, SIGHUP}) ::signal(sig, SIG_DFL);
-    const std::string cmd = "exec " + std::string(AALAB_BINARY_DIR) + "/aalab " + args;
-    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  return pid;
-}
-
-bool WaitFor(const fs::path& p) {
-  for (int i = 0; i < 6000 && !fs::exists(p); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  return fs::exists(p);
 }
 
 /// Every file under `dir` (relative), for "nothing else was written" checks.
@@ -88,7 +64,7 @@ std::vector<std::string> FilesUnder(const fs::path& dir) {
 TEST(NothingLost, MergeRefusesImagePathsThatLeaveTheShardOrOut) {
   const fs::path dir = TempDir("nl-merge");
   ASSERT_EQ(Aalab("run " + kSmall + " --shard 0/1 --out " + (dir / "s0").string()).code, 0);
-  Write(dir / "victim.png", "the user's file");
+  WriteText(dir / "victim.png", "the user's file");
   const nlohmann::json good = ReadJson(dir / "s0" / "report.json");
   for (const std::string& evil : {std::string("../victim.png"), (dir / "victim.png").string(),
                                   std::string("images/../../victim.png")}) {
@@ -120,7 +96,7 @@ TEST(NothingLost, ExportSequencesRefusesNamesAndPathsThatLeave) {
                 .code,
             0);
   const nlohmann::json good = ReadJson(dir / "run" / "report.json");
-  Write(dir / "secret.png", "not an image of the run");
+  WriteText(dir / "secret.png", "not an image of the run");
   auto replace_scene = [&](const std::string& name) {
     nlohmann::json j = good;
     j["scenes"][0]["name"] = name;
@@ -200,7 +176,7 @@ TEST(NothingLost, ImageScenesKeepTheirInputsAndReservedNames) {
                    (dir / "out").string()),
              1, {"'reference' is reserved"}, "output named reference");
   // Manifest paths stay inside the manifest's folder.
-  Write(dir / "sub" / "x.txt", "");
+  WriteText(dir / "sub" / "x.txt", "");
   WriteManifest(dir / "sub" / "m.json", "../res/images/circle/none.png", "../res/images/circle/reference.png");
   ExpectFail(Aalab("run --scenes " + (dir / "sub" / "m.json").string() + " --methods none --quiet --out " +
                    (dir / "out").string()),
@@ -218,7 +194,7 @@ TEST(NothingLost, HistoryReportAndCompareHtmlNeverOverwriteAUsersFile) {
   const std::string db = (dir / "db.jsonl").string();
   ASSERT_EQ(Aalab("history add " + (res / "report.json").string() + " --db " + db + " --date 2026-01-01").code, 0);
   // A user's page, and a run folder's own page: refused, untouched.
-  Write(dir / "site" / "index.html", "<p>my page</p>");
+  WriteText(dir / "site" / "index.html", "<p>my page</p>");
   ExpectFail(Aalab("history report --db " + db + " --out " + (dir / "site").string()), 1,
              {"cannot be replaced", "not written by aalab"}, "history onto a user's page");
   EXPECT_EQ(Bytes(dir / "site" / "index.html"), "<p>my page</p>");
@@ -231,7 +207,7 @@ TEST(NothingLost, HistoryReportAndCompareHtmlNeverOverwriteAUsersFile) {
   ASSERT_EQ(Aalab("history report --db " + db + " --out " + (dir / "hist").string()).code, 0);
   EXPECT_NE(Bytes(dir / "hist" / "index.html").find("<h1>aalab history</h1>"), std::string::npos);
   // compare --html onto a file aalab did not write: could not compare (2), file untouched.
-  Write(dir / "notes.html", "<p>my notes</p>");
+  WriteText(dir / "notes.html", "<p>my notes</p>");
   ExpectFail(Aalab("compare " + (res / "report.json").string() + " " + (res / "report.json").string() + " --html " +
                    (dir / "notes.html").string()),
              2, {"not written by aalab compare"}, "compare --html onto a user's file");
@@ -253,7 +229,7 @@ TEST(NothingLost, AUsersLockFileIsNeverDeletedSilently) {
   const fs::path dir = TempDir("nl-lock");
   const fs::path res = dir / "res";
   ASSERT_EQ(Aalab("run " + kSmall + " --out " + res.string()).code, 0);
-  Write(res / ".aalab-lock", "my notes, named oddly");
+  WriteText(res / ".aalab-lock", "my notes, named oddly");
   ExpectFail(Aalab("run " + kSmall + " --out " + res.string()), 1, {"'.aalab-lock', which aalab did not write"},
              "user's .aalab-lock");
   EXPECT_EQ(Bytes(res / ".aalab-lock"), "my notes, named oddly");
@@ -267,11 +243,11 @@ TEST(NothingLost, AFileAddedDuringARunIsNeverDeletedAndTheWorkIsKept) {
   const fs::path dir = TempDir("nl-added");
   const fs::path res = dir / "res";
   ASSERT_EQ(Aalab("run " + kSmall + " --out " + res.string()).code, 0);
-  const pid_t pid = Spawn("run --scenes circle,wedges --methods none,fxaa311-p39,smaa-high --size 160x90 --ref-spp 64 "
+  const pid_t pid = SpawnAalab("run --scenes circle,wedges --methods none,fxaa311-p39,smaa-high --size 160x90 --ref-spp 64 "
                           "--repeat 1 --quiet --out " + res.string(),
                           dir / "log.txt");
-  ASSERT_TRUE(WaitFor(res.string() + ".partial"));
-  Write(res / "added-during-run.txt", "written while aalab worked");
+  ASSERT_TRUE(WaitForPath(res.string() + ".partial"));
+  WriteText(res / "added-during-run.txt", "written while aalab worked");
   int status = 0;
   ::waitpid(pid, &status, 0);
   const std::string log = Bytes(dir / "log.txt");
@@ -320,7 +296,7 @@ TEST(NothingLost, AMountPointOutIsRefusedBeforeTheWork) {
   const fs::path mnt = dir / "mnt", src = dir / "src";
   fs::create_directories(mnt);
   fs::create_directories(src);
-  Write(src / "keep.txt", "on the mounted file system");
+  WriteText(src / "keep.txt", "on the mounted file system");
   if (::mount(src.c_str(), mnt.c_str(), nullptr, MS_BIND, nullptr) != 0) {
     GTEST_SKIP() << "mount --bind refused here (" << std::strerror(errno) << "): a container without CAP_SYS_ADMIN";
   }
@@ -341,8 +317,8 @@ TEST(NothingLost, AMountPointOutIsRefusedBeforeTheWork) {
 TEST(NothingLost, SighupCleansUpLikeSigterm) {
   const fs::path dir = TempDir("nl-hup");
   const std::string res = (dir / "res").string();
-  const pid_t pid = Spawn("run --suite quick --size 320x240 --ref-spp 256 --quiet --out " + res, dir / "log.txt");
-  ASSERT_TRUE(WaitFor(res + ".partial"));
+  const pid_t pid = SpawnAalab("run --suite quick --size 320x240 --ref-spp 256 --quiet --out " + res, dir / "log.txt");
+  ASSERT_TRUE(WaitForPath(res + ".partial"));
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   ::kill(pid, SIGHUP);
   int status = 0;
@@ -398,7 +374,7 @@ TEST(NothingLost, TheSamplerIsAConditionOfCompareHistoryAndExport) {
 
 TEST(NothingLost, OptionErrorsExitWithEachCommandsOwnCode) {
   const fs::path dir = TempDir("nl-codes");
-  Write(dir / "r.json", "{}");
+  WriteText(dir / "r.json", "{}");
   const std::string r = (dir / "r.json").string();
   ExpectFail(Aalab("compare " + r + " " + r + " --bogus"), 2, {"--bogus"}, "compare unknown option");
   ExpectFail(Aalab("compare " + r), 2, {"current"}, "compare missing argument");
@@ -425,7 +401,7 @@ TEST(NothingLost, OptionErrorsExitWithEachCommandsOwnCode) {
              {"history database", "is a FIFO (named pipe)"}, "fifo history add db");
   ExpectFail(Aalab("export-sequences " + (dir / "pipe.json").string() + " --out " + (dir / "x").string()), 1,
              {"is a FIFO (named pipe), not a run folder"}, "fifo export-sequences");
-  Write(dir / "s" / "mesh.json",
+  WriteText(dir / "s" / "mesh.json",
         R"({"name": "m", "effects": ["unlit"], "camera": {"type": "orthographic", "position": [0,0,10], )"
         R"("look_at": [0,0,0], "height": 4}, "materials": {"w": {"shading": "unlit"}}, )"
         R"("objects": [{"shape": "mesh", "file": "dir.obj", "material": "w"}]})");

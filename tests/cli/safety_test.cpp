@@ -22,21 +22,19 @@
 #include "harness/core/image.h"
 #include "harness/io/image_io.h"
 #include "tests/cli/cli_util.h"
+#include "tests/cli/process_util.h"
 
 namespace aalab {
 namespace {
 namespace fs = std::filesystem;
 using clitest::Aalab;
+using clitest::Bytes;
 using clitest::CmdResult;
 using clitest::RunCommand;
+using clitest::SpawnAalab;
 using clitest::TempDir;
 
 const std::string kSmall = "--scenes circle --methods none,fxaa311-p39 --size 24x16 --ref-spp 4 --repeat 1 --quiet";
-
-std::string Bytes(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-}
 
 /// Every entry under `dir` whose name starts with ".tmp-" or ends in ".partial" (leftovers).
 std::vector<std::string> Leftovers(const fs::path& dir) {
@@ -178,22 +176,6 @@ TEST(Safety, AFullDiskFailsNamingTheFileAndLeavesNothing) {
   fs::remove_all(dir);
 }
 
-/// Starts `aalab ARGS` (SIGINT and SIGTERM at their defaults), output to `log`.
-pid_t Spawn(const std::string& args, const fs::path& log) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    ::signal(SIGINT, SIG_DFL);
-    ::signal(SIGTERM, SIG_DFL);
-    const std::string cmd = "exec " + std::string(AALAB_BINARY_DIR) + "/aalab " + args;
-    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  return pid;
-}
-
 TEST(Safety, SignalsStopPromptlyAndLeaveWhatWasThere) {
   const fs::path dir = TempDir("safety-signal");
   const std::string res = (dir / "res").string(), cache = (dir / "cache").string();
@@ -202,7 +184,7 @@ TEST(Safety, SignalsStopPromptlyAndLeaveWhatWasThere) {
   for (const auto& [sig, code, word] : std::vector<std::tuple<int, int, std::string>>{
            {SIGINT, 130, "interrupted (SIGINT)"}, {SIGTERM, 143, "terminated (SIGTERM)"}}) {
     // A run long enough to be caught: several scenes at 320x240 with 256 samples per pixel.
-    const pid_t pid = Spawn("run --suite quick --size 320x240 --ref-spp 256 --quiet --ref-cache " + cache + " --out " +
+    const pid_t pid = SpawnAalab("run --suite quick --size 320x240 --ref-spp 256 --quiet --ref-cache " + cache + " --out " +
                                 res,
                             dir / "log.txt");
     // Wait until it has started writing (DIR.partial exists), then signal it.
@@ -231,19 +213,23 @@ TEST(Safety, SignalsStopPromptlyAndLeaveWhatWasThere) {
 TEST(Safety, ASecondRunIntoTheSameFolderIsRefusedAtStart) {
   const fs::path dir = TempDir("safety-lock");
   const std::string res = (dir / "res").string();
-  const pid_t pid = Spawn("run --suite quick --size 320x240 --ref-spp 256 --quiet --out " + res, dir / "log.txt");
+  const pid_t pid = SpawnAalab("run --suite quick --size 320x240 --ref-spp 256 --quiet --out " + res, dir / "log.txt");
   for (int i = 0; i < 600 && !fs::exists(res + ".partial"); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_TRUE(fs::exists(res + ".partial"));
+  // The second run asks for work that would take minutes (1280x720 at 1024 spp: ~940 M reference
+  // samples), so a refusal within 20 s, however loaded the machine, proves it came before any
+  // rendering; a bar on a tiny run's wall time proved less and failed under load (5.2 s).
   const auto t0 = std::chrono::steady_clock::now();
-  ExpectFail(Aalab("run " + kSmall + " --out " + res + "/"), 1,
-             {"is being written by another aalab command right now (process " + std::to_string(pid)}, "second run");
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+  ExpectFail(Aalab("run --scenes circle --methods none --size 1280x720 --ref-spp 1024 --repeat 1 --quiet --out " +
+                   res + "/"),
+             1, {"is being written by another aalab command right now (process " + std::to_string(pid)}, "second run");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 20.0);
   ::kill(pid, SIGTERM);
   int status = 0;
   ::waitpid(pid, &status, 0);
   EXPECT_FALSE(fs::exists(res + ".partial"));
   // A DIR.partial left by a killed command (SIGKILL: no clean-up) is taken over.
-  const pid_t killed = Spawn("run --suite quick --size 320x240 --ref-spp 256 --quiet --out " + res, dir / "log.txt");
+  const pid_t killed = SpawnAalab("run --suite quick --size 320x240 --ref-spp 256 --quiet --out " + res, dir / "log.txt");
   for (int i = 0; i < 600 && !fs::exists(res + ".partial"); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ::kill(killed, SIGKILL);
   ::waitpid(killed, &status, 0);
