@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_util.h"
+#include "process_util.h"
 
 namespace aalab::clitest {
 namespace {

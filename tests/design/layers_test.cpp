@@ -1,9 +1,9 @@
 // The layer rule of docs/design.md ("The layers"), read from the code: every `#include "..."`
-// between the project's folders points down, and only harness/io includes OpenImageIO.
+// between the project's folders points down, and only io includes OpenImageIO.
 //
 // Layers, bottom to top (a folder may include its own layer and any lower one; folders of one
 // layer may not include each other):
-//   0 harness/core   1 harness/io   2 scenes, methods (with methods/cuda), metrics
+//   0 core   1 io   2 scenes, methods (with methods/cuda), metrics
 //   3 reports (reads the metric registry)   4 harness/run   5 harness/cli, gpu (programs)
 // bench/ and tests/ stand outside the rule (they may include anything).
 #include <gtest/gtest.h>
@@ -26,9 +26,9 @@ struct Layer {
   int rank;
 };
 
-// Longest prefix first, so harness/core/ wins over a plain harness/.
+// Longest prefix first, so core/ wins over a plain harness/.
 const std::vector<Layer> kLayers = {
-    {"harness/core/", 0}, {"harness/io/", 1}, {"scenes/", 2}, {"methods/", 2}, {"metrics/", 2},
+    {"core/", 0}, {"io/", 1}, {"scenes/", 2}, {"methods/", 2}, {"metrics/", 2},
     {"reports/", 3},      {"harness/run/", 4}, {"harness/cli/", 5}, {"gpu/", 5},
 };
 
@@ -95,16 +95,16 @@ TEST(Layers, TheCheckSeesAnUpwardAndASidewaysArrow) {
   // A planted upward include (core reading run) and a sideways one (scenes reading methods) are
   // found; downward ones, same-folder ones and files outside the layers (tests/) are not.
   const std::vector<Include> planted = {
-      {"harness/core/image.h", 3, "harness/run/runner.h"},   // upward
+      {"core/image.h", 3, "harness/run/runner.h"},   // upward
       {"scenes/tracer.cpp", 9, "methods/registry.h"},        // siblings
-      {"harness/run/runner.cpp", 4, "harness/core/image.h"}, // down: fine
+      {"harness/run/runner.cpp", 4, "core/image.h"}, // down: fine
       {"reports/verdict.cpp", 5, "metrics/registry.h"},      // down: fine
       {"methods/fxaa.cpp", 2, "methods/fxaa.h"},             // same folder: fine
       {"tests/cli/cli_util.h", 7, "harness/cli/main.cpp"},   // outside the rule
   };
   const auto v = Violations(planted);
   ASSERT_EQ(v.size(), 2u);
-  EXPECT_EQ(v[0], "harness/core/image.h:3 includes harness/run/runner.h (harness/core/ is layer 0, harness/run/ layer 4: upward)");
+  EXPECT_EQ(v[0], "core/image.h:3 includes harness/run/runner.h (core/ is layer 0, harness/run/ layer 4: upward)");
   EXPECT_EQ(v[1], "scenes/tracer.cpp:9 includes methods/registry.h (scenes/ is layer 2, methods/ layer 2: siblings)");
 }
 
@@ -121,13 +121,13 @@ TEST(Layers, EveryIncludeBetweenFoldersPointsDown) {
 TEST(Layers, OnlyIoIncludesOpenImageIo) {
   std::vector<std::string> oiio;
   ReadIncludes(AALAB_SOURCE_DIR, &oiio);
-  // Files outside harness/io that still decode images themselves; each is to move its reading
-  // to harness/io (the glTF texture decode and the environment map). The list must stay exact:
+  // Files outside io that still decode images themselves; each is to move its reading
+  // to io (the glTF texture decode and the environment map). The list must stay exact:
   // a file that stops including OpenImageIO leaves it, and no file joins it.
   const std::vector<std::string> kNotYetThroughIo = {"scenes/ibl.cpp", "scenes/texture_image.cpp"};
   std::vector<std::string> outside;
   for (const auto& f : oiio) {
-    if (f.rfind("harness/io/", 0) != 0) outside.push_back(f);
+    if (f.rfind("io/", 0) != 0) outside.push_back(f);
   }
   EXPECT_EQ(outside, kNotYetThroughIo);
 }
