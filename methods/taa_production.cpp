@@ -25,9 +25,12 @@
 //   3. history: off-screen h (outside [0, W]×[0, H]) or no vector → none. `disocclusion=on`
 //      drops it where the surface now visible was hidden: with depth, where the previous
 //      frame's depth at h (nearest render texel) is nearer than the current closest depth by
-//      more than `disocclusion_depth` (relative); without depth, where the previous frame's
-//      motion vector at h differs from the current one by more than `disocclusion_px`
-//      (Salvi 2016 / Jimenez 2016 motion-vector rejection);
+//      more than `disocclusion_depth` (relative); and, with or without depth, where the
+//      previous frame's motion vector at h differs from the current one by more than
+//      `disocclusion_px` (Salvi 2016 / Jimenez 2016 motion-vector rejection). The motion test
+//      is needed with depth too: a background pixel beside a moving object takes the
+//      object's dilated vector, lands on background elsewhere, and the depth test passes
+//      (docs/motion.md "Where taa-prod loses to none");
 //   4. fetch the history at h: `history=bilinear` (2x2), `catmull-rom` (4x4 separable
 //      Catmull-Rom, what UE4's 9 bilinear taps compute; Karis 2014), `catmull-rom-5` (the 4x4
 //      without its corners, renormalised: Jimenez 2016 "Filmic SMAA", 5 bilinear taps);
@@ -363,7 +366,8 @@ class TaaProdState : public TemporalState {
       if (use_depth && !prev_depth_.empty()) {
         const float now = (*in.depth)[static_cast<size_t>(m)];
         if (prev_depth_[q] < now * (1.0f - p_.disocclusion_depth)) return fallback();
-      } else {
+      }
+      {
         // An unknown previous vector (frame 0 has none) cannot show a discontinuity.
         const float dx = prev_mv_[2 * q] - vx, dy = prev_mv_[2 * q + 1] - vy;
         if (dx * dx + dy * dy > p_.disocclusion_px * p_.disocclusion_px) return fallback();
@@ -424,9 +428,9 @@ std::vector<ParamDef> TaaProdParamDefs() {
       ChoiceParam("history", "catmull-rom", {"catmull-rom", "catmull-rom-5", "bilinear"},
                   "history fetch: 4x4 Catmull-Rom (UE4 9-tap), 5-tap (Jimenez 2016) or bilinear"),
       ChoiceParam("disocclusion", "on", {"on", "off"},
-                  "drop history where the previous depth was nearer (or, without depth, the motion differs)"),
+                  "drop history where the previous depth was nearer or the motion differs"),
       FloatParam("disocclusion_depth", d.disocclusion_depth, 0.001, 1.0, "relative depth step that drops history"),
-      FloatParam("disocclusion_px", d.disocclusion_px, 0.05, 64.0, "motion difference (px) that drops history (no depth)"),
+      FloatParam("disocclusion_px", d.disocclusion_px, 0.05, 64.0, "motion difference (px) that drops history"),
       ChoiceParam("clip", "variance", {"variance", "minmax", "none"}, "history rectification in YCoCg (as taa)"),
       FloatParam("gamma", d.gamma, 0.25, 4.0, "variance box half-width in standard deviations"),
       ChoiceParam("feedback", "adaptive", {"adaptive", "fixed"},

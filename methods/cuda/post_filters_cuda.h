@@ -175,7 +175,7 @@ void LaunchTaaResolve(const GpuFrame& frame, const float* previous, const GpuHis
 struct TaaProdArgs {
   int dilate;        ///< 1: motion of the closest depth in 3×3
   int history;       ///< 0 bilinear, 1 Catmull-Rom 4×4, 2 Catmull-Rom without corners (5 taps)
-  int disocclusion;  ///< 1: drop history on a depth step (or, without depth, a motion step)
+  int disocclusion;  ///< 1: drop history on a depth step (with depth) or a motion step
   float disocclusion_depth, disocclusion_px;
   int clip;  ///< 0 variance, 1 minmax, 2 none
   float gamma;
@@ -187,9 +187,9 @@ struct TaaProdArgs {
 
 /// One frame's per-pixel inputs of the production TAA, device pointers, null where absent:
 /// `previous` (2 floats a pixel, as LaunchTaaResolve; null: no history this frame), `depth`
-/// (view depth, +Inf background; null: no dilation, motion-vector disocclusion test), and the
+/// (view depth, +Inf background; null: no dilation and no depth test), and the
 /// previous frame's `prev_depth` and `prev_previous` (its previous positions: the motion
-/// vectors the no-depth disocclusion test compares with).
+/// vectors the disocclusion test compares with).
 struct TaaProdFrame {
   const float* previous = nullptr;
   const float* depth = nullptr;

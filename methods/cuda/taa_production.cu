@@ -163,7 +163,8 @@ __global__ void TaaProdKernel(cudaTextureObject_t frame, TaaProdFrame in, cudaTe
       if (in.depth && in.prev_depth) {
         const float now = __ldg(in.depth + m);
         if (__ldg(in.prev_depth + q) < now * (1.0f - a.disocclusion_depth)) break;
-      } else if (in.prev_previous) {  // an unknown previous vector cannot show a discontinuity
+      }
+      if (in.prev_previous) {  // an unknown previous vector cannot show a discontinuity
         const float2 pq = reinterpret_cast<const float2*>(in.prev_previous)[q];
         const float dx = (pq.x - (static_cast<float>(qx) + 0.5f)) - vx;
         const float dy = (pq.y - (static_cast<float>(qy) + 0.5f)) - vy;
