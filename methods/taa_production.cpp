@@ -69,6 +69,7 @@
 #include "harness/core/error.h"
 #include "harness/core/parallel.h"
 #include "methods/taa.h"
+#include "methods/taa_common.h"
 
 namespace aalab {
 
@@ -123,34 +124,10 @@ float RoundToHalf(float v) {
 
 namespace {
 
-struct Ycc {
-  float y, co, cg;
-};
-
-inline Ycc ToYCoCg(const float* rgb) {
-  return {0.25f * rgb[0] + 0.5f * rgb[1] + 0.25f * rgb[2], 0.5f * rgb[0] - 0.5f * rgb[2],
-          -0.25f * rgb[0] + 0.5f * rgb[1] - 0.25f * rgb[2]};
-}
-
-inline void FromYCoCg(Ycc v, float* rgb) {
-  const float t = v.y - v.cg;
-  rgb[0] = t + v.co;
-  rgb[1] = v.y + v.cg;
-  rgb[2] = t - v.co;
-}
-
-inline Ycc ClipToBox(Ycc h, const float* lo, const float* hi) {
-  const float hv[3] = {h.y, h.co, h.cg};
-  float centre[3], v[3], m = 0.0f;
-  for (int c = 0; c < 3; ++c) {
-    centre[c] = 0.5f * (hi[c] + lo[c]);
-    const float ext = 0.5f * (hi[c] - lo[c]) + 1e-8f;
-    v[c] = hv[c] - centre[c];
-    m = std::max(m, std::fabs(v[c] / ext));
-  }
-  if (m <= 1.0f) return h;
-  return {centre[0] + v[0] / m, centre[1] + v[1] / m, centre[2] + v[2] / m};
-}
+using taa_detail::ClipToBox;
+using taa_detail::FromYCoCg;
+using taa_detail::ToYCoCg;
+using taa_detail::Ycc;
 
 inline float Clamp01(float v) { return std::clamp(v, 0.0f, 1.0f); }
 

@@ -87,23 +87,7 @@ __global__ void TaaKernel(cudaTextureObject_t frame, const float* __restrict__ p
   if (previous && px >= 0.0f && px <= static_cast<float>(w) && py >= 0.0f && py <= static_cast<float>(h)) {
     float hrgb[3];
     if constexpr (kSoft) {  // TaaState::FetchHistory
-      const float fx = px - 0.5f, fy = py - 0.5f;
-      const float x0f = floorf(fx), y0f = floorf(fy);
-      const float tx = fx - x0f, ty = fy - y0f;
-      const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
-      const int xa = min(max(x0, 0), w - 1), xb = min(max(x0 + 1, 0), w - 1);
-      const int ya = min(max(y0, 0), h - 1), yb = min(max(y0 + 1, 0), h - 1);
-      const float4 A = tex2D<float4>(hist_pt, xa + 0.5f, ya + 0.5f);
-      const float4 B = tex2D<float4>(hist_pt, xb + 0.5f, ya + 0.5f);
-      const float4 C = tex2D<float4>(hist_pt, xa + 0.5f, yb + 0.5f);
-      const float4 D = tex2D<float4>(hist_pt, xb + 0.5f, yb + 0.5f);
-      const float av[3] = {A.x, A.y, A.z}, bv[3] = {B.x, B.y, B.z}, cv[3] = {C.x, C.y, C.z}, dv[3] = {D.x, D.y, D.z};
-#pragma unroll
-      for (int k = 0; k < 3; ++k) {
-        const float top = av[k] + tx * (bv[k] - av[k]);
-        const float bot = cv[k] + tx * (dv[k] - cv[k]);
-        hrgb[k] = top + ty * (bot - top);
-      }
+      SoftBilinearHistory(hist_pt, px, py, w, h, hrgb);
     } else {
       const float4 H = tex2D<float4>(hist_lin, px, py);
       hrgb[0] = H.x, hrgb[1] = H.y, hrgb[2] = H.z;

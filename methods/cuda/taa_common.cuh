@@ -29,6 +29,33 @@ __device__ __forceinline__ Ycc YccAt(cudaTextureObject_t frame, int x, int y, co
   return ToYCoCg(decode[QuantizeUnorm8(t.x)], decode[QuantizeUnorm8(t.y)], decode[QuantizeUnorm8(t.z)]);
 }
 
+// History texel (x, y), clamped to the w × h history: an exact point fetch (float or half
+// texels widened to float).
+__device__ __forceinline__ float4 HistTexel(cudaTextureObject_t pt, int x, int y, int w, int h) {
+  return tex2D<float4>(pt, static_cast<float>(min(max(x, 0), w - 1)) + 0.5f,
+                       static_cast<float>(min(max(y, 0), h - 1)) + 0.5f);
+}
+
+// The CPU's bilinear history fetch (TaaState::FetchHistory, TaaProdState::FetchHistory with
+// history=bilinear) at texel coordinates (hx, hy): four point fetches, float32 fractions,
+// lerp(lerp(a, b, tx), lerp(c, d, tx), ty) in that order.
+__device__ __forceinline__ void SoftBilinearHistory(cudaTextureObject_t pt, float hx, float hy, int w, int h,
+                                                    float* out) {
+  const float fx = hx - 0.5f, fy = hy - 0.5f;
+  const float x0f = floorf(fx), y0f = floorf(fy);
+  const float tx = fx - x0f, ty = fy - y0f;
+  const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
+  const float4 A = HistTexel(pt, x0, y0, w, h), B = HistTexel(pt, x0 + 1, y0, w, h);
+  const float4 C = HistTexel(pt, x0, y0 + 1, w, h), D = HistTexel(pt, x0 + 1, y0 + 1, w, h);
+  const float av[3] = {A.x, A.y, A.z}, bv[3] = {B.x, B.y, B.z}, cv[3] = {C.x, C.y, C.z}, dv[3] = {D.x, D.y, D.z};
+#pragma unroll
+  for (int c = 0; c < 3; ++c) {
+    const float top = av[c] + tx * (bv[c] - av[c]);
+    const float bot = cv[c] + tx * (dv[c] - cv[c]);
+    out[c] = top + ty * (bot - top);
+  }
+}
+
 // Encode8::operator(): the number of code thresholds at or below v (v in [0, 1]).
 __device__ __forceinline__ unsigned char Encode(float v, const float* starts) {
   int lo = 0, hi = 255;

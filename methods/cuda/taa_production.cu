@@ -40,11 +40,6 @@ __device__ __forceinline__ void CatmullRom(float t, float* w) {
   w[3] = 0.5f * t3 - 0.5f * t2;
 }
 
-__device__ __forceinline__ float4 HistTexel(cudaTextureObject_t pt, int x, int y, int w, int h) {
-  return tex2D<float4>(pt, static_cast<float>(min(max(x, 0), w - 1)) + 0.5f,
-                       static_cast<float>(min(max(y, 0), h - 1)) + 0.5f);
-}
-
 // TaaProdState::FetchHistory at output position (hx, hy).
 template <bool kSoft>
 __device__ __forceinline__ void FetchHistory(cudaTextureObject_t pt, cudaTextureObject_t lin, float hx, float hy,
@@ -55,15 +50,7 @@ __device__ __forceinline__ void FetchHistory(cudaTextureObject_t pt, cudaTexture
   const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
   if (mode == 0) {  // bilinear
     if constexpr (kSoft) {
-      const float4 A = HistTexel(pt, x0, y0, w, h), B = HistTexel(pt, x0 + 1, y0, w, h);
-      const float4 C = HistTexel(pt, x0, y0 + 1, w, h), D = HistTexel(pt, x0 + 1, y0 + 1, w, h);
-      const float av[3] = {A.x, A.y, A.z}, bv[3] = {B.x, B.y, B.z}, cv[3] = {C.x, C.y, C.z}, dv[3] = {D.x, D.y, D.z};
-#pragma unroll
-      for (int c = 0; c < 3; ++c) {
-        const float top = av[c] + tx * (bv[c] - av[c]);
-        const float bot = cv[c] + tx * (dv[c] - cv[c]);
-        out[c] = top + ty * (bot - top);
-      }
+      SoftBilinearHistory(pt, hx, hy, w, h, out);
     } else {
       const float4 H = tex2D<float4>(lin, hx, hy);
       out[0] = H.x, out[1] = H.y, out[2] = H.z;

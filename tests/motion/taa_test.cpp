@@ -26,6 +26,7 @@
 #include "scenes/motion_render.h"
 #include "scenes/render.h"
 #include "../scenes/scene_test_util.h"
+#include "taa_test_util.h"
 
 namespace aalab {
 namespace {
@@ -37,10 +38,7 @@ struct Result {
 };
 
 Result RunStill(const std::string& method, int frames) {
-  const Scene s = testing::ParseText(R"({"name": "edge", "effects": ["unlit"],
-    "camera": {"type": "orthographic", "position": [0,0,10], "look_at": [0,0,0], "height": 4},
-    "materials": {"w": {"shading": "unlit", "color": [1, 1, 1]}},
-    "objects": [{"shape": "quad", "size": [4, 8], "material": "w", "transform": {"translate": [-1.6, 0, 0], "rotate": [0, 0, 7]}}]})");
+  const Scene s = testing::StillEdgeScene();
   const int W = 64, H = 48;
   const Tracer tracer(s);
   const Reference ref = RenderReference(tracer, W, H, 16, 1, nullptr);
@@ -51,13 +49,7 @@ Result RunStill(const std::string& method, int frames) {
   for (int k = 0; k < frames; ++k) {
     const FrameJitter j = FrameJitterAt(plan.render.jitter, k);
     const SurfaceFrame sf = RenderSurfaceFrame(tracer, W, H, j, nullptr);
-    std::vector<float> prev;
-    if (k > 0) {
-      for (const glm::vec2& p : PreviousPositions(s, k, sf, j)) {
-        prev.push_back(p.x);
-        prev.push_back(p.y);
-      }
-    }
+    const std::vector<float> prev = testing::FlatPreviousPositions(s, k, sf, j);
     TemporalInput in;
     in.frame = &sf.image;
     in.previous = k > 0 ? &prev : nullptr;
@@ -170,13 +162,7 @@ MotionResult RunMoving(const std::string& method, double px_per_frame) {
     const Image8 none = RenderFrame(tracer, W, H, RenderSpec{}, 1, nullptr);
     const FrameJitter j = FrameJitterAt(plan.render.jitter, k);
     const SurfaceFrame sf = RenderSurfaceFrame(tracer, W, H, j, nullptr);
-    std::vector<float> prev;
-    if (k > 0) {
-      for (const glm::vec2& p : PreviousPositions(s, k, sf, j)) {
-        prev.push_back(p.x);
-        prev.push_back(p.y);
-      }
-    }
+    const std::vector<float> prev = testing::FlatPreviousPositions(s, k, sf, j);
     TemporalInput in;
     in.frame = &sf.image;
     in.previous = k > 0 ? &prev : nullptr;
