@@ -65,8 +65,10 @@ struct TaaParams {
   Clip clip = Clip::kVariance;
 };
 
+using taa_detail::AddToBox;
 using taa_detail::ClipToBox;
 using taa_detail::FromYCoCg;
+using taa_detail::NarrowToVariance;
 using taa_detail::ToYCoCg;
 using taa_detail::Ycc;
 
@@ -436,24 +438,10 @@ class TaaState : public TemporalState {
     for (int dy = -1; dy <= 1; ++dy) {
       const Ycc* row = &ycc[static_cast<size_t>(std::clamp(y + dy, 0, H - 1)) * W];
       for (int dx = 0; dx < 3; ++dx) {
-        const Ycc v = row[xs[dx]];
-        const float a[3] = {v.y, v.co, v.cg};
-        for (int c = 0; c < 3; ++c) {
-          mn[c] = std::min(mn[c], a[c]);
-          mx[c] = std::max(mx[c], a[c]);
-          m1[c] += a[c];
-          m2[c] += a[c] * a[c];
-        }
+        AddToBox(row[xs[dx]], mn, mx, m1, m2);
       }
     }
-    if (p_.clip == Clip::kVariance) {
-      for (int c = 0; c < 3; ++c) {
-        const float mu = m1[c] / 9.0f;
-        const float sigma = std::sqrt(std::fabs(m2[c] / 9.0f - mu * mu));
-        mn[c] = std::max(mn[c], mu - p_.gamma * sigma);
-        mx[c] = std::min(mx[c], mu + p_.gamma * sigma);
-      }
-    }
+    if (p_.clip == Clip::kVariance) NarrowToVariance(mn, mx, m1, m2, p_.gamma);
     return ClipToBox(h, mn, mx);
   }
 

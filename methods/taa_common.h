@@ -27,6 +27,29 @@ inline void FromYCoCg(Ycc v, float* rgb) {
   rgb[2] = t - v.co;
 }
 
+/// Adds the neighbour `v` to the box statistics of the 3×3 neighbourhood: per channel the
+/// minimum, maximum, sum and sum of squares.
+inline void AddToBox(Ycc v, float* mn, float* mx, float* m1, float* m2) {
+  const float a[3] = {v.y, v.co, v.cg};
+  for (int c = 0; c < 3; ++c) {
+    mn[c] = std::min(mn[c], a[c]);
+    mx[c] = std::max(mx[c], a[c]);
+    m1[c] += a[c];
+    m2[c] += a[c] * a[c];
+  }
+}
+
+/// Variance clipping (Salvi 2016): narrows the min/max box [mn, mx] of 9 samples (sums m1,
+/// m2) to its intersection with μ ± γσ.
+inline void NarrowToVariance(float* mn, float* mx, const float* m1, const float* m2, float gamma) {
+  for (int c = 0; c < 3; ++c) {
+    const float mu = m1[c] / 9.0f;
+    const float sigma = std::sqrt(std::fabs(m2[c] / 9.0f - mu * mu));
+    mn[c] = std::max(mn[c], mu - gamma * sigma);
+    mx[c] = std::min(mx[c], mu + gamma * sigma);
+  }
+}
+
 /// Moves `h` toward the centre of [lo, hi] until it lies inside the box (component-wise
 /// box in YCoCg), along the line to the centre (Playdead's clip_aabb); each extent + 1e-8, so
 /// a flat box does not divide by zero.

@@ -124,8 +124,10 @@ float RoundToHalf(float v) {
 
 namespace {
 
+using taa_detail::AddToBox;
 using taa_detail::ClipToBox;
 using taa_detail::FromYCoCg;
+using taa_detail::NarrowToVariance;
 using taa_detail::ToYCoCg;
 using taa_detail::Ycc;
 
@@ -297,24 +299,10 @@ class TaaProdState : public TemporalState {
     for (int dy = -1; dy <= 1; ++dy) {
       const int yy = std::clamp(iy + dy, 0, rh - 1);
       for (int dx = -1; dx <= 1; ++dx) {
-        const Ycc v = ycc_[static_cast<size_t>(yy) * rw + std::clamp(ix + dx, 0, rw - 1)];
-        const float a[3] = {v.y, v.co, v.cg};
-        for (int c = 0; c < 3; ++c) {
-          mn[c] = std::min(mn[c], a[c]);
-          mx[c] = std::max(mx[c], a[c]);
-          m1[c] += a[c];
-          m2[c] += a[c] * a[c];
-        }
+        AddToBox(ycc_[static_cast<size_t>(yy) * rw + std::clamp(ix + dx, 0, rw - 1)], mn, mx, m1, m2);
       }
     }
-    if (p_.clip == TaaRectify::kVariance) {
-      for (int c = 0; c < 3; ++c) {
-        const float mu = m1[c] / 9.0f;
-        const float sigma = std::sqrt(std::fabs(m2[c] / 9.0f - mu * mu));
-        mn[c] = std::max(mn[c], mu - p_.gamma * sigma);
-        mx[c] = std::min(mx[c], mu + p_.gamma * sigma);
-      }
-    }
+    if (p_.clip == TaaRectify::kVariance) NarrowToVariance(mn, mx, m1, m2, p_.gamma);
     std::copy(mn, mn + 3, lo);
     std::copy(mx, mx + 3, hi);
   }

@@ -240,16 +240,10 @@ StillResult RunStillEdge(const std::string& method, int frames, int W, int H, Im
   Image8 out;
   const int rw = static_cast<int>(std::lround(plan.render.scale * W)), rh = static_cast<int>(std::lround(plan.render.scale * H));
   for (int k = 0; k < frames; ++k) {
-    const FrameJitter j = FrameJitterAt(plan.render.jitter, k);
-    const SurfaceFrame sf = RenderSurfaceFrame(tracer, rw, rh, j, nullptr);
-    const std::vector<float> prev = testing::FlatPreviousPositions(s, k, sf, j);
-    const std::vector<float> depth = SurfaceDepth(CameraAtFrame(s, k), sf);
-    TemporalInput in;
-    in.frame = &sf.image;
-    in.previous = k > 0 ? &prev : nullptr;
+    const testing::TaaFrame f = testing::RenderTaaFrame(s, tracer, plan.render.jitter, k, rw, rh);
+    const std::vector<float> depth = SurfaceDepth(CameraAtFrame(s, k), f.sf);
+    TemporalInput in = f.Input(k);
     in.depth = &depth;
-    in.jitter = j;
-    in.frame_index = k;
     in.output_width = W;
     in.output_height = H;
     out = state->Step(in, nullptr);

@@ -47,14 +47,8 @@ Result RunStill(const std::string& method, int frames) {
   auto state = plan.make_state();
   Image8 out;
   for (int k = 0; k < frames; ++k) {
-    const FrameJitter j = FrameJitterAt(plan.render.jitter, k);
-    const SurfaceFrame sf = RenderSurfaceFrame(tracer, W, H, j, nullptr);
-    const std::vector<float> prev = testing::FlatPreviousPositions(s, k, sf, j);
-    TemporalInput in;
-    in.frame = &sf.image;
-    in.previous = k > 0 ? &prev : nullptr;
-    in.frame_index = k;
-    out = state->Step(in, nullptr);
+    const testing::TaaFrame f = testing::RenderTaaFrame(s, tracer, plan.render.jitter, k, W, H);
+    out = state->Step(f.Input(k), nullptr);
   }
   Result r;
   for (int y = 0; y < H; ++y) {
@@ -160,14 +154,8 @@ MotionResult RunMoving(const std::string& method, double px_per_frame) {
     const Tracer tracer(frame_scene);
     const Reference ref = RenderReference(tracer, W, H, 8, 1, nullptr);
     const Image8 none = RenderFrame(tracer, W, H, RenderSpec{}, 1, nullptr);
-    const FrameJitter j = FrameJitterAt(plan.render.jitter, k);
-    const SurfaceFrame sf = RenderSurfaceFrame(tracer, W, H, j, nullptr);
-    const std::vector<float> prev = testing::FlatPreviousPositions(s, k, sf, j);
-    TemporalInput in;
-    in.frame = &sf.image;
-    in.previous = k > 0 ? &prev : nullptr;
-    in.frame_index = k;
-    const Image8 out = state->Step(in, nullptr);
+    const testing::TaaFrame f = testing::RenderTaaFrame(s, tracer, plan.render.jitter, k, W, H);
+    const Image8 out = state->Step(f.Input(k), nullptr);
     taa_te.AddFrame(ToFloat(out, 3), ref.image, &ref.edge_mask);
     none_te.AddFrame(ToFloat(none, 3), ref.image, &ref.edge_mask);
     refs.push_back(ref.image);

@@ -1,10 +1,11 @@
 // Shared by the TAA tests (tests/motion/taa_test.cpp, taa_production_test.cpp): the still
-// slanted-edge scene both converge on, and one frame's previous positions in the flat layout
-// TemporalInput::previous takes.
+// slanted-edge scene both converge on, and one jittered frame with its previous positions in
+// the flat layout TemporalInput::previous takes.
 #pragma once
 #include <vector>
 
 #include "harness/core/render_spec.h"
+#include "methods/method.h"
 #include "scenes/motion.h"
 #include "scenes/motion_render.h"
 #include "../scenes/scene_test_util.h"
@@ -19,16 +20,35 @@ inline Scene StillEdgeScene() {
     "objects": [{"shape": "quad", "size": [4, 8], "material": "w", "transform": {"translate": [-1.6, 0, 0], "rotate": [0, 0, 7]}}]})");
 }
 
-/// Frame k's previous positions (x, y per pixel, row-major) of the surface frame `sf`
-/// rendered with jitter `j`; empty for frame 0 (no history).
-inline std::vector<float> FlatPreviousPositions(const Scene& s, int k, const SurfaceFrame& sf, FrameJitter j) {
-  std::vector<float> prev;
-  if (k == 0) return prev;
-  for (const glm::vec2& p : PreviousPositions(s, k, sf, j)) {
-    prev.push_back(p.x);
-    prev.push_back(p.y);
+/// Frame k of scene `s` (traced by `tracer`, the scene at frame k) for a temporal method:
+/// rendered at w × h with the plan's jitter, with its previous positions (x, y per pixel,
+/// row-major; empty at frame 0, no history).
+struct TaaFrame {
+  FrameJitter jitter;
+  SurfaceFrame sf;
+  std::vector<float> previous;
+  /// The step's input (pointers into this frame): frame, previous positions, index, jitter.
+  TemporalInput Input(int k) const {
+    TemporalInput in;
+    in.frame = &sf.image;
+    in.previous = k > 0 ? &previous : nullptr;
+    in.frame_index = k;
+    in.jitter = jitter;
+    return in;
   }
-  return prev;
+};
+
+inline TaaFrame RenderTaaFrame(const Scene& s, const Tracer& tracer, const JitterSpec& spec, int k, int w, int h) {
+  TaaFrame f;
+  f.jitter = FrameJitterAt(spec, k);
+  f.sf = RenderSurfaceFrame(tracer, w, h, f.jitter, nullptr);
+  if (k > 0) {
+    for (const glm::vec2& p : PreviousPositions(s, k, f.sf, f.jitter)) {
+      f.previous.push_back(p.x);
+      f.previous.push_back(p.y);
+    }
+  }
+  return f;
 }
 
 }  // namespace aalab::testing
