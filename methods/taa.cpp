@@ -65,12 +65,7 @@ struct TaaParams {
   Clip clip = Clip::kVariance;
 };
 
-using taa_detail::AddToBox;
-using taa_detail::ClipToBox;
-using taa_detail::FromYCoCg;
-using taa_detail::NarrowToVariance;
-using taa_detail::ToYCoCg;
-using taa_detail::Ycc;
+using namespace taa_detail;  // Ycc, ToYCoCg, FromYCoCg, AddToBox, NarrowToVariance, ClipToBox
 
 /// QuantizeUnorm8(SrgbEncode(v)) for v in [0, 1], bit for bit, without a pow per channel:
 /// the function is non-decreasing in v, so code k starts at the smallest float where it is

@@ -124,12 +124,7 @@ float RoundToHalf(float v) {
 
 namespace {
 
-using taa_detail::AddToBox;
-using taa_detail::ClipToBox;
-using taa_detail::FromYCoCg;
-using taa_detail::NarrowToVariance;
-using taa_detail::ToYCoCg;
-using taa_detail::Ycc;
+using namespace taa_detail;  // Ycc, ToYCoCg, FromYCoCg, AddToBox, NarrowToVariance, ClipToBox
 
 inline float Clamp01(float v) { return std::clamp(v, 0.0f, 1.0f); }
 

@@ -231,17 +231,14 @@ struct StillResult {
   double mse = 0, none_mse = 0;
 };
 StillResult RunStillEdge(const std::string& method, int frames, int W, int H, Image8* image = nullptr) {
-  const Scene s = testing::StillEdgeScene();
-  const Tracer tracer(s);
-  const Reference ref = RenderReference(tracer, W, H, 16, 1, nullptr);
-  const Image8 none = RenderFrame(tracer, W, H, RenderSpec{}, 1, nullptr);
+  const testing::StillEdge edge(W, H);
   const MethodPlan plan = MakeMethod(method);
   auto state = plan.make_state();
   Image8 out;
   const int rw = static_cast<int>(std::lround(plan.render.scale * W)), rh = static_cast<int>(std::lround(plan.render.scale * H));
   for (int k = 0; k < frames; ++k) {
-    const testing::TaaFrame f = testing::RenderTaaFrame(s, tracer, plan.render.jitter, k, rw, rh);
-    const std::vector<float> depth = SurfaceDepth(CameraAtFrame(s, k), f.sf);
+    const testing::TaaFrame f = testing::RenderTaaFrame(edge.scene, edge.tracer, plan.render.jitter, k, rw, rh);
+    const std::vector<float> depth = SurfaceDepth(CameraAtFrame(edge.scene, k), f.sf);
     TemporalInput in = f.Input(k);
     in.depth = &depth;
     in.output_width = W;
@@ -255,9 +252,9 @@ StillResult RunStillEdge(const std::string& method, int frames, int W, int H, Im
   size_t n = 0;
   for (int y = 0; y < H; ++y) {
     for (int x = 0; x < W; ++x) {
-      const float t = ref.image.At(x, y, 0);
+      const float t = edge.ref.image.At(x, y, 0);
       if (t < 0.02f || t > 0.98f) continue;  // edge pixels only
-      const double e = SrgbDecode8(out.Pixel(x, y)[0]) - t, en = SrgbDecode8(none.Pixel(x, y)[0]) - t;
+      const double e = SrgbDecode8(out.Pixel(x, y)[0]) - t, en = SrgbDecode8(edge.none.Pixel(x, y)[0]) - t;
       r.mse += e * e;
       r.none_mse += en * en;
       ++n;

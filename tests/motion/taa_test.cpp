@@ -38,28 +38,25 @@ struct Result {
 };
 
 Result RunStill(const std::string& method, int frames) {
-  const Scene s = testing::StillEdgeScene();
   const int W = 64, H = 48;
-  const Tracer tracer(s);
-  const Reference ref = RenderReference(tracer, W, H, 16, 1, nullptr);
-  const Image8 none = RenderFrame(tracer, W, H, RenderSpec{}, 1, nullptr);
+  const testing::StillEdge edge(W, H);
   const MethodPlan plan = MakeMethod(method);
   auto state = plan.make_state();
   Image8 out;
   for (int k = 0; k < frames; ++k) {
-    const testing::TaaFrame f = testing::RenderTaaFrame(s, tracer, plan.render.jitter, k, W, H);
+    const testing::TaaFrame f = testing::RenderTaaFrame(edge.scene, edge.tracer, plan.render.jitter, k, W, H);
     out = state->Step(f.Input(k), nullptr);
   }
   Result r;
   for (int y = 0; y < H; ++y) {
     for (int x = 0; x < W; ++x) {
-      if (ref.edge_mask.At(x, y, 0) < 0.5f) {
-        r.interior_exact &= out.At(x, y, 0) == none.At(x, y, 0);
+      if (edge.ref.edge_mask.At(x, y, 0) < 0.5f) {
+        r.interior_exact &= out.At(x, y, 0) == edge.none.At(x, y, 0);
         continue;
       }
-      if (ref.edge_mask_raw.At(x, y, 0) < 0.5f) continue;
-      const double c = SrgbDecode(ref.image.At(x, y, 0));  // coverage (linear)
-      const double t = SrgbDecode8(out.At(x, y, 0)), n = SrgbDecode8(none.At(x, y, 0));
+      if (edge.ref.edge_mask_raw.At(x, y, 0) < 0.5f) continue;
+      const double c = SrgbDecode(edge.ref.image.At(x, y, 0));  // coverage (linear)
+      const double t = SrgbDecode8(out.At(x, y, 0)), n = SrgbDecode8(edge.none.At(x, y, 0));
       r.taa_mse += (t - c) * (t - c);
       r.none_mse += (n - c) * (n - c);
       ++r.edge_pixels;

@@ -8,6 +8,7 @@
 #include "methods/method.h"
 #include "scenes/motion.h"
 #include "scenes/motion_render.h"
+#include "scenes/render.h"
 #include "../scenes/scene_test_util.h"
 
 namespace aalab::testing {
@@ -19,6 +20,21 @@ inline Scene StillEdgeScene() {
     "materials": {"w": {"shading": "unlit", "color": [1, 1, 1]}},
     "objects": [{"shape": "quad", "size": [4, 8], "material": "w", "transform": {"translate": [-1.6, 0, 0], "rotate": [0, 0, 7]}}]})");
 }
+
+/// The still edge at w × h: the scene, its tracer, the 16-spp reference and `none`'s frame.
+struct StillEdge {
+  StillEdge(int w, int h)
+      : scene(StillEdgeScene()),
+        tracer(scene),
+        ref(RenderReference(tracer, w, h, 16, 1, nullptr)),
+        none(RenderFrame(tracer, w, h, RenderSpec{}, 1, nullptr)) {}
+  StillEdge(const StillEdge&) = delete;
+  StillEdge& operator=(const StillEdge&) = delete;
+  Scene scene;
+  Tracer tracer;
+  Reference ref;
+  Image8 none;
+};
 
 /// Frame k of scene `s` (traced by `tracer`, the scene at frame k) for a temporal method:
 /// rendered at w × h with the plan's jitter, with its previous positions (x, y per pixel,
