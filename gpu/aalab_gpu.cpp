@@ -370,6 +370,7 @@ int Main(int argc, char** argv) {
   }
   std::vector<GpuMethod> methods;
   for (const auto& s : o.methods) methods.push_back(ResolveGpuMethod(s));
+  for (const auto& s : o.taa_methods) CheckGpuTaaSpec(s);
   const std::vector<FrameSet> sets = o.self_test ? SelfTestFrames(o.sizes) : ReadManifest(o.frames_dir);
 
   cudaDeviceProp prop{};

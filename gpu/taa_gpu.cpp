@@ -108,6 +108,14 @@ std::vector<std::string> DefaultGpuTaaSpecs() {  // the registry rows with memor
   return specs;
 }
 
+void CheckGpuTaaSpec(const std::string& spec) {
+  const MethodPlan plan = MakeMethod(spec);
+  if (!plan.NeedsHistory() || !plan.has_gpu_twin) {
+    throw UserError("'" + spec + "' is not a TAA spec (" + JoinNames(DefaultGpuTaaSpecs()) + ", with [:...])");
+  }
+  if (plan.name == "taa-prod") TaaProdArgsFrom(plan.params, plan.spec);
+}
+
 TaaInput SyntheticTaaSequence(int width, int height, int frames, bool with_depth) {
   TaaInput seq;
   const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -170,10 +178,8 @@ Entry RunTaaSequence(const std::string& spec, const std::string& scene, const Ta
   AALAB_CHECK(!seq.frames.empty() && seq.previous.size() == seq.frames.size(), "RunTaaSequence: empty sequence");
   AALAB_CHECK(seq.depth.empty() || seq.depth.size() == seq.frames.size(), "RunTaaSequence: depth per frame");
   AALAB_CHECK(seq.jitter.empty() || seq.jitter.size() == seq.frames.size(), "RunTaaSequence: jitter per frame");
+  CheckGpuTaaSpec(spec);
   const MethodPlan plan = MakeMethod(spec);
-  if (!plan.NeedsHistory() || !plan.has_gpu_twin) {
-    throw UserError("'" + spec + "' is not a TAA spec (" + JoinNames(DefaultGpuTaaSpecs()) + ", with [:...])");
-  }
   const bool prod = plan.name == "taa-prod";
   const cuda::TaaArgs args = prod ? cuda::TaaArgs{} : TaaArgsFrom(plan.params);
   cuda::TaaProdArgs pargs = prod ? TaaProdArgsFrom(plan.params, plan.spec) : cuda::TaaProdArgs{};

@@ -44,6 +44,10 @@ TaaInput SyntheticTaaSequence(int width, int height, int frames, bool with_depth
 Entry RunTaaSequence(const std::string& spec, const std::string& scene, const TaaInput& seq, const float* srgb_decode,
                      bool timing, int warmup, int repeat, cudaStream_t stream, std::vector<std::string>* failures);
 
+/// Throws UserError when `spec` is not a TAA spec the tool runs (a registry row with memory
+/// and a CUDA twin; for taa-prod, filter=box and sharpen=0): checked before any work.
+void CheckGpuTaaSpec(const std::string& spec);
+
 /// The spec of every TAA method the tool runs by default ("taa", "taa-prod").
 std::vector<std::string> DefaultGpuTaaSpecs();
 
