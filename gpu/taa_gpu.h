@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "gpu/measure.h"
-#include "harness/core/image.h"
-#include "harness/core/render_spec.h"
+#include "core/image.h"
+#include "core/render_spec.h"
 
 namespace aalab {
 

@@ -4,7 +4,7 @@
 #pragma once
 #include <vector>
 
-#include "harness/core/render_spec.h"
+#include "core/render_spec.h"
 #include "methods/method.h"
 #include "scenes/motion.h"
 #include "scenes/motion_render.h"
