@@ -41,6 +41,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gpu/gpu_methods.h"
@@ -62,6 +63,7 @@ namespace fs = std::filesystem;
 struct Options {
   std::string frames_dir, json_path, outputs_dir, outputs_scene, probe_dump;
   std::vector<std::string> methods, taa_methods;
+  std::vector<std::pair<int, int>> sizes;  // --sizes: extra self-test sets (timing at 1080p, 4K)
   int warmup = 20, repeat = 200;
   bool self_test = false, check = false, timing = true;
 };
@@ -97,6 +99,21 @@ int ParseInt(const std::string& flag, const std::string& v, int lo, int hi) {
   return n;
 }
 
+// "1920x1080,3840x2160" → the sizes (each side 1..16384).
+std::vector<std::pair<int, int>> ParseSizes(const std::string& text) {
+  std::vector<std::pair<int, int>> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const size_t x = item.find('x');
+    if (x == std::string::npos) throw UserError("--sizes: '" + item + "' is not WxH (e.g. 1920x1080)");
+    out.emplace_back(ParseInt("--sizes width", item.substr(0, x), 1, 16384),
+                     ParseInt("--sizes height", item.substr(x + 1), 1, 16384));
+  }
+  if (out.empty()) throw UserError("--sizes: no size in '" + text + "'");
+  return out;
+}
+
 Options ParseArgs(int argc, char** argv) {
   Options o;
   auto value = [&](int& i, const std::string& flag) -> std::string {
@@ -114,18 +131,22 @@ Options ParseArgs(int argc, char** argv) {
     else if (a == "--warmup") o.warmup = ParseInt(a, value(i, a), 0, 100000);
     else if (a == "--repeat") o.repeat = ParseInt(a, value(i, a), 1, 100000);
     else if (a == "--self-test") o.self_test = true;
+    else if (a == "--sizes") o.sizes = ParseSizes(value(i, a));
     else if (a == "--probe-dump") o.probe_dump = value(i, a);
     else if (a == "--check") o.check = true;
     else if (a == "--no-timing") o.timing = false;
     else if (a == "--help" || a == "-h") {
       std::printf(
-          "usage: aalab_gpu (--frames DIR | --self-test) [--json FILE] [--methods SPECS] [--repeat N]\n"
+          "usage: aalab_gpu (--frames DIR | --self-test [--sizes WxH,...]) [--json FILE] [--methods SPECS] [--repeat N]\n"
           "                 [--warmup N] [--no-timing] [--check] [--outputs DIR --outputs-scene NAME]\n"
           "  --frames DIR     frames written by `aalab export-frames` (DIR/frames.tsv)\n"
           "  --self-test      synthetic frames (noise, shapes, odd sizes) instead of files\n"
+          "  --sizes WxH,...  with --self-test: also the shapes frames and TAA sequence (with depth) at\n"
+          "                   these sizes, e.g. 1920x1080,3840x2160 for timings\n"
           "  --json FILE      write timings and fidelity as JSON (aalab merge-gpu reads it)\n"
           "  --methods SPECS  comma-separated method specs (default: every post filter with a CUDA twin)\n"
-          "  --taa-methods SPECS  TAA specs run over each exported sequence (default: taa)\n"
+          "  --taa-methods SPECS  TAA specs run over each sequence (default: taa, taa-prod; --self-test\n"
+          "                   adds taa-prod variants covering each of its switches)\n"
           "  --repeat N       timed launches per method (default 200), after --warmup N (default 20)\n"
           "  --no-timing      fidelity checks only\n"
           "  --check          exit 1 when a check fails (copy not exact, output not written, GPU\n"
@@ -142,7 +163,16 @@ Options ParseArgs(int argc, char** argv) {
   if (o.self_test == !o.frames_dir.empty()) throw UserError("give exactly one of --frames DIR or --self-test");
   if (!o.outputs_dir.empty() && o.outputs_scene.empty()) throw UserError("--outputs needs --outputs-scene SCENE-WxH");
   if (o.methods.empty()) o.methods = DefaultGpuMethodSpecs();
-  if (o.taa_methods.empty()) o.taa_methods = DefaultGpuTaaSpecs();
+  if (!o.sizes.empty() && !o.self_test) throw UserError("--sizes needs --self-test");
+  if (o.taa_methods.empty()) {
+    o.taa_methods = DefaultGpuTaaSpecs();
+    if (o.self_test) {
+      for (const char* v : {"taa-prod:precision=rgba16f", "taa-prod:dilate=off,history=bilinear,clip=minmax,feedback=fixed",
+                            "taa-prod:history=catmull-rom-5,disocclusion=off,clip=none,luma_weight=on,precision=rgba16f"}) {
+        o.taa_methods.push_back(v);
+      }
+    }
+  }
   return o;
 }
 
@@ -252,17 +282,20 @@ Image8 ShapesFrame(int w, int h) {
   return img;
 }
 
-std::vector<FrameSet> SelfTestFrames() {
+std::vector<FrameSet> SelfTestFrames(const std::vector<std::pair<int, int>>& sizes) {
   std::vector<FrameSet> sets;
-  // Odd sizes; the scaled frames are round(4/3 · size), as scale43 renders them.
-  auto add = [&](const std::string& name, Image8 (*make)(int, int), int w, int h) {
+  // Odd sizes; the scaled frames are round(4/3 · size), as scale43 renders them. The TAA
+  // sequence of "shapes" carries depth and jitter (taa-prod's dilation and depth test); the
+  // others have none (its motion-vector disocclusion test).
+  auto add = [&](const std::string& name, Image8 (*make)(int, int), int w, int h, bool depth) {
     const int sw = static_cast<int>(std::lround(4.0 / 3.0 * w));
     const int sh = static_cast<int>(std::lround(4.0 / 3.0 * h));
-    sets.push_back(FrameSet{name, w, h, make(w, h), make(sw, sh), SyntheticTaaSequence(w, h, 5)});
+    sets.push_back(FrameSet{name, w, h, make(w, h), make(sw, sh), SyntheticTaaSequence(w, h, 5, depth)});
   };
-  add("noise", NoiseFrame, 97, 61);
-  add("shapes", ShapesFrame, 331, 187);
-  add("shapes-1row", ShapesFrame, 64, 1);
+  add("noise", NoiseFrame, 97, 61, false);
+  add("shapes", ShapesFrame, 331, 187, true);
+  add("shapes-1row", ShapesFrame, 64, 1, false);
+  for (const auto& [w, h] : sizes) add("shapes", ShapesFrame, w, h, true);
   return sets;
 }
 
@@ -337,7 +370,8 @@ int Main(int argc, char** argv) {
   }
   std::vector<GpuMethod> methods;
   for (const auto& s : o.methods) methods.push_back(ResolveGpuMethod(s));
-  const std::vector<FrameSet> sets = o.self_test ? SelfTestFrames() : ReadManifest(o.frames_dir);
+  for (const auto& s : o.taa_methods) CheckGpuTaaSpec(s);
+  const std::vector<FrameSet> sets = o.self_test ? SelfTestFrames(o.sizes) : ReadManifest(o.frames_dir);
 
   cudaDeviceProp prop{};
   cuda::Check(cudaGetDeviceProperties(&prop, 0), "cudaGetDeviceProperties");

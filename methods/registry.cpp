@@ -52,7 +52,7 @@ const std::vector<FamilyRow>& FamilyTable() {
        {"taa-prod",
         "production TAA: closest-depth dilation, Catmull-Rom history, disocclusion test, adaptive feedback, "
         "optional Gaussian reconstruction, sharpening and RGBA16F history (runs with `--frames`)",
-        "methods/taa_production.cpp", "docs/motion.md", "karis2014taa,salvi2016taa", false}},
+        "methods/taa_production.cpp", "docs/motion.md", "karis2014taa,salvi2016taa", true}},
       {TaauMethods,
        {"taau", "temporal upscaling: taa-prod rendering at 1/1.3 .. 1/2 of the output size, resolved at the output size",
         "methods/taau.cpp, methods/taa_production.cpp", "docs/motion.md", "karis2014taa,salvi2016taa", false}},

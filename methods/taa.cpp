@@ -51,6 +51,7 @@
 #include "core/parallel.h"
 #include "methods/families.h"
 #include "methods/taa.h"
+#include "methods/taa_common.h"
 
 namespace aalab {
 
@@ -64,36 +65,7 @@ struct TaaParams {
   Clip clip = Clip::kVariance;
 };
 
-struct Ycc {
-  float y, co, cg;
-};
-
-inline Ycc ToYCoCg(const float* rgb) {
-  return {0.25f * rgb[0] + 0.5f * rgb[1] + 0.25f * rgb[2], 0.5f * rgb[0] - 0.5f * rgb[2],
-          -0.25f * rgb[0] + 0.5f * rgb[1] - 0.25f * rgb[2]};
-}
-
-inline void FromYCoCg(Ycc v, float* rgb) {
-  const float t = v.y - v.cg;
-  rgb[0] = t + v.co;
-  rgb[1] = v.y + v.cg;
-  rgb[2] = t - v.co;
-}
-
-/// Moves `h` toward the centre of [lo, hi] until it lies inside the box (component-wise
-/// box in YCoCg), along the line to the centre.
-inline Ycc ClipToBox(Ycc h, const float* lo, const float* hi) {
-  const float hv[3] = {h.y, h.co, h.cg};
-  float centre[3], v[3], m = 0.0f;
-  for (int c = 0; c < 3; ++c) {
-    centre[c] = 0.5f * (hi[c] + lo[c]);
-    const float ext = 0.5f * (hi[c] - lo[c]) + 1e-8f;
-    v[c] = hv[c] - centre[c];
-    m = std::max(m, std::fabs(v[c] / ext));
-  }
-  if (m <= 1.0f) return h;
-  return {centre[0] + v[0] / m, centre[1] + v[1] / m, centre[2] + v[2] / m};
-}
+using namespace taa_detail;  // Ycc, ToYCoCg, FromYCoCg, AddToBox, NarrowToVariance, ClipToBox
 
 /// QuantizeUnorm8(SrgbEncode(v)) for v in [0, 1], bit for bit, without a pow per channel:
 /// the function is non-decreasing in v, so code k starts at the smallest float where it is
@@ -461,24 +433,10 @@ class TaaState : public TemporalState {
     for (int dy = -1; dy <= 1; ++dy) {
       const Ycc* row = &ycc[static_cast<size_t>(std::clamp(y + dy, 0, H - 1)) * W];
       for (int dx = 0; dx < 3; ++dx) {
-        const Ycc v = row[xs[dx]];
-        const float a[3] = {v.y, v.co, v.cg};
-        for (int c = 0; c < 3; ++c) {
-          mn[c] = std::min(mn[c], a[c]);
-          mx[c] = std::max(mx[c], a[c]);
-          m1[c] += a[c];
-          m2[c] += a[c] * a[c];
-        }
+        AddToBox(row[xs[dx]], mn, mx, m1, m2);
       }
     }
-    if (p_.clip == Clip::kVariance) {
-      for (int c = 0; c < 3; ++c) {
-        const float mu = m1[c] / 9.0f;
-        const float sigma = std::sqrt(std::fabs(m2[c] / 9.0f - mu * mu));
-        mn[c] = std::max(mn[c], mu - p_.gamma * sigma);
-        mx[c] = std::min(mx[c], mu + p_.gamma * sigma);
-      }
-    }
+    if (p_.clip == Clip::kVariance) NarrowToVariance(mn, mx, m1, m2, p_.gamma);
     return ClipToBox(h, mn, mx);
   }
 

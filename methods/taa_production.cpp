@@ -25,9 +25,12 @@
 //   3. history: off-screen h (outside [0, W]×[0, H]) or no vector → none. `disocclusion=on`
 //      drops it where the surface now visible was hidden: with depth, where the previous
 //      frame's depth at h (nearest render texel) is nearer than the current closest depth by
-//      more than `disocclusion_depth` (relative); without depth, where the previous frame's
-//      motion vector at h differs from the current one by more than `disocclusion_px`
-//      (Salvi 2016 / Jimenez 2016 motion-vector rejection);
+//      more than `disocclusion_depth` (relative); and, with or without depth, where the
+//      previous frame's motion vector at h differs from the current one by more than
+//      `disocclusion_px` (Salvi 2016 / Jimenez 2016 motion-vector rejection). The motion test
+//      is needed with depth too: a background pixel beside a moving object takes the
+//      object's dilated vector, lands on background elsewhere, and the depth test passes
+//      (docs/motion.md "Where taa-prod loses to none");
 //   4. fetch the history at h: `history=bilinear` (2x2), `catmull-rom` (4x4 separable
 //      Catmull-Rom, what UE4's 9 bilinear taps compute; Karis 2014), `catmull-rom-5` (the 4x4
 //      without its corners, renormalised: Jimenez 2016 "Filmic SMAA", 5 bilinear taps);
@@ -66,6 +69,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "methods/taa.h"
+#include "methods/taa_common.h"
 
 namespace aalab {
 
@@ -120,34 +124,7 @@ float RoundToHalf(float v) {
 
 namespace {
 
-struct Ycc {
-  float y, co, cg;
-};
-
-inline Ycc ToYCoCg(const float* rgb) {
-  return {0.25f * rgb[0] + 0.5f * rgb[1] + 0.25f * rgb[2], 0.5f * rgb[0] - 0.5f * rgb[2],
-          -0.25f * rgb[0] + 0.5f * rgb[1] - 0.25f * rgb[2]};
-}
-
-inline void FromYCoCg(Ycc v, float* rgb) {
-  const float t = v.y - v.cg;
-  rgb[0] = t + v.co;
-  rgb[1] = v.y + v.cg;
-  rgb[2] = t - v.co;
-}
-
-inline Ycc ClipToBox(Ycc h, const float* lo, const float* hi) {
-  const float hv[3] = {h.y, h.co, h.cg};
-  float centre[3], v[3], m = 0.0f;
-  for (int c = 0; c < 3; ++c) {
-    centre[c] = 0.5f * (hi[c] + lo[c]);
-    const float ext = 0.5f * (hi[c] - lo[c]) + 1e-8f;
-    v[c] = hv[c] - centre[c];
-    m = std::max(m, std::fabs(v[c] / ext));
-  }
-  if (m <= 1.0f) return h;
-  return {centre[0] + v[0] / m, centre[1] + v[1] / m, centre[2] + v[2] / m};
-}
+using namespace taa_detail;  // Ycc, ToYCoCg, FromYCoCg, AddToBox, NarrowToVariance, ClipToBox
 
 inline float Clamp01(float v) { return std::clamp(v, 0.0f, 1.0f); }
 
@@ -317,24 +294,10 @@ class TaaProdState : public TemporalState {
     for (int dy = -1; dy <= 1; ++dy) {
       const int yy = std::clamp(iy + dy, 0, rh - 1);
       for (int dx = -1; dx <= 1; ++dx) {
-        const Ycc v = ycc_[static_cast<size_t>(yy) * rw + std::clamp(ix + dx, 0, rw - 1)];
-        const float a[3] = {v.y, v.co, v.cg};
-        for (int c = 0; c < 3; ++c) {
-          mn[c] = std::min(mn[c], a[c]);
-          mx[c] = std::max(mx[c], a[c]);
-          m1[c] += a[c];
-          m2[c] += a[c] * a[c];
-        }
+        AddToBox(ycc_[static_cast<size_t>(yy) * rw + std::clamp(ix + dx, 0, rw - 1)], mn, mx, m1, m2);
       }
     }
-    if (p_.clip == TaaRectify::kVariance) {
-      for (int c = 0; c < 3; ++c) {
-        const float mu = m1[c] / 9.0f;
-        const float sigma = std::sqrt(std::fabs(m2[c] / 9.0f - mu * mu));
-        mn[c] = std::max(mn[c], mu - p_.gamma * sigma);
-        mx[c] = std::min(mx[c], mu + p_.gamma * sigma);
-      }
-    }
+    if (p_.clip == TaaRectify::kVariance) NarrowToVariance(mn, mx, m1, m2, p_.gamma);
     std::copy(mn, mn + 3, lo);
     std::copy(mx, mx + 3, hi);
   }
@@ -363,7 +326,8 @@ class TaaProdState : public TemporalState {
       if (use_depth && !prev_depth_.empty()) {
         const float now = (*in.depth)[static_cast<size_t>(m)];
         if (prev_depth_[q] < now * (1.0f - p_.disocclusion_depth)) return fallback();
-      } else {
+      }
+      {
         // An unknown previous vector (frame 0 has none) cannot show a discontinuity.
         const float dx = prev_mv_[2 * q] - vx, dy = prev_mv_[2 * q + 1] - vy;
         if (dx * dx + dy * dy > p_.disocclusion_px * p_.disocclusion_px) return fallback();
@@ -424,9 +388,9 @@ std::vector<ParamDef> TaaProdParamDefs() {
       ChoiceParam("history", "catmull-rom", {"catmull-rom", "catmull-rom-5", "bilinear"},
                   "history fetch: 4x4 Catmull-Rom (UE4 9-tap), 5-tap (Jimenez 2016) or bilinear"),
       ChoiceParam("disocclusion", "on", {"on", "off"},
-                  "drop history where the previous depth was nearer (or, without depth, the motion differs)"),
+                  "drop history where the previous depth was nearer or the motion differs"),
       FloatParam("disocclusion_depth", d.disocclusion_depth, 0.001, 1.0, "relative depth step that drops history"),
-      FloatParam("disocclusion_px", d.disocclusion_px, 0.05, 64.0, "motion difference (px) that drops history (no depth)"),
+      FloatParam("disocclusion_px", d.disocclusion_px, 0.05, 64.0, "motion difference (px) that drops history"),
       ChoiceParam("clip", "variance", {"variance", "minmax", "none"}, "history rectification in YCoCg (as taa)"),
       FloatParam("gamma", d.gamma, 0.25, 4.0, "variance box half-width in standard deviations"),
       ChoiceParam("feedback", "adaptive", {"adaptive", "fixed"},

@@ -32,7 +32,7 @@ struct TaaProdParams {
   TaaHistoryFilter history = TaaHistoryFilter::kCatmullRom;
   bool disocclusion = true;
   float disocclusion_depth = 0.05f;  ///< relative depth step that drops history
-  float disocclusion_px = 1.0f;      ///< motion difference (render px) that drops history (no depth)
+  float disocclusion_px = 1.0f;      ///< motion difference (render px) that drops history
   TaaRectify clip = TaaRectify::kVariance;
   float gamma = 1.0f;
   TaaFeedback feedback = TaaFeedback::kAdaptive;

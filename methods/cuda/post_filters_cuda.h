@@ -1,4 +1,5 @@
-/// CUDA twins of the post filters (methods/fxaa1.cpp, fxaa311.cpp, rescale.cpp, smaa.cpp, taa.cpp): the same
+/// CUDA twins of the post filters (methods/fxaa1.cpp, fxaa311.cpp, rescale.cpp, smaa.cpp, taa.cpp,
+/// taa_production.cpp): the same
 /// per-pixel float32 arithmetic, with every fetch going through the GPU's texture units
 /// (cudaTextureObject on a uchar4 cudaArray: hardware clamp-to-edge and bilinear filtering)
 /// and every output written through a surface, as a render target. Built only where CMake
@@ -129,17 +130,20 @@ struct TaaArgs {
   int clip;  ///< 0 variance, 1 minmax, 2 none
 };
 
-/// TAA's history on the GPU: linear display RGB in float32 (alpha unused), an RGBA32F
-/// cudaArray with a point view, a bilinear view (texel coordinates, clamp-to-edge; the
-/// texture unit filters floats with the same 8-bit fixed-point weights) and a surface.
+/// TAA's history on the GPU: linear display RGB (`taa-prod`: and the frames accumulated in
+/// alpha; `taa`: alpha unused), an RGBA32F cudaArray — or RGBA16F with `half` (`taa-prod`'s
+/// precision=rgba16f: what engines store) — with a point view, a bilinear view (texel
+/// coordinates, clamp-to-edge; the texture unit filters with 8-bit fixed-point weights) and a
+/// surface.
 class GpuHistory {
  public:
-  GpuHistory(int width, int height);
+  GpuHistory(int width, int height, bool half = false);
   ~GpuHistory();
   GpuHistory(const GpuHistory&) = delete;
   GpuHistory& operator=(const GpuHistory&) = delete;
-  /// Copies the history back, 4 floats per pixel, row-major.
+  /// Copies the history back, 4 floats per pixel, row-major (halves widened exactly).
   void Download(float* rgba) const;
+  bool Half() const { return half_; }
   int Width() const { return width_; }
   int Height() const { return height_; }
   cudaTextureObject_t Point() const { return point_; }
@@ -148,6 +152,7 @@ class GpuHistory {
 
  private:
   int width_ = 0, height_ = 0;
+  bool half_ = false;
   cudaArray_t array_ = nullptr;
   cudaTextureObject_t point_ = 0, linear_ = 0;
   cudaSurfaceObject_t surface_ = 0;
@@ -163,6 +168,44 @@ class GpuHistory {
 void LaunchTaaResolve(const GpuFrame& frame, const float* previous, const GpuHistory* history, GpuHistory& next,
                       GpuFrame& out, const TaaArgs& args, const float* decode, const float* encode_starts,
                       cudaStream_t stream, bool software_filter = false);
+
+/// The production TAA's settings (methods/taa_production.h TaaProdParams) the CUDA twin
+/// supports, flattened: the box reconstruction (filter=box), no sharpening, output size = render
+/// size (no TAAU). The history's precision is the GpuHistory's.
+struct TaaProdArgs {
+  int dilate;        ///< 1: motion of the closest depth in 3×3
+  int history;       ///< 0 bilinear, 1 Catmull-Rom 4×4, 2 Catmull-Rom without corners (5 taps)
+  int disocclusion;  ///< 1: drop history on a depth step (with depth) or a motion step
+  float disocclusion_depth, disocclusion_px;
+  int clip;  ///< 0 variance, 1 minmax, 2 none
+  float gamma;
+  int adaptive;  ///< 1: feedback=adaptive, 0: fixed alpha
+  float alpha, alpha_min, alpha_max, motion_px;
+  int luma_weight;
+  float jitter_x, jitter_y;  ///< this frame's jitter (render pixels)
+};
+
+/// One frame's per-pixel inputs of the production TAA, device pointers, null where absent:
+/// `previous` (2 floats a pixel, as LaunchTaaResolve; null: no history this frame), `depth`
+/// (view depth, +Inf background; null: no dilation and no depth test), and the
+/// previous frame's `prev_depth` and `prev_previous` (its previous positions: the motion
+/// vectors the disocclusion test compares with).
+struct TaaProdFrame {
+  const float* previous = nullptr;
+  const float* depth = nullptr;
+  const float* prev_depth = nullptr;
+  const float* prev_previous = nullptr;
+};
+
+/// One production TAA step (methods/taa_production.cpp TaaProdState::Step, box reconstruction,
+/// no sharpening, same size): as LaunchTaaResolve, with `next` holding the new history and
+/// its frame counts. `history` and `next` must have the same precision. software_filter: the
+/// history fetch from point fetches in the CPU's float32 arithmetic (bit-identical to the CPU);
+/// otherwise the texture unit's bilinear filter (history=bilinear: 1 fetch; Catmull-Rom: 9 or
+/// 5 bilinear fetches at the combined taps, Karis 2014 / Jimenez 2016).
+void LaunchTaaProdResolve(const GpuFrame& frame, const TaaProdFrame& in, const GpuHistory* history, GpuHistory& next,
+                          GpuFrame& out, const TaaProdArgs& args, const float* decode, const float* encode_starts,
+                          cudaStream_t stream, bool software_filter = false);
 
 /// Throws std::runtime_error naming `what` when `err` is not cudaSuccess.
 void Check(cudaError_t err, const char* what);

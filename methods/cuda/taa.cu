@@ -13,16 +13,20 @@
 // by each 16×16 block (256 threads: one entry each), and so are the block's 18×18 YCoCg
 // values (each texel decoded once instead of once per neighbour: the same values, as each
 // is a function of its texel alone).
+#include <cuda_fp16.h>
+
 #include <stdexcept>
+#include <vector>
 
 #include "methods/cuda/device_ops.cuh"
+#include "methods/cuda/taa_common.cuh"
 #include "methods/cuda/post_filters_cuda.h"
 
 namespace aalab::cuda {
 
-GpuHistory::GpuHistory(int width, int height) : width_(width), height_(height) {
+GpuHistory::GpuHistory(int width, int height, bool half) : width_(width), height_(height), half_(half) {
   if (width < 1 || height < 1) throw std::runtime_error("GpuHistory needs a positive size");
-  const cudaChannelFormatDesc desc = cudaCreateChannelDesc<float4>();
+  const cudaChannelFormatDesc desc = half ? cudaCreateChannelDescHalf4() : cudaCreateChannelDesc<float4>();
   Check(cudaMallocArray(&array_, &desc, width, height, cudaArraySurfaceLoadStore), "cudaMallocArray");
   cudaResourceDesc res{};
   res.resType = cudaResourceTypeArray;
@@ -47,69 +51,30 @@ GpuHistory::~GpuHistory() {
 }
 
 void GpuHistory::Download(float* rgba) const {
-  const size_t row = static_cast<size_t>(width_) * 16;
-  Check(cudaMemcpy2DFromArray(rgba, row, array_, 0, 0, row, height_, cudaMemcpyDeviceToHost), "download");
+  if (!half_) {
+    const size_t row = static_cast<size_t>(width_) * 16;
+    Check(cudaMemcpy2DFromArray(rgba, row, array_, 0, 0, row, height_, cudaMemcpyDeviceToHost), "download");
+    return;
+  }
+  const size_t n = 4 * static_cast<size_t>(width_) * height_, row = static_cast<size_t>(width_) * 8;
+  std::vector<__half> h(n);
+  Check(cudaMemcpy2DFromArray(h.data(), row, array_, 0, 0, row, height_, cudaMemcpyDeviceToHost), "download");
+  for (size_t i = 0; i < n; ++i) rgba[i] = __half2float(h[i]);
 }
 
 namespace {
 
-struct Ycc {
-  float y, co, cg;
-};
-
-__device__ __forceinline__ Ycc ToYCoCg(float r, float g, float b) {
-  return {0.25f * r + 0.5f * g + 0.25f * b, 0.5f * r - 0.5f * b, -0.25f * r + 0.5f * g - 0.25f * b};
-}
-
-// std::max / std::min / std::clamp exactly (their comparisons, not fmaxf's NaN rule).
-__device__ __forceinline__ float StdMax(float a, float b) { return a < b ? b : a; }
-__device__ __forceinline__ float StdMin(float a, float b) { return b < a ? b : a; }
-__device__ __forceinline__ float StdClamp(float v, float lo, float hi) { return v < lo ? lo : (hi < v ? hi : v); }
-
-__device__ __forceinline__ Ycc YccAt(cudaTextureObject_t frame, int x, int y, const float* decode) {
-  const float4 t = TexelAt(frame, x, y);
-  return ToYCoCg(decode[QuantizeUnorm8(t.x)], decode[QuantizeUnorm8(t.y)], decode[QuantizeUnorm8(t.z)]);
-}
-
-// Encode8::operator(): the number of code thresholds at or below v (v in [0, 1]).
-__device__ __forceinline__ unsigned char Encode(float v, const float* starts) {
-  int lo = 0, hi = 255;
-  while (lo < hi) {
-    const int mid = (lo + hi) >> 1;
-    if (starts[mid] <= v) {
-      lo = mid + 1;
-    } else {
-      hi = mid;
-    }
-  }
-  return static_cast<unsigned char>(lo);
-}
-
-constexpr int kTile = 18;  // 16 + a border of 1 on each side
+using namespace taa_detail;
 
 template <bool kSoft>
 __global__ void TaaKernel(cudaTextureObject_t frame, const float* __restrict__ previous, cudaTextureObject_t hist_pt,
                           cudaTextureObject_t hist_lin, cudaSurfaceObject_t hist_out, cudaSurfaceObject_t out, int w,
                           int h, TaaArgs a, const float* __restrict__ decode_g, const float* __restrict__ starts_g) {
-  __shared__ float decode[256];
-  __shared__ float starts[256];
-  __shared__ float tile[3][kTile * kTile];  // YCoCg of the block's pixels and a 1-pixel border
-  const int tid = threadIdx.y * blockDim.x + threadIdx.x;  // 16×16 = 256 threads
-  decode[tid] = decode_g[tid];
-  starts[tid] = tid < 255 ? starts_g[tid] : 2.0f;
-  __syncthreads();
-  // The 3×3 neighbourhoods of the block, decoded once: tile entry (i, j) holds pixel
-  // (bx − 1 + i, by − 1 + j) clamped to the frame, as Rectify clamps each neighbour.
+  __shared__ BlockShared sh;
+  StageBlock(sh, frame, w, h, decode_g, starts_g);
+  const float* decode = sh.decode;
+  const float* starts = sh.starts;
   const int bx = blockIdx.x * blockDim.x, by = blockIdx.y * blockDim.y;
-  for (int k = tid; k < kTile * kTile; k += 256) {
-    const int tx = min(max(bx - 1 + k % kTile, 0), w - 1);
-    const int ty = min(max(by - 1 + k / kTile, 0), h - 1);
-    const Ycc v = YccAt(frame, tx, ty, decode);
-    tile[0][k] = v.y;
-    tile[1][k] = v.co;
-    tile[2][k] = v.cg;
-  }
-  __syncthreads();
   const int x = bx + threadIdx.x;
   const int y = by + threadIdx.y;
   if (x >= w || y >= h) return;
@@ -122,68 +87,15 @@ __global__ void TaaKernel(cudaTextureObject_t frame, const float* __restrict__ p
   if (previous && px >= 0.0f && px <= static_cast<float>(w) && py >= 0.0f && py <= static_cast<float>(h)) {
     float hrgb[3];
     if constexpr (kSoft) {  // TaaState::FetchHistory
-      const float fx = px - 0.5f, fy = py - 0.5f;
-      const float x0f = floorf(fx), y0f = floorf(fy);
-      const float tx = fx - x0f, ty = fy - y0f;
-      const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
-      const int xa = min(max(x0, 0), w - 1), xb = min(max(x0 + 1, 0), w - 1);
-      const int ya = min(max(y0, 0), h - 1), yb = min(max(y0 + 1, 0), h - 1);
-      const float4 A = tex2D<float4>(hist_pt, xa + 0.5f, ya + 0.5f);
-      const float4 B = tex2D<float4>(hist_pt, xb + 0.5f, ya + 0.5f);
-      const float4 C = tex2D<float4>(hist_pt, xa + 0.5f, yb + 0.5f);
-      const float4 D = tex2D<float4>(hist_pt, xb + 0.5f, yb + 0.5f);
-      const float av[3] = {A.x, A.y, A.z}, bv[3] = {B.x, B.y, B.z}, cv[3] = {C.x, C.y, C.z}, dv[3] = {D.x, D.y, D.z};
-#pragma unroll
-      for (int k = 0; k < 3; ++k) {
-        const float top = av[k] + tx * (bv[k] - av[k]);
-        const float bot = cv[k] + tx * (dv[k] - cv[k]);
-        hrgb[k] = top + ty * (bot - top);
-      }
+      SoftBilinearHistory(hist_pt, px, py, w, h, hrgb);
     } else {
       const float4 H = tex2D<float4>(hist_lin, px, py);
       hrgb[0] = H.x, hrgb[1] = H.y, hrgb[2] = H.z;
     }
     Ycc hy = ToYCoCg(hrgb[0], hrgb[1], hrgb[2]);
-    if (a.clip != 2) {  // TaaState::Rectify + ClipToBox
-      float mn[3] = {1e30f, 1e30f, 1e30f}, mx[3] = {-1e30f, -1e30f, -1e30f};
-      float m1[3] = {0, 0, 0}, m2[3] = {0, 0, 0};
-#pragma unroll
-      for (int dy = 0; dy < 3; ++dy) {
-#pragma unroll
-        for (int dx = 0; dx < 3; ++dx) {
-          const int k = (threadIdx.y + dy) * kTile + threadIdx.x + dx;
-          const float av[3] = {tile[0][k], tile[1][k], tile[2][k]};
-#pragma unroll
-          for (int k = 0; k < 3; ++k) {
-            mn[k] = StdMin(mn[k], av[k]);
-            mx[k] = StdMax(mx[k], av[k]);
-            m1[k] += av[k];
-            m2[k] += av[k] * av[k];
-          }
-        }
-      }
-      if (a.clip == 0) {
-#pragma unroll
-        for (int k = 0; k < 3; ++k) {
-          const float mu = m1[k] / 9.0f;
-          const float sigma = sqrtf(fabsf(m2[k] / 9.0f - mu * mu));
-          mn[k] = StdMax(mn[k], mu - a.gamma * sigma);
-          mx[k] = StdMin(mx[k], mu + a.gamma * sigma);
-        }
-      }
-      const float hv[3] = {hy.y, hy.co, hy.cg};
-      float centre[3], v[3], m = 0.0f;
-#pragma unroll
-      for (int k = 0; k < 3; ++k) {
-        centre[k] = 0.5f * (mx[k] + mn[k]);
-        const float ext = 0.5f * (mx[k] - mn[k]) + 1e-8f;
-        v[k] = hv[k] - centre[k];
-        m = StdMax(m, fabsf(v[k] / ext));
-      }
-      if (!(m <= 1.0f)) hy = {centre[0] + v[0] / m, centre[1] + v[1] / m, centre[2] + v[2] / m};
-    }
+    if (a.clip != 2) hy = RectifyInTile(sh, hy, a.clip, a.gamma);  // TaaState::Rectify + ClipToBox
     const int own = (threadIdx.y + 1) * kTile + threadIdx.x + 1;
-    const Ycc cy{tile[0][own], tile[1][own], tile[2][own]};  // = ToYCoCg(c)
+    const Ycc cy{sh.tile[0][own], sh.tile[1][own], sh.tile[2][own]};  // = ToYCoCg(c)
     const Ycc ob{hy.y + a.alpha * (cy.y - hy.y), hy.co + a.alpha * (cy.co - hy.co), hy.cg + a.alpha * (cy.cg - hy.cg)};
     const float tt = ob.y - ob.cg;
     o[0] = StdClamp(tt + ob.co, 0.0f, 1.0f);
@@ -204,6 +116,7 @@ void LaunchTaaResolve(const GpuFrame& frame, const float* previous, const GpuHis
       (history && (history->Width() != w || history->Height() != h))) {
     throw std::runtime_error("LaunchTaaResolve: frame, history and output sizes differ");
   }
+  if (next.Half() || (history && history->Half())) throw std::runtime_error("LaunchTaaResolve: taa's history is RGBA32F");
   if (!history) previous = nullptr;  // no history: every pixel takes the current colour
   const cudaTextureObject_t hp = history ? history->Point() : 0, hl = history ? history->Linear() : 0;
   const dim3 grid = Grid2D(w, h);

@@ -5,8 +5,9 @@
 //  - closest-depth dilation on a two-depth edge: the background pixel beside a moving
 //    foreground takes the foreground's vector, so its history comes from where the
 //    foreground was (and without dilation from its own position);
-//  - disocclusion: history from a nearer surface is dropped (depth), and a jump of the motion
-//    vector drops it when no depth is given;
+//  - disocclusion: history from a nearer surface is dropped (depth), a jump of the motion
+//    vector drops it when no depth is given, and, with depth, where a background pixel took
+//    a moving object's dilated vector (the depth test alone keeps it);
 //  - a still edge converges: after one Halton cycle (16 frames) the edge pixels' mean squared
 //    error is below a quarter of `none`'s (bound derived below);
 //  - 1 vs 2 threads give the same bytes (taa-prod and taau-50);
@@ -26,6 +27,7 @@
 #include "scenes/motion_render.h"
 #include "scenes/render.h"
 #include "../scenes/scene_test_util.h"
+#include "taa_test_util.h"
 
 namespace aalab {
 namespace {
@@ -103,6 +105,27 @@ std::vector<float> Shifted(int W, int H, const std::vector<float>& dx) {
   return p;
 }
 
+// One frame of a hand-made sequence: the image, its previous positions and depth (null: none).
+struct FrameIn {
+  const Image8* image;
+  const std::vector<float>* previous;
+  const std::vector<float>* depth;
+};
+
+// Steps `st` through `frames` (frame indices 0, 1, ...; zero jitter) and returns the last output.
+Image8 Feed(TemporalState& st, const std::vector<FrameIn>& frames) {
+  Image8 out;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    TemporalInput in;
+    in.frame = frames[k].image;
+    in.previous = frames[k].previous;
+    in.depth = frames[k].depth;
+    in.frame_index = static_cast<int>(k);
+    out = st.Step(in, nullptr);
+  }
+  return out;
+}
+
 TEST(TaaProd, DilationTakesTheForegroundVector) {
   // Background columns 0..3 (depth 10, still), foreground columns 4..7 (depth 1) moving +2 px
   // per frame (previous = x − 2). Fixed α = 1/2, no clip, bilinear, box: the output is
@@ -119,16 +142,7 @@ TEST(TaaProd, DilationTakesTheForegroundVector) {
                              (dilate ? "on" : "off");
     auto st = MakeTaaProdState(TaaProdParamsFrom(Params(spec)));
     const Image8 a = Ramp(W, H, f0), b = Ramp(W, H, f1);
-    TemporalInput in0;
-    in0.frame = &a;
-    in0.depth = &depth;
-    st->Step(in0, nullptr);
-    TemporalInput in1;
-    in1.frame = &b;
-    in1.depth = &depth;
-    in1.previous = &prev;
-    in1.frame_index = 1;
-    const Image8 out = st->Step(in1, nullptr);
+    const Image8 out = Feed(*st, {{&a, nullptr, &depth}, {&b, &prev, &depth}});
     // Pixel (3, 1): background, its right neighbour is foreground. Dilated: history at x = 1.
     const int hist_x = dilate ? 1 : 3;
     const float expect = 0.5f * (SrgbDecode8(static_cast<uint8_t>(f0[hist_x] + 7)) + SrgbDecode8(static_cast<uint8_t>(f1[3] + 7)));
@@ -149,16 +163,7 @@ TEST(TaaProd, DisocclusionDropsHistory) {
   for (const bool on : {true, false}) {
     auto st = MakeTaaProdState(
         TaaProdParamsFrom(Params(std::string(":clip=none,disocclusion=") + (on ? "on" : "off"))));
-    TemporalInput in0;
-    in0.frame = &a;
-    in0.depth = &near;
-    st->Step(in0, nullptr);
-    TemporalInput in1;
-    in1.frame = &b;
-    in1.depth = &far;
-    in1.previous = &still;
-    in1.frame_index = 1;
-    const Image8 out = st->Step(in1, nullptr);
+    const Image8 out = Feed(*st, {{&a, nullptr, &near}, {&b, &still, &far}});
     if (on) {
       EXPECT_EQ(out.Data(), b.Data());
     } else {
@@ -168,22 +173,56 @@ TEST(TaaProd, DisocclusionDropsHistory) {
   // Without depth: frame 1 still (vectors 0), frame 2 every pixel jumps by −3 px: the
   // previous vector at the reprojected position (0) differs by 3 px > 1 px → dropped.
   auto st = MakeTaaProdState(TaaProdParamsFrom(Params(":clip=none")));
-  TemporalInput in;
-  in.frame = &a;
-  st->Step(in, nullptr);
-  in.previous = &still;
-  in.frame_index = 1;
-  st->Step(in, nullptr);
   std::vector<float> moved = Shifted(W, H, std::vector<float>(W, -3.0f));
   for (int y = 0; y < H; ++y) {
     for (int x = 0; x < 3; ++x) moved[2 * (static_cast<size_t>(y) * W + x)] += 3.0f;  // columns 0..2 stay still
   }
-  in.frame = &b;
-  in.previous = &moved;
-  in.frame_index = 2;
-  const Image8 out = st->Step(in, nullptr);
+  const Image8 out = Feed(*st, {{&a, nullptr, nullptr}, {&a, &still, nullptr}, {&b, &moved, nullptr}});
   EXPECT_EQ(out.Pixel(4, 1)[0], b.Pixel(4, 1)[0]);  // jumped: current only
   EXPECT_NE(out.Pixel(1, 1)[0], b.Pixel(1, 1)[0]);  // still: history blends in
+}
+
+TEST(TaaProd, DilatedBackgroundBesideAMovingObjectIsDropped) {
+  // A near bar (depth 1) 4 px wide moves right by 2 px a frame over a still far background
+  // (depth 10): at frame t it covers columns 2t + 2 .. 2t + 5; its previous positions are
+  // x − 2, the background's x. Frame 2: column 5 is background just uncovered (the bar
+  // covered 4..7 at frame 1); its 3×3 holds the bar (column 6), so dilation gives it the
+  // bar's vector: h = 5.5 − 2, column 3, background at frame 1 too, so the depth test (10
+  // is not nearer than 1) keeps that history — background from 2 px away. The motion test
+  // compares the bar's −2 px with frame 1's vector at column 3 (0, background): 2 px > 1 px,
+  // dropped; the output is the current frame's pixel. Column 9 (the bar; frame 1's vector
+  // at column 7, the bar's, matches) and column 1 (still background) keep their history.
+  const int W = 14, H = 3;
+  std::vector<Image8> img;
+  std::vector<std::vector<float>> depth, prev;
+  for (int t = 0; t < 3; ++t) {
+    std::vector<int> codes(W);
+    std::vector<float> d(static_cast<size_t>(W) * H, 10.0f), shift(W, 0.0f);
+    for (int x = 0; x < W; ++x) {
+      const bool bar = x >= 2 * t + 2 && x <= 2 * t + 5;
+      codes[static_cast<size_t>(x)] = bar ? 200 + 10 * t : 20 + 9 * x + 30 * t;
+      if (bar) {
+        shift[static_cast<size_t>(x)] = -2.0f;
+        for (int y = 0; y < H; ++y) d[static_cast<size_t>(y) * W + x] = 1.0f;
+      }
+    }
+    img.push_back(Ramp(W, H, codes));
+    depth.push_back(d);
+    prev.push_back(Shifted(W, H, shift));
+  }
+  for (const bool on : {true, false}) {
+    auto st = MakeTaaProdState(
+        TaaProdParamsFrom(Params(std::string(":clip=none,feedback=fixed,alpha=0.5,disocclusion=") + (on ? "on" : "off"))));
+    const Image8 out =
+        Feed(*st, {{&img[0], nullptr, &depth[0]}, {&img[1], &prev[1], &depth[1]}, {&img[2], &prev[2], &depth[2]}});
+    if (on) {
+      EXPECT_EQ(out.Pixel(5, 1)[0], img[2].Pixel(5, 1)[0]);  // dropped by the motion test
+    } else {
+      EXPECT_NE(out.Pixel(5, 1)[0], img[2].Pixel(5, 1)[0]);  // the history from column 3 blends in
+    }
+    EXPECT_NE(out.Pixel(9, 1)[0], img[2].Pixel(9, 1)[0]) << on;  // the bar keeps its history
+    EXPECT_NE(out.Pixel(1, 1)[0], img[2].Pixel(1, 1)[0]) << on;  // still background too
+  }
 }
 
 // Runs `method` for `frames` frames on a still slanted edge (unlit, orthographic) and returns
@@ -192,34 +231,16 @@ struct StillResult {
   double mse = 0, none_mse = 0;
 };
 StillResult RunStillEdge(const std::string& method, int frames, int W, int H, Image8* image = nullptr) {
-  const Scene s = testing::ParseText(R"({"name": "edge", "effects": ["unlit"],
-    "camera": {"type": "orthographic", "position": [0,0,10], "look_at": [0,0,0], "height": 4},
-    "materials": {"w": {"shading": "unlit", "color": [1, 1, 1]}},
-    "objects": [{"shape": "quad", "size": [4, 8], "material": "w", "transform": {"translate": [-1.6, 0, 0], "rotate": [0, 0, 7]}}]})");
-  const Tracer tracer(s);
-  const Reference ref = RenderReference(tracer, W, H, 16, 1, nullptr);
-  const Image8 none = RenderFrame(tracer, W, H, RenderSpec{}, 1, nullptr);
+  const testing::StillEdge edge(W, H);
   const MethodPlan plan = MakeMethod(method);
   auto state = plan.make_state();
   Image8 out;
   const int rw = static_cast<int>(std::lround(plan.render.scale * W)), rh = static_cast<int>(std::lround(plan.render.scale * H));
   for (int k = 0; k < frames; ++k) {
-    const FrameJitter j = FrameJitterAt(plan.render.jitter, k);
-    const SurfaceFrame sf = RenderSurfaceFrame(tracer, rw, rh, j, nullptr);
-    std::vector<float> prev;
-    if (k > 0) {
-      for (const glm::vec2& p : PreviousPositions(s, k, sf, j)) {
-        prev.push_back(p.x);
-        prev.push_back(p.y);
-      }
-    }
-    const std::vector<float> depth = SurfaceDepth(CameraAtFrame(s, k), sf);
-    TemporalInput in;
-    in.frame = &sf.image;
-    in.previous = k > 0 ? &prev : nullptr;
+    const testing::TaaFrame f = testing::RenderTaaFrame(edge.scene, edge.tracer, plan.render.jitter, k, rw, rh);
+    const std::vector<float> depth = SurfaceDepth(CameraAtFrame(edge.scene, k), f.sf);
+    TemporalInput in = f.Input(k);
     in.depth = &depth;
-    in.jitter = j;
-    in.frame_index = k;
     in.output_width = W;
     in.output_height = H;
     out = state->Step(in, nullptr);
@@ -231,9 +252,9 @@ StillResult RunStillEdge(const std::string& method, int frames, int W, int H, Im
   size_t n = 0;
   for (int y = 0; y < H; ++y) {
     for (int x = 0; x < W; ++x) {
-      const float t = ref.image.At(x, y, 0);
+      const float t = edge.ref.image.At(x, y, 0);
       if (t < 0.02f || t > 0.98f) continue;  // edge pixels only
-      const double e = SrgbDecode8(out.Pixel(x, y)[0]) - t, en = SrgbDecode8(none.Pixel(x, y)[0]) - t;
+      const double e = SrgbDecode8(out.Pixel(x, y)[0]) - t, en = SrgbDecode8(edge.none.Pixel(x, y)[0]) - t;
       r.mse += e * e;
       r.none_mse += en * en;
       ++n;

@@ -26,6 +26,7 @@
 #include "scenes/motion_render.h"
 #include "scenes/render.h"
 #include "../scenes/scene_test_util.h"
+#include "taa_test_util.h"
 
 namespace aalab {
 namespace {
@@ -37,43 +38,25 @@ struct Result {
 };
 
 Result RunStill(const std::string& method, int frames) {
-  const Scene s = testing::ParseText(R"({"name": "edge", "effects": ["unlit"],
-    "camera": {"type": "orthographic", "position": [0,0,10], "look_at": [0,0,0], "height": 4},
-    "materials": {"w": {"shading": "unlit", "color": [1, 1, 1]}},
-    "objects": [{"shape": "quad", "size": [4, 8], "material": "w", "transform": {"translate": [-1.6, 0, 0], "rotate": [0, 0, 7]}}]})");
   const int W = 64, H = 48;
-  const Tracer tracer(s);
-  const Reference ref = RenderReference(tracer, W, H, 16, 1, nullptr);
-  const Image8 none = RenderFrame(tracer, W, H, RenderSpec{}, 1, nullptr);
+  const testing::StillEdge edge(W, H);
   const MethodPlan plan = MakeMethod(method);
   auto state = plan.make_state();
   Image8 out;
   for (int k = 0; k < frames; ++k) {
-    const FrameJitter j = FrameJitterAt(plan.render.jitter, k);
-    const SurfaceFrame sf = RenderSurfaceFrame(tracer, W, H, j, nullptr);
-    std::vector<float> prev;
-    if (k > 0) {
-      for (const glm::vec2& p : PreviousPositions(s, k, sf, j)) {
-        prev.push_back(p.x);
-        prev.push_back(p.y);
-      }
-    }
-    TemporalInput in;
-    in.frame = &sf.image;
-    in.previous = k > 0 ? &prev : nullptr;
-    in.frame_index = k;
-    out = state->Step(in, nullptr);
+    const testing::TaaFrame f = testing::RenderTaaFrame(edge.scene, edge.tracer, plan.render.jitter, k, W, H);
+    out = state->Step(f.Input(k), nullptr);
   }
   Result r;
   for (int y = 0; y < H; ++y) {
     for (int x = 0; x < W; ++x) {
-      if (ref.edge_mask.At(x, y, 0) < 0.5f) {
-        r.interior_exact &= out.At(x, y, 0) == none.At(x, y, 0);
+      if (edge.ref.edge_mask.At(x, y, 0) < 0.5f) {
+        r.interior_exact &= out.At(x, y, 0) == edge.none.At(x, y, 0);
         continue;
       }
-      if (ref.edge_mask_raw.At(x, y, 0) < 0.5f) continue;
-      const double c = SrgbDecode(ref.image.At(x, y, 0));  // coverage (linear)
-      const double t = SrgbDecode8(out.At(x, y, 0)), n = SrgbDecode8(none.At(x, y, 0));
+      if (edge.ref.edge_mask_raw.At(x, y, 0) < 0.5f) continue;
+      const double c = SrgbDecode(edge.ref.image.At(x, y, 0));  // coverage (linear)
+      const double t = SrgbDecode8(out.At(x, y, 0)), n = SrgbDecode8(edge.none.At(x, y, 0));
       r.taa_mse += (t - c) * (t - c);
       r.none_mse += (n - c) * (n - c);
       ++r.edge_pixels;
@@ -168,20 +151,8 @@ MotionResult RunMoving(const std::string& method, double px_per_frame) {
     const Tracer tracer(frame_scene);
     const Reference ref = RenderReference(tracer, W, H, 8, 1, nullptr);
     const Image8 none = RenderFrame(tracer, W, H, RenderSpec{}, 1, nullptr);
-    const FrameJitter j = FrameJitterAt(plan.render.jitter, k);
-    const SurfaceFrame sf = RenderSurfaceFrame(tracer, W, H, j, nullptr);
-    std::vector<float> prev;
-    if (k > 0) {
-      for (const glm::vec2& p : PreviousPositions(s, k, sf, j)) {
-        prev.push_back(p.x);
-        prev.push_back(p.y);
-      }
-    }
-    TemporalInput in;
-    in.frame = &sf.image;
-    in.previous = k > 0 ? &prev : nullptr;
-    in.frame_index = k;
-    const Image8 out = state->Step(in, nullptr);
+    const testing::TaaFrame f = testing::RenderTaaFrame(s, tracer, plan.render.jitter, k, W, H);
+    const Image8 out = state->Step(f.Input(k), nullptr);
     taa_te.AddFrame(ToFloat(out, 3), ref.image, &ref.edge_mask);
     none_te.AddFrame(ToFloat(none, 3), ref.image, &ref.edge_mask);
     refs.push_back(ref.image);
