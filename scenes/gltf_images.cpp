@@ -6,8 +6,8 @@
 // (gltf_load.cpp keys the wanted list by (image, sRGB)).
 #include <filesystem>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "scenes/gltf_load.h"
 
 namespace aalab {

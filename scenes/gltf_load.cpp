@@ -20,7 +20,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "scenes/gltf_lights.h"
 
 namespace aalab {

@@ -15,8 +15,8 @@
 #include <cmath>
 #include <limits>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
+#include "core/color.h"
+#include "core/error.h"
 
 namespace aalab {
 

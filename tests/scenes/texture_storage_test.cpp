@@ -11,7 +11,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "harness/core/color.h"
+#include "core/color.h"
 #include "scenes/texture_image.h"
 
 namespace aalab {
