@@ -11,6 +11,8 @@ def load(d):
 def strip_scene(s):
     s = dict(s)
     s.pop("bvh_build_ms", None)
+    if "content" in s:
+        s["content"] = {k: v for k, v in s["content"].items() if k != "load_ms"}
     s.pop("source", None)
     ref = dict(s.get("reference", {}))
     ref.pop("time_ms", None)

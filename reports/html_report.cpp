@@ -227,8 +227,9 @@ void SceneFacts(std::string& h, const SceneResult& s) {
   if (s.content) {
     fact("content", std::to_string(s.content->triangles) + " triangles, " + std::to_string(s.content->textures) +
                         " textures: mip chains " + Printf("%.1f MB", s.content->texture_bytes / 1e6) +
-                        " as stored (RGBA float), " + Printf("%.1f MB", s.content->texture_bytes_rgba8 / 1e6) +
-                        " as RGBA8");
+                        " as stored (RGBA8, half for 16-bit images), " +
+                        Printf("%.1f MB", s.content->texture_bytes_rgba8 / 1e6) + " as RGBA8; loaded in " +
+                        FmtMs(s.content->load_ms) + " ms");
   }
   fact("scene file", "<code>" + HtmlEscape(s.source) + "</code>");
   h += "</dl>\n";

@@ -153,7 +153,8 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
       j["content"] = {{"triangles", s.content->triangles},
                       {"textures", s.content->textures},
                       {"texture_bytes", s.content->texture_bytes},
-                      {"texture_bytes_rgba8", s.content->texture_bytes_rgba8}};
+                      {"texture_bytes_rgba8", s.content->texture_bytes_rgba8},
+                      {"load_ms", Num(s.content->load_ms)}};
     }
     j["edge_pixel_fraction"] = Num(s.edge_pixel_fraction);
     Json im = Json::object();
@@ -294,6 +295,7 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
         k.textures = c.at("textures").get<int>();
         k.texture_bytes = c.at("texture_bytes").get<uint64_t>();
         k.texture_bytes_rgba8 = c.at("texture_bytes_rgba8").get<uint64_t>();
+        if (c.contains("load_ms")) k.load_ms = c.at("load_ms").get<double>();  // added with issue #35
         s.content = k;
       }
       s.edge_pixel_fraction = j.at("edge_pixel_fraction").get<double>();

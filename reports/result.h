@@ -93,8 +93,9 @@ struct SceneResult {
   struct Content {
     uint64_t triangles = 0;
     int textures = 0;
-    uint64_t texture_bytes = 0;        ///< mip chains as aalab stores them (RGBA float32)
+    uint64_t texture_bytes = 0;        ///< mip chains as aalab stores them (RGBA8, or half for 16-bit/float images)
     uint64_t texture_bytes_rgba8 = 0;  ///< the same chains as RGBA8 GPU textures
+    double load_ms = 0;                ///< wall time loading the scene's glTF files (a timing: not compared)
   };
   std::optional<Content> content;
   std::optional<double> ref_halves_psnr_db, ref_floor_psnr_db;

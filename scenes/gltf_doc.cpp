@@ -56,7 +56,7 @@ std::string JoinList(const std::vector<std::string>& v) {
   return s;
 }
 
-bool Base64Decode(const std::string& in, size_t from, std::vector<uint8_t>& out) {
+bool Base64DecodeImpl(const std::string& in, size_t from, std::vector<uint8_t>& out) {
   auto val = [](char c) -> int {
     if (c >= 'A' && c <= 'Z') return c - 'A';
     if (c >= 'a' && c <= 'z') return c - 'a' + 26;
@@ -111,8 +111,8 @@ int TypeComponents(const std::string& t) {
   return it == k.end() ? 0 : it->second;
 }
 
-std::string At(const std::string& base, const std::string& key) { return base + "/" + key; }
-std::string At(const std::string& base, size_t i) { return base + "/" + std::to_string(i); }
+std::string At(const std::string& base, const std::string& key) { return GltfAt(base, key); }
+std::string At(const std::string& base, size_t i) { return GltfAt(base, i); }
 
 /// Loads buffer i's bytes.
 std::vector<uint8_t> LoadBuffer(const GltfDoc& d, const Json& b, size_t i, const std::string& glb_bin, bool has_bin) {
@@ -137,7 +137,7 @@ std::vector<uint8_t> LoadBuffer(const GltfDoc& d, const Json& b, size_t i, const
   if (uri.rfind("data:", 0) == 0) {
     const size_t comma = uri.find(',');
     if (comma == std::string::npos || uri.rfind(";base64", comma) == std::string::npos ||
-        !Base64Decode(uri, comma + 1, bytes)) {
+        !GltfBase64Decode(uri, comma + 1, bytes)) {
       d.Fail(At(at, "uri"), "is a data URI that is not valid base64");
     }
   } else {
@@ -356,6 +356,25 @@ void CheckShapes(const GltfDoc& d) {
 }
 
 }  // namespace
+
+std::string GltfAt(const std::string& base, const std::string& key) { return base + "/" + key; }
+std::string GltfAt(const std::string& base, size_t i) { return base + "/" + std::to_string(i); }
+
+bool GltfBase64Decode(const std::string& in, size_t from, std::vector<uint8_t>& out) {
+  return Base64DecodeImpl(in, from, out);
+}
+
+long long GltfIndex(const GltfDoc& d, const Json& o, const char* key, const std::string& at, const char* list) {
+  const long long n = static_cast<long long>(GltfArray(d, d.j, list, "").size());
+  if (!o.is_object() || !o.contains(key)) return -1;
+  const Json& v = o.at(key);
+  if (!v.is_number_integer() && !v.is_number_unsigned()) d.Fail(At(at, key), "must be an integer index into /" + std::string(list));
+  if (v.is_number_unsigned() ? v.get<unsigned long long>() >= static_cast<unsigned long long>(n) : (v.get<long long>() < 0 || v.get<long long>() >= n)) {
+    d.Fail(At(at, key), "names " + std::string(list) + " " + v.dump() + ", which does not exist (" + std::to_string(n) +
+                            " defined) (rule: index out of range)");
+  }
+  return v.get<long long>();
+}
 
 const uint8_t* GltfDoc::ViewBytes(long long view, size_t* size) const {
   const size_t v = static_cast<size_t>(view);

@@ -42,6 +42,16 @@ struct GltfDoc {
 /// too), meshopt views decoded. Throws UserError as GltfDoc::Fail.
 GltfDoc ReadGltfDoc(const std::string& path);
 
+/// The JSON pointer `base`/`key` and `base`/`i` (for messages).
+std::string GltfAt(const std::string& base, const std::string& key);
+std::string GltfAt(const std::string& base, size_t i);
+/// The index member `key` of `o` (at `at`) into the top-level array `list`: -1 when absent;
+/// a non-integer or an index outside the array fails (rule: index out of range).
+long long GltfIndex(const GltfDoc& d, const nlohmann::json& o, const char* key, const std::string& at, const char* list);
+/// Decodes base64 (standard or URL-safe alphabet, '=' padding ends it) from in[from..] and
+/// appends the bytes to out; false on a character outside the alphabet.
+bool GltfBase64Decode(const std::string& in, size_t from, std::vector<uint8_t>& out);
+
 /// An integer member `key` of object `o` at JSON path `at`: `fallback` when absent, else it
 /// must be an integer in [lo, hi] (the rule is named in the failure).
 long long GltfInt(const GltfDoc& d, const nlohmann::json& o, const char* key, const std::string& at, long long fallback,

@@ -8,8 +8,6 @@
 #include "scenes/gltf_lights.h"
 
 #include <cmath>
-#include <fstream>
-#include <iterator>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -33,32 +31,7 @@ double Number(const nlohmann::json& obj, const char* key, double fallback, const
   return v.get<double>();
 }
 
-uint32_t ReadU32(const std::string& s, size_t at) {
-  return static_cast<uint32_t>(static_cast<uint8_t>(s[at])) | static_cast<uint32_t>(static_cast<uint8_t>(s[at + 1])) << 8 |
-         static_cast<uint32_t>(static_cast<uint8_t>(s[at + 2])) << 16 |
-         static_cast<uint32_t>(static_cast<uint8_t>(s[at + 3])) << 24;
-}
-
 }  // namespace
-
-nlohmann::json ReadGltfJson(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw UserError(path + ": cannot be read");
-  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  std::string text = bytes;
-  if (bytes.size() >= 12 && bytes.compare(0, 4, "glTF") == 0) {
-    // GLB: 12-byte header, then chunk 0 (length, type 'JSON', data).
-    if (bytes.size() < 20 || ReadU32(bytes, 16) != 0x4E4F534Au) throw UserError(path + ": GLB without a JSON chunk");
-    const uint32_t len = ReadU32(bytes, 12);
-    if (len > bytes.size() - 20) throw UserError(path + ": GLB JSON chunk runs past the end of the file");
-    text = bytes.substr(20, len);
-  }
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw UserError(path + ": not valid glTF JSON (" + e.what() + ")");
-  }
-}
 
 glm::mat4 GltfNodeLocalMatrix(const nlohmann::json& node) {
   if (node.contains("matrix") && node["matrix"].is_array() && node["matrix"].size() == 16) {

@@ -1,8 +1,8 @@
 /// KHR_lights_punctual: the glTF file's own point, spot and directional lights, read from the
 /// file's JSON as the extension's specification defines them (intensity in candela for point
 /// and spot, lux for directional; a light shines down its node's −Z; node scale ignored).
-/// Pure functions of the parsed JSON; scenes/scene_parse.cpp adds the lights of every glTF
-/// object to the scene. docs/lighting.md "Punctual lights".
+/// Pure functions of the parsed JSON; LoadGltf calls GltfPunctualLights on the document it
+/// parsed (GltfContent::lights) and scenes/scene_parse.cpp places them by the object's transform. docs/lighting.md "Punctual lights".
 #pragma once
 #include <optional>
 #include <string>
@@ -14,10 +14,6 @@
 #include "scenes/scene.h"
 
 namespace aalab {
-
-/// The JSON of a .gltf file, or the JSON chunk of a .glb. Throws UserError naming `path` when
-/// it cannot be read or is not JSON.
-nlohmann::json ReadGltfJson(const std::string& path);
 
 /// The local matrix of node `node` ("matrix", else translation · rotation · scale).
 glm::mat4 GltfNodeLocalMatrix(const nlohmann::json& node);

@@ -21,6 +21,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/error.h"
+#include "scenes/gltf_lights.h"
 
 namespace aalab {
 namespace fs = std::filesystem;
@@ -28,20 +29,6 @@ using Json = nlohmann::json;
 
 namespace {
 
-std::string At(const std::string& base, const std::string& key) { return base + "/" + key; }
-std::string At(const std::string& base, size_t i) { return base + "/" + std::to_string(i); }
-
-long long Index(const GltfDoc& d, const Json& o, const char* key, const std::string& at, const char* list) {
-  const long long n = static_cast<long long>(GltfArray(d, d.j, list, "").size());
-  if (!o.is_object() || !o.contains(key)) return -1;
-  const Json& v = o.at(key);
-  if (!v.is_number_integer() && !v.is_number_unsigned()) d.Fail(At(at, key), "must be an integer index into /" + std::string(list));
-  if (v.is_number_unsigned() ? v.get<unsigned long long>() >= static_cast<unsigned long long>(n) : (v.get<long long>() < 0 || v.get<long long>() >= n)) {
-    d.Fail(At(at, key), "names " + std::string(list) + " " + v.dump() + ", which does not exist (" + std::to_string(n) +
-                            " defined) (rule: index out of range)");
-  }
-  return v.get<long long>();
-}
 
 /// A node's local transform (matrix, or T · R · S), in double.
 glm::dmat4 LocalMatrix(const GltfDoc& d, const Json& n, const std::string& at) {
@@ -78,17 +65,17 @@ NodeGraph WalkNodes(const GltfDoc& d) {
   const size_t n = nodes.size();
   std::vector<long long> parent(n, -1);
   for (size_t i = 0; i < n; ++i) {
-    const std::string at = At("/nodes", i);
+    const std::string at = GltfAt("/nodes", i);
     if (!nodes[i].is_object()) d.Fail(at, "must be an object");
     const Json& ch = GltfArray(d, nodes[i], "children", at);
     for (size_t k = 0; k < ch.size(); ++k) {
       if (!ch[k].is_number_integer() || ch[k].get<long long>() < 0 || ch[k].get<long long>() >= static_cast<long long>(n)) {
-        d.Fail(At(At(at, "children"), k), "names node " + ch[k].dump() + ", which does not exist (rule: index out of range)");
+        d.Fail(GltfAt(GltfAt(at, "children"), k), "names node " + ch[k].dump() + ", which does not exist (rule: index out of range)");
       }
       const size_t c = ch[k].get<size_t>();
-      if (c == i) d.Fail(At(At(at, "children"), k), "a node is its own child (rule: recursive nodes)");
+      if (c == i) d.Fail(GltfAt(GltfAt(at, "children"), k), "a node is its own child (rule: recursive nodes)");
       if (parent[c] >= 0) {
-        d.Fail(At(At(at, "children"), k), "node " + std::to_string(c) + " already has parent " + std::to_string(parent[c]) +
+        d.Fail(GltfAt(GltfAt(at, "children"), k), "node " + std::to_string(c) + " already has parent " + std::to_string(parent[c]) +
                                               " (rule: a node has one parent; shared or recursive nodes are invalid)");
       }
       parent[c] = static_cast<long long>(i);
@@ -106,23 +93,23 @@ NodeGraph WalkNodes(const GltfDoc& d) {
       c = static_cast<size_t>(parent[c]);
     }
     // Stopped on a node of this same chain that has a parent: the chain closed on itself.
-    if (state[c] == 1 && parent[c] >= 0) d.Fail(At("/nodes", c), "is its own ancestor (rule: recursive nodes)");
+    if (state[c] == 1 && parent[c] >= 0) d.Fail(GltfAt("/nodes", c), "is its own ancestor (rule: recursive nodes)");
     for (size_t k : chain) state[k] = 2;
   }
   // Roots: the scene's nodes (`scene`, else scene 0), else every parentless node.
   std::vector<size_t> roots;
   const Json& scenes = GltfArray(d, d.j, "scenes", "");
   if (!scenes.empty()) {
-    const long long si = d.j.contains("scene") ? Index(d, d.j, "scene", "", "scenes") : 0;
-    const std::string at = At("/scenes", static_cast<size_t>(si));
+    const long long si = d.j.contains("scene") ? GltfIndex(d, d.j, "scene", "", "scenes") : 0;
+    const std::string at = GltfAt("/scenes", static_cast<size_t>(si));
     if (!scenes[static_cast<size_t>(si)].is_object()) d.Fail(at, "must be an object");
     const Json& sn = GltfArray(d, scenes[static_cast<size_t>(si)], "nodes", at);
     for (size_t k = 0; k < sn.size(); ++k) {
       if (!sn[k].is_number_integer() || sn[k].get<long long>() < 0 || sn[k].get<long long>() >= static_cast<long long>(n)) {
-        d.Fail(At(At(at, "nodes"), k), "names node " + sn[k].dump() + ", which does not exist (rule: index out of range)");
+        d.Fail(GltfAt(GltfAt(at, "nodes"), k), "names node " + sn[k].dump() + ", which does not exist (rule: index out of range)");
       }
       const size_t r = sn[k].get<size_t>();
-      if (parent[r] >= 0) d.Fail(At(At(at, "nodes"), k), "node " + std::to_string(r) + " is not a root (it has parent " + std::to_string(parent[r]) + ")");
+      if (parent[r] >= 0) d.Fail(GltfAt(GltfAt(at, "nodes"), k), "node " + std::to_string(r) + " is not a root (it has parent " + std::to_string(parent[r]) + ")");
       roots.push_back(r);
     }
   } else {
@@ -138,11 +125,11 @@ NodeGraph WalkNodes(const GltfDoc& d) {
   while (!stack.empty()) {
     const size_t i = stack.back();
     stack.pop_back();
-    if (g.reached[i]) d.Fail(At("/nodes", i), "is reached twice from the scene (rule: a node has one parent)");
+    if (g.reached[i]) d.Fail(GltfAt("/nodes", i), "is reached twice from the scene (rule: a node has one parent)");
     g.reached[i] = 1;
     if (parent[i] >= 0) depth[i] = depth[static_cast<size_t>(parent[i])] + 1;
-    if (depth[i] > kMaxGltfNodeDepth) d.Fail(At("/nodes", i), "lies " + std::to_string(depth[i]) + " nodes deep (rule: node depth, at most " + std::to_string(kMaxGltfNodeDepth) + ")");
-    const glm::dmat4 local = LocalMatrix(d, nodes[i], At("/nodes", i));
+    if (depth[i] > kMaxGltfNodeDepth) d.Fail(GltfAt("/nodes", i), "lies " + std::to_string(depth[i]) + " nodes deep (rule: node depth, at most " + std::to_string(kMaxGltfNodeDepth) + ")");
+    const glm::dmat4 local = LocalMatrix(d, nodes[i], GltfAt("/nodes", i));
     g.world[i] = parent[i] >= 0 ? g.world[static_cast<size_t>(parent[i])] * local : local;
     g.order.push_back(i);
     const Json& ch = GltfArray(d, nodes[i], "children", "");
@@ -156,34 +143,34 @@ GltfPrimData ReadPrimitive(const GltfDoc& d, const Json& pr, const std::string& 
   static const std::map<std::string, int> kComps = {{"POSITION", 3},   {"NORMAL", 3},   {"TANGENT", 4},  {"TEXCOORD_0", 2},
                                                     {"TEXCOORD_1", 2}, {"JOINTS_0", 4}, {"WEIGHTS_0", 4}};
   GltfPrimData p;
-  if (!pr.contains("attributes") || !pr["attributes"].is_object()) d.Fail(At(at, "attributes"), "is required (an object)");
+  if (!pr.contains("attributes") || !pr["attributes"].is_object()) d.Fail(GltfAt(at, "attributes"), "is required (an object)");
   const Json& attrs = pr["attributes"];
-  if (!attrs.contains("POSITION")) d.Fail(At(at, "attributes"), "has no POSITION");
+  if (!attrs.contains("POSITION")) d.Fail(GltfAt(at, "attributes"), "has no POSITION");
   const bool draco = pr.contains("extensions") && pr["extensions"].is_object() && pr["extensions"].contains("KHR_draco_mesh_compression");
   if (draco) {
-    DecodeGltfDraco(d, pr["extensions"]["KHR_draco_mesh_compression"], At(at, "extensions/KHR_draco_mesh_compression"), kComps, p);
+    DecodeGltfDraco(d, pr["extensions"]["KHR_draco_mesh_compression"], GltfAt(at, "extensions/KHR_draco_mesh_compression"), kComps, p);
   }
   for (const auto& [name, comps] : kComps) {
     if (!attrs.contains(name) || p.attr.count(name)) continue;
-    const long long a = Index(d, attrs, name.c_str(), At(at, "attributes"), "accessors");
+    const long long a = GltfIndex(d, attrs, name.c_str(), GltfAt(at, "attributes"), "accessors");
     if (name == "JOINTS_0") {
-      const std::vector<uint32_t> u = ReadGltfUints(d, a, At(At(at, "attributes"), name), 4);
+      const std::vector<uint32_t> u = ReadGltfUints(d, a, GltfAt(GltfAt(at, "attributes"), name), 4);
       p.attr[name].assign(u.begin(), u.end());
     } else {
-      p.attr[name] = ReadGltfFloats(d, a, At(At(at, "attributes"), name), comps);
+      p.attr[name] = ReadGltfFloats(d, a, GltfAt(GltfAt(at, "attributes"), name), comps);
     }
   }
   p.vertices = static_cast<long long>(p.attr["POSITION"].size() / 3);
   for (const auto& [name, v] : p.attr) {
     if (static_cast<long long>(v.size()) != p.vertices * kComps.at(name)) {
-      d.Fail(At(At(at, "attributes"), name), "has " + std::to_string(v.size() / kComps.at(name)) + " elements but POSITION has " +
+      d.Fail(GltfAt(GltfAt(at, "attributes"), name), "has " + std::to_string(v.size() / kComps.at(name)) + " elements but POSITION has " +
                                                  std::to_string(p.vertices) + " (rule: attribute counts must match)");
     }
   }
   if (attrs.contains("COLOR_0")) notes.push_back(at + ": vertex colours (COLOR_0) are not drawn");
   if (!draco && pr.contains("indices")) {
-    const long long a = Index(d, pr, "indices", at, "accessors");
-    p.indices = ReadGltfUints(d, a, At(at, "indices"), 1);
+    const long long a = GltfIndex(d, pr, "indices", at, "accessors");
+    p.indices = ReadGltfUints(d, a, GltfAt(at, "indices"), 1);
     p.has_indices = true;
   }
   return p;
@@ -194,13 +181,13 @@ void ApplyMorph(const GltfDoc& d, const Json& pr, const std::string& at, const s
   const Json& targets = GltfArray(d, pr, "targets", at);
   for (size_t t = 0; t < targets.size() && t < weights.size(); ++t) {
     if (weights[t] == 0.0) continue;
-    const std::string tat = At(At(at, "targets"), t);
+    const std::string tat = GltfAt(GltfAt(at, "targets"), t);
     for (const char* name : {"POSITION", "NORMAL", "TANGENT"}) {
       if (!targets[t].is_object() || !targets[t].contains(name) || !p.attr.count(name)) continue;
-      const std::vector<float> delta = ReadGltfFloats(d, Index(d, targets[t], name, tat, "accessors"), At(tat, name), 3);
+      const std::vector<float> delta = ReadGltfFloats(d, GltfIndex(d, targets[t], name, tat, "accessors"), GltfAt(tat, name), 3);
       std::vector<float>& v = p.attr[name];
       const int comps = std::string(name) == "TANGENT" ? 4 : 3;
-      if (static_cast<long long>(delta.size() / 3) != p.vertices) d.Fail(At(tat, name), "count differs from POSITION's (rule: attribute counts must match)");
+      if (static_cast<long long>(delta.size() / 3) != p.vertices) d.Fail(GltfAt(tat, name), "count differs from POSITION's (rule: attribute counts must match)");
       for (long long i = 0; i < p.vertices; ++i) {
         for (int c = 0; c < 3; ++c) v[static_cast<size_t>(i * comps + c)] += static_cast<float>(weights[t]) * delta[static_cast<size_t>(i * 3 + c)];
       }
@@ -234,7 +221,7 @@ Shape BuildShape(const GltfDoc& d, const GltfPrimData& p, const std::string& at,
         const size_t j = static_cast<size_t>(jn[i * 4 + k]);
         const double w = wt[i * 4 + k];
         if (w == 0.0) continue;
-        if (j >= joints->size()) d.Fail(At(at, "attributes/JOINTS_0"), "vertex " + std::to_string(i) + " names joint " + std::to_string(j) + " beyond the skin's " + std::to_string(joints->size()) + " (rule: index out of range)");
+        if (j >= joints->size()) d.Fail(GltfAt(at, "attributes/JOINTS_0"), "vertex " + std::to_string(i) + " names joint " + std::to_string(j) + " beyond the skin's " + std::to_string(joints->size()) + " (rule: index out of range)");
         m += (*joints)[j] * w;
       }
     }
@@ -242,19 +229,19 @@ Shape BuildShape(const GltfDoc& d, const GltfPrimData& p, const std::string& at,
     const glm::dvec3 q = glm::dvec3(m * glm::dvec4(glm::dvec3(V3(pos, i)), 1.0));
     for (int c = 0; c < 3; ++c) {
       if (!std::isfinite(q[c]) || std::fabs(q[c]) > 1e8) {
-        d.Fail(At(at, "attributes/POSITION"), "vertex " + std::to_string(i) + " has a NaN, infinite or out-of-range (|x| > 1e8) position");
+        d.Fail(GltfAt(at, "attributes/POSITION"), "vertex " + std::to_string(i) + " has a NaN, infinite or out-of-range (|x| > 1e8) position");
       }
     }
     s.positions[i] = glm::vec3(q);
     if (p.attr.count("TEXCOORD_0")) {
       const auto& uv = p.attr.at("TEXCOORD_0");
       s.uvs[i] = {uv[i * 2], uv[i * 2 + 1]};
-      if (!std::isfinite(s.uvs[i].x) || !std::isfinite(s.uvs[i].y)) d.Fail(At(at, "attributes/TEXCOORD_0"), "has a non-finite texture coordinate");
+      if (!std::isfinite(s.uvs[i].x) || !std::isfinite(s.uvs[i].y)) d.Fail(GltfAt(at, "attributes/TEXCOORD_0"), "has a non-finite texture coordinate");
     }
     if (!s.uvs1.empty()) {
       const auto& uv = p.attr.at("TEXCOORD_1");
       s.uvs1[i] = {uv[i * 2], uv[i * 2 + 1]};
-      if (!std::isfinite(s.uvs1[i].x) || !std::isfinite(s.uvs1[i].y)) d.Fail(At(at, "attributes/TEXCOORD_1"), "has a non-finite texture coordinate");
+      if (!std::isfinite(s.uvs1[i].x) || !std::isfinite(s.uvs1[i].y)) d.Fail(GltfAt(at, "attributes/TEXCOORD_1"), "has a non-finite texture coordinate");
     }
     if (has_n) {
       const glm::dmat3 nrm = glm::transpose(glm::inverse(lin));
@@ -276,7 +263,7 @@ Shape BuildShape(const GltfDoc& d, const GltfPrimData& p, const std::string& at,
   }
   for (size_t k = 0; k < idx.size(); ++k) {
     if (idx[k] >= nv) {
-      d.Fail(At(at, "indices"), "element " + std::to_string(k) + " is index " + std::to_string(idx[k]) + ", beyond the primitive's " +
+      d.Fail(GltfAt(at, "indices"), "element " + std::to_string(k) + " is index " + std::to_string(idx[k]) + ", beyond the primitive's " +
                                     std::to_string(nv) + " vertices (rule: index out of range)");
     }
   }
@@ -311,15 +298,15 @@ class MaterialReader {
     g.double_sided = false;
     if (index >= 0) {
       const Json& mat = d_.j["materials"][static_cast<size_t>(index)];
-      const std::string at = At("/materials", static_cast<size_t>(index));
+      const std::string at = GltfAt("/materials", static_cast<size_t>(index));
       if (!mat.is_object()) d_.Fail(at, "must be an object");
       if (mat.contains("name") && mat["name"].is_string() && !mat["name"].get<std::string>().empty()) m.name += ":" + mat["name"].get<std::string>();
       for (const char* k : {"pbrMetallicRoughness", "normalTexture", "occlusionTexture", "emissiveTexture"}) {
-        if (mat.contains(k) && !mat[k].is_object()) d_.Fail(At(at, k), "must be an object");
+        if (mat.contains(k) && !mat[k].is_object()) d_.Fail(GltfAt(at, k), "must be an object");
       }
       if (mat.contains("pbrMetallicRoughness")) {
         const Json& pbr = mat["pbrMetallicRoughness"];
-        const std::string pat = At(at, "pbrMetallicRoughness");
+        const std::string pat = GltfAt(at, "pbrMetallicRoughness");
         const std::vector<double> b = GltfNumbers(d_, pbr, "baseColorFactor", pat, 4, {1, 1, 1, 1});
         g.base_factor = glm::vec4(b[0], b[1], b[2], b[3]);
         g.metallic = static_cast<float>(GltfNum(d_, pbr, "metallicFactor", pat, 1.0, 0.0, 1.0));
@@ -328,9 +315,9 @@ class MaterialReader {
         g.mr_tex = Tex(pbr, "metallicRoughnessTexture", pat, false);
       }
       g.normal_tex = Tex(mat, "normalTexture", at, false);
-      if (g.normal_tex.Has()) g.normal_scale = static_cast<float>(GltfNum(d_, mat["normalTexture"], "scale", At(at, "normalTexture"), 1.0, -1e7, 1e7));
+      if (g.normal_tex.Has()) g.normal_scale = static_cast<float>(GltfNum(d_, mat["normalTexture"], "scale", GltfAt(at, "normalTexture"), 1.0, -1e7, 1e7));
       g.occlusion_tex = Tex(mat, "occlusionTexture", at, false);
-      if (g.occlusion_tex.Has()) g.occlusion_strength = static_cast<float>(GltfNum(d_, mat["occlusionTexture"], "strength", At(at, "occlusionTexture"), 1.0, 0.0, 1.0));
+      if (g.occlusion_tex.Has()) g.occlusion_strength = static_cast<float>(GltfNum(d_, mat["occlusionTexture"], "strength", GltfAt(at, "occlusionTexture"), 1.0, 0.0, 1.0));
       g.emissive_tex = Tex(mat, "emissiveTexture", at, true);
       const std::vector<double> e = GltfNumbers(d_, mat, "emissiveFactor", at, 3, {0, 0, 0});
       double strength = 1.0;
@@ -338,16 +325,16 @@ class MaterialReader {
         const Json& x = mat["extensions"];
         if (x.contains("KHR_materials_unlit")) m.shading = Shading::kUnlit;
         if (x.contains("KHR_materials_emissive_strength")) {
-          strength = GltfNum(d_, x["KHR_materials_emissive_strength"], "emissiveStrength", At(at, "extensions/KHR_materials_emissive_strength"), 1.0, 0.0, 1e7);
+          strength = GltfNum(d_, x["KHR_materials_emissive_strength"], "emissiveStrength", GltfAt(at, "extensions/KHR_materials_emissive_strength"), 1.0, 0.0, 1e7);
         }
       }
       g.emissive = glm::vec3(glm::dvec3(e[0], e[1], e[2]) * strength);
       const std::string mode = mat.contains("alphaMode") && mat["alphaMode"].is_string() ? mat["alphaMode"].get<std::string>() : "OPAQUE";
-      if (mode != "OPAQUE" && mode != "MASK" && mode != "BLEND") d_.Fail(At(at, "alphaMode"), "'" + mode + "' (allowed: OPAQUE, MASK, BLEND)");
+      if (mode != "OPAQUE" && mode != "MASK" && mode != "BLEND") d_.Fail(GltfAt(at, "alphaMode"), "'" + mode + "' (allowed: OPAQUE, MASK, BLEND)");
       g.alpha_mode = mode == "MASK" ? AlphaMode::kMask : mode == "BLEND" ? AlphaMode::kBlend : AlphaMode::kOpaque;
       m.alpha_cutoff = static_cast<float>(GltfNum(d_, mat, "alphaCutoff", at, 0.5, 0.0, 1e7));
       if (mat.contains("doubleSided")) {
-        if (!mat["doubleSided"].is_boolean()) d_.Fail(At(at, "doubleSided"), "must be a boolean");
+        if (!mat["doubleSided"].is_boolean()) d_.Fail(GltfAt(at, "doubleSided"), "must be a boolean");
         g.double_sided = mat["doubleSided"].get<bool>();
       }
       for (float v : {g.base_factor.x, g.base_factor.y, g.base_factor.z, g.base_factor.w, g.emissive.x, g.emissive.y, g.emissive.z}) {
@@ -367,14 +354,14 @@ class MaterialReader {
     TextureRef ref;
     if (!parent.contains(key)) return ref;
     const Json& info = parent[key];
-    const std::string iat = At(at, key);
+    const std::string iat = GltfAt(at, key);
     if (!info.is_object()) d_.Fail(iat, "must be an object (a textureInfo)");
-    const long long tex = Index(d_, info, "index", iat, "textures");
-    if (tex < 0) d_.Fail(At(iat, "index"), "is required");
+    const long long tex = GltfIndex(d_, info, "index", iat, "textures");
+    if (tex < 0) d_.Fail(GltfAt(iat, "index"), "is required");
     ref.texcoord = static_cast<int>(GltfInt(d_, info, "texCoord", iat, 0, 0, 1 << 20));
     if (info.contains("extensions") && info["extensions"].is_object() && info["extensions"].contains("KHR_texture_transform")) {
       const Json& x = info["extensions"]["KHR_texture_transform"];
-      const std::string xat = At(iat, "extensions/KHR_texture_transform");
+      const std::string xat = GltfAt(iat, "extensions/KHR_texture_transform");
       const std::vector<double> off = GltfNumbers(d_, x, "offset", xat, 2, {0, 0});
       const std::vector<double> sc = GltfNumbers(d_, x, "scale", xat, 2, {1, 1});
       const double r = GltfNum(d_, x, "rotation", xat, 0.0, -1e7, 1e7);
@@ -385,22 +372,22 @@ class MaterialReader {
       ref.uv_transform = glm::mat3x2(glm::vec2(c * sc[0], -s * sc[0]), glm::vec2(s * sc[1], c * sc[1]), glm::vec2(off[0], off[1]));
       ref.transformed = true;
     }
-    if (ref.texcoord > 1) d_.Fail(At(iat, "texCoord"), "TEXCOORD_" + std::to_string(ref.texcoord) + " (aalab reads sets 0 and 1)");
+    if (ref.texcoord > 1) d_.Fail(GltfAt(iat, "texCoord"), "TEXCOORD_" + std::to_string(ref.texcoord) + " (aalab reads sets 0 and 1)");
     const Json& t = d_.j["textures"][static_cast<size_t>(tex)];
-    const std::string tat = At("/textures", static_cast<size_t>(tex));
-    const long long source = Index(d_, t, "source", tat, "images");
+    const std::string tat = GltfAt("/textures", static_cast<size_t>(tex));
+    const long long source = GltfIndex(d_, t, "source", tat, "images");
     if (source < 0) d_.Fail(tat, "has no source image that aalab can read (a PNG or JPEG 'source')");
-    const long long sampler = Index(d_, t, "sampler", tat, "samplers");
+    const long long sampler = GltfIndex(d_, t, "sampler", tat, "samplers");
     if (sampler >= 0) {
       const Json& sm = d_.j["samplers"][static_cast<size_t>(sampler)];
-      const std::string sat = At("/samplers", static_cast<size_t>(sampler));
+      const std::string sat = GltfAt("/samplers", static_cast<size_t>(sampler));
       const long long mag = GltfInt(d_, sm, "magFilter", sat, 9729, 9728, 9729);
       const long long min = GltfInt(d_, sm, "minFilter", sat, 9987, 9728, 9987);
-      if (min > 9729 && min < 9984) d_.Fail(At(sat, "minFilter"), std::to_string(min) + " (allowed: 9728, 9729, 9984, 9985, 9986, 9987)");
+      if (min > 9729 && min < 9984) d_.Fail(GltfAt(sat, "minFilter"), std::to_string(min) + " (allowed: 9728, 9729, 9984, 9985, 9986, 9987)");
       ref.filter = SamplerFilterOf(static_cast<int>(mag), static_cast<int>(min));
       for (const char* w : {"wrapS", "wrapT"}) {
         const long long v = GltfInt(d_, sm, w, sat, 10497, 10497, 33648);
-        if (v != 10497 && v != 33071 && v != 33648) d_.Fail(At(sat, w), std::to_string(v) + " (allowed: 10497, 33071, 33648)");
+        if (v != 10497 && v != 33071 && v != 33648) d_.Fail(GltfAt(sat, w), std::to_string(v) + " (allowed: 10497, 33071, 33648)");
         (std::string(w) == "wrapS" ? ref.wrap_s : ref.wrap_t) = ToWrap(v);
       }
     }
@@ -445,26 +432,26 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
   bool morphed = false, skipped = false;
   for (size_t ni : graph.order) {
     const Json& node = nodes[ni];
-    const std::string nat = At("/nodes", ni);
-    const long long mi = Index(d, node, "mesh", nat, "meshes");
+    const std::string nat = GltfAt("/nodes", ni);
+    const long long mi = GltfIndex(d, node, "mesh", nat, "meshes");
     if (mi < 0) continue;
-    const std::string mat_at = At("/meshes", static_cast<size_t>(mi));
+    const std::string mat_at = GltfAt("/meshes", static_cast<size_t>(mi));
     const Json& mesh = meshes[static_cast<size_t>(mi)];
     if (!mesh.is_object()) d.Fail(mat_at, "must be an object");
     // Skin: each joint's world matrix times its inverse bind matrix.
     std::vector<glm::dmat4> joints;
-    const long long ski = Index(d, node, "skin", nat, "skins");
+    const long long ski = GltfIndex(d, node, "skin", nat, "skins");
     if (ski >= 0) {
       const Json& skin = d.j["skins"][static_cast<size_t>(ski)];
-      const std::string sat = At("/skins", static_cast<size_t>(ski));
+      const std::string sat = GltfAt("/skins", static_cast<size_t>(ski));
       const Json& js = GltfArray(d, skin, "joints", sat);
       std::vector<float> ibm;
-      const long long ia = Index(d, skin, "inverseBindMatrices", sat, "accessors");
-      if (ia >= 0) ibm = ReadGltfFloats(d, ia, At(sat, "inverseBindMatrices"), 16);
-      if (!ibm.empty() && ibm.size() / 16 < js.size()) d.Fail(At(sat, "inverseBindMatrices"), "has fewer matrices than the skin has joints");
+      const long long ia = GltfIndex(d, skin, "inverseBindMatrices", sat, "accessors");
+      if (ia >= 0) ibm = ReadGltfFloats(d, ia, GltfAt(sat, "inverseBindMatrices"), 16);
+      if (!ibm.empty() && ibm.size() / 16 < js.size()) d.Fail(GltfAt(sat, "inverseBindMatrices"), "has fewer matrices than the skin has joints");
       for (size_t k = 0; k < js.size(); ++k) {
         if (!js[k].is_number_integer() || js[k].get<long long>() < 0 || js[k].get<size_t>() >= nodes.size()) {
-          d.Fail(At(At(sat, "joints"), k), "names node " + js[k].dump() + ", which does not exist (rule: index out of range)");
+          d.Fail(GltfAt(GltfAt(sat, "joints"), k), "names node " + js[k].dump() + ", which does not exist (rule: index out of range)");
         }
         glm::dmat4 b(1.0);
         for (int c = 0; c < 16 && !ibm.empty(); ++c) b[c / 4][c % 4] = ibm[k * 16 + static_cast<size_t>(c)];
@@ -476,7 +463,7 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
     const Json& prims = GltfArray(d, mesh, "primitives", mat_at);
     for (size_t pi = 0; pi < prims.size(); ++pi) {
       const Json& pr = prims[pi];
-      const std::string at = At(At(mat_at, "primitives"), pi);
+      const std::string at = GltfAt(GltfAt(mat_at, "primitives"), pi);
       if (!pr.is_object()) d.Fail(at, "must be an object");
       const long long mode = GltfInt(d, pr, "mode", at, 4, 0, 6);
       if (mode < 4) {
@@ -491,7 +478,7 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
       const bool skinned = !joints.empty() && p.attr.count("JOINTS_0") && p.attr.count("WEIGHTS_0");
       Shape s = BuildShape(d, p, at, mode, graph.world[ni], skinned ? &joints : nullptr);
       if (s.triangles.empty()) continue;
-      const long long fm = Index(d, pr, "material", at, "materials");
+      const long long fm = GltfIndex(d, pr, "material", at, "materials");
       auto it = material_of.find(fm);
       if (it == material_of.end()) {
         it = material_of.emplace(fm, static_cast<int>(out.materials.size())).first;
@@ -529,20 +516,20 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
   // Cameras: projection from the JSON, placement from the node (glTF cameras look down −Z).
   const Json& cams = GltfArray(d, d.j, "cameras", "");
   for (size_t ni : graph.order) {
-    const long long ci = Index(d, nodes[ni], "camera", At("/nodes", ni), "cameras");
+    const long long ci = GltfIndex(d, nodes[ni], "camera", GltfAt("/nodes", ni), "cameras");
     if (ci < 0) continue;
     const Json& cj = cams[static_cast<size_t>(ci)];
-    const std::string at = At("/cameras", static_cast<size_t>(ci));
+    const std::string at = GltfAt("/cameras", static_cast<size_t>(ci));
     Camera cam;
     const std::string type = cj.contains("type") && cj["type"].is_string() ? cj["type"].get<std::string>() : "";
     if (type == "perspective" && cj.contains("perspective")) {
       cam.type = CameraType::kPerspective;
-      cam.fov_y_deg = static_cast<float>(GltfNum(d, cj["perspective"], "yfov", At(at, "perspective"), -1.0, 1e-6, 3.12) * 57.29577951308232);
-      if (!(cam.fov_y_deg > 0.0f)) d.Fail(At(at, "perspective/yfov"), "is required (radians in (0, 3.12))");
+      cam.fov_y_deg = static_cast<float>(GltfNum(d, cj["perspective"], "yfov", GltfAt(at, "perspective"), -1.0, 1e-6, 3.12) * 57.29577951308232);
+      if (!(cam.fov_y_deg > 0.0f)) d.Fail(GltfAt(at, "perspective/yfov"), "is required (radians in (0, 3.12))");
     } else if (type == "orthographic" && cj.contains("orthographic")) {
       cam.type = CameraType::kOrthographic;
-      cam.height = static_cast<float>(2.0 * GltfNum(d, cj["orthographic"], "ymag", At(at, "orthographic"), -1.0, -1e9, 1e9));
-      if (!(cam.height != 0.0f)) d.Fail(At(at, "orthographic/ymag"), "is required (non-zero)");
+      cam.height = static_cast<float>(2.0 * GltfNum(d, cj["orthographic"], "ymag", GltfAt(at, "orthographic"), -1.0, -1e9, 1e9));
+      if (!(cam.height != 0.0f)) d.Fail(GltfAt(at, "orthographic/ymag"), "is required (non-zero)");
       cam.height = std::fabs(cam.height);
     } else {
       d.Fail(at, "is neither a perspective (yfov) nor an orthographic (ymag) camera");
@@ -553,8 +540,13 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
     cam.up = glm::vec3(glm::normalize(glm::dmat3(w) * glm::dvec3(0, 1, 0)));
     out.cameras.push_back(cam);
   }
-  // KHR_lights_punctual: read by scenes/gltf_lights.h (GltfPunctualLights) where the scene
-  // file's object places the model (AddGltfObject in scene_parse.cpp).
+  // KHR_lights_punctual from this same parsed document (scenes/gltf_lights.h), checked before
+  // any texture is decoded; AddGltfObject (scene_parse.cpp) places them by the object.
+  try {
+    out.lights = GltfPunctualLights(d.j);
+  } catch (const nlohmann::json::exception& e) {
+    throw UserError(std::string("KHR_lights_punctual: malformed node or light (") + e.what() + ")");
+  }
 
   // Textures: every header and the budget first, then the decodes (scenes/gltf_images.cpp).
   std::vector<std::pair<long long, bool>> wanted(mats.Images().size());

@@ -21,6 +21,7 @@ struct GltfContent {
   std::vector<Material> materials;  ///< TextureRef::image indexes `images`
   std::vector<std::shared_ptr<const MipChain>> images;
   std::vector<Camera> cameras;      ///< the file's cameras, in node order, placed by their nodes
+  std::vector<Light> lights;        ///< KHR_lights_punctual lights (scenes/gltf_lights.h), in world space of the file
   size_t triangles = 0;
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  ///< of every vertex drawn
   /// Notes for the user: extensions used but not drawn (one line listing all), animations,

@@ -134,7 +134,10 @@ uint64_t SceneContentHash(const Scene& s) {
     h.S("image");
     const MipLevel& l0 = img->levels[0];
     h.I(l0.width), h.I(l0.height);
-    for (const glm::vec4& t : l0.texels) h.V3(glm::vec3(t)), h.F(t.w);
+    for (size_t i = 0; i < static_cast<size_t>(l0.width) * l0.height; ++i) {
+      const glm::vec4 t = l0.Fetch(i);
+      h.V3(glm::vec3(t)), h.F(t.w);
+    }
   }
   for (const Shape& sh : s.shapes) {
     if (sh.uvs1.empty()) continue;

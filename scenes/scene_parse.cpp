@@ -14,7 +14,6 @@
 #include "core/error.h"
 #include "core/input_files.h"
 #include "core/params.h"
-#include "scenes/gltf_lights.h"
 #include "scenes/gltf_load.h"
 #include "scenes/lighting_parse.h"
 #include "scenes/json_fields.h"
@@ -333,19 +332,13 @@ void AddGltfObject(Scene& s, const JsonField& o, const std::string& base_dir, st
     }
     s.shapes.push_back(std::move(sh));
   }
-  // The file's KHR_lights_punctual lights, placed by the object's transform (the extension's
-  // own units: scenes/gltf_lights.h).
-  try {
-    for (Light l : GltfPunctualLights(ReadGltfJson(p.string()))) {
-      l.position = glm::vec3(m * glm::vec4(l.position, 1.0f));
-      const glm::vec3 d = glm::mat3(m) * l.direction;
-      if (glm::length(d) > 0.0f) l.direction = glm::normalize(d);
-      s.lights.push_back(l);
-    }
-  } catch (const UserError& e) {
-    file.Fail(e.what());
-  } catch (const nlohmann::json::exception& e) {
-    file.Fail(std::string("KHR_lights_punctual: malformed node or light (") + e.what() + ")");
+  // The file's KHR_lights_punctual lights (read by LoadGltf from its parsed document, in the
+  // extension's own units: scenes/gltf_lights.h), placed by the object's transform.
+  for (Light l : g.lights) {
+    l.position = glm::vec3(m * glm::vec4(l.position, 1.0f));
+    const glm::vec3 d = glm::mat3(m) * l.direction;
+    if (glm::length(d) > 0.0f) l.direction = glm::normalize(d);
+    s.lights.push_back(l);
   }
   if (cameras.empty()) {
     for (Camera c : g.cameras) {

@@ -1,25 +1,204 @@
-// Image textures: decoding through OpenImageIO, box-filtered mip chains, wrap modes,
-// bilinear / trilinear / anisotropic sampling (scenes/texture_image.h).
+// Image textures: decoding through OpenImageIO, compact storage (RGBA8 sRGB / linear with
+// 256-entry decode tables, half for 16-bit and float images), box-filtered mip chains built
+// in the stored format as glGenerateMipmap does, wrap modes, bilinear / trilinear /
+// anisotropic sampling (scenes/texture_image.h). The RGBA8 tables hold OpenImageIO's own
+// UINT8 -> FLOAT conversion, so an 8-bit level 0 fetches the same floats the float decode
+// before issue #35 stored (the mips differ: they are 8-bit now, as engines store them).
 #include "scenes/texture_image.h"
 
 #include <OpenImageIO/filesystem.h>
+#include <Imath/half.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 #include "core/color.h"
 #include "core/error.h"
 
 namespace aalab {
 
+const float* Unorm8Table() {
+  static const std::array<float, 256> table = [] {
+    std::array<uint8_t, 256> codes{};
+    for (int i = 0; i < 256; ++i) codes[static_cast<size_t>(i)] = static_cast<uint8_t>(i);
+    std::array<float, 256> t{};
+    // OpenImageIO's own UINT8 -> FLOAT conversion: the floats its read_image(FLOAT) returns.
+    OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes.data(), OIIO::TypeDesc::FLOAT, t.data(), 256);
+    return t;
+  }();
+  return table.data();
+}
+
+const float* Srgb8Table() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (size_t i = 0; i < 256; ++i) t[i] = SrgbDecode(Unorm8Table()[i]);
+    return t;
+  }();
+  return table.data();
+}
+
+float HalfToFloat(uint16_t h) {
+  Imath::half v;
+  v.setBits(h);
+  return static_cast<float>(v);
+}
+
+uint16_t FloatToHalf(float f) { return Imath::half(f).bits(); }
+
+size_t MipLevel::Bytes() const {
+  return texels.size() * sizeof(glm::vec4) + bytes.size() + halves.size() * sizeof(uint16_t);
+}
+
+MipLevel ToFloatLevel(const MipLevel& l) {
+  MipLevel f;
+  f.width = l.width;
+  f.height = l.height;
+  f.texels.resize(static_cast<size_t>(l.width) * l.height);
+  for (size_t i = 0; i < f.texels.size(); ++i) f.texels[i] = l.Fetch(i);
+  return f;
+}
+
 size_t MipChain::Bytes() const {
   size_t n = 0;
-  for (const MipLevel& l : levels) n += l.texels.size() * sizeof(glm::vec4);
+  for (const MipLevel& l : levels) n += l.Bytes();
   return n;
 }
 
-size_t MipChain::Bytes8() const { return Bytes() / 4; }
+size_t MipChain::Bytes8() const {
+  size_t n = 0;
+  for (const MipLevel& l : levels) n += static_cast<size_t>(l.width) * l.height * 4;
+  return n;
+}
+
+namespace {
+
+/// A level of `format` with room for w × h texels.
+MipLevel EmptyLevel(int w, int h, TexelFormat format) {
+  MipLevel l;
+  l.width = w;
+  l.height = h;
+  l.format = format;
+  const size_t n = static_cast<size_t>(w) * h;
+  switch (format) {
+    case TexelFormat::kFloat: l.texels.assign(n, glm::vec4(0.0f)); break;
+    case TexelFormat::kSrgb8:
+    case TexelFormat::kUnorm8: l.bytes.assign(4 * n, 0); break;
+    case TexelFormat::kHalf: l.halves.assign(4 * n, 0); break;
+  }
+  return l;
+}
+
+/// The 8-bit sRGB code of a linear value: the code whose encoded interval holds it, i.e. the
+/// number of code midpoints SrgbDecode((k + ½)/255), k = 0..254, at or below v (the code
+/// rounding SrgbEncode(v)·255 to nearest gives, up to float rounding at a midpoint), found
+/// without a pow: a 4096-bucket table gives the code at the bucket's low end, and the
+/// midpoints inside the bucket (at most a few) are stepped over.
+uint8_t EncodeSrgb8(float v) {
+  struct Tables {
+    std::array<float, 256> mid{};  // mid[255] = +inf: no code above 255
+    std::array<uint8_t, 4097> start{};
+  };
+  static const Tables t = [] {
+    Tables r;
+    for (size_t k = 0; k < 255; ++k) r.mid[k] = SrgbDecode((static_cast<float>(k) + 0.5f) / 255.0f);
+    r.mid[255] = std::numeric_limits<float>::infinity();
+    for (size_t b = 0; b <= 4096; ++b) {
+      const float lo = static_cast<float>(b) / 4096.0f;
+      r.start[b] = static_cast<uint8_t>(std::upper_bound(r.mid.begin(), r.mid.begin() + 255, lo) - r.mid.begin());
+    }
+    return r;
+  }();
+  if (!(v > 0.0f)) return 0;  // also NaN
+  if (v >= 1.0f) return 255;
+  // b/4096 <= v for b = floor(v·4096) (exact in float), so start[b] <= the answer.
+  unsigned code = t.start[static_cast<size_t>(v * 4096.0f)];
+  while (t.mid[code] <= v) ++code;
+  return static_cast<uint8_t>(code);
+}
+
+/// Texel i of a float or half level (MipLevel::Fetch, unswitched).
+template <TexelFormat F>
+glm::dvec4 FetchAs(const MipLevel& l, size_t i) {
+  if constexpr (F == TexelFormat::kFloat) {
+    return glm::dvec4(l.texels[i]);
+  } else {
+    const uint16_t* p = &l.halves[4 * i];
+    return {HalfToFloat(p[0]), HalfToFloat(p[1]), HalfToFloat(p[2]), HalfToFloat(p[3])};
+  }
+}
+
+/// Stores the linear texel v at i of a float (as is) or half (rounded to nearest) level.
+template <TexelFormat F>
+void StoreAs(MipLevel& l, size_t i, const glm::dvec4& v) {
+  if constexpr (F == TexelFormat::kFloat) {
+    l.texels[i] = glm::vec4(v);
+  } else {
+    for (int c = 0; c < 4; ++c) l.halves[4 * i + c] = FloatToHalf(static_cast<float>(v[c]));
+  }
+}
+
+/// Source rows (or columns) of destination index y: 2y and 2y + 1, plus the odd last one on
+/// the last destination index, so every source texel contributes.
+std::pair<int, int> SourceSpan(int y, int dst_n, int src_n) {
+  const int y0 = std::min(2 * y, src_n - 1);
+  const int y1 = (y == dst_n - 1) ? src_n - 1 : std::min(2 * y + 1, src_n - 1);
+  return {y0, y1};
+}
+
+/// The next level of `src`: 2 × 2 box averages, odd last rows and columns folded in.
+template <TexelFormat F>
+MipLevel Downsample(const MipLevel& src) {
+  MipLevel dst = EmptyLevel(std::max(1, src.width / 2), std::max(1, src.height / 2), F);
+  for (int y = 0; y < dst.height; ++y) {
+    const auto [y0, y1] = SourceSpan(y, dst.height, src.height);
+    for (int x = 0; x < dst.width; ++x) {
+      const auto [x0, x1] = SourceSpan(x, dst.width, src.width);
+      const size_t o = static_cast<size_t>(y) * dst.width + x;
+      if constexpr (F == TexelFormat::kUnorm8 || F == TexelFormat::kSrgb8) {
+        // Linear 8-bit channels (all four of kUnorm8, alpha of kSrgb8): the mean of the
+        // codes rounded half up, in integers. sRGB colour: the mean in linear light (double),
+        // encoded by EncodeSrgb8.
+        const float* lin = Srgb8Table();
+        unsigned isum[4] = {0, 0, 0, 0};
+        double lsum[3] = {0.0, 0.0, 0.0};
+        unsigned n = 0;
+        for (int sy = y0; sy <= y1; ++sy) {
+          const uint8_t* row = &src.bytes[4 * (static_cast<size_t>(sy) * src.width)];
+          for (int sx = x0; sx <= x1; ++sx) {
+            const uint8_t* p = row + 4 * static_cast<size_t>(sx);
+            for (int c = 0; c < 4; ++c) isum[c] += p[c];
+            if constexpr (F == TexelFormat::kSrgb8) {
+              for (int c = 0; c < 3; ++c) lsum[c] += lin[p[c]];
+            }
+            ++n;
+          }
+        }
+        for (int c = 0; c < 4; ++c) {
+          uint8_t v = static_cast<uint8_t>((2 * isum[c] + n) / (2 * n));
+          if (F == TexelFormat::kSrgb8 && c < 3) v = EncodeSrgb8(static_cast<float>(lsum[c] / n));
+          dst.bytes[4 * o + static_cast<size_t>(c)] = v;
+        }
+      } else {
+        glm::dvec4 sum(0.0);
+        int n = 0;
+        for (int sy = y0; sy <= y1; ++sy) {
+          for (int sx = x0; sx <= x1; ++sx) {
+            sum += FetchAs<F>(src, static_cast<size_t>(sy) * src.width + sx);
+            ++n;
+          }
+        }
+        StoreAs<F>(dst, o, sum / static_cast<double>(n));
+      }
+    }
+  }
+  return dst;
+}
+
+}  // namespace
 
 MipChain BuildMipChain(MipLevel level0, std::string name) {
   MipChain chain;
@@ -28,26 +207,11 @@ MipChain BuildMipChain(MipLevel level0, std::string name) {
   while (chain.levels.back().width > 1 || chain.levels.back().height > 1) {
     const MipLevel& src = chain.levels.back();
     MipLevel dst;
-    dst.width = std::max(1, src.width / 2);
-    dst.height = std::max(1, src.height / 2);
-    dst.texels.assign(static_cast<size_t>(dst.width) * dst.height, glm::vec4(0.0f));
-    for (int y = 0; y < dst.height; ++y) {
-      // Source rows of this texel: 2y, 2y+1, plus the odd last row on the last texel.
-      const int y0 = std::min(2 * y, src.height - 1);
-      const int y1 = (y == dst.height - 1) ? src.height - 1 : std::min(2 * y + 1, src.height - 1);
-      for (int x = 0; x < dst.width; ++x) {
-        const int x0 = std::min(2 * x, src.width - 1);
-        const int x1 = (x == dst.width - 1) ? src.width - 1 : std::min(2 * x + 1, src.width - 1);
-        glm::dvec4 sum(0.0);
-        int n = 0;
-        for (int sy = y0; sy <= y1; ++sy) {
-          for (int sx = x0; sx <= x1; ++sx) {
-            sum += glm::dvec4(src.texels[static_cast<size_t>(sy) * src.width + sx]);
-            ++n;
-          }
-        }
-        dst.texels[static_cast<size_t>(y) * dst.width + x] = glm::vec4(sum / static_cast<double>(n));
-      }
+    switch (src.format) {
+      case TexelFormat::kFloat: dst = Downsample<TexelFormat::kFloat>(src); break;
+      case TexelFormat::kSrgb8: dst = Downsample<TexelFormat::kSrgb8>(src); break;
+      case TexelFormat::kUnorm8: dst = Downsample<TexelFormat::kUnorm8>(src); break;
+      case TexelFormat::kHalf: dst = Downsample<TexelFormat::kHalf>(src); break;
     }
     chain.levels.push_back(std::move(dst));
   }
@@ -75,6 +239,25 @@ std::unique_ptr<OIIO::ImageInput> OpenImage(OIIO::Filesystem::IOMemReader& mem, 
   return in;
 }
 
+/// The header rules (size, channel count), checked before any texel is read.
+void CheckSpec(const OIIO::ImageSpec& spec, const std::string& name) {
+  if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSize || spec.height > kMaxTextureSize) {
+    throw UserError("texture " + name + " has size " + std::to_string(spec.width) + "x" +
+                    std::to_string(spec.height) + " (allowed: 1 to " + std::to_string(kMaxTextureSize) +
+                    " texels a side)");
+  }
+  if (spec.nchannels < 1 || spec.nchannels > 4) {
+    throw UserError("texture " + name + " has " + std::to_string(spec.nchannels) + " channels (allowed: 1 to 4)");
+  }
+}
+
+/// Channel c (0..3: R, G, B, A) of a texel of nc channels: grey replicates, alpha 1 if absent.
+template <typename T>
+T Channel(const T* p, int nc, int c, T one) {
+  if (c == 3) return nc == 2 || nc == 4 ? p[nc - 1] : one;
+  return nc <= 2 ? p[0] : p[c];
+}
+
 }  // namespace
 
 size_t TextureHeader::Bytes8Chain() const {
@@ -91,14 +274,7 @@ TextureHeader ProbeTextureImage(const std::string& name, const std::string& path
   OIIO::Filesystem::IOMemReader mem(const_cast<uint8_t*>(data), size);
   const std::unique_ptr<OIIO::ImageInput> in = OpenImage(mem, name, path, data, hint);
   const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSize || spec.height > kMaxTextureSize) {
-    throw UserError("texture " + name + " has size " + std::to_string(spec.width) + "x" +
-                    std::to_string(spec.height) + " (allowed: 1 to " + std::to_string(kMaxTextureSize) +
-                    " texels a side)");
-  }
-  if (spec.nchannels < 1 || spec.nchannels > 4) {
-    throw UserError("texture " + name + " has " + std::to_string(spec.nchannels) + " channels (allowed: 1 to 4)");
-  }
+  CheckSpec(spec, name);
   return {spec.width, spec.height, spec.nchannels};
 }
 
@@ -107,53 +283,50 @@ MipLevel DecodeTextureImage(const std::string& name, const std::string& path, co
   // The memory reader outlives the input (declared first, destroyed last). OpenImageIO 2.4's
   // PNG/JPEG readers take the proxy from the configuration's "oiio:ioproxy" attribute.
   OIIO::Filesystem::IOMemReader mem(const_cast<uint8_t*>(data), size);
-  std::unique_ptr<OIIO::ImageInput> in;
-  if (data) {
-    const std::string fake = "embedded." + (hint.empty() ? std::string("png") : hint);
-    OIIO::ImageSpec config;
-    void* proxy = &mem;
-    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    in = OIIO::ImageInput::open(fake, &config, &mem);
-  } else {
-    in = OIIO::ImageInput::open(path);
-  }
-  if (!in) {
-    const std::string why = OIIO::geterror();
-    throw UserError("texture " + name + " cannot be decoded" + (why.empty() ? std::string() : ": " + why));
-  }
+  const std::unique_ptr<OIIO::ImageInput> in = OpenImage(mem, name, path, data, hint);
   const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSize || spec.height > kMaxTextureSize) {
-    throw UserError("texture " + name + " has size " + std::to_string(spec.width) + "x" +
-                    std::to_string(spec.height) + " (allowed: 1 to " + std::to_string(kMaxTextureSize) +
-                    " texels a side)");
-  }
+  CheckSpec(spec, name);
   const int nc = spec.nchannels;
-  if (nc < 1 || nc > 4) {
-    throw UserError("texture " + name + " has " + std::to_string(nc) + " channels (allowed: 1 to 4)");
-  }
-  std::vector<float> raw(static_cast<size_t>(spec.width) * spec.height * nc);
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data())) {
-    throw UserError("texture " + name + " cannot be decoded: " + in->geterror());
-  }
+  const size_t count = static_cast<size_t>(spec.width) * spec.height;
   MipLevel level;
   level.width = spec.width;
   level.height = spec.height;
-  level.texels.resize(static_cast<size_t>(spec.width) * spec.height);
-  for (size_t i = 0; i < level.texels.size(); ++i) {
-    const float* p = &raw[i * nc];
-    glm::vec4 t;
-    if (nc <= 2) {
-      t = glm::vec4(p[0], p[0], p[0], nc == 2 ? p[1] : 1.0f);
-    } else {
-      t = glm::vec4(p[0], p[1], p[2], nc == 4 ? p[3] : 1.0f);
+  if (spec.format == OIIO::TypeDesc::UINT8) {
+    // 8-bit stays 8-bit: the codes as stored, decoded on fetch (MipLevel::Fetch). RGB and
+    // RGBA read straight into the RGBA8 level (4-byte texel stride); grey through a copy.
+    level.format = srgb ? TexelFormat::kSrgb8 : TexelFormat::kUnorm8;
+    level.bytes.resize(4 * count);
+    if (nc >= 3) {
+      if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, level.bytes.data(), 4)) {
+        throw UserError("texture " + name + " cannot be decoded: " + in->geterror());
+      }
+      if (nc == 3) {
+        for (size_t i = 0; i < count; ++i) level.bytes[4 * i + 3] = 255;
+      }
+      return level;
     }
+    std::vector<uint8_t> raw(count * static_cast<size_t>(nc));
+    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, raw.data())) {
+      throw UserError("texture " + name + " cannot be decoded: " + in->geterror());
+    }
+    for (size_t i = 0; i < count; ++i) {
+      for (int c = 0; c < 4; ++c) level.bytes[4 * i + c] = Channel<uint8_t>(&raw[i * nc], nc, c, 255);
+    }
+    return level;
+  }
+  std::vector<float> raw(count * static_cast<size_t>(nc));
+  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data())) {
+    throw UserError("texture " + name + " cannot be decoded: " + in->geterror());
+  }
+  level.format = TexelFormat::kHalf;
+  level.halves.resize(4 * count);
+  for (size_t i = 0; i < count; ++i) {
     for (int c = 0; c < 4; ++c) {
-      if (!std::isfinite(t[c])) throw UserError("texture " + name + " has a non-finite texel");
+      float v = Channel<float>(&raw[i * nc], nc, c, 1.0f);
+      if (!std::isfinite(v)) throw UserError("texture " + name + " has a non-finite texel");
+      if (srgb && c < 3) v = SrgbDecode(v);
+      level.halves[4 * i + c] = FloatToHalf(v);
     }
-    if (srgb) {
-      for (int c = 0; c < 3; ++c) t[c] = SrgbDecode(t[c]);
-    }
-    level.texels[i] = t;
   }
   return level;
 }
@@ -198,7 +371,7 @@ double FoldCoord(double x, int n, WrapMode mode) {
 }  // namespace
 
 glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t) {
-  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return level.texels[0];
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return level.Fetch(0);
   const double x = FoldCoord(static_cast<double>(uv.x) * level.width - 0.5, level.width, wrap_s);
   const double y = FoldCoord(static_cast<double>(uv.y) * level.height - 0.5, level.height, wrap_t);
   const double fx = std::floor(x), fy = std::floor(y);
@@ -206,7 +379,7 @@ glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, W
   const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
   const int i0 = WrapIndex(x0, level.width, wrap_s), i1 = WrapIndex(x0 + 1, level.width, wrap_s);
   const int j0 = WrapIndex(y0, level.height, wrap_t), j1 = WrapIndex(y0 + 1, level.height, wrap_t);
-  auto at = [&](int i, int j) { return level.texels[static_cast<size_t>(j) * level.width + i]; };
+  auto at = [&](int i, int j) { return level.Fetch(static_cast<size_t>(j) * level.width + i); };
   const glm::vec4 top = at(i0, j0) * (1.0f - ax) + at(i1, j0) * ax;
   const glm::vec4 bot = at(i0, j1) * (1.0f - ax) + at(i1, j1) * ax;
   return top * (1.0f - ay) + bot * ay;
@@ -263,12 +436,12 @@ SamplerFilter SamplerFilterOf(int mag, int min) {
 }
 
 glm::vec4 SampleNearest(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t) {
-  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return level.texels[0];
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return level.Fetch(0);
   const double x = FoldCoord(static_cast<double>(uv.x) * level.width, level.width, wrap_s);
   const double y = FoldCoord(static_cast<double>(uv.y) * level.height, level.height, wrap_t);
   const int i = WrapIndex(static_cast<int>(std::floor(x)), level.width, wrap_s);
   const int j = WrapIndex(static_cast<int>(std::floor(y)), level.height, wrap_t);
-  return level.texels[static_cast<size_t>(j) * level.width + i];
+  return level.Fetch(static_cast<size_t>(j) * level.width + i);
 }
 
 glm::vec4 SampleTextureFiltered(const MipChain& chain, glm::vec2 uv, const UvDerivs& d, WrapMode wrap_s,

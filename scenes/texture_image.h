@@ -1,4 +1,5 @@
-/// Image textures as a GPU samples them: a mip chain of linear RGBA float texels, bilinear
+/// Image textures as a GPU samples them: a mip chain stored as a GPU stores it (RGBA8 sRGB or
+/// linear, or RGBA half for 16-bit and float sources; float only for derived chains), bilinear
 /// taps with the sampler's wrap modes, trilinear filtering with the level chosen from the UV
 /// derivatives of the pixel footprint (the OpenGL 4.6 / Vulkan level-of-detail rule), and an
 /// optional anisotropic filter (up to 16 probes along the footprint's major axis).
@@ -17,27 +18,81 @@ namespace aalab {
 /// How a texture coordinate outside [0, 1) is folded back (glTF sampler wrapS / wrapT).
 enum class WrapMode { kRepeat, kClampToEdge, kMirroredRepeat };
 
-/// One level of a mip chain: width × height RGBA texels, row-major, row 0 at v = 0.
-struct MipLevel {
-  int width = 0, height = 0;
-  std::vector<glm::vec4> texels;
+/// How a level's texels are stored (what a GPU texture format would hold).
+enum class TexelFormat {
+  kFloat,   ///< RGBA float32 in `texels` (derived chains such as Toksvig's, tests)
+  kSrgb8,   ///< RGBA8 in `bytes`: RGB sRGB-encoded, decoded on fetch by a 256-entry table; alpha linear
+  kUnorm8,  ///< RGBA8 in `bytes`, linear (k/255 on fetch, by a 256-entry table)
+  kHalf,    ///< RGBA IEEE half in `halves` (16-bit and float sources), linear
 };
 
+/// One level of a mip chain: width × height RGBA texels, row-major, row 0 at v = 0, in one
+/// of the formats above. Fetch returns a texel as linear RGBA float whatever the format.
+struct MipLevel {
+  int width = 0, height = 0;
+  TexelFormat format = TexelFormat::kFloat;
+  std::vector<glm::vec4> texels;  ///< kFloat
+  std::vector<uint8_t> bytes;     ///< kSrgb8, kUnorm8: 4 a texel
+  std::vector<uint16_t> halves;   ///< kHalf: 4 a texel
+  /// Texel i (row-major) as linear RGBA.
+  glm::vec4 Fetch(size_t i) const;
+  /// Bytes of the texels as stored.
+  size_t Bytes() const;
+};
+
+/// Linear value of an 8-bit code: the same float OpenImageIO returns when it reads that code
+/// as FLOAT (so an RGBA8 level fetches the bits a float decode of the same image would hold),
+/// without (Unorm8Table) or with (Srgb8Table) the sRGB decode.
+const float* Unorm8Table();
+const float* Srgb8Table();
+/// IEEE half (round to nearest even, as OpenEXR's half) to float and back.
+float HalfToFloat(uint16_t h);
+uint16_t FloatToHalf(float f);
+
+inline glm::vec4 MipLevel::Fetch(size_t i) const {
+  switch (format) {
+    case TexelFormat::kFloat:
+      return texels[i];
+    case TexelFormat::kSrgb8: {
+      const uint8_t* p = &bytes[4 * i];
+      const float* s = Srgb8Table();
+      return {s[p[0]], s[p[1]], s[p[2]], Unorm8Table()[p[3]]};
+    }
+    case TexelFormat::kUnorm8: {
+      const uint8_t* p = &bytes[4 * i];
+      const float* u = Unorm8Table();
+      return {u[p[0]], u[p[1]], u[p[2]], u[p[3]]};
+    }
+    case TexelFormat::kHalf: {
+      const uint16_t* p = &halves[4 * i];
+      return {HalfToFloat(p[0]), HalfToFloat(p[1]), HalfToFloat(p[2]), HalfToFloat(p[3])};
+    }
+  }
+  return glm::vec4(0.0f);
+}
+
+/// Level `l` converted to kFloat (what Fetch returns for each texel). Pure.
+MipLevel ToFloatLevel(const MipLevel& l);
+
 /// A decoded texture image with its full mip chain (level 0 = the image, each next level
-/// half the size, rounded down, at least 1, down to 1 × 1). Colour texels are linear: an
-/// sRGB image is decoded to linear before the chain is built (as a GPU's *_SRGB formats
-/// filter in linear light); alpha is straight (not premultiplied).
+/// half the size, rounded down, at least 1, down to 1 × 1). Colour is filtered in linear
+/// light (as a GPU's *_SRGB formats filter); alpha is straight (not premultiplied).
 struct MipChain {
   std::string name;  ///< where it came from, for messages and the report
   std::vector<MipLevel> levels;
-  /// Bytes of the chain as stored here (16 bytes a texel).
+  /// Bytes of the chain as stored here (4 a texel for RGBA8, 8 for half, 16 for float).
   size_t Bytes() const;
   /// Bytes of the same chain in an RGBA8 GPU texture (4 bytes a texel).
   size_t Bytes8() const;
 };
 
 /// Builds the mip chain of `level0` by 2 × 2 box averages (an odd size folds its last row or
-/// column into the last texel of the next level, so every texel contributes). Pure.
+/// column into the last texel of the next level, so every texel contributes), each level
+/// from the one above as stored and in level 0's format, as glGenerateMipmap does (engines
+/// store RGBA8 mips): kSrgb8 colour averaged in linear light (double) and stored as the
+/// nearest sRGB code (the code whose encoded interval holds the mean), kUnorm8 channels and
+/// kSrgb8 alpha as the mean of the codes rounded half up, kHalf and kFloat averaged in double
+/// and rounded to the format. Pure.
 MipChain BuildMipChain(MipLevel level0, std::string name);
 
 /// Largest texture edge aalab accepts (a bigger declared size is refused before decoding).
@@ -45,8 +100,9 @@ inline constexpr int kMaxTextureSize = 16384;
 
 /// Decodes an image (PNG, JPEG, any format OpenImageIO reads) from a file or from memory
 /// (`data` non-null: `size` bytes, `hint` the format's extension, e.g. "png") into RGBA level
-/// 0. `srgb`: the RGB channels are sRGB-encoded and are decoded to linear; else they are
-/// used as stored (k/255). Grey images replicate into RGB; images without alpha get 1.
+/// 0. An 8-bit image stays 8-bit (kSrgb8 with `srgb`, else kUnorm8: decoded on fetch); any
+/// other (16-bit, half, float) is read as float, its RGB sRGB-decoded with `srgb`, and
+/// stored as kHalf. Grey images replicate into RGB; images without alpha get 1.
 /// Throws UserError naming `name` for undecodable data, a zero or larger than
 /// kMaxTextureSize size, or more than 4 channels.
 MipLevel DecodeTextureImage(const std::string& name, const std::string& path, const uint8_t* data, size_t size,

@@ -19,7 +19,7 @@
 namespace aalab {
 
 MipChain UnitNormalChain(const MipChain& normal_texture) {
-  MipLevel l0 = normal_texture.levels[0];
+  MipLevel l0 = ToFloatLevel(normal_texture.levels[0]);
   for (glm::vec4& t : l0.texels) {
     const glm::vec3 m = glm::vec3(t) * 2.0f - 1.0f;
     const float len = glm::length(m);

@@ -210,6 +210,15 @@ def quad(center, ax, ay, uv_scale=(1.0, 1.0)):
     return {"pos": p, "nrm": [n] * 4, "uv": uv, "idx": [0, 3, 2, 0, 2, 1]}  # counter-clockwise about ax x ay
 
 
+def quad_tangents(geo, ax):
+    """Adds glTF TANGENTs to a quad(): xyz along +u (= +ax), w = -1 because v grows along -ay,
+    so the bitangent cross(normal, tangent) * w points along +v (glTF 2.0 3.7.2.1). The same
+    frame aalab derives from the uvs when a file has none (scenes/tracer_gltf.cpp TangentAt)."""
+    ln = math.sqrt(sum(k * k for k in ax))
+    geo["tan"] = [[ax[0] / ln, ax[1] / ln, ax[2] / ln, -1.0]] * len(geo["pos"])
+    return geo
+
+
 def box(center, size):
     hx, hy, hz = size[0] / 2, size[1] / 2, size[2] / 2
     faces = [((hx, 0, 0), (0, 0, -hz), (0, hy, 0)), ((-hx, 0, 0), (0, 0, hz), (0, hy, 0)),
@@ -319,9 +328,12 @@ class Glb:
         pos = self.accessor(geo["pos"], 5126, "VEC3", 3, minmax=True)
         nrm = self.accessor(geo["nrm"], 5126, "VEC3", 3)
         uv = self.accessor(geo["uv"], 5126, "VEC2", 2)
+        attributes = {"POSITION": pos, "NORMAL": nrm, "TEXCOORD_0": uv}
+        if "tan" in geo:  # a normal-mapped mesh carries its tangent space (the validator asks for it)
+            attributes["TANGENT"] = self.accessor(geo["tan"], 5126, "VEC4", 4)
         idx = self.accessor(geo["idx"], 5125, "SCALAR", 1)
         self.doc["meshes"].append({"name": name, "primitives": [
-            {"attributes": {"POSITION": pos, "NORMAL": nrm, "TEXCOORD_0": uv}, "indices": idx, "material": material}]})
+            {"attributes": attributes, "indices": idx, "material": material}]})
         self.doc["nodes"].append({"name": name, "mesh": len(self.doc["meshes"]) - 1})
         self.doc["scenes"][0]["nodes"].append(len(self.doc["nodes"]) - 1)
 
@@ -506,7 +518,7 @@ def make_glossy():
                             normalTexture={"index": nrm, "scale": 1.0}))
     mfloor_m = g.doc["materials"][mfloor]
     mfloor_m["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {"index": rough}
-    g.mesh(quad([0, 0, -30], [30, 0, 0], [0, 0, 35], (12, 14)), mfloor, "floor")
+    g.mesh(quad_tangents(quad([0, 0, -30], [30, 0, 0], [0, 0, 35], (12, 14)), [30, 0, 0]), mfloor, "floor")
     g.camera([0, 1.6, 4], [0, 0.2, -20], 50)
     g.write(os.path.join(GLB_DIR, "glossy.glb"))
     return scene_json("real-glossy", "a normal-mapped glossy floor (roughness 0.09-0.18) with the sun's highlight: specular aliasing",

@@ -116,6 +116,7 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
       c.texture_bytes += img->Bytes();
       c.texture_bytes_rgba8 += img->Bytes8();
     }
+    for (const Scene::FileLoad& f : sc.load) c.load_ms += f.seconds * 1e3;
     sr.content = c;
   }
 

@@ -53,6 +53,7 @@ Json WithoutTimings(Json doc) {
   if (doc.contains("scenes")) {
     for (auto& s : doc["scenes"]) {
       Erase(s, "bvh_build_ms");
+      if (s.contains("content")) Erase(s["content"], "load_ms");
       if (s.contains("reference")) Erase(s["reference"], "time_ms");
       if (s.contains("sequence")) {
         Erase(s["sequence"], "scene_and_bvh_ms");

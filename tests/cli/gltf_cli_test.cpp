@@ -41,10 +41,13 @@ TEST(GltfCli, RealSceneIsIdenticalAtOneAndTwoThreads) {
   const auto& content = doc["scenes"][0]["content"];
   EXPECT_GT(content["triangles"].get<int>(), 100);
   EXPECT_EQ(content["textures"].get<int>(), 2);  // leaf and grass
-  // 256² leaf + 256² grass, full chains: 2 · (256² · 4/3 rounded to the levels) texels of 16 bytes.
+  // 256² leaf + 256² grass (8-bit PNGs, so stored as RGBA8), full chains: 2 · (256² · 4/3
+  // rounded to the levels) texels of 4 bytes.
   uint64_t texels = 0;
   for (int n = 256; n >= 1; n /= 2) texels += static_cast<uint64_t>(n) * n;
-  EXPECT_EQ(content["texture_bytes"].get<uint64_t>(), 2 * texels * 16);
+  EXPECT_EQ(content["texture_bytes"].get<uint64_t>(), 2 * texels * 4);
+  EXPECT_EQ(content["texture_bytes_rgba8"].get<uint64_t>(), 2 * texels * 4);
+  EXPECT_GT(content["load_ms"].get<double>(), 0.0);
   fs::remove_all(dir);
 }
 

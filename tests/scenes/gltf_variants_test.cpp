@@ -29,9 +29,10 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-fs::path Dir() {
-  static const fs::path d = testenv::ScratchDir("gltf-variants");
-  return d;
+/// This file's scratch folder, made on first use.
+const fs::path& Dir() {
+  static const fs::path kDir = testenv::ScratchDir("gltf-variants");
+  return kDir;
 }
 
 /// A bumpy 6 × 6 grid of quads on integer sixteenths (positions q/16, q an int16), uvs
