@@ -1,4 +1,4 @@
-#include "harness/core/color.h"
+#include "core/color.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 namespace {
