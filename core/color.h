@@ -22,6 +22,9 @@ struct Display {
 
 /// sRGB OETF (IEC 61966-2-1) for x in [0, 1]; input is clamped to [0, 1].
 float SrgbEncode(float linear);
+/// SrgbEncode as it is written in the standard, with libm's powf: the same bits as SrgbEncode
+/// for every float (SrgbEncode computes the power without the call; tests prove them equal).
+float SrgbEncodeLibm(float linear);
 /// Inverse sRGB OETF for x in [0, 1].
 float SrgbDecode(float encoded);
 /// Tonemaps one linear channel value (exposure already applied). Output is not clamped.

@@ -42,6 +42,11 @@ using Order = Fxaa311Params::Order;
 // many columns and rows (methods/fxaa311_plane.h, TapGrid): step 2 decides those pixels from
 // texel lumas unless the test is within the taps' deviation of a tie, and then with the real
 // taps; step 3 filters them like the reference.
+// Steps 1 and 2 run as one parallel pass over chunks of rows (issue #41): a chunk writes its
+// plane rows, tests them and copies its output rows while the input rows are in cache (the
+// rows just outside the chunk are recomputed locally: a neighbour may not have written them
+// yet). Near ties (which read taps around the pixel) and step 3 (whose search reads plane
+// rows anywhere) wait for a second pass, when the whole plane exists.
 // Tap counts are those of the reference: 5 for a pixel that exits, 9 + search + final
 // for an edge pixel. Tests compare this path with Fxaa311Reference bit for bit on real
 // and adversarial frames (tests/perf/fxaa_fast_test.cpp).
@@ -82,49 +87,29 @@ const LumaTables& Rec601Tables() {
   return t;
 }
 
-// Luma plane of the frame for the mode (step 1), rows in parallel.
-void BuildPlane(const Image8& in, Luma luma, LumaPlane<uint8_t>* plane) {
-  const int w = in.Width(), h = in.Height();
-  plane->w = w;
-  plane->h = h;
-  plane->v.reset(new uint8_t[static_cast<size_t>(w) * h]);
-  const LumaTables& rec = Rec601Tables();
-  const LumaTables& sq = SqrtLuminanceTables();
-  ParallelForChunks(h, 16, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      const uint8_t* p = in.Row(y);
-      uint8_t* o = plane->v.get() + static_cast<size_t>(y) * w;
-      if (luma == Luma::kGreen) {
-        for (int x = 0; x < w; ++x) o[x] = p[4 * x + 1];
-      } else if (luma == Luma::kRec601) {
-        // Fxaa311LumaFrame: StoreUnorm8(r·0.299 + (g·0.587 + b·0.114)), r = UnormToFloat.
-        for (int x = 0; x < w; ++x) {
-          o[x] = StoreUnorm8(rec.r[p[4 * x]] + (rec.g[p[4 * x + 1]] + rec.b[p[4 * x + 2]]));
-        }
-      } else {  // kSqrtLuminance: StoreUnorm8(sqrt((R·0.2126729 + G·0.7151522) + B·0.0721750))
-        for (int x = 0; x < w; ++x) {
-          o[x] = StoreUnorm8(std::sqrt((sq.r[p[4 * x]] + sq.g[p[4 * x + 1]]) + sq.b[p[4 * x + 2]]));
-        }
-      }
+// One row of the luma plane for the mode (step 1): `p` is an input row, `o` receives w lumas.
+void PlaneRow(const uint8_t* p, int w, Luma luma, uint8_t* o) {
+  if (luma == Luma::kGreen) {
+    for (int x = 0; x < w; ++x) o[x] = p[4 * x + 1];
+  } else if (luma == Luma::kRec601) {
+    // Fxaa311LumaFrame: StoreUnorm8(r·0.299 + (g·0.587 + b·0.114)), r = UnormToFloat.
+    const LumaTables& rec = Rec601Tables();
+    for (int x = 0; x < w; ++x) {
+      o[x] = StoreUnorm8(rec.r[p[4 * x]] + (rec.g[p[4 * x + 1]] + rec.b[p[4 * x + 2]]));
     }
-  });
+  } else {  // kSqrtLuminance: StoreUnorm8(sqrt((R·0.2126729 + G·0.7151522) + B·0.0721750))
+    const LumaTables& sq = SqrtLuminanceTables();
+    for (int x = 0; x < w; ++x) {
+      o[x] = StoreUnorm8(std::sqrt((sq.r[p[4 * x]] + sq.g[p[4 * x + 1]]) + sq.b[p[4 * x + 2]]));
+    }
+  }
 }
 
-void BuildPlane(const Image8& in, Luma, LumaPlane<float>* plane) {  // kRec601Rgb
-  const int w = in.Width(), h = in.Height();
-  plane->w = w;
-  plane->h = h;
-  plane->v.reset(new float[static_cast<size_t>(w) * h]);
-  ParallelForChunks(h, 16, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      const uint8_t* p = in.Row(y);
-      float* o = plane->v.get() + static_cast<size_t>(y) * w;
-      for (int x = 0; x < w; ++x) {
-        const float r = Unorm(p[4 * x]), g = Unorm(p[4 * x + 1]), b = Unorm(p[4 * x + 2]);
-        o[x] = r * 0.299f + (g * 0.587f + b * 0.114f);  // Fxaa311TapLuma(kRec601Rgb)
-      }
-    }
-  });
+void PlaneRow(const uint8_t* p, int w, Luma, float* o) {  // kRec601Rgb
+  for (int x = 0; x < w; ++x) {
+    const float r = Unorm(p[4 * x]), g = Unorm(p[4 * x + 1]), b = Unorm(p[4 * x + 2]);
+    o[x] = r * 0.299f + (g * 0.587f + b * 0.114f);  // Fxaa311TapLuma(kRec601Rgb)
+  }
 }
 
 // Step 2: edge[x] = 1 where the pixel passes the early exit and has range > 0. max/min are
@@ -138,17 +123,26 @@ inline bool NearTie(float range_max, float range, float thr, float thr_min, floa
   return std::fabs(range - clamped) <= margin;
 }
 
-// Step 2 for one row of float lumas (rec601-rgb): returns the number of edge pixels.
-// Pixels whose taps are off the texel centres and whose texel-luma test is a near tie
-// (NearTie) are decided with the real taps.
-int ContrastRow(const LumaPlane<float>& pl, const Image8& src, const TapGrid& g, int y,
-                const Fxaa311Params& prm, float margin, uint8_t* edge) {
-  const int w = pl.w;
+// Mark of a pixel in step 2's edge row: exits, goes on to the search, or must be decided with
+// the real taps (EdgeByTaps) once every plane row exists.
+constexpr uint8_t kExit = 0, kEdge = 1, kTie = 2;
+
+// The plane rows around row y: north, middle, south (clamped at the frame's border).
+template <typename P>
+struct RowTriple {
+  const P* n;
+  const P* m;
+  const P* s;
+};
+
+// Step 2 for one row of float lumas (rec601-rgb): returns the number of pixels not marked
+// kExit. Pixels whose taps are off the texel centres and whose texel-luma test is a near tie
+// (NearTie) are marked kTie.
+int ContrastRow(RowTriple<float> r, int w, const TapGrid& g, int y, const Fxaa311Params& prm, float margin,
+                uint8_t* edge) {
   const float thr = prm.edge_threshold, thr_min = prm.edge_threshold_min;
   const bool row_exact = g.rows[y].exact;
-  const float* rn = pl.Row(std::max(y - 1, 0));
-  const float* rm = pl.Row(y);
-  const float* rs = pl.Row(std::min(y + 1, pl.h - 1));
+  const float *rn = r.n, *rm = r.m, *rs = r.s;
   for (int x = 0; x < w; ++x) {
     const float n = rn[x], m = rm[x], s = rs[x], wv = rm[std::max(x - 1, 0)], e = rm[std::min(x + 1, w - 1)];
     const float mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
@@ -156,13 +150,13 @@ int ContrastRow(const LumaPlane<float>& pl, const Image8& src, const TapGrid& g,
     const float range = mx - mn;
     const float clamped = std::max(thr_min, mx * thr);
     if (!(row_exact && g.cols[x].exact) && NearTie(mx, range, thr, thr_min, margin)) {
-      edge[x] = EdgeByTaps(pl, src, g, x, y, prm) ? 1 : 0;
+      edge[x] = kTie;
     } else {
-      edge[x] = (range < clamped || range == 0.0f) ? 0 : 1;
+      edge[x] = (range < clamped || range == 0.0f) ? kExit : kEdge;
     }
   }
   int count = 0;
-  for (int x = 0; x < w; ++x) count += edge[x];
+  for (int x = 0; x < w; ++x) count += edge[x] != kExit;
   return count;
 }
 
@@ -197,22 +191,16 @@ ExitTable MakeExitTable(float thr, float thr_min, float margin) {
   return t;
 }
 
-// Step 2 for one row of 8-bit lumas, through the table: returns the number of edge pixels.
-// Pixels whose taps are off the texel centres and whose byte pair is a near tie are decided
-// with the real taps (EdgeByTaps); near-tie pairs are always candidates (ExitTable::safe).
-int ContrastRowBytes(const LumaPlane<uint8_t>& pl, const Image8& src, const TapGrid& g, int y,
-                     const Fxaa311Params& prm, const ExitTable& tab, uint8_t* edge) {
-  const int w = pl.w;
+// Step 2 for one row of 8-bit lumas, through the table: returns the number of pixels not
+// marked kExit. Pixels whose taps are off the texel centres and whose byte pair is a near tie
+// are marked kTie; near-tie pairs are always candidates (ExitTable::safe).
+int ContrastRowBytes(RowTriple<uint8_t> r, int w, const TapGrid& g, int y, const ExitTable& tab, uint8_t* edge) {
   const bool row_exact = g.rows[y].exact;
-  const uint8_t* rn = pl.Row(std::max(y - 1, 0));
-  const uint8_t* rm = pl.Row(y);
-  const uint8_t* rs = pl.Row(std::min(y + 1, pl.h - 1));
+  const uint8_t *rn = r.n, *rm = r.m, *rs = r.s;
   auto exact = [&](int x, uint8_t n, uint8_t wv, uint8_t m, uint8_t e, uint8_t s) -> uint8_t {
     const uint8_t mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
     const uint8_t mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
-    if (tab.near[mx * 256 + mn] && !(row_exact && g.cols[x].exact)) {
-      return EdgeByTaps(pl, src, g, x, y, prm) ? 1 : 0;
-    }
+    if (tab.near[mx * 256 + mn] && !(row_exact && g.cols[x].exact)) return kTie;
     return tab.edge[mx * 256 + mn];
   };
   if (w <= 2) {
@@ -243,7 +231,7 @@ int ContrastRowBytes(const LumaPlane<uint8_t>& pl, const Image8& src, const TapG
     }
   }
   int count = 0;
-  for (int x = 0; x < w; ++x) count += edge[x];
+  for (int x = 0; x < w; ++x) count += edge[x] != kExit;
   return count;
 }
 
@@ -425,7 +413,9 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
   if (255.0f * grid.deviation > 0.25f) return Fxaa311Reference(in, params, stats);
   const float margin = 3.0f * grid.deviation;
   LumaPlane<P> plane;
-  BuildPlane(in, params.luma, &plane);
+  plane.w = w;
+  plane.h = h;
+  plane.v.reset(new P[static_cast<size_t>(w) * h]);  // every row written by pass 1
   ExitTable exit_table;
   if constexpr (std::is_same_v<P, uint8_t>) {
     exit_table = MakeExitTable(params.edge_threshold, params.edge_threshold_min, margin);
@@ -434,34 +424,68 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
   const float rcpY = 1.0f / static_cast<float>(h);
   Image8 out(w, h, 4);
   constexpr int kGrain = 8;
+  // Step 2's marks (kExit / kEdge / kTie) for every pixel, and the non-kExit count per row.
+  std::unique_ptr<uint8_t[]> marks(new uint8_t[static_cast<size_t>(w) * h]);  // all written by pass 1
+  std::vector<int> candidates(static_cast<size_t>(h), 0);
+  // Pass 1 (steps 1 and 2 fused): a chunk's plane rows, its contrast test and the early exit's
+  // copy while the input rows are in cache. The rows just above and below the chunk belong to
+  // other chunks that may not have written them yet: they are computed here too (same bytes).
+  ParallelForChunks(h, kGrain, [&](int y0, int y1) {
+    thread_local std::vector<P> above, below;
+    if (above.size() < static_cast<size_t>(w)) above.resize(static_cast<size_t>(w));
+    if (below.size() < static_cast<size_t>(w)) below.resize(static_cast<size_t>(w));
+    P* pv = plane.v.get();
+    auto prow = [&](int y) { return pv + static_cast<size_t>(y) * w; };
+    for (int y = y0; y < y1; ++y) PlaneRow(in.Row(y), w, params.luma, prow(y));
+    const P* row_above = prow(0);
+    if (y0 > 0) {
+      PlaneRow(in.Row(y0 - 1), w, params.luma, above.data());
+      row_above = above.data();
+    }
+    const P* row_below = prow(h - 1);
+    if (y1 < h) {
+      PlaneRow(in.Row(y1), w, params.luma, below.data());
+      row_below = below.data();
+    }
+    for (int y = y0; y < y1; ++y) {
+      // Every pixel first as the early exit writes it: input rgb, alpha 255.
+      CopyRowOpaque(in.Row(y), out.Row(y), w);
+      const RowTriple<P> r{y == y0 ? row_above : prow(y - 1), prow(y), y == y1 - 1 ? row_below : prow(y + 1)};
+      uint8_t* edge = marks.get() + static_cast<size_t>(y) * w;
+      if constexpr (std::is_same_v<P, uint8_t>) {
+        candidates[static_cast<size_t>(y)] = ContrastRowBytes(r, w, grid, y, exit_table, edge);
+      } else {
+        candidates[static_cast<size_t>(y)] = ContrastRow(r, w, grid, y, params, margin, edge);
+      }
+    }
+  });
+  // Pass 2 (step 3), with the whole plane: near ties decided with the real taps, then the
+  // edge pixels' search. Rows without candidates are skipped.
   std::vector<uint64_t> taps(static_cast<size_t>((h + kGrain - 1) / kGrain), 0);
   ParallelForChunks(h, kGrain, [&](int y0, int y1) {
     BilinearSampler tex(in);  // rgb taps: the prepared frame's rgb is the input's rgb
-    thread_local std::vector<uint8_t> edge;
-    if (edge.size() < static_cast<size_t>(w)) edge.resize(static_cast<size_t>(w));
     uint64_t chunk_taps = 0;
     for (int y = y0; y < y1; ++y) {
-      // Every pixel first as the early exit writes it: input rgb, alpha 255.
-      uint8_t* orow = out.Row(y);
-      CopyRowOpaque(in.Row(y), orow, w);
-      int edges;
-      if constexpr (std::is_same_v<P, uint8_t>) {
-        edges = ContrastRowBytes(plane, in, grid, y, params, exit_table, edge.data());
-      } else {
-        edges = ContrastRow(plane, in, grid, y, params, margin, edge.data());
+      uint8_t* edge = marks.get() + static_cast<size_t>(y) * w;
+      int edges = candidates[static_cast<size_t>(y)];
+      for (int x = 0; x < w && edges > 0; ++x) {
+        if (edge[x] != kTie) continue;
+        edge[x] = EdgeByTaps(plane, in, grid, x, y, params) ? kEdge : kExit;
+        edges -= edge[x] == kExit;
       }
       chunk_taps += 5 * static_cast<uint64_t>(w - edges);
       if (edges == 0) continue;
+      uint8_t* orow = out.Row(y);
       for (int x = 0; x < w; ++x) {
         if ((x & 7) == 0 && x + 8 <= w) {  // skip 8 pixels at a time when none is an edge
           uint64_t word;
-          std::memcpy(&word, edge.data() + x, 8);
+          std::memcpy(&word, edge + x, 8);
           if (word == 0) {
             x += 7;
             continue;
           }
         }
-        if (!edge[x]) continue;
+        if (edge[x] != kEdge) continue;
         chunk_taps += EdgePixel(plane, grid, tex, in, x, y, params, rcpX, rcpY, orow + 4 * x);
       }
     }
