@@ -186,7 +186,7 @@ void WriteCompareHtml(const std::string& out, const CompareResult& res, const Re
     fs::rename(staging, files);
     guard.done = true;
   }
-  WriteTextFile(page.string(), CompareHtml(res, images, a.baseline, a.current));
+  WriteTextFile(page.string(), CompareHtml(res, images, a.baseline, a.current, &cur));
   std::printf("wrote %s (%zu changed rows; images copied to %s)\n", page.string().c_str(), images.size(),
               files.string().c_str());
   if (missing > 0) {

@@ -48,23 +48,13 @@ const AA = (function () {
     abZoom: 0,  // 0 = auto
     cropZoom: 0,
     split: 50,
+    crop: -1,  // the A/B view's crop window (-1: the whole image)
     pairA: null, pairB: 'reference',  // the two rows compared in 'two rows' mode (null A: the selected method)
     diffGain: 4,
   };
 
   // ---- helpers ----
-  function el(tag, attrs, ...kids) {
-    const e = document.createElement(tag);
-    for (const k in attrs || {}) {
-      const v = attrs[k];
-      if (v === null || v === undefined || v === false) continue;
-      if (k === 'text') e.textContent = v;
-      else if (k.startsWith('on')) e.addEventListener(k.slice(2), v);
-      else e.setAttribute(k, v === true ? '' : v);
-    }
-    for (const c of kids) if (c !== null && c !== undefined) e.append(c);
-    return e;
-  }
+  const el = AAB.el;  // abview.js, shared with the compare and sweep pages
   function sv(tag, attrs, ...kids) {
     const e = document.createElementNS(SVGNS, tag);
     for (const k in attrs || {}) {
@@ -91,7 +81,7 @@ const AA = (function () {
     return META.metrics[name] || { label: name, unit: '', better: 0, help: '', psnr: false };
   }
   function metricLabel(name) { const i = metricInfo(name); return i.label + (i.unit ? ' (' + i.unit + ')' : ''); }
-  function imgUrl(path) { return String(path).split('/').map(encodeURIComponent).join('/'); }
+  const imgUrl = AAB.imgUrl;
   function metricValue(row, name) {
     const v = row.metrics ? row.metrics[name] : undefined;
     return typeof v === 'number' ? v : null;

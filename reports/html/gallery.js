@@ -1,7 +1,8 @@
-// The HTML report's script, part 3: the gallery (A/B slider against the reference, `none` or
-// any two rows of the scene picked with two selects, `f` flipping A and B, and their
-// absolute-difference image drawn on a canvas), zoomed crops of every method, heatmaps, edge mask, debug views; arrow-key navigation), the
-// self-test behind `#selftest`, and the start-up call.
+// The HTML report's script, part 3: the gallery (the A/B comparison of abview.js against the
+// reference, `none` or any two rows of the scene: `f` flips, 1–9 zoom to a crop window, pixel
+// readout, |A − B|), zoomed crops of every method, heatmaps (one method, or several on one
+// colour bar), edge mask, debug views; arrow-key navigation), the self-test behind
+// `#selftest`, the two-rows test behind `#pairtest`, and the start-up call.
 (function () {
   const A = AA, el = A.el, state = A.state;
   let G = null;  // the one gallery that exists: { host, scene, specs, parts }
@@ -28,6 +29,7 @@
     // Open on a method that has an output on this scene (never a not-applicable row).
     if (!applicable(state.spec)) state.spec = specs.find(s => s !== 'none' && applicable(s)) || specs[0];
     const idx = A.scenes.indexOf(scene), n = A.scenes.length;
+    if (!G || G.scene !== scene) state.crop = -1;  // a new scene opens on its whole image
     const g = el('div', { class: 'gallery', tabindex: '0', role: 'region',
       'aria-label': 'Gallery of ' + scene.name + '. Left and right arrows switch methods, up and down switch scenes.' });
     const hasNone = specs.includes('none');
@@ -40,12 +42,12 @@
       el('span', {}, 'Compare with ', cmp('reference'), ' ', cmp('none'), ' ', cmp('two rows')),
       zoomSelect('A/B zoom', [0, 1, 2, 4, 8], state.abZoom, v => { state.abZoom = v; renderAB(); }),
       zoomSelect('Crop zoom', [0, 4, 6, 8], state.cropZoom, v => { state.cropZoom = v; renderCrops(); }),
-      el('span', { class: 'hint', text: 'Click here, then ←/→ method, ↑/↓ scene, f flips A and B. Every image opens its file.' })));
+      el('span', { class: 'hint', text: 'Click here, then ←/→ method, ↑/↓ scene, f flips A and B, 1–9 zoom to a crop window, 0 the whole image. Every image opens its file.' })));
     const methods = el('div', { class: 'methods', role: 'group', 'aria-label': 'Methods' },
       ...specs.map(s => el('button', { type: 'button', 'data-spec': s, 'aria-pressed': String(s === state.spec), onclick: () => A.select(s) }, s)));
-    const parts = { summary: el('div', { class: 'summary' }), pair: el('div', { class: 'pair-bar' }), ab: el('div'), diff: el('div', { class: 'diff-wrap' }), links: el('p', { class: 'links' }),
+    const parts = { summary: el('div', { class: 'summary' }), ab: el('div', { class: 'abview' }), links: el('p', { class: 'links' }),
       crops: el('div', { class: 'crops' }), maps: el('div', { class: 'figs' }), debug: el('div', { class: 'figs debug' }) };
-    g.append(methods, parts.summary, parts.pair, parts.ab, parts.diff, parts.links,
+    g.append(methods, parts.summary, parts.ab, parts.links,
       el('h4', { text: 'Zoomed crops — where none is furthest from the reference on edges (reference first)' }), parts.crops,
       el('h4', { text: 'Error maps and edge mask' }), parts.maps,
       el('h4', { text: 'Debug views' }), parts.debug);
@@ -58,7 +60,7 @@
 
   function onKey(e) {
     if (e.altKey || e.ctrlKey || e.metaKey || e.shiftKey) return;
-    if (e.key === 'f' && !(e.target.closest && e.target.closest('input[type=text], textarea'))) { flip(); e.preventDefault(); return; }
+    if (AAB.onKey(ctl(), e)) { e.preventDefault(); return; }  // f flips, 1–9 / 0 zoom
     if (e.target.closest && e.target.closest('input, select, textarea')) return;  // the slider and selects keep their arrows
     if (e.key === 'ArrowLeft' || e.key === 'ArrowRight') {
       const i = G.specs.indexOf(state.spec), d = e.key === 'ArrowLeft' ? -1 : 1;
@@ -110,116 +112,30 @@
     return { path: outputOf(s.name, key), name: key };
   }
   function pairChoices(s) { return ['reference'].concat(G.specs.filter(x => outputOf(s.name, x))); }
-  function renderPairBar() {
-    const s = G.scene;
-    if (state.compare !== 'two rows') { G.parts.pair.replaceChildren(); return; }
-    const choices = pairChoices(s);
-    if (state.pairA === null || !choices.includes(state.pairA)) state.pairA = choices.includes(state.spec) ? state.spec : choices[0];
-    if (!choices.includes(state.pairB)) state.pairB = 'reference';
-    const sel = (label, key, cls) => el('label', {}, label + ' ', el('select', { class: cls, 'aria-label': 'image ' + label,
-      onchange: e => { state[key] = e.target.value; renderAB(); } },
-      ...choices.map(c => el('option', { value: c, selected: c === state[key] }, c))));
-    G.parts.pair.replaceChildren(sel('A', 'pairA', 'pair-a'), ' vs ', sel('B', 'pairB', 'pair-b'),
-      ' ', el('button', { type: 'button', class: 'flip', title: 'show A, then B, then A… (key f)', onclick: flip }, 'flip (f)'));
-  }
-  // `f`: show all of A, then all of B (the split at 100 % or 0 %), and back.
-  function flip() {
-    if (!G || !G.setSplit) return;
-    G.setSplit(state.split >= 100 ? 0 : 100);
-  }
-  // |A − B| per channel on a canvas (the 2D context's 'difference' composite), times a gain
-  // ('lighter' doubles it); counts read back where the browser allows (not for files opened from disk).
-  function renderDiff(a, b, W, H, z) {
-    const canvas = el('canvas', { class: 'diff', width: W, height: H, style: 'width:' + W * z + 'px;height:' + H * z + 'px' });
-    const stats = el('span', { class: 'diff-stats', text: 'computing…' });
-    const gain = el('select', { 'aria-label': 'difference gain', onchange: e => { state.diffGain = Number(e.target.value); renderAB(); } },
-      ...[1, 2, 4, 8, 16, 32].map(v => el('option', { value: v, selected: v === state.diffGain }, '×' + v)));
-    G.parts.diff.replaceChildren(el('h4', { text: 'Absolute difference |' + a.name + ' − ' + b.name + '|' }),
-      el('p', { class: 'links' }, 'gain ', gain, ' · ', stats),
-      el('div', { class: 'ab-wrap', style: 'width:min(100%,' + W * z + 'px)' }, el('div', { class: 'ab-scroll' }, canvas)));
-    const load = p => new Promise((res, rej) => { const im = new Image(); im.onload = () => res(im); im.onerror = () => rej(new Error('cannot load ' + p)); im.src = A.imgUrl(p); });
-    const token = G.diffToken = (G.diffToken || 0) + 1;
-    Promise.all([load(a.path), load(b.path)]).then(([ia, ib]) => {
-      if (!G || G.diffToken !== token) return;
-      const ctx = canvas.getContext('2d');
-      ctx.globalCompositeOperation = 'copy';
-      ctx.drawImage(ia, 0, 0, W, H);
-      ctx.globalCompositeOperation = 'difference';
-      ctx.drawImage(ib, 0, 0, W, H);
-      let text;
-      try {
-        const d = ctx.getImageData(0, 0, W, H).data;
-        let differ = 0, max = 0;
-        for (let i = 0; i < d.length; i += 4) {
-          const m = Math.max(d[i], d[i + 1], d[i + 2]);
-          if (m) differ++;
-          if (m > max) max = m;
-        }
-        canvas.dataset.differing = String(differ);
-        canvas.dataset.max = String(max);
-        text = differ + ' of ' + W * H + ' pixels differ; largest difference ' + max + ' of 255 levels';
-      } catch (e) {
-        canvas.dataset.differing = 'unknown';
-        text = 'pixel counts need the page served over http (browsers do not let a page read the pixels of files opened from disk)';
-      }
-      ctx.globalCompositeOperation = 'lighter';
-      for (let k = 1; k < state.diffGain; k *= 2) ctx.drawImage(canvas, 0, 0);
-      ctx.globalCompositeOperation = 'source-over';
-      canvas.dataset.done = '1';
-      stats.textContent = text;
-    }, err => { stats.textContent = String(err.message); canvas.dataset.done = 'error'; });
-  }
+  function ctl() { return G && G.parts.ab._ab; }
 
+  // The comparison itself (slider, flip, crop zoom, pixel readout, |A − B|) is abview.js's,
+  // shared with the compare and sweep pages; state.split, diffGain, crop, pairA and pairB are its state.
   function renderAB() {
     if (!G) return;
-    const s = G.scene, W = s.width, H = s.height;
-    const z = state.abZoom || Math.max(1, Math.min(8, Math.floor(960 / W)));  // auto: about 960 px wide
-    renderPairBar();
-    const pair = state.compare === 'two rows';
-    const useNone = state.compare === 'none' && outputOf(s.name, 'none');
-    const ia = pair ? pairImage(s, state.pairA) : { path: outputOf(s.name, state.spec), name: state.spec };
-    const ib = pair ? pairImage(s, state.pairB) : useNone ? pairImage(s, 'none') : pairImage(s, 'reference');
-    const aPath = ia.path, bPath = ib.path, aName = ia.name, bName = ib.name;
-    if (!aPath || !bPath) {
-      G.parts.ab.replaceChildren(el('p', { class: 'note', text: 'No ' + (!aPath ? 'output image for ' + aName : 'image to compare with') + ' in this report.' }));
-      G.parts.links.replaceChildren();
-      G.parts.diff.replaceChildren();
-      G.setSplit = null;
-      return;
+    const s = G.scene;
+    const o = { width: s.width, height: s.height, crops: s.crops, state, zoom: state.abZoom };
+    let aPath, aName;
+    if (state.compare === 'two rows') {
+      const keys = pairChoices(s);
+      if (state.pairA === null || !keys.includes(state.pairA)) state.pairA = keys.includes(state.spec) ? state.spec : keys[0];
+      if (!keys.includes(state.pairB)) state.pairB = 'reference';
+      o.choices = keys.map(k => ({ key: k, label: k, path: pairImage(s, k).path }));
+      aPath = pairImage(s, state.pairA).path;
+      aName = state.pairA;
+    } else {
+      o.a = { path: outputOf(s.name, state.spec), name: state.spec };
+      o.b = state.compare === 'none' && outputOf(s.name, 'none') ? pairImage(s, 'none') : pairImage(s, 'reference');
+      aPath = o.a.path;
+      aName = state.spec;
     }
-    const imgA = el('img', { class: 'a', src: A.imgUrl(aPath), alt: aName, width: W, height: H, draggable: 'false' });
-    const imgB = el('img', { src: A.imgUrl(bPath), alt: bName, width: W, height: H, draggable: 'false' });
-    const b = el('div', { class: 'b' }, imgB);
-    const line = el('div', { class: 'line' });
-    const ab = el('div', { class: 'ab' + (z > 1 ? ' zoomed' : ''), style: 'width:' + W * z + 'px;height:' + H * z + 'px',
-      title: 'Drag to move the split (f flips): left ' + aName + ', right ' + bName },
-      imgA, b, line, el('span', { class: 'tag', style: 'left:4px', text: '◀ ' + aName }),
-      el('span', { class: 'tag', style: 'right:4px', text: bName + ' ▶' }));
-    s.crops.forEach((c, k) => ab.append(el('div', { class: 'crop-box',
-      style: 'left:' + c[0] * z + 'px;top:' + c[1] * z + 'px;width:' + c[2] * z + 'px;height:' + c[3] * z + 'px' },
-      el('span', { text: String(k + 1) }))));
-    const range = el('input', { type: 'range', class: 'ab-range', min: '0', max: '100', step: '0.5', value: String(state.split),
-      'aria-label': 'A/B split: left ' + aName + ', right ' + bName });
-    const setSplit = v => {
-      state.split = Math.max(0, Math.min(100, v));
-      b.style.clipPath = 'inset(0 0 0 ' + state.split + '%)';
-      line.style.left = state.split + '%';
-      range.value = String(state.split);
-      // What is on screen: all of A, all of B, or a split of the two.
-      ab.dataset.shown = state.split >= 100 ? 'A' : state.split <= 0 ? 'B' : 'split';
-      ab.dataset.shownSrc = state.split >= 100 ? aPath : state.split <= 0 ? bPath : '';
-    };
-    G.setSplit = setSplit;
-    setSplit(state.split);
-    range.addEventListener('input', () => setSplit(Number(range.value)));
-    let drag = false;
-    const fromEvent = e => { const r = ab.getBoundingClientRect(); setSplit((e.clientX - r.left) / r.width * 100); };
-    ab.addEventListener('pointerdown', e => { drag = true; ab.setPointerCapture(e.pointerId); fromEvent(e); });
-    ab.addEventListener('pointermove', e => { if (drag) fromEvent(e); });
-    ab.addEventListener('pointerup', () => { drag = false; });
-    ab.addEventListener('pointercancel', () => { drag = false; });
-    G.parts.ab.replaceChildren(el('div', { class: 'ab-wrap', style: 'width:min(100%,' + W * z + 'px)' }, el('div', { class: 'ab-scroll' }, ab), range));
-    renderDiff(ia, ib, W, H, z);
+    const c = AAB.view(G.parts.ab, o);
+    if (!c.setSplit) { G.parts.links.replaceChildren(); return; }
     const links = ['Files: ', fileLink(aPath, aName + (aPath === s.images.reference_png ? '' : ' output')), ' · ', fileLink(s.images.reference_png, 'reference PNG')];
     if (s.images.reference_exr) links.push(' · ', fileLink(s.images.reference_exr, 'reference EXR'), ' (display-linear float)');
     if (outputOf(s.name, 'none')) links.push(' · ', fileLink(outputOf(s.name, 'none'), 'none'));
@@ -346,7 +262,10 @@
       c = await choose('reference', specs[1]);
       out.push('ref=' + c.dataset.differing);
       c = await choose(specs[1], specs[0]);
-      G.setSplit(50);
+      ctl().setSplit(50);
+      // Crop zoom and the pixel readout (abview.js's own exercise, on the same two rows).
+      const more = await AAB.exercise(G.parts.ab, specs[0], specs[1]);
+      out.push(...more.filter(f => /^(zoom|px|exception)/.test(f)));
       out.push('errors=' + A.errors.length);
     } catch (e) {
       out.push('exception=' + (e && e.message || e));
