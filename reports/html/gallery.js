@@ -46,10 +46,11 @@
     const methods = el('div', { class: 'methods', role: 'group', 'aria-label': 'Methods' },
       ...specs.map(s => el('button', { type: 'button', 'data-spec': s, 'aria-pressed': String(s === state.spec), onclick: () => A.select(s) }, s)));
     const parts = { summary: el('div', { class: 'summary' }), ab: el('div', { class: 'abview' }), links: el('p', { class: 'links' }),
-      crops: el('div', { class: 'crops' }), maps: el('div', { class: 'figs' }), debug: el('div', { class: 'figs debug' }) };
+      crops: el('div', { class: 'crops' }), maps: el('div', { class: 'figs' }), heat: el('div', { class: 'heat-panel' }), debug: el('div', { class: 'figs debug' }) };
     g.append(methods, parts.summary, parts.ab, parts.links,
       el('h4', { text: 'Zoomed crops — where none is furthest from the reference on edges (reference first)' }), parts.crops,
       el('h4', { text: 'Error maps and edge mask' }), parts.maps,
+      el('h4', { text: 'Error maps of several methods — one scale, one colour bar' }), parts.heat,
       el('h4', { text: 'Debug views' }), parts.debug);
     g.addEventListener('keydown', onKey);
     host.replaceChildren(g);
@@ -180,15 +181,25 @@
   /// goes through magma. Tables are the colormaps of metrics/heatmap.cpp (META.colormaps).
   function ensureFilters() {
     if (document.getElementById('aalab-filters')) return;
-    const table = name => ['R', 'G', 'B'].map((c, i) => A.sv('feFunc' + c, { type: 'table',
-      tableValues: A.META.colormaps[name].map(e => (e[i] / 255).toFixed(4)).join(' ') }));
-    const k = (1 / (3 * A.META.error_heatmap_max)).toFixed(6), row = k + ' ' + k + ' ' + k + ' 0 0 ';
     document.body.append(A.sv('svg', { id: 'aalab-filters', width: '0', height: '0', 'aria-hidden': 'true',
       style: 'position:absolute;width:0;height:0;overflow:hidden' },
-      A.sv('filter', { id: 'aalab-magma', 'color-interpolation-filters': 'sRGB' }, A.sv('feComponentTransfer', {}, ...table('magma'))),
-      A.sv('filter', { id: 'aalab-abs-error', 'color-interpolation-filters': 'sRGB' },
-        A.sv('feColorMatrix', { type: 'matrix', values: row + row + row + '0 0 0 1 0' }),
-        A.sv('feComponentTransfer', {}, ...table('viridis')))));
+      A.sv('filter', { id: 'aalab-magma', 'color-interpolation-filters': 'sRGB' }, A.sv('feComponentTransfer', {}, ...lut('magma')))));
+    absErrorFilter(A.META.error_heatmap_max, 'aalab-abs-error');
+  }
+  function lut(name) {
+    return ['R', 'G', 'B'].map((c, i) => A.sv('feFunc' + c, { type: 'table',
+      tableValues: A.META.colormaps[name].map(e => (e[i] / 255).toFixed(4)).join(' ') }));
+  }
+  /// The id of the SVG filter that maps |output − reference| (mean over RGB) 0 → `full` onto
+  /// viridis (made once per full scale).
+  function absErrorFilter(full, id) {
+    id = id || 'aalab-abs-error-' + String(full).replace(/[^0-9]/g, '_');
+    if (document.getElementById(id)) return id;
+    const k = (1 / (3 * full)).toFixed(6), row = k + ' ' + k + ' ' + k + ' 0 0 ';
+    document.getElementById('aalab-filters').append(A.sv('filter', { id, 'color-interpolation-filters': 'sRGB', 'data-full': String(full) },
+      A.sv('feColorMatrix', { type: 'matrix', values: row + row + row + '0 0 0 1 0' }),
+      A.sv('feComponentTransfer', {}, ...lut('viridis'))));
+    return id;
   }
   /// A heatmap drawn by the page: `layers` (image paths) stacked, each later one blended with
   /// `difference`, the stack through the SVG filter `filter`; clicking opens `link`.
@@ -197,6 +208,57 @@
     const stack = el('div', { class: 'heat', style: 'aspect-ratio:' + W + '/' + H + ';width:' + W + 'px;max-width:100%;filter:url(#' + filter + ')' },
       ...layers.map((p, i) => el('img', { src: A.imgUrl(p), loading: 'lazy', alt: i ? caption : '', width: W, height: H, class: i ? 'diff' : null })));
     return el('figure', {}, el('a', { href: A.imgUrl(link), title: 'opens ' + link }, stack), el('figcaption', { text: caption }));
+  }
+
+  /// Heatmaps of several methods on one scale: |output − reference| of each picked method
+  /// through the same filter (0 → full scale), and one colour bar that states the scale.
+  const HEAT_SCALES = [1, 0.5, 0.25, 0.125, 0.0625, 0.03125];
+  function renderHeatmaps() {
+    const s = G.scene, box = G.parts.heat;
+    const outputs = G.specs.filter(sp => outputOf(s.name, sp));
+    if (!outputs.length || !s.images.reference_png) { box.replaceChildren(el('p', { class: 'note', text: 'No outputs to map on this scene.' })); return; }
+    if (!state.heatSpecs) state.heatSpecs = outputs.filter(sp => sp !== 'none').slice(0, 4);
+    const picked = outputs.filter(sp => state.heatSpecs.includes(sp));
+    const full = state.heatScale || A.META.error_heatmap_max;
+    ensureFilters();
+    const filter = absErrorFilter(full);
+    const picks = el('div', { class: 'heat-picks', role: 'group', 'aria-label': 'methods to map' }, 'Methods: ',
+      ...outputs.map(sp => el('label', { title: sp }, el('input', { type: 'checkbox', value: sp, checked: picked.includes(sp),
+        onchange: e => { state.heatSpecs = e.target.checked ? state.heatSpecs.concat([sp]) : state.heatSpecs.filter(x => x !== sp); renderHeatmaps(); } }), ' ' + sp)));
+    const scale = el('label', {}, 'full scale ', el('select', { class: 'heat-scale', 'aria-label': 'shared full scale',
+      onchange: e => { state.heatScale = Number(e.target.value); renderHeatmaps(); } },
+      ...HEAT_SCALES.map(v => el('option', { value: v, selected: v === full }, String(v)))));
+    // Side by side in about 960 px, small frames magnified by a whole factor (nearest neighbour).
+    const W = s.width, H = s.height, z = Math.max(1, Math.floor(Math.max(160, 960 / Math.max(1, picked.length)) / W));
+    const figs = picked.map(sp => {
+      const f = heatFigure([s.images.reference_png, outputOf(s.name, sp)], filter, outputOf(s.name, sp), sp, W, H);
+      f.querySelector('.heat').style.width = W * z + 'px';
+      f.dataset.spec = sp;
+      return f;
+    });
+    box.replaceChildren(el('div', { class: 'bar' }, picks, scale), colourBar(full),
+      figs.length ? el('div', { class: 'figs heat-row', 'data-filter': filter }, ...figs) : el('p', { class: 'note', text: 'Pick methods above.' }));
+  }
+  /// The viridis colour bar from 0 to `full` (sRGB-encoded units, mean over RGB), ticks at quarters.
+  function colourBar(full) {
+    const map = A.META.colormaps.viridis, Wb = 320, Hb = 14, L = 10;
+    const id = 'aalab-bar-' + String(full).replace(/[^0-9]/g, '_');
+    const stops = [];
+    for (let i = 0; i <= 16; i++) {
+      const e = map[Math.min(map.length - 1, Math.round(i / 16 * (map.length - 1)))];
+      stops.push(A.sv('stop', { offset: (i / 16).toFixed(4), 'stop-color': 'rgb(' + e[0] + ',' + e[1] + ',' + e[2] + ')' }));
+    }
+    const ticks = [0, 0.25, 0.5, 0.75, 1].map(t => A.sv('g', {},
+      A.sv('line', { x1: L + t * Wb, x2: L + t * Wb, y1: Hb + 2, y2: Hb + 6, stroke: 'currentColor' }),
+      A.sv('text', { x: L + t * Wb, y: Hb + 18, 'text-anchor': 'middle', 'font-size': '11', fill: 'currentColor',
+        text: (t === 1 ? '≥ ' : '') + A.fmtSig(t * full) })));
+    return el('figure', { class: 'colour-bar', 'data-min': '0', 'data-max': String(full) },
+      A.sv('svg', { width: String(Wb + 2 * L), height: String(Hb + 24), viewBox: '0 0 ' + (Wb + 2 * L) + ' ' + (Hb + 24), role: 'img',
+        'aria-label': 'colour bar: 0 to ' + full },
+        A.sv('defs', {}, A.sv('linearGradient', { id }, ...stops)),
+        A.sv('rect', { x: L, y: 0, width: Wb, height: Hb, fill: 'url(#' + id + ')' }), ...ticks),
+      el('figcaption', { text: 'One scale for every map here: |output − reference|, mean over RGB, sRGB-encoded units, 0 → ' +
+        full + ' (viridis; larger errors saturate).' }));
   }
 
   function renderMaps() {
@@ -212,6 +274,7 @@
     if (s.images.edge_mask) figs.push(figure(s.images.edge_mask, 'Edge mask (white = edge; ' + (100 * s.edge_pixel_fraction).toFixed(1) + '% of pixels; ' + (s.edge_mask_source || 'geometric') + ')', s.width, s.height, false));
     if (!figs.length || !r) figs.unshift(el('p', { class: 'note', text: 'No error heatmaps for ' + state.spec + ' in this report.' }));
     G.parts.maps.replaceChildren(...figs);
+    renderHeatmaps();
     const dbg = Object.keys(images).filter(k => k.startsWith('debug_'));
     if (dbg.length) G.parts.debug.replaceChildren(...dbg.map(k => figure(images[k], roleLabel(k) + ' — ' + r.spec, s.width, s.height, true)));
     else G.parts.debug.replaceChildren(el('p', { class: 'note', text: A.DATA.settings.debug_views === 'true'
@@ -263,6 +326,18 @@
       out.push('ref=' + c.dataset.differing);
       c = await choose(specs[1], specs[0]);
       ctl().setSplit(50);
+      // Several methods' heatmaps on one colour bar: every output picked, full scale 0.0625.
+      const hp = g.querySelector('.heat-panel');
+      for (let cb; (cb = Array.from(hp.querySelectorAll('input[type=checkbox]')).find(x => !x.checked));) cb.click();
+      const scale = hp.querySelector('select.heat-scale');
+      scale.value = '0.0625';
+      scale.dispatchEvent(new Event('change', { bubbles: true }));
+      const stacks = Array.from(hp.querySelectorAll('.heat-row .heat')), used = new Set(stacks.map(d => d.style.filter));
+      const fid = hp.querySelector('.heat-row').dataset.filter, fm = document.getElementById(fid).querySelector('feColorMatrix');
+      const bar = hp.querySelector('.colour-bar'), ticks = Array.from(bar.querySelectorAll('text')).map(t => t.textContent);
+      out.push('heat=' + stacks.length + ':' + used.size + ':' + fm.getAttribute('values').split(' ')[0] + ':' + bar.dataset.max + ':' +
+        ticks[0] + '..' + ticks[ticks.length - 1].replace(/[^0-9.]/g, '') + ':' +
+        Array.from(hp.querySelectorAll('.heat-row figure')).map(f => f.dataset.spec).join(','));
       // Crop zoom and the pixel readout (abview.js's own exercise, on the same two rows).
       const more = await AAB.exercise(G.parts.ab, specs[0], specs[1]);
       out.push(...more.filter(f => /^(zoom|px|exception)/.test(f)));

@@ -126,6 +126,10 @@ TEST(HtmlBrowser, AnyTwoRowsSideBySideWithFlipAndDifference) {
   EXPECT_NE(read.find(" f2=B:" + png + "fxaa1-p3"), std::string::npos) << read;
   ASSERT_TRUE(std::regex_search(read, m, std::regex(" ref=([0-9]+) "))) << read;
   EXPECT_GT(std::stoi(m[1]), 0) << read;
+  // Several methods' error maps on one colour bar: all three outputs picked, full scale 0.0625,
+  // every map through the one filter whose matrix maps a mean error of 0.0625 to the top of the
+  // table (1 / (3 × 0.0625) = 5.333333 per channel), and the bar labelled 0 .. 0.0625.
+  EXPECT_NE(read.find(" heat=3:1:5.333333:0.0625:0..0.0625:none,ssaa-2x2,fxaa1-p3 "), std::string::npos) << read;
   // Crop zoom (key 1: the first window report.json names, ×32) and the pixel readout there,
   // against oiiotool's decoding of the two PNGs; key 0 back to the whole image.
   const auto report = nlohmann::json::parse(ReadFile(out / "report.json"));
