@@ -5,7 +5,7 @@
 // crop window (buttons, keys 1–9, 0 for the whole image; nearest-neighbour magnification), a
 // pixel readout under the pointer (x, y in frame pixels, A, B and |A − B| in 8-bit levels) and
 // |A − B| on a canvas with a gain and the count of differing pixels.
-// A page opened from disk (file://) may not read its images' pixels: then the counts and the
+// A page opened from disk (not served over http) may not read its images' pixels: then the counts and the
 // readout's values say they need the page served over http (the images are still drawn).
 // Plain ES2017 in the page, no libraries.
 'use strict';

@@ -23,6 +23,7 @@
 #include "../cli/cli_util.h"
 #include "../skip_or_fail.h"
 #include "browser_util.h"
+#include "reports/html_method_style.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -189,6 +190,17 @@ TEST(HtmlBrowser, DefaultSuiteOverviewHasOnePointPerMethod) {
     EXPECT_TRUE(plotted.insert((*it)[1]).second) << "two points for " << (*it)[1];
   }
   EXPECT_EQ(plotted, specs) << "the suite chart should have one point per method";
+  // Every point of every chart on the page (suite and scenes, both axes) and every legend
+  // swatch: the method's one colour and marker (html_method_style.h).
+  const std::regex marked("data-spec=\"([^\"]+)\"[^>]*>(?:<title>[^<]*</title>)?(?:<svg[^>]*>)?<path class=\"mk\"[^>]* fill=\"([^\"]+)\" "
+                          "stroke=\"([^\"]+)\"[^>]* data-marker=\"([a-z-]+)\"");
+  int marks = 0;
+  for (auto it = std::sregex_iterator(dom.begin(), dom.end(), marked); it != std::sregex_iterator(); ++it, ++marks) {
+    const aalab::html::MethodStyle st = aalab::html::StyleOfMethod((*it)[1]);
+    EXPECT_EQ((*it)[3].str(), st.colour) << (*it)[0];
+    EXPECT_EQ((*it)[4].str(), st.marker) << (*it)[0];
+  }
+  EXPECT_GE(marks, static_cast<int>(2 * specs.size())) << "chart points and legend swatches; DOM in " << dom_path;
   EXPECT_EQ(suite.find("No method has a value"), std::string::npos);
   // The means leave out detail-texture (no edge pixels, so no Edge PSNR) and say so.
   const std::string note = "Suite means over " + std::to_string(scenes.size() - 1) + " of " + std::to_string(scenes.size()) +
