@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "reports/compare_text.h"
 #include "reports/html_assets.h"
 #include "reports/html_page.h"
