@@ -33,24 +33,24 @@ std::string LineText(const CompareLine& l) {
 nlohmann::ordered_json CompareToJson(const CompareResult& r, const std::string& baseline_name,
                                      const std::string& current_name) {
   using J = nlohmann::ordered_json;
-  J j;
   const int code = r.ExitCode();
-  j["compare_version"] = 1;
-  j["exit_code"] = code;
-  j["verdict"] = VerdictWord(code);
-  j["fail_on"] = FailOnName(r.fail_on);
-  j["strict"] = r.strict;
-  j["baseline"] = baseline_name;
-  j["current"] = current_name;
-  j["metrics"] = r.metrics;
-  j["regressions"] = r.regressions;
-  j["warnings"] = r.warnings;
-  j["improvements"] = r.improvements;
-  j["cannot_compare"] = r.cannot_compare;
-  j["missing_rows"] = r.missing_rows;
-  j["extra_rows"] = r.extra_rows;
-  j["notes"] = r.notes;
-  j["capture_warnings"] = r.capture_warnings;
+  // The summary, in this key order (an ordered_json object from its pairs).
+  J j = {{"compare_version", 1},
+         {"exit_code", code},
+         {"verdict", VerdictWord(code)},
+         {"fail_on", FailOnName(r.fail_on)},
+         {"strict", r.strict},
+         {"baseline", baseline_name},
+         {"current", current_name},
+         {"metrics", r.metrics},
+         {"regressions", r.regressions},
+         {"warnings", r.warnings},
+         {"improvements", r.improvements},
+         {"cannot_compare", r.cannot_compare},
+         {"missing_rows", r.missing_rows},
+         {"extra_rows", r.extra_rows},
+         {"notes", r.notes},
+         {"capture_warnings", r.capture_warnings}};
   J rows = J::array();
   for (const auto& m : r.rows) {
     rows.push_back({{"scene", m.scene}, {"spec", m.spec}, {"baseline_spec", m.base_spec},

@@ -4,8 +4,11 @@
 #include <map>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.h"
 #include "reports/compare_text.h"
+#include "reports/html_assets.h"
 #include "reports/html_page.h"
 
 namespace aalab {
@@ -61,8 +64,48 @@ std::vector<std::vector<HtmlImage>> CompareHtmlImages(const CompareResult& r, co
   return out;
 }
 
+namespace {
+
+/// The A/B view of changed row `k` (abview.js): its baseline and current outputs, the
+/// reference and the outputs of the other changed rows of the same scene; A = baseline, B =
+/// current. Empty when the scene is unknown or fewer than two images are available.
+std::string AbViewHost(const CompareResult& r, const std::vector<size_t>& order,
+                       const std::vector<std::vector<HtmlImage>>& images, size_t k, const Report& cur) {
+  const std::string& scene = r.rows[order[k]].scene;
+  const SceneResult* sc = nullptr;
+  for (const auto& s : cur.scenes) {
+    if (s.name == scene) sc = &s;
+  }
+  if (!sc || sc->width <= 0 || sc->height <= 0) return "";
+  nlohmann::json choices = nlohmann::json::array();
+  auto add = [&choices](const std::string& key, const std::string& label, const HtmlImage& im) {
+    if (!im.href.empty()) choices.push_back({{"key", key}, {"label", label}, {"path", im.href}});
+  };
+  // This row first, then the other changed rows of the scene.
+  std::vector<size_t> rows{k};
+  for (size_t j = 0; j < order.size(); ++j) {
+    if (j != k && r.rows[order[j]].scene == scene) rows.push_back(j);
+  }
+  for (size_t j : rows) {
+    const RowMatch& m = r.rows[order[j]];
+    const std::string base_label = m.base_spec.empty() || m.base_spec == m.spec ? m.spec : m.base_spec;
+    add("b" + std::to_string(j), base_label + " (baseline)", images[j][0]);
+    add("c" + std::to_string(j), m.spec + " (current)", images[j][1]);
+  }
+  if (images[k].size() > 2) add("ref", "reference", images[k][2]);
+  if (choices.size() < 2) return "";
+  nlohmann::json crops = nlohmann::json::array();
+  for (const auto& c : sc->crops) crops.push_back({c[0], c[1], c[2], c[3]});
+  const nlohmann::json d = {{"width", sc->width}, {"height", sc->height}, {"crops", crops}, {"choices", choices},
+                            {"a", choices[0]["key"]}, {"b", choices[1]["key"]}};
+  return "<h3>Any two side by side</h3>\n<div class=\"abview abview-host\" data-ab=\"" + HtmlEscape(d.dump()) +
+         "\"></div>\n";
+}
+
+}  // namespace
+
 std::string CompareHtml(const CompareResult& r, const std::vector<std::vector<HtmlImage>>& images,
-                        const std::string& base_name, const std::string& cur_name) {
+                        const std::string& base_name, const std::string& cur_name, const Report* current) {
   std::ostringstream h;
   const int code = r.ExitCode();
   h << HtmlPageStart("aalab compare");
@@ -117,8 +160,11 @@ std::string CompareHtml(const CompareResult& r, const std::vector<std::vector<Ht
       }
       h << "<figcaption>" << HtmlEscape(im.label) << "</figcaption></figure>\n";
     }
-    h << "</div></section>\n";
+    h << "</div>\n";
+    if (current) h << AbViewHost(r, order, images, k, *current);
+    h << "</section>\n";
   }
+  if (current) h << html::AbViewAssets();
   h << HtmlPageEnd();
   return h.str();
 }

@@ -1,5 +1,8 @@
 /// The offline HTML page of `aalab compare --html` (reports/compare.h): the summary, missing
-/// and extra rows, and per changed row its lines and images side by side; no scripts.
+/// and extra rows, and per changed row its lines, its images and (given the current report)
+/// the shared A/B view (reports/html/abview.js): any two of the row's baseline and current
+/// outputs, the reference and the other changed rows of its scene, with flip, crop zoom,
+/// pixel readout and |A − B|.
 #pragma once
 #include <string>
 #include <vector>
@@ -25,9 +28,11 @@ std::vector<std::vector<HtmlImage>> CompareHtmlImages(const CompareResult& resul
                                                       const std::string& current_dir);
 
 /// The offline HTML page: summary, missing/extra rows, and per changed row its lines and
-/// images side by side (`images` as returned by CompareHtmlImages with hrefs filled).
+/// images side by side (`images` as returned by CompareHtmlImages with hrefs filled); with
+/// `current` (the current report: scene sizes and crop windows) an A/B view per changed row.
 std::string CompareHtml(const CompareResult& result, const std::vector<std::vector<HtmlImage>>& images,
-                        const std::string& baseline_name, const std::string& current_name);
+                        const std::string& baseline_name, const std::string& current_name,
+                        const Report* current = nullptr);
 
 /// Indices (into result.rows) of the rows shown on the HTML page: rows with a regression
 /// first, then other changed rows, in report order.

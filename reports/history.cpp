@@ -235,13 +235,15 @@ std::vector<HistoryEntry> ParseHistory(const std::string& text, const std::strin
   return out;
 }
 
-std::vector<HistoryEntry> ReadHistoryFile(const std::string& path, bool missing_ok) {
+std::vector<HistoryEntry> ReadHistoryFile(const std::string& path, bool missing_ok, std::string* raw) {
+  if (raw) raw->clear();
   std::error_code ec;
   if (missing_ok && !std::filesystem::exists(path, ec)) return {};
   std::ifstream f(path, std::ios::binary);
   if (!f) throw UserError("history database '" + path + "' cannot be read");
   std::stringstream ss;
   ss << f.rdbuf();
+  if (raw) *raw = ss.str();
   return ParseHistory(ss.str(), "history database '" + path + "'");
 }
 

@@ -64,7 +64,8 @@ std::vector<HistoryEntry> ParseHistory(const std::string& text, const std::strin
 
 /// Reads and parses a database file; a missing file is a UserError unless `missing_ok`
 /// (then: empty).
-std::vector<HistoryEntry> ReadHistoryFile(const std::string& path, bool missing_ok);
+/// With `raw`, the file's text is stored there too (empty when the file is missing).
+std::vector<HistoryEntry> ReadHistoryFile(const std::string& path, bool missing_ok, std::string* raw = nullptr);
 
 /// Checks that `entry` may be appended: its settings (HistorySeriesKeys) equal those of the
 /// series' last entry, no entry of the series has the same commit and date, and no entry of

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "reports/html_method_style.h"
 #include "reports/html_page.h"
 
 namespace aalab {
@@ -29,7 +30,7 @@ struct TrendPoint {
 // 4 tolerances (a change far below the threshold does not look like a cliff), and a band of
 // ± tol around the latest value shows where the next entry would pass.
 std::string SvgTrend(const std::string& title, const std::string& unit, const std::vector<TrendPoint>& pts,
-                     const std::vector<std::string>& labels, double tol = 0) {
+                     const std::vector<std::string>& labels, double tol, const std::string& spec) {
   const double W = 420, H = 160, L = 58, R = 12, T = 20, B = 26;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& p : pts) {
@@ -118,17 +119,20 @@ std::string SvgTrend(const std::string& title, const std::string& unit, const st
       pen = false;
     }
   }
-  if (!path.empty()) s << "<path d=\"" << path << "\" fill=\"none\" stroke=\"#2060c0\" stroke-width=\"1.5\"/>\n";
+  // The method's colour and marker (html_method_style.h), as in every other chart; a point
+  // marked against the previous entry is filled with its verdict's colour.
+  const std::string colour = html::StyleOfMethod(spec).colour;
+  if (!path.empty()) s << "<path d=\"" << path << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\"/>\n";
   for (size_t i = 0; i < n; ++i) {
     const auto& p = pts[i];
     const std::string color = p.mark == "regression" ? "#d00020"
                               : p.mark == "improved" ? "#1b9e3a"
                               : p.mark == "cannot"   ? "#e08000"
-                                                     : "#2060c0";
+                                                     : colour;
     const double r = p.mark.empty() ? 3 : 5.5;
     s << "<g><title>" << HtmlEscape(p.tooltip) << "</title>";
     if (p.value) {
-      s << "<circle cx=\"" << X(i) << "\" cy=\"" << Y(*p.value) << "\" r=\"" << r << "\" fill=\"" << color << "\"/>";
+      s << html::MarkerSvg(spec, X(i), Y(*p.value), r, color);
       if (std::isinf(*p.value)) {
         s << "<text x=\"" << X(i) + 7 << "\" y=\"" << Y(*p.value) + 4 << "\" font-size=\"10\">&#8734;</text>";
       }
@@ -366,7 +370,7 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
         }
         const std::string title = q == "time_ms" ? "method time" : q;
         const double tol = q == "time_ms" ? 0.0 : IsDbMetric(q) ? options.max_drop_db : 0.0;
-        h << SvgTrend(title, q == "time_ms" ? "ms" : IsDbMetric(q) ? "dB" : "", pts, labels, tol);
+        h << SvgTrend(title, q == "time_ms" ? "ms" : IsDbMetric(q) ? "dB" : "", pts, labels, tol, spec);
         ++page.charts;
       }
       h << "</div>\n";

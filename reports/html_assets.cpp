@@ -110,7 +110,12 @@ std::string_view Asset(std::string_view name) {
   throw std::logic_error("HTML asset '" + std::string(name) + "' was not embedded (reports/CMakeLists.txt)");
 }
 
-std::string_view PageStyle() { return Asset("style.css"); }
+std::string PageStyle() { return std::string(Asset("style.css")) + "\n" + std::string(Asset("abview.css")); }
+
+std::string AbViewAssets() {
+  return "<style>\n" + std::string(Asset("abview.css")) + "</style>\n<script>\n" + std::string(Asset("abview.js")) +
+         "\nAAB.autoMount();\n</script>\n";
+}
 
 std::string PageScript() {
   std::string script;

@@ -22,8 +22,14 @@ extern const std::size_t kEmbeddedAssetCount;
 /// embedded (a build error, not user input).
 std::string_view Asset(std::string_view name);
 
-/// The page's stylesheet (style.css, inlined in <style>).
-std::string_view PageStyle();
+/// The run page's stylesheet (style.css, then abview.css; inlined in <style>).
+std::string PageStyle();
+
+/// What a plain page (compare, sweep) needs for its A/B views: abview.css in a <style> and
+/// abview.js in a <script> that mounts every `.abview-host` element (its data-ab JSON:
+/// {width, height, crops, choices: [{key, label, path?, crops?}], a, b}). Put it at the end of
+/// the body.
+std::string AbViewAssets();
 
 /// The page's script: every embedded `.js` file in the order of reports/CMakeLists.txt, each
 /// preceded by a newline, concatenated into one inline <script>.

@@ -16,6 +16,7 @@
 #include "core/color.h"
 #include "metrics/heatmap.h"
 #include "reports/html_assets.h"
+#include "reports/html_method_style.h"
 #include "reports/html_page.h"
 #include "reports/report_json.h"
 #include "reports/verdict.h"
@@ -138,6 +139,14 @@ Json MetaJson(const Report& r) {
     maps[ColormapName(cm)] = lut;
   }
   meta["colormaps"] = maps;
+  // One colour and marker per method, the same in every chart (html_method_style.h).
+  Json styles = Json::object();
+  for (const auto& row : r.rows) {
+    if (styles.contains(row.spec)) continue;
+    const html::MethodStyle st = html::StyleOfMethod(row.spec);
+    styles[row.spec] = {{"colour", st.colour}, {"marker", st.marker}, {"path", st.path}};
+  }
+  meta["method_styles"] = styles;
   meta["error_heatmap_max"] = kErrorHeatmapMax;
   return meta;
 }

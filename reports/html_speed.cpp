@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <map>
 
+#include "reports/html_method_style.h"
 #include "reports/html_page.h"
 
 namespace aalab {
@@ -45,8 +46,6 @@ std::string Num(double v, const char* fmt = "%.1f") {
   return b;
 }
 
-const char* kColours[] = {"#444", "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2"};
-
 void Chart(std::string& h, const std::vector<const SpeedPoint*>& pts, bool temporal, const std::vector<std::string>& methods) {
   const double W = 340, H = 200, L = 52, R = 10, T = 22, B = 30;
   double smin = 1e30, smax = -1e30, ymax = 0.0;
@@ -78,8 +77,12 @@ void Chart(std::string& h, const std::vector<const SpeedPoint*>& pts, bool tempo
       if (p->method != methods[m]) continue;
       line += Num(X(p->speed)) + "," + Num(Y(temporal ? p->temporal_perceptual : p->flip_mean)) + " ";
     }
-    h += "<polyline fill=\"none\" stroke-width=\"1.5\" stroke=\"" + std::string(kColours[m % 8]) + "\" points=\"" +
-         line + "\"><title>" + HtmlEscape(methods[m]) + "</title></polyline>";
+    std::string marks;
+    for (const SpeedPoint* p : pts) {
+      if (p->method == methods[m]) marks += html::MarkerSvg(methods[m], X(p->speed), Y(temporal ? p->temporal_perceptual : p->flip_mean), 3.5);
+    }
+    h += "<g><title>" + HtmlEscape(methods[m]) + "</title><polyline fill=\"none\" stroke-width=\"1.5\" stroke=\"" +
+         html::StyleOfMethod(methods[m]).colour + "\" points=\"" + line + "\"/>" + marks + "</g>";
   }
   h += "</svg>\n";
 }
@@ -122,8 +125,9 @@ void AppendSpeedSection(std::string& h, const Report& report) {
        "better) against the speed in px per frame at 320x180 (log scale), per kind of motion "
        "(scenes motion-speed-&lt;kind&gt;-&lt;speed&gt;; docs/motion.md). Methods: ";
   for (size_t m = 0; m < methods.size(); ++m) {
-    h += std::string(m ? ", " : "") + "<span style=\"color:" + kColours[m % 8] + "\">&#9632; " + HtmlEscape(methods[m]) +
-         "</span>";
+    h += std::string(m ? ", " : "") + "<span style=\"color:" + html::StyleOfMethod(methods[m]).colour +
+         "\"><svg width=\"12\" height=\"12\" viewBox=\"-6 -6 12 12\" aria-hidden=\"true\">" +
+         html::MarkerSvg(methods[m], 0, 0, 4.5) + "</svg> " + HtmlEscape(methods[m]) + "</span>";
   }
   h += "</p>\n";
   for (const auto& k : kinds) {

@@ -8,7 +8,10 @@
 #include <sstream>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "reports/compare.h"
+#include "reports/html_assets.h"
 #include "reports/html_page.h"
 
 namespace aalab {
@@ -164,6 +167,45 @@ std::string HeatmapSvg(const SweepResult& r, size_t a, size_t b) {
   return s.str();
 }
 
+/// The A/B view of one scene's crops (abview.js): every column of the crop table (reference,
+/// default, suggested, each objective's pick, extremes) as a choice whose images are its crop
+/// files, one per window; A = default, B = suggested (or the first two columns). Empty when
+/// the scene's windows are unknown or fewer than two columns exist.
+std::string SweepAbViewHost(const SweepResult& r, const std::string& scene,
+                            const std::vector<std::pair<std::string, std::string>>& cols, int windows) {
+  const SceneResult* sc = nullptr;
+  for (const auto& s : r.report.scenes) {
+    if (s.name == scene) sc = &s;
+  }
+  if (!sc || cols.size() < 2 || static_cast<int>(sc->crops.size()) < windows) return "";
+  nlohmann::json choices = nlohmann::json::array();
+  std::string a, b;
+  for (const auto& [role, spec] : cols) {
+    nlohmann::json paths = nlohmann::json::array();
+    for (int w = 0; w < windows; ++w) {
+      std::string path;
+      for (const auto& c : r.crops) {
+        if (c.scene == scene && c.role == role && c.spec == spec && c.window == w) path = c.path;
+      }
+      paths.push_back(path.empty() ? nlohmann::json(nullptr) : nlohmann::json(path));
+    }
+    const std::string label = spec.empty() ? role : role + ": " + spec;
+    choices.push_back({{"key", role}, {"label", label}, {"crops", paths}});
+    if (a.empty() && role.find("default") != std::string::npos) a = role;
+    if (b.empty() && role.find("suggested") != std::string::npos && role != a) b = role;
+  }
+  if (a.empty()) a = choices[1]["key"];
+  if (b.empty()) b = choices[0]["key"] == a ? choices[1]["key"] : choices[0]["key"];
+  nlohmann::json crops = nlohmann::json::array();
+  for (int w = 0; w < windows; ++w) {
+    const auto& c = sc->crops[static_cast<size_t>(w)];
+    crops.push_back({c[0], c[1], c[2], c[3]});
+  }
+  const nlohmann::json d = {{"width", sc->width}, {"height", sc->height}, {"crops", crops}, {"choices", choices},
+                            {"a", a}, {"b", b}};
+  return "<div class=\"abview abview-host\" data-ab=\"" + HtmlEscape(d.dump()) + "\"></div>\n";
+}
+
 }  // namespace
 
 std::string SweepHtml(const SweepResult& r) {
@@ -264,6 +306,11 @@ std::string SweepHtml(const SweepResult& r) {
         h << "</tr>\n";
       }
       h << "</table>\n";
+      const std::string ab = SweepAbViewHost(r, sc, cols, windows);
+      if (!ab.empty()) {
+        h << "<p>Any two side by side (the crop windows of " << HtmlEscape(sc)
+          << "; keys 1&#8211;9 pick the window, f flips A and B):</p>\n" << ab;
+      }
     }
   }
   h << "<h2>Pareto front: " << HtmlEscape(primary) << " vs time</h2>\n" << ParetoSvg(r) << "\n";
@@ -295,7 +342,9 @@ std::string SweepHtml(const SweepResult& r) {
     for (const auto& o : r.objectives) h << "<td>" << HtmlEscape(SweepMeanText(o, p.objectives.at(o))) << "</td>";
     h << "<td>" << FormatFixed(p.mean_time_ms, 3) << "</td><td>" << (p.pareto ? "&#9679;" : "") << "</td></tr>\n";
   }
-  h << "</table>\n" << HtmlPageEnd();
+  h << "</table>\n";
+  if (!r.crops.empty()) h << html::AbViewAssets();
+  h << HtmlPageEnd();
   return h.str();
 }
 

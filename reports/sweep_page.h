@@ -1,6 +1,8 @@
 /// The offline page of `aalab sweep` (DIR/index.html): the best setting per objective, the
 /// Pareto front of the first objective against method time and a heatmap per parameter pair
-/// (inline SVG), and every point; no scripts, no external files.
+/// (inline SVG), every point, and per scene the crops of default / suggested / each objective's
+/// pick / extremes as a table and in the shared A/B view (reports/html/abview.js: any two
+/// columns, flip, the crop windows, pixel readout, |A − B|); no external files.
 #pragma once
 #include <string>
 

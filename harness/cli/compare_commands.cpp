@@ -186,7 +186,7 @@ void WriteCompareHtml(const std::string& out, const CompareResult& res, const Re
     fs::rename(staging, files);
     guard.done = true;
   }
-  WriteTextFile(page.string(), CompareHtml(res, images, a.baseline, a.current));
+  WriteTextFile(page.string(), CompareHtml(res, images, a.baseline, a.current, &cur));
   std::printf("wrote %s (%zu changed rows; images copied to %s)\n", page.string().c_str(), images.size(),
               files.string().c_str());
   if (missing > 0) {
@@ -255,15 +255,7 @@ int HistoryAdd(const HistoryAddArgs& a) {
   if (fs::exists(fs::symlink_status(a.db))) RequireRegularFile(a.db, "history database", "a .jsonl file is expected");
   // Validate the whole database first: a malformed line is an error naming its number.
   std::string raw;
-  std::vector<HistoryEntry> entries;
-  if (fs::exists(a.db)) {
-    std::ifstream f(a.db, std::ios::binary);
-    if (!f) throw UserError("history database '" + a.db + "' cannot be read");
-    std::stringstream ss;
-    ss << f.rdbuf();
-    raw = ss.str();
-    entries = ParseHistory(raw, "history database '" + a.db + "'");
-  }
+  const std::vector<HistoryEntry> entries = ReadHistoryFile(a.db, true, &raw);
   const Report report = ReadReportFile(a.report);
   std::string commit = a.commit;
   if (commit.empty()) {
@@ -366,15 +358,7 @@ int BaselineAccept(const BaselineAcceptArgs& a) {
   if (!a.db.empty()) ValidateSeriesName(a.series);
   // The history database is checked (readable, well-formed) before the baseline changes.
   std::string raw;
-  std::vector<HistoryEntry> entries;
-  if (!a.db.empty() && fs::exists(a.db)) {
-    std::ifstream f(a.db, std::ios::binary);
-    if (!f) throw UserError("history database '" + a.db + "' cannot be read");
-    std::stringstream ss;
-    ss << f.rdbuf();
-    raw = ss.str();
-    entries = ParseHistory(raw, "history database '" + a.db + "'");
-  }
+  const std::vector<HistoryEntry> entries = a.db.empty() ? std::vector<HistoryEntry>{} : ReadHistoryFile(a.db, true, &raw);
   const std::string now = UtcDate(std::time(nullptr));
   std::optional<HistoryEntry> entry;
   if (!a.db.empty()) {

@@ -215,11 +215,11 @@
     for (const p of ordered) {
       const ctx = { scope, metric, base, better, onFront: onFront.has(p), dom: onFront.has(p) ? null : dominator(p, pts, better) };
       const text = tipText(p, ctx);
-      const cx = X(p.t), cy = Y(p.q), c = A.colour(p.spec);
+      const cx = X(p.t), cy = Y(p.q);
       const g = sv('g', { class: 'pt ' + (onFront.has(p) ? 'front-pt' : 'dominated'), tabindex: '0', role: 'button',
         'data-spec': p.spec, 'aria-label': text.replace(/\n/g, '; ') },
         sv('title', { text }),
-        sv('circle', { cx: cx.toFixed(1), cy: cy.toFixed(1), r: onFront.has(p) ? 5.5 : 4.5, fill: c, stroke: c }));
+        A.marker(p.spec, cx, cy, onFront.has(p) ? 5.5 : 4.5));
       if (onFront.has(p) || p.spec === 'none') {
         const w = p.spec.length * 6 + 4;
         for (const [dx, dy, anchor] of [[8, 4, 'start'], [8, -7, 'start'], [8, 15, 'start'], [-8, 4, 'end'], [-8, -7, 'end'], [-8, 15, 'end']]) {
@@ -240,8 +240,7 @@
       svg.append(g);
     }
     box.append(svg);
-    const fams = A.families.filter(f => pts.some(p => A.family(p.spec) === f));
-    box.append(el('div', { class: 'legend' }, ...fams.map(f => el('span', {}, el('i', { style: 'background:' + A.colour(f) }), f)),
+    box.append(el('div', { class: 'legend' }, ...pts.map(p => el('span', { 'data-spec': p.spec }, A.swatch(p.spec), ' ' + p.spec)),
       el('span', {}, el('i', { style: 'background:transparent;border:2px solid ' + getComputedStyle(document.documentElement).getPropertyValue('--front') }),
         'Pareto front (filled: on it; hollow: dominated)')));
     if (data.unplotted.length) {

@@ -33,10 +33,19 @@ const AA = (function () {
     return m ? m[0] : spec;
   }
   for (const s of specs) if (!families.includes(family(s))) families.push(family(s));
-  // Colour-blind-friendly categorical palette (Okabe-Ito plus extras), by family.
-  const PALETTE = ['#7f7f7f', '#0072b2', '#e69f00', '#009e73', '#cc79a7', '#d55e00', '#56b4e9', '#8c564b',
-                   '#bcbd22', '#6a3d9a', '#17becf', '#f0e442'];
-  function colour(spec) { return PALETTE[families.indexOf(family(spec)) % PALETTE.length]; }
+  // One colour and marker per method in every chart (reports/html_method_style.h: the colour
+  // is the family's, the marker a shape of radius 1 as an SVG path), from META.method_styles.
+  const FALLBACK_STYLE = { colour: '#7f7f7f', marker: 'circle', path: 'M-1,0a1,1 0 1,0 2,0a1,1 0 1,0 -2,0Z' };
+  function styleOf(spec) { return (META.method_styles || {})[spec] || FALLBACK_STYLE; }
+  function colour(spec) { return styleOf(spec).colour; }
+  /// The method's marker centred at (x, y), radius r (an SVG path, class "mk").
+  function marker(spec, x, y, r, fill) {
+    const s = styleOf(spec);
+    return sv('path', { class: 'mk', d: s.path, transform: 'translate(' + x.toFixed(1) + ' ' + y.toFixed(1) + ') scale(' + r + ')',
+      fill: fill || s.colour, stroke: s.colour, 'vector-effect': 'non-scaling-stroke', 'data-marker': s.marker });
+  }
+  /// A small legend swatch: the method's marker in a 14 × 14 SVG.
+  function swatch(spec) { return sv('svg', { class: 'swatch', width: '14', height: '14', viewBox: '-7 -7 14 14', 'aria-hidden': 'true' }, marker(spec, 0, 0, 5)); }
 
   const state = {
     metric: META.default_axis,
@@ -48,23 +57,13 @@ const AA = (function () {
     abZoom: 0,  // 0 = auto
     cropZoom: 0,
     split: 50,
+    crop: -1,  // the A/B view's crop window (-1: the whole image)
     pairA: null, pairB: 'reference',  // the two rows compared in 'two rows' mode (null A: the selected method)
     diffGain: 4,
   };
 
   // ---- helpers ----
-  function el(tag, attrs, ...kids) {
-    const e = document.createElement(tag);
-    for (const k in attrs || {}) {
-      const v = attrs[k];
-      if (v === null || v === undefined || v === false) continue;
-      if (k === 'text') e.textContent = v;
-      else if (k.startsWith('on')) e.addEventListener(k.slice(2), v);
-      else e.setAttribute(k, v === true ? '' : v);
-    }
-    for (const c of kids) if (c !== null && c !== undefined) e.append(c);
-    return e;
-  }
+  const el = AAB.el;  // abview.js, shared with the compare and sweep pages
   function sv(tag, attrs, ...kids) {
     const e = document.createElementNS(SVGNS, tag);
     for (const k in attrs || {}) {
@@ -91,7 +90,7 @@ const AA = (function () {
     return META.metrics[name] || { label: name, unit: '', better: 0, help: '', psnr: false };
   }
   function metricLabel(name) { const i = metricInfo(name); return i.label + (i.unit ? ' (' + i.unit + ')' : ''); }
-  function imgUrl(path) { return String(path).split('/').map(encodeURIComponent).join('/'); }
+  const imgUrl = AAB.imgUrl;
   function metricValue(row, name) {
     const v = row.metrics ? row.metrics[name] : undefined;
     return typeof v === 'number' ? v : null;
@@ -205,7 +204,7 @@ const AA = (function () {
     }
   }
 
-  return { DATA, META, state, scenes, sceneByName, rowsByScene, specs, families, colour, family, el, sv,
+  return { DATA, META, state, scenes, sceneByName, rowsByScene, specs, families, colour, styleOf, marker, swatch, family, el, sv,
            fmtMs, fmtSig, fmtMetric, signed, metricInfo, metricLabel, imgUrl, metricValue, nullReason,
            showTip, hideTip, makeSortable, sortTable, hooks, showView, sectionOf, goScene, select, init, errors,
            SELFTEST };

@@ -1,7 +1,8 @@
-// The HTML report's script, part 3: the gallery (A/B slider against the reference, `none` or
-// any two rows of the scene picked with two selects, `f` flipping A and B, and their
-// absolute-difference image drawn on a canvas), zoomed crops of every method, heatmaps, edge mask, debug views; arrow-key navigation), the
-// self-test behind `#selftest`, and the start-up call.
+// The HTML report's script, part 3: the gallery (the A/B comparison of abview.js against the
+// reference, `none` or any two rows of the scene: `f` flips, 1–9 zoom to a crop window, pixel
+// readout, |A − B|), zoomed crops of every method, heatmaps (one method, or several on one
+// colour bar), edge mask, debug views; arrow-key navigation), the self-test behind
+// `#selftest`, the two-rows test behind `#pairtest`, and the start-up call.
 (function () {
   const A = AA, el = A.el, state = A.state;
   let G = null;  // the one gallery that exists: { host, scene, specs, parts }
@@ -28,6 +29,7 @@
     // Open on a method that has an output on this scene (never a not-applicable row).
     if (!applicable(state.spec)) state.spec = specs.find(s => s !== 'none' && applicable(s)) || specs[0];
     const idx = A.scenes.indexOf(scene), n = A.scenes.length;
+    if (!G || G.scene !== scene) state.crop = -1;  // a new scene opens on its whole image
     const g = el('div', { class: 'gallery', tabindex: '0', role: 'region',
       'aria-label': 'Gallery of ' + scene.name + '. Left and right arrows switch methods, up and down switch scenes.' });
     const hasNone = specs.includes('none');
@@ -40,14 +42,15 @@
       el('span', {}, 'Compare with ', cmp('reference'), ' ', cmp('none'), ' ', cmp('two rows')),
       zoomSelect('A/B zoom', [0, 1, 2, 4, 8], state.abZoom, v => { state.abZoom = v; renderAB(); }),
       zoomSelect('Crop zoom', [0, 4, 6, 8], state.cropZoom, v => { state.cropZoom = v; renderCrops(); }),
-      el('span', { class: 'hint', text: 'Click here, then ←/→ method, ↑/↓ scene, f flips A and B. Every image opens its file.' })));
+      el('span', { class: 'hint', text: 'Click here, then ←/→ method, ↑/↓ scene, f flips A and B, 1–9 zoom to a crop window, 0 the whole image. Every image opens its file.' })));
     const methods = el('div', { class: 'methods', role: 'group', 'aria-label': 'Methods' },
       ...specs.map(s => el('button', { type: 'button', 'data-spec': s, 'aria-pressed': String(s === state.spec), onclick: () => A.select(s) }, s)));
-    const parts = { summary: el('div', { class: 'summary' }), pair: el('div', { class: 'pair-bar' }), ab: el('div'), diff: el('div', { class: 'diff-wrap' }), links: el('p', { class: 'links' }),
-      crops: el('div', { class: 'crops' }), maps: el('div', { class: 'figs' }), debug: el('div', { class: 'figs debug' }) };
-    g.append(methods, parts.summary, parts.pair, parts.ab, parts.diff, parts.links,
+    const parts = { summary: el('div', { class: 'summary' }), ab: el('div', { class: 'abview' }), links: el('p', { class: 'links' }),
+      crops: el('div', { class: 'crops' }), maps: el('div', { class: 'figs' }), heat: el('div', { class: 'heat-panel' }), debug: el('div', { class: 'figs debug' }) };
+    g.append(methods, parts.summary, parts.ab, parts.links,
       el('h4', { text: 'Zoomed crops — where none is furthest from the reference on edges (reference first)' }), parts.crops,
       el('h4', { text: 'Error maps and edge mask' }), parts.maps,
+      el('h4', { text: 'Error maps of several methods — one scale, one colour bar' }), parts.heat,
       el('h4', { text: 'Debug views' }), parts.debug);
     g.addEventListener('keydown', onKey);
     host.replaceChildren(g);
@@ -58,7 +61,7 @@
 
   function onKey(e) {
     if (e.altKey || e.ctrlKey || e.metaKey || e.shiftKey) return;
-    if (e.key === 'f' && !(e.target.closest && e.target.closest('input[type=text], textarea'))) { flip(); e.preventDefault(); return; }
+    if (AAB.onKey(ctl(), e)) { e.preventDefault(); return; }  // f flips, 1–9 / 0 zoom
     if (e.target.closest && e.target.closest('input, select, textarea')) return;  // the slider and selects keep their arrows
     if (e.key === 'ArrowLeft' || e.key === 'ArrowRight') {
       const i = G.specs.indexOf(state.spec), d = e.key === 'ArrowLeft' ? -1 : 1;
@@ -110,116 +113,30 @@
     return { path: outputOf(s.name, key), name: key };
   }
   function pairChoices(s) { return ['reference'].concat(G.specs.filter(x => outputOf(s.name, x))); }
-  function renderPairBar() {
-    const s = G.scene;
-    if (state.compare !== 'two rows') { G.parts.pair.replaceChildren(); return; }
-    const choices = pairChoices(s);
-    if (state.pairA === null || !choices.includes(state.pairA)) state.pairA = choices.includes(state.spec) ? state.spec : choices[0];
-    if (!choices.includes(state.pairB)) state.pairB = 'reference';
-    const sel = (label, key, cls) => el('label', {}, label + ' ', el('select', { class: cls, 'aria-label': 'image ' + label,
-      onchange: e => { state[key] = e.target.value; renderAB(); } },
-      ...choices.map(c => el('option', { value: c, selected: c === state[key] }, c))));
-    G.parts.pair.replaceChildren(sel('A', 'pairA', 'pair-a'), ' vs ', sel('B', 'pairB', 'pair-b'),
-      ' ', el('button', { type: 'button', class: 'flip', title: 'show A, then B, then A… (key f)', onclick: flip }, 'flip (f)'));
-  }
-  // `f`: show all of A, then all of B (the split at 100 % or 0 %), and back.
-  function flip() {
-    if (!G || !G.setSplit) return;
-    G.setSplit(state.split >= 100 ? 0 : 100);
-  }
-  // |A − B| per channel on a canvas (the 2D context's 'difference' composite), times a gain
-  // ('lighter' doubles it); counts read back where the browser allows (not for files opened from disk).
-  function renderDiff(a, b, W, H, z) {
-    const canvas = el('canvas', { class: 'diff', width: W, height: H, style: 'width:' + W * z + 'px;height:' + H * z + 'px' });
-    const stats = el('span', { class: 'diff-stats', text: 'computing…' });
-    const gain = el('select', { 'aria-label': 'difference gain', onchange: e => { state.diffGain = Number(e.target.value); renderAB(); } },
-      ...[1, 2, 4, 8, 16, 32].map(v => el('option', { value: v, selected: v === state.diffGain }, '×' + v)));
-    G.parts.diff.replaceChildren(el('h4', { text: 'Absolute difference |' + a.name + ' − ' + b.name + '|' }),
-      el('p', { class: 'links' }, 'gain ', gain, ' · ', stats),
-      el('div', { class: 'ab-wrap', style: 'width:min(100%,' + W * z + 'px)' }, el('div', { class: 'ab-scroll' }, canvas)));
-    const load = p => new Promise((res, rej) => { const im = new Image(); im.onload = () => res(im); im.onerror = () => rej(new Error('cannot load ' + p)); im.src = A.imgUrl(p); });
-    const token = G.diffToken = (G.diffToken || 0) + 1;
-    Promise.all([load(a.path), load(b.path)]).then(([ia, ib]) => {
-      if (!G || G.diffToken !== token) return;
-      const ctx = canvas.getContext('2d');
-      ctx.globalCompositeOperation = 'copy';
-      ctx.drawImage(ia, 0, 0, W, H);
-      ctx.globalCompositeOperation = 'difference';
-      ctx.drawImage(ib, 0, 0, W, H);
-      let text;
-      try {
-        const d = ctx.getImageData(0, 0, W, H).data;
-        let differ = 0, max = 0;
-        for (let i = 0; i < d.length; i += 4) {
-          const m = Math.max(d[i], d[i + 1], d[i + 2]);
-          if (m) differ++;
-          if (m > max) max = m;
-        }
-        canvas.dataset.differing = String(differ);
-        canvas.dataset.max = String(max);
-        text = differ + ' of ' + W * H + ' pixels differ; largest difference ' + max + ' of 255 levels';
-      } catch (e) {
-        canvas.dataset.differing = 'unknown';
-        text = 'pixel counts need the page served over http (browsers do not let a page read the pixels of files opened from disk)';
-      }
-      ctx.globalCompositeOperation = 'lighter';
-      for (let k = 1; k < state.diffGain; k *= 2) ctx.drawImage(canvas, 0, 0);
-      ctx.globalCompositeOperation = 'source-over';
-      canvas.dataset.done = '1';
-      stats.textContent = text;
-    }, err => { stats.textContent = String(err.message); canvas.dataset.done = 'error'; });
-  }
+  function ctl() { return G && G.parts.ab._ab; }
 
+  // The comparison itself (slider, flip, crop zoom, pixel readout, |A − B|) is abview.js's,
+  // shared with the compare and sweep pages; state.split, diffGain, crop, pairA and pairB are its state.
   function renderAB() {
     if (!G) return;
-    const s = G.scene, W = s.width, H = s.height;
-    const z = state.abZoom || Math.max(1, Math.min(8, Math.floor(960 / W)));  // auto: about 960 px wide
-    renderPairBar();
-    const pair = state.compare === 'two rows';
-    const useNone = state.compare === 'none' && outputOf(s.name, 'none');
-    const ia = pair ? pairImage(s, state.pairA) : { path: outputOf(s.name, state.spec), name: state.spec };
-    const ib = pair ? pairImage(s, state.pairB) : useNone ? pairImage(s, 'none') : pairImage(s, 'reference');
-    const aPath = ia.path, bPath = ib.path, aName = ia.name, bName = ib.name;
-    if (!aPath || !bPath) {
-      G.parts.ab.replaceChildren(el('p', { class: 'note', text: 'No ' + (!aPath ? 'output image for ' + aName : 'image to compare with') + ' in this report.' }));
-      G.parts.links.replaceChildren();
-      G.parts.diff.replaceChildren();
-      G.setSplit = null;
-      return;
+    const s = G.scene;
+    const o = { width: s.width, height: s.height, crops: s.crops, state, zoom: state.abZoom };
+    let aPath, aName;
+    if (state.compare === 'two rows') {
+      const keys = pairChoices(s);
+      if (state.pairA === null || !keys.includes(state.pairA)) state.pairA = keys.includes(state.spec) ? state.spec : keys[0];
+      if (!keys.includes(state.pairB)) state.pairB = 'reference';
+      o.choices = keys.map(k => ({ key: k, label: k, path: pairImage(s, k).path }));
+      aPath = pairImage(s, state.pairA).path;
+      aName = state.pairA;
+    } else {
+      o.a = { path: outputOf(s.name, state.spec), name: state.spec };
+      o.b = state.compare === 'none' && outputOf(s.name, 'none') ? pairImage(s, 'none') : pairImage(s, 'reference');
+      aPath = o.a.path;
+      aName = state.spec;
     }
-    const imgA = el('img', { class: 'a', src: A.imgUrl(aPath), alt: aName, width: W, height: H, draggable: 'false' });
-    const imgB = el('img', { src: A.imgUrl(bPath), alt: bName, width: W, height: H, draggable: 'false' });
-    const b = el('div', { class: 'b' }, imgB);
-    const line = el('div', { class: 'line' });
-    const ab = el('div', { class: 'ab' + (z > 1 ? ' zoomed' : ''), style: 'width:' + W * z + 'px;height:' + H * z + 'px',
-      title: 'Drag to move the split (f flips): left ' + aName + ', right ' + bName },
-      imgA, b, line, el('span', { class: 'tag', style: 'left:4px', text: '◀ ' + aName }),
-      el('span', { class: 'tag', style: 'right:4px', text: bName + ' ▶' }));
-    s.crops.forEach((c, k) => ab.append(el('div', { class: 'crop-box',
-      style: 'left:' + c[0] * z + 'px;top:' + c[1] * z + 'px;width:' + c[2] * z + 'px;height:' + c[3] * z + 'px' },
-      el('span', { text: String(k + 1) }))));
-    const range = el('input', { type: 'range', class: 'ab-range', min: '0', max: '100', step: '0.5', value: String(state.split),
-      'aria-label': 'A/B split: left ' + aName + ', right ' + bName });
-    const setSplit = v => {
-      state.split = Math.max(0, Math.min(100, v));
-      b.style.clipPath = 'inset(0 0 0 ' + state.split + '%)';
-      line.style.left = state.split + '%';
-      range.value = String(state.split);
-      // What is on screen: all of A, all of B, or a split of the two.
-      ab.dataset.shown = state.split >= 100 ? 'A' : state.split <= 0 ? 'B' : 'split';
-      ab.dataset.shownSrc = state.split >= 100 ? aPath : state.split <= 0 ? bPath : '';
-    };
-    G.setSplit = setSplit;
-    setSplit(state.split);
-    range.addEventListener('input', () => setSplit(Number(range.value)));
-    let drag = false;
-    const fromEvent = e => { const r = ab.getBoundingClientRect(); setSplit((e.clientX - r.left) / r.width * 100); };
-    ab.addEventListener('pointerdown', e => { drag = true; ab.setPointerCapture(e.pointerId); fromEvent(e); });
-    ab.addEventListener('pointermove', e => { if (drag) fromEvent(e); });
-    ab.addEventListener('pointerup', () => { drag = false; });
-    ab.addEventListener('pointercancel', () => { drag = false; });
-    G.parts.ab.replaceChildren(el('div', { class: 'ab-wrap', style: 'width:min(100%,' + W * z + 'px)' }, el('div', { class: 'ab-scroll' }, ab), range));
-    renderDiff(ia, ib, W, H, z);
+    const c = AAB.view(G.parts.ab, o);
+    if (!c.setSplit) { G.parts.links.replaceChildren(); return; }
     const links = ['Files: ', fileLink(aPath, aName + (aPath === s.images.reference_png ? '' : ' output')), ' · ', fileLink(s.images.reference_png, 'reference PNG')];
     if (s.images.reference_exr) links.push(' · ', fileLink(s.images.reference_exr, 'reference EXR'), ' (display-linear float)');
     if (outputOf(s.name, 'none')) links.push(' · ', fileLink(outputOf(s.name, 'none'), 'none'));
@@ -264,15 +181,25 @@
   /// goes through magma. Tables are the colormaps of metrics/heatmap.cpp (META.colormaps).
   function ensureFilters() {
     if (document.getElementById('aalab-filters')) return;
-    const table = name => ['R', 'G', 'B'].map((c, i) => A.sv('feFunc' + c, { type: 'table',
-      tableValues: A.META.colormaps[name].map(e => (e[i] / 255).toFixed(4)).join(' ') }));
-    const k = (1 / (3 * A.META.error_heatmap_max)).toFixed(6), row = k + ' ' + k + ' ' + k + ' 0 0 ';
     document.body.append(A.sv('svg', { id: 'aalab-filters', width: '0', height: '0', 'aria-hidden': 'true',
       style: 'position:absolute;width:0;height:0;overflow:hidden' },
-      A.sv('filter', { id: 'aalab-magma', 'color-interpolation-filters': 'sRGB' }, A.sv('feComponentTransfer', {}, ...table('magma'))),
-      A.sv('filter', { id: 'aalab-abs-error', 'color-interpolation-filters': 'sRGB' },
-        A.sv('feColorMatrix', { type: 'matrix', values: row + row + row + '0 0 0 1 0' }),
-        A.sv('feComponentTransfer', {}, ...table('viridis')))));
+      A.sv('filter', { id: 'aalab-magma', 'color-interpolation-filters': 'sRGB' }, A.sv('feComponentTransfer', {}, ...lut('magma')))));
+    absErrorFilter(A.META.error_heatmap_max, 'aalab-abs-error');
+  }
+  function lut(name) {
+    return ['R', 'G', 'B'].map((c, i) => A.sv('feFunc' + c, { type: 'table',
+      tableValues: A.META.colormaps[name].map(e => (e[i] / 255).toFixed(4)).join(' ') }));
+  }
+  /// The id of the SVG filter that maps |output − reference| (mean over RGB) 0 → `full` onto
+  /// viridis (made once per full scale).
+  function absErrorFilter(full, id) {
+    id = id || 'aalab-abs-error-' + String(full).replace(/[^0-9]/g, '_');
+    if (document.getElementById(id)) return id;
+    const k = (1 / (3 * full)).toFixed(6), row = k + ' ' + k + ' ' + k + ' 0 0 ';
+    document.getElementById('aalab-filters').append(A.sv('filter', { id, 'color-interpolation-filters': 'sRGB', 'data-full': String(full) },
+      A.sv('feColorMatrix', { type: 'matrix', values: row + row + row + '0 0 0 1 0' }),
+      A.sv('feComponentTransfer', {}, ...lut('viridis'))));
+    return id;
   }
   /// A heatmap drawn by the page: `layers` (image paths) stacked, each later one blended with
   /// `difference`, the stack through the SVG filter `filter`; clicking opens `link`.
@@ -281,6 +208,57 @@
     const stack = el('div', { class: 'heat', style: 'aspect-ratio:' + W + '/' + H + ';width:' + W + 'px;max-width:100%;filter:url(#' + filter + ')' },
       ...layers.map((p, i) => el('img', { src: A.imgUrl(p), loading: 'lazy', alt: i ? caption : '', width: W, height: H, class: i ? 'diff' : null })));
     return el('figure', {}, el('a', { href: A.imgUrl(link), title: 'opens ' + link }, stack), el('figcaption', { text: caption }));
+  }
+
+  /// Heatmaps of several methods on one scale: |output − reference| of each picked method
+  /// through the same filter (0 → full scale), and one colour bar that states the scale.
+  const HEAT_SCALES = [1, 0.5, 0.25, 0.125, 0.0625, 0.03125];
+  function renderHeatmaps() {
+    const s = G.scene, box = G.parts.heat;
+    const outputs = G.specs.filter(sp => outputOf(s.name, sp));
+    if (!outputs.length || !s.images.reference_png) { box.replaceChildren(el('p', { class: 'note', text: 'No outputs to map on this scene.' })); return; }
+    if (!state.heatSpecs) state.heatSpecs = outputs.filter(sp => sp !== 'none').slice(0, 4);
+    const picked = outputs.filter(sp => state.heatSpecs.includes(sp));
+    const full = state.heatScale || A.META.error_heatmap_max;
+    ensureFilters();
+    const filter = absErrorFilter(full);
+    const picks = el('div', { class: 'heat-picks', role: 'group', 'aria-label': 'methods to map' }, 'Methods: ',
+      ...outputs.map(sp => el('label', { title: sp }, el('input', { type: 'checkbox', value: sp, checked: picked.includes(sp),
+        onchange: e => { state.heatSpecs = e.target.checked ? state.heatSpecs.concat([sp]) : state.heatSpecs.filter(x => x !== sp); renderHeatmaps(); } }), ' ' + sp)));
+    const scale = el('label', {}, 'full scale ', el('select', { class: 'heat-scale', 'aria-label': 'shared full scale',
+      onchange: e => { state.heatScale = Number(e.target.value); renderHeatmaps(); } },
+      ...HEAT_SCALES.map(v => el('option', { value: v, selected: v === full }, String(v)))));
+    // Side by side in about 960 px, small frames magnified by a whole factor (nearest neighbour).
+    const W = s.width, H = s.height, z = Math.max(1, Math.floor(Math.max(160, 960 / Math.max(1, picked.length)) / W));
+    const figs = picked.map(sp => {
+      const f = heatFigure([s.images.reference_png, outputOf(s.name, sp)], filter, outputOf(s.name, sp), sp, W, H);
+      f.querySelector('.heat').style.width = W * z + 'px';
+      f.dataset.spec = sp;
+      return f;
+    });
+    box.replaceChildren(el('div', { class: 'bar' }, picks, scale), colourBar(full),
+      figs.length ? el('div', { class: 'figs heat-row', 'data-filter': filter }, ...figs) : el('p', { class: 'note', text: 'Pick methods above.' }));
+  }
+  /// The viridis colour bar from 0 to `full` (sRGB-encoded units, mean over RGB), ticks at quarters.
+  function colourBar(full) {
+    const map = A.META.colormaps.viridis, Wb = 320, Hb = 14, L = 10;
+    const id = 'aalab-bar-' + String(full).replace(/[^0-9]/g, '_');
+    const stops = [];
+    for (let i = 0; i <= 16; i++) {
+      const e = map[Math.min(map.length - 1, Math.round(i / 16 * (map.length - 1)))];
+      stops.push(A.sv('stop', { offset: (i / 16).toFixed(4), 'stop-color': 'rgb(' + e[0] + ',' + e[1] + ',' + e[2] + ')' }));
+    }
+    const ticks = [0, 0.25, 0.5, 0.75, 1].map(t => A.sv('g', {},
+      A.sv('line', { x1: L + t * Wb, x2: L + t * Wb, y1: Hb + 2, y2: Hb + 6, stroke: 'currentColor' }),
+      A.sv('text', { x: L + t * Wb, y: Hb + 18, 'text-anchor': 'middle', 'font-size': '11', fill: 'currentColor',
+        text: (t === 1 ? '≥ ' : '') + A.fmtSig(t * full) })));
+    return el('figure', { class: 'colour-bar', 'data-min': '0', 'data-max': String(full) },
+      A.sv('svg', { width: String(Wb + 2 * L), height: String(Hb + 24), viewBox: '0 0 ' + (Wb + 2 * L) + ' ' + (Hb + 24), role: 'img',
+        'aria-label': 'colour bar: 0 to ' + full },
+        A.sv('defs', {}, A.sv('linearGradient', { id }, ...stops)),
+        A.sv('rect', { x: L, y: 0, width: Wb, height: Hb, fill: 'url(#' + id + ')' }), ...ticks),
+      el('figcaption', { text: 'One scale for every map here: |output − reference|, mean over RGB, sRGB-encoded units, 0 → ' +
+        full + ' (viridis; larger errors saturate).' }));
   }
 
   function renderMaps() {
@@ -296,6 +274,7 @@
     if (s.images.edge_mask) figs.push(figure(s.images.edge_mask, 'Edge mask (white = edge; ' + (100 * s.edge_pixel_fraction).toFixed(1) + '% of pixels; ' + (s.edge_mask_source || 'geometric') + ')', s.width, s.height, false));
     if (!figs.length || !r) figs.unshift(el('p', { class: 'note', text: 'No error heatmaps for ' + state.spec + ' in this report.' }));
     G.parts.maps.replaceChildren(...figs);
+    renderHeatmaps();
     const dbg = Object.keys(images).filter(k => k.startsWith('debug_'));
     if (dbg.length) G.parts.debug.replaceChildren(...dbg.map(k => figure(images[k], roleLabel(k) + ' — ' + r.spec, s.width, s.height, true)));
     else G.parts.debug.replaceChildren(el('p', { class: 'note', text: A.DATA.settings.debug_views === 'true'
@@ -346,7 +325,22 @@
       c = await choose('reference', specs[1]);
       out.push('ref=' + c.dataset.differing);
       c = await choose(specs[1], specs[0]);
-      G.setSplit(50);
+      ctl().setSplit(50);
+      // Several methods' heatmaps on one colour bar: every output picked, full scale 0.0625.
+      const hp = g.querySelector('.heat-panel');
+      for (let cb; (cb = Array.from(hp.querySelectorAll('input[type=checkbox]')).find(x => !x.checked));) cb.click();
+      const scale = hp.querySelector('select.heat-scale');
+      scale.value = '0.0625';
+      scale.dispatchEvent(new Event('change', { bubbles: true }));
+      const stacks = Array.from(hp.querySelectorAll('.heat-row .heat')), used = new Set(stacks.map(d => d.style.filter));
+      const fid = hp.querySelector('.heat-row').dataset.filter, fm = document.getElementById(fid).querySelector('feColorMatrix');
+      const bar = hp.querySelector('.colour-bar'), ticks = Array.from(bar.querySelectorAll('text')).map(t => t.textContent);
+      out.push('heat=' + stacks.length + ':' + used.size + ':' + fm.getAttribute('values').split(' ')[0] + ':' + bar.dataset.max + ':' +
+        ticks[0] + '..' + ticks[ticks.length - 1].replace(/[^0-9.]/g, '') + ':' +
+        Array.from(hp.querySelectorAll('.heat-row figure')).map(f => f.dataset.spec).join(','));
+      // Crop zoom and the pixel readout (abview.js's own exercise, on the same two rows).
+      const more = await AAB.exercise(G.parts.ab, specs[0], specs[1]);
+      out.push(...more.filter(f => /^(zoom|px|exception)/.test(f)));
       out.push('errors=' + A.errors.length);
     } catch (e) {
       out.push('exception=' + (e && e.message || e));

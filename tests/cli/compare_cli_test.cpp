@@ -44,6 +44,23 @@ fs::path RunTiny(const fs::path& out, const std::string& methods, const std::str
 
 bool Has(const CmdResult& r, const std::string& s) { return r.output.find(s) != std::string::npos; }
 
+/// `aalab sweep ARGS --quiet --out TMP/NAME/sweep`: the folder TMP/NAME, what the sweep printed
+/// and its sweep.json (null when it failed; a non-zero exit fails the test).
+struct SweepRun {
+  fs::path dir, out;
+  CmdResult r;
+  Json j;
+};
+SweepRun Sweep(const std::string& name, const std::string& args) {
+  SweepRun s;
+  s.dir = TempDir(name);
+  s.out = s.dir / "sweep";
+  s.r = Aalab("sweep " + args + " --quiet --out " + s.out.string());
+  EXPECT_EQ(s.r.code, 0) << s.r.output;
+  if (s.r.code == 0) s.j = ReadJson(s.out / "sweep.json");
+  return s;
+}
+
 TEST(CompareCli, FlagsAnInjectedQualityDropAndWritesHtml) {
   const fs::path dir = TempDir("drop");
   const fs::path base = RunTiny(dir / "base", "none,fxaa1-p3");
@@ -231,13 +248,13 @@ TEST(HistoryCli, AddsReportsRejectsMismatchedSeriesAndWritesTrends) {
 TEST(SweepCli, PerceptualObjectiveAtAViewingCondition) {
   // flip_mean as the objective (lower is better): the best point is the one with the lowest
   // mean FLIP, computed at the viewing condition the sweep records.
-  const fs::path dir = TempDir("sweep-flip");
-  const fs::path out = dir / "sweep";
-  const CmdResult r = Aalab("sweep --scenes wedges,circle --method fxaa311-p39 --grid subpix=0,0.5,1 "
-                            "--objective flip_mean,edge_psnr_db --viewing tv-1080p-2m --size 48x27 --ref-spp 4 "
-                            "--repeat 1 --quiet --out " + out.string());
-  ASSERT_EQ(r.code, 0) << r.output;
-  const Json j = ReadJson(out / "sweep.json");
+  const SweepRun s = Sweep("sweep-flip", "--scenes wedges,circle --method fxaa311-p39 --grid subpix=0,0.5,1 "
+                                         "--objective flip_mean,edge_psnr_db --viewing tv-1080p-2m --size 48x27 "
+                                         "--ref-spp 4 --repeat 1");
+  ASSERT_EQ(s.r.code, 0);
+  const CmdResult& r = s.r;
+  const Json& j = s.j;
+  const fs::path& dir = s.dir;
   EXPECT_EQ(j["settings"]["viewing"], "tv-1080p-2m");
   EXPECT_EQ(j["settings"]["ppd"], "55.04364145434214");  // shortest text that reads back exactly
   size_t best = 0;
@@ -252,17 +269,16 @@ TEST(SweepCli, PerceptualObjectiveAtAViewingCondition) {
 }
 
 TEST(SweepCli, RendersEachReferenceOnceAndWritesTheFront) {
-  const fs::path dir = TempDir("sweep");
-  const fs::path out = dir / "sweep";
-  const CmdResult r = Aalab("sweep --scenes wedges,circle --method fxaa1-p3 --grid edge_threshold=0.125,1 "
-                            "--grid subpix_cap=0,0.75 --objective psnr_db,mse --size 48x27 --ref-spp 4 --repeat 1 "
-                            "--quiet --out " + out.string());
-  ASSERT_EQ(r.code, 0) << r.output;
+  const SweepRun s = Sweep("sweep", "--scenes wedges,circle --method fxaa1-p3 --grid edge_threshold=0.125,1 "
+                                    "--grid subpix_cap=0,0.75 --objective psnr_db,mse --size 48x27 --ref-spp 4 --repeat 1");
+  ASSERT_EQ(s.r.code, 0);
+  const CmdResult& r = s.r;
+  const fs::path &dir = s.dir, &out = s.out;
   for (const char* s : {"4 points on 2 scenes; 2 reference renders", "best psnr_db (mean over 2 scenes)", "best mse",
                         "pareto front", "suggested preset: fxaa1-p3:edge_threshold="}) {
     EXPECT_TRUE(Has(r, s)) << s << "\n" << r.output;
   }
-  const Json j = ReadJson(out / "sweep.json");
+  const Json& j = s.j;
   EXPECT_EQ(j["reference_renders"], 2);  // one per scene, not per grid point
   EXPECT_EQ(j["points"].size(), 4u);
   ASSERT_EQ(j["rows"].size(), 8u);
@@ -403,12 +419,12 @@ TEST(BaselineCli, AcceptReplacesThroughTheOutputRuleAndRecordsWhoWhenWhy) {
 }
 
 TEST(SweepCli, ObjectivesDisagreeLoudlyAndTheSuggestionIsComparedWithTheDefault) {
-  const fs::path dir = TempDir("sweep-verdict");
-  const fs::path out = dir / "sweep";
-  const CmdResult r = Aalab("sweep --scenes wedges,circle --method fxaa311-p39 --grid subpix=0,0.75,1 --size 64x36 "
-                            "--ref-spp 16 --repeat 3 --quiet --out " + out.string());
-  ASSERT_EQ(r.code, 0) << r.output;
-  const Json j = ReadJson(out / "sweep.json");
+  const SweepRun s = Sweep("sweep-verdict", "--scenes wedges,circle --method fxaa311-p39 --grid subpix=0,0.75,1 "
+                                            "--size 64x36 --ref-spp 16 --repeat 3");
+  ASSERT_EQ(s.r.code, 0);
+  const CmdResult& r = s.r;
+  const Json& j = s.j;
+  const fs::path& out = s.out;
   // FLIP first by default (edge PSNR rewards blur), edge PSNR second.
   EXPECT_EQ(j["objectives"], Json::parse(R"(["flip_mean","edge_psnr_db"])"));
   auto subpix = [&j](const Json& point) { return j["points"][point.get<size_t>()]["overrides"]["subpix"]; };

@@ -133,6 +133,13 @@ TEST(History, TrendPageMarksThresholdCrossings) {
                         "c3 2026-01-03", "&#8734;"}) {
     EXPECT_NE(page.html.find(s), std::string::npos) << s;
   }
+  // fxaa1-p3's line and markers in its colour and marker, as on every page (html_method_style.h:
+  // fxaa1's #e69f00; FNV-1a("fxaa1-p3") % 5 = 3 → the fourth non-circle shape, worked out by hand
+  // in Python), a regression filled red.
+  for (const char* s : {"stroke=\"#e69f00\" stroke-width=\"1.5\"", "data-marker=\"triangle-down\"",
+                        "fill=\"#d00020\" stroke=\"#e69f00\""}) {
+    EXPECT_NE(page.html.find(s), std::string::npos) << s;
+  }
   const HistoryPage one = HistoryHtml(es, "small", CompareOptions{});
   EXPECT_EQ(one.series, 1);
   EXPECT_EQ(one.entries, 1);

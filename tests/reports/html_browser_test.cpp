@@ -22,32 +22,15 @@
 
 #include "../cli/cli_util.h"
 #include "../skip_or_fail.h"
+#include "browser_util.h"
+#include "reports/html_method_style.h"
 
 namespace {
 namespace fs = std::filesystem;
 
-constexpr const char* kChromium = "/usr/bin/chromium";
 using aalab::clitest::CmdResult;
 using aalab::clitest::RunCommand;
-
-
-
-std::string ReadFile(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-std::string Quote(const std::string& s) { return "'" + s + "'"; }  // paths here have no quotes
-
-/// Headless Chromium with no network services, a throw-away profile and console logging to stderr.
-std::string Chromium(const fs::path& profile, const std::string& args) {
-  return std::string("timeout 180 ") + kChromium +
-         " --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --disable-background-networking"
-         " --disable-component-update --disable-sync --no-first-run --hide-scrollbars --user-data-dir=" +
-         Quote(profile.string()) + " --enable-logging=stderr --v=0 " + args;
-}
+using namespace aalab::browsertest;
 
 TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
   if (!fs::exists(kChromium)) {
@@ -55,14 +38,10 @@ TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
                                 " is not installed, so the HTML report was NOT tested in a browser. Install it with "
                                 "scripts/install-deps.sh (Debian package 'chromium').");
   }
-  const fs::path work = fs::path(AALAB_BINARY_DIR) / "html_browser_test";
+  const fs::path work = FreshWorkDir("html_browser_test");
   const fs::path out = work / "run";
-  fs::remove_all(work);
-  fs::create_directories(work);
-  const CmdResult run = RunCommand(std::string(AALAB_BINARY_DIR) + "/aalab run --scenes wedges,circle --methods "
-                            "none,ssaa-2x2,fxaa1-p3 --size 64x36 --ref-spp 4 --repeat 1 --debug-views --quiet --out " +
-                            Quote(out.string()) + " 2>&1");
-  ASSERT_EQ(run.code, 0) << run.output;
+  RunAalabInto(out, "run --scenes wedges,circle --methods none,ssaa-2x2,fxaa1-p3 --size 64x36 --ref-spp 4 --repeat 1 "
+                    "--debug-views");
   ASSERT_TRUE(fs::exists(out / "index.html"));
   const std::string url = "file://" + fs::absolute(out / "index.html").string();
 
@@ -123,28 +102,14 @@ TEST(HtmlBrowser, AnyTwoRowsSideBySideWithFlipAndDifference) {
   if (!fs::exists(kChromium)) {
     AALAB_SKIP_OR_FAIL_UNDER_CI(std::string(kChromium) + " is not installed, so the A/B page was NOT tested in a browser.");
   }
-  const fs::path work = fs::path(AALAB_BINARY_DIR) / "html_browser_pair_test";
+  const fs::path work = FreshWorkDir("html_browser_pair_test");
   const fs::path out = work / "run";
-  fs::remove_all(work);
-  fs::create_directories(work);
-  const CmdResult run = RunCommand(std::string(AALAB_BINARY_DIR) + "/aalab run --scenes wedges --methods "
-                                   "none,ssaa-2x2,fxaa1-p3 --size 64x36 --ref-spp 4 --repeat 1 --quiet --out " +
-                                   Quote(out.string()) + " 2>&1");
-  ASSERT_EQ(run.code, 0) << run.output;
+  const std::string printed = RunAalabInto(out, "run --scenes wedges --methods none,ssaa-2x2,fxaa1-p3 --size 64x36 "
+                                                "--ref-spp 4 --repeat 1");
   // The terminal states the verdict too.
-  EXPECT_NE(run.output.find("  wedges: edge PSNR → "), std::string::npos) << run.output;
+  EXPECT_NE(printed.find("  wedges: edge PSNR → "), std::string::npos) << printed;
   const std::string url = "file://" + fs::absolute(out / "index.html").string() + "#pairtest";
-  auto facts = [&](const std::string& name, const std::string& flags) {
-    const fs::path dom = work / (name + ".html"), log = work / (name + ".log");
-    const CmdResult r = RunCommand(Chromium(work / ("profile-" + name), flags + " --virtual-time-budget=20000 "
-                                                                        "--window-size=1400,1600 --dump-dom " + Quote(url)) +
-                                   " > " + Quote(dom.string()) + " 2> " + Quote(log.string()));
-    EXPECT_EQ(r.code, 0) << ReadFile(log);
-    std::smatch m;
-    const std::string text = ReadFile(dom);
-    if (!std::regex_search(text, m, std::regex("<pre id=\"pairtest\">([^<]*)</pre>"))) return std::string("no pairtest");
-    return std::string(m[1]);
-  };
+  auto facts = [&](const std::string& name, const std::string& flags) { return PageFacts(work, name, url, flags, "pairtest"); };
   const std::string png = "images/wedges/";
   const std::string read = facts("read", "--allow-file-access-from-files");
   EXPECT_NE(read.find("options=reference,none,ssaa-2x2,fxaa1-p3 "), std::string::npos) << read;
@@ -154,18 +119,28 @@ TEST(HtmlBrowser, AnyTwoRowsSideBySideWithFlipAndDifference) {
   EXPECT_GT(std::stoi(m[1]), 0) << read;
   EXPECT_GT(std::stoi(m[2]), 0) << read;
   // The same count and largest difference as OpenImageIO's idiff on the two PNGs.
-  const CmdResult idiff = RunCommand("idiff -a " + Quote((out / png / "ssaa-2x2.png").string()) + " " +
-                                     Quote((out / png / "fxaa1-p3.png").string()) + " 2>&1");
-  std::smatch im;
-  ASSERT_TRUE(std::regex_search(idiff.output, im, std::regex("Max error += ([0-9.]+)"))) << idiff.output;
-  EXPECT_EQ(std::stoi(m[2]), static_cast<int>(std::lround(std::stod(im[1]) * 255))) << read << "\n" << idiff.output;
-  ASSERT_TRUE(std::regex_search(idiff.output, im, std::regex("([0-9]+) pixels \\([0-9.]+%\\) over"))) << idiff.output;
-  EXPECT_EQ(m[1].str(), im[1].str()) << read << "\n" << idiff.output;
+  const IdiffStats id = Idiff(out / png / "ssaa-2x2.png", out / png / "fxaa1-p3.png");
+  EXPECT_EQ(std::stoi(m[2]), id.max_levels) << read;
+  EXPECT_EQ(std::stoi(m[1]), id.differing) << read;
   // The split, then all of A, then all of B.
   EXPECT_NE(read.find(" before=split f1=A:" + png + "ssaa-2x2"), std::string::npos) << read;
   EXPECT_NE(read.find(" f2=B:" + png + "fxaa1-p3"), std::string::npos) << read;
   ASSERT_TRUE(std::regex_search(read, m, std::regex(" ref=([0-9]+) "))) << read;
   EXPECT_GT(std::stoi(m[1]), 0) << read;
+  // Several methods' error maps on one colour bar: all three outputs picked, full scale 0.0625,
+  // every map through the one filter whose matrix maps a mean error of 0.0625 to the top of the
+  // table (1 / (3 × 0.0625) = 5.333333 per channel), and the bar labelled 0 .. 0.0625.
+  EXPECT_NE(read.find(" heat=3:1:5.333333:0.0625:0..0.0625:none,ssaa-2x2,fxaa1-p3 "), std::string::npos) << read;
+  // Crop zoom (key 1: the first window report.json names, ×32) and the pixel readout there,
+  // against oiiotool's decoding of the two PNGs; key 0 back to the whole image.
+  const auto report = nlohmann::json::parse(ReadFile(out / "report.json"));
+  const auto& c = report["scenes"][0]["crops"][0];
+  const std::array<int, 4> crop{c[0].get<int>(), c[1].get<int>(), c[2].get<int>(), c[3].get<int>()};
+  EXPECT_NE(read.find(" zoom1=" + std::to_string(crop[0]) + "," + std::to_string(crop[1]) + "," + std::to_string(crop[2]) +
+                      "," + std::to_string(crop[3]) + ":x32:"),
+            std::string::npos) << read;
+  ExpectReadout(read, crop, out / png / "ssaa-2x2.png", out / png / "fxaa1-p3.png", {0, 0});
+  EXPECT_NE(read.find(" zoom0=0,0,64,36 "), std::string::npos) << read;
   EXPECT_NE(read.find(" errors=0"), std::string::npos) << read;
   EXPECT_EQ(read.find("exception"), std::string::npos) << read;
   // Opened from disk without the flag: the same interactions, the counts said to be unavailable.
@@ -215,6 +190,17 @@ TEST(HtmlBrowser, DefaultSuiteOverviewHasOnePointPerMethod) {
     EXPECT_TRUE(plotted.insert((*it)[1]).second) << "two points for " << (*it)[1];
   }
   EXPECT_EQ(plotted, specs) << "the suite chart should have one point per method";
+  // Every point of every chart on the page (suite and scenes, both axes) and every legend
+  // swatch: the method's one colour and marker (html_method_style.h).
+  const std::regex marked("data-spec=\"([^\"]+)\"[^>]*>(?:<title>[^<]*</title>)?(?:<svg[^>]*>)?<path class=\"mk\"[^>]* fill=\"([^\"]+)\" "
+                          "stroke=\"([^\"]+)\"[^>]* data-marker=\"([a-z-]+)\"");
+  int marks = 0;
+  for (auto it = std::sregex_iterator(dom.begin(), dom.end(), marked); it != std::sregex_iterator(); ++it, ++marks) {
+    const aalab::html::MethodStyle st = aalab::html::StyleOfMethod((*it)[1]);
+    EXPECT_EQ((*it)[3].str(), st.colour) << (*it)[0];
+    EXPECT_EQ((*it)[4].str(), st.marker) << (*it)[0];
+  }
+  EXPECT_GE(marks, static_cast<int>(2 * specs.size())) << "chart points and legend swatches; DOM in " << dom_path;
   EXPECT_EQ(suite.find("No method has a value"), std::string::npos);
   // The means leave out detail-texture (no edge pixels, so no Edge PSNR) and say so.
   const std::string note = "Suite means over " + std::to_string(scenes.size() - 1) + " of " + std::to_string(scenes.size()) +

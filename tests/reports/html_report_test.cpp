@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "reports/html_assets.h"
+#include "reports/html_method_style.h"
 #include "reports/html_page.h"
 #include "reports/report_json.h"
 
@@ -294,3 +295,32 @@ TEST(HtmlStability, CountsFiniteAndNullValuesWithReasons) {
 
 }  // namespace
 }  // namespace aalab
+
+// One colour and marker per method on every page: the family's colour from the fixed table, the
+// marker from FNV-1a of the whole spec modulo the five non-circle shapes (values worked out by
+// hand in Python: ssaa-2x2 → 1 + h % 5 = diamond, fxaa311-p39 → triangle, its :subpix=0 variant
+// → triangle-down, smaa-high → square); a family's bare name is a circle.
+TEST(MethodStyle, OneColourPerFamilyAndAStableMarkerPerSpec) {
+  using aalab::html::MethodFamily;
+  using aalab::html::StyleOfMethod;
+  EXPECT_EQ(MethodFamily("ssaa-2x2"), "ssaa");
+  EXPECT_EQ(MethodFamily("fxaa311-p39:subpix=0"), "fxaa311");
+  EXPECT_EQ(MethodFamily("taau"), "taau");
+  EXPECT_EQ(MethodFamily("9x"), "9x");  // no leading letters: the whole spec
+  EXPECT_EQ(StyleOfMethod("none").colour, "#7f7f7f");
+  EXPECT_EQ(StyleOfMethod("none").marker, "circle");
+  EXPECT_EQ(StyleOfMethod("ssaa-2x2").colour, "#0072b2");
+  EXPECT_EQ(StyleOfMethod("ssaa-2x2").marker, "diamond");
+  EXPECT_EQ(StyleOfMethod("fxaa311-p39").marker, "triangle");
+  EXPECT_EQ(StyleOfMethod("fxaa311-p39:subpix=0").marker, "triangle-down");
+  EXPECT_EQ(StyleOfMethod("fxaa311-p39:subpix=0").colour, StyleOfMethod("fxaa311-p39").colour);
+  EXPECT_EQ(StyleOfMethod("smaa-high").marker, "square");
+  EXPECT_NE(StyleOfMethod("fxaa1-p3").colour, StyleOfMethod("fxaa311-p39").colour);
+  // A family outside the table still gets a colour, the same every time.
+  EXPECT_EQ(StyleOfMethod("newaa-x").colour, StyleOfMethod("newaa-y").colour);
+  EXPECT_EQ(StyleOfMethod("newaa-x").colour.size(), 7u);
+  const std::string m = aalab::html::MarkerSvg("ssaa-2x2", 10, 20, 4);
+  EXPECT_NE(m.find("translate(10.0 20.0) scale(4.00)"), std::string::npos) << m;
+  EXPECT_NE(m.find("fill=\"#0072b2\" stroke=\"#0072b2\""), std::string::npos) << m;
+  EXPECT_NE(aalab::html::MarkerSvg("ssaa-2x2", 0, 0, 4, "#d00020").find("fill=\"#d00020\" stroke=\"#0072b2\""), std::string::npos);
+}
