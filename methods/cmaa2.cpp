@@ -40,7 +40,8 @@
 //   * DeferredColorApply2x2CS stores alpha 0; aalab keeps the frame's alpha.
 // Arithmetic as Mesa's lavapipe evaluates the SPIR-V that glslang makes of it (the oracle):
 // float32, x/y correctly rounded, lerp as a + t·(b − a), f32tof16 rounding to nearest even
-// (tests/oracle/cmaa2_oracle_test.cpp: x·(1/y) or a truncating f32tof16 match fewer pixels).
+// (tests/oracle/cmaa2_oracle_test.cpp: x·(1/y) or a truncating f32tof16 match fewer pixels;
+// docs/cmaa2.md gives the figures and the few pixels that still differ).
 #include "methods/cmaa2.h"
 
 #include <algorithm>
