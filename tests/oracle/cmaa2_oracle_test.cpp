@@ -115,6 +115,7 @@ TEST_F(Cmaa2Oracle, EveryPresetAndOptionMatchesTheShader) {
     // Measured (docs/cmaa2.md): at most 60 pixels of 162 531 with any float different (0.037 %),
     // at most 11 with a different byte (0.007 %); each such pixel has a sample one packing
     // step (R11G11B10) apart. The bounds leave no room for a systematic error.
+    if (std::getenv("AALAB_ORACLE_EXAMPLES")) std::printf("%s:%s\n", cfg.name, t.examples.c_str());
     EXPECT_LE(t.float_differing * 2000, t.pixels) << cfg.name << ":" << t.examples;
     EXPECT_LE(t.byte_differing * 10000, t.pixels) << cfg.name << ":" << t.examples;
     EXPECT_GT(t.changed * 20, t.pixels) << cfg.name << ": CMAA2 changed almost nothing";

@@ -3,8 +3,9 @@
 //
 // lavapipe settings, set in the environment before the loader starts: VK_DRIVER_FILES /
 // VK_ICD_FILENAMES = lavapipe's ICD only; GALLIUM_OVERRIDE_CPU_CAPS=avx (at most 256-bit
-// vectors, 8 lanes, on any machine with AVX; "sse4.1", which the GL oracles use to rule out
-// FMA, makes lavapipe's LLVM 15 abort compiling the f16 conversions of CMAA2); LP_NUM_THREADS=1 (workgroups run one after another, in dispatch order, so atomics happen in
+// vectors, 8 lanes, on any machine with AVX; the CPU's FMA stays available, and lavapipe
+// fuses some multiply-adds with it: docs/cmaa2.md. "sse4.1", which the GL oracles use to rule
+// out FMA, makes lavapipe's LLVM 15 abort compiling CMAA2's f16 conversions); LP_NUM_THREADS=1 (workgroups run one after another, in dispatch order, so atomics happen in
 // a fixed order). robustImageAccess is enabled where offered (image reads outside return 0).
 #pragma once
 #include <cstdint>
