@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <functional>
 
-#include "harness/core/render_spec.h"
+#include "core/render_spec.h"
 #include "scenes/analytic.h"
 #include "scenes/exact_reference.h"
 #include "scenes/library.h"

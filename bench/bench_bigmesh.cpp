@@ -7,7 +7,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 #include "scenes/render.h"
 #include "scenes/tracer.h"
 

@@ -11,7 +11,7 @@
 
 #include <sys/resource.h>
 
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 #include "scenes/library.h"
 #include "scenes/render.h"
 #include "scenes/tracer.h"

@@ -13,7 +13,7 @@
 
 #include "bench/bench_stats.h"
 #include "bench/run_capture.h"
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab::bench {
 

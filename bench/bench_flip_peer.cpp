@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "harness/io/image_io.h"
+#include "io/image_io.h"
 #include "metrics/flip.h"
 
 namespace aalab::bench {

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab::bench {
 

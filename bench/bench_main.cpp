@@ -39,7 +39,7 @@
 #include "bench/bench_suite.h"
 #include "bench/bench_taa.h"
 #include "bench/bench_tracing.h"
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 
 namespace aalab::bench {
 namespace {

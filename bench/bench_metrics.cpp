@@ -13,9 +13,9 @@
 
 #include <unistd.h>
 
-#include "harness/core/color.h"
-#include "harness/core/parallel.h"
-#include "harness/io/image_io.h"
+#include "core/color.h"
+#include "core/parallel.h"
+#include "io/image_io.h"
 #include "methods/registry.h"
 #include "metrics/metrics.h"
 #include "scenes/library.h"

@@ -13,7 +13,7 @@
 #include <unistd.h>
 
 #include "bench/bench_flip_peer.h"
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 #include "methods/fxaa311.h"
 #include "metrics/flip.h"
 #include "metrics/ssim.h"

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "bench/bench_msaa.h"
-#include "harness/core/params.h"
+#include "core/params.h"
 #include "scenes/library.h"
 
 int main(int argc, char** argv) {

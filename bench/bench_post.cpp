@@ -8,7 +8,7 @@
 #include <map>
 #include <memory>
 
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 #include "methods/registry.h"
 #include "methods/rescale.h"
 #include "scenes/library.h"

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <functional>
 
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 #include "methods/fxaa311.h"
 #include "methods/registry.h"
 #include "methods/taa.h"

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 #include "methods/registry.h"
 #include "scenes/library.h"
 #include "scenes/render.h"

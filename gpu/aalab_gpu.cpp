@@ -22,7 +22,7 @@
 //             fetch done in float32 from point fetches (the CPU's arithmetic, "software
 //             filter") must match the CPU bit for bit: what differs is the texture unit's.
 //             The CPU with --sampler gpu-texture (the texture unit's arithmetic,
-//             harness/core/sampler.h) must match the texture path bit for bit, and the
+//             core/sampler.h) must match the texture path bit for bit, and the
 //             probe's samples must all follow that rule (CheckTextureRule).
 // `--probe-dump DIR` writes the raw probe data (gpu/texture_probe.h) and exits.
 // `--self-test` runs the same on synthetic frames (noise, hard-edged shapes, odd sizes)
@@ -46,13 +46,13 @@
 #include "gpu/gpu_methods.h"
 #include "gpu/measure.h"
 #include "gpu/taa_gpu.h"
-#include "harness/io/ppm.h"
+#include "io/ppm.h"
 #include "gpu/texture_probe.h"
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/exit_code.h"
-#include "harness/core/hash.h"
-#include "harness/core/params.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/exit_code.h"
+#include "core/hash.h"
+#include "core/params.h"
 
 namespace aalab {
 namespace {
@@ -331,7 +331,7 @@ int Main(int argc, char** argv) {
     WriteTextureProbeData(data, o.probe_dump);
     std::printf("texture probe data written to %s\n", o.probe_dump.c_str());
     const TextureRuleCheck rule = CheckTextureRule(data);
-    std::printf("texture rule (harness/core/sampler.h) against the probe: %lld of %lld samples differ\n",
+    std::printf("texture rule (core/sampler.h) against the probe: %lld of %lld samples differ\n",
                 rule.Mismatches(), rule.pairs + rule.quad8 + rule.coords + rule.quadf);
     return ToInt(ExitCode::kOk);
   }
@@ -374,7 +374,7 @@ int Main(int argc, char** argv) {
   std::vector<Entry> entries;
   int failures = 0;
   const TextureRuleCheck rule = CheckTextureRule(CollectTextureProbeData());
-  std::printf("texture rule (harness/core/sampler.h, --sampler gpu-texture) against this device: pairs %lld/%lld, "
+  std::printf("texture rule (core/sampler.h, --sampler gpu-texture) against this device: pairs %lld/%lld, "
               "RGBA8 quads %lld/%lld, coordinates %lld/%lld, RGBA32F quads %lld/%lld differ\n",
               rule.pair_mismatches, rule.pairs, rule.quad8_mismatches, rule.quad8, rule.coord_mismatches, rule.coords,
               rule.quadf_mismatches, rule.quadf);

@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
-#include "harness/core/error.h"
-#include "harness/core/params.h"
+#include "core/error.h"
+#include "core/params.h"
 #include "methods/fxaa1.h"
 #include "methods/fxaa311.h"
 #include "methods/registry.h"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 #include "methods/cuda/post_filters_cuda.h"
 #include "methods/method.h"
 

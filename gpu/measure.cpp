@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "methods/cuda/post_filters_cuda.h"
 
 namespace aalab {

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab {
 

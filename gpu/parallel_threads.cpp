@@ -1,6 +1,6 @@
-// harness/core/parallel.h on std::thread, for the stand-alone GPU tool build (gpu/
+// core/parallel.h on std::thread, for the stand-alone GPU tool build (gpu/
 // CMakeLists.txt without the main project): the device machine has no TBB. Same contract
-// as harness/core/parallel.cpp: chunks are fixed by count and grain alone, each chunk
+// as core/parallel.cpp: chunks are fixed by count and grain alone, each chunk
 // writes its own outputs, so results do not depend on the thread count.
 #include <algorithm>
 #include <atomic>
@@ -8,8 +8,8 @@
 #include <thread>
 #include <vector>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 
 namespace aalab {
 namespace {

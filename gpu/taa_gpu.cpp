@@ -8,9 +8,9 @@
 #include <limits>
 #include <memory>
 
-#include "harness/core/error.h"
-#include "harness/core/hash.h"
-#include "harness/core/params.h"
+#include "core/error.h"
+#include "core/hash.h"
+#include "core/params.h"
 #include "methods/cuda/post_filters_cuda.h"
 #include "methods/registry.h"
 #include "methods/taa.h"

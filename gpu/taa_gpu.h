@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "gpu/measure.h"
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab {
 

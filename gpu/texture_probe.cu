@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "harness/core/hash.h"
-#include "harness/core/sampler.h"
+#include "core/hash.h"
+#include "core/sampler.h"
 #include "methods/cuda/post_filters_cuda.h"
 
 namespace aalab {
@@ -101,7 +101,7 @@ TextureProbe ProbeTextureFilter() {
 
 // ---------------------------------------------------------------------------------------
 // Raw probe data (texture_probe.h): collected once, written as files and checked against the
-// rule of harness/core/sampler.h.
+// rule of core/sampler.h.
 
 namespace aalab {
 namespace {

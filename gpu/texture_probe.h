@@ -33,7 +33,7 @@ namespace aalab {
 
 /// Raw data of the texture unit's bilinear arithmetic (aalab_gpu --probe-dump writes it as
 /// little-endian files; scripts/fit_texture_rule.py fits the rule offline, CheckTextureRule
-/// checks harness/core/sampler.h's rule against it on the device):
+/// checks core/sampler.h's rule against it on the device):
 ///   pairs.bin      int32 count, the 8-bit weights k, then float32 [k][a][b]: the R channel
 ///                  fetched at u = 2b + 0.5 + k/256 of a 512×256 texture whose row a holds a at
 ///                  texel 2b and b at 2b + 1 (every pair (a, b) at each fixed weight).

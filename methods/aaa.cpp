@@ -27,7 +27,7 @@
 //   aaa-3d            length, shrink 1, smoothing √2: 3DAnalytical.fs' alpha = −dist/(px·√2)
 #include <cmath>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "methods/families.h"
 
 namespace aalab {

@@ -49,9 +49,9 @@
 #include <cmath>
 #include <tuple>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
-#include "harness/core/sampler.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/sampler.h"
 #include "methods/families.h"
 
 namespace aalab {

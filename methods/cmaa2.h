@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 #include "methods/method.h"
 
 namespace aalab {

@@ -48,8 +48,8 @@
 #include <bit>
 #include <cmath>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/families.h"
 #include "methods/fxaa311.h"
 

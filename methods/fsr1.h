@@ -6,8 +6,8 @@
 #include <array>
 #include <cstdint>
 
-#include "harness/core/image.h"
-#include "harness/core/sampler.h"
+#include "core/image.h"
+#include "core/sampler.h"
 #include "methods/method.h"
 
 namespace aalab {

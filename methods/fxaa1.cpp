@@ -93,10 +93,10 @@
 #include <cmath>
 #include <cstring>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
-#include "harness/core/params.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/params.h"
 #include "methods/families.h"
 
 namespace aalab {

@@ -7,9 +7,9 @@
 #include <array>
 #include <vector>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/fxaa1.h"
 #include "methods/row_ops.h"
 

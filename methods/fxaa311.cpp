@@ -42,7 +42,7 @@
 //     1920-wide frame) and a float32 filter mixes in that much of the next texel. Seed 003
 //     uses textureLodOffset: the offset is added to u·W in float before −0.5 (llvmpipe's
 //     rule). Search taps and the final tap are fetches at the shader's coordinates.
-//     Filtering is BilinearSampler's (harness/core/sampler.h): llvmpipe's float32 path,
+//     Filtering is BilinearSampler's (core/sampler.h): llvmpipe's float32 path,
 //     bit for bit. A GPU's 8-bit sub-texel weights differ (see docs/fxaa-fidelity.md).
 //   * posM, the "{xy} = center of pixel" input, is ((x+0.5)/W, (y+0.5)/H) rounded to float;
 //     fxaaQualityRcpFrame is (1/W, 1/H) rounded to float. Every position update
@@ -114,9 +114,9 @@
 #include <memory>
 #include <type_traits>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/families.h"
 
 namespace aalab {

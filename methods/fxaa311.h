@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/image.h"
-#include "harness/core/sampler.h"
+#include "core/image.h"
+#include "core/sampler.h"
 #include "methods/method.h"
 
 namespace aalab {

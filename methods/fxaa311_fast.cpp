@@ -11,9 +11,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/fxaa311.h"
 #include "methods/fxaa311_plane.h"
 #include "methods/row_ops.h"

@@ -8,8 +8,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "harness/core/image.h"
-#include "harness/core/sampler.h"
+#include "core/image.h"
+#include "core/sampler.h"
 #include "methods/fxaa311.h"
 
 namespace aalab::fxaa311_internal {

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/image.h"
-#include "harness/core/params.h"
-#include "harness/core/render_spec.h"
-#include "harness/core/sampler.h"
+#include "core/image.h"
+#include "core/params.h"
+#include "core/render_spec.h"
+#include "core/sampler.h"
 
 namespace aalab {
 

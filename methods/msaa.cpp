@@ -9,7 +9,7 @@
 // sample; per distinct primitive one shading point; the renderer resolves.
 //
 // Sample positions: the standard patterns, in 1/16 px from the pixel centre, y down, in
-// sample index order (harness/core/render_spec.cpp, StandardSamplePositions):
+// sample index order (core/render_spec.cpp, StandardSamplePositions):
 //   2x  (4,4) (-4,-4)
 //   4x  (-2,-6) (6,-2) (-6,2) (2,6)
 //   8x  (1,-3) (-1,3) (5,1) (-3,-5) (-5,5) (-7,-1) (3,7) (7,-7)
@@ -38,7 +38,7 @@
 //               transform, box average in linear light, sRGB encode (as SSAA and the
 //               reference); hdr-linear averages scene-linear radiance and applies the display
 //               transform once (the naive resolve of an HDR render target)
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "methods/families.h"
 
 namespace aalab {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "methods/families.h"
 
 namespace aalab {

@@ -19,7 +19,7 @@
 //            the B-spline from four bilinear taps, applied for up- and downscaling.
 // Deviations: see methods/rescale.cpp (filtering on sRGB-encoded values) and
 // methods/fxaa311.cpp (FXAA fidelity notes).
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "methods/families.h"
 #include "methods/fxaa311.h"
 #include "methods/rescale.h"

@@ -22,10 +22,10 @@
 #include <array>
 #include <cmath>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
-#include "harness/core/sampler.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/sampler.h"
 #include "methods/fsr1.h"
 
 namespace aalab {

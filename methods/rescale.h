@@ -2,7 +2,7 @@
 /// blit does: bilinear (one tap) or B-spline bicubic built from four bilinear taps.
 #pragma once
 
-#include "harness/core/image.h"
+#include "core/image.h"
 #include "methods/method.h"
 
 namespace aalab {

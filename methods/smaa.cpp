@@ -79,9 +79,9 @@
 #include <cmath>
 #include <vector>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/families.h"
 #include "methods/smaa_shader.h"
 

@@ -34,9 +34,9 @@
 #include <memory>
 #include <vector>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/smaa.h"
 #include "methods/row_ops.h"
 #include "methods/smaa_shader.h"

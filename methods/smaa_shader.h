@@ -9,8 +9,8 @@
 #include <cmath>
 #include <cstdint>
 
-#include "harness/core/color.h"
-#include "harness/core/sampler.h"
+#include "core/color.h"
+#include "core/sampler.h"
 #include "methods/smaa.h"
 
 namespace aalab::smaa_detail {

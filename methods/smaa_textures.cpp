@@ -23,7 +23,7 @@
 #include <cmath>
 #include <utility>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "methods/smaa.h"
 
 namespace aalab {

@@ -12,7 +12,7 @@
 // Sources: docs/design.md "Resolve"; FrostKiwi, "Analytical Anti-Aliasing" (seeds/004) on SSAA.
 #include <cmath>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "methods/families.h"
 
 namespace aalab {

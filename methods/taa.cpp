@@ -6,7 +6,7 @@
 //   1. render: one sample at c + j_t, j_t = Halton(2,3) of index (t mod samples) + 1, minus
 //      0.5 (Playdead INSIDE FrustumJitter "Halton_2_3_X16"; Unity URP; index 0 is skipped:
 //      it is the degenerate (0, 0) point) — the render request's JitterSpec, the offset is
-//      per-frame data (harness/core/render_spec.h);
+//      per-frame data (core/render_spec.h);
 //   2. reproject: the history (linear display RGB, float — never 8-bit) is fetched bilinearly
 //      (texel centres at +0.5, clamp to edge) at the previous position of c, which the runner
 //      computes exactly from the known motion (scenes/motion_render.h); no previous position
@@ -46,9 +46,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/families.h"
 #include "methods/taa.h"
 

@@ -62,9 +62,9 @@
 #include <limits>
 #include <vector>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/taa.h"
 
 namespace aalab {

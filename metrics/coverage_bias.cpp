@@ -17,7 +17,7 @@
 // disk; a ramp inside the outline loses πR − π/3 px². Sums in double in probe and row order.
 #include <cmath>
 
-#include "harness/core/color.h"
+#include "core/color.h"
 #include "metrics/families.h"
 #include "metrics/metric.h"
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 

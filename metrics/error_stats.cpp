@@ -18,7 +18,7 @@
 #include <cmath>
 #include <string>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "metrics/families.h"
 #include "metrics/metric.h"
 

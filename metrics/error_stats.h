@@ -3,7 +3,7 @@
 #pragma once
 #include <vector>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab {
 

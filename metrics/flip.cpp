@@ -72,8 +72,8 @@
 #include <numbers>
 #include <string>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "metrics/families.h"
 #include "metrics/metric.h"
 

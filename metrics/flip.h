@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab {
 

@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "metrics/flip.h"
 #include "metrics/metric.h"
 

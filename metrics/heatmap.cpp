@@ -13,8 +13,8 @@
 
 #include <cmath>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
+#include "core/color.h"
+#include "core/error.h"
 
 namespace aalab {
 namespace {

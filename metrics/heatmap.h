@@ -3,7 +3,7 @@
 #include <array>
 #include <string>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab {
 

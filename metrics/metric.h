@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab {
 

@@ -7,7 +7,7 @@
 // Source: docs/design.md "Metrics"; OpenImageIO imagebufalgo_compare (double sums, peak).
 #include <cmath>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "metrics/metric.h"
 
 namespace aalab {

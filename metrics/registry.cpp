@@ -1,6 +1,6 @@
 #include <cmath>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "metrics/families.h"
 #include "metrics/metric.h"
 #include "metrics/metrics.h"

@@ -37,8 +37,8 @@
 #include <cmath>
 #include <vector>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "metrics/families.h"
 #include "metrics/metric.h"
 

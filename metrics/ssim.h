@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 #include "metrics/metric.h"
 
 namespace aalab {

@@ -16,8 +16,8 @@
 #include <complex>
 #include <numbers>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "metrics/flip.h"
 
 namespace aalab {

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <numbers>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 

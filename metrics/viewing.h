@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "harness/core/params.h"
+#include "core/params.h"
 
 namespace aalab {
 

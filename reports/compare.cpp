@@ -12,8 +12,8 @@
 #include <set>
 #include <sstream>
 
-#include "harness/core/error.h"
-#include "harness/core/exit_code.h"
+#include "core/error.h"
+#include "core/exit_code.h"
 #include "reports/compare_text.h"
 #include "reports/html_page.h"
 

@@ -178,7 +178,7 @@ struct CompareResult {
 
   /// 2 could not compare (anything in cannot_compare / missing_rows / extra_rows), 1 at
   /// least one gated regression (or, strict, a capture warning), 0 otherwise (ExitCode,
-  /// harness/core/exit_code.h, as an int).
+  /// core/exit_code.h, as an int).
   int ExitCode() const;
 };
 

@@ -4,7 +4,7 @@
 #include <map>
 #include <sstream>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "reports/compare_text.h"
 #include "reports/html_page.h"
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "build_info.h"
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <map>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "metrics/heatmap.h"
 #include "reports/html_page.h"
 

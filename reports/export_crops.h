@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 #include "reports/export_source.h"
 
 namespace aalab {
@@ -58,7 +58,7 @@ struct CropFigure {
   Image8 pixels;                  ///< RGBA8, white background, tiles drawn
 };
 
-/// Reads an 8-bit image (the CLI passes harness/io's ReadImage8) by source index and path
+/// Reads an 8-bit image (the CLI passes io's ReadImage8) by source index and path
 /// relative to that source's report folder.
 using ImageLoader = std::function<Image8(size_t source, const std::string& path)>;
 

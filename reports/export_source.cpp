@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "build_info.h"
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "metrics/flip.h"
 #include "reports/report_json.h"
 

@@ -8,7 +8,7 @@
 #include <map>
 #include <set>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "reports/html_assets.h"
 
 namespace aalab {

@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 

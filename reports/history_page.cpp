@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "reports/html_page.h"
 
 namespace aalab {

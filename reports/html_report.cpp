@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/color.h"
+#include "core/color.h"
 #include "metrics/heatmap.h"
 #include "reports/html_assets.h"
 #include "reports/html_page.h"

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 

@@ -22,9 +22,9 @@
 #include <memory>
 #include <vector>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "scenes/render.h"
 
 namespace aalab {

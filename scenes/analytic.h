@@ -6,8 +6,8 @@
 #pragma once
 #include <cstdint>
 
-#include "harness/core/image.h"
-#include "harness/core/render_spec.h"
+#include "core/image.h"
+#include "core/render_spec.h"
 #include "scenes/tracer.h"
 
 namespace aalab {

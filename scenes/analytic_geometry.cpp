@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 

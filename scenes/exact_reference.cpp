@@ -16,10 +16,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "harness/core/color.h"
-#include "harness/core/edge_mask.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/edge_mask.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "scenes/analytic_geometry.h"
 
 namespace aalab {

@@ -15,7 +15,7 @@
 #include <map>
 #include <sstream>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 namespace fs = std::filesystem;

@@ -3,7 +3,7 @@
 // before the first texel is decoded, then the decodes and mip chains.
 #include <filesystem>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "scenes/gltf_load.h"
 
 namespace aalab {

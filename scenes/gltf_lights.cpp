@@ -14,7 +14,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 

@@ -20,7 +20,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 namespace fs = std::filesystem;

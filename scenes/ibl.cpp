@@ -21,8 +21,8 @@
 #include <cmath>
 #include <mutex>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 
 namespace aalab {
 

@@ -2,8 +2,8 @@
 
 #include <cfloat>
 
-#include "harness/core/error.h"
-#include "harness/core/params.h"
+#include "core/error.h"
+#include "core/params.h"
 
 namespace aalab {
 

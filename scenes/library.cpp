@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/error.h"
-#include "harness/core/params.h"
+#include "core/error.h"
+#include "core/params.h"
 #include "scenes/model_scene.h"
 
 namespace aalab {

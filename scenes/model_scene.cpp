@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "scenes/gltf_load.h"
 
 namespace aalab {

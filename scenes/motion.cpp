@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "scenes/shapes.h"
 
 namespace aalab {

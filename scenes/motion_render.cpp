@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "scenes/motion.h"
 #include "scenes/render.h"
 

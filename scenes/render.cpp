@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <vector>
 
-#include "harness/core/color.h"
-#include "harness/core/edge_mask.h"
-#include "harness/core/error.h"
-#include "harness/core/hash.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/edge_mask.h"
+#include "core/error.h"
+#include "core/hash.h"
+#include "core/parallel.h"
 
 namespace aalab {
 

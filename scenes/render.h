@@ -4,15 +4,15 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "harness/core/color.h"
+#include "core/color.h"
 
-#include "harness/core/image.h"
-#include "harness/core/render_spec.h"
+#include "core/image.h"
+#include "core/render_spec.h"
 #include "scenes/tracer.h"
 
 namespace aalab {
 
-/// DisplayLinear (harness/core/color.h) for one sample, inlined for the per-sample resolve
+/// DisplayLinear (core/color.h) for one sample, inlined for the per-sample resolve
 /// loops: the same operations in the same order, hence the same bits (a test compares it
 /// with DisplayLinear over the whole float range, NaN and infinities included).
 inline void DisplayLinearInline(const Display& d, const float rgb[3], float out[3]) {

@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "harness/core/color.h"
+#include "core/color.h"
 #include "scenes/texture_image.h"
 
 namespace aalab {

@@ -7,7 +7,7 @@
 #include <string>
 #include <type_traits>
 
-#include "harness/core/hash.h"
+#include "core/hash.h"
 #include "scenes/ibl.h"
 
 namespace aalab {

@@ -11,9 +11,9 @@
 #include <map>
 #include <sstream>
 
-#include "harness/core/error.h"
-#include "harness/core/input_files.h"
-#include "harness/core/params.h"
+#include "core/error.h"
+#include "core/input_files.h"
+#include "core/params.h"
 #include "scenes/gltf_lights.h"
 #include "scenes/gltf_load.h"
 #include "scenes/lighting_parse.h"
@@ -243,7 +243,7 @@ Shape ParseShape(const JsonField& f, const std::string& base_dir) {
     if (const std::string what = WhatIsAt(p.string()); !what.empty()) {
       file.Fail("mesh file '" + p.string() + "' " + what + " (an .obj file is expected)");
     }
-    NoteInputFile(p.string());  // an input: --out may not hold it (harness/core/input_files.h)
+    NoteInputFile(p.string());  // an input: --out may not hold it (core/input_files.h)
     try {
       return LoadObjMesh(p.string());
     } catch (const UserError& e) {
@@ -287,7 +287,7 @@ void AddGltfObject(Scene& s, const JsonField& o, const std::string& base_dir, st
   if (const std::string what = WhatIsAt(p.string()); !what.empty()) {
     file.Fail("glTF file '" + p.string() + "' " + what + " (a .gltf or .glb file is expected)");
   }
-  NoteInputFile(p.string());  // an input: --out may not hold it (harness/core/input_files.h)
+  NoteInputFile(p.string());  // an input: --out may not hold it (core/input_files.h)
   GltfContent g;
   try {
     g = LoadGltf(p.string());

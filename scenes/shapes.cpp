@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 

@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
+#include "core/color.h"
+#include "core/error.h"
 
 namespace aalab {
 

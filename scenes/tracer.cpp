@@ -10,8 +10,8 @@
 
 #include <cmath>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "scenes/tracer_internal.h"
 
 namespace aalab {

@@ -7,7 +7,7 @@
 #include <limits>
 #include <memory>
 
-#include "harness/core/render_spec.h"
+#include "core/render_spec.h"
 #include "scenes/scene.h"
 
 namespace aalab {

@@ -36,7 +36,7 @@
 #include <cmath>
 #include <optional>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "scenes/tracer_internal.h"
 
 namespace aalab {

@@ -4,7 +4,7 @@
 Usage: scripts/fit_texture_rule.py DIR   (needs python3-numpy; not part of the build or CI)
 
 Tests each hypothesis of docs/gpu.md "The CPU mode that predicts the GPU's bits" against the
-raw samples and prints how many samples each one misses; the rule harness/core/sampler.h
+raw samples and prints how many samples each one misses; the rule core/sampler.h
 implements (--sampler gpu-texture) is the one that misses none. aalab_gpu checks the same
 rule on the device itself (CheckTextureRule, every run).
 """

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "harness/cli/commands.h"
-#include "harness/core/error.h"
-#include "harness/core/exit_code.h"
+#include "core/error.h"
+#include "core/exit_code.h"
 #include "harness/run/merge.h"
 #include "harness/run/same_results.h"
 #include "harness/run/sequence_export.h"

@@ -5,12 +5,12 @@
 #include <memory>
 #include <sstream>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/exit_code.h"
-#include "harness/core/params.h"
-#include "harness/core/parallel.h"
-#include "harness/io/image_io.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/exit_code.h"
+#include "core/params.h"
+#include "core/parallel.h"
+#include "io/image_io.h"
 #include "harness/run/out_folder.h"
 #include "harness/run/runner.h"
 #include "metrics/viewing.h"

@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "harness/core/exit_code.h"
+#include "core/exit_code.h"
 
 namespace aalab {
 

@@ -1,6 +1,6 @@
 // aalab command line: list, render, run, apply (and more as issues land).
-// Exit codes: harness/core/exit_code.h (docs/cli.md). Signals: SIGINT, SIGTERM and SIGHUP are
-// taken by one thread, which removes the command's unfinished output (harness/core/cleanup.h)
+// Exit codes: core/exit_code.h (docs/cli.md). Signals: SIGINT, SIGTERM and SIGHUP are
+// taken by one thread, which removes the command's unfinished output (core/cleanup.h)
 // and exits 130 / 143 / 129 with one line. SIGPIPE is ignored: a closed stdout (`aalab run |
 // head`) makes the writes to stdout fail, never the command; its work is finished and kept,
 // and one line on stderr says what was not printed.
@@ -20,9 +20,9 @@
 
 #include "build_info.h"
 #include "harness/cli/commands.h"
-#include "harness/core/exit_code.h"
-#include "harness/core/cleanup.h"
-#include "harness/core/error.h"
+#include "core/exit_code.h"
+#include "core/cleanup.h"
+#include "core/error.h"
 
 namespace aalab {
 namespace {

@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/cli/commands.h"
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/exit_code.h"
-#include "harness/io/image_io.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/exit_code.h"
+#include "io/image_io.h"
 #include "metrics/metrics.h"
 #include "metrics/viewing.h"
 

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "harness/cli/commands.h"
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "scenes/model_scene.h"
 
 namespace aalab {

@@ -5,9 +5,9 @@
 #include <sstream>
 
 #include "harness/cli/commands.h"
-#include "harness/core/error.h"
-#include "harness/core/exit_code.h"
-#include "harness/core/params.h"
+#include "core/error.h"
+#include "core/exit_code.h"
+#include "core/params.h"
 #include "harness/run/runner.h"
 #include "harness/run/sweep.h"
 

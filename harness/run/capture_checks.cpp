@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "harness/core/color.h"
+#include "core/color.h"
 
 namespace aalab {
 

@@ -11,7 +11,7 @@
 #include <tbb/version.h>
 
 #include "build_info.h"
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 #include "harness/run/runner.h"
 
 namespace aalab {

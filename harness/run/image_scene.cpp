@@ -9,12 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/edge_mask.h"
-#include "harness/core/error.h"
-#include "harness/core/input_files.h"
-#include "harness/core/params.h"
-#include "harness/io/image_info.h"
-#include "harness/io/image_io.h"
+#include "core/edge_mask.h"
+#include "core/error.h"
+#include "core/input_files.h"
+#include "core/params.h"
+#include "io/image_info.h"
+#include "io/image_io.h"
 #include "harness/run/capture_checks.h"
 #include "harness/run/image_view.h"
 #include "methods/registry.h"

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/color.h"
-#include "harness/core/image.h"
-#include "harness/run/image_sequence.h"
+#include "core/color.h"
+#include "core/image.h"
+#include "scenes/image_sequence.h"
 #include "harness/run/pipeline.h"
 
 namespace aalab {

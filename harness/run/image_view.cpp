@@ -5,15 +5,15 @@
 #include <cmath>
 #include <cstdio>
 
-#include "harness/core/color.h"
-#include "harness/core/edge_mask.h"
-#include "harness/core/error.h"
-#include "harness/core/params.h"
-#include "harness/io/image_info.h"
-#include "harness/io/image_io.h"
-#include "harness/io/safe_path.h"
-#include "harness/run/image_channels.h"
-#include "harness/run/image_sequence.h"
+#include "core/color.h"
+#include "core/edge_mask.h"
+#include "core/error.h"
+#include "core/params.h"
+#include "io/image_info.h"
+#include "io/image_io.h"
+#include "io/safe_path.h"
+#include "scenes/image_channels.h"
+#include "scenes/image_sequence.h"
 #include "methods/registry.h"
 #include "scenes/motion.h"
 
@@ -72,7 +72,7 @@ ViewImage ReadViewImage(const FieldRef& f, const std::string& rel, const fs::pat
   ViewImage v;
   v.rel = rel;
   if (v.rel.empty()) f.field.Fail("an empty path (give an image file relative to the manifest)");
-  try {  // the one rule for paths read from a file (harness/io/safe_path.h)
+  try {  // the one rule for paths read from a file (io/safe_path.h)
     v.path = ResolveInside(base.empty() ? fs::path(".") : base, v.rel, "the path").string();
   } catch (const UserError& e) {
     f.field.Fail(e.what());
@@ -356,7 +356,7 @@ void CheckOutputName(const JsonField& f, const std::string& name) {
     }
   }
   // Its images are written as images/<scene>/<name>.png beside the reference's: aalab's own
-  // file names are not for user rows (harness/io/safe_path.h).
+  // file names are not for user rows (io/safe_path.h).
   for (const auto& reserved : ReservedOutputNames()) {
     if (name == reserved) {
       f.Fail("'" + name + "' is reserved for aalab's own files in the run folder (images/<scene>/" + name +

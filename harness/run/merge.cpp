@@ -11,9 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/error.h"
-#include "harness/io/image_io.h"
-#include "harness/io/safe_path.h"
+#include "core/error.h"
+#include "io/image_io.h"
+#include "io/safe_path.h"
 #include "harness/run/merge_internal.h"
 #include "harness/run/out_folder.h"
 #include "harness/run/shard.h"

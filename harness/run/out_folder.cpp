@@ -15,9 +15,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/cleanup.h"
-#include "harness/core/error.h"
-#include "harness/io/image_io.h"
+#include "core/cleanup.h"
+#include "core/error.h"
+#include "io/image_io.h"
 
 namespace aalab {
 namespace fs = std::filesystem;

@@ -16,7 +16,7 @@
 ///    work: it cannot be replaced by a rename. A folder inside it is fine.
 ///  - Commit: DIR is checked again (a file the user added during the run is never deleted),
 ///    moved aside, DIR.partial renamed to DIR, the old folder removed; an interruption
-///    (harness/core/cleanup.h) removes DIR.partial and leaves DIR as it was. When the re-check
+///    (core/cleanup.h) removes DIR.partial and leaves DIR as it was. When the re-check
 ///    or a rename fails, the finished output stays in DIR.partial (without its lock, so no
 ///    later command removes it) and the error says where.
 ///  - Every input counts: the files a scene was built from (Scene::files_read: meshes, glTF

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "harness/core/error.h"
-#include "harness/core/hash.h"
-#include "harness/core/params.h"
-#include "harness/core/timer.h"
+#include "core/error.h"
+#include "core/hash.h"
+#include "core/params.h"
+#include "core/timer.h"
 #include "metrics/crops.h"
 #include "metrics/metric.h"
 #include "metrics/metrics.h"

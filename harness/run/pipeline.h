@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 #include "harness/run/reference_cache.h"
 #include "harness/run/stage_clock.h"
 #include "methods/method.h"

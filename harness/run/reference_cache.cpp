@@ -18,10 +18,10 @@
 #include <vector>
 
 #include "build_info.h"
-#include "harness/core/error.h"
-#include "harness/core/hash.h"
-#include "harness/core/timer.h"
-#include "harness/io/image_io.h"
+#include "core/error.h"
+#include "core/hash.h"
+#include "core/timer.h"
+#include "io/image_io.h"
 #include "metrics/metric.h"
 #include "scenes/exact_reference.h"
 #include "scenes/scene_hash.h"
@@ -185,7 +185,7 @@ void ReferenceCache::Store(const std::string& key, const CachedReference& e) con
   w.Pod<double>(e.render_ms);
   w.Pod<uint64_t>(Fnv1a64(w.Bytes().data(), w.Bytes().size()));
   // Checked and atomic; the temporary name is unique across threads, processes and hosts
-  // (harness/io/image_io.h), and an interruption removes it.
+  // (io/image_io.h), and an interruption removes it.
   WriteTextFile(PathOf(key), std::string(w.Bytes().data(), w.Bytes().size()));
 }
 

@@ -8,13 +8,13 @@
 #include <memory>
 #include <optional>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/input_files.h"
-#include "harness/core/parallel.h"
-#include "harness/core/params.h"
-#include "harness/core/timer.h"
-#include "harness/io/image_io.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/input_files.h"
+#include "core/parallel.h"
+#include "core/params.h"
+#include "core/timer.h"
+#include "io/image_io.h"
 #include "metrics/metric.h"
 #include "metrics/viewing.h"
 #include "methods/registry.h"
@@ -188,7 +188,7 @@ Report RunSuite(const RunSettings& s) {
     if (fs::exists(name)) inputs.push_back(name);  // a scene file or manifest (not a library name)
   }
   // Every file the scenes were built from: meshes, glTF buffers and textures, image-scene
-  // frames and captures (harness/core/input_files.h).
+  // frames and captures (core/input_files.h).
   for (const auto& file : InputFilesRead()) inputs.push_back(file);
   OutFolder out(s.out_dir, "run", inputs);
   std::optional<ReferenceCache> cache;  // created once every input has been checked

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/sampler.h"
+#include "core/sampler.h"
 #include "harness/run/shard.h"
 #include "reports/result.h"
 

@@ -8,7 +8,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "reports/report_json.h"
 
 namespace aalab {

@@ -1,7 +1,7 @@
 // Sequences of a motion run: pooling per-frame results into one report row.
 #include "harness/run/sequence.h"
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 

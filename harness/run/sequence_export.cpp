@@ -6,10 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/error.h"
-#include "harness/core/input_files.h"
-#include "harness/io/image_io.h"
-#include "harness/io/safe_path.h"
+#include "core/error.h"
+#include "core/input_files.h"
+#include "io/image_io.h"
+#include "io/safe_path.h"
 #include "harness/run/out_folder.h"
 #include "reports/report_json.h"
 
@@ -56,7 +56,7 @@ SequenceExport ExportSequences(const std::string& run_dir, const std::string& ou
     throw UserError("'" + run_dir + "' is not a motion run (no scene has frames > 1): run aalab run --frames N first");
   }
   // Every input file must exist, inside the run folder, before anything is written; every
-  // name that becomes a folder under --out must be a plain name (harness/io/safe_path.h).
+  // name that becomes a folder under --out must be a plain name (io/safe_path.h).
   const std::string origin = "report '" + (run / "report.json").string() + "'";
   auto need = [&run, &origin](const std::string& rel) {
     const fs::path p = ResolveInside(run, rel, "frame path in " + origin);

@@ -1,7 +1,7 @@
 // The deterministic split of a run's work (harness/run/shard.h).
 #include "harness/run/shard.h"
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/timer.h"
+#include "core/timer.h"
 #include "reports/result.h"
 
 namespace aalab {

@@ -17,12 +17,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/error.h"
-#include "harness/core/input_files.h"
-#include "harness/core/parallel.h"
-#include "harness/core/params.h"
-#include "harness/core/timer.h"
-#include "harness/io/image_io.h"
+#include "core/error.h"
+#include "core/input_files.h"
+#include "core/parallel.h"
+#include "core/params.h"
+#include "core/timer.h"
+#include "io/image_io.h"
 #include "harness/run/image_scene.h"
 #include "harness/run/out_folder.h"
 #include "harness/run/pipeline.h"
@@ -336,7 +336,7 @@ SweepResult RunSweep(const SweepSettings& s) {
     if (fs::exists(name)) inputs.push_back(name);  // a scene file or manifest (not a library name)
   }
   // Every file the scenes were built from: meshes, glTF buffers and textures, image-scene
-  // frames and captures (harness/core/input_files.h).
+  // frames and captures (core/input_files.h).
   for (const auto& file : InputFilesRead()) inputs.push_back(file);
   OutFolder out(s.out_dir, "sweep", inputs);
   res.out_dir = s.out_dir;

@@ -5,7 +5,7 @@
 
 namespace aalab::cuda {
 
-/// harness/core/color.cpp QuantizeUnorm8: 0 for v <= 0 (and NaN), 255 for v >= 1, else
+/// core/color.cpp QuantizeUnorm8: 0 for v <= 0 (and NaN), 255 for v >= 1, else
 /// lround(v·255) with the product rounded to float first.
 __device__ __forceinline__ unsigned char QuantizeUnorm8(float v) {
   if (!(v > 0.0f)) return 0;
@@ -18,7 +18,7 @@ __device__ __forceinline__ float4 TexelAt(cudaTextureObject_t point, int x, int 
   return tex2D<float4>(point, static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
 }
 
-/// harness/core/sampler.h StoreUnorm8: GL's float-to-UNORM8 store of a render target
+/// core/sampler.h StoreUnorm8: GL's float-to-UNORM8 store of a render target
 /// (clamp, ·255, round to nearest with ties to even), as the CPU's FXAA 3.11 writes.
 __device__ __forceinline__ unsigned char StoreUnorm8(float v) {
   if (!(v > 0.0f)) return 0;
@@ -66,7 +66,7 @@ __device__ __forceinline__ float4 SoftBlendAt(cudaTextureObject_t point, float x
                      blend(a.w, b.w, c.w, d.w));
 }
 
-/// The CPU's BilinearSampler::Sample (harness/core/sampler.h: BilinearAt, BilinearBlend,
+/// The CPU's BilinearSampler::Sample (core/sampler.h: BilinearAt, BilinearBlend,
 /// UnormToFloat texels) from four point fetches, in float32 with the CPU's operation order:
 /// the "software filter" variant the gpu tool uses to show that every GPU/CPU difference
 /// comes from the texture unit (with it, outputs are bit-identical to the CPU).

@@ -21,7 +21,7 @@
 namespace aalab::cuda {
 namespace {
 
-// BilinearAt (harness/core/sampler.h) + BilinearBlend from four point fetches: the CPU's
+// BilinearAt (core/sampler.h) + BilinearBlend from four point fetches: the CPU's
 // BilinearSampler::Sample at texel coordinates (u, v), fixed8 = SubTexel::kFixed8.
 __device__ __forceinline__ float4 SoftSample(cudaTextureObject_t point, float u, float v, int w, int h, bool fixed8) {
   const float x = u - 0.5f;

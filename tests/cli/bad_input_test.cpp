@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "cli_util.h"
-#include "harness/io/image_io.h"
+#include "io/image_io.h"
 
 namespace aalab::clitest {
 namespace {

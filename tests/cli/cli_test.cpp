@@ -13,8 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_util.h"
-#include "harness/core/color.h"
-#include "harness/io/image_io.h"
+#include "core/color.h"
+#include "io/image_io.h"
 #include "methods/fxaa1.h"
 #include "methods/fxaa311.h"
 #include "scenes/library.h"

@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_util.h"
-#include "harness/io/image_io.h"
+#include "io/image_io.h"
 
 namespace {
 namespace fs = std::filesystem;

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_util.h"
-#include "harness/io/image_io.h"
+#include "io/image_io.h"
 #include "methods/fsr1.h"
 
 namespace {

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "harness/io/image_io.h"
-#include "harness/io/ppm.h"
+#include "io/image_io.h"
+#include "io/ppm.h"
 #include "tests/cli/cli_util.h"
 
 namespace aalab {

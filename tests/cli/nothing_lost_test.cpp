@@ -22,8 +22,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/image.h"
-#include "harness/io/image_io.h"
+#include "core/image.h"
+#include "io/image_io.h"
 #include "tests/cli/cli_util.h"
 
 namespace aalab {

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "cli_util.h"
-#include "harness/core/color.h"
-#include "harness/io/image_io.h"
+#include "core/color.h"
+#include "io/image_io.h"
 
 namespace {
 namespace fs = std::filesystem;

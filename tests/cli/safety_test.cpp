@@ -19,8 +19,8 @@
 #include <iterator>
 #include <thread>
 
-#include "harness/core/image.h"
-#include "harness/io/image_io.h"
+#include "core/image.h"
+#include "io/image_io.h"
 #include "tests/cli/cli_util.h"
 
 namespace aalab {

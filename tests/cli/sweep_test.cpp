@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 namespace {

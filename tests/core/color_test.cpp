@@ -1,11 +1,11 @@
-#include "harness/core/color.h"
+#include "core/color.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 namespace {

@@ -1,4 +1,4 @@
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 
 #include <gtest/gtest.h>
 

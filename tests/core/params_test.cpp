@@ -1,8 +1,8 @@
-#include "harness/core/params.h"
+#include "core/params.h"
 
 #include <gtest/gtest.h>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 namespace {

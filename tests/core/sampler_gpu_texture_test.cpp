@@ -1,12 +1,12 @@
-// The texture unit's arithmetic (SamplerArithmetic::kGpuTexture, harness/core/sampler.h)
+// The texture unit's arithmetic (SamplerArithmetic::kGpuTexture, core/sampler.h)
 // against values worked out by hand from the rule the H100 probe found (docs/gpu.md), and
 // the default arithmetic left as it was.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "harness/core/error.h"
-#include "harness/core/sampler.h"
+#include "core/error.h"
+#include "core/sampler.h"
 
 namespace aalab {
 namespace {

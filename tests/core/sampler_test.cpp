@@ -1,4 +1,4 @@
-#include "harness/core/sampler.h"
+#include "core/sampler.h"
 
 #include <gtest/gtest.h>
 

@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "harness/core/error.h"
-#include "harness/io/image_io.h"
+#include "core/error.h"
+#include "io/image_io.h"
 #include "scenes/scene.h"
 
 namespace aalab::fuzz {

@@ -1,6 +1,6 @@
 // Image files: ReadImage's refusals (NaN/Inf with the pixel position, sizes, channel counts,
 // truncation) and the writers' guarantees (atomic, byte-for-byte deterministic).
-#include "harness/io/image_io.h"
+#include "io/image_io.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -13,7 +13,7 @@
 #include <limits>
 #include <thread>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "tests/temp_dir.h"
 
 namespace aalab {

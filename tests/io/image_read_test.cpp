@@ -17,9 +17,9 @@
 #include <iterator>
 #include <limits>
 
-#include "harness/core/error.h"
-#include "harness/io/image_io.h"
-#include "harness/io/safe_path.h"
+#include "core/error.h"
+#include "io/image_io.h"
+#include "io/safe_path.h"
 #include "tests/temp_dir.h"
 
 namespace aalab {

@@ -1,5 +1,5 @@
-// Binary PPM frames (harness/io/ppm.h): the exchange format with the GPU tool.
-#include "harness/io/ppm.h"
+// Binary PPM frames (io/ppm.h): the exchange format with the GPU tool.
+#include "io/ppm.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "tests/temp_dir.h"
 
 namespace aalab {

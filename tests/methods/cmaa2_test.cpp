@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/cmaa2.h"
 #include "methods/registry.h"
 

@@ -7,7 +7,7 @@
 #include <bit>
 #include <cmath>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "methods/fsr1.h"
 #include "methods/registry.h"
 

@@ -12,9 +12,9 @@
 #include <cstdio>
 #include <functional>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/registry.h"
 
 namespace aalab {

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/color.h"
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/registry.h"
 
 namespace aalab {

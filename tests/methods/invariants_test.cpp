@@ -47,8 +47,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/color.h"
-#include "harness/core/sampler.h"
+#include "core/color.h"
+#include "core/sampler.h"
 #include "methods/fxaa1.h"
 #include "methods/fxaa311.h"
 #include "methods/registry.h"

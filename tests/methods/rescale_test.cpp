@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "methods/fxaa311.h"
 #include "methods/registry.h"
 

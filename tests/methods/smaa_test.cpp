@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "methods/registry.h"
 
 namespace aalab {

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "metrics/metrics.h"
 #include "tests/metrics/test_images.h"
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "metrics/error_stats.h"
 #include "metrics/families.h"
 

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <numeric>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "metrics/flip.h"
 #include "tests/metrics/test_images.h"
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "metrics/heatmap.h"
 
 namespace aalab {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <utility>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab::testimg {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "metrics/flip.h"
 #include "metrics/viewing.h"
 

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../cli/cli_util.h"
-#include "harness/io/image_io.h"
+#include "io/image_io.h"
 
 namespace aalab {
 namespace {

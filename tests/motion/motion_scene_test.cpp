@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "harness/core/render_spec.h"
+#include "core/render_spec.h"
 #include "scenes/motion.h"
 #include "scenes/motion_render.h"
 #include "scenes/render.h"

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 #include "metrics/temporal_perceptual.h"
 
 namespace aalab {

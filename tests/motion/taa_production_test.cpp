@@ -15,8 +15,8 @@
 
 #include <cmath>
 
-#include "harness/core/color.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/parallel.h"
 #include "methods/families.h"
 #include "methods/registry.h"
 #include "methods/taa.h"

@@ -17,8 +17,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "harness/core/color.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/parallel.h"
 #include "methods/registry.h"
 #include "methods/taa.h"
 #include "metrics/temporal.h"

@@ -15,7 +15,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "harness/core/sampler.h"
+#include "core/sampler.h"
 #include "methods/cmaa2.h"
 #include "tests/oracle/cmaa2_shader.h"
 #include "tests/oracle/oracle_frames.h"

@@ -13,7 +13,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "harness/core/sampler.h"
+#include "core/sampler.h"
 #include "methods/fsr1.h"
 #include "tests/oracle/fsr1_shader.h"
 #include "tests/oracle/gl_oracle.h"

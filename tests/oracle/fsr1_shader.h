@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab::oracle {
 

@@ -17,7 +17,7 @@
 #pragma once
 #include <string>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 
 namespace aalab::oracle {
 

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "core/image.h"
 #include "scenes/library.h"
 #include "scenes/render.h"
 

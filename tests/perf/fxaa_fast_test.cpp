@@ -6,7 +6,7 @@
 
 #include <cstring>
 
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 #include "methods/fxaa1.h"
 #include "methods/fxaa311.h"
 #include "methods/registry.h"

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 #include "metrics/flip.h"
 #include "metrics/ssim.h"
 #include "tests/perf/frames.h"

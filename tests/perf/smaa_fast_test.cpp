@@ -5,7 +5,7 @@
 // sub-texel fetches, zero thresholds and steps), at 1 and 2 threads.
 #include <gtest/gtest.h>
 
-#include "harness/core/parallel.h"
+#include "core/parallel.h"
 #include "methods/smaa.h"
 #include "tests/perf/frames.h"
 

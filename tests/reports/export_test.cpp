@@ -8,7 +8,7 @@
 #include <regex>
 #include <sstream>
 
-#include "harness/core/color.h"
+#include "core/color.h"
 #include "methods/registry.h"
 #include "metrics/heatmap.h"
 #include "metrics/metric.h"

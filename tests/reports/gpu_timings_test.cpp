@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "reports/report_json.h"
 #include "tests/temp_dir.h"
 

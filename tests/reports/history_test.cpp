@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 
 namespace aalab {
 namespace {

@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/color.h"
-#include "harness/core/edge_mask.h"
-#include "harness/core/error.h"
-#include "harness/io/image_info.h"
-#include "harness/io/image_io.h"
+#include "core/color.h"
+#include "core/edge_mask.h"
+#include "core/error.h"
+#include "io/image_info.h"
+#include "io/image_io.h"
 #include "harness/run/runner.h"
 #include "harness/run/sweep.h"
 #include "reports/report_json.h"

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "harness/core/error.h"
-#include "harness/core/parallel.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "harness/run/runner.h"
 
 namespace aalab {

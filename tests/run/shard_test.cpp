@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "harness/run/merge.h"
 #include "harness/run/pipeline.h"
 #include "harness/run/reference_cache.h"

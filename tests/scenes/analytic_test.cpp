@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "harness/core/color.h"
+#include "core/color.h"
 #include "scenes/analytic_geometry.h"
 #include "scenes/exact_reference.h"
 #include "scenes/render.h"

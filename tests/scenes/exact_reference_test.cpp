@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "harness/core/color.h"
+#include "core/color.h"
 #include "scenes/analytic_geometry.h"
 #include "scenes/render.h"
 #include "scenes/tracer.h"

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <map>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "scenes/gltf_load.h"
 
 namespace aalab {

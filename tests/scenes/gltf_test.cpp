@@ -11,8 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/error.h"
-#include "harness/io/image_io.h"
+#include "core/error.h"
+#include "io/image_io.h"
 #include "scenes/gltf_load.h"
 #include "scenes/library.h"
 #include "scenes/texture_image.h"

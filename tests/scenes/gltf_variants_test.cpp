@@ -16,8 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/color.h"
-#include "harness/io/image_io.h"
+#include "core/color.h"
+#include "io/image_io.h"
 #include "scenes/gltf_load.h"
 #include "scenes/render.h"
 #include "scenes/scene.h"

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "harness/core/color.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/parallel.h"
 #include "metrics/metric.h"
 #include "scene_test_util.h"
 #include "scenes/library.h"

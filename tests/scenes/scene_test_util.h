@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-#include "harness/core/error.h"
+#include "core/error.h"
 #include "scenes/scene.h"
 
 namespace aalab::testing {

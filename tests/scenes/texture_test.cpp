@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "harness/core/color.h"
-#include "harness/core/parallel.h"
+#include "core/color.h"
+#include "core/parallel.h"
 #include "scenes/render.h"
 #include "scenes/specular_aa.h"
 #include "scenes/texture_image.h"
