@@ -24,6 +24,10 @@ std::vector<MethodEntry> Fxaa311Methods();
 /// presets (methods/smaa.cpp).
 std::vector<MethodEntry> SmaaMethods();
 
+/// `cmaa2-low`, `cmaa2-medium`, `cmaa2-high`, `cmaa2-ultra`: Intel CMAA2 quality presets
+/// (methods/cmaa2.cpp).
+std::vector<MethodEntry> Cmaa2Methods();
+
 /// `scale43`, `scale43-fxaa-high`: render scale with bilinear / bicubic rescale
 /// (methods/render_scale.cpp).
 std::vector<MethodEntry> RenderScaleMethods();

@@ -67,6 +67,21 @@ struct V2 {
   float x, y;
 };
 
+// One axis of FsrEasuSetF: lo, c, hi are the lumas before, at and after the centre texel
+// (B C D across, A C E down). Adds the weighted gradient to dir and the weighted squared
+// edge length to len, in the shader's order.
+void EasuAxis(float& dir, float& len, float w, float lo, float c, float hi) {
+  const float d1 = hi - c;
+  const float d0 = c - lo;
+  float l = std::fmaxf(std::fabs(d1), std::fabs(d0));
+  l = Fsr1PrxLoRcp(l);
+  const float d = hi - lo;
+  dir += d * w;
+  l = Sat(std::fabs(d) * l);
+  l *= l;
+  len += l * w;
+}
+
 // FsrEasuSetF for one of the four bilinear corners (s t / u v): direction and length.
 void EasuSet(V2& dir, float& len, V2 pp, int corner, float lA, float lB, float lC, float lD, float lE) {
   float w = 0.0f;
@@ -74,24 +89,8 @@ void EasuSet(V2& dir, float& len, V2 pp, int corner, float lA, float lB, float l
   if (corner == 1) w = pp.x * (1.0f - pp.y);
   if (corner == 2) w = (1.0f - pp.x) * pp.y;
   if (corner == 3) w = pp.x * pp.y;
-  const float dc = lD - lC;
-  const float cb = lC - lB;
-  float lenX = std::fmaxf(std::fabs(dc), std::fabs(cb));
-  lenX = Fsr1PrxLoRcp(lenX);
-  const float dirX = lD - lB;
-  dir.x += dirX * w;
-  lenX = Sat(std::fabs(dirX) * lenX);
-  lenX *= lenX;
-  len += lenX * w;
-  const float ec = lE - lC;
-  const float ca = lC - lA;
-  float lenY = std::fmaxf(std::fabs(ec), std::fabs(ca));
-  lenY = Fsr1PrxLoRcp(lenY);
-  const float dirY = lE - lA;
-  dir.y += dirY * w;
-  lenY = Sat(std::fabs(dirY) * lenY);
-  lenY *= lenY;
-  len += lenY * w;
+  EasuAxis(dir.x, len, w, lB, lC, lD);
+  EasuAxis(dir.y, len, w, lA, lC, lE);
 }
 
 // FsrEasuTapF: one tap of the approximate Lanczos-2 window.

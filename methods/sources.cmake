@@ -11,6 +11,7 @@ set(AALAB_METHOD_SOURCES
   smaa.cpp
   smaa_fast.cpp
   smaa_textures.cpp
+  cmaa2.cpp
   rescale.cpp
   render_scale.cpp
   fsr1.cpp

@@ -35,6 +35,13 @@ const Bib kBibliography[] = {
   year         = {2021},
   note         = {Version 1.0.2 (commit a21ffb8f), {MIT} licence; {EASU} and {RCAS}}
 })"},
+    {"intel2018cmaa2", R"(@misc{intel2018cmaa2,
+  author       = {Filip Strugar},
+  title        = {Conservative Morphological Anti-Aliasing 2.0 ({CMAA2}, {\texttt{CMAA2.hlsl}})},
+  howpublished = {Intel Corporation, shader source, \url{https://github.com/GameTechDev/CMAA2}},
+  year         = {2018},
+  note         = {Version 2.3 (commit 071c6b08), Apache-2.0 licence}
+})"},
     {"lottes2011fxaa311", R"(@misc{lottes2011fxaa311,
   author       = {Timothy Lottes},
   title        = {{FXAA} 3.11 ({\texttt{Fxaa3\_11.h}}, {FXAA\_PC} quality path)},

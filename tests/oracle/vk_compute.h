@@ -1,0 +1,72 @@
+// A small Vulkan compute runner for test oracles: SPIR-V compute shaders on Mesa's lavapipe
+// (Vulkan on the CPU), with storage/sampled images and storage buffers in one descriptor set.
+//
+// lavapipe settings, set in the environment before the loader starts: VK_DRIVER_FILES /
+// VK_ICD_FILENAMES = lavapipe's ICD only; GALLIUM_OVERRIDE_CPU_CAPS=avx (at most 256-bit
+// vectors, 8 lanes, on any machine with AVX; the CPU's FMA stays available, and lavapipe
+// fuses some multiply-adds with it: docs/cmaa2.md. "sse4.1", which the GL oracles use to rule
+// out FMA, makes lavapipe's LLVM 15 abort compiling CMAA2's f16 conversions); LP_NUM_THREADS=1 (workgroups run one after another, in dispatch order, so atomics happen in
+// a fixed order). robustImageAccess is enabled where offered (image reads outside return 0).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace aalab::oracle {
+
+/// Compiles HLSL text (entry point `entry`, compute) to SPIR-V with glslangValidator (Debian
+/// glslang-tools): `-D -V -S comp --hlsl-iomap --shift-UAV-binding comp 10` plus `defines`
+/// (NAME=VALUE). Registers t<n> get binding n, u<n> binding 10 + n. Throws with the compiler's
+/// output on failure.
+std::vector<uint32_t> CompileHlsl(const std::string& text, const std::string& entry,
+                                  const std::vector<std::string>& defines);
+
+/// One binding of the shared descriptor set.
+struct VkBinding {
+  enum Kind { kSampledImage, kStorageImage, kStorageBuffer } kind;
+  uint32_t binding;
+  // Images: size and format (VkFormat value); buffers: size in bytes.
+  int width = 0, height = 0;
+  int format = 0;
+  uint64_t bytes = 0;
+  bool indirect = false;  ///< a storage buffer also used as the DispatchIndirect argument
+};
+
+/// One step of the command buffer: a pipeline and a direct or indirect dispatch.
+struct VkStep {
+  int pipeline;
+  uint32_t gx = 1, gy = 1, gz = 1;
+  int indirect_binding = -1;  ///< >= 0: vkCmdDispatchIndirect from that buffer binding, offset 0
+};
+
+class VkCompute {
+ public:
+  /// Starts lavapipe; "" on success, else what is missing.
+  static std::string Start();
+  /// The device name (VkPhysicalDeviceProperties::deviceName).
+  static std::string DeviceName();
+  /// lavapipe's vector width in 32-bit lanes (from the device name's "N bits"; 4 if absent):
+  /// how many invocations run each statement together.
+  static int Lanes();
+
+  explicit VkCompute(std::vector<VkBinding> bindings);
+  ~VkCompute();
+  VkCompute(const VkCompute&) = delete;
+  VkCompute& operator=(const VkCompute&) = delete;
+
+  /// Adds a pipeline; returns its index for VkStep.
+  int AddPipeline(const std::vector<uint32_t>& spirv, const std::string& entry);
+  /// Initial contents (raw bytes, tightly packed rows for images); unset ones start as zero.
+  void Fill(uint32_t binding, const void* data, uint64_t bytes);
+  /// Records every step (each followed by a full compute/indirect barrier), runs, waits.
+  void Run(const std::vector<VkStep>& steps);
+  /// The contents of a binding after Run (images as tightly packed rows).
+  std::vector<uint8_t> Read(uint32_t binding);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace aalab::oracle
