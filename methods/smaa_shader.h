@@ -4,12 +4,17 @@
 // reader of the same bytes doing the same float operations) run one definition of the
 // shader; everything else (which pixels run, data layout, pass 1, skipping) is per path.
 // Names follow the shader. mad(a, b, c) is written a * b + c (two roundings; see smaa.cpp).
+// The CUDA twin (methods/cuda/smaa.cu) compiles the same WeightsShader and BlendColor with
+// device readers: every AALAB_HD function here runs on both sides, so the GPU's software-
+// filter mode and the CPU share one text (the math helpers below pick the device intrinsic
+// of the same IEEE operation under nvcc: rintf, fabsf, sqrtf, fminf/fmaxf).
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
 #include "core/color.h"
+#include "core/host_device.h"
 #include "core/sampler.h"
 #include "methods/smaa.h"
 
@@ -20,14 +25,49 @@ struct F2 {
 };
 
 // HLSL round(): round to nearest, ties to even (the round_ne instruction it compiles to).
-inline float Round(float v) { return std::nearbyint(v); }
+AALAB_HD inline float Round(float v) {
+#ifdef __CUDA_ARCH__
+  return rintf(v);
+#else
+  return std::nearbyint(v);
+#endif
+}
+AALAB_HD inline float Abs(float v) {
+#ifdef __CUDA_ARCH__
+  return fabsf(v);
+#else
+  return std::fabs(v);
+#endif
+}
+AALAB_HD inline float Sqrt(float v) {  // correctly rounded on both sides (nvcc's default -prec-sqrt)
+#ifdef __CUDA_ARCH__
+  return sqrtf(v);
+#else
+  return std::sqrt(v);
+#endif
+}
+// saturate(); the weights are never NaN (their inputs are 8-bit fetches).
+AALAB_HD inline float Saturate(float v) {
+#ifdef __CUDA_ARCH__
+  return fminf(fmaxf(v, 0.0f), 1.0f);
+#else
+  return std::clamp(v, 0.0f, 1.0f);
+#endif
+}
+AALAB_HD inline float Max(float a, float b) {
+#ifdef __CUDA_ARCH__
+  return fmaxf(a, b);
+#else
+  return std::max(a, b);
+#endif
+}
 
 // The render-target metrics SMAA_RT_METRICS = (1/W, 1/H, W, H) and a pixel's texcoord.
 struct Frame {
   float W = 0, H = 0, rx = 0, ry = 0;
-  Frame(int w, int h)
+  AALAB_HD Frame(int w, int h)
       : W(static_cast<float>(w)), H(static_cast<float>(h)), rx(1.0f / static_cast<float>(w)), ry(1.0f / static_cast<float>(h)) {}
-  F2 Texcoord(int x, int y) const {
+  AALAB_HD F2 Texcoord(int x, int y) const {
     return {(static_cast<float>(x) + 0.5f) / W, (static_cast<float>(y) + 0.5f) / H};
   }
 };
@@ -48,15 +88,16 @@ class SamplerEdges {
 
 // SMAABlendingWeightCalculationPS with its search, area and corner functions, for one
 // pixel. E: an edge reader as above; T: BilinearSampler (or a reader with the same
-// SampleNormalized, operation for operation) on SmaaAreaTexture() and SmaaSearchTexture().
-template <class E, class T = BilinearSampler>
+// SampleNormalized, operation for operation) on SmaaAreaTexture() and SmaaSearchTexture();
+// P: SmaaParams, or the CUDA twin's SmaaArgs (the same fields read here).
+template <class E, class T = BilinearSampler, class P = SmaaParams>
 class WeightsShader {
  public:
-  WeightsShader(E& edges, T& area, T& search, const SmaaParams& p, const Frame& f)
+  AALAB_HD WeightsShader(E& edges, T& area, T& search, const P& p, const Frame& f)
       : edges_(edges), area_(area), search_(search), p_(p), f_(f) {}
 
   // Returns the four weights (r, g, b, a) of pixel (x, y), before the 8-bit store.
-  Float4 Run(int x, int y) {
+  AALAB_HD Float4 Run(int x, int y) {
     const float rx = f_.rx, ry = f_.ry;
     const F2 tc = f_.Texcoord(x, y);
     const F2 pix{tc.x * f_.W, tc.y * f_.H};
@@ -84,9 +125,9 @@ class WeightsShader {
         const float e1 = Ed(cx, cy).x;
         const float cz = SearchXRight(o0z, o0w, o2y);
         d.y = cz;
-        d.x = std::fabs(Round(f_.W * d.x + -pix.x));
-        d.y = std::fabs(Round(f_.W * d.y + -pix.x));
-        const F2 sq{std::sqrt(d.x), std::sqrt(d.y)};
+        d.x = Abs(Round(f_.W * d.x + -pix.x));
+        d.y = Abs(Round(f_.W * d.y + -pix.x));
+        const F2 sq{Sqrt(d.x), Sqrt(d.y)};
         const float e2 = EdOff(cz, cy, 1.0f, 0.0f).x;
         const F2 a = Area(sq, e1, e2);
         w.r = a.x;
@@ -104,9 +145,9 @@ class WeightsShader {
       const float e1 = Ed(cx, cy).y;
       const float cz = SearchYDown(o1z, o1w, o2w);
       d.y = cz;
-      d.x = std::fabs(Round(f_.H * d.x + -pix.y));
-      d.y = std::fabs(Round(f_.H * d.y + -pix.y));
-      const F2 sq{std::sqrt(d.x), std::sqrt(d.y)};
+      d.x = Abs(Round(f_.H * d.x + -pix.y));
+      d.y = Abs(Round(f_.H * d.y + -pix.y));
+      const F2 sq{Sqrt(d.x), Sqrt(d.y)};
       const float e2 = EdOff(cx, cz, 0.0f, 1.0f).y;
       const F2 a = Area(sq, e1, e2);
       w.b = a.x;
@@ -120,16 +161,16 @@ class WeightsShader {
  private:
   // SMAASampleLevelZero(edgesTex, (s, t)) and SMAASampleLevelZeroOffset(..., int2(dx, dy)):
   // the integer offset is added in texel space.
-  F2 Ed(float s, float t) { return edges_.Sample(s * f_.W, t * f_.H); }
-  F2 EdOff(float s, float t, float dx, float dy) { return edges_.Sample(s * f_.W + dx, t * f_.H + dy); }
+  AALAB_HD F2 Ed(float s, float t) { return edges_.Sample(s * f_.W, t * f_.H); }
+  AALAB_HD F2 EdOff(float s, float t, float dx, float dy) { return edges_.Sample(s * f_.W + dx, t * f_.H + dy); }
 
-  static F2 Decode(F2 e) {  // SMAADecodeDiagBilinearAccess(float2)
-    e.x = e.x * std::fabs(5.0f * e.x - 5.0f * 0.75f);
+  AALAB_HD static F2 Decode(F2 e) {  // SMAADecodeDiagBilinearAccess(float2)
+    e.x = e.x * Abs(5.0f * e.x - 5.0f * 0.75f);
     return {Round(e.x), Round(e.y)};
   }
 
   // SMAASearchDiag1 / SMAASearchDiag2: returns coord.zw, writes the last fetch to `end`.
-  F2 SearchDiag(bool second, F2 tc, float dirx, float diry, F2* end) {
+  AALAB_HD F2 SearchDiag(bool second, F2 tc, float dirx, float diry, F2* end) {
     float cx = tc.x, cy = tc.y, cz = -1.0f, cw = 1.0f;
     if (second) cx += 0.25f * f_.rx;
     const float limit = static_cast<float>(p_.max_search_steps_diag - 1);
@@ -145,7 +186,7 @@ class WeightsShader {
     return {cz, cw};
   }
 
-  F2 AreaDiag(F2 dist, F2 e) {  // SMAAAreaDiag, subsample offset 0
+  AALAB_HD F2 AreaDiag(F2 dist, F2 e) {  // SMAAAreaDiag, subsample offset 0
     const float px = 1.0f / 160.0f, py = 1.0f / 560.0f;
     float tx = 20.0f * e.x + dist.x;
     float ty = 20.0f * e.y + dist.y;
@@ -157,7 +198,7 @@ class WeightsShader {
     return {a.r, a.g};
   }
 
-  F2 DiagWeights(F2 tc, F2 e) {  // SMAACalculateDiagWeights
+  AALAB_HD F2 DiagWeights(F2 tc, F2 e) {  // SMAACalculateDiagWeights
     const float rx = f_.rx, ry = f_.ry;
     F2 weights{0, 0};
     F2 end{0, 0};  // an HLSL out value the loop always writes for max_search_steps_diag >= 1
@@ -223,7 +264,7 @@ class WeightsShader {
     return weights;
   }
 
-  float SearchLength(F2 e, float offset) {  // SMAASearchLength
+  AALAB_HD float SearchLength(F2 e, float offset) {  // SMAASearchLength
     float sx = 66.0f * 0.5f, sy = 33.0f * -1.0f;
     float bx = 66.0f * offset, by = 33.0f * 1.0f;
     sx += -1.0f;
@@ -237,7 +278,7 @@ class WeightsShader {
     return search_.SampleNormalized(sx * e.x + bx, sy * e.y + by).r;
   }
 
-  float SearchXLeft(float tx, float ty, float end) {
+  AALAB_HD float SearchXLeft(float tx, float ty, float end) {
     F2 e{0.0f, 1.0f};
     while (tx > end && e.y > 0.8281f && e.x == 0.0f) {
       e = Ed(tx, ty);
@@ -246,7 +287,7 @@ class WeightsShader {
     const float offset = -(255.0f / 127.0f) * SearchLength(e, 0.0f) + 3.25f;
     return f_.rx * offset + tx;
   }
-  float SearchXRight(float tx, float ty, float end) {
+  AALAB_HD float SearchXRight(float tx, float ty, float end) {
     F2 e{0.0f, 1.0f};
     while (tx < end && e.y > 0.8281f && e.x == 0.0f) {
       e = Ed(tx, ty);
@@ -255,7 +296,7 @@ class WeightsShader {
     const float offset = -(255.0f / 127.0f) * SearchLength(e, 0.5f) + 3.25f;
     return -f_.rx * offset + tx;
   }
-  float SearchYUp(float tx, float ty, float end) {
+  AALAB_HD float SearchYUp(float tx, float ty, float end) {
     F2 e{1.0f, 0.0f};
     while (ty > end && e.x > 0.8281f && e.y == 0.0f) {
       e = Ed(tx, ty);
@@ -264,7 +305,7 @@ class WeightsShader {
     const float offset = -(255.0f / 127.0f) * SearchLength(F2{e.y, e.x}, 0.0f) + 3.25f;
     return f_.ry * offset + ty;
   }
-  float SearchYDown(float tx, float ty, float end) {
+  AALAB_HD float SearchYDown(float tx, float ty, float end) {
     F2 e{1.0f, 0.0f};
     while (ty < end && e.x > 0.8281f && e.y == 0.0f) {
       e = Ed(tx, ty);
@@ -274,7 +315,7 @@ class WeightsShader {
     return -f_.ry * offset + ty;
   }
 
-  F2 Area(F2 dist, float e1, float e2) {  // SMAAArea, subsample offset 0
+  AALAB_HD F2 Area(F2 dist, float e1, float e2) {  // SMAAArea, subsample offset 0
     const float px = 1.0f / 160.0f, py = 1.0f / 560.0f;
     float tx = 16.0f * Round(4.0f * e1) + dist.x;
     float ty = 16.0f * Round(4.0f * e2) + dist.y;
@@ -285,9 +326,9 @@ class WeightsShader {
     return {a.r, a.g};
   }
 
-  float RoundingNorm() const { return static_cast<float>(p_.corner_rounding) / 100.0f; }
+  AALAB_HD float RoundingNorm() const { return static_cast<float>(p_.corner_rounding) / 100.0f; }
 
-  void HorizontalCorner(float* wx, float* wy, float tx, float ty, float tz, float tw, F2 d) {
+  AALAB_HD void HorizontalCorner(float* wx, float* wy, float tx, float ty, float tz, float tw, F2 d) {
     const F2 lr{d.y >= d.x ? 1.0f : 0.0f, d.x >= d.y ? 1.0f : 0.0f};  // step(d.xy, d.yx)
     const float k = 1.0f - RoundingNorm();
     F2 rounding{k * lr.x, k * lr.y};
@@ -299,10 +340,10 @@ class WeightsShader {
     factor.x -= rounding.y * EdOff(tz, tw, 1.0f, 1.0f).x;
     factor.y -= rounding.x * EdOff(tx, ty, 0.0f, -2.0f).x;
     factor.y -= rounding.y * EdOff(tz, tw, 1.0f, -2.0f).x;
-    *wx *= std::clamp(factor.x, 0.0f, 1.0f);
-    *wy *= std::clamp(factor.y, 0.0f, 1.0f);
+    *wx *= Saturate(factor.x);
+    *wy *= Saturate(factor.y);
   }
-  void VerticalCorner(float* wx, float* wy, float tx, float ty, float tz, float tw, F2 d) {
+  AALAB_HD void VerticalCorner(float* wx, float* wy, float tx, float ty, float tz, float tw, F2 d) {
     const F2 lr{d.y >= d.x ? 1.0f : 0.0f, d.x >= d.y ? 1.0f : 0.0f};
     const float k = 1.0f - RoundingNorm();
     F2 rounding{k * lr.x, k * lr.y};
@@ -314,29 +355,29 @@ class WeightsShader {
     factor.x -= rounding.y * EdOff(tz, tw, 1.0f, 1.0f).y;
     factor.y -= rounding.x * EdOff(tx, ty, -2.0f, 0.0f).y;
     factor.y -= rounding.y * EdOff(tz, tw, -2.0f, 1.0f).y;
-    *wx *= std::clamp(factor.x, 0.0f, 1.0f);
-    *wy *= std::clamp(factor.y, 0.0f, 1.0f);
+    *wx *= Saturate(factor.x);
+    *wy *= Saturate(factor.y);
   }
 
   E& edges_;
   T& area_;
   T& search_;
-  const SmaaParams& p_;
+  const P& p_;
   const Frame& f_;
 };
 
 // SMAANeighborhoodBlendingPS for pixel (x, y) from its four weights a = (right.a,
-// bottom.g, own.b, own.r) as the shader fetches them (BlendPixel below): color = the input
-// frame through BilinearSampler (or a reader with the same SampleNormalized). Writes rgb
-// rounded to 8 bits and alpha 255.
+// bottom.g, own.b, own.r) as the shader fetches them (BlendPixelColor below): color = the
+// input frame through BilinearSampler (or a reader with the same SampleNormalized). Returns
+// the blended colour before the 8-bit store (rgb; a unused).
 template <class T>
-void BlendWithWeights(const float a[4], T& color, const Frame& f, int x, int y, uint8_t* out) {
+AALAB_HD Float4 BlendColor(const float a[4], T& color, const Frame& f, int x, int y) {
   const F2 tc = f.Texcoord(x, y);
   Float4 c;
   if (((a[0] + a[1]) + a[2]) + a[3] < 1e-5f) {
     c = color.SampleNormalized(tc.x, tc.y);
   } else {
-    const bool h = std::max(a[0], a[2]) > std::max(a[1], a[3]);
+    const bool h = Max(a[0], a[2]) > Max(a[1], a[3]);
     float bo[4] = {0.0f, a[1], 0.0f, a[3]};
     float bw[2] = {a[1], a[3]};
     if (h) {
@@ -354,16 +395,13 @@ void BlendWithWeights(const float a[4], T& color, const Frame& f, int x, int y, 
     c.g = bw[0] * p.g + bw[1] * q.g;
     c.b = bw[0] * p.b + bw[1] * q.b;
   }
-  out[0] = QuantizeUnorm8(c.r);
-  out[1] = QuantizeUnorm8(c.g);
-  out[2] = QuantizeUnorm8(c.b);
-  out[3] = 255;
+  return c;
 }
 
 // The whole pixel shader: the three blend-texture fetches (SMAANeighborhoodBlendingVS's
-// offsets), then BlendWithWeights. blend = the RGBA8 blend texture.
+// offsets), then BlendColor. blend = the RGBA8 blend texture.
 template <class T>
-void BlendPixel(T& blend, T& color, const Frame& f, int x, int y, uint8_t* out) {
+AALAB_HD Float4 BlendPixelColor(T& blend, T& color, const Frame& f, int x, int y) {
   const F2 tc = f.Texcoord(x, y);
   const float ox = f.rx * 1.0f + tc.x, oy = f.ry * 0.0f + tc.y;
   const float oz = f.rx * 0.0f + tc.x, ow = f.ry * 1.0f + tc.y;
@@ -373,7 +411,27 @@ void BlendPixel(T& blend, T& color, const Frame& f, int x, int y, uint8_t* out) 
   const Float4 own = blend.SampleNormalized(tc.x, tc.y);
   a[3] = own.r;
   a[2] = own.b;
-  BlendWithWeights(a, color, f, x, y, out);
+  return BlendColor(a, color, f, x, y);
+}
+
+// The CPU's store of a blended pixel: rgb rounded to 8 bits, alpha 255.
+inline void StoreBlended(const Float4& c, uint8_t* out) {
+  out[0] = QuantizeUnorm8(c.r);
+  out[1] = QuantizeUnorm8(c.g);
+  out[2] = QuantizeUnorm8(c.b);
+  out[3] = 255;
+}
+
+// BlendColor, stored.
+template <class T>
+void BlendWithWeights(const float a[4], T& color, const Frame& f, int x, int y, uint8_t* out) {
+  StoreBlended(BlendColor(a, color, f, x, y), out);
+}
+
+// BlendPixelColor, stored.
+template <class T>
+void BlendPixel(T& blend, T& color, const Frame& f, int x, int y, uint8_t* out) {
+  StoreBlended(BlendPixelColor(blend, color, f, x, y), out);
 }
 
 }  // namespace aalab::smaa_detail
