@@ -303,6 +303,40 @@ TEST(GltfLoad, TwentyThousandNestedNodesLoadWithoutRecursion) {
   EXPECT_EQ(g.shapes[0].positions[1], glm::vec3(depth + 1, 0, 0));  // (1,0,0) + 20000 translations
 }
 
+// Node transforms that do not commute, so that a wrong composition order fails (glTF 2.0
+// §3.7.3: world = parent · child, local = T · R · S; "matrix" is column-major). Worked by hand
+// for the vertex (1, 0, 0):
+//   child  T (1, 0, 0), S 2:            (1,0,0) -> S (2,0,0) -> T (3,0,0)
+//   parent T (5, 0, 0), R 90° about z:  (3,0,0) -> R (0,3,0) -> T (5,3,0)
+// (child · parent would give (11, 2, 0); S · R · T inside a node (5, 12, 0) for the parent).
+// The second case is the same parent written as a column-major "matrix": R's columns (0,1,0),
+// (-1,0,0), the translation in elements 12..14 (read transposed, the rotation would turn the
+// other way and the translation would be lost).
+TEST(GltfLoad, NestedNodesComposeParentTimesChildAndTrsInThatOrder) {
+  const fs::path d = TestDir();
+  const double h = std::sqrt(0.5);  // quaternion of 90° about z: (0, 0, sin 45°, cos 45°)
+  for (const bool as_matrix : {false, true}) {
+    TriangleFile f;
+    Json parent = {{"children", {1}}};
+    if (as_matrix) {
+      parent["matrix"] = {0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1};
+    } else {
+      parent["translation"] = {5, 0, 0};
+      parent["rotation"] = {0, 0, h, h};
+    }
+    f.doc["nodes"] = Json::array({parent, {{"mesh", 0}, {"translation", {1, 0, 0}}, {"scale", {2, 2, 2}}}});
+    const GltfContent g = LoadGltf(f.Write(d, as_matrix ? "nested_matrix" : "nested_trs").string());
+    ASSERT_EQ(g.shapes.size(), 1u);
+    const glm::vec3 p1 = g.shapes[0].positions[1];  // the vertex (1, 0, 0)
+    EXPECT_NEAR(p1.x, 5.0f, 1e-5f) << (as_matrix ? "matrix" : "TRS");
+    EXPECT_NEAR(p1.y, 3.0f, 1e-5f) << (as_matrix ? "matrix" : "TRS");
+    EXPECT_NEAR(p1.z, 0.0f, 1e-5f) << (as_matrix ? "matrix" : "TRS");
+    const glm::vec3 p2 = g.shapes[0].positions[2];  // the vertex (0, 1, 0): child (1,2,0), parent (3,1,0)
+    EXPECT_NEAR(p2.x, 3.0f, 1e-5f);
+    EXPECT_NEAR(p2.y, 1.0f, 1e-5f);
+  }
+}
+
 TEST(GltfLoad, KhronosEngineFromAssimpTestmodels) {
   const std::string p = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
   if (!fs::exists(p)) AALAB_SKIP_OR_FAIL_UNDER_CI("assimp-testmodels is not installed (apt-get install assimp-testmodels)");
