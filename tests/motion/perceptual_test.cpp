@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "core/parallel.h"
 #include "metrics/temporal_perceptual.h"
@@ -42,6 +43,40 @@ TEST(TemporalCsf, ShapeOfTheFlickerSensitivity) {
   EXPECT_GT(TemporalCsfWeight(30.0), 0.05);
   EXPECT_LT(TemporalCsfWeight(30.0), 0.2);
   EXPECT_LT(TemporalCsfWeight(60.0), 0.01);
+}
+
+// Watson (1986), eq. for the temporal impulse response's spectrum with the parameters of his
+// fit to Robson (1966): τ = 4.94 ms, κ = 1.33, ζ = 0.9, stages 9 and 10. Worked here in polar
+// form, independently of the code's complex powers: (1 + ia)^−n has modulus (1 + a²)^(−n/2)
+// and argument −n·atan(a). The weights at 1..60 Hz, normalised by the peak (found here by a
+// golden-section search), must match TemporalCsfWeight: a swapped exponent, κ on the wrong
+// stage or a different τ moves them by far more than the tolerance.
+double WatsonModulus(double hz) {
+  const double tau = 4.94e-3, kappa = 1.33, zeta = 0.9, w = 2.0 * std::numbers::pi * hz;
+  const double a1 = w * tau, a2 = w * kappa * tau;
+  const double m1 = std::pow(1.0 + a1 * a1, -4.5), p1 = -9.0 * std::atan(a1);
+  const double m2 = zeta * std::pow(1.0 + a2 * a2, -5.0), p2 = -10.0 * std::atan(a2);
+  return std::hypot(m1 * std::cos(p1) - m2 * std::cos(p2), m1 * std::sin(p1) - m2 * std::sin(p2));
+}
+
+TEST(TemporalCsf, MatchesWatsonsFitWorkedInPolarForm) {
+  double lo = 1.0, hi = 30.0;  // golden-section search for the peak of a unimodal band-pass
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  for (int i = 0; i < 200; ++i) {
+    const double c = hi - g * (hi - lo), d = lo + g * (hi - lo);
+    if (WatsonModulus(c) > WatsonModulus(d)) {
+      hi = d;
+    } else {
+      lo = c;
+    }
+  }
+  const double peak_hz = (lo + hi) / 2.0, peak = WatsonModulus(peak_hz);
+  EXPECT_NEAR(TemporalCsfPeakHz(), peak_hz, 0.001);  // the code's 0.001 Hz grid
+  for (double hz : {0.5, 1.0, 2.0, 4.0, 8.0, 12.0, 16.0, 24.0, 30.0, 45.0, 60.0}) {
+    // The code normalises by the grid's maximum, at most 0.0005 Hz from the true peak: a
+    // relative error of order 1e-8 there (the derivative vanishes at the peak).
+    EXPECT_NEAR(TemporalCsfWeight(hz), WatsonModulus(hz) / peak, 1e-6) << hz << " Hz";
+  }
 }
 
 TEST(PerceptualTemporal, WindowEnergyWithoutWeightsIsTheVariance) {
