@@ -284,6 +284,28 @@ TEST(AlphaToCoverage, MaskCountsByHand) {
   EXPECT_EQ(total, 19);
 }
 
+// The dither per pixel, not as a tile's sum (a transposed or shifted matrix keeps every
+// tile's sum): with one sample, α = k/16 keeps it iff (b + 0.5)/16 ≥ 1 − k/16, i.e. k ≥ 16 − b,
+// so the smallest k that keeps it gives the pixel's Bayer index b = 16 − k. Expected: Bayer's
+// 4×4 index matrix as published (B. E. Bayer, ICC 1973; row = y mod 4, column = x mod 4),
+// read at pixels (x, y) = (5..8, 2..5), a window that starts off the tile on both axes.
+TEST(AlphaToCoverage, EachPixelTakesItsOwnBayerThreshold) {
+  const int bayer[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+  for (int y = 2; y < 6; ++y) {
+    for (int x = 5; x < 9; ++x) {
+      int k = 0;
+      while (k <= 16 && AlphaToCoverageMask(static_cast<float>(k) / 16.0f, 1, x, y) == 0u) ++k;
+      EXPECT_EQ(16 - k, bayer[y % 4][x % 4]) << "pixel (" << x << ", " << y << ")";
+    }
+  }
+  // With 4 samples, α·N = 1.2 keeps 2 samples exactly at the indices 13, 14, 15: pixels
+  // (2, 3), (2, 1), (0, 3) of each tile, here (6, 7), (10, 5), (4, 3).
+  EXPECT_EQ(AlphaToCoverageMask(0.3f, 4, 6, 7), 0x3u);
+  EXPECT_EQ(AlphaToCoverageMask(0.3f, 4, 10, 5), 0x3u);
+  EXPECT_EQ(AlphaToCoverageMask(0.3f, 4, 4, 3), 0x3u);
+  EXPECT_EQ(AlphaToCoverageMask(0.3f, 4, 7, 6), 0x1u);  // (6, 7) transposed: index 9 (a transposed matrix reads 13 there)
+}
+
 TEST(AlphaToCoverage, MsaaCoverageFollowsAlphaWhileTheAlphaTestIsAllOrNothing) {
   RenderSpec a2c;
   a2c.msaa.samples = 4;
