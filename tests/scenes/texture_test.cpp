@@ -69,6 +69,32 @@ TEST(TextureBilinear, TexelCentresAreExactAndMidpointsAverage) {
   EXPECT_FLOAT_EQ(SampleBilinear(l, {-0.125f, 0.5f}, WrapMode::kMirroredRepeat, WrapMode::kRepeat).x, 0.0f);
 }
 
+// The t axis and its own wrap mode, on a 3 × 4 texture whose texel (x, y) holds x + 10·y
+// (width ≠ height, rows distinguishable from columns), worked by hand. Texel space:
+// u·3 − 0.5 and v·4 − 0.5.
+TEST(TextureBilinear, TheTAxisWrapsByItsOwnModeOnANonSquareTexture) {
+  std::vector<float> v;
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 3; ++x) v.push_back(static_cast<float>(x + 10 * y));
+  }
+  const MipLevel l = Level(3, 4, v);
+  const WrapMode rep = WrapMode::kRepeat, clamp = WrapMode::kClampToEdge, mirror = WrapMode::kMirroredRepeat;
+  // A texel centre on both axes: (5/6, 7/8) -> texel (2, 3) = 32.
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {5.0f / 6.0f, 7.0f / 8.0f}, rep, rep).x, 32.0f);
+  // v = 0: halfway between row -1 and row 0, at column 1 (u = 0.5 -> x = 1 exactly).
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 0.0f}, rep, rep).x, 0.5f * 31.0f + 0.5f * 1.0f);  // row -1 = row 3
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 0.0f}, rep, clamp).x, 1.0f);                        // row -1 = row 0
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 0.0f}, rep, mirror).x, 1.0f);                       // row -1 = row 0
+  // v = 1: halfway between row 3 and row 4.
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 1.0f}, rep, rep).x, 0.5f * 31.0f + 0.5f * 1.0f);    // row 4 = row 0
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 1.0f}, rep, mirror).x, 31.0f);                      // row 4 = row 3
+  // Different modes on the two axes, at the corner (0, 0): s clamps (columns -1, 0 -> 0),
+  // t repeats (rows 3 and 0): 0.5·30 + 0.5·0 = 15. With the modes swapped: s repeats
+  // (columns 2 and 0: 1 on average), t clamps (row 0): 1.
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.0f, 0.0f}, clamp, rep).x, 15.0f);
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.0f, 0.0f}, rep, clamp).x, 1.0f);
+}
+
 TEST(TextureLod, LambdaIsLog2OfTheLongerFootprintEdgeInTexels) {
   UvDerivs d;
   d.dx = {1.0f / 64.0f, 0.0f};  // 4 texels of a 256 texture per step
