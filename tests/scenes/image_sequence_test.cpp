@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "harness/run/image_scene.h"
+#include "harness/run/pipeline.h"
 #include "scenes/image_sequence.h"
 #include "harness/run/runner.h"
 
@@ -234,6 +235,49 @@ TEST(ImageSequence, TaaOnACapturedSequenceFollowsTheMotionVectors) {
   EXPECT_NE(taa_hash.at("wrong"), none_hash);
   for (const char* tag : {"px", "uv", "ndc"}) EXPECT_EQ(prod_hash.at(tag), none_hash) << tag;
   EXPECT_NE(prod_hash.at("wrong"), none_hash);
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
+// Through the manifest, with a different, asymmetric jitter in every frame and vectors taken
+// between jittered positions ("includes_jitter": true): frame k's own jitter reaches TAA, and
+// its previous positions come from the stored vector minus the jitter change from frame k−1
+// to k (a zero-jitter capture cannot tell j(k) from j(k−1), nor either sign). The texture
+// moves (+1, +1) px a frame, so the true vector to the previous frame is (−1, −1) and the
+// stored one (−1, −1) − j(k−1) + j(k) (image_sequence.h, worked by hand in
+// MotionConventionsByHand). Every value is a multiple of 1/8: exact in float.
+TEST(ImageSequence, PerFrameJitterThroughTheManifestReachesTaaAndLeavesTheVectors) {
+  const fs::path dir = TempDir("jitter");
+  WriteCapture(dir);
+  const float jit[kFrames][2] = {{0.25f, -0.125f}, {-0.375f, 0.25f}, {0.125f, 0.375f},
+                                 {-0.25f, -0.5f},  {0.5f, 0.125f},   {0.0f, -0.25f}};
+  std::string jitter = "[";
+  for (int t = 0; t < kFrames; ++t) {
+    jitter += std::string(t ? "," : "") + "[" + std::to_string(jit[t][0]) + ", " + std::to_string(jit[t][1]) + "]";
+    if (t == 0) continue;
+    WriteImageF((dir / ("mvj_" + std::to_string(t + 1) + ".exr")).string(),
+                ConstantMotion(-1.0f - jit[t - 1][0] + jit[t][0], -1.0f - jit[t - 1][1] + jit[t][1], 2));
+  }
+  jitter += "]";
+  WriteImageF((dir / "mvj_1.exr").string(), ConstantMotion(0.0f, 0.0f, 2));  // frame 0: not read
+  WriteText(dir / "m.json",
+            R"({"aalab_image_scene": 1, "views": [{"name": "jittered", "sequence": {"frames": 6, "first": 1},
+    "frame": "f_%04d.png", "reference": "f_%04d.png", "jitter": )" +
+                jitter + R"(, "motion_vectors": {"path": "mvj_%d.exr", "direction": "to_previous",
+    "includes_jitter": true}}]})");
+  auto sources = LoadSceneSources({(dir / "m.json").string()});
+  ASSERT_EQ(sources.size(), 1u);
+  for (int k = 0; k < kFrames; ++k) {
+    const auto p = PrepareSource(sources[0], kW, kH, 1, 1, 1, false, nullptr, nullptr, k, 67.0);
+    EXPECT_TRUE(p->captured_motion);
+    EXPECT_EQ(p->captured_jitter.x, jit[k][0]) << "frame " << k;
+    EXPECT_EQ(p->captured_jitter.y, jit[k][1]) << "frame " << k;
+    if (k == 0) continue;
+    ASSERT_EQ(p->captured_previous.size(), static_cast<size_t>(2 * kW * kH));
+    for (const auto& [x, y] : {std::pair{7, 5}, std::pair{0, 23}, std::pair{39, 0}}) {
+      EXPECT_EQ(p->captured_previous[2 * (y * kW + x)], x + 0.5f - 1.0f) << "frame " << k << " x " << x;
+      EXPECT_EQ(p->captured_previous[2 * (y * kW + x) + 1], y + 0.5f - 1.0f) << "frame " << k << " y " << y;
+    }
+  }
   if (!HasFailure()) fs::remove_all(dir);
 }
 
