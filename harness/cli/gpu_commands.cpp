@@ -25,6 +25,7 @@
 #include "scenes/library.h"
 #include "scenes/motion.h"
 #include "scenes/motion_render.h"
+#include "scenes/raster_export.h"
 #include "scenes/render.h"
 
 namespace aalab {
@@ -129,6 +130,52 @@ int ExportFrames(const ExportArgs& a) {
   return ToInt(ExitCode::kOk);
 }
 
+struct GeometryArgs {
+  std::string suite = "default", scenes, out;
+  bool skip_unsupported = false;
+};
+
+// Writes DIR/<scene>.geom (core/raster_geometry.h) for each scene, listed in DIR/geometry.tsv,
+// for the raster tool (gpu/raster/aalab_raster). A scene the raster path cannot draw is an
+// error naming it and why, unless --skip-unsupported (then it is listed on stderr and in
+// the TSV's comment lines). Everything goes to DIR.partial first.
+int ExportGeometry(const GeometryArgs& a) {
+  const std::vector<std::string> names = a.scenes.empty() ? SuiteScenes(a.suite) : SplitCommaList(a.scenes, "--scenes");
+  std::vector<std::unique_ptr<Scene>> scenes = LoadScenes(names);
+  std::vector<const Scene*> drawn;
+  std::string skipped;
+  for (const auto& scene : scenes) {
+    const std::string why = RasterUnsupported(*scene);
+    if (why.empty()) {
+      drawn.push_back(scene.get());
+    } else if (a.skip_unsupported) {
+      skipped += "# skipped " + scene->name + ": " + why + "\n";
+      std::fprintf(stderr, "skipped %s: %s\n", scene->name.c_str(), why.c_str());
+    } else {
+      RasterSceneOf(*scene);  // throws the one message naming the scene and the reason
+    }
+  }
+  if (drawn.empty()) {
+    throw UserError("the raster path can draw none of the scenes given (it draws still triangle scenes with unlit or "
+                    "lambert solid colours and directional lights; of the library: wedges, mesh)");
+  }
+  std::vector<std::string> inputs = names;
+  for (const auto& file : InputFilesRead()) inputs.push_back(file);
+  OutFolder out(a.out, "geometry", inputs);
+  const fs::path tmp = out.Begin();
+  std::ostringstream tsv;
+  tsv << "# aalab export-geometry: scene, triangles, file (core/raster_geometry.h; docs/gpu.md)\n" << skipped;
+  for (const Scene* scene : drawn) {
+    const RasterScene r = RasterSceneOf(*scene);
+    WriteTextFile((tmp / (scene->name + ".geom")).string(), RasterSceneBytes(r));
+    tsv << scene->name << "\t" << r.triangles.size() << "\t" << scene->name << ".geom\n";
+  }
+  WriteTextFile((tmp / "geometry.tsv").string(), tsv.str());
+  out.Commit();
+  std::printf("wrote %zu scene(s) to %s (geometry.tsv)\n", drawn.size(), a.out.c_str());
+  return ToInt(ExitCode::kOk);
+}
+
 int MergeGpu(const std::string& dir, const std::string& gpu_json) {
   const fs::path report_path = fs::path(dir) / "report.json";
   Report report = ReadReportFile(report_path.string());
@@ -163,6 +210,16 @@ void RegisterGpuCommands(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   ex->add_option("--out", ea->out, "output folder (frames.tsv + PPM files)")->required();
   ex->callback([&commands, ea] { commands.action = [ea] { return ExportFrames(*ea); }; });
+
+  auto* eg = app.add_subcommand("export-geometry",
+                                "write the triangle scenes' geometry, camera and shading for the raster tool (docs/gpu.md)");
+  auto ga = std::make_shared<GeometryArgs>();
+  eg->add_option("--suite", ga->suite, "suite name (see aalab list scenes)")->capture_default_str();
+  eg->add_option("--scenes", ga->scenes, "comma-separated scene names or files (overrides --suite)");
+  eg->add_flag("--skip-unsupported", ga->skip_unsupported,
+               "skip (and list) the scenes the raster path cannot draw instead of refusing them");
+  eg->add_option("--out", ga->out, "output folder (geometry.tsv + one .geom file per scene)")->required();
+  eg->callback([&commands, ga] { commands.action = [ga] { return ExportGeometry(*ga); }; });
 
   auto* mg = app.add_subcommand("merge-gpu", "attach aalab_gpu's timings (JSON) to a report's rows and redraw its page");
   auto dir = std::make_shared<std::string>();
