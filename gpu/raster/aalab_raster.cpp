@@ -202,13 +202,23 @@ int Main(int argc, char** argv) {
   }
   std::fprintf(stderr, "aalab_raster: %s (%s, %s) via %s\n", dev.renderer.c_str(), dev.vendor.c_str(),
                dev.version.c_str(), dev.platform.c_str());
-  std::ostringstream rows;
+  std::ostringstream rows, not_drawn;
   bool first = true;
   for (const auto& scene : scenes) {
     RasterRenderer r(scene);
     for (const auto& [w, h] : o.sizes) {
       for (const auto& m : o.methods) {
-        r.Configure(m, w, h, o.format, o.resolve);
+        // What this GL cannot allocate (more samples than GL_MAX_SAMPLES, a target past
+        // GL_MAX_TEXTURE_SIZE) is skipped with a warning and listed in the JSON.
+        try {
+          r.Configure(m, w, h, o.format, o.resolve);
+        } catch (const CapabilityError& e) {
+          std::fprintf(stderr, "aalab_raster: warning: skipped %s on %s at %dx%d: %s\n", m.name.c_str(),
+                       scene.name.c_str(), w, h, e.what());
+          not_drawn << (not_drawn.tellp() > 0 ? ", " : "") << JsonString(scene.name + " " + std::to_string(w) + "x" +
+                                                                          std::to_string(h) + " " + m.name + ": " + e.what());
+          continue;
+        }
         r.RenderFrame();
         const int want = m.kind == RasterMethod::Kind::kMsaa ? m.samples : 1;
         if (r.Samples() != want) {
@@ -244,12 +254,12 @@ int Main(int argc, char** argv) {
   }
   if (!o.json.empty()) {
     std::ostringstream j;
-    j << "{\n  \"tool\": \"aalab_raster\",\n  \"kind\": \"raster\",\n  \"device\": " << JsonString(dev.renderer)
+    j << "{\n  \"schema\": \"aalab-raster-timings\",\n  \"schema_version\": 1,\n  \"tool\": \"aalab_raster\",\n  \"device\": " << JsonString(dev.renderer)
       << ",\n  \"vendor\": " << JsonString(dev.vendor) << ",\n  \"gl_version\": " << JsonString(dev.version)
       << ",\n  \"egl_platform\": " << JsonString(dev.platform) << ",\n  \"target_format\": \""
       << (o.format == TargetFormat::kRgba32f ? "rgba32f" : "rgba16f") << "\",\n  \"msaa_resolve\": \""
       << (o.resolve == ResolveKind::kBlit ? "blit" : "shader") << "\",\n  \"warmup\": " << o.warmup
-      << ",\n  \"repeat\": " << o.repeat << ",\n  \"rows\": [\n" << rows.str() << "\n  ]\n}\n";
+      << ",\n  \"repeat\": " << o.repeat << ",\n  \"not_drawn\": [" << not_drawn.str() << "],\n  \"rows\": [\n" << rows.str() << "\n  ]\n}\n";
     const std::string tmp = o.json + ".partial";
     {
       std::ofstream f(tmp, std::ios::binary);

@@ -399,11 +399,11 @@ void RasterRenderer::Configure(const RasterMethod& method, int w, int h, TargetF
   const int n = method.kind == RasterMethod::Kind::kMsaa ? method.samples : 1;
   const int k = method.kind == RasterMethod::Kind::kSsaa ? method.grid : 1;
   if (n > max_samples) {
-    throw std::runtime_error(method.name + " needs " + std::to_string(n) + " samples; this GL allows " +
+    throw CapabilityError(method.name + " needs " + std::to_string(n) + " samples; this GL allows " +
                              std::to_string(max_samples) + " (GL_MAX_SAMPLES)");
   }
   if (w * k > max_size || h * k > max_size) {
-    throw std::runtime_error(method.name + " at " + std::to_string(w) + "x" + std::to_string(h) + " needs a " +
+    throw CapabilityError(method.name + " at " + std::to_string(w) + "x" + std::to_string(h) + " needs a " +
                              std::to_string(w * k) + "x" + std::to_string(h * k) + " target; GL_MAX_TEXTURE_SIZE is " +
                              std::to_string(max_size));
   }

@@ -11,12 +11,18 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/raster_geometry.h"
 
 namespace aalab::raster {
+
+/// What the GL cannot do for a method (too many samples, too large a target).
+struct CapabilityError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 /// A render-time method as the raster path draws it; `name` is aalab's method spec.
 struct RasterMethod {
@@ -53,8 +59,8 @@ class RasterRenderer {
   RasterRenderer(const RasterRenderer&) = delete;
   RasterRenderer& operator=(const RasterRenderer&) = delete;
 
-  /// Allocates the targets of `method` for an output of w × h (throws when the GL cannot:
-  /// more samples than GL_MAX_SAMPLES, a target past GL_MAX_TEXTURE_SIZE).
+  /// Allocates the targets of `method` for an output of w × h (CapabilityError when the GL
+  /// cannot: more samples than GL_MAX_SAMPLES, a target past GL_MAX_TEXTURE_SIZE).
   void Configure(const RasterMethod& method, int w, int h, TargetFormat format, ResolveKind resolve);
   /// Draws, resolves and encodes one frame (untimed).
   void RenderFrame();

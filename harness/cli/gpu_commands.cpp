@@ -1,6 +1,7 @@
 // `aalab export-frames` and `aalab merge-gpu`: the CPU side of the GPU timings (docs/gpu.md).
 // export-frames renders the frames the post filters see, for the stand-alone GPU tool
 // (gpu/aalab_gpu), which needs no Embree; merge-gpu attaches that tool's JSON to a report.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +21,7 @@
 #include "harness/run/runner.h"
 #include "methods/registry.h"
 #include "reports/gpu_timings.h"
+#include "reports/raster_timings.h"
 #include "reports/html_report.h"
 #include "reports/report_json.h"
 #include "scenes/library.h"
@@ -177,23 +179,50 @@ int ExportGeometry(const GeometryArgs& a) {
 }
 
 int MergeGpu(const std::string& dir, const std::string& gpu_json) {
-  const fs::path report_path = fs::path(dir) / "report.json";
-  Report report = ReadReportFile(report_path.string());
-  RequireRegularFile(gpu_json, "GPU timings", "a JSON file written by aalab_gpu --json is expected");
-  const GpuTimingsFile gpu = ReadGpuTimingsFile(gpu_json);
-  const int matched = MergeGpuTimings(report, gpu);
-  if (matched == 0) {
-    throw UserError("'" + gpu_json + "' has timings for none of the report's rows (rows are matched by scene and "
-                    "method spec; the GPU file covers scenes " + JoinNames(gpu.Scenes()) + ")");
-  }
-  WriteTextFile(report_path.string(), ReportToJson(report).dump(2) + "\n");
-  WriteTextFile((fs::path(dir) / "index.html").string(), RenderHtmlReport(report));
-  std::printf("merged GPU timings (%s, driver %s) into %d of %zu rows of %s\n", gpu.device.c_str(), gpu.driver.c_str(),
-              matched, report.rows.size(), report_path.string().c_str());
+  std::printf("%s\n", AttachGpuTimings(dir, gpu_json).c_str());
   return ToInt(ExitCode::kOk);
 }
 
 }  // namespace
+
+void CheckGpuTimingsFile(const std::string& path) {
+  RequireRegularFile(path, "GPU timings", "a JSON file written by aalab_gpu --json or aalab_raster --json is expected");
+  if (IsRasterTimingsFile(path)) {
+    ReadRasterTimingsFile(path);
+  } else {
+    ReadGpuTimingsFile(path);
+  }
+}
+
+std::string AttachGpuTimings(const std::string& dir, const std::string& gpu_json) {
+  const fs::path report_path = fs::path(dir) / "report.json";
+  Report report = ReadReportFile(report_path.string());
+  CheckGpuTimingsFile(gpu_json);
+  std::string what;
+  int matched = 0;
+  std::vector<std::string> scenes;
+  if (IsRasterTimingsFile(gpu_json)) {
+    const RasterTimingsFile raster = ReadRasterTimingsFile(gpu_json);
+    matched = MergeRasterTimings(report, raster);
+    for (const auto& r : raster.results) {
+      if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+    }
+    what = "GPU raster timings (" + raster.device + ", " + raster.gl_version + ")";
+  } else {
+    const GpuTimingsFile gpu = ReadGpuTimingsFile(gpu_json);
+    matched = MergeGpuTimings(report, gpu);
+    scenes = gpu.Scenes();
+    what = "GPU timings (" + gpu.device + ", driver " + gpu.driver + ")";
+  }
+  if (matched == 0) {
+    throw UserError("'" + gpu_json + "' has timings for none of the report's rows (rows are matched by scene and "
+                    "method spec; the GPU file covers scenes " + JoinNames(scenes) + ")");
+  }
+  WriteTextFile(report_path.string(), ReportToJson(report).dump(2) + "\n");
+  WriteTextFile((fs::path(dir) / "index.html").string(), RenderHtmlReport(report));
+  return "merged " + what + " into " + std::to_string(matched) + " of " + std::to_string(report.rows.size()) +
+         " rows of " + report_path.string();
+}
 
 void RegisterGpuCommands(CLI::App& app, Commands& commands) {
   auto* ex = app.add_subcommand("export-frames",
@@ -225,7 +254,7 @@ void RegisterGpuCommands(CLI::App& app, Commands& commands) {
   auto dir = std::make_shared<std::string>();
   auto file = std::make_shared<std::string>();
   mg->add_option("report_dir", *dir, "report folder (holds report.json)")->required();
-  mg->add_option("gpu_json", *file, "JSON written by aalab_gpu --json")->required();
+  mg->add_option("gpu_json", *file, "JSON written by aalab_gpu --json or aalab_raster --json")->required();
   mg->callback([&commands, dir, file] { commands.action = [dir, file] { return MergeGpu(*dir, *file); }; });
 }
 
