@@ -67,7 +67,7 @@ class Reader {
   uint32_t Count(const char* what, size_t bytes_each) {
     const uint32_t n = U32(what);
     if (bytes_each > 0 && n > (b_.size() - pos_) / bytes_each) {
-      Fail(std::string(what) + " is " + std::to_string(n) + ", more than the file's remaining bytes hold");
+      Fail(std::string(what) + " is " + std::to_string(n) + ", more than the file's remaining " + std::to_string(b_.size() - pos_) + " bytes hold (truncated; write it again with aalab export-geometry)");
     }
     return n;
   }
