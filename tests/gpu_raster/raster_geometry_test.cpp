@@ -56,7 +56,7 @@ TEST(RasterGeometry, MeshKeepsItsLightAndLambert) {
   EXPECT_TRUE(s.lambert);
   EXPECT_EQ(s.triangles.size(), 3200u);
   ASSERT_EQ(s.lights.size(), 1u);
-  EXPECT_NEAR(s.lights[0].direction[2], -0.7f, 1e-6f);
+  EXPECT_NEAR(s.lights[0].direction[2], -0.7 / std::sqrt(0.25 + 0.36 + 0.49), 1e-6);  // normalised on load
   EXPECT_NEAR(s.lights[0].intensity, 1.0f, 1e-6f);  // 3.1415927 in glTF units, / π inside aalab
   EXPECT_TRUE(s.materials[0].lit);
 }
