@@ -112,6 +112,8 @@ struct FrameDiff {
   int near_edge_flips = 0;  ///< pixels over 1 code apart whose centre lies within the snap distance
   int unexplained = 0;      ///< pixels over 1 code apart whose centre does not
   double worst_distance = 0;
+  int one_code = 0;  ///< pixels exactly 1 code apart (rounding of the last bit)
+  int max_any = 0;   ///< largest channel difference anywhere
 };
 
 FrameDiff Compare(const Image8& aalab, const std::vector<uint8_t>& gl, const Edges& edges, double snap, int w, int h) {
@@ -122,6 +124,8 @@ FrameDiff Compare(const Image8& aalab, const std::vector<uint8_t>& gl, const Edg
       for (int c = 0; c < 3; ++c) {
         m = std::max(m, std::abs(int(aalab.At(x, y, c)) - int(gl[(static_cast<size_t>(y) * w + x) * 3 + c])));
       }
+      d.max_any = std::max(d.max_any, m);
+      d.one_code += m == 1;
       if (m <= 1) continue;
       const double dist = edges.Nearest(x + 0.5, y + 0.5);
       if (dist <= snap) {
@@ -180,9 +184,9 @@ TEST(RasterPath, OneXFrameMatchesAalab) {
       r.Configure(Method("none"), w, h, fmt, raster::ResolveKind::kShader);
       r.RenderFrame();
       const FrameDiff d = Compare(ref, r.ReadRgb8(), edges, SnapDistance(r), w, h);
-      std::printf("%s 1x %s: %d pixel(s) >1 code apart, all within %.4f px of an edge (snap %.4f)\n", name.c_str(),
-                  fmt == raster::TargetFormat::kRgba16f ? "rgba16f" : "rgba32f", d.near_edge_flips, d.worst_distance,
-                  SnapDistance(r));
+      std::printf("%s 1x %s: %d pixel(s) 1 code apart, %d >1 code apart (max %d), all within %.4f px of an edge (snap %.4f)\n",
+                  name.c_str(), fmt == raster::TargetFormat::kRgba16f ? "rgba16f" : "rgba32f", d.one_code,
+                  d.near_edge_flips, d.max_any, d.worst_distance, SnapDistance(r));
       EXPECT_EQ(d.unexplained, 0) << name << ": pixels away from every edge differ by up to " << d.max_off_edge;
       EXPECT_LE(d.near_edge_flips, 8) << name;
     }
@@ -211,7 +215,8 @@ TEST(RasterPath, TaaJitteredFrameMatchesAalab) {
     s[1] -= j.y, s[3] -= j.y;
   }
   const FrameDiff d = Compare(sf.image, r.ReadRgb8(), edges, SnapDistance(r), w, h);
-  std::printf("mesh taa-f1: %d pixel(s) >1 code apart, all within %.4f px of an edge\n", d.near_edge_flips, d.worst_distance);
+  std::printf("mesh taa-f1: %d pixel(s) 1 code apart, %d >1 code apart (max %d), all within %.4f px of an edge\n",
+              d.one_code, d.near_edge_flips, d.max_any, d.worst_distance);
   EXPECT_EQ(d.unexplained, 0);
   EXPECT_LE(d.near_edge_flips, 8);
 }
@@ -292,8 +297,8 @@ TEST(RasterPath, MsaaCoverageMatchesAalabSampleForSample) {
                       << " px from the nearest edge";
       }
     }
-    std::printf("wedges msaa-%dx: %zu samples (%d on a quad), %d differ, all within %.5f px of an edge (snap %.5f)\n", n,
-                out.size(), covered, near_edge, worst, SnapDistance(r));
+    std::printf("wedges msaa-%dx (%d samples allocated): %zu samples (%d on a quad), %d differ, all within %.5f px of "
+                "an edge (snap %.5f)\n", want, n, out.size(), covered, near_edge, worst, SnapDistance(r));
     EXPECT_EQ(unexplained, 0);
     EXPECT_GT(covered, static_cast<int>(out.size() / 10));  // the fixture has real coverage
     EXPECT_LE(near_edge, static_cast<int>(out.size() / 2000));
@@ -319,8 +324,9 @@ TEST(RasterPath, ResolvedFramesMatchAalab) {
         // moves it by up to 255/n codes, so the edge test asks for the pixel's whole
         // footprint (centre ± 0.5 px, the farthest sample ≤ 0.71 px away) near an edge.
         const FrameDiff d = Compare(ref, r.ReadRgb8(), edges, 0.7072 + SnapDistance(r), w, h);
-        std::printf("%s %s (%s resolve): %d edge pixel(s) >1 code apart\n", name.c_str(), spec.c_str(),
-                    res == raster::ResolveKind::kBlit ? "blit" : "shader", d.near_edge_flips);
+        std::printf("%s %s (%s resolve): %d pixel(s) 1 code apart, %d edge pixel(s) >1 code apart (max %d)\n",
+                    name.c_str(), spec.c_str(), res == raster::ResolveKind::kBlit ? "blit" : "shader", d.one_code,
+                    d.near_edge_flips, d.max_any);
         EXPECT_EQ(d.unexplained, 0) << name << " " << spec;
         EXPECT_LE(d.near_edge_flips, 24) << name << " " << spec;
       }
