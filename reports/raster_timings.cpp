@@ -52,6 +52,7 @@ RasterTimingsFile ReadRasterTimingsFile(const std::string& path) {
     g.target_format = doc.at("target_format").get<std::string>();
     g.msaa_resolve = doc.at("msaa_resolve").get<std::string>();
     for (const auto& j : doc.at("rows")) {
+      if (!j.contains("total")) continue;  // a --repeat 0 row: fidelity only, no timing
       RasterResult r;
       r.scene = j.at("scene").get<std::string>();
       r.size = std::to_string(j.at("width").get<int>()) + "x" + std::to_string(j.at("height").get<int>());

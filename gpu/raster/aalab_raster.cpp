@@ -28,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Options {
-  std::string geometry, json, frames;
+  std::string geometry, json, frames, compare;
   std::vector<std::pair<int, int>> sizes{{1920, 1080}, {3840, 2160}};
   std::vector<RasterMethod> methods;
   int warmup = 50, repeat = 100;
@@ -66,12 +66,14 @@ const char* kUsage =
     "usage: aalab_raster --geometry DIR|FILE.geom [options]\n"
     "  --geometry P     a folder written by `aalab export-geometry` (every .geom in it) or one .geom file\n"
     "  --sizes L        output sizes WxH, comma-separated (default 1920x1080,3840x2160)\n"
-    "  --methods L      none, msaa-2x, msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-3x3, ssaa-4x4, taa, taa@N\n"
+    "  --methods L      none, msaa-2x, msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4, taa, taa@N\n"
     "                   (default none,msaa-2x,msaa-4x,msaa-8x,ssaa-2x2,ssaa-4x4,taa)\n"
     "  --warmup N       untimed frames before timing each method (default 50)\n"
     "  --repeat N       timed frames (default 100); 0: draw one frame, time nothing\n"
     "  --json FILE      write the timings (docs/gpu.md \"The raster path\")\n"
     "  --frames DIR     write each frame as DIR/<scene>-<W>x<H>-<method>.ppm\n"
+    "  --compare DIR    compare each frame with aalab's in DIR (aalab export-frames [--render-methods ...]):\n"
+    "                   <scene>-<W>x<H>.ppm (none), -<method>.ppm (MSAA, SSAA), -taa-f<N>.ppm (taa@N)\n"
     "  --format F       colour target: rgba16f (default) or rgba32f\n"
     "  --resolve R      MSAA resolve: shader (box average, default) or blit (glBlitFramebuffer)\n"
     "  --egl E          auto (default: EGL_EXT_platform_device, then EGL_MESA_platform_surfaceless), device, surfaceless\n";
@@ -90,6 +92,10 @@ Options ParseArgs(int argc, char** argv) {
     if (a == "--geometry") o.geometry = v;
     else if (a == "--json") o.json = v;
     else if (a == "--frames") o.frames = v;
+    else if (a == "--compare") {
+      if (!fs::is_directory(v)) Bad("--compare '" + v + "' is not a folder (write one with aalab export-frames)");
+      o.compare = v;
+    }
     else if (a == "--methods") methods = v;
     else if (a == "--warmup") o.warmup = ParseInt(v, a, 0, 100000);
     else if (a == "--repeat") o.repeat = ParseInt(v, a, 0, 100000);
@@ -160,6 +166,45 @@ void WritePpm(const fs::path& p, int w, int h, const std::vector<uint8_t>& rgb) 
   if (!f) throw std::runtime_error("cannot write '" + p.string() + "'");
 }
 
+/// A binary PPM (P6, maxval 255) as written by aalab export-frames; empty when unreadable.
+std::vector<uint8_t> ReadPpm(const fs::path& p, int* w, int* h) {
+  std::ifstream f(p, std::ios::binary);
+  std::string magic;
+  int maxval = 0;
+  if (!(f >> magic >> *w >> *h >> maxval) || magic != "P6" || maxval != 255 || *w <= 0 || *h <= 0) return {};
+  f.get();
+  std::vector<uint8_t> px(static_cast<size_t>(*w) * *h * 3);
+  f.read(reinterpret_cast<char*>(px.data()), static_cast<std::streamsize>(px.size()));
+  if (!f) return {};
+  return px;
+}
+
+/// The frame against aalab's: pixels identical, pixels within 1 code per channel, largest
+/// channel difference; "" when there is no frame to compare with.
+std::string FidelityJson(const fs::path& ref, const std::vector<uint8_t>& rgb, int w, int h, std::string* line) {
+  int rw = 0, rh = 0;
+  const std::vector<uint8_t> a = ReadPpm(ref, &rw, &rh);
+  if (a.empty()) return "";
+  if (rw != w || rh != h) throw UserError("--compare: '" + ref.string() + "' is " + std::to_string(rw) + "x" +
+                                          std::to_string(rh) + ", not " + std::to_string(w) + "x" + std::to_string(h));
+  size_t same = 0, within1 = 0;
+  int worst = 0;
+  const size_t n = static_cast<size_t>(w) * h;
+  for (size_t i = 0; i < n; ++i) {
+    int m = 0;
+    for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(int(a[3 * i + c]) - int(rgb[3 * i + c])));
+    same += m == 0;
+    within1 += m <= 1;
+    worst = std::max(worst, m);
+  }
+  char b[256];
+  std::snprintf(b, sizeof b, "identical %.6f, within 1 code %.6f, max diff %d", double(same) / n, double(within1) / n, worst);
+  *line = b;
+  std::snprintf(b, sizeof b, "{\"identical_share\": %.6f, \"within_1_share\": %.6f, \"max_diff\": %d, \"pixels_over_1\": %zu}",
+                double(same) / n, double(within1) / n, worst, n - within1);
+  return b;
+}
+
 std::string JsonString(const std::string& s) {
   std::string o = "\"";
   for (char c : s) {
@@ -225,13 +270,32 @@ int Main(int argc, char** argv) {
           std::fprintf(stderr, "aalab_raster: warning: %s got %d samples per pixel from this GL, not %d\n",
                        m.name.c_str(), r.Samples(), want);
         }
+        std::string fidelity;
+        if (!o.compare.empty()) {
+          const std::string base = scene.name + "-" + std::to_string(w) + "x" + std::to_string(h);
+          const std::string ref = m.kind == RasterMethod::Kind::kOne ? base + ".ppm"
+                                  : m.kind == RasterMethod::Kind::kTaa ? base + "-taa-f" + std::to_string(m.taa_frame) + ".ppm"
+                                                                       : base + "-" + m.name + ".ppm";
+          std::string line;
+          fidelity = FidelityJson(fs::path(o.compare) / ref, r.ReadRgb8(), w, h, &line);
+          std::fprintf(stderr, "%s %dx%d %-9s against %s: %s\n", scene.name.c_str(), w, h, m.name.c_str(), ref.c_str(),
+                       fidelity.empty() ? "no such frame" : line.c_str());
+        }
         if (!o.frames.empty()) {
           const std::string file = scene.name + "-" + std::to_string(w) + "x" + std::to_string(h) + "-" +
                                    (m.kind == RasterMethod::Kind::kTaa ? "taa-f" + std::to_string(m.taa_frame) : m.name) +
                                    ".ppm";
           WritePpm(fs::path(o.frames) / file, w, h, r.ReadRgb8());
         }
-        if (o.repeat == 0) continue;
+        if (o.repeat == 0) {
+          if (!fidelity.empty()) {
+            rows << (first ? "" : ",\n") << "    {\"scene\": " << JsonString(scene.name) << ", \"width\": " << w
+                 << ", \"height\": " << h << ", \"method\": " << JsonString(m.name) << ", \"samples\": " << r.Samples()
+                 << ", \"fidelity\": " << fidelity << "}";
+            first = false;
+          }
+          continue;
+        }
         const std::vector<StageTimes> t = r.TimeFrames(o.warmup, o.repeat);
         std::vector<double> draw, resolve, encode, total;
         for (const auto& s : t) {
@@ -247,7 +311,7 @@ int Main(int argc, char** argv) {
              << ", \"height\": " << h << ", \"method\": " << JsonString(m.name) << ", \"samples\": " << r.Samples()
              << ", \"triangles\": " << scene.triangles.size() << ",\n     \"total\": " << StatJson(tot) << ",\n     \"draw\": "
              << StatJson(Stats(draw)) << ", \"resolve\": " << StatJson(Stats(resolve)) << ", \"encode\": "
-             << StatJson(Stats(encode)) << "}";
+             << StatJson(Stats(encode)) << (fidelity.empty() ? "" : ",\n     \"fidelity\": " + fidelity) << "}";
         first = false;
       }
     }

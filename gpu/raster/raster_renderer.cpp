@@ -294,7 +294,7 @@ bool ParseRasterMethod(const std::string& spec, RasterMethod* out, std::string* 
   } else if (spec == "msaa-2x" || spec == "msaa-4x" || spec == "msaa-8x" || spec == "msaa-16x") {
     m.kind = RasterMethod::Kind::kMsaa;
     m.samples = std::stoi(spec.substr(5));
-  } else if (spec == "ssaa-2x2" || spec == "ssaa-3x3" || spec == "ssaa-4x4") {
+  } else if (spec == "ssaa-2x2" || spec == "ssaa-4x4") {
     m.kind = RasterMethod::Kind::kSsaa;
     m.grid = spec[5] - '0';
   } else if (spec == "taa" || spec.rfind("taa@", 0) == 0) {
@@ -314,7 +314,7 @@ bool ParseRasterMethod(const std::string& spec, RasterMethod* out, std::string* 
     m.jy = static_cast<float>(RadicalInverse(3, index) - 0.5);
   } else {
     *why = "unknown raster method '" + spec +
-           "' (the raster path draws: none, msaa-2x, msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-3x3, ssaa-4x4, taa, taa@N)";
+           "' (the raster path draws: none, msaa-2x, msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4, taa, taa@N)";
     return false;
   }
   *out = m;

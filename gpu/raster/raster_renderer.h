@@ -35,7 +35,7 @@ struct RasterMethod {
   float jx = 0, jy = 0;  ///< TAA: the sample's offset from the pixel centre, px, y down
 };
 
-/// none, msaa-2x/4x/8x/16x, ssaa-2x2/3x3/4x4, taa (frame 1's jitter) or taa@N (frame N's);
+/// none, msaa-2x/4x/8x/16x, ssaa-2x2/4x4, taa (frame 1's jitter) or taa@N (frame N's);
 /// false with *why naming what is allowed.
 bool ParseRasterMethod(const std::string& spec, RasterMethod* out, std::string* why);
 

@@ -41,6 +41,7 @@ struct ExportArgs {
   int threads = 0;
   bool no_scaled = false;
   int taa_frames = 0;
+  std::string render_methods;  ///< render-time methods whose frames to write too (for aalab_raster --compare)
 };
 
 // TAA's inputs for frames 0..n-1 of `scene` at w × h, as `aalab run --frames n --methods taa`
@@ -90,6 +91,18 @@ int ExportFrames(const ExportArgs& a) {
   }
   if (sizes.empty()) throw UserError("--sizes is empty (give e.g. 1920x1080,3840x2160)");
   const std::vector<std::string> names = a.scenes.empty() ? SuiteScenes(a.suite) : SplitCommaList(a.scenes, "--scenes");
+  // Render-time methods (MSAA, SSAA) whose frames aalab_raster --compare checks against.
+  std::vector<std::pair<std::string, RenderSpec>> render_methods;
+  if (!a.render_methods.empty()) {
+    for (const auto& spec : SplitCommaList(a.render_methods, "--render-methods")) {
+      const MethodPlan plan = MakeMethod(spec);
+      if (!plan.render.msaa.On() && plan.render.pattern != SamplePattern::kOrderedGrid) {
+        throw UserError("--render-methods '" + spec + "' is not an MSAA or ordered-grid SSAA method (allowed: msaa-2x, "
+                        "msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4: what aalab_raster draws)");
+      }
+      render_methods.emplace_back(spec, plan.render);
+    }
+  }
   std::vector<std::unique_ptr<Scene>> scenes = LoadScenes(names);
   if (a.taa_frames < 0 || a.taa_frames > 256) {
     throw UserError("--taa-frames " + std::to_string(a.taa_frames) + " is out of range (allowed: 0..256)");
@@ -123,6 +136,10 @@ int ExportFrames(const ExportArgs& a) {
         tsv << scene->name << "\tscaled\t" << w << "\t" << h << "\t" << base << "-scaled.ppm\n";
       }
       if (a.taa_frames > 0) ExportTaaSequence(*scene, tracer, w, h, a.taa_frames, base, tmp, tsv);
+      for (const auto& [spec, render] : render_methods) {
+        WritePpm((tmp / (base + "-" + spec + ".ppm")).string(), RenderFrame(tracer, w, h, render, a.seed, nullptr));
+        tsv << scene->name << "\t" << spec << "\t" << w << "\t" << h << "\t" << base << "-" << spec << ".ppm\n";
+      }
       std::fprintf(stderr, "exported %s\n", base.c_str());
     }
   }
@@ -236,6 +253,9 @@ void RegisterGpuCommands(CLI::App& app, Commands& commands) {
   ex->add_flag("--no-scaled", ea->no_scaled, "skip the frames rendered at scale43's render scale");
   ex->add_option("--taa-frames", ea->taa_frames,
                  "also export taa's inputs for frames 0..N-1 (jittered renders + previous positions; 0 = none)")
+      ->capture_default_str();
+  ex->add_option("--render-methods", ea->render_methods,
+                 "also write these MSAA / SSAA methods' frames (<base>-<spec>.ppm), for aalab_raster --compare")
       ->capture_default_str();
   ex->add_option("--out", ea->out, "output folder (frames.tsv + PPM files)")->required();
   ex->callback([&commands, ea] { commands.action = [ea] { return ExportFrames(*ea); }; });
