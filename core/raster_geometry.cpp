@@ -35,8 +35,8 @@ class Reader {
   Reader(const std::string& b, const std::string& origin) : b_(b), origin_(origin) {}
   void Need(size_t n, const char* what) {
     if (b_.size() - pos_ < n) {
-      throw UserError("raster scene file '" + origin_ + "' ends at byte " + std::to_string(b_.size()) +
-                      " inside " + what + " (truncated; write it again with aalab export-geometry)");
+      throw UserError("raster scene file '" + origin_ + "' ends at byte " + std::to_string(b_.size()) + " inside " +
+                      what + " (truncated; write it again with aalab export-geometry)");
     }
   }
   uint32_t U32(const char* what) {
@@ -67,7 +67,8 @@ class Reader {
   uint32_t Count(const char* what, size_t bytes_each) {
     const uint32_t n = U32(what);
     if (bytes_each > 0 && n > (b_.size() - pos_) / bytes_each) {
-      Fail(std::string(what) + " is " + std::to_string(n) + ", more than the file's remaining " + std::to_string(b_.size() - pos_) + " bytes hold (truncated; write it again with aalab export-geometry)");
+      Fail(std::string(what) + " is " + std::to_string(n) + ", more than the file's remaining " +
+           std::to_string(b_.size() - pos_) + " bytes hold (truncated; write it again with aalab export-geometry)");
     }
     return n;
   }
@@ -135,7 +136,8 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
   Reader r(bytes, origin);
   r.Need(8, "the magic");
   if (std::memcmp(bytes.data(), kMagic, 8) != 0) {
-    throw UserError("'" + origin + "' is not a raster scene file (it does not start with AALABRG1; write one with "
+    throw UserError("'" + origin +
+                    "' is not a raster scene file (it does not start with AALABRG1; write one with "
                     "aalab export-geometry)");
   }
   r.Str(8, "the magic");
@@ -174,7 +176,8 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
       c.normal = r.F3("a corner normal");
     }
   }
-  if (r.Pos() != r.Size()) r.Fail("the file goes on past its last triangle (" + std::to_string(r.Size() - r.Pos()) + " bytes)");
+  if (r.Pos() != r.Size())
+    r.Fail("the file goes on past its last triangle (" + std::to_string(r.Size() - r.Pos()) + " bytes)");
   return s;
 }
 

@@ -44,7 +44,8 @@ RasterTimingsFile ReadRasterTimingsFile(const std::string& path) {
     }
     const int version = doc.at("schema_version").get<int>();
     if (version != 1) {
-      throw UserError("'" + path + "': schema_version " + std::to_string(version) + " is not supported (this aalab reads 1)");
+      throw UserError("'" + path + "': schema_version " + std::to_string(version) +
+                      " is not supported (this aalab reads 1)");
     }
     g.device = doc.at("device").get<std::string>();
     g.gl_version = doc.at("gl_version").get<std::string>();
@@ -120,8 +121,8 @@ nlohmann::ordered_json RasterTimingJson(const RasterTiming& t) {
   j["samples"] = t.samples;
   nlohmann::ordered_json sizes = nlohmann::ordered_json::object();
   for (const auto& s : t.sizes) {
-    sizes[s.size] = {{"median_ms", s.median_ms}, {"min_ms", s.min_ms},         {"max_ms", s.max_ms},
-                     {"draw_ms", s.draw_ms},     {"resolve_ms", s.resolve_ms}, {"encode_ms", s.encode_ms},
+    sizes[s.size] = {{"median_ms", s.median_ms},    {"min_ms", s.min_ms},         {"max_ms", s.max_ms},
+                     {"draw_ms", s.draw_ms},        {"resolve_ms", s.resolve_ms}, {"encode_ms", s.encode_ms},
                      {"ratio_to_1x", s.ratio_to_1x}};
   }
   j["sizes"] = sizes;

@@ -76,7 +76,8 @@ const char* kUsage =
     "                   <scene>-<W>x<H>.ppm (none), -<method>.ppm (MSAA, SSAA), -taa-f<N>.ppm (taa@N)\n"
     "  --format F       colour target: rgba16f (default) or rgba32f\n"
     "  --resolve R      MSAA resolve: shader (box average, default) or blit (glBlitFramebuffer)\n"
-    "  --egl E          auto (default: EGL_EXT_platform_device, then EGL_MESA_platform_surfaceless), device, surfaceless\n";
+    "  --egl E          auto (default: EGL_EXT_platform_device, then EGL_MESA_platform_surfaceless), device, "
+    "surfaceless\n";
 
 Options ParseArgs(int argc, char** argv) {
   Options o;
@@ -89,16 +90,21 @@ Options ParseArgs(int argc, char** argv) {
     }
     if (i + 1 >= argc) Bad("option '" + a + "' needs a value (or is unknown)\n" + kUsage);
     const std::string v = argv[++i];
-    if (a == "--geometry") o.geometry = v;
-    else if (a == "--json") o.json = v;
-    else if (a == "--frames") o.frames = v;
+    if (a == "--geometry")
+      o.geometry = v;
+    else if (a == "--json")
+      o.json = v;
+    else if (a == "--frames")
+      o.frames = v;
     else if (a == "--compare") {
       if (!fs::is_directory(v)) Bad("--compare '" + v + "' is not a folder (write one with aalab export-frames)");
       o.compare = v;
-    }
-    else if (a == "--methods") methods = v;
-    else if (a == "--warmup") o.warmup = ParseInt(v, a, 0, 100000);
-    else if (a == "--repeat") o.repeat = ParseInt(v, a, 0, 100000);
+    } else if (a == "--methods")
+      methods = v;
+    else if (a == "--warmup")
+      o.warmup = ParseInt(v, a, 0, 100000);
+    else if (a == "--repeat")
+      o.repeat = ParseInt(v, a, 0, 100000);
     else if (a == "--sizes") {
       o.sizes.clear();
       for (const auto& s : Split(v)) {
@@ -109,13 +115,19 @@ Options ParseArgs(int argc, char** argv) {
       }
       if (o.sizes.empty()) Bad("--sizes is empty (give e.g. 1920x1080,3840x2160)");
     } else if (a == "--format") {
-      if (v == "rgba16f") o.format = TargetFormat::kRgba16f;
-      else if (v == "rgba32f") o.format = TargetFormat::kRgba32f;
-      else Bad("--format '" + v + "' is not allowed (allowed: rgba16f, rgba32f)");
+      if (v == "rgba16f")
+        o.format = TargetFormat::kRgba16f;
+      else if (v == "rgba32f")
+        o.format = TargetFormat::kRgba32f;
+      else
+        Bad("--format '" + v + "' is not allowed (allowed: rgba16f, rgba32f)");
     } else if (a == "--resolve") {
-      if (v == "shader") o.resolve = ResolveKind::kShader;
-      else if (v == "blit") o.resolve = ResolveKind::kBlit;
-      else Bad("--resolve '" + v + "' is not allowed (allowed: shader, blit)");
+      if (v == "shader")
+        o.resolve = ResolveKind::kShader;
+      else if (v == "blit")
+        o.resolve = ResolveKind::kBlit;
+      else
+        Bad("--resolve '" + v + "' is not allowed (allowed: shader, blit)");
     } else if (a == "--egl") {
       if (!ParseEglPlatform(v, &o.egl)) Bad("--egl '" + v + "' is not allowed (allowed: auto, device, surfaceless)");
     } else {
@@ -148,7 +160,8 @@ std::vector<RasterScene> LoadGeometry(const std::string& path) {
       if (e.path().extension() == ".geom") files.push_back(e.path());
     }
     std::sort(files.begin(), files.end());
-    if (files.empty()) Bad("--geometry folder '" + path + "' holds no .geom file (write them with aalab export-geometry)");
+    if (files.empty())
+      Bad("--geometry folder '" + path + "' holds no .geom file (write them with aalab export-geometry)");
   } else if (fs::is_regular_file(path)) {
     files.push_back(path);
   } else {
@@ -185,8 +198,9 @@ std::string FidelityJson(const fs::path& ref, const std::vector<uint8_t>& rgb, i
   int rw = 0, rh = 0;
   const std::vector<uint8_t> a = ReadPpm(ref, &rw, &rh);
   if (a.empty()) return "";
-  if (rw != w || rh != h) throw UserError("--compare: '" + ref.string() + "' is " + std::to_string(rw) + "x" +
-                                          std::to_string(rh) + ", not " + std::to_string(w) + "x" + std::to_string(h));
+  if (rw != w || rh != h)
+    throw UserError("--compare: '" + ref.string() + "' is " + std::to_string(rw) + "x" + std::to_string(rh) + ", not " +
+                    std::to_string(w) + "x" + std::to_string(h));
   size_t same = 0, within1 = 0;
   int worst = 0;
   const size_t n = static_cast<size_t>(w) * h;
@@ -198,9 +212,11 @@ std::string FidelityJson(const fs::path& ref, const std::vector<uint8_t>& rgb, i
     worst = std::max(worst, m);
   }
   char b[256];
-  std::snprintf(b, sizeof b, "identical %.6f, within 1 code %.6f, max diff %d", double(same) / n, double(within1) / n, worst);
+  std::snprintf(b, sizeof b, "identical %.6f, within 1 code %.6f, max diff %d", double(same) / n, double(within1) / n,
+                worst);
   *line = b;
-  std::snprintf(b, sizeof b, "{\"identical_share\": %.6f, \"within_1_share\": %.6f, \"max_diff\": %d, \"pixels_over_1\": %zu}",
+  std::snprintf(b, sizeof b,
+                "{\"identical_share\": %.6f, \"within_1_share\": %.6f, \"max_diff\": %d, \"pixels_over_1\": %zu}",
                 double(same) / n, double(within1) / n, worst, n - within1);
   return b;
 }
@@ -260,8 +276,9 @@ int Main(int argc, char** argv) {
         } catch (const CapabilityError& e) {
           std::fprintf(stderr, "aalab_raster: warning: skipped %s on %s at %dx%d: %s\n", m.name.c_str(),
                        scene.name.c_str(), w, h, e.what());
-          not_drawn << (not_drawn.tellp() > 0 ? ", " : "") << JsonString(scene.name + " " + std::to_string(w) + "x" +
-                                                                          std::to_string(h) + " " + m.name + ": " + e.what());
+          not_drawn << (not_drawn.tellp() > 0 ? ", " : "")
+                    << JsonString(scene.name + " " + std::to_string(w) + "x" + std::to_string(h) + " " + m.name + ": " +
+                                  e.what());
           continue;
         }
         r.RenderFrame();
@@ -274,17 +291,18 @@ int Main(int argc, char** argv) {
         if (!o.compare.empty()) {
           const std::string base = scene.name + "-" + std::to_string(w) + "x" + std::to_string(h);
           const std::string ref = m.kind == RasterMethod::Kind::kOne ? base + ".ppm"
-                                  : m.kind == RasterMethod::Kind::kTaa ? base + "-taa-f" + std::to_string(m.taa_frame) + ".ppm"
-                                                                       : base + "-" + m.name + ".ppm";
+                                  : m.kind == RasterMethod::Kind::kTaa
+                                      ? base + "-taa-f" + std::to_string(m.taa_frame) + ".ppm"
+                                      : base + "-" + m.name + ".ppm";
           std::string line;
           fidelity = FidelityJson(fs::path(o.compare) / ref, r.ReadRgb8(), w, h, &line);
           std::fprintf(stderr, "%s %dx%d %-9s against %s: %s\n", scene.name.c_str(), w, h, m.name.c_str(), ref.c_str(),
                        fidelity.empty() ? "no such frame" : line.c_str());
         }
         if (!o.frames.empty()) {
-          const std::string file = scene.name + "-" + std::to_string(w) + "x" + std::to_string(h) + "-" +
-                                   (m.kind == RasterMethod::Kind::kTaa ? "taa-f" + std::to_string(m.taa_frame) : m.name) +
-                                   ".ppm";
+          const std::string file =
+              scene.name + "-" + std::to_string(w) + "x" + std::to_string(h) + "-" +
+              (m.kind == RasterMethod::Kind::kTaa ? "taa-f" + std::to_string(m.taa_frame) : m.name) + ".ppm";
           WritePpm(fs::path(o.frames) / file, w, h, r.ReadRgb8());
         }
         if (o.repeat == 0) {
@@ -309,21 +327,25 @@ int Main(int argc, char** argv) {
                      m.name.c_str(), tot.median, Stats(draw).median, Stats(resolve).median, Stats(encode).median);
         rows << (first ? "" : ",\n") << "    {\"scene\": " << JsonString(scene.name) << ", \"width\": " << w
              << ", \"height\": " << h << ", \"method\": " << JsonString(m.name) << ", \"samples\": " << r.Samples()
-             << ", \"triangles\": " << scene.triangles.size() << ",\n     \"total\": " << StatJson(tot) << ",\n     \"draw\": "
-             << StatJson(Stats(draw)) << ", \"resolve\": " << StatJson(Stats(resolve)) << ", \"encode\": "
-             << StatJson(Stats(encode)) << (fidelity.empty() ? "" : ",\n     \"fidelity\": " + fidelity) << "}";
+             << ", \"triangles\": " << scene.triangles.size() << ",\n     \"total\": " << StatJson(tot)
+             << ",\n     \"draw\": " << StatJson(Stats(draw)) << ", \"resolve\": " << StatJson(Stats(resolve))
+             << ", \"encode\": " << StatJson(Stats(encode))
+             << (fidelity.empty() ? "" : ",\n     \"fidelity\": " + fidelity) << "}";
         first = false;
       }
     }
   }
   if (!o.json.empty()) {
     std::ostringstream j;
-    j << "{\n  \"schema\": \"aalab-raster-timings\",\n  \"schema_version\": 1,\n  \"tool\": \"aalab_raster\",\n  \"device\": " << JsonString(dev.renderer)
-      << ",\n  \"vendor\": " << JsonString(dev.vendor) << ",\n  \"gl_version\": " << JsonString(dev.version)
-      << ",\n  \"egl_platform\": " << JsonString(dev.platform) << ",\n  \"target_format\": \""
-      << (o.format == TargetFormat::kRgba32f ? "rgba32f" : "rgba16f") << "\",\n  \"msaa_resolve\": \""
-      << (o.resolve == ResolveKind::kBlit ? "blit" : "shader") << "\",\n  \"warmup\": " << o.warmup
-      << ",\n  \"repeat\": " << o.repeat << ",\n  \"not_drawn\": [" << not_drawn.str() << "],\n  \"rows\": [\n" << rows.str() << "\n  ]\n}\n";
+    j << "{\n  \"schema\": \"aalab-raster-timings\",\n  \"schema_version\": 1,\n  \"tool\": \"aalab_raster\",\n  "
+         "\"device\": "
+      << JsonString(dev.renderer) << ",\n  \"vendor\": " << JsonString(dev.vendor)
+      << ",\n  \"gl_version\": " << JsonString(dev.version) << ",\n  \"egl_platform\": " << JsonString(dev.platform)
+      << ",\n  \"target_format\": \"" << (o.format == TargetFormat::kRgba32f ? "rgba32f" : "rgba16f")
+      << "\",\n  \"msaa_resolve\": \"" << (o.resolve == ResolveKind::kBlit ? "blit" : "shader")
+      << "\",\n  \"warmup\": " << o.warmup << ",\n  \"repeat\": " << o.repeat << ",\n  \"not_drawn\": ["
+      << not_drawn.str() << "],\n  \"rows\": [\n"
+      << rows.str() << "\n  ]\n}\n";
     const std::string tmp = o.json + ".partial";
     {
       std::ofstream f(tmp, std::ios::binary);

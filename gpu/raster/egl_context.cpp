@@ -36,8 +36,9 @@ std::string ContextOn(EGLDisplay dpy, const std::string& what) {
   const char* ext = eglQueryString(dpy, EGL_EXTENSIONS);
   if (!HasExt(ext, "EGL_KHR_surfaceless_context")) return what + ": no EGL_KHR_surfaceless_context";
   if (!eglBindAPI(EGL_OPENGL_API)) return what + ": eglBindAPI(EGL_OPENGL_API) failed (no desktop OpenGL)";
-  const EGLint attrs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                          EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  const EGLint attrs[] = {
+      EGL_CONTEXT_MAJOR_VERSION,           4,       EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
   EGLContext ctx = eglCreateContext(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attrs);
   if (ctx == EGL_NO_CONTEXT) {
     return what + ": eglCreateContext(OpenGL 4.5 core, no config) failed (EGL error " + Hex(eglGetError()) + ")";
@@ -63,7 +64,8 @@ std::string TryDevice(std::string* used) {
   std::string why;
   for (EGLint i = 0; i < n; ++i) {
     const std::string what = "device platform, device " + std::to_string(i);
-    const std::string r = ContextOn(get_display(EGL_PLATFORM_DEVICE_EXT, devices[static_cast<size_t>(i)], nullptr), what);
+    const std::string r =
+        ContextOn(get_display(EGL_PLATFORM_DEVICE_EXT, devices[static_cast<size_t>(i)], nullptr), what);
     if (r.empty()) {
       *used = "EGL_EXT_platform_device (device " + std::to_string(i) + " of " + std::to_string(n) + ")";
       return "";
@@ -75,11 +77,12 @@ std::string TryDevice(std::string* used) {
 
 std::string TrySurfaceless(std::string* used) {
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  if (!HasExt(client, "EGL_MESA_platform_surfaceless")) return "surfaceless platform: EGL has no EGL_MESA_platform_surfaceless";
+  if (!HasExt(client, "EGL_MESA_platform_surfaceless"))
+    return "surfaceless platform: EGL has no EGL_MESA_platform_surfaceless";
   auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (!get_display) return "surfaceless platform: eglGetPlatformDisplayEXT missing";
-  const std::string r = ContextOn(get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
-                                  "surfaceless platform");
+  const std::string r =
+      ContextOn(get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr), "surfaceless platform");
   if (r.empty()) *used = "EGL_MESA_platform_surfaceless";
   return r;
 }
@@ -92,10 +95,14 @@ std::string Str(GLenum name) {
 }  // namespace
 
 bool ParseEglPlatform(const std::string& name, EglPlatform* out) {
-  if (name == "auto") *out = EglPlatform::kAuto;
-  else if (name == "device") *out = EglPlatform::kDevice;
-  else if (name == "surfaceless") *out = EglPlatform::kSurfaceless;
-  else return false;
+  if (name == "auto")
+    *out = EglPlatform::kAuto;
+  else if (name == "device")
+    *out = EglPlatform::kDevice;
+  else if (name == "surfaceless")
+    *out = EglPlatform::kSurfaceless;
+  else
+    return false;
   return true;
 }
 

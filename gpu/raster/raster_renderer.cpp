@@ -279,7 +279,9 @@ struct RasterRenderer::Gl {
       Fullscreen(resolve_grid_prog, resolved);
     }
   }
-  bool HasResolve() const { return method.kind == RasterMethod::Kind::kMsaa || method.kind == RasterMethod::Kind::kSsaa; }
+  bool HasResolve() const {
+    return method.kind == RasterMethod::Kind::kMsaa || method.kind == RasterMethod::Kind::kSsaa;
+  }
   void StageEncode() {
     glBindTextureUnit(0, HasResolve() ? resolved.tex : draw.tex);
     Fullscreen(encode_prog, encoded);
@@ -339,7 +341,9 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
   v.reserve(scene.triangles.size() * 3);
   for (const auto& t : scene.triangles) {
     for (const auto& c : t.corners) {
-      v.push_back({{c.position[0], c.position[1], c.position[2]}, {c.normal[0], c.normal[1], c.normal[2]}, {t.shape, t.material}});
+      v.push_back({{c.position[0], c.position[1], c.position[2]},
+                   {c.normal[0], c.normal[1], c.normal[2]},
+                   {t.shape, t.material}});
     }
   }
   g.vertices = static_cast<GLsizei>(v.size());
@@ -400,12 +404,12 @@ void RasterRenderer::Configure(const RasterMethod& method, int w, int h, TargetF
   const int k = method.kind == RasterMethod::Kind::kSsaa ? method.grid : 1;
   if (n > max_samples) {
     throw CapabilityError(method.name + " needs " + std::to_string(n) + " samples; this GL allows " +
-                             std::to_string(max_samples) + " (GL_MAX_SAMPLES)");
+                          std::to_string(max_samples) + " (GL_MAX_SAMPLES)");
   }
   if (w * k > max_size || h * k > max_size) {
     throw CapabilityError(method.name + " at " + std::to_string(w) + "x" + std::to_string(h) + " needs a " +
-                             std::to_string(w * k) + "x" + std::to_string(h * k) + " target; GL_MAX_TEXTURE_SIZE is " +
-                             std::to_string(max_size));
+                          std::to_string(w * k) + "x" + std::to_string(h * k) + " target; GL_MAX_TEXTURE_SIZE is " +
+                          std::to_string(max_size));
   }
   g.draw.Make(w * k, h * k, n, g.format, true);
   if (g.HasResolve()) g.resolved.Make(w, h, 1, g.format, false);
@@ -467,7 +471,8 @@ std::vector<uint8_t> RasterRenderer::ReadRgb8() const {
 
 std::vector<int32_t> RasterRenderer::SampleShapes() {
   Gl& g = *gl_;
-  if (g.method.kind != RasterMethod::Kind::kMsaa) throw std::runtime_error("SampleShapes needs an MSAA method configured");
+  if (g.method.kind != RasterMethod::Kind::kMsaa)
+    throw std::runtime_error("SampleShapes needs an MSAA method configured");
   if (!g.ids.fbo) g.ids.Make(g.w, g.h, g.draw.samples, GL_R32UI, true);
   const int n = g.ids.samples;
   if (n != g.draw.samples) throw std::runtime_error("the ID target got another sample count than the colour target");
@@ -496,7 +501,8 @@ std::vector<float> RasterRenderer::SamplePositions() const {
   const Gl& g = *gl_;
   glBindFramebuffer(GL_FRAMEBUFFER, g.draw.fbo);
   std::vector<float> pos(static_cast<size_t>(2 * g.draw.samples));
-  for (int s = 0; s < g.draw.samples; ++s) glGetMultisamplefv(GL_SAMPLE_POSITION, static_cast<GLuint>(s), &pos[static_cast<size_t>(2 * s)]);
+  for (int s = 0; s < g.draw.samples; ++s)
+    glGetMultisamplefv(GL_SAMPLE_POSITION, static_cast<GLuint>(s), &pos[static_cast<size_t>(2 * s)]);
   Check("querying the sample positions");
   return pos;
 }

@@ -29,8 +29,8 @@ struct RasterMethod {
   enum class Kind { kOne, kMsaa, kSsaa, kTaa };
   std::string name;
   Kind kind = Kind::kOne;
-  int samples = 1;  ///< MSAA: samples per pixel
-  int grid = 1;     ///< SSAA: k of the k × k ordered grid
+  int samples = 1;       ///< MSAA: samples per pixel
+  int grid = 1;          ///< SSAA: k of the k × k ordered grid
   int taa_frame = 1;     ///< TAA: which frame's jitter (taa's Halton(2,3) over 16 points)
   float jx = 0, jy = 0;  ///< TAA: the sample's offset from the pixel centre, px, y down
 };

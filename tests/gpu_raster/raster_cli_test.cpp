@@ -162,8 +162,9 @@ TEST(RasterCli, CompareAgainstExportedFrames) {
   e = Aalab("export-frames --scenes wedges --sizes 320x180 --no-scaled --render-methods msaa-4x,ssaa-2x2 --out " +
             (dir / "ef").string());
   ASSERT_EQ(e.code, 0) << e.output;
-  const CmdResult r = Raster("--geometry " + (dir / "geo").string() + " --sizes 320x180 --methods none,msaa-4x,ssaa-2x2 " +
-                             "--repeat 0 --compare " + (dir / "ef").string() + " --json " + (dir / "c.json").string());
+  const CmdResult r =
+      Raster("--geometry " + (dir / "geo").string() + " --sizes 320x180 --methods none,msaa-4x,ssaa-2x2 " +
+             "--repeat 0 --compare " + (dir / "ef").string() + " --json " + (dir / "c.json").string());
   if (const std::string why = RasterUnavailable(r); !why.empty()) AALAB_SKIP_OR_FAIL_UNDER_CI(why);
   ASSERT_EQ(r.code, 0) << r.output;
   const nlohmann::json c = nlohmann::json::parse(Slurp(dir / "c.json"));

@@ -62,9 +62,11 @@ TEST(RasterGeometry, MeshKeepsItsLightAndLambert) {
 }
 
 TEST(RasterGeometry, RefusalsNameTheSceneAndTheReason) {
-  for (const auto& [name, reason] : std::vector<std::pair<std::string, std::string>>{
-           {"circle", "analytic shape"}, {"checker-plane", "'textures'"}, {"shadow-stipple", "'shadows'"},
-           {"specular-spheres", "'specular'"}}) {
+  for (const auto& [name, reason] :
+       std::vector<std::pair<std::string, std::string>>{{"circle", "analytic shape"},
+                                                        {"checker-plane", "'textures'"},
+                                                        {"shadow-stipple", "'shadows'"},
+                                                        {"specular-spheres", "'specular'"}}) {
     try {
       RasterSceneOf(LoadScene(name));
       ADD_FAILURE() << name << " was not refused";
@@ -76,7 +78,7 @@ TEST(RasterGeometry, RefusalsNameTheSceneAndTheReason) {
   EXPECT_THROW(ParseRasterScene("AALABRG1", "x"), UserError);      // truncated after the magic
   EXPECT_THROW(ParseRasterScene("NOTAFILE1234", "x"), UserError);  // wrong magic
   std::string bytes = RasterSceneBytes(RasterSceneOf(LoadScene("wedges")));
-  EXPECT_THROW(ParseRasterScene(bytes + "x", "x"), UserError);     // trailing bytes
+  EXPECT_THROW(ParseRasterScene(bytes + "x", "x"), UserError);  // trailing bytes
 }
 
 }  // namespace

@@ -40,14 +40,16 @@ const std::string& ContextError() {
   static const std::string why = [] {
     raster::GlDeviceInfo info;
     const std::string r = raster::MakeHeadlessGlContext(raster::EglPlatform::kAuto, &info);
-    if (r.empty()) std::printf("raster tests on %s (%s) via %s\n", info.renderer.c_str(), info.version.c_str(), info.platform.c_str());
+    if (r.empty())
+      std::printf("raster tests on %s (%s) via %s\n", info.renderer.c_str(), info.version.c_str(),
+                  info.platform.c_str());
     return r;
   }();
   return why;
 }
 
-#define REQUIRE_GL()                                                                \
-  do {                                                                              \
+#define REQUIRE_GL()                                                                                                  \
+  do {                                                                                                                \
     if (!ContextError().empty()) AALAB_SKIP_OR_FAIL_UNDER_CI("no OpenGL 4.5 context through EGL: " + ContextError()); \
   } while (0)
 
@@ -184,9 +186,10 @@ TEST(RasterPath, OneXFrameMatchesAalab) {
       r.Configure(Method("none"), w, h, fmt, raster::ResolveKind::kShader);
       r.RenderFrame();
       const FrameDiff d = Compare(ref, r.ReadRgb8(), edges, SnapDistance(r), w, h);
-      std::printf("%s 1x %s: %d pixel(s) 1 code apart, %d >1 code apart (max %d), all within %.4f px of an edge (snap %.4f)\n",
-                  name.c_str(), fmt == raster::TargetFormat::kRgba16f ? "rgba16f" : "rgba32f", d.one_code,
-                  d.near_edge_flips, d.max_any, d.worst_distance, SnapDistance(r));
+      std::printf(
+          "%s 1x %s: %d pixel(s) 1 code apart, %d >1 code apart (max %d), all within %.4f px of an edge (snap %.4f)\n",
+          name.c_str(), fmt == raster::TargetFormat::kRgba16f ? "rgba16f" : "rgba32f", d.one_code, d.near_edge_flips,
+          d.max_any, d.worst_distance, SnapDistance(r));
       EXPECT_EQ(d.unexplained, 0) << name << ": pixels away from every edge differ by up to " << d.max_off_edge;
       EXPECT_LE(d.near_edge_flips, 8) << name;
     }
@@ -297,8 +300,10 @@ TEST(RasterPath, MsaaCoverageMatchesAalabSampleForSample) {
                       << " px from the nearest edge";
       }
     }
-    std::printf("wedges msaa-%dx (%d samples allocated): %zu samples (%d on a quad), %d differ, all within %.5f px of "
-                "an edge (snap %.5f)\n", want, n, out.size(), covered, near_edge, worst, SnapDistance(r));
+    std::printf(
+        "wedges msaa-%dx (%d samples allocated): %zu samples (%d on a quad), %d differ, all within %.5f px of "
+        "an edge (snap %.5f)\n",
+        want, n, out.size(), covered, near_edge, worst, SnapDistance(r));
     EXPECT_EQ(unexplained, 0);
     EXPECT_GT(covered, static_cast<int>(out.size() / 10));  // the fixture has real coverage
     EXPECT_LE(near_edge, static_cast<int>(out.size() / 2000));
