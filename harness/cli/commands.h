@@ -32,7 +32,7 @@ void RegisterCompareCommands(CLI::App& app, Commands& commands);
 /// Adds `sweep` (sweep_commands.cpp).
 void RegisterSweepCommands(CLI::App& app, Commands& commands);
 
-/// Adds `export-frames` and `merge-gpu` (gpu_commands.cpp; docs/gpu.md).
+/// Adds `export-frames`, `export-geometry` and `merge-gpu` (gpu_commands.cpp; docs/gpu.md).
 void RegisterGpuCommands(CLI::App& app, Commands& commands);
 /// Checks a GPU timings file (aalab_gpu's or aalab_raster's JSON) before any work; throws
 /// UserError naming what is wrong.

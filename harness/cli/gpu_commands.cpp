@@ -1,6 +1,8 @@
-// `aalab export-frames` and `aalab merge-gpu`: the CPU side of the GPU timings (docs/gpu.md).
-// export-frames renders the frames the post filters see, for the stand-alone GPU tool
-// (gpu/aalab_gpu), which needs no Embree; merge-gpu attaches that tool's JSON to a report.
+// `aalab export-frames`, `aalab export-geometry` and `aalab merge-gpu`: the CPU side of the GPU
+// timings (docs/gpu.md). export-frames renders the frames the post filters see, for the
+// stand-alone GPU tool (gpu/aalab_gpu), which needs no Embree; export-geometry writes the
+// triangle scenes for the raster tool (gpu/raster/aalab_raster); merge-gpu (and run
+// --gpu-timings) attaches either tool's JSON to a report.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
