@@ -1,4 +1,5 @@
 #include "reports/report_json.h"
+#include "reports/raster_timings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -225,6 +226,7 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
       j["frames"] = {{"series", series}, {"images", row.frame_images}};
     }
     if (row.gpu) j["gpu"] = GpuJson(*row.gpu);
+    if (row.gpu_raster) j["gpu_raster"] = RasterTimingJson(*row.gpu_raster);
     rows.push_back(j);
   }
   doc["rows"] = rows;
@@ -371,6 +373,7 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
         row.frame_images = fr.at("images").get<std::vector<std::string>>();
       }
       if (j.contains("gpu")) row.gpu = GpuFrom(j.at("gpu"));
+      if (j.contains("gpu_raster")) row.gpu_raster = RasterTimingFrom(j.at("gpu_raster"));
       r.rows.push_back(row);
     }
     if (doc.contains("time_breakdown")) {  // optional: absent in older reports

@@ -43,6 +43,23 @@ struct GpuTiming {
   std::vector<GpuTimingAt> sizes;
 };
 
+/// A row's render-time method drawn by the raster path (gpu/raster/aalab_raster, docs/gpu.md
+/// "The raster path") at one frame size: GL_TIME_ELAPSED per stage, median/min/max of the
+/// frame total over the timed frames, and the stages' medians.
+struct RasterTimingAt {
+  std::string size;  ///< "1920x1080"
+  double median_ms = 0, min_ms = 0, max_ms = 0;
+  double draw_ms = 0, resolve_ms = 0, encode_ms = 0;
+  double ratio_to_1x = 0;  ///< median_ms / the same scene's `none` frame at this size (0: none not timed)
+};
+
+/// The raster block of a row (reports/raster_timings.h): the GL device and settings.
+struct RasterTiming {
+  std::string device, gl_version, egl_platform, target_format, msaa_resolve;
+  int samples = 1;  ///< samples per pixel the GL allocated
+  std::vector<RasterTimingAt> sizes;
+};
+
 /// One scene × method result.
 struct ResultRow {
   std::string scene;
@@ -79,6 +96,7 @@ struct ResultRow {
   /// frames came from. Timings are the manifest's `ms` (render = total) or empty.
   std::string supplied;
   std::optional<GpuTiming> gpu;  ///< set by `aalab merge-gpu` / `run --gpu-timings`
+  std::optional<RasterTiming> gpu_raster;  ///< set by `run --gpu-timings` / `merge-gpu` with a raster file
 };
 
 /// Per-scene facts: the reference and its noise floor.

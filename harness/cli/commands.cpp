@@ -194,13 +194,24 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   run->add_flag("--references-only", rs->references_only,
                 "only render this shard's share of the references into --ref-cache (scenes, and frames of moving "
                 "scenes); write no report");
-  run->callback([&commands, rs, run_scenes, run_methods, run_size, run_shard, run_sampler] {
-    commands.action = [rs, run_scenes, run_methods, run_size, run_shard, run_sampler] {
+  auto run_gpu = std::make_shared<std::string>();
+  run->add_option("--gpu-timings", *run_gpu,
+                  "after the run, attach GPU timings (aalab_raster's or aalab_gpu's JSON) to the rows, as merge-gpu "
+                  "does (docs/gpu.md)");
+  run->callback([&commands, rs, run_scenes, run_methods, run_size, run_shard, run_sampler, run_gpu] {
+    commands.action = [rs, run_scenes, run_methods, run_size, run_shard, run_sampler, run_gpu] {
       ParseSize(*run_size, &rs->width, &rs->height);
       rs->sampler = ParseSamplerArithmetic(*run_sampler);
       if (!run_scenes->empty()) rs->scenes = SplitList(*run_scenes);
       if (!run_methods->empty()) rs->methods = SplitList(*run_methods);
       if (!run_shard->empty()) rs->shard = ParseShard(*run_shard);
+      if (!run_gpu->empty()) {
+        if (rs->shard.Active() || rs->references_only) {
+          throw UserError("--gpu-timings needs a whole run (not --shard or --references-only); attach the timings to "
+                          "the merged report with aalab merge-gpu");
+        }
+        CheckGpuTimingsFile(*run_gpu);  // before any work
+      }
       if (rs->references_only) {
         int cached = 0;
         const int rendered = RenderReferencesOnly(*rs, &cached);
@@ -218,6 +229,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       }
       std::printf("%s", FormatTimeBreakdown(report.time_breakdown).c_str());
       std::printf("%s", FormatVerdicts(Verdicts(report)).c_str());
+      if (!run_gpu->empty()) std::printf("%s\n", AttachGpuTimings(rs->out_dir, *run_gpu).c_str());
       std::printf("wrote %zu results for %zu scenes\nhtml:   %s\nreport: %s\n", report.rows.size(), report.scenes.size(),
                   (fs::absolute(rs->out_dir) / "index.html").string().c_str(),
                   (fs::absolute(rs->out_dir) / "report.json").string().c_str());

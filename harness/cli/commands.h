@@ -32,8 +32,15 @@ void RegisterCompareCommands(CLI::App& app, Commands& commands);
 /// Adds `sweep` (sweep_commands.cpp).
 void RegisterSweepCommands(CLI::App& app, Commands& commands);
 
-/// Adds `export-frames` and `merge-gpu` (gpu_commands.cpp; docs/gpu.md).
+/// Adds `export-frames`, `export-geometry` and `merge-gpu` (gpu_commands.cpp; docs/gpu.md).
 void RegisterGpuCommands(CLI::App& app, Commands& commands);
+/// Checks a GPU timings file (aalab_gpu's or aalab_raster's JSON) before any work; throws
+/// UserError naming what is wrong.
+void CheckGpuTimingsFile(const std::string& path);
+/// Merges a GPU timings file into the report in `dir` (report.json and index.html rewritten):
+/// aalab_gpu's into the rows' `gpu` blocks, aalab_raster's into `gpu_raster`. Returns the
+/// line to print; UserError when no row matches.
+std::string AttachGpuTimings(const std::string& dir, const std::string& gpu_json);
 
 /// Adds `merge` and `same-results` (cluster_commands.cpp; docs/cluster.md). `same-results`
 /// exits 0 same, 1 different, 2 could not compare.

@@ -1,6 +1,9 @@
-// `aalab export-frames` and `aalab merge-gpu`: the CPU side of the GPU timings (docs/gpu.md).
-// export-frames renders the frames the post filters see, for the stand-alone GPU tool
-// (gpu/aalab_gpu), which needs no Embree; merge-gpu attaches that tool's JSON to a report.
+// `aalab export-frames`, `aalab export-geometry` and `aalab merge-gpu`: the CPU side of the GPU
+// timings (docs/gpu.md). export-frames renders the frames the post filters see, for the
+// stand-alone GPU tool (gpu/aalab_gpu), which needs no Embree; export-geometry writes the
+// triangle scenes for the raster tool (gpu/raster/aalab_raster); merge-gpu (and run
+// --gpu-timings) attaches either tool's JSON to a report.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -20,11 +23,13 @@
 #include "harness/run/runner.h"
 #include "methods/registry.h"
 #include "reports/gpu_timings.h"
+#include "reports/raster_timings.h"
 #include "reports/html_report.h"
 #include "reports/report_json.h"
 #include "scenes/library.h"
 #include "scenes/motion.h"
 #include "scenes/motion_render.h"
+#include "scenes/raster_export.h"
 #include "scenes/render.h"
 
 namespace aalab {
@@ -38,6 +43,7 @@ struct ExportArgs {
   int threads = 0;
   bool no_scaled = false;
   int taa_frames = 0;
+  std::string render_methods;  ///< render-time methods whose frames to write too (for aalab_raster --compare)
 };
 
 // TAA's inputs for frames 0..n-1 of `scene` at w × h, as `aalab run --frames n --methods taa`
@@ -87,6 +93,18 @@ int ExportFrames(const ExportArgs& a) {
   }
   if (sizes.empty()) throw UserError("--sizes is empty (give e.g. 1920x1080,3840x2160)");
   const std::vector<std::string> names = a.scenes.empty() ? SuiteScenes(a.suite) : SplitCommaList(a.scenes, "--scenes");
+  // Render-time methods (MSAA, SSAA) whose frames aalab_raster --compare checks against.
+  std::vector<std::pair<std::string, RenderSpec>> render_methods;
+  if (!a.render_methods.empty()) {
+    for (const auto& spec : SplitCommaList(a.render_methods, "--render-methods")) {
+      const MethodPlan plan = MakeMethod(spec);
+      if (!plan.render.msaa.On() && plan.render.pattern != SamplePattern::kOrderedGrid) {
+        throw UserError("--render-methods '" + spec + "' is not an MSAA or ordered-grid SSAA method (allowed: msaa-2x, "
+                        "msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4: what aalab_raster draws)");
+      }
+      render_methods.emplace_back(spec, plan.render);
+    }
+  }
   std::vector<std::unique_ptr<Scene>> scenes = LoadScenes(names);
   if (a.taa_frames < 0 || a.taa_frames > 256) {
     throw UserError("--taa-frames " + std::to_string(a.taa_frames) + " is out of range (allowed: 0..256)");
@@ -120,6 +138,10 @@ int ExportFrames(const ExportArgs& a) {
         tsv << scene->name << "\tscaled\t" << w << "\t" << h << "\t" << base << "-scaled.ppm\n";
       }
       if (a.taa_frames > 0) ExportTaaSequence(*scene, tracer, w, h, a.taa_frames, base, tmp, tsv);
+      for (const auto& [spec, render] : render_methods) {
+        WritePpm((tmp / (base + "-" + spec + ".ppm")).string(), RenderFrame(tracer, w, h, render, a.seed, nullptr));
+        tsv << scene->name << "\t" << spec << "\t" << w << "\t" << h << "\t" << base << "-" << spec << ".ppm\n";
+      }
       std::fprintf(stderr, "exported %s\n", base.c_str());
     }
   }
@@ -129,24 +151,97 @@ int ExportFrames(const ExportArgs& a) {
   return ToInt(ExitCode::kOk);
 }
 
-int MergeGpu(const std::string& dir, const std::string& gpu_json) {
-  const fs::path report_path = fs::path(dir) / "report.json";
-  Report report = ReadReportFile(report_path.string());
-  RequireRegularFile(gpu_json, "GPU timings", "a JSON file written by aalab_gpu --json is expected");
-  const GpuTimingsFile gpu = ReadGpuTimingsFile(gpu_json);
-  const int matched = MergeGpuTimings(report, gpu);
-  if (matched == 0) {
-    throw UserError("'" + gpu_json + "' has timings for none of the report's rows (rows are matched by scene and "
-                    "method spec; the GPU file covers scenes " + JoinNames(gpu.Scenes()) + ")");
+struct GeometryArgs {
+  std::string suite = "default", scenes, out;
+  bool skip_unsupported = false;
+};
+
+// Writes DIR/<scene>.geom (core/raster_geometry.h) for each scene, listed in DIR/geometry.tsv,
+// for the raster tool (gpu/raster/aalab_raster). A scene the raster path cannot draw is an
+// error naming it and why, unless --skip-unsupported (then it is listed on stderr and in
+// the TSV's comment lines). Everything goes to DIR.partial first.
+int ExportGeometry(const GeometryArgs& a) {
+  const std::vector<std::string> names = a.scenes.empty() ? SuiteScenes(a.suite) : SplitCommaList(a.scenes, "--scenes");
+  std::vector<std::unique_ptr<Scene>> scenes = LoadScenes(names);
+  std::vector<const Scene*> drawn;
+  std::string skipped;
+  for (const auto& scene : scenes) {
+    const std::string why = RasterUnsupported(*scene);
+    if (why.empty()) {
+      drawn.push_back(scene.get());
+    } else if (a.skip_unsupported) {
+      skipped += "# skipped " + scene->name + ": " + why + "\n";
+      std::fprintf(stderr, "skipped %s: %s\n", scene->name.c_str(), why.c_str());
+    } else {
+      RasterSceneOf(*scene);  // throws the one message naming the scene and the reason
+    }
   }
-  WriteTextFile(report_path.string(), ReportToJson(report).dump(2) + "\n");
-  WriteTextFile((fs::path(dir) / "index.html").string(), RenderHtmlReport(report));
-  std::printf("merged GPU timings (%s, driver %s) into %d of %zu rows of %s\n", gpu.device.c_str(), gpu.driver.c_str(),
-              matched, report.rows.size(), report_path.string().c_str());
+  if (drawn.empty()) {
+    throw UserError("the raster path can draw none of the scenes given (it draws still triangle scenes with unlit or "
+                    "lambert solid colours and directional lights; of the library: wedges, mesh)");
+  }
+  std::vector<std::string> inputs = names;
+  for (const auto& file : InputFilesRead()) inputs.push_back(file);
+  OutFolder out(a.out, "geometry", inputs);
+  const fs::path tmp = out.Begin();
+  std::ostringstream tsv;
+  tsv << "# aalab export-geometry: scene, triangles, file (core/raster_geometry.h; docs/gpu.md)\n" << skipped;
+  for (const Scene* scene : drawn) {
+    const RasterScene r = RasterSceneOf(*scene);
+    WriteTextFile((tmp / (scene->name + ".geom")).string(), RasterSceneBytes(r));
+    tsv << scene->name << "\t" << r.triangles.size() << "\t" << scene->name << ".geom\n";
+  }
+  WriteTextFile((tmp / "geometry.tsv").string(), tsv.str());
+  out.Commit();
+  std::printf("wrote %zu scene(s) to %s (geometry.tsv)\n", drawn.size(), a.out.c_str());
+  return ToInt(ExitCode::kOk);
+}
+
+int MergeGpu(const std::string& dir, const std::string& gpu_json) {
+  std::printf("%s\n", AttachGpuTimings(dir, gpu_json).c_str());
   return ToInt(ExitCode::kOk);
 }
 
 }  // namespace
+
+void CheckGpuTimingsFile(const std::string& path) {
+  RequireRegularFile(path, "GPU timings", "a JSON file written by aalab_gpu --json or aalab_raster --json is expected");
+  if (IsRasterTimingsFile(path)) {
+    ReadRasterTimingsFile(path);
+  } else {
+    ReadGpuTimingsFile(path);
+  }
+}
+
+std::string AttachGpuTimings(const std::string& dir, const std::string& gpu_json) {
+  const fs::path report_path = fs::path(dir) / "report.json";
+  Report report = ReadReportFile(report_path.string());
+  CheckGpuTimingsFile(gpu_json);
+  std::string what;
+  int matched = 0;
+  std::vector<std::string> scenes;
+  if (IsRasterTimingsFile(gpu_json)) {
+    const RasterTimingsFile raster = ReadRasterTimingsFile(gpu_json);
+    matched = MergeRasterTimings(report, raster);
+    for (const auto& r : raster.results) {
+      if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+    }
+    what = "GPU raster timings (" + raster.device + ", " + raster.gl_version + ")";
+  } else {
+    const GpuTimingsFile gpu = ReadGpuTimingsFile(gpu_json);
+    matched = MergeGpuTimings(report, gpu);
+    scenes = gpu.Scenes();
+    what = "GPU timings (" + gpu.device + ", driver " + gpu.driver + ")";
+  }
+  if (matched == 0) {
+    throw UserError("'" + gpu_json + "' has timings for none of the report's rows (rows are matched by scene and "
+                    "method spec; the GPU file covers scenes " + JoinNames(scenes) + ")");
+  }
+  WriteTextFile(report_path.string(), ReportToJson(report).dump(2) + "\n");
+  WriteTextFile((fs::path(dir) / "index.html").string(), RenderHtmlReport(report));
+  return "merged " + what + " into " + std::to_string(matched) + " of " + std::to_string(report.rows.size()) +
+         " rows of " + report_path.string();
+}
 
 void RegisterGpuCommands(CLI::App& app, Commands& commands) {
   auto* ex = app.add_subcommand("export-frames",
@@ -161,14 +256,27 @@ void RegisterGpuCommands(CLI::App& app, Commands& commands) {
   ex->add_option("--taa-frames", ea->taa_frames,
                  "also export taa's inputs for frames 0..N-1 (jittered renders + previous positions; 0 = none)")
       ->capture_default_str();
+  ex->add_option("--render-methods", ea->render_methods,
+                 "also write these MSAA / SSAA methods' frames (<base>-<spec>.ppm), for aalab_raster --compare")
+      ->capture_default_str();
   ex->add_option("--out", ea->out, "output folder (frames.tsv + PPM files)")->required();
   ex->callback([&commands, ea] { commands.action = [ea] { return ExportFrames(*ea); }; });
+
+  auto* eg = app.add_subcommand("export-geometry",
+                                "write the triangle scenes' geometry, camera and shading for the raster tool (docs/gpu.md)");
+  auto ga = std::make_shared<GeometryArgs>();
+  eg->add_option("--suite", ga->suite, "suite name (see aalab list scenes)")->capture_default_str();
+  eg->add_option("--scenes", ga->scenes, "comma-separated scene names or files (overrides --suite)");
+  eg->add_flag("--skip-unsupported", ga->skip_unsupported,
+               "skip (and list) the scenes the raster path cannot draw instead of refusing them");
+  eg->add_option("--out", ga->out, "output folder (geometry.tsv + one .geom file per scene)")->required();
+  eg->callback([&commands, ga] { commands.action = [ga] { return ExportGeometry(*ga); }; });
 
   auto* mg = app.add_subcommand("merge-gpu", "attach aalab_gpu's timings (JSON) to a report's rows and redraw its page");
   auto dir = std::make_shared<std::string>();
   auto file = std::make_shared<std::string>();
   mg->add_option("report_dir", *dir, "report folder (holds report.json)")->required();
-  mg->add_option("gpu_json", *file, "JSON written by aalab_gpu --json")->required();
+  mg->add_option("gpu_json", *file, "JSON written by aalab_gpu --json or aalab_raster --json")->required();
   mg->callback([&commands, dir, file] { commands.action = [dir, file] { return MergeGpu(*dir, *file); }; });
 }
 

@@ -1,6 +1,6 @@
 // aalab command line: the CLI11 app and its subcommands (list, render, apply, metrics, run,
 // scene, compare, baseline, history, sweep, merge, same-results, export, export-sequences,
-// export-frames, merge-gpu; each is set up in harness/cli/*_command(s).cpp, docs/cli.md).
+// export-frames, export-geometry, merge-gpu; each is set up in harness/cli/*_command(s).cpp, docs/cli.md).
 // Exit codes: core/exit_code.h (docs/cli.md). Signals: SIGINT, SIGTERM and SIGHUP are
 // taken by one thread, which removes the command's unfinished output (core/cleanup.h)
 // and exits 130 / 143 / 129 with one line. SIGPIPE is ignored: a closed stdout (`aalab run |

@@ -284,6 +284,22 @@
         g.device + ', driver ' + g.driver + ', ' + g.kernels + ': median ms per frame at ' + gpuSizes.join(' / ') +
         (scope === 'suite' ? ' (mean over the scenes it ran on)' : '') + ', CUDA events; not CPU time');
     };
+    // GPU raster timings (aalab run --gpu-timings with aalab_raster's JSON, docs/gpu.md "The
+    // raster path"): the render-time methods drawn by OpenGL, one column when any row has one.
+    const hasRaster = A.DATA.rows.some(r => r.gpu_raster);
+    const rasterSizes = hasRaster ? [...new Set(A.DATA.rows.filter(r => r.gpu_raster).flatMap(r => Object.keys(r.gpu_raster.sizes)))] : [];
+    const rasterCell = (p) => {
+      const timed = (p.rows || []).filter(r => r.gpu_raster);
+      if (!timed.length) return dash('no raster timing for this method (the raster path draws none, MSAA, SSAA and TAA\'s jittered frame of triangle scenes)');
+      const mean = size => { const v = timed.map(r => r.gpu_raster.sizes[size]).filter(Boolean).map(t => t.median_ms);
+                             return v.length ? v.reduce((a, b) => a + b, 0) / v.length : null; };
+      const ms = rasterSizes.map(mean);
+      const g = timed[0].gpu_raster;
+      return num(ms[0] === null ? -1 : ms[0], ms.map(v => v === null ? '—' : A.fmtMs(v)).join(' / '),
+        g.device + ' (' + g.gl_version + '), ' + g.target_format + ' target, ' + g.samples + ' sample(s), MSAA resolve by ' +
+        g.msaa_resolve + ': median GPU ms per frame (draw + resolve + encode) at ' + rasterSizes.join(' / ') +
+        (scope === 'suite' ? ' (mean over the scenes it ran on)' : '') + ', GL timer queries; a forward renderer of this shading model, not CPU time');
+    };
     const table = el('table', { class: 'cost sortable' },
       el('caption', {}, 'Cost of accuracy' + (scope === 'suite' ? ' (suite means over ' + (A.scenes.length - data.left.length) + ' of ' + A.scenes.length + ' scenes)' : '') + ': what each method gains over ',
         el('code', { text: 'none' }), ' in ' + info.label + ' and what it adds in time.'),
@@ -298,6 +314,8 @@
                         'perceptual gain over none (positive = better than none by ' + info2.label + ')')] : []),
         th('Time ms', {}, scope === 'suite' ? 'mean over scenes of the median time per frame' : 'median time per frame'),
         th('Added ms', {}, 'time − none\'s time'),
+        ...(hasRaster ? [th('GPU raster ms ' + rasterSizes.join(' / '), {}, 'the method drawn by the raster path (aalab_raster, OpenGL) on ' +
+                            A.DATA.rows.find(r => r.gpu_raster).gpu_raster.device + ': median ms at each size')] : []),
         ...(hasGpu ? [th('GPU ms ' + gpuSizes.join(' / '), {}, 'the post filter\'s CUDA twin on a GPU (aalab merge-gpu): median ms at each size')] : []),
         th(gainUnit + '/ms', { 'data-first': 'descending' }, 'gain ÷ time added, only when time added > 0'),
         th('Front', { 'data-first': 'descending' }, 'on the Pareto front of the chart'))));
@@ -345,6 +363,7 @@
                   ' ms): within this run\'s timing noise' : null);
         tr.append(td);
       }
+      if (hasRaster) tr.append(rasterCell(p));
       if (hasGpu) tr.append(gpuCell(p));
       if (p === base) tr.append(dash('the baseline: no gain, no time added'));
       else if (!base || p.q === null || base.q === null || dt === null) tr.append(dash('no gain or no time to divide'));

@@ -1,0 +1,71 @@
+/// The raster path's scene file (docs/gpu.md "The raster path"): a triangle scene as plain
+/// data, written by `aalab export-geometry` (scenes/raster_export.h builds it from a Scene)
+/// and read by the stand-alone raster tool (gpu/raster/), which links neither Embree nor OIIO.
+///
+/// Binary, little-endian, in this order (i32 / u32 / f32 are 4 bytes):
+///   "AALABRG1" (8 bytes)
+///   u32 name length, name bytes (UTF-8, no terminator)
+///   camera:   i32 type (0 perspective, 1 orthographic); f32 position[3], look_at[3], up[3],
+///             fov_y_deg, height
+///   display:  f32 exposure; i32 tonemap (0 none, 1 reinhard, 2 aces)
+///   shading:  f32 background[3], ambient[3]; i32 lambert (the scene declares `lambert`)
+///   u32 light count; per light (directional only): f32 direction[3], color[3], intensity
+///   u32 material count; per material: i32 lit (1: lambert, 0: unlit); f32 color[3]
+///   u32 triangle count; per triangle: i32 shape (index in Scene::shapes), i32 material,
+///             i32 smooth (1: the corner normals are the mesh's, 0: flat); then three
+///             corners of f32 position[3], normal[3] (flat: the face normal
+///             (p1 − p0) × (p2 − p0), unnormalised, in all three, which the tracer's
+///             geometric normal equals up to sign and length)
+/// Values are the Scene's own floats (world space, after transforms), so nothing is rounded
+/// on the way.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace aalab {
+
+struct RasterLight {
+  std::array<float, 3> direction{0, -1, 0};  ///< the direction the light travels
+  std::array<float, 3> color{1, 1, 1};
+  float intensity = 1.0f;  ///< aalab's internal unit (Light::intensity)
+};
+
+struct RasterMaterial {
+  bool lit = false;  ///< lambert shading (else unlit: the colour as radiance)
+  std::array<float, 3> color{1, 1, 1};
+};
+
+struct RasterCorner {
+  std::array<float, 3> position{0, 0, 0};
+  std::array<float, 3> normal{0, 0, 0};
+};
+
+struct RasterTriangle {
+  int32_t shape = 0, material = 0;
+  bool smooth = false;
+  std::array<RasterCorner, 3> corners;
+};
+
+struct RasterScene {
+  std::string name;
+  bool orthographic = false;
+  std::array<float, 3> position{0, 0, 5}, look_at{0, 0, 0}, up{0, 1, 0};
+  float fov_y_deg = 45.0f, height = 2.0f;
+  float exposure = 1.0f;
+  int tonemap = 0;  ///< 0 none, 1 reinhard, 2 aces (core/color.h Tonemap order)
+  std::array<float, 3> background{0, 0, 0}, ambient{0, 0, 0};
+  bool lambert = false;
+  std::vector<RasterLight> lights;
+  std::vector<RasterMaterial> materials;
+  std::vector<RasterTriangle> triangles;
+};
+
+/// The file's bytes for `scene` (pure).
+std::string RasterSceneBytes(const RasterScene& scene);
+/// Parses a file's bytes; throws UserError naming `origin`, the byte offset and what was
+/// expected when the data is truncated, has the wrong magic or holds an out-of-range value.
+RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin);
+
+}  // namespace aalab

@@ -1,0 +1,518 @@
+// The raster path's renderer (gpu/raster/raster_renderer.h): GL objects, the camera's
+// matrix (the tracer's rays inverted), the three stages and their timer queries.
+#include "gpu/raster/raster_renderer.h"
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include "gpu/raster/raster_shaders.h"
+
+namespace aalab::raster {
+
+namespace {
+
+using V3 = std::array<float, 3>;
+V3 Sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+float Dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 Cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+V3 Normalize(V3 a) {
+  const float l = std::sqrt(Dot(a, a));
+  return {a[0] / l, a[1] / l, a[2] / l};
+}
+
+/// The radical inverse of `index` in `base`, in double (core/render_spec.h RadicalInverse).
+double RadicalInverse(int base, int index) {
+  double r = 0.0, f = 1.0 / base;
+  for (int i = index; i > 0; i /= base, f /= base) r += f * (i % base);
+  return r;
+}
+
+void Check(const char* what) {
+  const GLenum e = glGetError();
+  if (e != GL_NO_ERROR) {
+    char b[64];
+    std::snprintf(b, sizeof b, "GL error 0x%04x", e);
+    throw std::runtime_error(std::string(what) + ": " + b);
+  }
+}
+
+GLuint Compile(GLenum type, const char* src) {
+  const GLuint s = glCreateShader(type);
+  glShaderSource(s, 1, &src, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096];
+    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    throw std::runtime_error(std::string("a raster shader does not compile: ") + log);
+  }
+  return s;
+}
+
+GLuint Link(std::initializer_list<std::pair<GLenum, const char*>> stages) {
+  const GLuint p = glCreateProgram();
+  std::vector<GLuint> shaders;
+  for (const auto& [type, src] : stages) {
+    shaders.push_back(Compile(type, src));
+    glAttachShader(p, shaders.back());
+  }
+  glLinkProgram(p);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096];
+    glGetProgramInfoLog(p, sizeof log, nullptr, log);
+    throw std::runtime_error(std::string("a raster program does not link: ") + log);
+  }
+  for (GLuint s : shaders) glDeleteShader(s);
+  return p;
+}
+
+/// A colour texture (multisampled when samples > 1) and its framebuffer, with an optional
+/// depth renderbuffer of the same sample count.
+struct Target {
+  GLuint tex = 0, fbo = 0, depth = 0;
+  int w = 0, h = 0, samples = 1;
+  void Make(int width, int height, int n, GLenum format, bool with_depth) {
+    w = width;
+    h = height;
+    samples = n;
+    const GLenum target = n > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    glCreateTextures(target, 1, &tex);
+    if (n > 1) {
+      glTextureStorage2DMultisample(tex, n, format, w, h, GL_TRUE);
+      // A GL may give more samples than asked (llvmpipe: 4 for 2): keep what it gave.
+      GLint got = n;
+      glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_SAMPLES, &got);
+      samples = got;
+    } else {
+      glTextureStorage2D(tex, 1, format, w, h);
+      glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
+    if (with_depth) {
+      glCreateRenderbuffers(1, &depth);
+      glNamedRenderbufferStorageMultisample(depth, samples > 1 ? samples : 0, GL_DEPTH_COMPONENT32F, w, h);
+      glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    }
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      throw std::runtime_error("a raster framebuffer of " + std::to_string(w) + "x" + std::to_string(h) + " with " +
+                               std::to_string(n) + " sample(s) is incomplete");
+    }
+    Check("allocating a raster target");
+  }
+  void Free() {
+    if (fbo) glDeleteFramebuffers(1, &fbo);
+    if (tex) glDeleteTextures(1, &tex);
+    if (depth) glDeleteRenderbuffers(1, &depth);
+    *this = Target{};
+  }
+};
+
+}  // namespace
+
+struct RasterRenderer::Gl {
+  RasterScene scene;
+  GLuint vao = 0, vbo = 0, materials = 0, empty_vao = 0;
+  GLuint scene_prog = 0, id_prog = 0, resolve_ms_prog = 0, resolve_grid_prog = 0, encode_prog = 0, unpack_prog = 0;
+  GLsizei vertices = 0;
+  RasterMethod method;
+  int w = 0, h = 0;
+  GLenum format = GL_RGBA16F;
+  ResolveKind resolve = ResolveKind::kShader;
+  Target draw, resolved, encoded, ids;
+  std::array<float, 16> view_proj{};
+
+  void SceneUniforms() {
+    const RasterScene& s = scene;
+    glUseProgram(scene_prog);
+    auto loc = [&](const char* n) { return glGetUniformLocation(scene_prog, n); };
+    glUniformMatrix4fv(loc("u_view_proj"), 1, GL_FALSE, view_proj.data());
+    glUniform3fv(loc("u_cam_pos"), 1, s.position.data());
+    const V3 fwd = Normalize(Sub(s.look_at, s.position));
+    glUniform3fv(loc("u_forward"), 1, fwd.data());
+    glUniform1i(loc("u_ortho"), s.orthographic ? 1 : 0);
+    glUniform1i(loc("u_lambert"), s.lambert ? 1 : 0);
+    glUniform3fv(loc("u_ambient"), 1, s.ambient.data());
+    glUniform1f(loc("u_exposure"), s.exposure);
+    glUniform1i(loc("u_tonemap"), s.tonemap);
+    const int n = static_cast<int>(std::min<size_t>(s.lights.size(), 16));
+    glUniform1i(loc("u_lights"), n);
+    for (int l = 0; l < n; ++l) {
+      const RasterLight& li = s.lights[static_cast<size_t>(l)];
+      const V3 L = {-li.direction[0], -li.direction[1], -li.direction[2]};
+      const V3 e = {li.color[0] * li.intensity, li.color[1] * li.intensity, li.color[2] * li.intensity};
+      glUniform3fv(glGetUniformLocation(scene_prog, ("u_light_l[" + std::to_string(l) + "]").c_str()), 1, L.data());
+      glUniform3fv(glGetUniformLocation(scene_prog, ("u_light_e[" + std::to_string(l) + "]").c_str()), 1, e.data());
+    }
+    glUseProgram(id_prog);
+    glUniformMatrix4fv(glGetUniformLocation(id_prog, "u_view_proj"), 1, GL_FALSE, view_proj.data());
+  }
+
+  /// The matrix that puts every world point where the tracer's camera ray through it
+  /// starts: nx = 2x/W − 1, ny = 1 − 2y/H (scenes/tracer.cpp), with window y = image y
+  /// (flipped, so row 0 of the framebuffer is the image's top row), plus TAA's jitter.
+  void MakeViewProj() {
+    const RasterScene& s = scene;
+    const V3 fwd = Normalize(Sub(s.look_at, s.position));
+    const V3 right = Normalize(Cross(fwd, s.up));
+    const V3 up = Cross(right, fwd);
+    const int tw = method.kind == RasterMethod::Kind::kSsaa ? w * method.grid : w;
+    const int th = method.kind == RasterMethod::Kind::kSsaa ? h * method.grid : h;
+    const float aspect = static_cast<float>(tw) / static_cast<float>(th);
+    const float half_h = s.orthographic ? s.height * 0.5f : std::tan(s.fov_y_deg * 3.14159265358979f / 180.0f * 0.5f);
+    float zmin = 1e30f, zmax = -1e30f;
+    for (const auto& t : s.triangles) {
+      for (const auto& c : t.corners) {
+        const float z = Dot(fwd, Sub(c.position, s.position));
+        zmin = std::min(zmin, z);
+        zmax = std::max(zmax, z);
+      }
+    }
+    // Rows of the 4 × 4 matrix (row-major here; GL gets it transposed to column-major).
+    double m[4][4] = {};
+    const double sx = 1.0 / (half_h * aspect), sy = -1.0 / half_h;
+    const V3 p = s.position;
+    const double rx = -Dot(right, p), uy = -Dot(up, p), fz = -Dot(fwd, p);
+    if (s.orthographic) {
+      const double n = zmin - 1.0 - 0.01 * std::fabs(zmin), f = zmax + 1.0 + 0.01 * std::fabs(zmax);
+      for (int k = 0; k < 3; ++k) {
+        m[0][k] = sx * right[k];
+        m[1][k] = sy * up[k];
+        m[2][k] = 2.0 / (f - n) * fwd[k];
+      }
+      m[0][3] = sx * rx;
+      m[1][3] = sy * uy;
+      m[2][3] = (2.0 * fz - (f + n)) / (f - n);
+      m[3][3] = 1.0;
+    } else {
+      const double f = std::max(zmax, 1e-3f) * 1.01;
+      const double n = std::max({zmin * 0.5, f * 1e-5, 1e-5});
+      for (int k = 0; k < 3; ++k) {
+        m[0][k] = sx * right[k];
+        m[1][k] = sy * up[k];
+        m[2][k] = (f + n) / (f - n) * fwd[k];
+        m[3][k] = fwd[k];
+      }
+      m[0][3] = sx * rx;
+      m[1][3] = sy * uy;
+      m[2][3] = (f + n) / (f - n) * fz - 2.0 * f * n / (f - n);
+      m[3][3] = fz;
+    }
+    // TAA: the sample sits at the centre + (jx, jy) px; moving the geometry by −(jx, jy) px
+    // puts it under the rasteriser's centre sample (clip x += −2jx/W · w, y likewise).
+    const double ox = -2.0 * method.jx / tw, oy = -2.0 * method.jy / th;
+    for (int k = 0; k < 4; ++k) {
+      m[0][k] += ox * m[3][k];
+      m[1][k] += oy * m[3][k];
+    }
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) view_proj[static_cast<size_t>(c * 4 + r)] = static_cast<float>(m[r][c]);
+    }
+  }
+
+  void Fullscreen(GLuint prog, const Target& dst) {
+    glBindFramebuffer(GL_FRAMEBUFFER, dst.fbo);
+    glViewport(0, 0, dst.w, dst.h);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(prog);
+    glBindVertexArray(empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+
+  void Draw(GLuint prog, const Target& t, bool ids) {
+    glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
+    glViewport(0, 0, t.w, t.h);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    if (ids) {
+      const GLuint zero[4] = {0, 0, 0, 0};
+      glClearBufferuiv(GL_COLOR, 0, zero);
+    } else {
+      // The background through the display transform, as the tracer's miss.
+      float bg[4] = {0, 0, 0, 1};
+      for (int c = 0; c < 3; ++c) bg[c] = DisplayCpu(scene.background[static_cast<size_t>(c)]);
+      glClearBufferfv(GL_COLOR, 0, bg);
+    }
+    const float one = 1.0f;
+    glClearBufferfv(GL_DEPTH, 0, &one);
+    glUseProgram(prog);
+    glBindVertexArray(vao);
+    glDrawArrays(GL_TRIANGLES, 0, vertices);
+  }
+
+  /// core/color.h's display transform of one channel (for the clear colour).
+  float DisplayCpu(float v) const {
+    if (!(v > 0.0f)) v = 0.0f;
+    v *= scene.exposure;
+    if (scene.tonemap == 1) v = std::isinf(v) ? 1.0f : v / (1.0f + v);
+    if (scene.tonemap == 2) {
+      const float x = v * 0.6f;
+      v = x > 1e15f ? 2.51f / 2.43f : (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
+    }
+    return std::clamp(v, 0.0f, 1.0f);
+  }
+
+  void StageDraw() { Draw(scene_prog, draw, false); }
+  void StageResolve() {
+    if (method.kind == RasterMethod::Kind::kMsaa) {
+      if (resolve == ResolveKind::kBlit) {
+        glBlitNamedFramebuffer(draw.fbo, resolved.fbo, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+      } else {
+        glBindTextureUnit(0, draw.tex);
+        glUseProgram(resolve_ms_prog);
+        glUniform1i(glGetUniformLocation(resolve_ms_prog, "u_samples"), draw.samples);
+        Fullscreen(resolve_ms_prog, resolved);
+      }
+    } else if (method.kind == RasterMethod::Kind::kSsaa) {
+      glBindTextureUnit(0, draw.tex);
+      glUseProgram(resolve_grid_prog);
+      glUniform1i(glGetUniformLocation(resolve_grid_prog, "u_grid"), method.grid);
+      Fullscreen(resolve_grid_prog, resolved);
+    }
+  }
+  bool HasResolve() const {
+    return method.kind == RasterMethod::Kind::kMsaa || method.kind == RasterMethod::Kind::kSsaa;
+  }
+  void StageEncode() {
+    glBindTextureUnit(0, HasResolve() ? resolved.tex : draw.tex);
+    Fullscreen(encode_prog, encoded);
+  }
+};
+
+bool ParseRasterMethod(const std::string& spec, RasterMethod* out, std::string* why) {
+  RasterMethod m;
+  m.name = spec;
+  if (spec == "none") {
+    m.kind = RasterMethod::Kind::kOne;
+  } else if (spec == "msaa-2x" || spec == "msaa-4x" || spec == "msaa-8x" || spec == "msaa-16x") {
+    m.kind = RasterMethod::Kind::kMsaa;
+    m.samples = std::stoi(spec.substr(5));
+  } else if (spec == "ssaa-2x2" || spec == "ssaa-4x4") {
+    m.kind = RasterMethod::Kind::kSsaa;
+    m.grid = spec[5] - '0';
+  } else if (spec == "taa" || spec.rfind("taa@", 0) == 0) {
+    m.kind = RasterMethod::Kind::kTaa;
+    if (spec.size() > 4) {
+      const std::string n = spec.substr(4);
+      if (n.empty() || n.size() > 6 || n.find_first_not_of("0123456789") != std::string::npos) {
+        *why = "'" + spec + "': taa@N takes a frame number N in 0..999999";
+        return false;
+      }
+      m.taa_frame = std::stoi(n);
+    }
+    m.name = "taa";
+    // taa's jitter (methods/taa.cpp, samples = 16): Halton(2,3) point (frame mod 16) + 1, − 0.5.
+    const int index = m.taa_frame % 16 + 1;
+    m.jx = static_cast<float>(RadicalInverse(2, index) - 0.5);
+    m.jy = static_cast<float>(RadicalInverse(3, index) - 0.5);
+  } else {
+    *why = "unknown raster method '" + spec +
+           "' (the raster path draws: none, msaa-2x, msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4, taa, taa@N)";
+    return false;
+  }
+  *out = m;
+  return true;
+}
+
+RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<Gl>()) {
+  Gl& g = *gl_;
+  g.scene = scene;
+  g.scene_prog = Link({{GL_VERTEX_SHADER, kSceneVertex}, {GL_FRAGMENT_SHADER, kSceneFragment}});
+  g.id_prog = Link({{GL_VERTEX_SHADER, kSceneVertex}, {GL_FRAGMENT_SHADER, kIdFragment}});
+  g.resolve_ms_prog = Link({{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kResolveMsaaFragment}});
+  g.resolve_grid_prog = Link({{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kResolveGridFragment}});
+  g.encode_prog = Link({{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kEncodeFragment}});
+  g.unpack_prog = Link({{GL_COMPUTE_SHADER, kUnpackIdsCompute}});
+  // Interleaved vertices: position (3 floats), normal (3 floats), shape and material (2 ints).
+  struct Vertex {
+    float p[3], n[3];
+    int32_t ids[2];
+  };
+  std::vector<Vertex> v;
+  v.reserve(scene.triangles.size() * 3);
+  for (const auto& t : scene.triangles) {
+    for (const auto& c : t.corners) {
+      v.push_back({{c.position[0], c.position[1], c.position[2]},
+                   {c.normal[0], c.normal[1], c.normal[2]},
+                   {t.shape, t.material}});
+    }
+  }
+  g.vertices = static_cast<GLsizei>(v.size());
+  glCreateBuffers(1, &g.vbo);
+  glNamedBufferStorage(g.vbo, static_cast<GLsizeiptr>(std::max<size_t>(1, v.size()) * sizeof(Vertex)),
+                       v.empty() ? nullptr : v.data(), 0);
+  glCreateVertexArrays(1, &g.vao);
+  glVertexArrayVertexBuffer(g.vao, 0, g.vbo, 0, sizeof(Vertex));
+  glEnableVertexArrayAttrib(g.vao, 0);
+  glEnableVertexArrayAttrib(g.vao, 1);
+  glEnableVertexArrayAttrib(g.vao, 2);
+  glVertexArrayAttribFormat(g.vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, p));
+  glVertexArrayAttribFormat(g.vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, n));
+  glVertexArrayAttribIFormat(g.vao, 2, 2, GL_INT, offsetof(Vertex, ids));
+  for (GLuint a = 0; a < 3; ++a) glVertexArrayAttribBinding(g.vao, a, 0);
+  glCreateVertexArrays(1, &g.empty_vao);
+  std::vector<float> mats;
+  for (const auto& m : scene.materials) {
+    mats.insert(mats.end(), {m.color[0], m.color[1], m.color[2], m.lit ? 1.0f : 0.0f});
+  }
+  if (mats.empty()) mats.assign(4, 0.0f);
+  glCreateBuffers(1, &g.materials);
+  glNamedBufferStorage(g.materials, static_cast<GLsizeiptr>(mats.size() * sizeof(float)), mats.data(), 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.materials);
+  Check("uploading the raster scene");
+}
+
+RasterRenderer::~RasterRenderer() {
+  Gl& g = *gl_;
+  g.draw.Free();
+  g.resolved.Free();
+  g.encoded.Free();
+  g.ids.Free();
+  glDeleteBuffers(1, &g.vbo);
+  glDeleteBuffers(1, &g.materials);
+  glDeleteVertexArrays(1, &g.vao);
+  glDeleteVertexArrays(1, &g.empty_vao);
+  for (GLuint p : {g.scene_prog, g.id_prog, g.resolve_ms_prog, g.resolve_grid_prog, g.encode_prog, g.unpack_prog}) {
+    glDeleteProgram(p);
+  }
+}
+
+void RasterRenderer::Configure(const RasterMethod& method, int w, int h, TargetFormat format, ResolveKind resolve) {
+  Gl& g = *gl_;
+  g.draw.Free();
+  g.resolved.Free();
+  g.encoded.Free();
+  g.ids.Free();
+  g.method = method;
+  g.w = w;
+  g.h = h;
+  g.format = format == TargetFormat::kRgba32f ? GL_RGBA32F : GL_RGBA16F;
+  g.resolve = resolve;
+  GLint max_samples = 0, max_size = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  const int n = method.kind == RasterMethod::Kind::kMsaa ? method.samples : 1;
+  const int k = method.kind == RasterMethod::Kind::kSsaa ? method.grid : 1;
+  if (n > max_samples) {
+    throw CapabilityError(method.name + " needs " + std::to_string(n) + " samples; this GL allows " +
+                          std::to_string(max_samples) + " (GL_MAX_SAMPLES)");
+  }
+  if (w * k > max_size || h * k > max_size) {
+    throw CapabilityError(method.name + " at " + std::to_string(w) + "x" + std::to_string(h) + " needs a " +
+                          std::to_string(w * k) + "x" + std::to_string(h * k) + " target; GL_MAX_TEXTURE_SIZE is " +
+                          std::to_string(max_size));
+  }
+  g.draw.Make(w * k, h * k, n, g.format, true);
+  if (g.HasResolve()) g.resolved.Make(w, h, 1, g.format, false);
+  g.encoded.Make(w, h, 1, GL_RGBA8, false);
+  g.MakeViewProj();
+  g.SceneUniforms();
+}
+
+void RasterRenderer::RenderFrame() {
+  Gl& g = *gl_;
+  g.StageDraw();
+  g.StageResolve();
+  g.StageEncode();
+  Check("rendering a raster frame");
+}
+
+std::vector<StageTimes> RasterRenderer::TimeFrames(int warmup, int repeat) {
+  Gl& g = *gl_;
+  for (int i = 0; i < warmup; ++i) RenderFrame();
+  std::vector<GLuint> q(static_cast<size_t>(3 * repeat));
+  glCreateQueries(GL_TIME_ELAPSED, static_cast<GLsizei>(q.size()), q.data());
+  for (int i = 0; i < repeat; ++i) {
+    const size_t b = static_cast<size_t>(3 * i);
+    glBeginQuery(GL_TIME_ELAPSED, q[b]);
+    g.StageDraw();
+    glEndQuery(GL_TIME_ELAPSED);
+    glBeginQuery(GL_TIME_ELAPSED, q[b + 1]);
+    g.StageResolve();
+    glEndQuery(GL_TIME_ELAPSED);
+    glBeginQuery(GL_TIME_ELAPSED, q[b + 2]);
+    g.StageEncode();
+    glEndQuery(GL_TIME_ELAPSED);
+  }
+  glFinish();
+  std::vector<StageTimes> out(static_cast<size_t>(repeat));
+  for (int i = 0; i < repeat; ++i) {
+    GLuint64 ns[3] = {0, 0, 0};
+    for (int s = 0; s < 3; ++s) glGetQueryObjectui64v(q[static_cast<size_t>(3 * i + s)], GL_QUERY_RESULT, &ns[s]);
+    out[static_cast<size_t>(i)] = {ns[0] * 1e-6, g.HasResolve() ? ns[1] * 1e-6 : 0.0, ns[2] * 1e-6};
+  }
+  glDeleteQueries(static_cast<GLsizei>(q.size()), q.data());
+  Check("timing raster frames");
+  return out;
+}
+
+std::vector<uint8_t> RasterRenderer::ReadRgb8() const {
+  const Gl& g = *gl_;
+  std::vector<uint8_t> rgba(static_cast<size_t>(g.w) * g.h * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, g.encoded.fbo);
+  glReadPixels(0, 0, g.w, g.h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  Check("reading the raster frame");
+  std::vector<uint8_t> rgb(static_cast<size_t>(g.w) * g.h * 3);
+  for (size_t i = 0, n = static_cast<size_t>(g.w) * g.h; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) rgb[3 * i + static_cast<size_t>(c)] = rgba[4 * i + static_cast<size_t>(c)];
+  }
+  return rgb;
+}
+
+std::vector<int32_t> RasterRenderer::SampleShapes() {
+  Gl& g = *gl_;
+  if (g.method.kind != RasterMethod::Kind::kMsaa)
+    throw std::runtime_error("SampleShapes needs an MSAA method configured");
+  if (!g.ids.fbo) g.ids.Make(g.w, g.h, g.draw.samples, GL_R32UI, true);
+  const int n = g.ids.samples;
+  if (n != g.draw.samples) throw std::runtime_error("the ID target got another sample count than the colour target");
+  g.Draw(g.id_prog, g.ids, true);
+  GLuint buf = 0;
+  const size_t count = static_cast<size_t>(g.w) * g.h * n;
+  glCreateBuffers(1, &buf);
+  glNamedBufferStorage(buf, static_cast<GLsizeiptr>(count * 4), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buf);
+  glBindTextureUnit(0, g.ids.tex);
+  glUseProgram(g.unpack_prog);
+  glUniform1i(glGetUniformLocation(g.unpack_prog, "u_samples"), n);
+  glUniform2i(glGetUniformLocation(g.unpack_prog, "u_size"), g.w, g.h);
+  glDispatchCompute(static_cast<GLuint>((g.w + 7) / 8), static_cast<GLuint>((g.h + 7) / 8), 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<uint32_t> raw(count);
+  glGetNamedBufferSubData(buf, 0, static_cast<GLsizeiptr>(count * 4), raw.data());
+  glDeleteBuffers(1, &buf);
+  Check("reading the per-sample shapes");
+  std::vector<int32_t> out(count);
+  for (size_t i = 0; i < count; ++i) out[i] = static_cast<int32_t>(raw[i]) - 1;
+  return out;
+}
+
+std::vector<float> RasterRenderer::SamplePositions() const {
+  const Gl& g = *gl_;
+  glBindFramebuffer(GL_FRAMEBUFFER, g.draw.fbo);
+  std::vector<float> pos(static_cast<size_t>(2 * g.draw.samples));
+  for (int s = 0; s < g.draw.samples; ++s)
+    glGetMultisamplefv(GL_SAMPLE_POSITION, static_cast<GLuint>(s), &pos[static_cast<size_t>(2 * s)]);
+  Check("querying the sample positions");
+  return pos;
+}
+
+int RasterRenderer::Samples() const { return gl_->draw.samples; }
+
+int RasterRenderer::SubpixelBits() const {
+  GLint b = 0;
+  glGetIntegerv(GL_SUBPIXEL_BITS, &b);
+  return b;
+}
+
+}  // namespace aalab::raster

@@ -1,0 +1,91 @@
+/// The raster path's renderer (docs/gpu.md "The raster path"): draws a RasterScene
+/// (core/raster_geometry.h) with OpenGL 4.5 into a target of a method's size and sample count
+/// and turns it into the 8-bit frame aalab would write, in three timed stages:
+///   draw    clear + one draw call: the forward pass (the tracer's unlit / lambert shading
+///           and the display transform per fragment) into an RGBA16F (or RGBA32F) target of
+///           1, 2, 4, 8 or 16 samples, or k·W × k·H for SSAA, with a 32-bit float depth buffer
+///   resolve MSAA: box average of the samples (a shader of texelFetch, or glBlitFramebuffer);
+///           SSAA: box average of each k × k block; none for 1× and TAA's jittered frame
+///   encode  sRGB encode and rounding to 8 bits (a fragment pass into an RGBA8 target)
+/// Needs a current context (egl_context.h). Errors are std::runtime_error with the GL's words.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/raster_geometry.h"
+
+namespace aalab::raster {
+
+/// What the GL cannot do for a method (too many samples, too large a target).
+struct CapabilityError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A render-time method as the raster path draws it; `name` is aalab's method spec.
+struct RasterMethod {
+  enum class Kind { kOne, kMsaa, kSsaa, kTaa };
+  std::string name;
+  Kind kind = Kind::kOne;
+  int samples = 1;       ///< MSAA: samples per pixel
+  int grid = 1;          ///< SSAA: k of the k × k ordered grid
+  int taa_frame = 1;     ///< TAA: which frame's jitter (taa's Halton(2,3) over 16 points)
+  float jx = 0, jy = 0;  ///< TAA: the sample's offset from the pixel centre, px, y down
+};
+
+/// none, msaa-2x/4x/8x/16x, ssaa-2x2/4x4, taa (frame 1's jitter) or taa@N (frame N's);
+/// false with *why naming what is allowed.
+bool ParseRasterMethod(const std::string& spec, RasterMethod* out, std::string* why);
+
+/// The colour target's format: half floats (what a forward renderer typically uses) or floats.
+enum class TargetFormat { kRgba16f, kRgba32f };
+/// How MSAA's samples become a pixel: a box-average shader (defined) or glBlitFramebuffer
+/// (the driver's resolve: a box average on the hardware we know, but not specified).
+enum class ResolveKind { kShader, kBlit };
+
+/// GPU time of each stage of one frame, from GL_TIME_ELAPSED queries, in milliseconds.
+struct StageTimes {
+  double draw = 0, resolve = 0, encode = 0;
+  double Total() const { return draw + resolve + encode; }
+};
+
+class RasterRenderer {
+ public:
+  /// Compiles the programs and uploads the scene's triangles.
+  explicit RasterRenderer(const RasterScene& scene);
+  ~RasterRenderer();
+  RasterRenderer(const RasterRenderer&) = delete;
+  RasterRenderer& operator=(const RasterRenderer&) = delete;
+
+  /// Allocates the targets of `method` for an output of w × h (CapabilityError when the GL
+  /// cannot: more samples than GL_MAX_SAMPLES, a target past GL_MAX_TEXTURE_SIZE).
+  void Configure(const RasterMethod& method, int w, int h, TargetFormat format, ResolveKind resolve);
+  /// Draws, resolves and encodes one frame (untimed).
+  void RenderFrame();
+  /// `warmup` untimed frames, then `repeat` timed ones; the stage times of each timed frame.
+  std::vector<StageTimes> TimeFrames(int warmup, int repeat);
+  /// The encoded frame, w·h·3 bytes, top row first (after RenderFrame).
+  std::vector<uint8_t> ReadRgb8() const;
+  /// MSAA coverage, sample for sample: draws the scene's shape indices into an R32UI target
+  /// of the method's sample count (same depth test) and returns w·h·samples values, pixel
+  /// by pixel (top row first) and sample index within, of the shape seen (−1: background).
+  std::vector<int32_t> SampleShapes();
+  /// glGetMultisamplefv's sample positions of the configured MSAA target: 2 floats per
+  /// sample in [0, 1], x then y, in window coordinates (which the raster path flips so that
+  /// y grows downward with the image's rows).
+  std::vector<float> SamplePositions() const;
+  /// The colour target's samples per pixel as allocated (GL_TEXTURE_SAMPLES): a GL may give
+  /// more than asked (Mesa 22's llvmpipe gives 4 for 2); 1 without MSAA.
+  int Samples() const;
+  /// GL_SUBPIXEL_BITS: how finely the rasteriser snaps vertices (a test's tolerance).
+  int SubpixelBits() const;
+
+  struct Gl;  ///< the GL objects (raster_renderer.cpp)
+
+ private:
+  std::unique_ptr<Gl> gl_;
+};
+
+}  // namespace aalab::raster

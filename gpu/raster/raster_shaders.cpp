@@ -1,0 +1,150 @@
+// The raster path's GLSL (gpu/raster/raster_shaders.h). Arithmetic follows the CPU code's
+// order; `precise` keeps the compiler from fusing multiply-adds the CPU build does not fuse
+// (-ffp-contract=off).
+#include "gpu/raster/raster_shaders.h"
+
+namespace aalab::raster {
+
+const char* const kSceneVertex = R"(#version 450 core
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in vec3 a_nrm;
+layout(location = 2) in ivec2 a_ids;
+uniform mat4 u_view_proj;
+out vec3 v_pos;
+out vec3 v_nrm;
+flat out ivec2 v_ids;
+void main() {
+  v_pos = a_pos;
+  v_nrm = a_nrm;
+  v_ids = a_ids;
+  gl_Position = u_view_proj * vec4(a_pos, 1.0);
+}
+)";
+
+const char* const kSceneFragment = R"(#version 450 core
+in vec3 v_pos;
+in vec3 v_nrm;
+flat in ivec2 v_ids;
+layout(location = 0) out vec4 o_color;
+layout(std430, binding = 0) readonly buffer Materials { vec4 mat[]; };  // rgb colour, w = lit
+uniform vec3 u_cam_pos;
+uniform vec3 u_forward;
+uniform int u_ortho;
+uniform int u_lambert;
+uniform vec3 u_ambient;
+uniform float u_exposure;
+uniform int u_tonemap;
+uniform int u_lights;
+uniform vec3 u_light_l[16];  // -direction
+uniform vec3 u_light_e[16];  // colour * intensity
+
+float Tonemap(float v) {
+  if (u_tonemap == 1) return isinf(v) ? 1.0 : v / (1.0 + v);
+  if (u_tonemap == 2) {
+    precise float x = v * 0.6;
+    if (x > 1e15) return 2.51 / 2.43;
+    precise float r = (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
+    return r;
+  }
+  return v;
+}
+
+float Display(float v) {
+  if (!(v > 0.0)) v = 0.0;
+  return clamp(Tonemap(v * u_exposure), 0.0, 1.0);
+}
+
+void main() {
+  vec4 m = mat[v_ids.y];
+  vec3 base = m.rgb;
+  precise vec3 c;
+  if (m.w < 0.5 || u_lambert == 0) {
+    c = base;
+  } else {
+    vec3 dir = u_ortho == 1 ? u_forward : v_pos - u_cam_pos;
+    float len = length(v_nrm);
+    // The tracer's safe_normalize: a zero normal falls back to facing the camera.
+    vec3 n = (len > 0.0 && !isinf(len)) ? v_nrm / len : -dir;
+    if (dot(n, dir) > 0.0) n = -n;
+    c = u_ambient * base;
+    for (int l = 0; l < u_lights; ++l) {
+      float ndotl = dot(n, u_light_l[l]);
+      if (ndotl <= 0.0) continue;
+      c += base * u_light_e[l] * ndotl;
+    }
+  }
+  o_color = vec4(Display(c.r), Display(c.g), Display(c.b), 1.0);
+}
+)";
+
+const char* const kIdFragment = R"(#version 450 core
+flat in ivec2 v_ids;
+in vec3 v_pos;
+in vec3 v_nrm;
+layout(location = 0) out uint o_id;
+void main() { o_id = uint(v_ids.x + 1); }
+)";
+
+const char* const kFullscreenVertex = R"(#version 450 core
+void main() {
+  vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
+  gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
+
+const char* const kResolveMsaaFragment = R"(#version 450 core
+layout(binding = 0) uniform sampler2DMS u_src;
+uniform int u_samples;
+layout(location = 0) out vec4 o_color;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  precise vec3 sum = vec3(0.0);
+  for (int s = 0; s < u_samples; ++s) sum += texelFetch(u_src, p, s).rgb;
+  o_color = vec4(sum / float(u_samples), 1.0);
+}
+)";
+
+const char* const kResolveGridFragment = R"(#version 450 core
+layout(binding = 0) uniform sampler2D u_src;
+uniform int u_grid;
+layout(location = 0) out vec4 o_color;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy) * u_grid;
+  precise vec3 sum = vec3(0.0);
+  for (int j = 0; j < u_grid; ++j)
+    for (int i = 0; i < u_grid; ++i) sum += texelFetch(u_src, p + ivec2(i, j), 0).rgb;
+  o_color = vec4(sum / float(u_grid * u_grid), 1.0);
+}
+)";
+
+const char* const kEncodeFragment = R"(#version 450 core
+layout(binding = 0) uniform sampler2D u_src;
+layout(location = 0) out vec4 o_color;
+float Encode(float v) {
+  if (!(v > 0.0)) return 0.0;
+  if (v >= 1.0) return 1.0;
+  if (v <= 0.0031308) return 12.92 * v;
+  precise float e = 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+  return e;
+}
+float Code(float v) { return floor(Encode(v) * 255.0 + 0.5) / 255.0; }
+void main() {
+  vec3 c = texelFetch(u_src, ivec2(gl_FragCoord.xy), 0).rgb;
+  o_color = vec4(Code(c.r), Code(c.g), Code(c.b), 1.0);
+}
+)";
+
+const char* const kUnpackIdsCompute = R"(#version 450 core
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform usampler2DMS u_ids;
+layout(std430, binding = 1) writeonly buffer Out { uint ids[]; };
+uniform int u_samples;
+uniform ivec2 u_size;
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (p.x >= u_size.x || p.y >= u_size.y) return;
+  for (int s = 0; s < u_samples; ++s) ids[(p.y * u_size.x + p.x) * u_samples + s] = texelFetch(u_ids, p, s).r;
+}
+)";
+
+}  // namespace aalab::raster

@@ -1,0 +1,90 @@
+// Scene → RasterScene (scenes/raster_export.h): what the raster tool needs, and the one list
+// of what it cannot draw yet.
+#include "scenes/raster_export.h"
+
+#include "core/error.h"
+
+namespace aalab {
+
+namespace {
+
+std::array<float, 3> A3(glm::vec3 v) { return {v.x, v.y, v.z}; }
+
+const char* ShapeKindName(ShapeKind k) {
+  switch (k) {
+    case ShapeKind::kTriangles: return "triangles";
+    case ShapeKind::kSphere: return "sphere";
+    case ShapeKind::kDisk: return "disk";
+    case ShapeKind::kCapsule: return "capsule";
+    case ShapeKind::kCylinder: return "cylinder";
+  }
+  return "?";
+}
+
+}  // namespace
+
+std::string RasterUnsupported(const Scene& sc) {
+  for (Effect e : {Effect::kShadows, Effect::kSpecular, Effect::kTextures, Effect::kAlphaTest, Effect::kAlphaBlend,
+                   Effect::kNormalMap}) {
+    if (sc.Has(e)) return std::string("it declares the effect '") + EffectName(e) + "'";
+  }
+  if (sc.environment) return "it has an environment (image-based lighting)";
+  if (sc.animation.Moves()) return "it moves (animation)";
+  for (const auto& s : sc.shapes) {
+    if (s.kind != ShapeKind::kTriangles) {
+      return "it has an analytic shape ('" + s.source + "': " + ShapeKindName(s.kind) + ")";
+    }
+  }
+  for (const auto& m : sc.materials) {
+    if (m.gltf) return "material '" + m.name + "' is a glTF material";
+    if (m.shading == Shading::kPbr) return "material '" + m.name + "' uses PBR shading";
+  }
+  for (const auto& l : sc.lights) {
+    if (l.type != LightType::kDirectional) return "it has a point or spot light (only directional lights are drawn)";
+  }
+  return "";
+}
+
+RasterScene RasterSceneOf(const Scene& sc) {
+  if (const std::string why = RasterUnsupported(sc); !why.empty()) {
+    throw UserError("the raster path cannot draw scene '" + sc.name + "' yet: " + why +
+                    " (it draws still triangle scenes, unlit or lambert solid colours, directional lights "
+                    "without shadows; of the library: wedges, mesh)");
+  }
+  RasterScene r;
+  r.name = sc.name;
+  r.orthographic = sc.camera.type == CameraType::kOrthographic;
+  r.position = A3(sc.camera.position);
+  r.look_at = A3(sc.camera.look_at);
+  r.up = A3(sc.camera.up);
+  r.fov_y_deg = sc.camera.fov_y_deg;
+  r.height = sc.camera.height;
+  r.exposure = sc.display.exposure;
+  r.tonemap = static_cast<int>(sc.display.tonemap);
+  r.background = A3(sc.background);
+  r.ambient = A3(sc.ambient);
+  r.lambert = sc.Has(Effect::kLambert);
+  for (const auto& l : sc.lights) r.lights.push_back({A3(l.direction), A3(l.color), l.intensity});
+  for (const auto& m : sc.materials) r.materials.push_back({m.shading == Shading::kLambert, A3(m.color)});
+  for (size_t si = 0; si < sc.shapes.size(); ++si) {
+    const Shape& s = sc.shapes[si];
+    const bool smooth = !s.normals.empty();
+    for (const glm::uvec3& t : s.triangles) {
+      RasterTriangle tri;
+      tri.shape = static_cast<int32_t>(si);
+      tri.material = s.material;
+      tri.smooth = smooth;
+      const glm::vec3 p[3] = {s.positions[t.x], s.positions[t.y], s.positions[t.z]};
+      const glm::vec3 face = glm::cross(p[1] - p[0], p[2] - p[0]);
+      const unsigned idx[3] = {t.x, t.y, t.z};
+      for (int k = 0; k < 3; ++k) {
+        tri.corners[k].position = A3(p[k]);
+        tri.corners[k].normal = A3(smooth ? s.normals[idx[k]] : face);
+      }
+      r.triangles.push_back(tri);
+    }
+  }
+  return r;
+}
+
+}  // namespace aalab

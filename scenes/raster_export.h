@@ -1,0 +1,24 @@
+/// The raster path's view of a scene (docs/gpu.md "The raster path"): the triangles, camera
+/// and shading inputs that the stand-alone raster tool (gpu/raster/) needs to draw what the
+/// tracer traces, as the plain data of core/raster_geometry.h.
+#pragma once
+#include <string>
+
+#include "core/raster_geometry.h"
+#include "scenes/scene.h"
+
+namespace aalab {
+
+/// Why the raster path cannot draw `scene` yet ("" when it can): it draws still scenes of
+/// triangles (quads, boxes, planes, meshes) with unlit or lambert materials (solid colours)
+/// under directional lights without shadows, and any display transform. Refused: analytic
+/// shapes (sphere, disk, capsule, cylinder), the effects textures, shadows, specular,
+/// alpha_test, alpha_blend and normal_map, glTF materials, environments, point and spot
+/// lights, animation.
+std::string RasterUnsupported(const Scene& scene);
+
+/// The scene as raster data, the Scene's floats unchanged. Throws UserError with
+/// RasterUnsupported's reason when the raster path cannot draw it.
+RasterScene RasterSceneOf(const Scene& scene);
+
+}  // namespace aalab

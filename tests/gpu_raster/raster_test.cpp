@@ -1,0 +1,343 @@
+// The raster path (gpu/raster, docs/gpu.md "The raster path") against aalab's own renderer,
+// on whatever OpenGL 4.5 EGL gives here (Mesa's llvmpipe in CI):
+//  - the 1× frame (and TAA's jittered frame) equals aalab's 8-bit frame within 1 code per
+//    channel, except at pixels whose centre lies within the rasteriser's vertex snapping
+//    distance of a projected triangle edge, where coverage may legitimately flip;
+//  - MSAA 2/4/8×: glGetMultisamplefv's positions equal the standard D3D11 / Vulkan table
+//    (../shared/notes/msaa-and-analytic-aa.md §1, core/render_spec.h) and the shape seen by
+//    every sample equals the one aalab's MSAA simulation (Tracer::TraceMsaa) sees, again
+//    except within the snapping distance of an edge;
+//  - MSAA 4× and SSAA 2×2 resolved frames equal aalab's within 1 code away from edges.
+// Without a context the tests skip, and fail under CI (tests/skip_or_fail.h).
+#include <gtest/gtest.h>
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "core/raster_geometry.h"
+#include "core/render_spec.h"
+#include "gpu/raster/egl_context.h"
+#include "gpu/raster/raster_renderer.h"
+#include "methods/registry.h"
+#include "scenes/library.h"
+#include "scenes/motion_render.h"
+#include "scenes/raster_export.h"
+#include "scenes/render.h"
+#include "scenes/tracer.h"
+#include "tests/skip_or_fail.h"
+
+namespace aalab {
+namespace {
+
+using raster::RasterMethod;
+using raster::RasterRenderer;
+
+/// One context for the whole test program ("" when made, else why not).
+const std::string& ContextError() {
+  static const std::string why = [] {
+    raster::GlDeviceInfo info;
+    const std::string r = raster::MakeHeadlessGlContext(raster::EglPlatform::kAuto, &info);
+    if (r.empty())
+      std::printf("raster tests on %s (%s) via %s\n", info.renderer.c_str(), info.version.c_str(),
+                  info.platform.c_str());
+    return r;
+  }();
+  return why;
+}
+
+#define REQUIRE_GL()                                                                                                  \
+  do {                                                                                                                \
+    if (!ContextError().empty()) AALAB_SKIP_OR_FAIL_UNDER_CI("no OpenGL 4.5 context through EGL: " + ContextError()); \
+  } while (0)
+
+/// The scene's projected triangle edges in image pixel coordinates (y down), as the
+/// tracer's camera rays define them: nx = 2x/W − 1, ny = 1 − 2y/H (scenes/tracer.cpp).
+/// Worked out here from the camera alone, independently of the raster tool's matrix.
+struct Edges {
+  std::vector<std::array<double, 4>> seg;  // x0, y0, x1, y1
+  /// Distance from (x, y) to the nearest edge, px.
+  double Nearest(double x, double y) const {
+    double best = 1e30;
+    for (const auto& s : seg) {
+      const double dx = s[2] - s[0], dy = s[3] - s[1];
+      const double len2 = dx * dx + dy * dy;
+      double t = len2 > 0 ? ((x - s[0]) * dx + (y - s[1]) * dy) / len2 : 0.0;
+      t = std::clamp(t, 0.0, 1.0);
+      best = std::min(best, std::hypot(x - (s[0] + t * dx), y - (s[1] + t * dy)));
+    }
+    return best;
+  }
+};
+
+Edges ProjectEdges(const RasterScene& s, int w, int h) {
+  const glm::dvec3 pos(s.position[0], s.position[1], s.position[2]);
+  const glm::dvec3 fwd = glm::normalize(glm::dvec3(s.look_at[0], s.look_at[1], s.look_at[2]) - pos);
+  const glm::dvec3 right = glm::normalize(glm::cross(fwd, glm::dvec3(s.up[0], s.up[1], s.up[2])));
+  const glm::dvec3 up = glm::cross(right, fwd);
+  const double aspect = static_cast<double>(w) / h;
+  const double half_h = s.orthographic ? s.height * 0.5 : std::tan(s.fov_y_deg * M_PI / 180.0 * 0.5);
+  Edges e;
+  for (const auto& t : s.triangles) {
+    std::array<glm::dvec2, 3> p;
+    bool front = true;
+    for (int k = 0; k < 3; ++k) {
+      const auto& c = t.corners[static_cast<size_t>(k)].position;
+      const glm::dvec3 v = glm::dvec3(c[0], c[1], c[2]) - pos;
+      const double z = s.orthographic ? 1.0 : glm::dot(v, fwd);
+      if (z <= 0) front = false;
+      const double nx = glm::dot(v, right) / (z * half_h * aspect), ny = glm::dot(v, up) / (z * half_h);
+      p[static_cast<size_t>(k)] = {(nx + 1.0) * 0.5 * w, (1.0 - ny) * 0.5 * h};
+    }
+    if (!front) continue;
+    for (int k = 0; k < 3; ++k) {
+      const auto& a = p[static_cast<size_t>(k)];
+      const auto& b = p[static_cast<size_t>((k + 1) % 3)];
+      e.seg.push_back({a.x, a.y, b.x, b.y});
+    }
+  }
+  return e;
+}
+
+/// How far coverage may legitimately move: the rasteriser snaps each vertex to
+/// 2^−bits px, i.e. by at most 2^−(bits+1) per axis, √2·2^−(bits+1) in distance, and an edge
+/// between two snapped vertices moves no further; 1e−4 px more for float rounding of the
+/// projection (a few ulps of coordinates below 10^3 px).
+double SnapDistance(const RasterRenderer& r) {
+  return std::sqrt(2.0) * std::ldexp(1.0, -(r.SubpixelBits() + 1)) + 1e-4;
+}
+
+struct FrameDiff {
+  int max_off_edge = 0;     ///< largest channel difference at pixels away from every edge
+  int near_edge_flips = 0;  ///< pixels over 1 code apart whose centre lies within the snap distance
+  int unexplained = 0;      ///< pixels over 1 code apart whose centre does not
+  double worst_distance = 0;
+  int one_code = 0;  ///< pixels exactly 1 code apart (rounding of the last bit)
+  int max_any = 0;   ///< largest channel difference anywhere
+};
+
+FrameDiff Compare(const Image8& aalab, const std::vector<uint8_t>& gl, const Edges& edges, double snap, int w, int h) {
+  FrameDiff d;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      int m = 0;
+      for (int c = 0; c < 3; ++c) {
+        m = std::max(m, std::abs(int(aalab.At(x, y, c)) - int(gl[(static_cast<size_t>(y) * w + x) * 3 + c])));
+      }
+      d.max_any = std::max(d.max_any, m);
+      d.one_code += m == 1;
+      if (m <= 1) continue;
+      const double dist = edges.Nearest(x + 0.5, y + 0.5);
+      if (dist <= snap) {
+        ++d.near_edge_flips;
+        d.worst_distance = std::max(d.worst_distance, dist);
+      } else {
+        ++d.unexplained;
+        d.max_off_edge = std::max(d.max_off_edge, m);
+        if (d.unexplained <= 5) std::printf("  pixel (%d, %d): %d codes apart, %.5f px from an edge\n", x, y, m, dist);
+      }
+    }
+  }
+  return d;
+}
+
+struct Loaded {
+  Scene scene;
+  RasterScene raster;
+  std::unique_ptr<Tracer> tracer;
+};
+
+std::unique_ptr<Loaded> Load(const std::string& name) {
+  auto l = std::make_unique<Loaded>();
+  l->scene = LoadScene(name);
+  l->raster = RasterSceneOf(l->scene);
+  l->tracer = std::make_unique<Tracer>(l->scene);
+  return l;
+}
+
+/// GL_MAX_SAMPLES of the context (Mesa 22's llvmpipe: 4).
+int MaxSamples() {
+  GLint n = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &n);
+  return n;
+}
+
+RasterMethod Method(const std::string& spec) {
+  RasterMethod m;
+  std::string why;
+  EXPECT_TRUE(raster::ParseRasterMethod(spec, &m, &why)) << why;
+  return m;
+}
+
+// The 1× frame: one sample at each pixel centre, the same shading and display transform.
+// wedges (orthographic, unlit, 9 rotated quads) and mesh (perspective, lambert, 3200 flat
+// triangles, a directional light) at 320×180, both target formats.
+TEST(RasterPath, OneXFrameMatchesAalab) {
+  REQUIRE_GL();
+  for (const std::string name : {"wedges", "mesh"}) {
+    auto l = Load(name);
+    const int w = 320, h = 180;
+    const Image8 ref = RenderFrame(*l->tracer, w, h, RenderSpec{}, 1, nullptr);
+    RasterRenderer r(l->raster);
+    const Edges edges = ProjectEdges(l->raster, w, h);
+    for (auto fmt : {raster::TargetFormat::kRgba16f, raster::TargetFormat::kRgba32f}) {
+      r.Configure(Method("none"), w, h, fmt, raster::ResolveKind::kShader);
+      r.RenderFrame();
+      const FrameDiff d = Compare(ref, r.ReadRgb8(), edges, SnapDistance(r), w, h);
+      std::printf(
+          "%s 1x %s: %d pixel(s) 1 code apart, %d >1 code apart (max %d), all within %.4f px of an edge (snap %.4f)\n",
+          name.c_str(), fmt == raster::TargetFormat::kRgba16f ? "rgba16f" : "rgba32f", d.one_code, d.near_edge_flips,
+          d.max_any, d.worst_distance, SnapDistance(r));
+      EXPECT_EQ(d.unexplained, 0) << name << ": pixels away from every edge differ by up to " << d.max_off_edge;
+      EXPECT_LE(d.near_edge_flips, 8) << name;
+    }
+  }
+}
+
+// TAA's jittered frame 1 (Halton(2,3) point 2: (0, −1/6) px) against aalab's render of the
+// same jitter (FrameJitterAt of taa's own jitter spec; what `aalab export-frames
+// --taa-frames` writes as taa-f1).
+TEST(RasterPath, TaaJitteredFrameMatchesAalab) {
+  REQUIRE_GL();
+  auto l = Load("mesh");
+  const int w = 320, h = 180;
+  const FrameJitter j = FrameJitterAt(MakeMethod("taa").render.jitter, 1);
+  const RasterMethod m = Method("taa");
+  EXPECT_FLOAT_EQ(m.jx, j.x);
+  EXPECT_FLOAT_EQ(m.jy, j.y);
+  const SurfaceFrame sf = RenderSurfaceFrame(*l->tracer, w, h, j, nullptr);
+  RasterRenderer r(l->raster);
+  r.Configure(m, w, h, raster::TargetFormat::kRgba16f, raster::ResolveKind::kShader);
+  r.RenderFrame();
+  // The edges move with the jitter: the geometry is shifted by −jitter under the centre sample.
+  Edges edges = ProjectEdges(l->raster, w, h);
+  for (auto& s : edges.seg) {
+    s[0] -= j.x, s[2] -= j.x;
+    s[1] -= j.y, s[3] -= j.y;
+  }
+  const FrameDiff d = Compare(sf.image, r.ReadRgb8(), edges, SnapDistance(r), w, h);
+  std::printf("mesh taa-f1: %d pixel(s) 1 code apart, %d >1 code apart (max %d), all within %.4f px of an edge\n",
+              d.one_code, d.near_edge_flips, d.max_any, d.worst_distance);
+  EXPECT_EQ(d.unexplained, 0);
+  EXPECT_LE(d.near_edge_flips, 8);
+}
+
+// MSAA's sample positions as the GL reports them: the standard table, in the raster path's
+// image-aligned window coordinates (x right, y down), i.e. (8 + o)/16 of the table's 1/16 px
+// offsets from the centre.
+TEST(RasterPath, MsaaSamplePositionsAreTheStandardOnes) {
+  REQUIRE_GL();
+  auto l = Load("wedges");
+  RasterRenderer r(l->raster);
+  for (int want : {2, 4, 8, 16}) {
+    if (want > MaxSamples()) {
+      std::printf("msaa-%dx: this GL allows %d samples (GL_MAX_SAMPLES); not checked here\n", want, MaxSamples());
+      continue;
+    }
+    r.Configure(Method("msaa-" + std::to_string(want) + "x"), 64, 36, raster::TargetFormat::kRgba16f,
+                raster::ResolveKind::kShader);
+    // A GL may allocate more samples than asked; the positions are then the larger pattern's.
+    const int n = r.Samples();
+    if (n != want) std::printf("msaa-%dx: this GL allocates %d samples; checking the %d-sample pattern\n", want, n, n);
+    ASSERT_GE(n, want);
+    const std::vector<float> pos = r.SamplePositions();
+    const auto& table = StandardSamplePositions(n);
+    ASSERT_EQ(pos.size(), 2 * table.size());
+    for (int s = 0; s < n; ++s) {
+      EXPECT_FLOAT_EQ(pos[2 * s], (8 + table[s].x) / 16.0f) << n << "x sample " << s << " x";
+      EXPECT_FLOAT_EQ(pos[2 * s + 1], (8 + table[s].y) / 16.0f) << n << "x sample " << s << " y";
+    }
+  }
+}
+
+// Coverage sample for sample on wedges (edges at 0.5° to 89.6°): the shape each hardware
+// sample sees (an ID pass into an R32UI multisample target) against the shape aalab's MSAA
+// simulation traces at that sample (Tracer::TraceMsaa with the standard positions, as
+// RenderFrame builds them). Differences only within the snapping distance of an edge.
+TEST(RasterPath, MsaaCoverageMatchesAalabSampleForSample) {
+  REQUIRE_GL();
+  auto l = Load("wedges");
+  const int w = 320, h = 180;
+  RasterRenderer r(l->raster);
+  const Edges edges = ProjectEdges(l->raster, w, h);
+  for (int want : {2, 4, 8, 16}) {
+    if (want > MaxSamples()) continue;
+    r.Configure(Method("msaa-" + std::to_string(want) + "x"), w, h, raster::TargetFormat::kRgba16f,
+                raster::ResolveKind::kShader);
+    const int n = r.Samples();  // what the GL allocated (≥ want), compared with aalab's n-sample MSAA
+    const std::vector<int32_t> gl = r.SampleShapes();
+    const auto& table = StandardSamplePositions(n);
+    std::vector<SamplePos> pos, centres;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        centres.push_back({x + 0.5f, y + 0.5f});
+        for (const auto& o : table) {
+          pos.push_back({static_cast<float>(x) + static_cast<float>(8 + o.x) / 16.0f,
+                         static_cast<float>(y) + static_cast<float>(8 + o.y) / 16.0f});
+        }
+      }
+    }
+    MsaaSpec spec;
+    spec.samples = n;
+    std::vector<SampleResult> out(pos.size());
+    TraceCounters counters;
+    l->tracer->TraceMsaa(pos.data(), centres.data(), w * h, spec, w, h, out.data(), nullptr, &counters);
+    ASSERT_EQ(gl.size(), out.size());
+    int covered = 0, near_edge = 0, unexplained = 0;
+    double worst = 0;
+    for (size_t i = 0; i < out.size(); ++i) {
+      covered += out[i].surface >= 0;
+      if (gl[i] == out[i].surface) continue;
+      const double dist = edges.Nearest(pos[i].x, pos[i].y);
+      if (dist <= SnapDistance(r)) {
+        ++near_edge;
+        worst = std::max(worst, dist);
+      } else if (++unexplained <= 5) {
+        ADD_FAILURE() << n << "x: sample " << i % n << " of pixel " << i / n << " at (" << pos[i].x << ", " << pos[i].y
+                      << "): GL sees shape " << gl[i] << ", aalab " << out[i].surface << ", " << dist
+                      << " px from the nearest edge";
+      }
+    }
+    std::printf(
+        "wedges msaa-%dx (%d samples allocated): %zu samples (%d on a quad), %d differ, all within %.5f px of "
+        "an edge (snap %.5f)\n",
+        want, n, out.size(), covered, near_edge, worst, SnapDistance(r));
+    EXPECT_EQ(unexplained, 0);
+    EXPECT_GT(covered, static_cast<int>(out.size() / 10));  // the fixture has real coverage
+    EXPECT_LE(near_edge, static_cast<int>(out.size() / 2000));
+  }
+}
+
+// Resolved frames: MSAA 4× (both resolves) and SSAA 2×2 against aalab's msaa-4x and
+// ssaa-2x2 frames (display transform per sample, box average in linear light).
+TEST(RasterPath, ResolvedFramesMatchAalab) {
+  REQUIRE_GL();
+  for (const std::string name : {"wedges", "mesh"}) {
+    auto l = Load(name);
+    const int w = 320, h = 180;
+    RasterRenderer r(l->raster);
+    const Edges edges = ProjectEdges(l->raster, w, h);
+    for (const std::string spec : {"msaa-4x", "ssaa-2x2"}) {
+      const Image8 ref = RenderFrame(*l->tracer, w, h, MakeMethod(spec).render, 1, nullptr);
+      for (auto res : {raster::ResolveKind::kShader, raster::ResolveKind::kBlit}) {
+        if (spec == "ssaa-2x2" && res == raster::ResolveKind::kBlit) continue;
+        r.Configure(Method(spec), w, h, raster::TargetFormat::kRgba32f, res);
+        r.RenderFrame();
+        // A resolved pixel on an edge averages samples near it: one flipped sample of n
+        // moves it by up to 255/n codes, so the edge test asks for the pixel's whole
+        // footprint (centre ± 0.5 px, the farthest sample ≤ 0.71 px away) near an edge.
+        const FrameDiff d = Compare(ref, r.ReadRgb8(), edges, 0.7072 + SnapDistance(r), w, h);
+        std::printf("%s %s (%s resolve): %d pixel(s) 1 code apart, %d edge pixel(s) >1 code apart (max %d)\n",
+                    name.c_str(), spec.c_str(), res == raster::ResolveKind::kBlit ? "blit" : "shader", d.one_code,
+                    d.near_edge_flips, d.max_any);
+        EXPECT_EQ(d.unexplained, 0) << name << " " << spec;
+        EXPECT_LE(d.near_edge_flips, 24) << name << " " << spec;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace aalab
