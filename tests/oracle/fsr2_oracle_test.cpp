@@ -1,0 +1,254 @@
+// FSR 2 (methods/fsr2.h) against the ORIGINAL FSR 2.2.1 GLSL passes (read from
+// ../shared/third_party/fidelityfx-fsr2), compiled by glslangValidator and run on lavapipe
+// (tests/oracle/fsr2_shader.h), pass by pass, on synthetic inputs with the structure the
+// passes handle: a 64×36 render for a 96×54 display; depth with a slanted background, a
+// nearer box and a nearer disc (so the 3×3 nearest-depth search picks neighbours on both axes
+// and at the borders), isolated near and far pixels; motion that differs per object, some
+// below the 0.1-pixel threshold, some pushing depth off screen; HDR colour with negative and
+// zero channels; exposure and pre-exposure not 1. Each output is compared bit for bit. Without
+// the sources, glslang or lavapipe the tests skip, and fail under CI.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+#include "methods/fsr2.h"
+#include "tests/oracle/fsr2_shader.h"
+#include "tests/oracle/vk_compute.h"
+#include "tests/skip_or_fail.h"
+
+namespace aalab {
+namespace {
+
+constexpr int kRw = 64, kRh = 36, kDw = 96, kDh = 54;
+
+// A small deterministic generator (no std:: distributions: their output is library-defined).
+struct Lcg {
+  uint32_t s;
+  float Next() {
+    s = s * 1664525u + 1013904223u;
+    return static_cast<float>(s >> 8) / 16777216.0f;
+  }
+};
+
+struct Inputs {
+  Fsr2Constants k;
+  Fsr2Plane color, depth, motion;
+  float exposure = 0.8f;
+};
+
+// Object id at render pixel (x, y): 0 background, 1 box, 2 disc.
+int ObjectAt(float x, float y) {
+  if (x >= 10 && x < 27 && y >= 5 && y < 20) return 1;
+  const float dx = x - 44.5f, dy = y - 22.0f;
+  return dx * dx + dy * dy < 81.0f ? 2 : 0;
+}
+
+Inputs MakeInputs(const Fsr2Options& o, uint32_t seed) {
+  Inputs in;
+  Fsr2Constants& k = in.k;
+  k.render_size[0] = k.max_render_size[0] = k.input_color_size[0] = kRw;
+  k.render_size[1] = k.max_render_size[1] = k.input_color_size[1] = kRh;
+  k.display_size[0] = kDw;
+  k.display_size[1] = kDh;
+  k.jitter[0] = 0.3125f;
+  k.jitter[1] = -0.2222f;
+  k.downscale_factor[0] = static_cast<float>(kRw) / kDw;
+  k.downscale_factor[1] = static_cast<float>(kRh) / kDh;
+  const int mw = o.low_res_motion_vectors ? kRw : kDw, mh = o.low_res_motion_vectors ? kRh : kDh;
+  // Motion in pixels of its own resolution, scaled to UV by the constants (as the API does).
+  k.motion_vector_scale[0] = 1.0f / static_cast<float>(mw);
+  k.motion_vector_scale[1] = 1.0f / static_cast<float>(mh);
+  k.motion_vector_jitter_cancellation[0] = 0.0123f;
+  // y: 0.47 render rows up, so the invocations below the render area (the dispatch's last
+  // 8-row group) push their depth (0, read outside) back into the last row.
+  k.motion_vector_jitter_cancellation[1] = 0.0131f;
+  k.pre_exposure = 1.25f;
+  k.previous_pre_exposure = 1.0f;
+  Lcg r{seed};
+  in.color = Fsr2Plane(kRw, kRh, 4);
+  in.depth = Fsr2Plane(kRw, kRh, 1);
+  for (int y = 0; y < kRh; ++y) {
+    for (int x = 0; x < kRw; ++x) {
+      const int id = ObjectAt(static_cast<float>(x), static_cast<float>(y));
+      float d = id == 0 ? 0.6f + 0.004f * static_cast<float>(x) + 0.002f * static_cast<float>(y) : id == 1 ? 0.31f + 0.001f * static_cast<float>(y) : 0.22f + 0.0005f * static_cast<float>(x);
+      if (r.Next() < 0.02f) d = r.Next();  // isolated near / far pixels
+      if (o.inverted_depth) d = 1.0f - d;
+      in.depth.At(x, y, 0) = d;
+      for (int c = 0; c < 3; ++c) in.color.At(x, y, c) = r.Next() * (id == 2 ? 3.0f : 1.0f) - (r.Next() < 0.05f ? 0.5f : 0.0f);
+      if (r.Next() < 0.02f) in.color.At(x, y, 0) = in.color.At(x, y, 1) = in.color.At(x, y, 2) = 0.0f;
+      in.color.At(x, y, 3) = 1.0f;
+    }
+  }
+  in.motion = Fsr2Plane(mw, mh, 2);
+  for (int y = 0; y < mh; ++y) {
+    for (int x = 0; x < mw; ++x) {
+      const float rx = (static_cast<float>(x) + 0.5f) * kRw / mw, ry = (static_cast<float>(y) + 0.5f) * kRh / mh;
+      const int id = ObjectAt(rx, ry);
+      float mx = id == 0 ? 1.37f : id == 1 ? -4.61f : 0.05f, my = id == 0 ? -0.83f : id == 1 ? 2.29f : -0.04f;
+      if (id == 0 && x > mw * 3 / 4) mx = 9.5f;  // pushes the right edge off screen
+      in.motion.At(x, y, 0) = mx + 0.25f * (r.Next() - 0.5f);
+      in.motion.At(x, y, 1) = my + 0.25f * (r.Next() - 0.5f);
+    }
+  }
+  return in;
+}
+
+struct Count {
+  long total = 0, same = 0;
+  std::string examples;
+  void Add(float ours, float theirs, int x, int y, const char* what) {
+    ++total;
+    if (std::memcmp(&ours, &theirs, 4) == 0) {
+      ++same;
+    } else if (examples.size() < 400) {
+      std::ostringstream os;
+      os.precision(9);
+      os << " " << what << "(" << x << "," << y << ") ours " << ours << " shader " << theirs << ";";
+      examples += os.str();
+    }
+  }
+};
+
+class Fsr2Oracle : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string why = oracle::Fsr2ShaderAvailable();
+    if (!why.empty()) AALAB_SKIP_OR_FAIL_UNDER_CI("FSR2 oracle unavailable: " + why);
+  }
+};
+
+TEST_F(Fsr2Oracle, ReconstructAndDilateMatchesTheShader) {
+  struct Config {
+    const char* name;
+    Fsr2Options o;
+  };
+  Fsr2Options inv;
+  inv.inverted_depth = inv.hdr_color_input = inv.jittered_motion_vectors = true;
+  Fsr2Options hires;
+  hires.low_res_motion_vectors = false;
+  Fsr2Options jittered;
+  jittered.jittered_motion_vectors = true;
+  const Config configs[] = {
+      {"default", Fsr2Options{}}, {"inverted+hdr+jittered mv", inv}, {"display-res mv", hires}, {"jittered mv", jittered}};
+  std::printf("lavapipe device: %s\n", oracle::VkCompute::DeviceName().c_str());
+  uint32_t seed = 7;
+  for (const Config& cfg : configs) {
+    const Inputs in = MakeInputs(cfg.o, seed++);
+    // The port as lavapipe rounds its 16-bit stores (toward zero), and as aalab runs it
+    // (nearest even): the first must match bit for bit, the second only shows what it changes.
+    Fsr2Options lvp = cfg.o;
+    lvp.half_toward_zero = true;
+    Fsr2ReconstructOut ours, ours_rne, theirs;
+    Fsr2ReconstructAndDilate(in.k, lvp, in.color, in.depth, in.motion, in.exposure, &ours);
+    Fsr2ReconstructAndDilate(in.k, cfg.o, in.color, in.depth, in.motion, in.exposure, &ours_rne);
+    // The shader's image starts at the far depth, as the port's does (FSR2's lock pass sets it).
+    theirs.prev_depth.assign(static_cast<size_t>(kRw) * kRh, cfg.o.inverted_depth ? 0u : 0x3f800000u);
+    oracle::RunFsr2ReconstructShader(in.k, cfg.o, in.color, in.depth, in.motion, in.exposure, &theirs);
+    Count depth, motion, luma, prev, rne;
+    long pushed = 0, dilated = 0;
+    for (int y = 0; y < kRh; ++y) {
+      for (int x = 0; x < kRw; ++x) {
+        depth.Add(ours.dilated_depth.At(x, y, 0), theirs.dilated_depth.At(x, y, 0), x, y, "depth");
+        motion.Add(ours.dilated_motion.At(x, y, 0), theirs.dilated_motion.At(x, y, 0), x, y, "mv.x");
+        motion.Add(ours.dilated_motion.At(x, y, 1), theirs.dilated_motion.At(x, y, 1), x, y, "mv.y");
+        luma.Add(ours.lock_luma.At(x, y, 0), theirs.lock_luma.At(x, y, 0), x, y, "luma");
+        rne.Add(ours_rne.lock_luma.At(x, y, 0), theirs.lock_luma.At(x, y, 0), x, y, "luma");
+        const size_t i = static_cast<size_t>(y) * kRw + static_cast<size_t>(x);
+        float po, pt;
+        std::memcpy(&po, &ours.prev_depth[i], 4);
+        std::memcpy(&pt, &theirs.prev_depth[i], 4);
+        prev.Add(po, pt, x, y, "prev");
+        pushed += ours.prev_depth[i] != (cfg.o.inverted_depth ? 0u : 0x3f800000u);
+        dilated += ours.dilated_depth.At(x, y, 0) != Fsr2Half(in.depth.At(x, y, 0));
+      }
+    }
+    std::printf("ReconstructAndDilate %-26s identical: dilated depth %ld/%ld, dilated motion %ld/%ld, prev depth %ld/%ld, "
+                "lock luma %ld/%ld (%ld pixels dilated, %ld prev-depth texels written); lock luma rounded to nearest even: %ld/%ld\n",
+                cfg.name, depth.same, depth.total, motion.same, motion.total, prev.same, prev.total, luma.same, luma.total, dilated,
+                pushed, rne.same, rne.total);
+    EXPECT_EQ(depth.same, depth.total) << cfg.name << depth.examples;
+    EXPECT_EQ(motion.same, motion.total) << cfg.name << motion.examples;
+    EXPECT_EQ(prev.same, prev.total) << cfg.name << prev.examples;
+    // Lock luma is pow(·, 1/3) then pow(·, 1/6): lavapipe evaluates pow as exp2(y·log2 x) with
+    // its own exp2/log2 polynomials, a few float ulps from ours. The 16-bit store hides that
+    // except where the float lies next to a rounding boundary: every differing pixel must be
+    // one half-float step apart with our unrounded value within 2^-20 (relative) of the
+    // boundary between the two, and at most 1 in 500 pixels may differ.
+    long luma_explained = 0;
+    for (int y = 0; y < kRh; ++y) {
+      for (int x = 0; x < kRw; ++x) {
+        const float o = ours.lock_luma.At(x, y, 0), t = theirs.lock_luma.At(x, y, 0);
+        if (o == t) continue;
+        const float hi = std::max(o, t), lo = std::min(o, t);
+        const float raw = Fsr2LockInputLuma(in.k, lvp, in.color.At(x, y, 0), in.color.At(x, y, 1), in.color.At(x, y, 2), in.exposure);
+        const bool one_step = Fsr2Half(std::nextafter(hi, 0.0f), true) == lo;
+        const bool near_boundary = std::fabs(raw - hi) <= hi * 0x1p-20f;
+        luma_explained += one_step && near_boundary ? 1 : 0;
+      }
+    }
+    EXPECT_EQ(luma_explained, luma.total - luma.same) << cfg.name << luma.examples;
+    EXPECT_LE((luma.total - luma.same) * 500, luma.total) << cfg.name << luma.examples;
+    // The fixture exercises what the pass does: dilation picks neighbours, depth is pushed.
+    EXPECT_GT(dilated, kRw * kRh / 20) << cfg.name;
+    EXPECT_GT(pushed, kRw * kRh / 2) << cfg.name;
+    EXPECT_LT(pushed, kRw * kRh) << cfg.name;
+  }
+}
+
+// The lock pass on a lock-luma field (halves, as the reconstruct pass stores them) with thin
+// bright and dark lines on both axes (ridges), 2×2 blocks and flat areas (not ridges), noise,
+// zeros and lines along the borders; new_locks starts with some 1s the pass must keep.
+TEST_F(Fsr2Oracle, LockMatchesTheShader) {
+  Fsr2Options inv;
+  inv.inverted_depth = true;
+  for (const Fsr2Options& o : {Fsr2Options{}, inv}) {
+    const Inputs in = MakeInputs(o, 11);
+    Lcg r{99};
+    Fsr2Plane luma(kRw, kRh, 1);
+    for (int y = 0; y < kRh; ++y) {
+      for (int x = 0; x < kRw; ++x) {
+        float v = 0.5f + 0.02f * r.Next();                       // flat within 5 %: similar
+        if (x > 40) v = 0.2f + 0.6f * r.Next();                  // noise
+        if (y == 7 || x == 13 || (x == y + 20 && x < 40)) v = 0.9f;  // bright lines, horizontal, vertical, diagonal
+        if (y == 28 && x < 40) v = 0.1f;                         // a dark line
+        if (x >= 30 && x < 32 && y >= 12 && y < 14) v = 0.95f;   // a 2×2 block: not thin
+        if (y == 0 || x == kRw - 1) v = (x + y) % 3 == 0 ? 0.7f : 0.0f;  // borders, zeros
+        luma.At(x, y, 0) = Fsr2Half(v);
+      }
+    }
+    Fsr2Plane ours_locks(kDw, kDh, 1), theirs_locks(kDw, kDh, 1);
+    for (size_t i = 0; i < ours_locks.v.size(); i += 37) ours_locks.v[i] = theirs_locks.v[i] = 1.0f;
+    std::vector<uint32_t> ours_prev(static_cast<size_t>(kRw) * kRh), theirs_prev;
+    for (size_t i = 0; i < ours_prev.size(); ++i) ours_prev[i] = static_cast<uint32_t>(i * 2654435761u);
+    theirs_prev = ours_prev;
+    Fsr2ComputeLock(in.k, o, luma, &ours_locks, &ours_prev);
+    oracle::RunFsr2LockShader(in.k, o, luma, &theirs_locks, &theirs_prev);
+    Count locks, prev;
+    long locked = 0;
+    for (int y = 0; y < kDh; ++y) {
+      for (int x = 0; x < kDw; ++x) {
+        locks.Add(ours_locks.At(x, y, 0), theirs_locks.At(x, y, 0), x, y, "lock");
+        locked += ours_locks.At(x, y, 0) == 1.0f;
+      }
+    }
+    for (size_t i = 0; i < ours_prev.size(); ++i) {
+      float a, b;
+      std::memcpy(&a, &ours_prev[i], 4);
+      std::memcpy(&b, &theirs_prev[i], 4);
+      prev.Add(a, b, static_cast<int>(i) % kRw, static_cast<int>(i) / kRw, "prev");
+    }
+    std::printf("Lock %-9s identical: new locks %ld/%ld (%ld set), prev depth %ld/%ld\n", o.inverted_depth ? "inverted" : "standard",
+                locks.same, locks.total, locked, prev.same, prev.total);
+    EXPECT_EQ(locks.same, locks.total) << locks.examples;
+    EXPECT_EQ(prev.same, prev.total) << prev.examples;
+    EXPECT_GT(locked, kDw * kDh / 37 + 60);  // the lines lock, beyond the initial 1s
+  }
+}
+
+}  // namespace
+}  // namespace aalab

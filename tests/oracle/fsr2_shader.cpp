@@ -1,0 +1,157 @@
+#include "tests/oracle/fsr2_shader.h"
+
+#include <vulkan/vulkan.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+#include "tests/oracle/third_party_sources.h"
+#include "tests/oracle/vk_compute.h"
+
+namespace aalab::oracle {
+
+namespace {
+
+constexpr const char* kDir = "fidelityfx-fsr2/shaders";
+
+std::vector<std::string> Defines(const Fsr2Options& o) {
+  auto b = [](bool v) { return std::string(v ? "1" : "0"); };
+  return {"FFX_GPU=1",
+          "FFX_GLSL=1",
+          "FFX_HALF=0",
+          "FFX_FSR2_OPTION_HDR_COLOR_INPUT=" + b(o.hdr_color_input),
+          "FFX_FSR2_OPTION_LOW_RESOLUTION_MOTION_VECTORS=" + b(o.low_res_motion_vectors),
+          "FFX_FSR2_OPTION_JITTERED_MOTION_VECTORS=" + b(o.jittered_motion_vectors),
+          "FFX_FSR2_OPTION_INVERTED_DEPTH=" + b(o.inverted_depth),
+          "FFX_FSR2_OPTION_APPLY_SHARPENING=0"};
+}
+
+// One pass's SPIR-V for one set of options (compiled once per process).
+const std::vector<uint32_t>& Module(const std::string& pass, const Fsr2Options& o) {
+  static std::map<std::string, std::vector<uint32_t>> cache;
+  std::string key = pass;
+  for (const auto& d : Defines(o)) key += " " + d;
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  return cache[key] = CompileGlslFile(ThirdPartyDir() + "/" + kDir + "/" + pass, {}, Defines(o));
+}
+
+VkBinding Tex(uint32_t binding, int w, int h, VkFormat f) {
+  VkBinding b{VkBinding::kSampledImage, binding, w, h, f};
+  b.set = 1;
+  return b;
+}
+VkBinding Img(uint32_t binding, int w, int h, VkFormat f) {
+  VkBinding b{VkBinding::kStorageImage, binding, w, h, f};
+  b.set = 1;
+  return b;
+}
+VkBinding Cb(uint32_t binding) {
+  VkBinding b{VkBinding::kUniformBuffer, binding};
+  b.bytes = 128;
+  b.set = 1;
+  return b;
+}
+std::vector<VkBinding> WithSamplers(std::vector<VkBinding> v) {
+  VkBinding point{VkBinding::kSampler, 0}, linear{VkBinding::kSampler, 1};
+  linear.linear = true;
+  v.push_back(point);
+  v.push_back(linear);
+  return v;
+}
+
+// A plane's texels padded to `channels` floats each (the texture's format).
+std::vector<float> Padded(const Fsr2Plane& p, int channels) {
+  std::vector<float> out(static_cast<size_t>(p.w) * static_cast<size_t>(p.h) * static_cast<size_t>(channels), 0.0f);
+  for (size_t i = 0; i < static_cast<size_t>(p.w) * static_cast<size_t>(p.h); ++i) {
+    for (int c = 0; c < std::min(p.c, channels); ++c) out[i * static_cast<size_t>(channels) + static_cast<size_t>(c)] = p.v[i * static_cast<size_t>(p.c) + static_cast<size_t>(c)];
+  }
+  return out;
+}
+
+// An r16f / rg16f / rgba16f image read back as a plane of `channels` floats.
+Fsr2Plane FromHalves(const std::vector<uint8_t>& bytes, int w, int h, int channels) {
+  Fsr2Plane p(w, h, channels);
+  for (size_t i = 0; i < p.v.size(); ++i) {
+    _Float16 hv;
+    std::memcpy(&hv, bytes.data() + i * 2, 2);
+    p.v[i] = static_cast<float>(hv);
+  }
+  return p;
+}
+
+// A 1-channel plane as r16f texels.
+std::vector<uint16_t> ToHalves(const Fsr2Plane& p) {
+  std::vector<uint16_t> out(p.v.size());
+  for (size_t i = 0; i < p.v.size(); ++i) {
+    const _Float16 h = static_cast<_Float16>(p.v[i]);
+    std::memcpy(&out[i], &h, 2);
+  }
+  return out;
+}
+
+void Upload(VkCompute& vk, uint32_t binding, const std::vector<float>& v) { vk.Fill(VkKey(1, binding), v.data(), v.size() * 4); }
+
+}  // namespace
+
+std::string Fsr2ShaderAvailable() {
+  if (!ThirdPartyHas(std::string(kDir) + "/ffx_fsr2_reconstruct_previous_depth_pass.glsl")) {
+    return "the FSR2 sources " + ThirdPartyDir() + "/" + kDir + " are missing";
+  }
+  if (std::system("glslangValidator --version > /dev/null 2>&1") != 0) {
+    return "glslangValidator not found: install glslang-tools (scripts/debian-packages.txt)";
+  }
+  return VkCompute::Start();
+}
+
+void RunFsr2ReconstructShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& color, const Fsr2Plane& depth,
+                              const Fsr2Plane& motion, float exposure, Fsr2ReconstructOut* out) {
+  const int rw = k.render_size[0], rh = k.render_size[1];
+  if (out->prev_depth.size() != static_cast<size_t>(rw) * static_cast<size_t>(rh)) {
+    throw std::invalid_argument("RunFsr2ReconstructShader: prev_depth must be render-size long");
+  }
+  // FSR2_BIND_* of ffx_fsr2_reconstruct_previous_depth_pass.glsl.
+  VkCompute vk(WithSamplers({Tex(0, motion.w, motion.h, VK_FORMAT_R32G32_SFLOAT), Tex(1, depth.w, depth.h, VK_FORMAT_R32_SFLOAT),
+                             Tex(2, color.w, color.h, VK_FORMAT_R32G32B32A32_SFLOAT), Tex(3, 1, 1, VK_FORMAT_R32G32_SFLOAT),
+                             Img(5, rw, rh, VK_FORMAT_R32_UINT), Img(6, rw, rh, VK_FORMAT_R16G16_SFLOAT),
+                             Img(7, rw, rh, VK_FORMAT_R16_SFLOAT), Img(11, rw, rh, VK_FORMAT_R16_SFLOAT), Cb(12)}));
+  Upload(vk, 0, Padded(motion, 2));
+  Upload(vk, 1, Padded(depth, 1));
+  Upload(vk, 2, Padded(color, 4));
+  Upload(vk, 3, {exposure, 0.0f});
+  vk.Fill(VkKey(1, 5), out->prev_depth.data(), out->prev_depth.size() * 4);
+  vk.Fill(VkKey(1, 12), &k, sizeof(k));
+  const int p = vk.AddPipeline(Module("ffx_fsr2_reconstruct_previous_depth_pass.glsl", o), "main");
+  vk.Run({{p, static_cast<uint32_t>((rw + 7) / 8), static_cast<uint32_t>((rh + 7) / 8), 1}});
+  const std::vector<uint8_t> prev = vk.Read(VkKey(1, 5));
+  std::memcpy(out->prev_depth.data(), prev.data(), out->prev_depth.size() * 4);
+  out->dilated_motion = FromHalves(vk.Read(VkKey(1, 6)), rw, rh, 2);
+  out->dilated_depth = FromHalves(vk.Read(VkKey(1, 7)), rw, rh, 1);
+  out->lock_luma = FromHalves(vk.Read(VkKey(1, 11)), rw, rh, 1);
+}
+
+void RunFsr2LockShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& lock_luma, Fsr2Plane* new_locks,
+                       std::vector<uint32_t>* prev_depth) {
+  const int rw = k.render_size[0], rh = k.render_size[1], dw = new_locks->w, dh = new_locks->h;
+  // FSR2_BIND_* of ffx_fsr2_lock_pass.glsl.
+  VkCompute vk(WithSamplers({Tex(0, rw, rh, VK_FORMAT_R16_SFLOAT), Img(1, dw, dh, VK_FORMAT_R8_UNORM),
+                             Img(2, rw, rh, VK_FORMAT_R32_UINT), Cb(3)}));
+  const std::vector<uint16_t> luma = ToHalves(lock_luma);
+  vk.Fill(VkKey(1, 0), luma.data(), luma.size() * 2);
+  std::vector<uint8_t> locks(new_locks->v.size());
+  for (size_t i = 0; i < locks.size(); ++i) locks[i] = static_cast<uint8_t>(std::lround(new_locks->v[i] * 255.0f));
+  vk.Fill(VkKey(1, 1), locks.data(), locks.size());
+  vk.Fill(VkKey(1, 2), prev_depth->data(), prev_depth->size() * 4);
+  vk.Fill(VkKey(1, 3), &k, sizeof(k));
+  const int p = vk.AddPipeline(Module("ffx_fsr2_lock_pass.glsl", o), "main");
+  vk.Run({{p, static_cast<uint32_t>((rw + 7) / 8), static_cast<uint32_t>((rh + 7) / 8), 1}});
+  locks = vk.Read(VkKey(1, 1));
+  for (size_t i = 0; i < locks.size(); ++i) new_locks->v[i] = static_cast<float>(locks[i]) / 255.0f;
+  const std::vector<uint8_t> prev = vk.Read(VkKey(1, 2));
+  std::memcpy(prev_depth->data(), prev.data(), prev_depth->size() * 4);
+}
+
+}  // namespace aalab::oracle
