@@ -92,4 +92,29 @@ void Fsr2ReconstructAndDilate(const Fsr2Constants& k, const Fsr2Options& o, cons
 void Fsr2ComputeLock(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& lock_luma, Fsr2Plane* new_locks,
                      std::vector<uint32_t>* prev_depth);
 
+/// What the depth-clip pass (ffx_fsr2_depth_clip_pass.glsl, DepthClip) reads: this frame's
+/// reconstruct outputs, the previous frame's dilated motion (rg16f, sampled bilinearly), the
+/// app's inputs, and optional reactive / transparency-and-composition masks (r8 unorm values;
+/// empty planes read 0, as the API's default 1×1 zero masks do).
+struct Fsr2DepthClipIn {
+  const std::vector<uint32_t>* prev_depth = nullptr;  ///< reconstructed previous nearest depth (float bits)
+  const Fsr2Plane* dilated_motion = nullptr;
+  const Fsr2Plane* dilated_depth = nullptr;
+  const Fsr2Plane* previous_dilated_motion = nullptr;
+  const Fsr2Plane* motion = nullptr;  ///< the app's motion vectors (scaled by the constants)
+  const Fsr2Plane* color = nullptr;
+  const Fsr2Plane* depth = nullptr;
+  Fsr2Plane reactive, composition;
+  float exposure = 0.0f;  ///< the exposure texel (0 reads as 1)
+};
+/// Its outputs: prepared colour (render size, rgba16f: YCoCg of the exposed colour, alpha the
+/// depth clip) and the dilated reactive masks (rg8 unorm: reactive, motion divergence).
+struct Fsr2DepthClipOut {
+  Fsr2Plane prepared_color, reactive_masks;
+};
+void Fsr2DepthClip(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2DepthClipIn& in, Fsr2DepthClipOut* out);
+
+/// ffx's 8-bit UNORM store: clamp to [0, 1], ·255, round to nearest even, as a float code/255.
+float Fsr2Unorm8(float v);
+
 }  // namespace aalab

@@ -67,6 +67,18 @@ Inputs MakeInputs(const Fsr2Options& o, uint32_t seed) {
   // y: 0.47 render rows up, so the invocations below the render area (the dispatch's last
   // 8-row group) push their depth (0, read outside) back into the last row.
   k.motion_vector_jitter_cancellation[1] = 0.0131f;
+  // setupDeviceDepthToViewSpaceDepthParams for near 0.1, far 100, 60° vertical field of view.
+  {
+    const float n = o.inverted_depth ? 100.0f : 0.1f, f = o.inverted_depth ? 0.1f : 100.0f;
+    const float q = f / (n - f);
+    k.device_to_view_depth[0] = -1.0f * q;
+    k.device_to_view_depth[1] = q * n;
+    const float aspect = static_cast<float>(kRw) / static_cast<float>(kRh);
+    const float cot = std::cos(0.5f * 1.0471976f) / std::sin(0.5f * 1.0471976f);
+    k.device_to_view_depth[2] = 1.0f / (cot / aspect);
+    k.device_to_view_depth[3] = 1.0f / cot;
+    k.view_space_to_meters = 1.0f;
+  }
   k.pre_exposure = 1.25f;
   k.previous_pre_exposure = 1.0f;
   Lcg r{seed};
@@ -247,6 +259,83 @@ TEST_F(Fsr2Oracle, LockMatchesTheShader) {
     EXPECT_EQ(locks.same, locks.total) << locks.examples;
     EXPECT_EQ(prev.same, prev.total) << prev.examples;
     EXPECT_GT(locked, kDw * kDh / 37 + 60);  // the lines lock, beyond the initial 1s
+  }
+}
+
+// The depth-clip pass on this frame's reconstruct outputs (the port's, rounded as lavapipe
+// rounds), a previous dilated motion field that differs from this frame's (so the temporal
+// motion divergence is non-zero), and reactive / composition masks with non-zero patches (so
+// the similarity-weighted pow path runs); once with no masks, as aalab runs it.
+TEST_F(Fsr2Oracle, DepthClipMatchesTheShader) {
+  Fsr2Options inv;
+  inv.inverted_depth = inv.jittered_motion_vectors = true;
+  struct Config {
+    const char* name;
+    Fsr2Options o;
+    bool masks;
+  };
+  const Config configs[] = {{"default", Fsr2Options{}, true}, {"no masks", Fsr2Options{}, false}, {"inverted+jittered", inv, true}};
+  uint32_t seed = 21;
+  for (const Config& cfg : configs) {
+    Fsr2Options lvp = cfg.o;
+    lvp.half_toward_zero = true;
+    const Inputs in = MakeInputs(cfg.o, seed++);
+    Fsr2ReconstructOut rec;
+    Fsr2ReconstructAndDilate(in.k, lvp, in.color, in.depth, in.motion, in.exposure, &rec);
+    Lcg r{seed * 7};
+    Fsr2Plane prev_mv(kRw, kRh, 2), reactive(kRw, kRh, 1), comp(kRw, kRh, 1);
+    for (int y = 0; y < kRh; ++y) {
+      for (int x = 0; x < kRw; ++x) {
+        const float m = x < kRw / 2 ? 1.0f : 0.2f;
+        prev_mv.At(x, y, 0) = Fsr2Half(rec.dilated_motion.At(x, y, 0) * m + 0.002f * (r.Next() - 0.5f));
+        prev_mv.At(x, y, 1) = Fsr2Half(rec.dilated_motion.At(x, y, 1) * m + 0.002f * (r.Next() - 0.5f));
+        if (x > 8 && x < 20 && y > 20) reactive.At(x, y, 0) = std::round(255.0f * r.Next()) / 255.0f;
+        if (x > 30 && y < 12) comp.At(x, y, 0) = std::round(255.0f * r.Next()) / 255.0f;
+      }
+    }
+    Fsr2DepthClipIn dc;
+    dc.prev_depth = &rec.prev_depth;
+    dc.dilated_motion = &rec.dilated_motion;
+    dc.dilated_depth = &rec.dilated_depth;
+    dc.previous_dilated_motion = &prev_mv;
+    dc.motion = &in.motion;
+    dc.color = &in.color;
+    dc.depth = &in.depth;
+    dc.exposure = in.exposure;
+    if (cfg.masks) {
+      dc.reactive = reactive;
+      dc.composition = comp;
+    }
+    Fsr2DepthClipOut ours, theirs;
+    Fsr2DepthClip(in.k, lvp, dc, &ours);
+    oracle::RunFsr2DepthClipShader(in.k, cfg.o, dc, &theirs);
+    Count ycocg, clip, masks;
+    long clipped = 0, clip_zero = 0, divergent = 0, reactive_set = 0;
+    for (int y = 0; y < kRh; ++y) {
+      for (int x = 0; x < kRw; ++x) {
+        for (int c = 0; c < 3; ++c) ycocg.Add(ours.prepared_color.At(x, y, c), theirs.prepared_color.At(x, y, c), x, y, "ycocg");
+        clip.Add(ours.prepared_color.At(x, y, 3), theirs.prepared_color.At(x, y, 3), x, y, "clip");
+        masks.Add(ours.reactive_masks.At(x, y, 0), theirs.reactive_masks.At(x, y, 0), x, y, "reactive");
+        masks.Add(ours.reactive_masks.At(x, y, 1), theirs.reactive_masks.At(x, y, 1), x, y, "divergence");
+        const float cl = ours.prepared_color.At(x, y, 3), dv = ours.reactive_masks.At(x, y, 1);
+        clipped += cl > 0.0f && cl < 1.0f;
+        clip_zero += cl == 0.0f;
+        divergent += dv > 0.0f && dv < 1.0f;
+        reactive_set += ours.reactive_masks.At(x, y, 0) > 0.0f;
+      }
+    }
+    std::printf("DepthClip %-18s identical: YCoCg %ld/%ld, depth clip %ld/%ld, reactive masks %ld/%ld (depth clip in (0, 1) at %ld "
+                "pixels, 0 at %ld; divergence in (0, 1) at %ld; reactive > 0 at %ld)\n",
+                cfg.name, ycocg.same, ycocg.total, clip.same, clip.total, masks.same, masks.total, clipped, clip_zero, divergent,
+                reactive_set);
+    EXPECT_EQ(ycocg.same, ycocg.total) << cfg.name << ycocg.examples;
+    EXPECT_EQ(clip.same, clip.total) << cfg.name << clip.examples;
+    EXPECT_EQ(masks.same, masks.total) << cfg.name << masks.examples;
+    // The fixture reaches the pass's branches: partial depth clips, full clips, divergence.
+    EXPECT_GT(clipped, kRw * kRh / 4) << cfg.name;
+    EXPECT_GT(clip_zero, kRw * kRh / 10) << cfg.name;
+    EXPECT_GT(divergent, kRw * kRh / 2) << cfg.name;
+    EXPECT_EQ(reactive_set > 100, cfg.masks) << cfg.name;
   }
 }
 

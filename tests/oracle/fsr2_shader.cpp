@@ -83,6 +83,23 @@ Fsr2Plane FromHalves(const std::vector<uint8_t>& bytes, int w, int h, int channe
   return p;
 }
 
+// A plane as 16-bit float texels (all its channels).
+std::vector<uint16_t> ToHalvesAll(const Fsr2Plane& p) {
+  std::vector<uint16_t> out(p.v.size());
+  for (size_t i = 0; i < p.v.size(); ++i) {
+    const _Float16 h = static_cast<_Float16>(p.v[i]);
+    std::memcpy(&out[i], &h, 2);
+  }
+  return out;
+}
+
+// A plane as UNORM8 codes (values k/255).
+std::vector<uint8_t> ToUnorm8(const Fsr2Plane& p) {
+  std::vector<uint8_t> out(p.v.size());
+  for (size_t i = 0; i < p.v.size(); ++i) out[i] = static_cast<uint8_t>(std::lround(p.v[i] * 255.0f));
+  return out;
+}
+
 // A 1-channel plane as r16f texels.
 std::vector<uint16_t> ToHalves(const Fsr2Plane& p) {
   std::vector<uint16_t> out(p.v.size());
@@ -152,6 +169,41 @@ void RunFsr2LockShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2P
   for (size_t i = 0; i < locks.size(); ++i) new_locks->v[i] = static_cast<float>(locks[i]) / 255.0f;
   const std::vector<uint8_t> prev = vk.Read(VkKey(1, 2));
   std::memcpy(prev_depth->data(), prev.data(), prev_depth->size() * 4);
+}
+
+void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2DepthClipIn& in, Fsr2DepthClipOut* out) {
+  const int rw = k.render_size[0], rh = k.render_size[1];
+  const Fsr2Plane zero(1, 1, 1);
+  const Fsr2Plane& reactive = in.reactive.v.empty() ? zero : in.reactive;
+  const Fsr2Plane& comp = in.composition.v.empty() ? zero : in.composition;
+  // FSR2_BIND_* of ffx_fsr2_depth_clip_pass.glsl.
+  VkCompute vk(WithSamplers(
+      {Tex(0, rw, rh, VK_FORMAT_R32_UINT), Tex(1, rw, rh, VK_FORMAT_R16G16_SFLOAT), Tex(2, rw, rh, VK_FORMAT_R16_SFLOAT),
+       Tex(3, reactive.w, reactive.h, VK_FORMAT_R8_UNORM), Tex(4, comp.w, comp.h, VK_FORMAT_R8_UNORM),
+       Tex(5, rw, rh, VK_FORMAT_R16G16B16A16_SFLOAT),
+       Tex(6, in.previous_dilated_motion->w, in.previous_dilated_motion->h, VK_FORMAT_R16G16_SFLOAT),
+       Tex(7, in.motion->w, in.motion->h, VK_FORMAT_R32G32_SFLOAT), Tex(8, in.color->w, in.color->h, VK_FORMAT_R32G32B32A32_SFLOAT),
+       Tex(9, in.depth->w, in.depth->h, VK_FORMAT_R32_SFLOAT), Tex(10, 1, 1, VK_FORMAT_R32G32_SFLOAT),
+       Img(12, rw, rh, VK_FORMAT_R8G8_UNORM), Img(13, rw, rh, VK_FORMAT_R16G16B16A16_SFLOAT), Cb(14)}));
+  vk.Fill(VkKey(1, 0), in.prev_depth->data(), in.prev_depth->size() * 4);
+  const auto mv = ToHalvesAll(*in.dilated_motion), dd = ToHalvesAll(*in.dilated_depth), pmv = ToHalvesAll(*in.previous_dilated_motion);
+  vk.Fill(VkKey(1, 1), mv.data(), mv.size() * 2);
+  vk.Fill(VkKey(1, 2), dd.data(), dd.size() * 2);
+  const auto r8 = ToUnorm8(reactive), c8 = ToUnorm8(comp);
+  vk.Fill(VkKey(1, 3), r8.data(), r8.size());
+  vk.Fill(VkKey(1, 4), c8.data(), c8.size());
+  vk.Fill(VkKey(1, 6), pmv.data(), pmv.size() * 2);
+  Upload(vk, 7, Padded(*in.motion, 2));
+  Upload(vk, 8, Padded(*in.color, 4));
+  Upload(vk, 9, Padded(*in.depth, 1));
+  Upload(vk, 10, {in.exposure, 0.0f});
+  vk.Fill(VkKey(1, 14), &k, sizeof(k));
+  const int p = vk.AddPipeline(Module("ffx_fsr2_depth_clip_pass.glsl", o), "main");
+  vk.Run({{p, static_cast<uint32_t>((rw + 7) / 8), static_cast<uint32_t>((rh + 7) / 8), 1}});
+  out->prepared_color = FromHalves(vk.Read(VkKey(1, 13)), rw, rh, 4);
+  const std::vector<uint8_t> masks = vk.Read(VkKey(1, 12));
+  out->reactive_masks = Fsr2Plane(rw, rh, 2);
+  for (size_t i = 0; i < out->reactive_masks.v.size(); ++i) out->reactive_masks.v[i] = static_cast<float>(masks[i]) / 255.0f;
 }
 
 }  // namespace aalab::oracle

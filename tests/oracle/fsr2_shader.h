@@ -27,4 +27,10 @@ void RunFsr2ReconstructShader(const Fsr2Constants& k, const Fsr2Options& o, cons
 void RunFsr2LockShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& lock_luma, Fsr2Plane* new_locks,
                        std::vector<uint32_t>* prev_depth);
 
+/// ffx_fsr2_depth_clip_pass.glsl over the render size: the reconstruct outputs and the
+/// previous dilated motion go in as the formats FSR2 gives them (r32ui, rg16f, r16f; their
+/// values must be halves), masks as r8 unorm (values k/255; empty planes: 1×1 zero textures,
+/// as the API binds when the app gives none).
+void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2DepthClipIn& in, Fsr2DepthClipOut* out);
+
 }  // namespace aalab::oracle
