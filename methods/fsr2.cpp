@@ -12,7 +12,23 @@
 // allows either, so the oracle runs the port that way).
 //
 // Ported and proven against the shader (docs/fsr2.md has the figures):
-//   - ReconstructAndDilate (ffx_fsr2_reconstruct_previous_depth_pass.glsl).
+//   - ReconstructAndDilate (ffx_fsr2_reconstruct_previous_depth_pass.glsl);
+//   - ComputeLock (ffx_fsr2_lock_pass.glsl);
+//   - DepthClip (ffx_fsr2_depth_clip_pass.glsl).
+// Not yet: the luminance pyramid (SPD), accumulate, RCAS; so no registry rows.
+//
+// Dispatch extent: every pass's dispatch covers whole 8×8 groups. Invocations past the render
+// size only matter where they can store inside: ReconstructAndDilate's previous-depth atomics
+// (their reprojected positions can land on screen), so that loop runs the whole extent; the
+// others stop at the render size (their stores outside are discarded).
+// Upstream quirks kept: with display-resolution motion vectors, ComputeMotionDivergence clamps
+// its 3×3 to the render size (it passes RenderSize() as the motion-vector size); DepthClip
+// computes the input depth's view depth and does not use it (no effect).
+// The depth-clip pass samples the previous dilated motion with a LINEAR CLAMP_TO_EDGE sampler:
+// the port filters as lavapipe does for float textures, fractions in float32 and
+// lerp(lerp(a, b, fx), lerp(c, d, fx), fy) with a + f·(b − a) (core/sampler.h's kGl model). A
+// GPU's texture unit uses 8-bit fractions instead; the value only feeds a ratio that ends in
+// an 8-bit store.
 //
 // Where the shader reads outside an image (FindNearestDepth's 3×3 at the border), the port
 // reads 0 (robust image access) and, as the shader does, ignores those samples.
