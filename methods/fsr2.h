@@ -114,6 +114,17 @@ struct Fsr2DepthClipOut {
 };
 void Fsr2DepthClip(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2DepthClipIn& in, Fsr2DepthClipOut* out);
 
+/// The RCAS pass (ffx_fsr2_rcas_pass.glsl: FsrRcasF of FSR 2's ffx_fsr1.h with
+/// FSR_RCAS_DENOISE, 16×16 tiles) over the display size: `upscaled` (the accumulate pass's
+/// colour, rgba) read through PrepareRgb (/ pre-exposure · exposure, clamped to [0, 65504]),
+/// sharpened with con.x = `con_x` (FsrRcasCon's bits of exp2(−(2 − 2·sharpness))), then
+/// UnprepareRgb; rgb floats (3 per pixel) as the shader computes them before its store.
+/// Neighbours outside the image read 0 (the shader's texelFetch with robust access).
+std::vector<float> Fsr2Rcas(const Fsr2Constants& k, const Fsr2Plane& upscaled, float exposure, uint32_t con_x);
+
+/// The API's RCAS constant for sharpness s in [0, 1]: the bits of exp2(−((−2·s) + 2)).
+uint32_t Fsr2RcasCon(float sharpness);
+
 /// ffx's 8-bit UNORM store: clamp to [0, 1], ·255, round to nearest even, as a float code/255.
 float Fsr2Unorm8(float v);
 

@@ -339,5 +339,52 @@ TEST_F(Fsr2Oracle, DepthClipMatchesTheShader) {
   }
 }
 
+// RCAS at the display size on an HDR colour field with edges on both axes, a black patch
+// (0·∞ in the limiters), flat areas (noise detection), values above 1, for three sharpness
+// settings; compared as floats before the output store.
+TEST_F(Fsr2Oracle, RcasMatchesTheShader) {
+  const Inputs in = MakeInputs(Fsr2Options{}, 31);
+  Lcg r{5};
+  Fsr2Plane up(kDw, kDh, 4);
+  for (int y = 0; y < kDh; ++y) {
+    for (int x = 0; x < kDw; ++x) {
+      const int id = ObjectAt(static_cast<float>(x) * kRw / kDw, static_cast<float>(y) * kRh / kDh);
+      for (int c = 0; c < 3; ++c) {
+        float v = id == 0 ? 0.3f + 0.1f * static_cast<float>(c) : id == 1 ? 1.7f - 0.4f * static_cast<float>(c) : 0.05f;
+        if (x > 70) v += 0.3f * r.Next();  // noise
+        if (x >= 60 && x < 68 && y >= 40 && y < 48) v = 0.0f;  // black
+        up.At(x, y, c) = v;
+      }
+      up.At(x, y, 3) = 1.0f;
+    }
+  }
+  long total = 0, same = 0, sharpened = 0, same_unprecise = 0;
+  std::string examples;
+  for (float sharpness : {0.0f, 0.5f, 0.8f}) {
+    const uint32_t con = Fsr2RcasCon(sharpness);
+    const std::vector<float> ours = Fsr2Rcas(in.k, up, in.exposure, con);
+    const std::vector<float> theirs = oracle::RunFsr2RcasShader(in.k, up, in.exposure, con);
+    // The same shader without NoContraction: Mesa's rewrites change last bits (reported only).
+    const std::vector<float> loose = oracle::RunFsr2RcasShader(in.k, up, in.exposure, con, false);
+    for (size_t i = 0; i < ours.size(); ++i) same_unprecise += std::memcmp(&ours[i], &loose[i], 4) == 0;
+    for (size_t i = 0; i < ours.size(); ++i) {
+      ++total;
+      if (std::memcmp(&ours[i], &theirs[i], 4) == 0) {
+        ++same;
+      } else if (examples.size() < 400) {
+        std::ostringstream os;
+        os.precision(9);
+        os << " s" << sharpness << " (" << (i / 3) % kDw << "," << (i / 3) / kDw << ")." << i % 3 << " ours " << ours[i] << " shader " << theirs[i] << ";";
+        examples += os.str();
+      }
+      sharpened += std::fabs(ours[i] - up.v[(i / 3) * 4 + i % 3]) > 1e-3f;
+    }
+  }
+  std::printf("RCAS identical: %ld/%ld floats (%ld changed by sharpening); against the shader without NoContraction %ld/%ld\n",
+              same, total, sharpened, same_unprecise, total);
+  EXPECT_EQ(same, total) << examples;
+  EXPECT_GT(sharpened, total / 20);
+}
+
 }  // namespace
 }  // namespace aalab

@@ -29,14 +29,50 @@ std::vector<std::string> Defines(const Fsr2Options& o) {
           "FFX_FSR2_OPTION_APPLY_SHARPENING=0"};
 }
 
-// One pass's SPIR-V for one set of options (compiled once per process).
-const std::vector<uint32_t>& Module(const std::string& pass, const Fsr2Options& o) {
+}  // namespace
+
+std::vector<uint32_t> PreciseSpirv(const std::vector<uint32_t>& words) {
+  // Result ids of float arithmetic: OpFNegate, OpFAdd, OpFSub, OpFMul, OpFDiv, OpFRem, OpFMod,
+  // OpVectorTimesScalar, OpMatrixTimesScalar, OpVectorTimesMatrix, OpMatrixTimesVector,
+  // OpMatrixTimesMatrix, OpDot.
+  static const uint32_t kFloatOps[] = {127, 129, 131, 133, 136, 140, 141, 142, 143, 144, 145, 146, 148};
+  std::vector<uint32_t> ids;
+  size_t insert_at = 0;
+  bool in_functions = false;
+  for (size_t i = 5; i < words.size();) {
+    const uint32_t op = words[i] & 0xffffu, wc = words[i] >> 16;
+    if (wc == 0 || i + wc > words.size()) throw std::runtime_error("PreciseSpirv: malformed SPIR-V");
+    if (op == 54) in_functions = true;  // OpFunction
+    const bool annotation = op == 71 || op == 72 || op == 73 || op == 74 || op == 75 || op == 332 || op == 5632 || op == 5633;
+    if (!in_functions && annotation) insert_at = i + wc;
+    for (uint32_t f : kFloatOps) {
+      if (op == f && wc >= 3) ids.push_back(words[i + 2]);
+    }
+    i += wc;
+  }
+  if (insert_at == 0) throw std::runtime_error("PreciseSpirv: no annotation section");
+  std::vector<uint32_t> out(words.begin(), words.begin() + static_cast<std::ptrdiff_t>(insert_at));
+  for (uint32_t id : ids) {
+    out.push_back((3u << 16) | 71u);  // OpDecorate id NoContraction (42)
+    out.push_back(id);
+    out.push_back(42u);
+  }
+  out.insert(out.end(), words.begin() + static_cast<std::ptrdiff_t>(insert_at), words.end());
+  return out;
+}
+
+namespace {
+
+// One pass's SPIR-V for one set of options (compiled once per process), every float operation
+// decorated NoContraction (PreciseSpirv).
+const std::vector<uint32_t>& Module(const std::string& pass, const Fsr2Options& o, bool precise = true) {
   static std::map<std::string, std::vector<uint32_t>> cache;
-  std::string key = pass;
+  std::string key = pass + (precise ? " precise" : "");
   for (const auto& d : Defines(o)) key += " " + d;
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
-  return cache[key] = CompileGlslFile(ThirdPartyDir() + "/" + kDir + "/" + pass, {}, Defines(o));
+  std::vector<uint32_t> spirv = CompileGlslFile(ThirdPartyDir() + "/" + kDir + "/" + pass, {}, Defines(o));
+  return cache[key] = precise ? PreciseSpirv(spirv) : spirv;
 }
 
 VkBinding Tex(uint32_t binding, int w, int h, VkFormat f) {
@@ -204,6 +240,26 @@ void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const 
   const std::vector<uint8_t> masks = vk.Read(VkKey(1, 12));
   out->reactive_masks = Fsr2Plane(rw, rh, 2);
   for (size_t i = 0; i < out->reactive_masks.v.size(); ++i) out->reactive_masks.v[i] = static_cast<float>(masks[i]) / 255.0f;
+}
+
+std::vector<float> RunFsr2RcasShader(const Fsr2Constants& k, const Fsr2Plane& upscaled, float exposure, uint32_t con_x,
+                                     bool precise) {
+  const int w = upscaled.w, h = upscaled.h;
+  VkBinding rcas_cb = Cb(4);
+  // FSR2_BIND_* of ffx_fsr2_rcas_pass.glsl.
+  VkCompute vk(WithSamplers({Tex(0, 1, 1, VK_FORMAT_R32G32_SFLOAT), Tex(1, w, h, VK_FORMAT_R32G32B32A32_SFLOAT),
+                             Img(2, w, h, VK_FORMAT_R32G32B32A32_SFLOAT), Cb(3), rcas_cb}));
+  Upload(vk, 0, {exposure, 0.0f});
+  Upload(vk, 1, Padded(upscaled, 4));
+  vk.Fill(VkKey(1, 3), &k, sizeof(k));
+  const uint32_t con[4] = {con_x, 0, 0, 0};
+  vk.Fill(VkKey(1, 4), con, sizeof(con));
+  const int p = vk.AddPipeline(Module("ffx_fsr2_rcas_pass.glsl", Fsr2Options{}, precise), "main");
+  vk.Run({{p, static_cast<uint32_t>((w + 15) / 16), static_cast<uint32_t>((h + 15) / 16), 1}});
+  const std::vector<uint8_t> bytes = vk.Read(VkKey(1, 2));
+  std::vector<float> out(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
+  for (size_t i = 0; i < static_cast<size_t>(w) * static_cast<size_t>(h); ++i) std::memcpy(&out[i * 3], bytes.data() + i * 16, 12);
+  return out;
 }
 
 }  // namespace aalab::oracle
