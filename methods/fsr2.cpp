@@ -14,8 +14,11 @@
 // Ported and proven against the shader (docs/fsr2.md has the figures):
 //   - ReconstructAndDilate (ffx_fsr2_reconstruct_previous_depth_pass.glsl);
 //   - ComputeLock (ffx_fsr2_lock_pass.glsl);
-//   - DepthClip (ffx_fsr2_depth_clip_pass.glsl).
-// Not yet: the luminance pyramid (SPD), accumulate, RCAS; so no registry rows.
+//   - DepthClip (ffx_fsr2_depth_clip_pass.glsl);
+//   - RCAS (ffx_fsr2_rcas_pass.glsl: FsrRcasF of FSR 2's ffx_fsr1.h, FSR_RCAS_DENOISE).
+// Not yet: the luminance pyramid (SPD) and accumulate; so no registry rows.
+// min/max are std::fmin/fmax (IEEE minNum/maxNum, the non-NaN operand), as lavapipe
+// evaluates GLSL's min/max: RCAS's limiter makes 0·∞ = NaN on a black ring.
 //
 // Dispatch extent: every pass's dispatch covers whole 8×8 groups. Invocations past the render
 // size only matter where they can store inside: ReconstructAndDilate's previous-depth atomics
