@@ -17,7 +17,7 @@
 //   - DepthClip (ffx_fsr2_depth_clip_pass.glsl);
 //   - RCAS (ffx_fsr2_rcas_pass.glsl: FsrRcasF of FSR 2's ffx_fsr1.h, FSR_RCAS_DENOISE).
 // Not yet: the luminance pyramid (SPD) and accumulate; so no registry rows.
-// min/max are std::fmin/fmax (IEEE minNum/maxNum, the non-NaN operand), as lavapipe
+// In RCAS, min/max are std::fmin/fmax (IEEE minNum/maxNum, the non-NaN operand), as lavapipe
 // evaluates GLSL's min/max: RCAS's limiter makes 0·∞ = NaN on a black ring.
 //
 // Dispatch extent: every pass's dispatch covers whole 8×8 groups. Invocations past the render
@@ -59,7 +59,8 @@ float Pow(float x, float y) { return std::exp2(y * std::log2(x)); }
 
 // IsOnScreen: both coordinates, as unsigned, below the size.
 bool OnScreen(I2 p, const int32_t size[2]) {
-  return static_cast<uint32_t>(p.x) < static_cast<uint32_t>(size[0]) && static_cast<uint32_t>(p.y) < static_cast<uint32_t>(size[1]);
+  return static_cast<uint32_t>(p.x) < static_cast<uint32_t>(size[0]) &&
+         static_cast<uint32_t>(p.y) < static_cast<uint32_t>(size[1]);
 }
 
 float Luma(float r, float g, float b) {
@@ -81,9 +82,12 @@ float PerceivedLuma(float r, float g, float b) {
 
 // ComputeHrPosFromLrPos: the display pixel under a render pixel's jittered centre.
 I2 HrPosFromLrPos(const Fsr2Constants& k, I2 lr) {
-  const float sx = (static_cast<float>(lr.x) + 0.5f) - k.jitter[0], sy = (static_cast<float>(lr.y) + 0.5f) - k.jitter[1];
-  return {static_cast<int>(std::floor((sx / static_cast<float>(k.render_size[0])) * static_cast<float>(k.display_size[0]))),
-          static_cast<int>(std::floor((sy / static_cast<float>(k.render_size[1])) * static_cast<float>(k.display_size[1])))};
+  const float sx = (static_cast<float>(lr.x) + 0.5f) - k.jitter[0],
+              sy = (static_cast<float>(lr.y) + 0.5f) - k.jitter[1];
+  return {
+      static_cast<int>(std::floor((sx / static_cast<float>(k.render_size[0])) * static_cast<float>(k.display_size[0]))),
+      static_cast<int>(
+          std::floor((sy / static_cast<float>(k.render_size[1])) * static_cast<float>(k.display_size[1])))};
 }
 
 int RoundUp8(int n) { return (n + 7) / 8 * 8; }
@@ -100,7 +104,8 @@ uint32_t Bits(float f) {
 
 float Fsr2Plane::Fetch(int x, int y, int k) const {
   if (x < 0 || y < 0 || x >= w || y >= h) return 0.0f;
-  return v[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * static_cast<size_t>(c) + static_cast<size_t>(k)];
+  return v[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * static_cast<size_t>(c) +
+           static_cast<size_t>(k)];
 }
 
 float Fsr2Half(float f, bool toward_zero) {
@@ -134,8 +139,9 @@ float Fsr2LockInputLuma(const Fsr2Constants& k, const Fsr2Options& o, float r, f
   return Pow(PerceivedLuma(r, g, b), 1.0f / 6.0f);
 }
 
-void Fsr2ReconstructAndDilate(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& color, const Fsr2Plane& depth,
-                              const Fsr2Plane& motion, float exposure_texel, Fsr2ReconstructOut* out) {
+void Fsr2ReconstructAndDilate(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& color,
+                              const Fsr2Plane& depth, const Fsr2Plane& motion, float exposure_texel,
+                              Fsr2ReconstructOut* out) {
   const int rw = k.render_size[0], rh = k.render_size[1];
   out->dilated_depth = Fsr2Plane(rw, rh, 1);
   out->dilated_motion = Fsr2Plane(rw, rh, 2);
@@ -164,7 +170,8 @@ void Fsr2ReconstructAndDilate(const Fsr2Constants& k, const Fsr2Options& o, cons
       }
       // The motion vector at the nearest sample (at render or display resolution).
       const I2 mpos = o.low_res_motion_vectors ? nearest : HrPosFromLrPos(k, nearest);
-      V2 mv{motion.Fetch(mpos.x, mpos.y, 0) * k.motion_vector_scale[0], motion.Fetch(mpos.x, mpos.y, 1) * k.motion_vector_scale[1]};
+      V2 mv{motion.Fetch(mpos.x, mpos.y, 0) * k.motion_vector_scale[0],
+            motion.Fetch(mpos.x, mpos.y, 1) * k.motion_vector_scale[1]};
       if (o.jittered_motion_vectors) {
         mv.x = mv.x - k.motion_vector_jitter_cancellation[0];
         mv.y = mv.y - k.motion_vector_jitter_cancellation[1];
@@ -176,10 +183,12 @@ void Fsr2ReconstructAndDilate(const Fsr2Constants& k, const Fsr2Options& o, cons
       }
       // ReconstructPrevDepth: push the depth to the previous frame's pixels with weight > 0.01.
       {
-        const float dx = mv.x * static_cast<float>(k.display_size[0]), dy = mv.y * static_cast<float>(k.display_size[1]);
+        const float dx = mv.x * static_cast<float>(k.display_size[0]),
+                    dy = mv.y * static_cast<float>(k.display_size[1]);
         const float keep = std::sqrt(dx * dx + dy * dy) > 0.1f ? 1.0f : 0.0f;
         const V2 m{mv.x * keep, mv.y * keep};
-        const V2 uv{(static_cast<float>(x) + 0.5f) / static_cast<float>(rw), (static_cast<float>(y) + 0.5f) / static_cast<float>(rh)};
+        const V2 uv{(static_cast<float>(x) + 0.5f) / static_cast<float>(rw),
+                    (static_cast<float>(y) + 0.5f) / static_cast<float>(rh)};
         const V2 ruv{uv.x + m.x, uv.y + m.y};
         const V2 s{ruv.x * static_cast<float>(rw) - 0.5f, ruv.y * static_cast<float>(rh) - 0.5f};
         const V2 fl{std::floor(s.x), std::floor(s.y)};
@@ -192,14 +201,15 @@ void Fsr2ReconstructAndDilate(const Fsr2Constants& k, const Fsr2Options& o, cons
           if (!(wts[i] > 0.01f)) continue;
           const I2 p{base.x + kCorner[i].x, base.y + kCorner[i].y};
           if (!OnScreen(p, k.render_size)) continue;
-          uint32_t& cell = out->prev_depth[static_cast<size_t>(p.y) * static_cast<size_t>(rw) + static_cast<size_t>(p.x)];
+          uint32_t& cell =
+              out->prev_depth[static_cast<size_t>(p.y) * static_cast<size_t>(rw) + static_cast<size_t>(p.x)];
           cell = o.inverted_depth ? std::max(cell, ud) : std::min(cell, ud);
         }
       }
       if (!inside) continue;
-      out->lock_luma.At(x, y, 0) =
-          Fsr2Half(Fsr2LockInputLuma(k, o, color.Fetch(x, y, 0), color.Fetch(x, y, 1), color.Fetch(x, y, 2), exposure_texel),
-                   o.half_toward_zero);
+      out->lock_luma.At(x, y, 0) = Fsr2Half(
+          Fsr2LockInputLuma(k, o, color.Fetch(x, y, 0), color.Fetch(x, y, 1), color.Fetch(x, y, 2), exposure_texel),
+          o.half_toward_zero);
     }
   }
 }
@@ -237,7 +247,8 @@ bool ThinFeature(const Fsr2Constants& k, const Fsr2Plane& luma, I2 pos) {
     }
   }
   if (!(nucleus > dmax || nucleus < dmin)) return false;
-  static constexpr uint32_t kCorners[4] = {0x1Bu, 0x36u, 0xD8u, 0x1B0u};  // bits {0,1,3,4} {1,2,4,5} {3,4,6,7} {4,5,7,8}
+  static constexpr uint32_t kCorners[4] = {0x1Bu, 0x36u, 0xD8u,
+                                           0x1B0u};  // bits {0,1,3,4} {1,2,4,5} {3,4,6,7} {4,5,7,8}
   for (uint32_t c : kCorners) {
     if ((mask & c) == c) return false;
   }
@@ -256,7 +267,8 @@ void Fsr2ComputeLock(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Pla
         if (hr.x >= 0 && hr.y >= 0 && hr.x < new_locks->w && hr.y < new_locks->h) new_locks->At(hr.x, hr.y, 0) = 1.0f;
       }
       if (x < rw && y < rh) {  // ClearResourcesForNextFrame
-        (*prev_depth)[static_cast<size_t>(y) * static_cast<size_t>(rw) + static_cast<size_t>(x)] = o.inverted_depth ? 0u : Bits(1.0f);
+        (*prev_depth)[static_cast<size_t>(y) * static_cast<size_t>(rw) + static_cast<size_t>(x)] =
+            o.inverted_depth ? 0u : Bits(1.0f);
       }
     }
   }
@@ -411,7 +423,8 @@ float SampleLinear(const Fsr2Plane& t, V2 uv, int c) {
 // ComputeTemporalMotionDivergence.
 float TemporalMotionDivergence(const Fsr2Constants& k, const Fsr2DepthClipIn& in, I2 p) {
   const int rw = k.render_size[0], rh = k.render_size[1];
-  const V2 uv{(static_cast<float>(p.x) + 0.5f) / static_cast<float>(rw), (static_cast<float>(p.y) + 0.5f) / static_cast<float>(rh)};
+  const V2 uv{(static_cast<float>(p.x) + 0.5f) / static_cast<float>(rw),
+              (static_cast<float>(p.y) + 0.5f) / static_cast<float>(rh)};
   const V2 mv{in.dilated_motion->Fetch(p.x, p.y, 0), in.dilated_motion->Fetch(p.x, p.y, 1)};
   V2 r{uv.x + mv.x, uv.y + mv.y};
   // ClampUv to the render size, in UV of the max render size.
@@ -419,7 +432,8 @@ float TemporalMotionDivergence(const Fsr2Constants& k, const Fsr2DepthClipIn& in
   r.x = std::max(0.5f, std::min(lx, static_cast<float>(rw) - 0.5f)) / static_cast<float>(k.max_render_size[0]);
   r.y = std::max(0.5f, std::min(ly, static_cast<float>(rh) - 0.5f)) / static_cast<float>(k.max_render_size[1]);
   const V2 pm{SampleLinear(*in.previous_dilated_motion, r, 0), SampleLinear(*in.previous_dilated_motion, r, 1)};
-  const float dist = Length2(mv.x * static_cast<float>(k.display_size[0]), mv.y * static_cast<float>(k.display_size[1]));
+  const float dist =
+      Length2(mv.x * static_cast<float>(k.display_size[0]), mv.y * static_cast<float>(k.display_size[1]));
   if (!(dist > 1.0f)) return 0.0f;
   return Mix(0.0f, 1.0f - Sat(Length2(pm.x, pm.y) / Length2(mv.x, mv.y)), Sat(Pow(dist / 20.0f, 3.0f)));
 }
@@ -435,12 +449,17 @@ void Fsr2DepthClip(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Depth
   for (int y = 0; y < rh; ++y) {
     for (int x = 0; x < rw; ++x) {
       const I2 p{x, y};
-      const V2 uv{(static_cast<float>(x) + 0.5f) / static_cast<float>(rw), (static_cast<float>(y) + 0.5f) / static_cast<float>(rh)};
+      const V2 uv{(static_cast<float>(x) + 0.5f) / static_cast<float>(rw),
+                  (static_cast<float>(y) + 0.5f) / static_cast<float>(rh)};
       V2 mv{in.dilated_motion->Fetch(x, y, 0), in.dilated_motion->Fetch(x, y, 1)};
-      const float keep = Length2(mv.x * static_cast<float>(k.display_size[0]), mv.y * static_cast<float>(k.display_size[1])) > 0.01f ? 1.0f : 0.0f;
+      const float keep =
+          Length2(mv.x * static_cast<float>(k.display_size[0]), mv.y * static_cast<float>(k.display_size[1])) > 0.01f
+              ? 1.0f
+              : 0.0f;
       mv = {mv.x * keep, mv.y * keep};
       const V2 duv{uv.x + mv.x, uv.y + mv.y};
-      const float clip = DepthClipAt(k, o, *in.prev_depth, duv, in.dilated_depth->Fetch(x, y, 0)) * Surface(k, *in.prev_depth, p);
+      const float clip =
+          DepthClipAt(k, o, *in.prev_depth, duv, in.dilated_depth->Fetch(x, y, 0)) * Surface(k, *in.prev_depth, p);
       // ComputePreparedInputColor: max(0, rgb) / pre-exposure · exposure, clamped to the fp16 range, YCoCg.
       float rgb[3];
       for (int c = 0; c < 3; ++c) {

@@ -36,10 +36,10 @@ struct Fsr2Constants {
 
 /// The shaders' compile-time options (FFX_FSR2_OPTION_*).
 struct Fsr2Options {
-  bool hdr_color_input = false;       ///< HDR_COLOR_INPUT
-  bool low_res_motion_vectors = true; ///< LOW_RESOLUTION_MOTION_VECTORS (aalab's are at render size)
+  bool hdr_color_input = false;        ///< HDR_COLOR_INPUT
+  bool low_res_motion_vectors = true;  ///< LOW_RESOLUTION_MOTION_VECTORS (aalab's are at render size)
   bool jittered_motion_vectors = false;
-  bool inverted_depth = false;        ///< INVERTED_DEPTH (1 = near, 0 = far)
+  bool inverted_depth = false;  ///< INVERTED_DEPTH (1 = near, 0 = far)
   /// How a store into a 16-bit float image rounds (Vulkan leaves it to the implementation:
   /// round to nearest even or toward zero). false: nearest even (what D3D requires of GPUs and
   /// aalab's default); true: toward zero, as Mesa's lavapipe stores (the oracle's setting).
@@ -52,11 +52,15 @@ struct Fsr2Plane {
   std::vector<float> v;
   Fsr2Plane() = default;
   Fsr2Plane(int width, int height, int channels)
-      : w(width), h(height), c(channels), v(static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels)) {}
+      : w(width),
+        h(height),
+        c(channels),
+        v(static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels)) {}
   /// texelFetch: the texel, or 0 outside the image (robust image access).
   float Fetch(int x, int y, int k) const;
   size_t Index(int x, int y, int k) const {
-    return (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * static_cast<size_t>(c) + static_cast<size_t>(k);
+    return (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * static_cast<size_t>(c) +
+           static_cast<size_t>(k);
   }
   float& At(int x, int y, int k) { return v[Index(x, y, k)]; }
   float At(int x, int y, int k) const { return v[Index(x, y, k)]; }
@@ -75,14 +79,14 @@ float Fsr2LockInputLuma(const Fsr2Constants& k, const Fsr2Options& o, float r, f
 /// its 3×3 neighbourhood and the motion vector there (dilated_depth r16f, dilated_motion rg16f),
 /// that depth pushed to the previous frame's pixels it lands on (prev_depth: float bits,
 /// atomic min, or max with inverted depth; the caller initialises it, as FSR2's lock pass does
-/// to the far depth; if it is not render-size long it is set to the far depth first) and the lock luma (lock_luma r16f). `exposure`: the texel the exposure texture
-/// holds (0 reads as 1).
+/// to the far depth; if it is not render-size long it is set to the far depth first) and the lock luma (lock_luma
+/// r16f). `exposure`: the texel the exposure texture holds (0 reads as 1).
 struct Fsr2ReconstructOut {
   Fsr2Plane dilated_depth, dilated_motion, lock_luma;
   std::vector<uint32_t> prev_depth;
 };
-void Fsr2ReconstructAndDilate(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& color, const Fsr2Plane& depth,
-                              const Fsr2Plane& motion, float exposure, Fsr2ReconstructOut* out);
+void Fsr2ReconstructAndDilate(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& color,
+                              const Fsr2Plane& depth, const Fsr2Plane& motion, float exposure, Fsr2ReconstructOut* out);
 
 /// ComputeLock (ffx_fsr2_lock.h), the lock pass, over the render size (every invocation of its
 /// 8×8-group dispatch): where a pixel's lock luma is a thin feature (a ridge against its 3×3

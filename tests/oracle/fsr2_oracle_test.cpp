@@ -87,11 +87,14 @@ Inputs MakeInputs(const Fsr2Options& o, uint32_t seed) {
   for (int y = 0; y < kRh; ++y) {
     for (int x = 0; x < kRw; ++x) {
       const int id = ObjectAt(static_cast<float>(x), static_cast<float>(y));
-      float d = id == 0 ? 0.6f + 0.004f * static_cast<float>(x) + 0.002f * static_cast<float>(y) : id == 1 ? 0.31f + 0.001f * static_cast<float>(y) : 0.22f + 0.0005f * static_cast<float>(x);
+      float d = id == 0   ? 0.6f + 0.004f * static_cast<float>(x) + 0.002f * static_cast<float>(y)
+                : id == 1 ? 0.31f + 0.001f * static_cast<float>(y)
+                          : 0.22f + 0.0005f * static_cast<float>(x);
       if (r.Next() < 0.02f) d = r.Next();  // isolated near / far pixels
       if (o.inverted_depth) d = 1.0f - d;
       in.depth.At(x, y, 0) = d;
-      for (int c = 0; c < 3; ++c) in.color.At(x, y, c) = r.Next() * (id == 2 ? 3.0f : 1.0f) - (r.Next() < 0.05f ? 0.5f : 0.0f);
+      for (int c = 0; c < 3; ++c)
+        in.color.At(x, y, c) = r.Next() * (id == 2 ? 3.0f : 1.0f) - (r.Next() < 0.05f ? 0.5f : 0.0f);
       if (r.Next() < 0.02f) in.color.At(x, y, 0) = in.color.At(x, y, 1) = in.color.At(x, y, 2) = 0.0f;
       in.color.At(x, y, 3) = 1.0f;
     }
@@ -145,8 +148,10 @@ TEST_F(Fsr2Oracle, ReconstructAndDilateMatchesTheShader) {
   hires.low_res_motion_vectors = false;
   Fsr2Options jittered;
   jittered.jittered_motion_vectors = true;
-  const Config configs[] = {
-      {"default", Fsr2Options{}}, {"inverted+hdr+jittered mv", inv}, {"display-res mv", hires}, {"jittered mv", jittered}};
+  const Config configs[] = {{"default", Fsr2Options{}},
+                            {"inverted+hdr+jittered mv", inv},
+                            {"display-res mv", hires},
+                            {"jittered mv", jittered}};
   std::printf("lavapipe device: %s\n", oracle::VkCompute::DeviceName().c_str());
   uint32_t seed = 7;
   for (const Config& cfg : configs) {
@@ -179,10 +184,12 @@ TEST_F(Fsr2Oracle, ReconstructAndDilateMatchesTheShader) {
         dilated += ours.dilated_depth.At(x, y, 0) != Fsr2Half(in.depth.At(x, y, 0));
       }
     }
-    std::printf("ReconstructAndDilate %-26s identical: dilated depth %ld/%ld, dilated motion %ld/%ld, prev depth %ld/%ld, "
-                "lock luma %ld/%ld (%ld pixels dilated, %ld prev-depth texels written); lock luma rounded to nearest even: %ld/%ld\n",
-                cfg.name, depth.same, depth.total, motion.same, motion.total, prev.same, prev.total, luma.same, luma.total, dilated,
-                pushed, rne.same, rne.total);
+    std::printf(
+        "ReconstructAndDilate %-26s identical: dilated depth %ld/%ld, dilated motion %ld/%ld, prev depth %ld/%ld, "
+        "lock luma %ld/%ld (%ld pixels dilated, %ld prev-depth texels written); lock luma rounded to nearest even: "
+        "%ld/%ld\n",
+        cfg.name, depth.same, depth.total, motion.same, motion.total, prev.same, prev.total, luma.same, luma.total,
+        dilated, pushed, rne.same, rne.total);
     EXPECT_EQ(depth.same, depth.total) << cfg.name << depth.examples;
     EXPECT_EQ(motion.same, motion.total) << cfg.name << motion.examples;
     EXPECT_EQ(prev.same, prev.total) << cfg.name << prev.examples;
@@ -197,7 +204,8 @@ TEST_F(Fsr2Oracle, ReconstructAndDilateMatchesTheShader) {
         const float o = ours.lock_luma.At(x, y, 0), t = theirs.lock_luma.At(x, y, 0);
         if (o == t) continue;
         const float hi = std::max(o, t), lo = std::min(o, t);
-        const float raw = Fsr2LockInputLuma(in.k, lvp, in.color.At(x, y, 0), in.color.At(x, y, 1), in.color.At(x, y, 2), in.exposure);
+        const float raw =
+            Fsr2LockInputLuma(in.k, lvp, in.color.At(x, y, 0), in.color.At(x, y, 1), in.color.At(x, y, 2), in.exposure);
         const bool one_step = Fsr2Half(std::nextafter(hi, 0.0f), true) == lo;
         const bool near_boundary = std::fabs(raw - hi) <= hi * 0x1p-20f;
         luma_explained += one_step && near_boundary ? 1 : 0;
@@ -224,11 +232,11 @@ TEST_F(Fsr2Oracle, LockMatchesTheShader) {
     Fsr2Plane luma(kRw, kRh, 1);
     for (int y = 0; y < kRh; ++y) {
       for (int x = 0; x < kRw; ++x) {
-        float v = 0.5f + 0.02f * r.Next();                       // flat within 5 %: similar
-        if (x > 40) v = 0.2f + 0.6f * r.Next();                  // noise
-        if (y == 7 || x == 13 || (x == y + 20 && x < 40)) v = 0.9f;  // bright lines, horizontal, vertical, diagonal
-        if (y == 28 && x < 40) v = 0.1f;                         // a dark line
-        if (x >= 30 && x < 32 && y >= 12 && y < 14) v = 0.95f;   // a 2×2 block: not thin
+        float v = 0.5f + 0.02f * r.Next();                               // flat within 5 %: similar
+        if (x > 40) v = 0.2f + 0.6f * r.Next();                          // noise
+        if (y == 7 || x == 13 || (x == y + 20 && x < 40)) v = 0.9f;      // bright lines, horizontal, vertical, diagonal
+        if (y == 28 && x < 40) v = 0.1f;                                 // a dark line
+        if (x >= 30 && x < 32 && y >= 12 && y < 14) v = 0.95f;           // a 2×2 block: not thin
         if (y == 0 || x == kRw - 1) v = (x + y) % 3 == 0 ? 0.7f : 0.0f;  // borders, zeros
         luma.At(x, y, 0) = Fsr2Half(v);
       }
@@ -254,8 +262,8 @@ TEST_F(Fsr2Oracle, LockMatchesTheShader) {
       std::memcpy(&b, &theirs_prev[i], 4);
       prev.Add(a, b, static_cast<int>(i) % kRw, static_cast<int>(i) / kRw, "prev");
     }
-    std::printf("Lock %-9s identical: new locks %ld/%ld (%ld set), prev depth %ld/%ld\n", o.inverted_depth ? "inverted" : "standard",
-                locks.same, locks.total, locked, prev.same, prev.total);
+    std::printf("Lock %-9s identical: new locks %ld/%ld (%ld set), prev depth %ld/%ld\n",
+                o.inverted_depth ? "inverted" : "standard", locks.same, locks.total, locked, prev.same, prev.total);
     EXPECT_EQ(locks.same, locks.total) << locks.examples;
     EXPECT_EQ(prev.same, prev.total) << prev.examples;
     EXPECT_GT(locked, kDw * kDh / 37 + 60);  // the lines lock, beyond the initial 1s
@@ -274,7 +282,8 @@ TEST_F(Fsr2Oracle, DepthClipMatchesTheShader) {
     Fsr2Options o;
     bool masks;
   };
-  const Config configs[] = {{"default", Fsr2Options{}, true}, {"no masks", Fsr2Options{}, false}, {"inverted+jittered", inv, true}};
+  const Config configs[] = {
+      {"default", Fsr2Options{}, true}, {"no masks", Fsr2Options{}, false}, {"inverted+jittered", inv, true}};
   uint32_t seed = 21;
   for (const Config& cfg : configs) {
     Fsr2Options lvp = cfg.o;
@@ -313,7 +322,8 @@ TEST_F(Fsr2Oracle, DepthClipMatchesTheShader) {
     long clipped = 0, clip_zero = 0, divergent = 0, reactive_set = 0;
     for (int y = 0; y < kRh; ++y) {
       for (int x = 0; x < kRw; ++x) {
-        for (int c = 0; c < 3; ++c) ycocg.Add(ours.prepared_color.At(x, y, c), theirs.prepared_color.At(x, y, c), x, y, "ycocg");
+        for (int c = 0; c < 3; ++c)
+          ycocg.Add(ours.prepared_color.At(x, y, c), theirs.prepared_color.At(x, y, c), x, y, "ycocg");
         clip.Add(ours.prepared_color.At(x, y, 3), theirs.prepared_color.At(x, y, 3), x, y, "clip");
         masks.Add(ours.reactive_masks.At(x, y, 0), theirs.reactive_masks.At(x, y, 0), x, y, "reactive");
         masks.Add(ours.reactive_masks.At(x, y, 1), theirs.reactive_masks.At(x, y, 1), x, y, "divergence");
@@ -324,10 +334,12 @@ TEST_F(Fsr2Oracle, DepthClipMatchesTheShader) {
         reactive_set += ours.reactive_masks.At(x, y, 0) > 0.0f;
       }
     }
-    std::printf("DepthClip %-18s identical: YCoCg %ld/%ld, depth clip %ld/%ld, reactive masks %ld/%ld (depth clip in (0, 1) at %ld "
-                "pixels, 0 at %ld; divergence in (0, 1) at %ld; reactive > 0 at %ld)\n",
-                cfg.name, ycocg.same, ycocg.total, clip.same, clip.total, masks.same, masks.total, clipped, clip_zero, divergent,
-                reactive_set);
+    std::printf(
+        "DepthClip %-18s identical: YCoCg %ld/%ld, depth clip %ld/%ld, reactive masks %ld/%ld (depth clip in (0, 1) at "
+        "%ld "
+        "pixels, 0 at %ld; divergence in (0, 1) at %ld; reactive > 0 at %ld)\n",
+        cfg.name, ycocg.same, ycocg.total, clip.same, clip.total, masks.same, masks.total, clipped, clip_zero,
+        divergent, reactive_set);
     EXPECT_EQ(ycocg.same, ycocg.total) << cfg.name << ycocg.examples;
     EXPECT_EQ(clip.same, clip.total) << cfg.name << clip.examples;
     EXPECT_EQ(masks.same, masks.total) << cfg.name << masks.examples;
@@ -351,7 +363,7 @@ TEST_F(Fsr2Oracle, RcasMatchesTheShader) {
       const int id = ObjectAt(static_cast<float>(x) * kRw / kDw, static_cast<float>(y) * kRh / kDh);
       for (int c = 0; c < 3; ++c) {
         float v = id == 0 ? 0.3f + 0.1f * static_cast<float>(c) : id == 1 ? 1.7f - 0.4f * static_cast<float>(c) : 0.05f;
-        if (x > 70) v += 0.3f * r.Next();  // noise
+        if (x > 70) v += 0.3f * r.Next();                      // noise
         if (x >= 60 && x < 68 && y >= 40 && y < 48) v = 0.0f;  // black
         up.At(x, y, c) = v;
       }
@@ -374,14 +386,16 @@ TEST_F(Fsr2Oracle, RcasMatchesTheShader) {
       } else if (examples.size() < 400) {
         std::ostringstream os;
         os.precision(9);
-        os << " s" << sharpness << " (" << (i / 3) % kDw << "," << (i / 3) / kDw << ")." << i % 3 << " ours " << ours[i] << " shader " << theirs[i] << ";";
+        os << " s" << sharpness << " (" << (i / 3) % kDw << "," << (i / 3) / kDw << ")." << i % 3 << " ours " << ours[i]
+           << " shader " << theirs[i] << ";";
         examples += os.str();
       }
       sharpened += std::fabs(ours[i] - up.v[(i / 3) * 4 + i % 3]) > 1e-3f;
     }
   }
-  std::printf("RCAS identical: %ld/%ld floats (%ld changed by sharpening); against the shader without NoContraction %ld/%ld\n",
-              same, total, sharpened, same_unprecise, total);
+  std::printf(
+      "RCAS identical: %ld/%ld floats (%ld changed by sharpening); against the shader without NoContraction %ld/%ld\n",
+      same, total, sharpened, same_unprecise, total);
   EXPECT_EQ(same, total) << examples;
   EXPECT_GT(sharpened, total / 20);
 }

@@ -43,7 +43,8 @@ std::vector<uint32_t> PreciseSpirv(const std::vector<uint32_t>& words) {
     const uint32_t op = words[i] & 0xffffu, wc = words[i] >> 16;
     if (wc == 0 || i + wc > words.size()) throw std::runtime_error("PreciseSpirv: malformed SPIR-V");
     if (op == 54) in_functions = true;  // OpFunction
-    const bool annotation = op == 71 || op == 72 || op == 73 || op == 74 || op == 75 || op == 332 || op == 5632 || op == 5633;
+    const bool annotation =
+        op == 71 || op == 72 || op == 73 || op == 74 || op == 75 || op == 332 || op == 5632 || op == 5633;
     if (!in_functions && annotation) insert_at = i + wc;
     for (uint32_t f : kFloatOps) {
       if (op == f && wc >= 3) ids.push_back(words[i + 2]);
@@ -103,7 +104,9 @@ std::vector<VkBinding> WithSamplers(std::vector<VkBinding> v) {
 std::vector<float> Padded(const Fsr2Plane& p, int channels) {
   std::vector<float> out(static_cast<size_t>(p.w) * static_cast<size_t>(p.h) * static_cast<size_t>(channels), 0.0f);
   for (size_t i = 0; i < static_cast<size_t>(p.w) * static_cast<size_t>(p.h); ++i) {
-    for (int c = 0; c < std::min(p.c, channels); ++c) out[i * static_cast<size_t>(channels) + static_cast<size_t>(c)] = p.v[i * static_cast<size_t>(p.c) + static_cast<size_t>(c)];
+    for (int c = 0; c < std::min(p.c, channels); ++c)
+      out[i * static_cast<size_t>(channels) + static_cast<size_t>(c)] =
+          p.v[i * static_cast<size_t>(p.c) + static_cast<size_t>(c)];
   }
   return out;
 }
@@ -146,7 +149,9 @@ std::vector<uint16_t> ToHalves(const Fsr2Plane& p) {
   return out;
 }
 
-void Upload(VkCompute& vk, uint32_t binding, const std::vector<float>& v) { vk.Fill(VkKey(1, binding), v.data(), v.size() * 4); }
+void Upload(VkCompute& vk, uint32_t binding, const std::vector<float>& v) {
+  vk.Fill(VkKey(1, binding), v.data(), v.size() * 4);
+}
 
 }  // namespace
 
@@ -160,17 +165,19 @@ std::string Fsr2ShaderAvailable() {
   return VkCompute::Start();
 }
 
-void RunFsr2ReconstructShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& color, const Fsr2Plane& depth,
-                              const Fsr2Plane& motion, float exposure, Fsr2ReconstructOut* out) {
+void RunFsr2ReconstructShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& color,
+                              const Fsr2Plane& depth, const Fsr2Plane& motion, float exposure,
+                              Fsr2ReconstructOut* out) {
   const int rw = k.render_size[0], rh = k.render_size[1];
   if (out->prev_depth.size() != static_cast<size_t>(rw) * static_cast<size_t>(rh)) {
     throw std::invalid_argument("RunFsr2ReconstructShader: prev_depth must be render-size long");
   }
   // FSR2_BIND_* of ffx_fsr2_reconstruct_previous_depth_pass.glsl.
-  VkCompute vk(WithSamplers({Tex(0, motion.w, motion.h, VK_FORMAT_R32G32_SFLOAT), Tex(1, depth.w, depth.h, VK_FORMAT_R32_SFLOAT),
-                             Tex(2, color.w, color.h, VK_FORMAT_R32G32B32A32_SFLOAT), Tex(3, 1, 1, VK_FORMAT_R32G32_SFLOAT),
-                             Img(5, rw, rh, VK_FORMAT_R32_UINT), Img(6, rw, rh, VK_FORMAT_R16G16_SFLOAT),
-                             Img(7, rw, rh, VK_FORMAT_R16_SFLOAT), Img(11, rw, rh, VK_FORMAT_R16_SFLOAT), Cb(12)}));
+  VkCompute vk(
+      WithSamplers({Tex(0, motion.w, motion.h, VK_FORMAT_R32G32_SFLOAT), Tex(1, depth.w, depth.h, VK_FORMAT_R32_SFLOAT),
+                    Tex(2, color.w, color.h, VK_FORMAT_R32G32B32A32_SFLOAT), Tex(3, 1, 1, VK_FORMAT_R32G32_SFLOAT),
+                    Img(5, rw, rh, VK_FORMAT_R32_UINT), Img(6, rw, rh, VK_FORMAT_R16G16_SFLOAT),
+                    Img(7, rw, rh, VK_FORMAT_R16_SFLOAT), Img(11, rw, rh, VK_FORMAT_R16_SFLOAT), Cb(12)}));
   Upload(vk, 0, Padded(motion, 2));
   Upload(vk, 1, Padded(depth, 1));
   Upload(vk, 2, Padded(color, 4));
@@ -207,22 +214,25 @@ void RunFsr2LockShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2P
   std::memcpy(prev_depth->data(), prev.data(), prev_depth->size() * 4);
 }
 
-void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2DepthClipIn& in, Fsr2DepthClipOut* out) {
+void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2DepthClipIn& in,
+                            Fsr2DepthClipOut* out) {
   const int rw = k.render_size[0], rh = k.render_size[1];
   const Fsr2Plane zero(1, 1, 1);
   const Fsr2Plane& reactive = in.reactive.v.empty() ? zero : in.reactive;
   const Fsr2Plane& comp = in.composition.v.empty() ? zero : in.composition;
   // FSR2_BIND_* of ffx_fsr2_depth_clip_pass.glsl.
-  VkCompute vk(WithSamplers(
-      {Tex(0, rw, rh, VK_FORMAT_R32_UINT), Tex(1, rw, rh, VK_FORMAT_R16G16_SFLOAT), Tex(2, rw, rh, VK_FORMAT_R16_SFLOAT),
-       Tex(3, reactive.w, reactive.h, VK_FORMAT_R8_UNORM), Tex(4, comp.w, comp.h, VK_FORMAT_R8_UNORM),
-       Tex(5, rw, rh, VK_FORMAT_R16G16B16A16_SFLOAT),
-       Tex(6, in.previous_dilated_motion->w, in.previous_dilated_motion->h, VK_FORMAT_R16G16_SFLOAT),
-       Tex(7, in.motion->w, in.motion->h, VK_FORMAT_R32G32_SFLOAT), Tex(8, in.color->w, in.color->h, VK_FORMAT_R32G32B32A32_SFLOAT),
-       Tex(9, in.depth->w, in.depth->h, VK_FORMAT_R32_SFLOAT), Tex(10, 1, 1, VK_FORMAT_R32G32_SFLOAT),
-       Img(12, rw, rh, VK_FORMAT_R8G8_UNORM), Img(13, rw, rh, VK_FORMAT_R16G16B16A16_SFLOAT), Cb(14)}));
+  VkCompute vk(
+      WithSamplers({Tex(0, rw, rh, VK_FORMAT_R32_UINT), Tex(1, rw, rh, VK_FORMAT_R16G16_SFLOAT),
+                    Tex(2, rw, rh, VK_FORMAT_R16_SFLOAT), Tex(3, reactive.w, reactive.h, VK_FORMAT_R8_UNORM),
+                    Tex(4, comp.w, comp.h, VK_FORMAT_R8_UNORM), Tex(5, rw, rh, VK_FORMAT_R16G16B16A16_SFLOAT),
+                    Tex(6, in.previous_dilated_motion->w, in.previous_dilated_motion->h, VK_FORMAT_R16G16_SFLOAT),
+                    Tex(7, in.motion->w, in.motion->h, VK_FORMAT_R32G32_SFLOAT),
+                    Tex(8, in.color->w, in.color->h, VK_FORMAT_R32G32B32A32_SFLOAT),
+                    Tex(9, in.depth->w, in.depth->h, VK_FORMAT_R32_SFLOAT), Tex(10, 1, 1, VK_FORMAT_R32G32_SFLOAT),
+                    Img(12, rw, rh, VK_FORMAT_R8G8_UNORM), Img(13, rw, rh, VK_FORMAT_R16G16B16A16_SFLOAT), Cb(14)}));
   vk.Fill(VkKey(1, 0), in.prev_depth->data(), in.prev_depth->size() * 4);
-  const auto mv = ToHalvesAll(*in.dilated_motion), dd = ToHalvesAll(*in.dilated_depth), pmv = ToHalvesAll(*in.previous_dilated_motion);
+  const auto mv = ToHalvesAll(*in.dilated_motion), dd = ToHalvesAll(*in.dilated_depth),
+             pmv = ToHalvesAll(*in.previous_dilated_motion);
   vk.Fill(VkKey(1, 1), mv.data(), mv.size() * 2);
   vk.Fill(VkKey(1, 2), dd.data(), dd.size() * 2);
   const auto r8 = ToUnorm8(reactive), c8 = ToUnorm8(comp);
@@ -239,7 +249,8 @@ void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const 
   out->prepared_color = FromHalves(vk.Read(VkKey(1, 13)), rw, rh, 4);
   const std::vector<uint8_t> masks = vk.Read(VkKey(1, 12));
   out->reactive_masks = Fsr2Plane(rw, rh, 2);
-  for (size_t i = 0; i < out->reactive_masks.v.size(); ++i) out->reactive_masks.v[i] = static_cast<float>(masks[i]) / 255.0f;
+  for (size_t i = 0; i < out->reactive_masks.v.size(); ++i)
+    out->reactive_masks.v[i] = static_cast<float>(masks[i]) / 255.0f;
 }
 
 std::vector<float> RunFsr2RcasShader(const Fsr2Constants& k, const Fsr2Plane& upscaled, float exposure, uint32_t con_x,
@@ -258,7 +269,8 @@ std::vector<float> RunFsr2RcasShader(const Fsr2Constants& k, const Fsr2Plane& up
   vk.Run({{p, static_cast<uint32_t>((w + 15) / 16), static_cast<uint32_t>((h + 15) / 16), 1}});
   const std::vector<uint8_t> bytes = vk.Read(VkKey(1, 2));
   std::vector<float> out(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
-  for (size_t i = 0; i < static_cast<size_t>(w) * static_cast<size_t>(h); ++i) std::memcpy(&out[i * 3], bytes.data() + i * 16, 12);
+  for (size_t i = 0; i < static_cast<size_t>(w) * static_cast<size_t>(h); ++i)
+    std::memcpy(&out[i * 3], bytes.data() + i * 16, 12);
   return out;
 }
 

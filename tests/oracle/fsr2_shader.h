@@ -26,8 +26,8 @@ std::string Fsr2ShaderAvailable();
 
 /// ffx_fsr2_reconstruct_previous_depth_pass.glsl over the render size (8×8 groups); `out`'s
 /// prev_depth is the r32ui image's initial contents (render-size long) and comes back updated.
-void RunFsr2ReconstructShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& color, const Fsr2Plane& depth,
-                              const Fsr2Plane& motion, float exposure, Fsr2ReconstructOut* out);
+void RunFsr2ReconstructShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& color,
+                              const Fsr2Plane& depth, const Fsr2Plane& motion, float exposure, Fsr2ReconstructOut* out);
 
 /// ffx_fsr2_lock_pass.glsl over the render size: `lock_luma` goes in as r16f (its values must
 /// be halves), `new_locks` (display size, values 0 or 1) as r8 unorm, `prev_depth` as r32ui;
@@ -39,7 +39,8 @@ void RunFsr2LockShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2P
 /// previous dilated motion go in as the formats FSR2 gives them (r32ui, rg16f, r16f; their
 /// values must be halves), masks as r8 unorm (values k/255; empty planes: 1×1 zero textures,
 /// as the API binds when the app gives none).
-void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2DepthClipIn& in, Fsr2DepthClipOut* out);
+void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2DepthClipIn& in,
+                            Fsr2DepthClipOut* out);
 
 /// ffx_fsr2_rcas_pass.glsl over upscaled's size (64-thread groups over 16×16 tiles):
 /// `upscaled` as rgba32f, the output as rgba32f (the app-controlled format: floats before any

@@ -299,7 +299,7 @@ VkCompute::VkCompute(std::vector<VkBinding> bindings) : impl_(std::make_unique<I
     r.b = b;
     if (b.kind == VkBinding::kStorageBuffer || b.kind == VkBinding::kUniformBuffer) {
       r.host = MakeHostBuffer(b.bytes, (b.kind == VkBinding::kUniformBuffer ? VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
-                                                                             : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) |
+                                                                            : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) |
                                            (b.indirect ? VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT : 0));
     } else if (b.kind == VkBinding::kSampler) {
       VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -342,7 +342,8 @@ VkCompute::VkCompute(std::vector<VkBinding> bindings) : impl_(std::make_unique<I
   }
   for (uint32_t s = 0; s < set_count; ++s) {
     impl_->signature += "|";
-    for (const auto& l : lb[s]) impl_->signature += std::to_string(l.binding) + ":" + std::to_string(l.descriptorType) + ";";
+    for (const auto& l : lb[s])
+      impl_->signature += std::to_string(l.binding) + ":" + std::to_string(l.descriptorType) + ";";
   }
   auto& cached = Ctx().layouts[impl_->signature];
   if (!cached.second) {
@@ -481,8 +482,8 @@ void VkCompute::Run(const std::vector<VkStep>& steps) {
   host_to_shader.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
   vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_HOST_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                        0, 1, &host_to_shader, 0, nullptr, 0, nullptr);
-  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, impl_->layout, 0, static_cast<uint32_t>(impl_->sets.size()),
-                          impl_->sets.data(), 0, nullptr);
+  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, impl_->layout, 0,
+                          static_cast<uint32_t>(impl_->sets.size()), impl_->sets.data(), 0, nullptr);
   const VkPipelineStageFlags stages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;
   for (const VkStep& s : steps) {
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, impl_->pipelines.at(static_cast<size_t>(s.pipeline)));
