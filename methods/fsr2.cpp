@@ -100,6 +100,12 @@ uint32_t Bits(float f) {
   return u;
 }
 
+float FloatOfBits(uint32_t u) {
+  float f;
+  std::memcpy(&f, &u, 4);
+  return f;
+}
+
 }  // namespace
 
 float Fsr2Plane::Fetch(int x, int y, int k) const {
@@ -108,16 +114,33 @@ float Fsr2Plane::Fetch(int x, int y, int k) const {
            static_cast<size_t>(k)];
 }
 
-float Fsr2Half(float f, bool toward_zero) {
-  _Float16 h = static_cast<_Float16>(f);  // round to nearest even
-  if (toward_zero && std::fabs(static_cast<float>(h)) > std::fabs(f) && !std::isnan(f)) {
-    uint16_t bits;
-    std::memcpy(&bits, &h, 2);
-    --bits;  // one step toward zero in magnitude, the sign bit untouched
-    std::memcpy(&h, &bits, 2);
+uint16_t Fsr2HalfBits(float f, bool toward_zero) {
+  const uint32_t x = Bits(f);
+  const uint32_t sign = (x >> 16) & 0x8000u, ax = x & 0x7fffffffu;
+  if (ax >= 0x7f800000u) return static_cast<uint16_t>(sign | (ax > 0x7f800000u ? 0x7e00u : 0x7c00u));  // NaN, ∞
+  if (ax < 0x38800000u) {  // below 2^-14: a subnormal half, |f|·2^24 (exact) rounded to an integer
+    const float q = FloatOfBits(ax) * 16777216.0f;
+    return static_cast<uint16_t>(sign | static_cast<uint32_t>(toward_zero ? std::floor(q) : std::nearbyint(q)));
   }
-  return static_cast<float>(h);
+  const uint32_t e = (ax >> 23) - 127u + 15u, m = ax & 0x7fffffu;
+  if (e >= 31u) return static_cast<uint16_t>(sign | (toward_zero ? 0x7bffu : 0x7c00u));  // ≥ 65536
+  uint32_t h = (e << 10) | (m >> 13);
+  const uint32_t rest = m & 0x1fffu;
+  if (!toward_zero && (rest > 0x1000u || (rest == 0x1000u && (h & 1u)))) ++h;  // a carry may reach ∞: right
+  return static_cast<uint16_t>(sign | h);
 }
+
+float Fsr2HalfToFloat(uint16_t h) {
+  const uint32_t sign = (static_cast<uint32_t>(h) & 0x8000u) << 16, e = (h >> 10) & 0x1fu, m = h & 0x3ffu;
+  if (e == 0) {
+    const float v = static_cast<float>(m) * (1.0f / 16777216.0f);
+    return sign ? -v : v;
+  }
+  if (e == 31) return FloatOfBits(sign | 0x7f800000u | (m << 13));
+  return FloatOfBits(sign | ((e - 15u + 127u) << 23) | (m << 13));
+}
+
+float Fsr2Half(float f, bool toward_zero) { return Fsr2HalfToFloat(Fsr2HalfBits(f, toward_zero)); }
 
 float Fsr2LockInputLuma(const Fsr2Constants& k, const Fsr2Options& o, float r, float g, float b, float exposure_texel) {
   const float exposure = ExposureOf(exposure_texel);
@@ -295,12 +318,6 @@ float Mix(float a, float b, float t) { return a * (1.0f - t) + b * t; }
 // GetViewSpaceDepth.
 float ViewDepth(const Fsr2Constants& k, float device_depth) {
   return k.device_to_view_depth[1] / (device_depth - k.device_to_view_depth[0]);
-}
-
-float FloatOfBits(uint32_t u) {
-  float f;
-  std::memcpy(&f, &u, 4);
-  return f;
 }
 
 // LoadReconstructedPrevDepth (0 outside).

@@ -66,8 +66,12 @@ struct Fsr2Plane {
   float At(int x, int y, int k) const { return v[Index(x, y, k)]; }
 };
 
-/// `f` rounded to IEEE binary16 and back: what a store to an r16f / rg16f / rgba16f image
-/// keeps. Nearest even (overflow to infinity), or toward zero (overflow to ±65504).
+/// `f` as IEEE binary16 bits: what a store to an r16f / rg16f / rgba16f image writes. Round to
+/// nearest even (overflow to infinity), or toward zero (overflow to ±65504); NaN stays NaN.
+uint16_t Fsr2HalfBits(float f, bool toward_zero = false);
+/// The float value of binary16 bits `h` (exact).
+float Fsr2HalfToFloat(uint16_t h);
+/// `f` rounded to binary16 and back: Fsr2HalfToFloat(Fsr2HalfBits(f, toward_zero)).
 float Fsr2Half(float f, bool toward_zero = false);
 
 /// ComputeLockInputLuma before its store: pow(perceived luma of max(0, rgb) / pre-exposure ·

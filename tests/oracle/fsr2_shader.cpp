@@ -115,20 +115,17 @@ std::vector<float> Padded(const Fsr2Plane& p, int channels) {
 Fsr2Plane FromHalves(const std::vector<uint8_t>& bytes, int w, int h, int channels) {
   Fsr2Plane p(w, h, channels);
   for (size_t i = 0; i < p.v.size(); ++i) {
-    _Float16 hv;
+    uint16_t hv;
     std::memcpy(&hv, bytes.data() + i * 2, 2);
-    p.v[i] = static_cast<float>(hv);
+    p.v[i] = Fsr2HalfToFloat(hv);
   }
   return p;
 }
 
-// A plane as 16-bit float texels (all its channels).
-std::vector<uint16_t> ToHalvesAll(const Fsr2Plane& p) {
+// A plane as 16-bit float texels (all its channels; its values are halves, so exact).
+std::vector<uint16_t> ToHalves(const Fsr2Plane& p) {
   std::vector<uint16_t> out(p.v.size());
-  for (size_t i = 0; i < p.v.size(); ++i) {
-    const _Float16 h = static_cast<_Float16>(p.v[i]);
-    std::memcpy(&out[i], &h, 2);
-  }
+  for (size_t i = 0; i < p.v.size(); ++i) out[i] = Fsr2HalfBits(p.v[i]);
   return out;
 }
 
@@ -136,16 +133,6 @@ std::vector<uint16_t> ToHalvesAll(const Fsr2Plane& p) {
 std::vector<uint8_t> ToUnorm8(const Fsr2Plane& p) {
   std::vector<uint8_t> out(p.v.size());
   for (size_t i = 0; i < p.v.size(); ++i) out[i] = static_cast<uint8_t>(std::lround(p.v[i] * 255.0f));
-  return out;
-}
-
-// A 1-channel plane as r16f texels.
-std::vector<uint16_t> ToHalves(const Fsr2Plane& p) {
-  std::vector<uint16_t> out(p.v.size());
-  for (size_t i = 0; i < p.v.size(); ++i) {
-    const _Float16 h = static_cast<_Float16>(p.v[i]);
-    std::memcpy(&out[i], &h, 2);
-  }
   return out;
 }
 
@@ -231,8 +218,8 @@ void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const 
                     Tex(9, in.depth->w, in.depth->h, VK_FORMAT_R32_SFLOAT), Tex(10, 1, 1, VK_FORMAT_R32G32_SFLOAT),
                     Img(12, rw, rh, VK_FORMAT_R8G8_UNORM), Img(13, rw, rh, VK_FORMAT_R16G16B16A16_SFLOAT), Cb(14)}));
   vk.Fill(VkKey(1, 0), in.prev_depth->data(), in.prev_depth->size() * 4);
-  const auto mv = ToHalvesAll(*in.dilated_motion), dd = ToHalvesAll(*in.dilated_depth),
-             pmv = ToHalvesAll(*in.previous_dilated_motion);
+  const auto mv = ToHalves(*in.dilated_motion), dd = ToHalves(*in.dilated_depth),
+             pmv = ToHalves(*in.previous_dilated_motion);
   vk.Fill(VkKey(1, 1), mv.data(), mv.size() * 2);
   vk.Fill(VkKey(1, 2), dd.data(), dd.size() * 2);
   const auto r8 = ToUnorm8(reactive), c8 = ToUnorm8(comp);
