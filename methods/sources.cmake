@@ -15,6 +15,7 @@ set(AALAB_METHOD_SOURCES
   rescale.cpp
   render_scale.cpp
   fsr1.cpp
+  fsr2.cpp
   aaa.cpp
   taa.cpp
   taa_production.cpp

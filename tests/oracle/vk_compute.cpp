@@ -2,6 +2,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
@@ -31,7 +32,7 @@ struct Context {
   std::string name, error;
   // Kept for the process (lavapipe compiles a pipeline when it is created: seconds for a
   // large shader): set layouts by binding signature, pipelines by signature and module.
-  std::map<std::string, std::pair<VkDescriptorSetLayout, VkPipelineLayout>> layouts;
+  std::map<std::string, std::pair<std::vector<VkDescriptorSetLayout>, VkPipelineLayout>> layouts;
   std::map<std::string, std::pair<VkShaderModule, VkPipeline>> pipelines;
 };
 
@@ -135,9 +136,18 @@ uint32_t MemoryType(uint32_t bits, VkMemoryPropertyFlags want) {
 uint32_t TexelBytes(int format) {
   switch (format) {
     case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+    case VK_FORMAT_R32G32_SFLOAT:
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+    case VK_FORMAT_R16G16B16A16_UNORM: return 8;
     case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R16G16_SFLOAT:
+    case VK_FORMAT_B10G11R11_UFLOAT_PACK32:
     case VK_FORMAT_R8G8B8A8_UNORM:
     case VK_FORMAT_R8G8B8A8_SRGB: return 4;
+    case VK_FORMAT_R16_SFLOAT:
+    case VK_FORMAT_R8G8_UNORM: return 2;
+    case VK_FORMAT_R8_UNORM: return 1;
     default: throw std::runtime_error("vk_compute: unsupported image format " + std::to_string(format));
   }
 }
@@ -214,6 +224,30 @@ std::vector<uint32_t> CompileHlsl(const std::string& text, const std::string& en
   return words;
 }
 
+std::vector<uint32_t> CompileGlslFile(const std::string& path, const std::vector<std::string>& include_dirs,
+                                      const std::vector<std::string>& defines) {
+  char dir_template[] = "/tmp/aalab-glsl-XXXXXX";
+  const char* dir = mkdtemp(dir_template);
+  if (!dir) throw std::runtime_error("mkdtemp failed");
+  const std::string spv = std::string(dir) + "/shader.spv", log = std::string(dir) + "/log.txt";
+  std::string cmd = "glslangValidator -V -S comp";
+  for (const auto& i : include_dirs) cmd += " '-I" + i + "'";
+  for (const auto& d : defines) cmd += " -D" + d;
+  cmd += " -o '" + spv + "' '" + path + "' > '" + log + "' 2>&1";
+  const int rc = std::system(cmd.c_str());
+  std::ifstream in(spv, std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::stringstream out;
+  out << std::ifstream(log).rdbuf();
+  std::filesystem::remove_all(dir);
+  if (rc != 0 || bytes.empty() || bytes.size() % 4 != 0) {
+    throw std::runtime_error("glslangValidator (" + path + ") failed (rc " + std::to_string(rc) + "): " + out.str());
+  }
+  std::vector<uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), bytes.size());
+  return words;
+}
+
 std::string VkCompute::Start() { return Ctx().error; }
 std::string VkCompute::DeviceName() { return Ctx().name; }
 int VkCompute::Lanes() {
@@ -232,13 +266,14 @@ struct VkCompute::Impl {
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
     VkDeviceMemory image_memory = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
     bool filled = false;
   };
   std::map<uint32_t, Res> res;
-  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  std::vector<VkDescriptorSetLayout> set_layouts;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkDescriptorPool pool = VK_NULL_HANDLE;
-  VkDescriptorSet set = VK_NULL_HANDLE;
+  std::vector<VkDescriptorSet> sets;
   std::vector<VkPipeline> pipelines;
   std::string signature;
 };
@@ -246,18 +281,33 @@ struct VkCompute::Impl {
 VkCompute::VkCompute(std::vector<VkBinding> bindings) : impl_(std::make_unique<Impl>()) {
   if (!Ctx().error.empty()) throw std::runtime_error(Ctx().error);
   VkDevice dev = Ctx().device;
-  std::vector<VkDescriptorSetLayoutBinding> lb;
+  uint32_t set_count = 1;
+  for (const VkBinding& b : bindings) set_count = std::max(set_count, b.set + 1);
+  std::vector<std::vector<VkDescriptorSetLayoutBinding>> lb(set_count);
   std::vector<VkDescriptorPoolSize> sizes;
   auto type_of = [](VkBinding::Kind k) {
-    return k == VkBinding::kSampledImage   ? VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE
-           : k == VkBinding::kStorageImage ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
-                                           : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    switch (k) {
+      case VkBinding::kSampledImage: return VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+      case VkBinding::kStorageImage: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+      case VkBinding::kUniformBuffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+      case VkBinding::kSampler: return VK_DESCRIPTOR_TYPE_SAMPLER;
+      default: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    }
   };
   for (const VkBinding& b : bindings) {
     Impl::Res r;
     r.b = b;
-    if (b.kind == VkBinding::kStorageBuffer) {
-      r.host = MakeHostBuffer(b.bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | (b.indirect ? VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT : 0));
+    if (b.kind == VkBinding::kStorageBuffer || b.kind == VkBinding::kUniformBuffer) {
+      r.host = MakeHostBuffer(b.bytes, (b.kind == VkBinding::kUniformBuffer ? VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
+                                                                            : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) |
+                                           (b.indirect ? VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT : 0));
+    } else if (b.kind == VkBinding::kSampler) {
+      VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+      sci.magFilter = sci.minFilter = b.linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+      sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+      sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+      sci.maxLod = 0.0f;
+      Check(vkCreateSampler(dev, &sci, nullptr, &r.sampler), "vkCreateSampler");
     } else {
       VkImageCreateInfo ic{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
       ic.imageType = VK_IMAGE_TYPE_2D;
@@ -286,47 +336,59 @@ VkCompute::VkCompute(std::vector<VkBinding> bindings) : impl_(std::make_unique<I
       r.host = MakeHostBuffer(static_cast<uint64_t>(b.width) * static_cast<uint64_t>(b.height) * TexelBytes(b.format),
                               VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     }
-    lb.push_back({b.binding, type_of(b.kind), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+    lb[b.set].push_back({b.binding, type_of(b.kind), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
     sizes.push_back({type_of(b.kind), 1});
-    impl_->res[b.binding] = r;
+    impl_->res[VkKey(b.set, b.binding)] = r;
   }
-  for (const auto& l : lb) impl_->signature += std::to_string(l.binding) + ":" + std::to_string(l.descriptorType) + ";";
+  for (uint32_t s = 0; s < set_count; ++s) {
+    impl_->signature += "|";
+    for (const auto& l : lb[s])
+      impl_->signature += std::to_string(l.binding) + ":" + std::to_string(l.descriptorType) + ";";
+  }
   auto& cached = Ctx().layouts[impl_->signature];
-  if (!cached.first) {
-    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    lci.bindingCount = static_cast<uint32_t>(lb.size());
-    lci.pBindings = lb.data();
-    Check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &cached.first), "vkCreateDescriptorSetLayout");
+  if (!cached.second) {
+    for (uint32_t s = 0; s < set_count; ++s) {
+      VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+      lci.bindingCount = static_cast<uint32_t>(lb[s].size());
+      lci.pBindings = lb[s].data();
+      VkDescriptorSetLayout l;
+      Check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &l), "vkCreateDescriptorSetLayout");
+      cached.first.push_back(l);
+    }
     VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    plci.setLayoutCount = 1;
-    plci.pSetLayouts = &cached.first;
+    plci.setLayoutCount = set_count;
+    plci.pSetLayouts = cached.first.data();
     Check(vkCreatePipelineLayout(dev, &plci, nullptr, &cached.second), "vkCreatePipelineLayout");
   }
-  impl_->set_layout = cached.first;
+  impl_->set_layouts = cached.first;
   impl_->layout = cached.second;
   VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  dpci.maxSets = 1;
+  dpci.maxSets = set_count;
   dpci.poolSizeCount = static_cast<uint32_t>(sizes.size());
   dpci.pPoolSizes = sizes.data();
   Check(vkCreateDescriptorPool(dev, &dpci, nullptr, &impl_->pool), "vkCreateDescriptorPool");
   VkDescriptorSetAllocateInfo dsai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   dsai.descriptorPool = impl_->pool;
-  dsai.descriptorSetCount = 1;
-  dsai.pSetLayouts = &impl_->set_layout;
-  Check(vkAllocateDescriptorSets(dev, &dsai, &impl_->set), "vkAllocateDescriptorSets");
+  dsai.descriptorSetCount = set_count;
+  dsai.pSetLayouts = impl_->set_layouts.data();
+  impl_->sets.resize(set_count);
+  Check(vkAllocateDescriptorSets(dev, &dsai, impl_->sets.data()), "vkAllocateDescriptorSets");
   std::vector<VkDescriptorImageInfo> ii(bindings.size());
   std::vector<VkDescriptorBufferInfo> bi(bindings.size());
   std::vector<VkWriteDescriptorSet> writes;
   for (size_t i = 0; i < bindings.size(); ++i) {
-    const Impl::Res& r = impl_->res[bindings[i].binding];
+    const Impl::Res& r = impl_->res[VkKey(bindings[i].set, bindings[i].binding)];
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = impl_->set;
+    w.dstSet = impl_->sets[bindings[i].set];
     w.dstBinding = bindings[i].binding;
     w.descriptorCount = 1;
     w.descriptorType = type_of(bindings[i].kind);
-    if (bindings[i].kind == VkBinding::kStorageBuffer) {
+    if (bindings[i].kind == VkBinding::kStorageBuffer || bindings[i].kind == VkBinding::kUniformBuffer) {
       bi[i] = {r.host.buffer, 0, VK_WHOLE_SIZE};
       w.pBufferInfo = &bi[i];
+    } else if (bindings[i].kind == VkBinding::kSampler) {
+      ii[i] = {r.sampler, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED};
+      w.pImageInfo = &ii[i];
     } else {
       ii[i] = {VK_NULL_HANDLE, r.view, VK_IMAGE_LAYOUT_GENERAL};
       w.pImageInfo = &ii[i];
@@ -345,6 +407,7 @@ VkCompute::~VkCompute() {
     if (r.view) vkDestroyImageView(dev, r.view, nullptr);
     if (r.image) vkDestroyImage(dev, r.image, nullptr);
     if (r.image_memory) vkFreeMemory(dev, r.image_memory, nullptr);
+    if (r.sampler) vkDestroySampler(dev, r.sampler, nullptr);
   }
 }
 
@@ -419,7 +482,8 @@ void VkCompute::Run(const std::vector<VkStep>& steps) {
   host_to_shader.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
   vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_HOST_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                        0, 1, &host_to_shader, 0, nullptr, 0, nullptr);
-  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, impl_->layout, 0, 1, &impl_->set, 0, nullptr);
+  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, impl_->layout, 0,
+                          static_cast<uint32_t>(impl_->sets.size()), impl_->sets.data(), 0, nullptr);
   const VkPipelineStageFlags stages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;
   for (const VkStep& s : steps) {
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, impl_->pipelines.at(static_cast<size_t>(s.pipeline)));

@@ -22,16 +22,27 @@ namespace aalab::oracle {
 std::vector<uint32_t> CompileHlsl(const std::string& text, const std::string& entry,
                                   const std::vector<std::string>& defines);
 
-/// One binding of the shared descriptor set.
+/// Compiles a GLSL compute shader file (`path`; `#include`s resolved from its folder and
+/// `include_dirs`) to SPIR-V with `glslangValidator -V -S comp` plus `defines` (NAME=VALUE).
+/// Throws with the compiler's output on failure.
+std::vector<uint32_t> CompileGlslFile(const std::string& path, const std::vector<std::string>& include_dirs,
+                                      const std::vector<std::string>& defines);
+
+/// One binding of the descriptor sets (set `set`, binding `binding`).
 struct VkBinding {
-  enum Kind { kSampledImage, kStorageImage, kStorageBuffer } kind;
+  enum Kind { kSampledImage, kStorageImage, kStorageBuffer, kUniformBuffer, kSampler } kind;
   uint32_t binding;
   // Images: size and format (VkFormat value); buffers: size in bytes.
   int width = 0, height = 0;
   int format = 0;
   uint64_t bytes = 0;
   bool indirect = false;  ///< a storage buffer also used as the DispatchIndirect argument
+  uint32_t set = 0;       ///< the descriptor set (sets 0..max are all created; unused ones empty)
+  bool linear = false;    ///< samplers: LINEAR (else NEAREST) filtering, always CLAMP_TO_EDGE, mip level 0
 };
+
+/// The key Fill and Read take for binding `binding` of set `set` (for set 0, the binding).
+inline uint32_t VkKey(uint32_t set, uint32_t binding) { return set * 65536u + binding; }
 
 /// One step of the command buffer: a pipeline and a direct or indirect dispatch.
 struct VkStep {
@@ -58,10 +69,11 @@ class VkCompute {
   /// Adds a pipeline; returns its index for VkStep.
   int AddPipeline(const std::vector<uint32_t>& spirv, const std::string& entry);
   /// Initial contents (raw bytes, tightly packed rows for images); unset ones start as zero.
+  /// `binding` is VkKey(set, binding).
   void Fill(uint32_t binding, const void* data, uint64_t bytes);
   /// Records every step (each followed by a full compute/indirect barrier), runs, waits.
   void Run(const std::vector<VkStep>& steps);
-  /// The contents of a binding after Run (images as tightly packed rows).
+  /// The contents of a binding (VkKey(set, binding)) after Run (images as tightly packed rows).
   std::vector<uint8_t> Read(uint32_t binding);
 
  private:

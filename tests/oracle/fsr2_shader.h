@@ -1,0 +1,52 @@
+// The original FSR 2.2.1 passes (ffx_fsr2_*_pass.glsl with their headers, read from
+// ../shared/third_party/fidelityfx-fsr2/shaders at test time) compiled by glslangValidator
+// (GLSL → SPIR-V, FFX_GPU FFX_GLSL FFX_HALF=0 and the FFX_FSR2_OPTION_* of Fsr2Options, as the
+// Vulkan backend builds its permutations) and run on lavapipe through tests/oracle/vk_compute.h,
+// with the descriptor layout the GLSL declares: set 0 the two samplers (point and linear
+// clamp), set 1 the pass's textures and images at the pass's FSR2_BIND_* numbers and cbFSR2.
+// Each resource has the format the shader declares for it (r16f, rg16f, r32ui, ...); the
+// app-provided inputs are float (colour rgba32f, depth r32f, motion rg32f, exposure rg32f 1×1).
+// Every pass is compiled, then made precise (PreciseSpirv) before lavapipe compiles it.
+#pragma once
+#include <string>
+
+#include "methods/fsr2.h"
+
+namespace aalab::oracle {
+
+/// `words` (a SPIR-V module) with every float arithmetic result (OpFAdd, OpFSub, OpFMul,
+/// OpFDiv, OpFNegate, OpDot, the vector/matrix products, ...) decorated NoContraction: what
+/// GLSL's `precise` does, without an edit to AMD's text. Mesa then neither fuses multiply-adds
+/// nor reassociates (it would turn RCAS's lobe·b + lobe·d + ... into lobe·(b + d + ...)), so
+/// the shader is evaluated as written, in IEEE float32: the arithmetic the port computes.
+std::vector<uint32_t> PreciseSpirv(const std::vector<uint32_t>& words);
+
+/// "" when the FSR2 sources, glslangValidator and lavapipe are there, else what is missing.
+std::string Fsr2ShaderAvailable();
+
+/// ffx_fsr2_reconstruct_previous_depth_pass.glsl over the render size (8×8 groups); `out`'s
+/// prev_depth is the r32ui image's initial contents (render-size long) and comes back updated.
+void RunFsr2ReconstructShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& color,
+                              const Fsr2Plane& depth, const Fsr2Plane& motion, float exposure, Fsr2ReconstructOut* out);
+
+/// ffx_fsr2_lock_pass.glsl over the render size: `lock_luma` goes in as r16f (its values must
+/// be halves), `new_locks` (display size, values 0 or 1) as r8 unorm, `prev_depth` as r32ui;
+/// both come back updated.
+void RunFsr2LockShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Plane& lock_luma, Fsr2Plane* new_locks,
+                       std::vector<uint32_t>* prev_depth);
+
+/// ffx_fsr2_depth_clip_pass.glsl over the render size: the reconstruct outputs and the
+/// previous dilated motion go in as the formats FSR2 gives them (r32ui, rg16f, r16f; their
+/// values must be halves), masks as r8 unorm (values k/255; empty planes: 1×1 zero textures,
+/// as the API binds when the app gives none).
+void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2DepthClipIn& in,
+                            Fsr2DepthClipOut* out);
+
+/// ffx_fsr2_rcas_pass.glsl over upscaled's size (64-thread groups over 16×16 tiles):
+/// `upscaled` as rgba32f, the output as rgba32f (the app-controlled format: floats before any
+/// rounding); rgb floats, 3 per pixel.
+/// `precise` false: the module as glslang wrote it (Mesa may fuse and reassociate).
+std::vector<float> RunFsr2RcasShader(const Fsr2Constants& k, const Fsr2Plane& upscaled, float exposure, uint32_t con_x,
+                                     bool precise = true);
+
+}  // namespace aalab::oracle
