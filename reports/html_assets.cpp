@@ -1,4 +1,4 @@
-// The HTML report's embedded assets (reports/html/) and metric descriptions (see html_assets.h).
+// The HTML report's embedded assets (reports/html/) and metric descriptions (from the registry; see html_assets.h).
 #include "reports/html_assets.h"
 
 #include <stdexcept>

@@ -1,5 +1,6 @@
 /// Inline assets of the HTML report (internal to reports/): the stylesheet and the script,
-/// as raw strings, and what the page knows about metrics (labels, units, direction).
+/// as raw strings, and what the page says about metrics (labels, units, direction: read from
+/// the metric registry, metrics/metric.h).
 #pragma once
 #include <cstddef>
 #include <optional>
