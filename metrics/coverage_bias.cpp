@@ -88,12 +88,24 @@ std::vector<MetricValue> Compute(const MetricInput& in) {
 }  // namespace
 
 std::vector<MetricEntry> CoverageBiasMetrics() {
+  std::vector<MetricOutput> outputs = {
+      {"area_bias_px2", "Area bias", "px²", Improves::kTowardZero, kSignificantDigits,
+       "Mean signed area error per isolated flat disk (method − reference coverage summed over the disk's "
+       "window): positive when shapes grow, negative when they shrink, 0 is unbiased.",
+       ""},
+      {"area_bias_abs_rel", "|Area bias| rel.", "", Improves::kLower, kSignificantDigits,
+       "Mean |area error| / true area over all isolated flat disks.", ""}};
+  constexpr const char* kBinLabels[] = {"r 0–1", "r 1–2", "r 2–4", "r 4–8", "r 8–16", "r 16–64"};
+  for (int b = 0; b < kBins; ++b) {
+    outputs.push_back({kBinNames[b], std::string("Area bias rel. ") + kBinLabels[b], "", Improves::kTowardZero,
+                       kSignificantDigits,
+                       std::string("Mean signed area error / true area of the disks with radius ") + kBinLabels[b] +
+                           " px (0 is unbiased).",
+                       ""});
+  }
   return {{"coverage_bias",
            "signed area error of isolated flat disks (grow > 0, shrink < 0), overall and per radius bin",
-           {"area_bias_px2", "area_bias_abs_rel", kBinNames[0], kBinNames[1], kBinNames[2], kBinNames[3], kBinNames[4],
-            kBinNames[5]},
-           Compute,
-           false}};
+           outputs, Compute, false}};
 }
 
 }  // namespace aalab

@@ -99,7 +99,19 @@ std::vector<MetricEntry> EdgeErrorMetrics() {
   MetricEntry e{"edge",
                 "PSNR/RMSE on edge-mask pixels, PSNR off the mask, share of the no-AA edge "
                 "error removed",
-                {"edge_psnr_db", "edge_rmse", "interior_psnr_db", "edge_error_removed"},
+                {{"edge_psnr_db", "Edge PSNR", "dB", Improves::kHigher, 2,
+                  "PSNR over the geometric edge mask: the aliasing that AA should remove.",
+                  "Rewards removing the stair-step error on geometric edges. A blur that smears every edge "
+                  "scores well here, and blur of detail off the edges is not counted at all."},
+                 {"edge_rmse", "Edge RMSE", "", Improves::kLower, kSignificantDigits,
+                  "Root mean squared error over the edge mask (0..1).", ""},
+                 {"interior_psnr_db", "Interior PSNR", "dB", Improves::kHigher, 2,
+                  "PSNR off the edge mask: detail that AA should not blur.",
+                  "Rewards leaving everything off the edges alone: drops when a filter blurs texture or text."},
+                 {"edge_error_removed", "Edge err. removed", "", Improves::kHigher, kSignificantDigits,
+                  "1 − edge MSE / none's edge MSE: 1 removes all of no-AA's edge error, 0 is no better than no AA, "
+                  "negative is worse.",
+                  ""}},
                 &ComputeEdgeError};
   e.needs_edge_mask = true;
   return {e};

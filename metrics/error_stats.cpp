@@ -100,7 +100,14 @@ std::vector<MetricValue> ComputeAbsError(const MetricInput& in) {
 std::vector<MetricEntry> AbsErrorMetrics() {
   return {{"abs_error",
            "Per-pixel |error| (mean over R,G,B, sRGB values): nearest-rank p50/p95/p99 and max",
-           {"abs_err_p50", "abs_err_p95", "abs_err_p99", "abs_err_max"},
+           {{"abs_err_p50", "|err| p50", "", Improves::kLower, kSignificantDigits,
+             "Median of the per-pixel absolute error (RGB mean, 0..1).", ""},
+            {"abs_err_p95", "|err| p95", "", Improves::kLower, kSignificantDigits,
+             "95th percentile of the per-pixel absolute error.", ""},
+            {"abs_err_p99", "|err| p99", "", Improves::kLower, kSignificantDigits,
+             "99th percentile of the per-pixel absolute error.", ""},
+            {"abs_err_max", "|err| max", "", Improves::kLower, kSignificantDigits, "Largest per-pixel absolute error.",
+             ""}},
            &ComputeAbsError}};
 }
 

@@ -20,5 +20,11 @@ std::vector<MetricEntry> AbsErrorMetrics();
 /// `coverage_bias` (metrics/coverage_bias.cpp): area_bias_px2, area_bias_abs_rel and
 /// area_bias_rel_r* per radius bin. Needs MetricInput::coverage_probes.
 std::vector<MetricEntry> CoverageBiasMetrics();
+/// `temporal` (metrics/temporal.cpp, a sequence row): temporal_rmse, temporal_psnr_db,
+/// temporal_edge_rmse. Computed by TemporalError.
+std::vector<MetricEntry> TemporalMetrics();
+/// `temporal_perceptual` (metrics/temporal_perceptual.cpp, a sequence row):
+/// temporal_perceptual, temporal_csf_rmse. Computed by PerceptualTemporalError.
+std::vector<MetricEntry> PerceptualTemporalMetrics();
 
 }  // namespace aalab

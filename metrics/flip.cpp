@@ -592,7 +592,15 @@ std::vector<MetricEntry> FlipMetrics() {
   return {{"flip",
            "LDR-FLIP (Andersson 2020) at the viewing condition's pixels/degree (--viewing; default 67): mean, value-weighted median and "
            "max of the per-pixel error in [0,1]",
-           {"flip_mean", "flip_median_weighted", "flip_max"},
+           {{"flip_mean", "FLIP mean", "", Improves::kLower, kSignificantDigits,
+             "LDR-FLIP per-pixel error (0..1) averaged over the image, at the run's viewing condition (pixels per "
+             "degree in the header; default 67).",
+             "Rewards what a viewer sees when flipping between the result and the reference at this viewing "
+             "distance: both jaggies and lost sharpness count, fine detail below the eye's resolution does not. A "
+             "method that trades aliasing for blur can score worse than no AA."},
+            {"flip_median_weighted", "FLIP wtd. median", "", Improves::kLower, kSignificantDigits,
+             "Value-weighted median of the LDR-FLIP error (as NVIDIA's FLIP tool prints).", ""},
+            {"flip_max", "FLIP max", "", Improves::kLower, kSignificantDigits, "Largest per-pixel LDR-FLIP error.", ""}},
            &ComputeFlipMetric}};
 }
 

@@ -48,22 +48,65 @@ struct MetricValue {
   std::string null_reason;
 };
 
+/// Which way an output improves: higher, lower, or towards 0 (a signed bias).
+enum class Improves { kHigher, kLower, kTowardZero };
+
+/// `MetricOutput::decimals` for values printed with significant digits instead of fixed
+/// decimals (the page: 4 significant digits; aalab export: enough decimals for 3 significant
+/// digits of a column's largest value).
+inline constexpr int kSignificantDigits = -1;
+
+/// One value a metric produces, described for every reader (the page, compare, export,
+/// sweep, METRICS.md's generated tables): what reports say about it comes from here only.
+struct MetricOutput {
+  std::string key;    ///< the name in report.json, e.g. "edge_psnr_db"
+  std::string label;  ///< short column label, e.g. "Edge PSNR"
+  std::string unit;   ///< "dB" or "" (dimensionless); "dB" values are judged with --max-drop-db
+  Improves better = Improves::kLower;
+  /// Printed precision: fixed decimals (dB values: 2), or kSignificantDigits.
+  int decimals = kSignificantDigits;
+  std::string help;     ///< one sentence: what the value is (the page's column tooltip)
+  std::string rewards;  ///< what it rewards and misses (the page's axis note); may be empty
+};
+
+/// What a registry row computes from: one image against its reference (ComputeAllMetrics),
+/// or a frame sequence (computed frame by frame by its own accumulator, metrics/temporal*.h).
+enum class MetricInputs { kImage, kSequence };
+
 /// One registry row: a metric family computes one or more named values.
 struct MetricEntry {
   std::string name;
   std::string help;
-  std::vector<std::string> outputs;  ///< names of the values it produces
-  std::vector<MetricValue> (*compute)(const MetricInput& in);
+  std::vector<MetricOutput> outputs;  ///< the values it produces, in order
+  /// Computes the outputs of one image pair; null for sequence rows.
+  std::vector<MetricValue> (*compute)(const MetricInput& in) = nullptr;
   /// The row needs `MetricInput::edge_mask`; ComputeAllMetrics reports its values as null
   /// ("no edge mask") when the mask is absent instead of calling `compute`.
   bool needs_edge_mask = false;
+  MetricInputs inputs = MetricInputs::kImage;
   /// Where the metric comes from: BibTeX keys of reports/export_bibliography.cpp, comma
   /// separated ("" = defined here, nothing to cite). Set once per family in registry.cpp.
   std::string source = "";
 };
 
-/// Every metric, in listing order.
+/// Every metric, image and sequence rows, in listing order (metrics/registry.cpp).
 const std::vector<MetricEntry>& MetricRegistry();
+
+/// The output named `key` (any row), or null when no registered metric produces it.
+const MetricOutput* FindMetricOutput(const std::string& key);
+
+/// The row that produces `key`, or null.
+const MetricEntry* FindMetricEntry(const std::string& key);
+
+/// Keys of every output of the image rows (what ComputeAllMetrics returns), in order.
+std::vector<std::string> ImageMetricKeys();
+
+/// The keys of `entry`'s outputs, in order.
+std::vector<std::string> OutputKeys(const MetricEntry& entry);
+
+/// METRICS.md's generated tables (`aalab list metrics --markdown`): the summary of every
+/// output (family, label, unit, better, printed precision, input, source) and what each says.
+std::string MetricTablesMarkdown();
 
 /// Mean over pixels of the RGB-mean squared error between two same-size images (double sums,
 /// row-major order). `mask` (optional): only pixels where mask > 0.5 (or <= 0.5 when

@@ -70,7 +70,13 @@ std::vector<MetricValue> ComputePsnr(const MetricInput& in) {
 
 std::vector<MetricEntry> PsnrMetrics() {
   return {{"psnr", "PSNR (dB, peak 1.0) and MSE on sRGB-encoded RGB over the whole image",
-           {"psnr_db", "mse"}, &ComputePsnr}};
+           {{"psnr_db", "PSNR", "dB", Improves::kHigher, 2,
+             "PSNR against the reference over all pixels (sRGB-encoded RGB, peak 1).",
+             "Rewards closeness to the reference pixel by pixel. Blur that halves an edge's error scores well "
+             "even where it also softens texture; it does not say whether the result looks better."},
+            {"mse", "MSE", "", Improves::kLower, kSignificantDigits,
+             "Mean squared error over all pixels (sRGB-encoded RGB, 0..1).", ""}},
+           &ComputePsnr}};
 }
 
 }  // namespace aalab

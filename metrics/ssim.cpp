@@ -532,7 +532,10 @@ std::vector<MetricEntry> SsimMetrics() {
   return {{"ssim",
            "SSIM (Wang 2004; 11x11 Gaussian σ=1.5, K1=0.01, K2=0.03), mean over R,G,B on "
            "sRGB values, valid region",
-           {"ssim"},
+           {{"ssim", "SSIM", "", Improves::kHigher, kSignificantDigits,
+             "Structural similarity (Wang et al. 2004), mean of R, G, B.",
+             "Rewards matching local structure (mean, contrast, correlation) in 11×11 windows; blur lowers it "
+             "less than a one-pixel shift."}},
            &ComputeSsimMetric}};
 }
 

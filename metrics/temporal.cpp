@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "metrics/families.h"
 
 namespace aalab {
 
@@ -44,7 +45,25 @@ void TemporalError::AddFrame(const ImageF& image, const ImageF& reference, const
   ++frames_;
 }
 
-std::vector<std::string> TemporalMetricNames() { return {"temporal_rmse", "temporal_psnr_db", "temporal_edge_rmse"}; }
+std::vector<MetricEntry> TemporalMetrics() {
+  MetricEntry e{"temporal",
+                "frame-to-frame change of the error image (method − reference), RMS over all pixels, as a PSNR, and "
+                "over the edge masks (--frames N > 1)",
+                {{"temporal_rmse", "Temporal RMSE", "", Improves::kLower, kSignificantDigits,
+                  "RMS over pixels and frame pairs of the change of the error image (method − reference) from frame "
+                  "to frame: flicker and crawl the reference does not have (0..1, --frames > 1).",
+                  "Rewards a steady error: any frame-to-frame change the reference does not have counts the same at "
+                  "every spatial scale, so single-pixel popping weighs as much as wide shimmer, and a steadily wrong "
+                  "(blurred or aliased but still) image scores 0."},
+                 {"temporal_psnr_db", "Temporal PSNR", "dB", Improves::kHigher, 2,
+                  "10·log10(1 / temporal MSE): the temporal RMSE as a PSNR.", ""},
+                 {"temporal_edge_rmse", "Temporal edge RMSE", "", Improves::kLower, kSignificantDigits,
+                  "The temporal RMSE over the edge masks of both frames of each pair.", ""}}};
+  e.inputs = MetricInputs::kSequence;
+  return {e};
+}
+
+std::vector<std::string> TemporalMetricNames() { return OutputKeys(TemporalMetrics().front()); }
 
 std::vector<MetricValue> TemporalError::Values() const {
   std::vector<MetricValue> out;

@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "metrics/families.h"
 #include "metrics/flip.h"
 
 namespace aalab {
@@ -212,7 +213,28 @@ void PerceptualTemporalError::FlushWindow() {
   ++window_;
 }
 
-std::vector<std::string> PerceptualTemporalNames() { return {"temporal_perceptual", "temporal_csf_rmse"}; }
+std::vector<MetricEntry> PerceptualTemporalMetrics() {
+  MetricEntry e{
+      "temporal_perceptual",
+      "how visible the change of the error is: CSF-blurred lightness error, its spectrum over windows of up to 32 "
+      "frames weighted by Watson's temporal CSF, and its adjacent-frame RMS (--frames N > 1)",
+      {{"temporal_perceptual", "Perceptual temporal error", "", Improves::kLower, kSignificantDigits,
+        "How visible the change of the error over the sequence is at the viewing condition: the lightness error, "
+        "blurred by FLIP's spatial CSF at the run's pixels per degree, its variation over windows of up to 32 frames "
+        "weighted per temporal frequency by Watson's (1986) temporal CSF at the run's frame rate (L*/100 units).",
+        "Rewards an error that does not visibly change over time: single-pixel popping the eye does not resolve at "
+        "this distance, and flicker near the frame rate's limit, count less; wide shimmer, ghost trails and slow "
+        "crawl over the whole window count more. Still wrong images score 0: read it with FLIP."},
+       {"temporal_csf_rmse", "Temporal CSF RMSE", "", Improves::kLower, kSignificantDigits,
+        "The frame-to-frame change of the CSF-blurred lightness error, RMS (L*/100 units): temporal RMSE with the "
+        "spatial detail the eye does not resolve at this viewing distance removed.",
+        "As the temporal RMSE, but on the eye-resolvable part of the lightness error: single-pixel popping counts "
+        "less than wide shimmer."}}};
+  e.inputs = MetricInputs::kSequence;
+  return {e};
+}
+
+std::vector<std::string> PerceptualTemporalNames() { return OutputKeys(PerceptualTemporalMetrics().front()); }
 
 std::vector<MetricValue> PerceptualTemporalError::Values() const {
   if (frames_ < 2 || spectral_terms_ == 0 || adjacent_terms_ == 0) {

@@ -15,41 +15,13 @@
 
 #include "core/error.h"
 #include "core/exit_code.h"
+#include "metrics/metric.h"
 #include "reports/compare_text.h"
 #include "reports/html_page.h"
 
 namespace aalab {
 
 namespace {
-
-struct DirectionRule {
-  const char* text;  // exact name, or pattern with one '*' at the start or end
-  Better better;
-};
-
-// The explicit table (METRICS.md "better" column). Exact names first, then patterns.
-constexpr DirectionRule kDirections[] = {
-    {"psnr_db", Better::kHigher},          {"edge_psnr_db", Better::kHigher},
-    {"interior_psnr_db", Better::kHigher}, {"ssim", Better::kHigher},
-    {"edge_error_removed", Better::kHigher}, {"mse", Better::kLower},
-    {"edge_rmse", Better::kLower},         {"temporal_rmse", Better::kLower},
-    {"temporal_edge_rmse", Better::kLower}, {"temporal_perceptual", Better::kLower},
-    {"temporal_csf_rmse", Better::kLower},  {"*_psnr_db", Better::kHigher},
-    {"flip_*", Better::kLower},            {"abs_err_*", Better::kLower},
-    {"area_bias_abs_rel", Better::kLower},
-};
-
-bool Matches(const std::string& pattern, const std::string& name) {
-  if (pattern.front() == '*') {
-    const std::string suffix = pattern.substr(1);
-    return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-  }
-  if (pattern.back() == '*') {
-    const std::string prefix = pattern.substr(0, pattern.size() - 1);
-    return name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0;
-  }
-  return pattern == name;
-}
 
 bool ParseNumber(const std::string& text, double* out) {
   if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return false;
@@ -64,23 +36,27 @@ bool ParseNumber(const std::string& text, double* out) {
 }  // namespace
 
 std::optional<Better> MetricDirection(const std::string& name) {
-  for (const auto& rule : kDirections) {
-    if (Matches(rule.text, name)) return rule.better;
-  }
-  return std::nullopt;
+  const MetricOutput* o = FindMetricOutput(name);  // the registry (metrics/metric.h)
+  if (!o || o->better == Improves::kTowardZero) return std::nullopt;
+  return o->better == Improves::kHigher ? Better::kHigher : Better::kLower;
 }
 
 std::string KnownMetricsText() {
   std::string higher, lower;
-  for (const auto& rule : kDirections) {
-    std::string& s = rule.better == Better::kHigher ? higher : lower;
-    s += (s.empty() ? "" : ", ") + std::string(rule.text);
+  for (const MetricEntry& e : MetricRegistry()) {
+    for (const MetricOutput& o : e.outputs) {
+      const std::optional<Better> b = MetricDirection(o.key);
+      if (!b) continue;
+      std::string& s = *b == Better::kHigher ? higher : lower;
+      s += (s.empty() ? "" : ", ") + o.key;
+    }
   }
   return higher + " (higher is better); " + lower + " (lower is better)";
 }
 
 bool IsDbMetric(const std::string& name) {
-  return name.size() > 3 && name.compare(name.size() - 3, 3, "_db") == 0;
+  if (const MetricOutput* o = FindMetricOutput(name)) return o->unit == "dB";
+  return name.size() > 3 && name.compare(name.size() - 3, 3, "_db") == 0;  // another version's name
 }
 
 double Threshold::Allowed(double base) const { return relative ? value * std::fabs(base) : value; }

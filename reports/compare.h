@@ -51,15 +51,16 @@ namespace aalab {
 /// Which way a metric improves.
 enum class Better { kHigher, kLower };
 
-/// The explicit direction table. Exact names: psnr_db, edge_psnr_db, interior_psnr_db, ssim,
-/// edge_error_removed (higher); mse, edge_rmse (lower). Patterns: `*_psnr_db` (higher),
-/// `flip_*`, `abs_err_*` (lower). Empty for any other name.
+/// Which way a metric improves, from the metric registry (metrics/metric.h MetricOutput):
+/// image and sequence outputs. Empty for names no registered metric produces and for signed
+/// biases (closer to 0 is better: area_bias_px2, area_bias_rel_r*), which compare cannot judge.
 std::optional<Better> MetricDirection(const std::string& name);
 
 /// The known names and patterns, for "allowed: ..." messages.
 std::string KnownMetricsText();
 
-/// True for metrics in decibels (name ends in `_db`): judged with --max-drop-db.
+/// True for metrics in decibels (the registry's unit "dB"; for names it does not know, a name
+/// ending in `_db`): judged with --max-drop-db.
 bool IsDbMetric(const std::string& name);
 
 /// A tolerance: absolute (metric units or ms) or relative (fraction of the baseline).

@@ -123,6 +123,15 @@ const Bib kBibliography[] = {
   pages   = {15:1--15:23},
   year    = {2020}
 })"},
+    {"watson1986temporal", R"(@incollection{watson1986temporal,
+  author    = {Andrew B. Watson},
+  title     = {Temporal Sensitivity},
+  booktitle = {Handbook of Perception and Human Performance, Vol. 1: Sensory Processes and Perception},
+  editor    = {Kenneth R. Boff and Lloyd Kaufman and James P. Thomas},
+  chapter   = {6},
+  publisher = {Wiley},
+  year      = {1986}
+})"},
 };
 
 }  // namespace

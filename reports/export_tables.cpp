@@ -9,6 +9,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "metrics/metric.h"
 #include "reports/html_assets.h"
 
 namespace aalab {
@@ -22,13 +23,13 @@ constexpr double kNearFloorDb = 3.0;
 /// magnitude, other values with enough decimals for 3 significant digits of the largest.
 enum class Kind { kDb, kMs, kValue, kFlag };
 
-int Decimals(Kind kind, const std::vector<TableCell>& column) {
+int Decimals(Kind kind, const std::vector<TableCell>& column, int fixed) {
   double largest = 0;
   for (const auto& c : column) {
     if (c.value) largest = std::max(largest, std::fabs(*c.value));
   }
   switch (kind) {
-    case Kind::kDb: return 2;
+    case Kind::kDb: return fixed;
     case Kind::kMs: return largest < 1 ? 3 : largest < 100 ? 2 : 1;
     case Kind::kFlag: return 0;
     case Kind::kValue:
@@ -38,15 +39,24 @@ int Decimals(Kind kind, const std::vector<TableCell>& column) {
   return 2;
 }
 
+/// A metric's column: fixed decimals where the registry gives them (every dB value: 2), else
+/// significant digits; a name the registry does not know: fixed 2 for dB, else significant.
 Kind MetricKind(const std::string& metric) {
+  if (const MetricOutput* o = FindMetricOutput(metric)) return o->decimals >= 0 ? Kind::kDb : Kind::kValue;
   return html::DescribeMetric(metric).unit == "dB" ? Kind::kDb : Kind::kValue;
 }
 
+/// The fixed decimals of a Kind::kDb metric column (the registry's; 2 for unknown dB names).
+int MetricDecimals(const std::string& metric) {
+  const MetricOutput* o = FindMetricOutput(metric);
+  return o && o->decimals >= 0 ? o->decimals : 2;
+}
+
 /// Fills every cell's text of column `col` at the column's precision.
-void FormatColumn(ExportTable& t, size_t col, Kind kind) {
+void FormatColumn(ExportTable& t, size_t col, Kind kind, int fixed = 2) {
   std::vector<TableCell> column;
   for (const auto& row : t.cells) column.push_back(row[col]);
-  const int dec = Decimals(kind, column);
+  const int dec = Decimals(kind, column, fixed);
   for (auto& row : t.cells) {
     TableCell& c = row[col];
     if (!c.value) continue;
@@ -286,7 +296,7 @@ ExportTable MetricTable(const std::vector<ExportSource>& sources, const ExportSe
     }
   }
   for (size_t col = 0; col < t.columns.size(); ++col) {
-    FormatColumn(t, col, MetricKind(sel.metric));
+    FormatColumn(t, col, MetricKind(sel.metric), MetricDecimals(sel.metric));
     MarkBest(t, col, info.better, 0, t.cells.size());
   }
   t.caption = MetricWithUnit(sel.metric) + ", " + Direction(info.better) + ", of each method per scene" +
@@ -351,7 +361,7 @@ ExportTable CostTable(const std::vector<ExportSource>& sources, const ExportSele
   const Kind kinds[] = {q, q, Kind::kMs, Kind::kMs, Kind::kValue, Kind::kFlag};
   const int betters[] = {info.better, +1, -1, 0, +1, 0};
   for (size_t col = 0; col < t.columns.size(); ++col) {
-    FormatColumn(t, col, kinds[col]);
+    FormatColumn(t, col, kinds[col], col < 2 ? MetricDecimals(sel.metric) : 2);
     for (const auto& [b, e] : group_rows) MarkBest(t, col, betters[col], b, e);
   }
   const std::string scope_text = sel.scenes.size() > 1 ? "means over the scenes" : "on " + sel.scenes.front();

@@ -1,5 +1,6 @@
 /// Inline assets of the HTML report (internal to reports/): the stylesheet and the script,
-/// as raw strings, and what the page knows about metrics (labels, units, direction).
+/// as raw strings, and what the page says about metrics (labels, units, direction: read from
+/// the metric registry, metrics/metric.h).
 #pragma once
 #include <cstddef>
 #include <optional>
@@ -39,8 +40,8 @@ std::string PageScript();
 struct MetricInfo {
   std::string label;  ///< short column label ("Edge PSNR")
   std::string unit;   ///< "dB" or empty
-  /// +1 higher is better, -1 lower is better, 0 unknown (then it is not offered as a chart
-  /// axis: the page cannot say which way is better).
+  /// +1 higher is better, -1 lower is better, 0 unknown or a signed bias (closer to 0 is
+  /// better; then it is not offered as a chart axis: neither end is better).
   int better = 0;
   std::string help;  ///< one sentence for the tooltip
   /// What a better score rewards and what it does not see (shown under the chart's axis
@@ -48,7 +49,8 @@ struct MetricInfo {
   std::string rewards;
 };
 
-/// Known metrics by name (metrics/METRICS.md); unknown names get a label equal to the name
+/// What the metric registry says about `name` (metrics/metric.h MetricOutput, image and
+/// sequence outputs); names no registered metric produces get a label equal to the name
 /// and a direction guessed only from unambiguous suffixes (`_psnr_db`/`_db` higher,
 /// `mse`/`rmse`/`_err` lower), else 0.
 MetricInfo DescribeMetric(const std::string& name);

@@ -15,6 +15,7 @@
 
 #include "core/color.h"
 #include "metrics/heatmap.h"
+#include "metrics/metric.h"
 #include "reports/html_assets.h"
 #include "reports/html_method_style.h"
 #include "reports/html_page.h"
@@ -38,9 +39,12 @@ std::string Printf(const char* fmt, double v) {
 
 std::string FmtMs(double v) { return Printf(v < 1 ? "%.3f" : v < 100 ? "%.2f" : "%.1f", v); }
 std::string FmtCount(double v) { return Printf("%.4g", v); }
+/// The registry's printed precision (fixed decimals, else 4 significant digits); names it does
+/// not know: 2 decimals for `_db`, else 4 significant digits.
 std::string FmtMetric(const std::string& name, double v) {
-  const bool db = name.size() > 3 && name.compare(name.size() - 3, 3, "_db") == 0;
-  return Printf(db ? "%.2f" : "%.4g", v);
+  const MetricOutput* o = FindMetricOutput(name);
+  const int decimals = o ? o->decimals : name.size() > 3 && name.compare(name.size() - 3, 3, "_db") == 0 ? 2 : -1;
+  return decimals >= 0 ? Printf(("%." + std::to_string(decimals) + "f").c_str(), v) : Printf("%.4g", v);
 }
 /// Exact sort key for data-v (round-trips).
 std::string Key(double v) { return Printf("%.17g", v); }

@@ -50,9 +50,15 @@ std::vector<std::string> SplitList(const std::string& text) {
 namespace {
 
 int ListCommand(const std::string& what, bool markdown) {
-  if (markdown && what != "methods") throw UserError("--markdown is for `aalab list methods` only (not '" + what + "')");
+  if (markdown && what != "methods" && what != "metrics") {
+    throw UserError("--markdown is for `aalab list methods` and `aalab list metrics` only (not '" + what + "')");
+  }
   if (what == "methods" && markdown) {
     std::printf("%s", MethodTableMarkdown().c_str());  // README.md's and docs/cli.md's table
+    return 0;
+  }
+  if (what == "metrics" && markdown) {
+    std::printf("%s", MetricTablesMarkdown().c_str());  // metrics/METRICS.md's tables
     return 0;
   }
   if (what == "scenes") {
@@ -75,7 +81,7 @@ int ListCommand(const std::string& what, bool markdown) {
   }
   if (what == "metrics") {
     for (const auto& e : MetricRegistry()) {
-      std::printf("%-14s %s\n    values: %s\n", e.name.c_str(), e.help.c_str(), JoinNames(e.outputs).c_str());
+      std::printf("%-14s %s\n    values: %s\n", e.name.c_str(), e.help.c_str(), JoinNames(OutputKeys(e)).c_str());
     }
     return ToInt(ExitCode::kOk);
   }
@@ -98,7 +104,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   auto list_what = std::make_shared<std::string>();
   auto list_markdown = std::make_shared<bool>(false);
   list->add_option("what", *list_what, "scenes | methods | metrics | viewing")->required();
-  list->add_flag("--markdown", *list_markdown, "methods: the family table of README.md and docs/cli.md, in Markdown");
+  list->add_flag("--markdown", *list_markdown, "methods: the family table of README.md and docs/cli.md; metrics: the tables of metrics/METRICS.md (Markdown)");
   list->callback([&commands, list_what, list_markdown] {
     commands.action = [list_what, list_markdown] { return ListCommand(*list_what, *list_markdown); };
   });

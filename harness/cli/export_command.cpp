@@ -105,12 +105,8 @@ std::string MethodSource(const Report& r, const std::string& spec) {
 }
 
 std::string MetricSource(const std::string& metric) {
-  for (const auto& e : MetricRegistry()) {
-    for (const auto& out : e.outputs) {
-      if (out == metric) return e.source;
-    }
-  }
-  return "";
+  const MetricEntry* e = FindMetricEntry(metric);
+  return e ? e->source : "";
 }
 
 std::string CropList(const std::vector<std::array<int, 4>>& crops) {

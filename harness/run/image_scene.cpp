@@ -257,10 +257,8 @@ MethodOutput SuppliedOutputRow(const PreparedScene& p, const std::string& name, 
   if (it == p.supplied.end()) {
     row.not_applicable = "no '" + name + "' frames were supplied for this scene (outputs are given per view in an "
                          "image scene's manifest)";
-    for (const MetricEntry& m : MetricRegistry()) {
-      for (const std::string& metric : m.outputs) {
-        row.metrics.push_back({metric, std::nullopt, "not applicable: " + row.not_applicable});
-      }
+    for (const std::string& metric : ImageMetricKeys()) {
+      row.metrics.push_back({metric, std::nullopt, "not applicable: " + row.not_applicable});
     }
     return out;
   }

@@ -198,10 +198,8 @@ ResultRow NotApplicableRow(const PreparedScene& p, const MethodPlan& plan) {
   }
   if (plan.render.scale != 1.0) row.not_applicable += ", at scale " + FormatNumber(plan.render.scale);
   row.not_applicable += "); image scene '" + p.info.source + "' has only the 1x frame";
-  for (const MetricEntry& m : MetricRegistry()) {
-    for (const std::string& name : m.outputs) {
-      row.metrics.push_back({name, std::nullopt, "not applicable: " + row.not_applicable});
-    }
+  for (const std::string& name : ImageMetricKeys()) {
+    row.metrics.push_back({name, std::nullopt, "not applicable: " + row.not_applicable});
   }
   return row;
 }

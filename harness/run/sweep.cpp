@@ -293,10 +293,7 @@ SweepResult RunSweep(const SweepSettings& s) {
   const std::vector<std::string> specs = ExpandGrid(s.method, &res.axes);
   const std::vector<MethodPlan> plans = ResolveMethods(specs);
 
-  std::vector<std::string> produced;
-  for (const auto& e : MetricRegistry()) {
-    for (const auto& o : e.outputs) produced.push_back(o);
-  }
+  const std::vector<std::string> produced = ImageMetricKeys();
   auto is_produced = [&produced](const std::string& m) {
     return std::find(produced.begin(), produced.end(), m) != produced.end();
   };
