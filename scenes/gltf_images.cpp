@@ -47,7 +47,7 @@ ImageSource LocateImage(const GltfDoc& d, long long index) {
     s.name = "image " + std::to_string(index) + " (data URI) in '" + d.path + "'";
     return s;
   }
-  const fs::path p = fs::path(d.path).parent_path() / uri;
+  const fs::path p = GltfUriFile(d, uri, GltfAt(at, "uri"));
   std::error_code ec;
   if (!fs::is_regular_file(p, ec)) d.Fail(GltfAt(at, "uri"), "image '" + p.string() + "' not found");
   s.file = p.string();
