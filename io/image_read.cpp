@@ -516,6 +516,11 @@ TexturePixels ReadCodes(OpenedImage& f, const std::string& path, size_t max_pixe
   const int th = spec.tile_width > 0 ? std::max(1, spec.tile_height) : 1;
   int band = static_cast<int>(std::clamp<size_t>(kBandBytes / (static_cast<size_t>(w) * nc), 1, 256));
   band = std::max(th, band / th * th);
+  // The whole result at once when the data could plausibly hold it (no copies as it grows:
+  // they doubled the transient peak); a small file claiming a huge image grows band by band
+  // and fails at its first missing band, never after allocating the whole image.
+  const size_t total = 4 * static_cast<size_t>(w) * static_cast<size_t>(h);
+  if (total <= kBandBytes + 1032 * static_cast<size_t>(std::max(0LL, f.file_bytes))) t.rgba8.reserve(total);
   std::vector<uint8_t> rows;
   for (int y = 0; y < h; y += band) {
     const int yend = std::min(h, y + band);
