@@ -32,6 +32,10 @@ inline constexpr const char* kDecodeBudgetVariable = "AALAB_DECODE_BUDGET_MP";
 size_t DecodeBudgetPixels();
 /// Pixels decoded so far by this process.
 size_t DecodedPixels();
+/// Charges `pixels` to the budget now, for a loader that decodes several images in parallel
+/// and wants the same refusal at any thread count: it charges each image in its own order
+/// first, then reads with ReadTexturePixels(src, max, true). UserError naming `name` past it.
+void ChargeDecodeBudget(size_t pixels, const std::string& name);
 
 /// An image read from disk.
 struct LoadedImage {
@@ -118,9 +122,10 @@ struct TexturePixels {
 
 /// Reads `src` (1 to 4 channels) for a texture with the reader's checks: the declared size
 /// against `max_pixels` and the file's size, the decode budget charged before any
-/// allocation, pixels read in bounded bands, NaN/Inf refused (float files). UserError naming
+/// allocation (unless `charged`), pixels read in bounded bands, NaN/Inf refused (float files). UserError naming
 /// `src.name` otherwise, and for more than 4 channels.
-TexturePixels ReadTexturePixels(const ImageSource& src, size_t max_pixels = kMaxImagePixels);
+/// With `charged`, the caller has charged the image's pixels already (ChargeDecodeBudget).
+TexturePixels ReadTexturePixels(const ImageSource& src, size_t max_pixels = kMaxImagePixels, bool charged = false);
 
 /// The float OpenImageIO's UINT8 -> FLOAT conversion gives each 8-bit code (what ReadImage
 /// returns for an 8-bit file), 256 entries.

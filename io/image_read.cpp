@@ -296,6 +296,8 @@ std::atomic<size_t>& Decoded() {
   return pixels;
 }
 
+}  // namespace
+
 /// Adds `pixels` to the command's decoded total; UserError naming `path` past the budget.
 void ChargeDecodeBudget(size_t pixels, const std::string& path) {
   const size_t budget = DecodeBudgetPixels();
@@ -307,10 +309,12 @@ void ChargeDecodeBudget(size_t pixels, const std::string& path) {
                   "=MEGAPIXELS to allow more (0 = no budget)");
 }
 
+namespace {
+
 /// ReadImageChannels on an opened file; `is_float` (optional) says whether any channel read
 /// stores half/float data.
 ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<std::string>& names, size_t max_pixels,
-                    bool allow_inf, bool* is_float) {
+                    bool allow_inf, bool* is_float, bool charged = false) {
   if (names.empty()) throw UserError("cannot read image '" + path + "': no channels asked for");
   std::vector<ChannelRef> want;
   for (const auto& n : names) {
@@ -340,7 +344,7 @@ ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<s
   if (spec.depth > 1) {
     throw UserError("image '" + path + "' is a volume (" + std::to_string(spec.depth) + " slices); 2-D images only");
   }
-  ChargeDecodeBudget(static_cast<size_t>(w) * static_cast<size_t>(h), path);
+  if (!charged) ChargeDecodeBudget(static_cast<size_t>(w) * static_cast<size_t>(h), path);
   for (const auto& c : want) {
     if (const std::string bad = CheckPlausibleSize(f, f.parts[c.part]); !bad.empty()) {
       throw UserError("cannot read image '" + path + "': " + bad);
@@ -436,7 +440,7 @@ ImageF ReadImageChannels(const std::string& path, const std::vector<std::string>
 
 namespace {
 
-LoadedImage ReadOpened(OpenedImage& f, const std::string& path, size_t max_pixels) {
+LoadedImage ReadOpened(OpenedImage& f, const std::string& path, size_t max_pixels, bool charged = false) {
   const std::vector<std::string> all = Names(f);
   const std::string r = FindChannel(all, "R"), g = FindChannel(all, "G"), b = FindChannel(all, "B");
   const std::string a = FindChannel(all, "A");
@@ -457,7 +461,7 @@ LoadedImage ReadOpened(OpenedImage& f, const std::string& path, size_t max_pixel
   if (!a.empty() && names[0] != a) names.push_back(a);
   LoadedImage result;
   result.format = f.in->format_name();
-  const ImageF read = ReadChannels(f, path, names, max_pixels, false, &result.is_float);
+  const ImageF read = ReadChannels(f, path, names, max_pixels, false, &result.is_float, charged);
   result.file_channels = static_cast<int>(names.size());
   const bool alpha = names.size() == (grey ? 2u : 4u);
   if (!grey) {
@@ -496,7 +500,7 @@ OpenedImage OpenSource(const ImageSource& src) {
 }
 
 /// An 8-bit single-part image of 1..4 channels read as its codes into RGBA8, in bands.
-TexturePixels ReadCodes(OpenedImage& f, const std::string& path, size_t max_pixels) {
+TexturePixels ReadCodes(OpenedImage& f, const std::string& path, size_t max_pixels, bool charged) {
   const OIIO::ImageSpec& spec = f.parts[0];
   const int w = spec.width, h = spec.height, nc = spec.nchannels;
   if (w <= 0 || h <= 0) throw UserError("image '" + path + "' has zero size");
@@ -507,7 +511,7 @@ TexturePixels ReadCodes(OpenedImage& f, const std::string& path, size_t max_pixe
   if (const std::string bad = CheckPlausibleSize(f, spec); !bad.empty()) {
     throw UserError("cannot read image '" + path + "': " + bad);
   }
-  ChargeDecodeBudget(static_cast<size_t>(w) * static_cast<size_t>(h), path);
+  if (!charged) ChargeDecodeBudget(static_cast<size_t>(w) * static_cast<size_t>(h), path);
   TexturePixels t;
   t.width = w;
   t.height = h;
@@ -555,15 +559,15 @@ ImageHeader ReadImageHeader(const ImageSource& src) {
   return h;
 }
 
-TexturePixels ReadTexturePixels(const ImageSource& src, size_t max_pixels) {
+TexturePixels ReadTexturePixels(const ImageSource& src, size_t max_pixels, bool charged) {
   OpenedImage f = OpenSource(src);
   const OIIO::ImageSpec& spec = f.parts[0];
   if (spec.nchannels < 1 || spec.nchannels > 4) {
     throw UserError("image '" + src.name + "' has " + std::to_string(spec.nchannels) +
                     " channels (allowed: 1 to 4)");
   }
-  if (spec.format == OIIO::TypeDesc::UINT8) return ReadCodes(f, src.name, max_pixels);
-  const LoadedImage img = ReadOpened(f, src.name, max_pixels);
+  if (spec.format == OIIO::TypeDesc::UINT8) return ReadCodes(f, src.name, max_pixels, charged);
+  const LoadedImage img = ReadOpened(f, src.name, max_pixels, charged);
   TexturePixels t;
   t.width = img.pixels.Width();
   t.height = img.pixels.Height();

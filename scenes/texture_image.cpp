@@ -258,11 +258,11 @@ TextureHeader ProbeTextureImage(const std::string& name, const std::string& path
 }
 
 MipLevel DecodeTextureImage(const std::string& name, const std::string& path, const uint8_t* data, size_t size,
-                            const std::string& hint, bool srgb) {
+                            const std::string& hint, bool srgb, bool charged) {
   ProbeTextureImage(name, path, data, size, hint);  // the header rules before any texel
   TexturePixels px;
   try {
-    px = ReadTexturePixels(Source(name, path, data, size, hint));
+    px = ReadTexturePixels(Source(name, path, data, size, hint), kMaxImagePixels, charged);
   } catch (const UserError& e) {
     Undecodable(name, e);
   }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -322,6 +323,25 @@ TEST(GltfLoad, UrisArePercentDecoded) {
   std::ofstream(written) << f.doc.dump();
   EXPECT_NE(LoadError(written).find("at /buffers/0/uri: has a bad percent escape '%g3' at character 1"), std::string::npos)
       << LoadError(written);
+}
+
+TEST(GltfLoad, TexturesCountAgainstTheDecodeBudget) {
+  // ctest runs each test in its own process, so the budget (read once) is this test's own:
+  // 1 megapixel. Two 800 x 800 textures (0.64 MP each): the second passes it, and is named
+  // (charged in file order before the parallel decodes, so at any thread count).
+  ::setenv(kDecodeBudgetVariable, "1", 1);
+  const fs::path d = TestDir();
+  WriteImage8((d / "budget-a.png").string(), Image8(800, 800, 4, 90));
+  WriteImage8((d / "budget-b.png").string(), Image8(800, 800, 4, 200));
+  TriangleFile f;
+  f.doc["images"] = Json::parse(R"([{"uri": "budget-a.png"}, {"uri": "budget-b.png"}])");
+  f.doc["textures"] = Json::parse(R"([{"source": 0}, {"source": 1}])");
+  f.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+  f.doc["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 1}};
+  const std::string e = LoadError(f.Write(d, "budget"));
+  EXPECT_NE(e.find("budget-b.png' (640000 pixels)"), std::string::npos) << e;
+  EXPECT_NE(e.find("past the budget of 1000000"), std::string::npos) << e;
+  EXPECT_EQ(e.find("budget-a.png"), std::string::npos) << e;
 }
 
 TEST(GltfLoad, TwentyThousandNestedNodesLoadWithoutRecursion) {
