@@ -32,6 +32,10 @@ inline constexpr const char* kDecodeBudgetVariable = "AALAB_DECODE_BUDGET_MP";
 size_t DecodeBudgetPixels();
 /// Pixels decoded so far by this process.
 size_t DecodedPixels();
+/// Charges `pixels` to the budget now, for a loader that decodes several images in parallel
+/// and wants the same refusal at any thread count: it charges each image in its own order
+/// first, then reads with ReadTexturePixels(src, max, true). UserError naming `name` past it.
+void ChargeDecodeBudget(size_t pixels, const std::string& name);
 
 /// An image read from disk.
 struct LoadedImage {
@@ -57,8 +61,8 @@ std::vector<std::string> ListImageChannels(const std::string& path);
 ImageF ReadImageChannels(const std::string& path, const std::vector<std::string>& names,
                          size_t max_pixels = kMaxImagePixels, bool allow_inf = false);
 
-/// Reads a PNG, JPEG, TIFF or EXR image, chosen by the extension (.png, .jpg, .jpeg, .tif,
-/// .tiff, .exr; no other reader is tried), through ReadImageChannels: colour is the channels
+/// Reads a PNG, JPEG, TIFF, EXR or Radiance HDR image, chosen by the extension (.png, .jpg,
+/// .jpeg, .tif, .tiff, .exr, .hdr; no other reader is tried), through ReadImageChannels: colour is the channels
 /// named R, G, B (exact case first, else any case), alpha the channel named A when there is
 /// one (channel 3, as stored: never multiplied into colour); other channels (Z, ids, AOVs) are
 /// ignored. A 1-channel file, or one with a grey channel Y (and optionally A), is expanded to
@@ -83,6 +87,49 @@ LoadedImage ReadImage(const std::string& path, size_t max_pixels = kMaxImagePixe
 /// premultiplied), grey expanded to RGB; `is_float` says whether the data was half/float.
 LoadedImage ReadImageFromMemory(const std::string& name, const uint8_t* data, size_t size,
                                 size_t max_pixels = kMaxImagePixels);
+
+/// Where an image's bytes are, for a loader that may have a file or memory (glTF images):
+/// `data` null: the file `name`, its extension picking the reader; else `size` bytes at
+/// `data`, the reader picked by `ext` (".png", ".jpg", ...), `name` used in messages only
+/// (e.g. "image 3 embedded in 'a.glb'").
+struct ImageSource {
+  std::string name;
+  const uint8_t* data = nullptr;
+  size_t size = 0;
+  std::string ext;
+};
+
+/// What an image's header declares (its first part), read before any pixel is decoded.
+struct ImageHeader {
+  int width = 0, height = 0, channels = 0;
+  bool is8 = false;  ///< 8-bit integer channels (ReadTexturePixels keeps their codes)
+};
+
+/// Opens `src` with every check of ReadImage (regular file, the named reader only, container
+/// sizes) and reads its header only. UserError naming `src.name` when it cannot be opened.
+ImageHeader ReadImageHeader(const ImageSource& src);
+
+/// An image read for a texture: 8-bit files keep their codes (a GPU stores RGBA8 as is),
+/// the others are float. Alpha is straight, as stored (glTF's alpha is unassociated):
+/// never multiplied into colour.
+struct TexturePixels {
+  int width = 0, height = 0;
+  int file_channels = 0;       ///< 1 grey, 2 grey+alpha, 3 RGB, 4 RGBA
+  bool is8 = false;            ///< `rgba8` holds the texels, else `rgba`
+  std::vector<uint8_t> rgba8;  ///< 4 codes a texel, as stored; grey replicated, alpha 255 when absent
+  std::vector<float> rgba;     ///< 4 floats a texel, as stored (16-bit k -> k/65535); alpha 1 when absent
+};
+
+/// Reads `src` (1 to 4 channels) for a texture with the reader's checks: the declared size
+/// against `max_pixels` and the file's size, the decode budget charged before any
+/// allocation (unless `charged`), pixels read in bounded bands, NaN/Inf refused (float files). UserError naming
+/// `src.name` otherwise, and for more than 4 channels.
+/// With `charged`, the caller has charged the image's pixels already (ChargeDecodeBudget).
+TexturePixels ReadTexturePixels(const ImageSource& src, size_t max_pixels = kMaxImagePixels, bool charged = false);
+
+/// The float OpenImageIO's UINT8 -> FLOAT conversion gives each 8-bit code (what ReadImage
+/// returns for an 8-bit file), 256 entries.
+const float* Unorm8FloatTable();
 
 /// Reads an 8-bit display image as RGBA8 (alpha as stored, 255 when the file has none). Float
 /// files are refused with a message pointing at the float path.

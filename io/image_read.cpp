@@ -13,6 +13,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdlib>
 #include <sstream>
@@ -126,9 +127,10 @@ std::string CheckPngChunks(std::istream& f, long long file_size) {
 
 /// The extension's check and the container checks of the bytes in `f` (`size` of them).
 void CheckContainer(const std::string& path, const std::string& ext, std::istream& f, long long size) {
-  if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".tif" && ext != ".tiff" && ext != ".exr") {
+  if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".tif" && ext != ".tiff" && ext != ".exr" &&
+      ext != ".hdr") {
     throw UserError("image '" + path + "' has an unsupported file type '" + ext +
-                    "' (readable: .png, .jpg, .jpeg, .tif, .tiff, .exr)");
+                    "' (readable: .png, .jpg, .jpeg, .tif, .tiff, .exr, .hdr)");
   }
   if (ext == ".exr") {
     if (const std::string bad = CheckExrHeader(f, size); !bad.empty()) {
@@ -178,11 +180,13 @@ struct OpenedImage {
 
 /// Opens a file (`data` null) or `size` bytes in memory named `path` (its extension picks the
 /// reader) after the checks above.
-OpenedImage Open(const std::string& path, const uint8_t* data = nullptr, size_t size = 0) {
+/// `ext` (memory only; e.g. ".png") picks the reader instead of `path`'s extension, so that
+/// `path` can be a name for messages ("image 3 embedded in 'a.glb'").
+OpenedImage Open(const std::string& path, const uint8_t* data = nullptr, size_t size = 0, const std::string& ext = "") {
   OpenedImage f;
   if (data) {
     std::istringstream bytes(std::string(reinterpret_cast<const char*>(data), size));
-    CheckContainer(path, LowerExt(path), bytes, static_cast<long long>(size));
+    CheckContainer(path, ext.empty() ? LowerExt(path) : ext, bytes, static_cast<long long>(size));
     f.file_bytes = static_cast<long long>(size);
     f.memory = std::make_unique<OIIO::Filesystem::IOMemReader>(data, size);
   } else {
@@ -203,7 +207,7 @@ OpenedImage Open(const std::string& path, const uint8_t* data = nullptr, size_t 
     void* proxy = f.memory.get();
     config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
   }
-  f.in = OIIO::ImageInput::open(path, &config, f.memory.get());
+  f.in = OIIO::ImageInput::open(f.memory && !ext.empty() ? "memory" + ext : path, &config, f.memory.get());
   if (!f.in) {
     throw UserError("cannot read image '" + path + "': " + OIIO::geterror() + " (readable: PNG, JPEG, TIFF, EXR; " +
                     "the content must match the file's extension)");
@@ -260,14 +264,26 @@ std::string CheckPlausibleSize(const OpenedImage& f, const OIIO::ImageSpec& spec
          std::to_string(f.file_bytes) + " (truncated or corrupt)";
 }
 
-/// Reads rows [y0, y1) of channels [cb, ce) of the current part as float into `dst`.
-bool ReadRows(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, int part, int y0, int y1, int cb, int ce,
-              float* dst) {
+/// Reads rows [y0, y1) of channels [cb, ce) of the current part as `type` (float unless
+/// told) into `dst`.
+bool ReadRows(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, int part, int y0, int y1, int cb, int ce, void* dst,
+              OIIO::TypeDesc type = OIIO::TypeDesc::FLOAT) {
   if (spec.tile_width > 0) {
     return in.read_tiles(part, 0, spec.x, spec.x + spec.width, spec.y + y0, spec.y + y1, spec.z, spec.z + 1, cb, ce,
-                         OIIO::TypeDesc::FLOAT, dst);
+                         type, dst);
   }
-  return in.read_scanlines(part, 0, spec.y + y0, spec.y + y1, spec.z, cb, ce, OIIO::TypeDesc::FLOAT, dst);
+  return in.read_scanlines(part, 0, spec.y + y0, spec.y + y1, spec.z, cb, ce, type, dst);
+}
+
+/// The first message of a failed read (OpenImageIO may append one per row), at most 300
+/// characters, with how many more there were.
+std::string FirstReadError(OIIO::ImageInput& in) {
+  const std::string all = in.geterror();
+  std::string why = all.substr(0, all.find('\n'));
+  if (why.size() > 300) why = why.substr(0, 300) + "...";
+  const auto more = std::count(all.begin(), all.end(), '\n');
+  if (more > 0) why += " (and " + std::to_string(more) + " more messages)";
+  return why;
 }
 
 bool IsFloatType(OIIO::TypeDesc t) {
@@ -280,6 +296,8 @@ std::atomic<size_t>& Decoded() {
   return pixels;
 }
 
+}  // namespace
+
 /// Adds `pixels` to the command's decoded total; UserError naming `path` past the budget.
 void ChargeDecodeBudget(size_t pixels, const std::string& path) {
   const size_t budget = DecodeBudgetPixels();
@@ -291,10 +309,12 @@ void ChargeDecodeBudget(size_t pixels, const std::string& path) {
                   "=MEGAPIXELS to allow more (0 = no budget)");
 }
 
+namespace {
+
 /// ReadImageChannels on an opened file; `is_float` (optional) says whether any channel read
 /// stores half/float data.
 ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<std::string>& names, size_t max_pixels,
-                    bool allow_inf, bool* is_float) {
+                    bool allow_inf, bool* is_float, bool charged = false) {
   if (names.empty()) throw UserError("cannot read image '" + path + "': no channels asked for");
   std::vector<ChannelRef> want;
   for (const auto& n : names) {
@@ -324,7 +344,7 @@ ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<s
   if (spec.depth > 1) {
     throw UserError("image '" + path + "' is a volume (" + std::to_string(spec.depth) + " slices); 2-D images only");
   }
-  ChargeDecodeBudget(static_cast<size_t>(w) * static_cast<size_t>(h), path);
+  if (!charged) ChargeDecodeBudget(static_cast<size_t>(w) * static_cast<size_t>(h), path);
   for (const auto& c : want) {
     if (const std::string bad = CheckPlausibleSize(f, f.parts[c.part]); !bad.empty()) {
       throw UserError("cannot read image '" + path + "': " + bad);
@@ -364,13 +384,8 @@ ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<s
       if (!ReadRows(*f.in, f.parts[p], p, y, yend, cb, ce, scratch.data()) || f.in->has_error()) {
         // Also an error when the call reported success: OIIO's multi-row TIFF reads return true
         // while appending an error for every row they failed to decode. First message only.
-        const std::string all = f.in->geterror();
-        std::string why = all.substr(0, all.find('\n'));
-        if (why.size() > 300) why = why.substr(0, 300) + "...";
-        const auto more = std::count(all.begin(), all.end(), '\n');
-        if (more > 0) why += " (and " + std::to_string(more) + " more messages)";
         throw UserError("cannot read image '" + path + "' (truncated or corrupt?) near row " + std::to_string(y) +
-                        ": " + why);
+                        ": " + FirstReadError(*f.in));
       }
       const int span = ce - cb;
       for (int k = 0; k < nc; ++k) {
@@ -425,7 +440,7 @@ ImageF ReadImageChannels(const std::string& path, const std::vector<std::string>
 
 namespace {
 
-LoadedImage ReadOpened(OpenedImage& f, const std::string& path, size_t max_pixels) {
+LoadedImage ReadOpened(OpenedImage& f, const std::string& path, size_t max_pixels, bool charged = false) {
   const std::vector<std::string> all = Names(f);
   const std::string r = FindChannel(all, "R"), g = FindChannel(all, "G"), b = FindChannel(all, "B");
   const std::string a = FindChannel(all, "A");
@@ -446,7 +461,7 @@ LoadedImage ReadOpened(OpenedImage& f, const std::string& path, size_t max_pixel
   if (!a.empty() && names[0] != a) names.push_back(a);
   LoadedImage result;
   result.format = f.in->format_name();
-  const ImageF read = ReadChannels(f, path, names, max_pixels, false, &result.is_float);
+  const ImageF read = ReadChannels(f, path, names, max_pixels, false, &result.is_float, charged);
   result.file_channels = static_cast<int>(names.size());
   const bool alpha = names.size() == (grey ? 2u : 4u);
   if (!grey) {
@@ -474,6 +489,107 @@ LoadedImage ReadImageFromMemory(const std::string& name, const uint8_t* data, si
   if (!data || size == 0) throw UserError("image '" + name + "' is empty (0 bytes)");
   OpenedImage f = Open(name, data, size);
   return ReadOpened(f, name, max_pixels);
+}
+
+namespace {
+
+OpenedImage OpenSource(const ImageSource& src) {
+  if (!src.data) return Open(src.name);
+  if (src.size == 0) throw UserError("image '" + src.name + "' is empty (0 bytes)");
+  return Open(src.name, src.data, src.size, src.ext);
+}
+
+/// An 8-bit single-part image of 1..4 channels read as its codes into RGBA8, in bands.
+TexturePixels ReadCodes(OpenedImage& f, const std::string& path, size_t max_pixels, bool charged) {
+  const OIIO::ImageSpec& spec = f.parts[0];
+  const int w = spec.width, h = spec.height, nc = spec.nchannels;
+  if (w <= 0 || h <= 0) throw UserError("image '" + path + "' has zero size");
+  if (static_cast<size_t>(w) * static_cast<size_t>(h) > max_pixels) {
+    throw UserError("image '" + path + "' is " + std::to_string(w) + "x" + std::to_string(h) +
+                    ", more than the limit of " + std::to_string(max_pixels) + " pixels");
+  }
+  if (const std::string bad = CheckPlausibleSize(f, spec); !bad.empty()) {
+    throw UserError("cannot read image '" + path + "': " + bad);
+  }
+  if (!charged) ChargeDecodeBudget(static_cast<size_t>(w) * static_cast<size_t>(h), path);
+  TexturePixels t;
+  t.width = w;
+  t.height = h;
+  t.file_channels = nc;
+  t.is8 = true;
+  const int th = spec.tile_width > 0 ? std::max(1, spec.tile_height) : 1;
+  int band = static_cast<int>(std::clamp<size_t>(kBandBytes / (static_cast<size_t>(w) * nc), 1, 256));
+  band = std::max(th, band / th * th);
+  // The whole result at once when the data could plausibly hold it (no copies as it grows:
+  // they doubled the transient peak); a small file claiming a huge image grows band by band
+  // and fails at its first missing band, never after allocating the whole image.
+  const size_t total = 4 * static_cast<size_t>(w) * static_cast<size_t>(h);
+  if (total <= kBandBytes + 1032 * static_cast<size_t>(std::max(0LL, f.file_bytes))) t.rgba8.reserve(total);
+  std::vector<uint8_t> rows;
+  for (int y = 0; y < h; y += band) {
+    const int yend = std::min(h, y + band);
+    const size_t count = static_cast<size_t>(yend - y) * static_cast<size_t>(w);
+    rows.resize(count * static_cast<size_t>(nc));
+    if (!ReadRows(*f.in, spec, 0, y, yend, 0, nc, rows.data(), OIIO::TypeDesc::UINT8) || f.in->has_error()) {
+      throw UserError("cannot read image '" + path + "' (truncated or corrupt?) near row " + std::to_string(y) +
+                      ": " + FirstReadError(*f.in));
+    }
+    const size_t base = t.rgba8.size();
+    t.rgba8.resize(base + 4 * count);
+    uint8_t* d = &t.rgba8[base];
+    for (size_t i = 0; i < count; ++i, d += 4) {
+      const uint8_t* p = &rows[i * nc];
+      d[0] = p[0];
+      d[1] = nc >= 3 ? p[1] : p[0];
+      d[2] = nc >= 3 ? p[2] : p[0];
+      d[3] = nc == 2 || nc == 4 ? p[nc - 1] : 255;
+    }
+  }
+  f.in->close();
+  return t;
+}
+
+}  // namespace
+
+ImageHeader ReadImageHeader(const ImageSource& src) {
+  OpenedImage f = OpenSource(src);
+  const OIIO::ImageSpec& s = f.parts[0];
+  ImageHeader h{s.width, s.height, s.nchannels, s.format == OIIO::TypeDesc::UINT8};
+  f.in->close();
+  return h;
+}
+
+TexturePixels ReadTexturePixels(const ImageSource& src, size_t max_pixels, bool charged) {
+  OpenedImage f = OpenSource(src);
+  const OIIO::ImageSpec& spec = f.parts[0];
+  if (spec.nchannels < 1 || spec.nchannels > 4) {
+    throw UserError("image '" + src.name + "' has " + std::to_string(spec.nchannels) +
+                    " channels (allowed: 1 to 4)");
+  }
+  if (spec.format == OIIO::TypeDesc::UINT8) return ReadCodes(f, src.name, max_pixels, charged);
+  const LoadedImage img = ReadOpened(f, src.name, max_pixels, charged);
+  TexturePixels t;
+  t.width = img.pixels.Width();
+  t.height = img.pixels.Height();
+  t.file_channels = img.file_channels;
+  const int nc = img.pixels.Channels();  // 3 or 4 (grey expanded)
+  t.rgba.resize(4 * img.pixels.PixelCount());
+  for (size_t i = 0; i < img.pixels.PixelCount(); ++i) {
+    const float* p = &img.pixels.Data()[i * nc];
+    for (int c = 0; c < 4; ++c) t.rgba[4 * i + c] = c < nc ? p[c] : 1.0f;
+  }
+  return t;
+}
+
+const float* Unorm8FloatTable() {
+  static const std::array<float, 256> table = [] {
+    std::array<uint8_t, 256> codes{};
+    for (int i = 0; i < 256; ++i) codes[static_cast<size_t>(i)] = static_cast<uint8_t>(i);
+    std::array<float, 256> t{};
+    OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes.data(), OIIO::TypeDesc::FLOAT, t.data(), 256);
+    return t;
+  }();
+  return table.data();
 }
 
 size_t DecodeBudgetPixels() {

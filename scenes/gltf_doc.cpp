@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -81,20 +82,6 @@ bool Base64DecodeImpl(const std::string& in, size_t from, std::vector<uint8_t>& 
   return true;
 }
 
-std::string PercentDecode(const std::string& s) {
-  std::string o;
-  for (size_t i = 0; i < s.size(); ++i) {
-    if (s[i] == '%' && i + 2 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
-      o += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      o += s[i];
-    }
-  }
-  return o;
-}
-
 int ComponentBytes(long long type) {
   switch (type) {
     case 5120: case 5121: return 1;
@@ -141,7 +128,7 @@ std::vector<uint8_t> LoadBuffer(const GltfDoc& d, const Json& b, size_t i, const
       d.Fail(At(at, "uri"), "is a data URI that is not valid base64");
     }
   } else {
-    const fs::path bp = fs::path(d.path).parent_path() / PercentDecode(uri);
+    const fs::path bp = GltfUriFile(d, uri, At(at, "uri"));
     std::error_code ec;
     if (!fs::is_regular_file(bp, ec)) d.Fail(At(at, "uri"), "file '" + bp.string() + "' not found");
     const std::string s = ReadBytes(bp.string());
@@ -359,6 +346,26 @@ void CheckShapes(const GltfDoc& d) {
 
 std::string GltfAt(const std::string& base, const std::string& key) { return base + "/" + key; }
 std::string GltfAt(const std::string& base, size_t i) { return base + "/" + std::to_string(i); }
+
+std::string GltfUriFile(const GltfDoc& d, const std::string& uri, const std::string& at) {
+  std::string name;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] != '%') {
+      name += uri[i];
+      continue;
+    }
+    const auto hex = [&uri](size_t k) { return k < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[k])); };
+    if (!hex(i + 1) || !hex(i + 2)) {
+      d.Fail(at, "has a bad percent escape '" + uri.substr(i, 3) + "' at character " + std::to_string(i) +
+                     " (a URI writes a byte as '%' and two hex digits, e.g. %20 for a space, %25 for '%')");
+    }
+    const char c = static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+    if (c == '\0') d.Fail(at, "has the escape '%00' (a NUL byte), which no file name holds");
+    name += c;
+    i += 2;
+  }
+  return (fs::path(d.path).parent_path() / name).string();
+}
 
 bool GltfBase64Decode(const std::string& in, size_t from, std::vector<uint8_t>& out) {
   return Base64DecodeImpl(in, from, out);

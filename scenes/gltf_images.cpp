@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "io/image_io.h"
 #include "scenes/gltf_load.h"
 
 namespace aalab {
@@ -17,15 +18,15 @@ using Json = nlohmann::json;
 namespace {
 
 /// Where image `index`'s bytes are: a file, or memory (bufferView or data URI).
-struct ImageSource {
+struct GltfImageBytes {
   std::string name, file, hint;
   std::vector<uint8_t> data;
 };
 
-ImageSource LocateImage(const GltfDoc& d, long long index) {
+GltfImageBytes LocateImage(const GltfDoc& d, long long index) {
   const Json& im = d.j["images"][static_cast<size_t>(index)];
   const std::string at = GltfAt("/images", static_cast<size_t>(index));
-  ImageSource s;
+  GltfImageBytes s;
   const std::string mime = im.contains("mimeType") && im["mimeType"].is_string() ? im["mimeType"].get<std::string>() : "";
   s.hint = mime == "image/jpeg" ? "jpg" : "png";
   if (im.contains("bufferView")) {
@@ -47,7 +48,7 @@ ImageSource LocateImage(const GltfDoc& d, long long index) {
     s.name = "image " + std::to_string(index) + " (data URI) in '" + d.path + "'";
     return s;
   }
-  const fs::path p = fs::path(d.path).parent_path() / uri;
+  const fs::path p = GltfUriFile(d, uri, GltfAt(at, "uri"));
   std::error_code ec;
   if (!fs::is_regular_file(p, ec)) d.Fail(GltfAt(at, "uri"), "image '" + p.string() + "' not found");
   s.file = p.string();
@@ -61,10 +62,10 @@ namespace gltf_detail {
 
 void ReadGltfImages(const GltfDoc& d, const std::vector<std::pair<long long, bool>>& wanted, bool decode,
                     GltfContent& out) {
-  std::vector<ImageSource> sources;
+  std::vector<GltfImageBytes> sources;
   size_t budget = 0;
   for (const auto& [img, srgb] : wanted) {
-    ImageSource src = LocateImage(d, img);
+    GltfImageBytes src = LocateImage(d, img);
     if (!src.file.empty()) out.files_read.push_back(src.file);
     if (decode) {
       const TextureHeader h = ProbeTextureImage(src.name, src.file, src.file.empty() ? src.data.data() : nullptr, src.data.size(), src.hint);
@@ -72,6 +73,14 @@ void ReadGltfImages(const GltfDoc& d, const std::vector<std::pair<long long, boo
       if (budget > kMaxGltfTextureBytes8) {
         d.Fail(GltfAt("/images", static_cast<size_t>(img)), "the textures' RGBA8 mip chains exceed the budget of " +
                                                             std::to_string(kMaxGltfTextureBytes8 >> 20) + " MiB");
+      }
+      // The command's decode budget (io), charged here in file order rather than by the
+      // parallel decodes below: past it, the same image is named at any thread count.
+      try {
+        ChargeDecodeBudget(static_cast<size_t>(h.width) * static_cast<size_t>(h.height),
+                           src.file.empty() ? src.name : src.file);
+      } catch (const UserError& e) {
+        throw UserError("texture " + src.name + " cannot be decoded: " + e.what());
       }
     }
     sources.push_back(std::move(src));
@@ -84,10 +93,10 @@ void ReadGltfImages(const GltfDoc& d, const std::vector<std::pair<long long, boo
     std::vector<std::string> errors(sources.size());
     ParallelFor(static_cast<int>(sources.size()), [&](int k) {
       const auto i = static_cast<size_t>(k);
-      const ImageSource& src = sources[i];
+      const GltfImageBytes& src = sources[i];
       try {
         MipLevel level = DecodeTextureImage(src.name, src.file, src.file.empty() ? src.data.data() : nullptr,
-                                            src.data.size(), src.hint, wanted[i].second);
+                                            src.data.size(), src.hint, wanted[i].second, true);
         chains[i] = std::make_shared<const MipChain>(BuildMipChain(std::move(level), src.name));
       } catch (const UserError& e) {
         errors[i] = e.what();

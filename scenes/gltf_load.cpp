@@ -552,9 +552,11 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
   std::vector<std::pair<long long, bool>> wanted(mats.Images().size());
   for (const auto& [key, idx] : mats.Images()) wanted[static_cast<size_t>(idx)] = key;
   gltf_detail::ReadGltfImages(d, wanted, options.decode_images, out);
-  for (const Json& b : GltfArray(d, d.j, "buffers", "")) {
+  const Json& buffers = GltfArray(d, d.j, "buffers", "");
+  for (size_t i = 0; i < buffers.size(); ++i) {
+    const Json& b = buffers[i];
     if (b.is_object() && b.contains("uri") && b["uri"].is_string() && b["uri"].get<std::string>().rfind("data:", 0) != 0) {
-      out.files_read.push_back((fs::path(path).parent_path() / b["uri"].get<std::string>()).string());
+      out.files_read.push_back(GltfUriFile(d, b["uri"].get<std::string>(), GltfAt(GltfAt("/buffers", i), "uri")));
     }
   }
   out.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

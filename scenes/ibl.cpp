@@ -15,7 +15,6 @@
 // SH9 irradiance, which can ring below zero for a small bright source, is clamped at 0.
 #include "scenes/ibl.h"
 
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +22,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "io/image_io.h"
 
 namespace aalab {
 
@@ -355,32 +355,41 @@ std::shared_ptr<const Environment> StudioEnvironmentShared(float intensity, floa
 }
 
 EquirectMap ReadEquirect(const std::string& path) {
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
-  if (!in) {
-    throw UserError("environment map '" + path + "' could not be read: " + OIIO::geterror() +
-                    " (expected an equirectangular HDR or EXR image)");
+  // Through io's reader (its checks, the decode budget, values as stored); the shape rules
+  // are checked on the header, before any pixel is decoded.
+  const auto unreadable = [&path](const UserError& e) {
+    return UserError("environment map '" + path + "' could not be read: " + e.what() +
+                     " (expected an equirectangular HDR or EXR image)");
+  };
+  ImageHeader head;
+  try {
+    head = ReadImageHeader({path, nullptr, 0, ""});
+  } catch (const UserError& e) {
+    throw unreadable(e);
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  const int w = spec.width, h = spec.height, nc = spec.nchannels;
+  const int w = head.width, h = head.height;
   if (!(w == 2 * h) || h < 2) {
     throw UserError("environment map '" + path + "' is " + std::to_string(w) + " x " + std::to_string(h) +
                     ": an equirectangular map is twice as wide as high (e.g. 2048 x 1024)");
   }
   if (h > 8192) throw UserError("environment map '" + path + "' is larger than the allowed 16384 x 8192");
-  std::vector<float> raw(static_cast<size_t>(w) * h * nc);
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data())) {
-    throw UserError("environment map '" + path + "' could not be decoded: " + in->geterror());
+  LoadedImage img;
+  try {
+    img = ReadImage(path);
+  } catch (const UserError& e) {
+    throw unreadable(e);
   }
+  const int nc = img.pixels.Channels();  // 3 or 4: grey is expanded to RGB
   EquirectMap m;
   m.width = w;
   m.height = h;
   m.texels.resize(static_cast<size_t>(w) * h);
   for (size_t t = 0; t < m.texels.size(); ++t) {
-    const float* px = &raw[t * nc];
-    const glm::vec3 c = nc >= 3 ? glm::vec3(px[0], px[1], px[2]) : glm::vec3(px[0]);
-    if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) || c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) {
-      throw UserError("environment map '" + path + "' has a negative or non-finite texel at (" +
-                      std::to_string(t % w) + ", " + std::to_string(t / w) + "): radiance must be finite and >= 0");
+    const float* px = &img.pixels.Data()[t * nc];
+    const glm::vec3 c(px[0], px[1], px[2]);
+    if (c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) {
+      throw UserError("environment map '" + path + "' has a negative texel at (" + std::to_string(t % w) + ", " +
+                      std::to_string(t / w) + "): radiance must be finite and >= 0");
     }
     m.texels[t] = c;
   }

@@ -1,4 +1,5 @@
-// Image textures: decoding through OpenImageIO, compact storage (RGBA8 sRGB / linear with
+// Image textures: decoding through io (io/image_io.h: ReadTexturePixels, straight alpha,
+// the reader's checks and decode budget), compact storage (RGBA8 sRGB / linear with
 // 256-entry decode tables, half for 16-bit and float images), box-filtered mip chains built
 // in the stored format as glGenerateMipmap does, wrap modes, bilinear / trilinear /
 // anisotropic sampling (scenes/texture_image.h). The RGBA8 tables hold OpenImageIO's own
@@ -6,9 +7,7 @@
 // before issue #35 stored (the mips differ: they are 8-bit now, as engines store them).
 #include "scenes/texture_image.h"
 
-#include <OpenImageIO/filesystem.h>
 #include <Imath/half.h>
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <array>
@@ -17,20 +16,11 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "io/image_io.h"
 
 namespace aalab {
 
-const float* Unorm8Table() {
-  static const std::array<float, 256> table = [] {
-    std::array<uint8_t, 256> codes{};
-    for (int i = 0; i < 256; ++i) codes[static_cast<size_t>(i)] = static_cast<uint8_t>(i);
-    std::array<float, 256> t{};
-    // OpenImageIO's own UINT8 -> FLOAT conversion: the floats its read_image(FLOAT) returns.
-    OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes.data(), OIIO::TypeDesc::FLOAT, t.data(), 256);
-    return t;
-  }();
-  return table.data();
-}
+const float* Unorm8Table() { return Unorm8FloatTable(); }
 
 const float* Srgb8Table() {
   static const std::array<float, 256> table = [] {
@@ -220,42 +210,28 @@ MipChain BuildMipChain(MipLevel level0, std::string name) {
 
 namespace {
 
-std::unique_ptr<OIIO::ImageInput> OpenImage(OIIO::Filesystem::IOMemReader& mem, const std::string& name,
-                                            const std::string& path, const uint8_t* data, const std::string& hint) {
-  std::unique_ptr<OIIO::ImageInput> in;
-  if (data) {
-    const std::string fake = "embedded." + (hint.empty() ? std::string("png") : hint);
-    OIIO::ImageSpec config;
-    void* proxy = &mem;
-    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    in = OIIO::ImageInput::open(fake, &config, &mem);
-  } else {
-    in = OIIO::ImageInput::open(path);
-  }
-  if (!in) {
-    const std::string why = OIIO::geterror();
-    throw UserError("texture " + name + " cannot be decoded" + (why.empty() ? std::string() : ": " + why));
-  }
-  return in;
+/// Where the bytes are, for io: a file, or memory read by the reader `hint` names.
+ImageSource Source(const std::string& name, const std::string& path, const uint8_t* data, size_t size,
+                   const std::string& hint) {
+  if (!data) return {path, nullptr, 0, ""};
+  return {name, data, size, "." + (hint.empty() ? std::string("png") : hint)};
+}
+
+/// io's message, prefixed with the texture it is about.
+[[noreturn]] void Undecodable(const std::string& name, const UserError& e) {
+  throw UserError("texture " + name + " cannot be decoded: " + e.what());
 }
 
 /// The header rules (size, channel count), checked before any texel is read.
-void CheckSpec(const OIIO::ImageSpec& spec, const std::string& name) {
-  if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSize || spec.height > kMaxTextureSize) {
-    throw UserError("texture " + name + " has size " + std::to_string(spec.width) + "x" +
-                    std::to_string(spec.height) + " (allowed: 1 to " + std::to_string(kMaxTextureSize) +
+void CheckHeader(const ImageHeader& h, const std::string& name) {
+  if (h.width <= 0 || h.height <= 0 || h.width > kMaxTextureSize || h.height > kMaxTextureSize) {
+    throw UserError("texture " + name + " has size " + std::to_string(h.width) + "x" +
+                    std::to_string(h.height) + " (allowed: 1 to " + std::to_string(kMaxTextureSize) +
                     " texels a side)");
   }
-  if (spec.nchannels < 1 || spec.nchannels > 4) {
-    throw UserError("texture " + name + " has " + std::to_string(spec.nchannels) + " channels (allowed: 1 to 4)");
+  if (h.channels < 1 || h.channels > 4) {
+    throw UserError("texture " + name + " has " + std::to_string(h.channels) + " channels (allowed: 1 to 4)");
   }
-}
-
-/// Channel c (0..3: R, G, B, A) of a texel of nc channels: grey replicates, alpha 1 if absent.
-template <typename T>
-T Channel(const T* p, int nc, int c, T one) {
-  if (c == 3) return nc == 2 || nc == 4 ? p[nc - 1] : one;
-  return nc <= 2 ? p[0] : p[c];
 }
 
 }  // namespace
@@ -271,62 +247,40 @@ size_t TextureHeader::Bytes8Chain() const {
 
 TextureHeader ProbeTextureImage(const std::string& name, const std::string& path, const uint8_t* data, size_t size,
                                 const std::string& hint) {
-  OIIO::Filesystem::IOMemReader mem(const_cast<uint8_t*>(data), size);
-  const std::unique_ptr<OIIO::ImageInput> in = OpenImage(mem, name, path, data, hint);
-  const OIIO::ImageSpec& spec = in->spec();
-  CheckSpec(spec, name);
-  return {spec.width, spec.height, spec.nchannels};
+  ImageHeader h;
+  try {
+    h = ReadImageHeader(Source(name, path, data, size, hint));
+  } catch (const UserError& e) {
+    Undecodable(name, e);
+  }
+  CheckHeader(h, name);
+  return {h.width, h.height, h.channels};
 }
 
 MipLevel DecodeTextureImage(const std::string& name, const std::string& path, const uint8_t* data, size_t size,
-                            const std::string& hint, bool srgb) {
-  // The memory reader outlives the input (declared first, destroyed last). OpenImageIO 2.4's
-  // PNG/JPEG readers take the proxy from the configuration's "oiio:ioproxy" attribute.
-  OIIO::Filesystem::IOMemReader mem(const_cast<uint8_t*>(data), size);
-  const std::unique_ptr<OIIO::ImageInput> in = OpenImage(mem, name, path, data, hint);
-  const OIIO::ImageSpec& spec = in->spec();
-  CheckSpec(spec, name);
-  const int nc = spec.nchannels;
-  const size_t count = static_cast<size_t>(spec.width) * spec.height;
+                            const std::string& hint, bool srgb, bool charged) {
+  ProbeTextureImage(name, path, data, size, hint);  // the header rules before any texel
+  TexturePixels px;
+  try {
+    px = ReadTexturePixels(Source(name, path, data, size, hint), kMaxImagePixels, charged);
+  } catch (const UserError& e) {
+    Undecodable(name, e);
+  }
   MipLevel level;
-  level.width = spec.width;
-  level.height = spec.height;
-  if (spec.format == OIIO::TypeDesc::UINT8) {
-    // 8-bit stays 8-bit: the codes as stored, decoded on fetch (MipLevel::Fetch). RGB and
-    // RGBA read straight into the RGBA8 level (4-byte texel stride); grey through a copy.
+  level.width = px.width;
+  level.height = px.height;
+  if (px.is8) {
+    // 8-bit stays 8-bit: the codes as stored, decoded on fetch (MipLevel::Fetch).
     level.format = srgb ? TexelFormat::kSrgb8 : TexelFormat::kUnorm8;
-    level.bytes.resize(4 * count);
-    if (nc >= 3) {
-      if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, level.bytes.data(), 4)) {
-        throw UserError("texture " + name + " cannot be decoded: " + in->geterror());
-      }
-      if (nc == 3) {
-        for (size_t i = 0; i < count; ++i) level.bytes[4 * i + 3] = 255;
-      }
-      return level;
-    }
-    std::vector<uint8_t> raw(count * static_cast<size_t>(nc));
-    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, raw.data())) {
-      throw UserError("texture " + name + " cannot be decoded: " + in->geterror());
-    }
-    for (size_t i = 0; i < count; ++i) {
-      for (int c = 0; c < 4; ++c) level.bytes[4 * i + c] = Channel<uint8_t>(&raw[i * nc], nc, c, 255);
-    }
+    level.bytes = std::move(px.rgba8);
     return level;
   }
-  std::vector<float> raw(count * static_cast<size_t>(nc));
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data())) {
-    throw UserError("texture " + name + " cannot be decoded: " + in->geterror());
-  }
   level.format = TexelFormat::kHalf;
-  level.halves.resize(4 * count);
-  for (size_t i = 0; i < count; ++i) {
-    for (int c = 0; c < 4; ++c) {
-      float v = Channel<float>(&raw[i * nc], nc, c, 1.0f);
-      if (!std::isfinite(v)) throw UserError("texture " + name + " has a non-finite texel");
-      if (srgb && c < 3) v = SrgbDecode(v);
-      level.halves[4 * i + c] = FloatToHalf(v);
-    }
+  level.halves.resize(px.rgba.size());
+  for (size_t i = 0; i < px.rgba.size(); ++i) {
+    float v = px.rgba[i];
+    if (srgb && i % 4 < 3) v = SrgbDecode(v);
+    level.halves[i] = FloatToHalf(v);
   }
   return level;
 }

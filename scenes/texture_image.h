@@ -105,8 +105,10 @@ inline constexpr int kMaxTextureSize = 16384;
 /// stored as kHalf. Grey images replicate into RGB; images without alpha get 1.
 /// Throws UserError naming `name` for undecodable data, a zero or larger than
 /// kMaxTextureSize size, or more than 4 channels.
+/// With `charged`, the caller has charged the image's pixels to io's decode budget already
+/// (ChargeDecodeBudget, in file order: the same refusal at any thread count).
 MipLevel DecodeTextureImage(const std::string& name, const std::string& path, const uint8_t* data, size_t size,
-                            const std::string& hint, bool srgb);
+                            const std::string& hint, bool srgb, bool charged = false);
 
 /// What an image's header declares, read before any texel is decoded.
 struct TextureHeader {

@@ -201,9 +201,9 @@ TEST(ImageRead, AFifoIsRefusedWithoutBlocking) {
             std::string::npos);
 }
 
-TEST(ImageRead, ATinyFileClaimingAHugeImageFailsWithoutTakingTheMemory) {
-  // 69 bytes: signature, IHDR 16000x16000 RGB8, a 12-byte IDAT, IEND. Decoding it would need
-  // 16000·16000·3 floats = 3 GB.
+/// 69 bytes: signature, IHDR 16000x16000 RGB8, a 12-byte IDAT, IEND. Decoding it would need
+/// 16000·16000·3 floats = 3 GB.
+std::string HugePng() {
   auto be32 = [](uint32_t v) {
     return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
                        static_cast<char>(v)};
@@ -220,6 +220,11 @@ TEST(ImageRead, ATinyFileClaimingAHugeImageFailsWithoutTakingTheMemory) {
   png += chunk("IHDR", be32(16000) + be32(16000) + std::string("\x08\x02\x00\x00\x00", 5));
   png += chunk("IDAT", std::string("\x78\x9c\x63\x60\x00\x00\x00\x02\x00\x01\x00\x00", 12));
   png += chunk("IEND", "");
+  return png;
+}
+
+TEST(ImageRead, ATinyFileClaimingAHugeImageFailsWithoutTakingTheMemory) {
+  const std::string png = HugePng();
   ASSERT_EQ(png.size(), 69u);
   std::ofstream(Dir() / "huge.png", std::ios::binary) << png;
   rusage before{}, after{};
@@ -273,6 +278,57 @@ TEST(ImageRead, FromMemoryGoesThroughTheSameChecks) {
                 .find("unsupported file type '.gif'"),
             std::string::npos);
   EXPECT_NE(ErrorOf([&] { ReadImageFromMemory("t.png", nullptr, 0); }).find("is empty"), std::string::npos);
+}
+
+TEST(ImageRead, TexturesKeepTheirCodesAndGoThroughTheSameChecks) {
+  // A 3x2 RGBA8 PNG (codes 0.2·255 = 51, 0.4 → 102, 0.6 → 153, 0.8 → 204), asymmetric in x
+  // and y: its codes come back as stored, alpha straight, from the file and from memory.
+  const std::vector<float> px = {0.0f, 1.0f, 0.2f, 1.0f, 0.6f, 0.4f, 1.0f, 0.0f, 0.8f, 0.0f, 0.0f, 1.0f,
+                                 1.0f, 1.0f, 1.0f, 0.2f, 0.0f, 0.0f, 0.0f, 1.0f, 0.4f, 0.2f, 0.6f, 0.8f};
+  // (Written unassociated: OpenImageIO's PNG writer would otherwise divide colour by alpha.)
+  WriteWithOiio(Dir() / "tex.png", 3, 2, {"R", "G", "B", "A"}, OIIO::TypeDesc::UINT8, px, {{"oiio:UnassociatedAlpha", 1}});
+  const std::vector<uint8_t> codes = {0, 255, 51, 255, 153, 102, 255, 0, 204, 0, 0, 255,
+                                      255, 255, 255, 51, 0, 0, 0, 255, 102, 51, 153, 204};
+  const std::string bytes = FileBytes(Dir() / "tex.png");
+  const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());
+  const ImageSource file{(Dir() / "tex.png").string(), nullptr, 0, ""};
+  const ImageSource memory{"image 3 embedded in a.glb", data, bytes.size(), ".png"};
+  for (const ImageSource& src : {file, memory}) {
+    const ImageHeader h = ReadImageHeader(src);
+    EXPECT_EQ(h.width, 3);
+    EXPECT_EQ(h.height, 2);
+    EXPECT_EQ(h.channels, 4);
+    EXPECT_TRUE(h.is8);
+    const TexturePixels t = ReadTexturePixels(src);
+    EXPECT_TRUE(t.is8);
+    EXPECT_EQ(t.file_channels, 4);
+    EXPECT_EQ(t.rgba8, codes) << src.name;
+    EXPECT_TRUE(t.rgba.empty());
+  }
+  // 16-bit RGB: float values as stored (k/65535), alpha 1.
+  const std::vector<float> px16 = {0.25f, 0.5f, 1.0f, 0.0f, 0.75f, 0.125f};
+  WriteWithOiio(Dir() / "tex16.png", 2, 1, {"R", "G", "B"}, OIIO::TypeDesc::UINT16, px16);
+  const TexturePixels t16 = ReadTexturePixels({(Dir() / "tex16.png").string(), nullptr, 0, ""});
+  EXPECT_FALSE(t16.is8);
+  ASSERT_EQ(t16.rgba.size(), 8u);
+  for (int i = 0; i < 2; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(t16.rgba[4 * i + c], std::round(px16[3 * i + c] * 65535.0f) / 65535.0f, 1e-7) << i << c;
+    }
+    EXPECT_EQ(t16.rgba[4 * i + 3], 1.0f);
+  }
+  // The reader's checks, with the memory name in the message: the 69-byte PNG claiming
+  // 16000x16000, a cut chunk, the extension picking the reader, nothing at all.
+  const std::string huge = HugePng();
+  const std::string e = ErrorOf([&] {
+    ReadTexturePixels({"image 0 of h.glb", reinterpret_cast<const uint8_t*>(huge.data()), huge.size(), ".png"});
+  });
+  EXPECT_NE(e.find("image 'image 0 of h.glb'"), std::string::npos) << e;
+  EXPECT_NE(e.find("claims 16000x16000 pixels"), std::string::npos) << e;
+  EXPECT_NE(ErrorOf([&] { ReadTexturePixels({"t", data, 45, ".png"}); }).find("not a valid PNG file"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { ReadTexturePixels({"t", data, bytes.size(), ".gif"}); }).find("unsupported file type '.gif'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] { ReadTexturePixels({"t", data, 0, ".png"}); }).find("is empty"), std::string::npos);
 }
 
 TEST(SafePath, PathsFromFilesStayInsideTheirFolder) {

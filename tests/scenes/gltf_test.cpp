@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -287,6 +288,60 @@ TEST(GltfLoad, UsedExtensionsBlendAnimationsLoadWithOneNoteEach) {
   ASSERT_EQ(g.notes.size(), 2u);
   EXPECT_EQ(g.notes[0], "extensions used but not drawn (ignored, as glTF allows): KHR_materials_ior, KHR_materials_specular");
   EXPECT_NE(g.notes[1].find("animations: drawn at the static pose"), std::string::npos) << g.notes[1];
+}
+
+TEST(GltfLoad, UrisArePercentDecoded) {
+  // glTF's URIs are URIs: "my%20tex%2Bx.png" names the file "my tex+x.png" and the buffer
+  // "p%63t.bin" the file "pct.bin" (%63 is 'c'; hex digits in either case).
+  const fs::path d = TestDir();
+  TriangleFile f;
+  const fs::path written = f.Write(d, "pct");
+  Image8 img(2, 1, 4, 255);
+  img.At(0, 0, 0) = 10, img.At(0, 0, 1) = 20, img.At(0, 0, 2) = 30;
+  img.At(1, 0, 0) = 200, img.At(1, 0, 1) = 100, img.At(1, 0, 2) = 50;
+  WriteImage8((d / "my tex+x.png").string(), img);
+  f.doc["buffers"][0]["uri"] = "p%63t.bin";
+  f.doc["images"] = Json::parse(R"([{"uri": "my%20tex%2Bx.png"}])");
+  f.doc["textures"] = Json::parse(R"([{"source": 0}])");
+  f.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+  std::ofstream(written) << f.doc.dump();
+  const GltfContent c = LoadGltf(written.string());
+  ASSERT_EQ(c.images.size(), 1u);
+  EXPECT_EQ(c.images[0]->levels[0].bytes, (std::vector<uint8_t>{10, 20, 30, 255, 200, 100, 50, 255}));
+  EXPECT_EQ(c.files_read, (std::vector<std::string>{(d / "my tex+x.png").string(), (d / "pct.bin").string()}));
+  // A '%' without two hex digits after it, or a NUL byte: refused naming the escape.
+  for (const auto& [uri, want] : std::vector<std::pair<std::string, std::string>>{
+           {"bad%zz.png", "at /images/0/uri: has a bad percent escape '%zz' at character 3"},
+           {"bad%2", "at /images/0/uri: has a bad percent escape '%2' at character 3"},
+           {"a%00.png", "at /images/0/uri: has the escape '%00' (a NUL byte)"}}) {
+    f.doc["images"][0]["uri"] = uri;
+    std::ofstream(written) << f.doc.dump();
+    const std::string e = LoadError(written);
+    EXPECT_NE(e.find(want), std::string::npos) << uri << ": " << e;
+  }
+  f.doc["buffers"][0]["uri"] = "p%g3t.bin";
+  std::ofstream(written) << f.doc.dump();
+  EXPECT_NE(LoadError(written).find("at /buffers/0/uri: has a bad percent escape '%g3' at character 1"), std::string::npos)
+      << LoadError(written);
+}
+
+TEST(GltfLoad, TexturesCountAgainstTheDecodeBudget) {
+  // ctest runs each test in its own process, so the budget (read once) is this test's own:
+  // 1 megapixel. Two 800 x 800 textures (0.64 MP each): the second passes it, and is named
+  // (charged in file order before the parallel decodes, so at any thread count).
+  ::setenv(kDecodeBudgetVariable, "1", 1);
+  const fs::path d = TestDir();
+  WriteImage8((d / "budget-a.png").string(), Image8(800, 800, 4, 90));
+  WriteImage8((d / "budget-b.png").string(), Image8(800, 800, 4, 200));
+  TriangleFile f;
+  f.doc["images"] = Json::parse(R"([{"uri": "budget-a.png"}, {"uri": "budget-b.png"}])");
+  f.doc["textures"] = Json::parse(R"([{"source": 0}, {"source": 1}])");
+  f.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+  f.doc["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 1}};
+  const std::string e = LoadError(f.Write(d, "budget"));
+  EXPECT_NE(e.find("budget-b.png' (640000 pixels)"), std::string::npos) << e;
+  EXPECT_NE(e.find("past the budget of 1000000"), std::string::npos) << e;
+  EXPECT_EQ(e.find("budget-a.png"), std::string::npos) << e;
 }
 
 TEST(GltfLoad, TwentyThousandNestedNodesLoadWithoutRecursion) {

@@ -13,8 +13,10 @@
 #include <functional>
 #include <fstream>
 
+#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "scene_test_util.h"
 #include "scenes/gltf_lights.h"
 #include "scenes/ibl.h"
@@ -211,6 +213,58 @@ TEST(Lighting, EnvironmentFieldIsValidated) {
   EXPECT_NE(err(R"({"map": [1, -1, 1]})").find("/environment/map"), std::string::npos);
   EXPECT_NE(err(R"({"map": "studio", "blur": 1})").find("blur"), std::string::npos);
   EXPECT_EQ(err(R"({"map": "studio", "intensity": 0.5, "rotation_deg": -90})"), "");
+}
+
+/// Writes a w × h RGB float image (EXR or Radiance HDR by extension) holding `px`.
+void WriteFloatImage(const std::string& path, int w, int h, const std::vector<float>& px) {
+  auto out = OIIO::ImageOutput::create(path);
+  OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
+  ASSERT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, px.data()) && out->close());
+}
+
+TEST(Lighting, EnvironmentMapsAreReadThroughIo) {
+  // A 4 × 2 map, asymmetric in x and y, as EXR (float: exact) and Radiance HDR (RGBE: one
+  // shared 8-bit exponent; these values, a mantissa of at most 8 bits under the largest
+  // channel, are exact too: 2 = 128·2^-6, 0.5 = 32·2^-6).
+  const std::vector<float> px = {1, 2, 0.5f,  0, 0, 0,  4, 4, 4,  0.25f, 0.5f, 1,
+                                 8, 1, 0.5f,  2, 2, 0,  1, 0.5f, 0.25f,  16, 8, 4};
+  const fs::path dir = testenv::ScratchDir("envmap");
+  for (const char* ext : {".exr", ".hdr"}) {
+    const std::string path = (dir / (std::string("env") + ext)).string();
+    WriteFloatImage(path, 4, 2, px);
+    const EquirectMap m = ReadEquirect(path);
+    ASSERT_EQ(m.width, 4);
+    ASSERT_EQ(m.height, 2);
+    for (size_t t = 0; t < 8; ++t) {
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(m.texels[t][c], px[3 * t + c]) << ext << " texel " << t << " channel " << c;
+    }
+  }
+  // Not twice as wide as high: refused from the header, naming the rule.
+  const std::string square = (dir / "square.exr").string();
+  WriteFloatImage(square, 2, 2, std::vector<float>(12, 1.0f));
+  try {
+    ReadEquirect(square);
+    ADD_FAILURE() << "a 2 x 2 map was read";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("is 2 x 2: an equirectangular map is twice as wide as high"), std::string::npos)
+        << e.what();
+  }
+  // A negative texel at (1, 0), and a file that is not an image (io's message, prefixed).
+  std::vector<float> neg(24, 1.0f);
+  neg[3 * 1 + 2] = -1.0f;
+  const std::string bad = (dir / "neg.exr").string();
+  WriteFloatImage(bad, 4, 2, neg);
+  const std::string junk = (dir / "junk.hdr").string();
+  std::ofstream(junk) << "not an image";
+  for (const auto& [path, want] : {std::pair<std::string, std::string>{bad, "negative texel at (1, 0)"},
+                                   {junk, "environment map '" + junk + "' could not be read: "}}) {
+    try {
+      ReadEquirect(path);
+      ADD_FAILURE() << path << " was read";
+    } catch (const UserError& e) {
+      EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(Lighting, StudioEnvironmentIsDeterministicAndNeutral) {

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "core/color.h"
 #include "scenes/texture_image.h"
@@ -19,12 +21,15 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Writes a PNG of w × h × nc channels of type T (UINT8 or UINT16) to a fresh temp file.
+/// The samples are written as given (alpha straight: OpenImageIO's PNG writer would otherwise
+/// divide colour by alpha on the way out).
 template <typename T>
 std::string WritePng(const std::string& stem, int w, int h, int nc, const std::vector<T>& px) {
   const fs::path p = fs::temp_directory_path() / ("aalab_texstore_" + stem + ".png");
   auto out = OIIO::ImageOutput::create(p.string());
   const OIIO::TypeDesc t = sizeof(T) == 1 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
   OIIO::ImageSpec spec(w, h, nc, t);
+  spec.attribute("oiio:UnassociatedAlpha", 1);
   EXPECT_TRUE(out && out->open(p.string(), spec) && out->write_image(t, px.data()) && out->close());
   return p.string();
 }
@@ -69,14 +74,51 @@ TEST(TextureStorage, EightBitRgbStaysRgba8AndFetchesTheFloatDecodeBitForBit) {
 }
 
 TEST(TextureStorage, EightBitGreyReplicatesIntoRgbWithOpaqueAlpha) {
-  // (Grey + alpha is left out: OpenImageIO's PNG reader associates alpha by default, so the
-  // colour read back is not the colour written; see the report of issue #35.)
   const std::vector<uint8_t> px = {10, 200, 90};  // 3 × 1 grey
   const std::string path = WritePng("g8", 3, 1, 1, px);
   const MipLevel l = DecodeTextureImage("t", path, nullptr, 0, "png", false);
   ASSERT_EQ(l.format, TexelFormat::kUnorm8);
   const std::vector<uint8_t> want = {10, 10, 10, 255, 200, 200, 200, 255, 90, 90, 90, 255};
   EXPECT_EQ(l.bytes, want);
+  // Grey + alpha: grey replicated, alpha as stored (not multiplied into the grey).
+  const std::string ga = WritePng("ga8", 2, 1, 2, std::vector<uint8_t>{100, 128, 30, 0});
+  EXPECT_EQ(DecodeTextureImage("t", ga, nullptr, 0, "png", false).bytes,
+            (std::vector<uint8_t>{100, 100, 100, 128, 30, 30, 30, 0}));
+  fs::remove(path);
+  fs::remove(ga);
+}
+
+TEST(TextureStorage, AlphaIsStraightAsGltfDefinesIt) {
+  // glTF's alpha is unassociated: a texel's colour is the file's colour whatever its alpha.
+  // 3 × 2 RGBA, asymmetric in x and y; texel (1, 1) is (200, 40, 120) at alpha 128 (0.502),
+  // texel (2, 1) keeps its colour (60, 180, 90) at alpha 0. Premultiplied, they would read
+  // back (100, 20, 60) and (0, 0, 0).
+  const std::vector<uint8_t> px = {255, 0, 0, 255,  0, 255, 0, 255,  0, 0, 255, 255,
+                                   10, 20, 30, 255,  200, 40, 120, 128,  60, 180, 90, 0};
+  const std::string path = WritePng("straight", 3, 2, 4, px);
+  std::ifstream f(path, std::ios::binary);
+  const std::vector<uint8_t> file((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  // From the file and from memory (a .glb's embedded image): the same codes.
+  for (const bool memory : {false, true}) {
+    const MipLevel l = memory ? DecodeTextureImage("t", "", file.data(), file.size(), "png", false)
+                              : DecodeTextureImage("t", path, nullptr, 0, "png", false);
+    ASSERT_EQ(l.format, TexelFormat::kUnorm8);
+    EXPECT_EQ(l.bytes, px) << (memory ? "memory" : "file");
+    // Bilinear halfway between texels (1, 1) and (2, 1): u = 2/3, v = 3/4. Straight colour
+    // averages the colours: R (200 + 60)/2 = 130, G (40 + 180)/2 = 110, B (120 + 90)/2 = 105,
+    // A (128 + 0)/2 = 64, over 255.
+    const glm::vec4 s = SampleBilinear(l, {2.0f / 3.0f, 0.75f}, WrapMode::kClampToEdge, WrapMode::kClampToEdge);
+    EXPECT_NEAR(s.x, 130.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(s.y, 110.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(s.z, 105.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(s.w, 64.0f / 255.0f, 1e-6f);
+  }
+  // sRGB colour: texel (1, 1) alone (its centre, u = 1/2, v = 3/4) decodes code 200 to
+  // ((200/255 + 0.055)/1.055)^2.4 = 0.57758 and keeps alpha 128/255.
+  const MipLevel srgb = DecodeTextureImage("t", path, nullptr, 0, "png", true);
+  const glm::vec4 c = SampleBilinear(srgb, {0.5f, 0.75f}, WrapMode::kClampToEdge, WrapMode::kClampToEdge);
+  EXPECT_NEAR(c.x, 0.577581f, 2e-6f);
+  EXPECT_NEAR(c.w, 128.0f / 255.0f, 1e-6f);
   fs::remove(path);
 }
 
