@@ -12,4 +12,5 @@ set(AALAB_CORE_SOURCES
   edge_mask.cpp
   cleanup.cpp
   input_files.cpp
+  format.cpp
 )
