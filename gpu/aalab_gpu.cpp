@@ -377,6 +377,7 @@ TextureProbe ProbeAndPrint() {
 /// What every measurement shares: the options, the device's sRGB decode table and stream,
 /// the result rows and the failed checks.
 struct GpuRun {
+  GpuRun(const Options& options, const float* device_decode) : o(options), decode(device_decode) {}
   const Options& o;
   const float* decode = nullptr;  ///< SrgbDecode8's table on the device (the sqrt-luminance pre-pass)
   cudaStream_t stream{};
@@ -567,7 +568,7 @@ int Main(int argc, char** argv) {
   float* decode = nullptr;
   cuda::Check(cudaMalloc(reinterpret_cast<void**>(&decode), sizeof decode_host), "cudaMalloc");
   cuda::Check(cudaMemcpy(decode, decode_host, sizeof decode_host, cudaMemcpyHostToDevice), "upload");
-  GpuRun run{o, decode};
+  GpuRun run(o, decode);
   cuda::Check(cudaStreamCreate(&run.stream), "cudaStreamCreate");
 
   const TextureRuleCheck rule = CheckTextureRule(CollectTextureProbeData());
