@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "core/format.h"
 #include "harness/run/runner.h"
 #include "scenes/library.h"
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "bench/bench_bigmesh.h"
+#include "core/format.h"
 #include "scenes/library.h"
 #include "scenes/render.h"
 #include "scenes/tracer.h"
