@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <functional>
 
+#include "core/format.h"
 #include "core/render_spec.h"
 #include "scenes/analytic.h"
 #include "scenes/exact_reference.h"
@@ -37,12 +38,6 @@ Times Time(int reps, const std::function<void()>& body) {
   return t;
 }
 
-std::string Fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 }  // namespace
 
 std::vector<Json> BenchAnalyticAa(int reps, std::string* table) {
@@ -64,10 +59,10 @@ std::vector<Json> BenchAnalyticAa(int reps, std::string* table) {
                      {"unit", "ms"}, {"value", exact.ToJson()}, {"limit", "256-spp sampled reference"},
                      {"limit_ms", sampled.ToJson()}, {"ratio_to_limit", ref_ratio}, {"goal", "<= 1"}});
   *table += "\n## Analytical AA\n\n| figure | ms median | limit | limit ms median | ratio | goal |\n|---|---|---|---|---|---|\n";
-  *table += "| aaa render, sdf-circles 960x540 | " + Fmt("%.1f", analytic.Median()) + " | none render | " +
-            Fmt("%.1f", none.Median()) + " | " + Fmt("%.2f", ratio) + " | <= 1.5 |\n";
-  *table += "| exact reference, sdf-circles 1920x1080 | " + Fmt("%.1f", exact.Median()) + " | 256-spp reference | " +
-            Fmt("%.1f", sampled.Median()) + " | " + Fmt("%.2f", ref_ratio) + " | <= 1 |\n";
+  *table += "| aaa render, sdf-circles 960x540 | " + FormatDouble("%.1f", analytic.Median()) + " | none render | " +
+            FormatDouble("%.1f", none.Median()) + " | " + FormatDouble("%.2f", ratio) + " | <= 1.5 |\n";
+  *table += "| exact reference, sdf-circles 1920x1080 | " + FormatDouble("%.1f", exact.Median()) + " | 256-spp reference | " +
+            FormatDouble("%.1f", sampled.Median()) + " | " + FormatDouble("%.2f", ref_ratio) + " | <= 1 |\n";
   return figures;
 }
 

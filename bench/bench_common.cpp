@@ -11,6 +11,7 @@
 
 #include <sys/resource.h>
 
+#include "core/format.h"
 #include "core/parallel.h"
 #include "scenes/library.h"
 #include "scenes/render.h"
@@ -118,14 +119,8 @@ void FailIdentity(const std::string& what) {
   std::exit(2);
 }
 
-std::string Fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 std::string Range(const Stats& s, double scale, const char* f) {
-  return Fmt(f, s.Median() * scale) + " (" + Fmt(f, s.Min() * scale) + "–" + Fmt(f, s.Max() * scale) + ")";
+  return FormatDouble(f, s.Median() * scale) + " (" + FormatDouble(f, s.Min() * scale) + "–" + FormatDouble(f, s.Max() * scale) + ")";
 }
 
 Stats Mpix(const Stats& s, double mp) {  // median of rates = mp / median time

@@ -63,8 +63,6 @@ void PlainPass(const Image8& in, Image8& out);
 /// Prints the bit-identity failure and exits 2.
 [[noreturn]] void FailIdentity(const std::string& what);
 
-/// snprintf of one double.
-std::string Fmt(const char* f, double v);
 /// "median (min–max)" of `s` scaled by `scale`, each with format `f`.
 std::string Range(const Stats& s, double scale, const char* f);
 /// Rates mp / t for each sample t (Mpix/s from seconds).

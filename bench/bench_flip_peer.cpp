@@ -11,17 +11,12 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/format.h"
 #include "io/image_io.h"
 #include "metrics/flip.h"
 
 namespace aalab::bench {
 namespace {
-
-std::string F(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 
 double Median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -92,9 +87,9 @@ std::vector<BenchGoal> ReportNvidiaFlip(const NvidiaFlipRun& run, const std::fun
     const double nv = Median(s) * 1e3, aa = aalab_ms(threads);
     const double sp = nv / aa;
     worst = std::min(worst, sp);
-    line("| " + std::to_string(threads) + " | " + F("%.0f", nv) + " (" + F("%.0f", *std::min_element(s.begin(), s.end()) * 1e3) + "–" +
-         F("%.0f", *std::max_element(s.begin(), s.end()) * 1e3) + ") | " + F("%.1f", aa) + " | " + F("%.1f×", sp) + " |");
-    measured += (measured.empty() ? "" : ", ") + F("%.1f×", sp) + " at " + std::to_string(threads) + " thread" + (threads > 1 ? "s" : "");
+    line("| " + std::to_string(threads) + " | " + FormatDouble("%.0f", nv) + " (" + FormatDouble("%.0f", *std::min_element(s.begin(), s.end()) * 1e3) + "–" +
+         FormatDouble("%.0f", *std::max_element(s.begin(), s.end()) * 1e3) + ") | " + FormatDouble("%.1f", aa) + " | " + FormatDouble("%.1f×", sp) + " |");
+    measured += (measured.empty() ? "" : ", ") + FormatDouble("%.1f×", sp) + " at " + std::to_string(threads) + " thread" + (threads > 1 ? "s" : "");
     std::vector<double> ms;
     for (double x : s) ms.push_back(x * 1e3);
     figures->push_back({{"group", "metrics"}, {"name", "flip-nvidia-tool"}, {"threads", threads}, {"unit", "ms"}, {"samples", ms},
@@ -102,10 +97,10 @@ std::vector<BenchGoal> ReportNvidiaFlip(const NvidiaFlipRun& run, const std::fun
   }
   const double d = std::abs(run.aalab_mean - run.tool_mean);
   line("");
-  line("Mean FLIP: NVIDIA tool " + F("%.6f", run.tool_mean) + " (it prints 6 decimals: up to 5e-7 of |Δ| is that rounding), aalab " +
-       F("%.9f", run.aalab_mean) + ", |Δ| " + F("%.2g", d) + ".");
+  line("Mean FLIP: NVIDIA tool " + FormatDouble("%.6f", run.tool_mean) + " (it prints 6 decimals: up to 5e-7 of |Δ| is that rounding), aalab " +
+       FormatDouble("%.9f", run.aalab_mean) + ", |Δ| " + FormatDouble("%.2g", d) + ".");
   goal("FLIP as in a run ≥ 5× faster than NVIDIA's FLIP tool (1 and 2 threads)", measured, worst >= 5.0);
-  goal("FLIP mean within 1e-5 of NVIDIA's FLIP tool (its 6-decimal print)", F("%.2g", d), d <= 1e-5);
+  goal("FLIP mean within 1e-5 of NVIDIA's FLIP tool (its 6-decimal print)", FormatDouble("%.2g", d), d <= 1e-5);
   return goals;
 }
 

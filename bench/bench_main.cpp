@@ -39,6 +39,8 @@
 #include "bench/bench_suite.h"
 #include "bench/bench_taa.h"
 #include "bench/bench_tracing.h"
+#include "core/format.h"
+#include "harness/run/context.h"
 #include "core/parallel.h"
 
 namespace aalab::bench {
@@ -49,15 +51,6 @@ std::string Now() {
   char buf[64];
   std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&t));
   return buf;
-}
-
-std::string CpuModel() {
-  std::ifstream f("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(f, line)) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown";
 }
 
 std::string LoadAverage() {
@@ -171,7 +164,7 @@ int Main(int argc, char** argv) {
   PostFloorGoals(out);
   TracingRatioGoal(tracing, out);
   MetricsGoals(metrics, out);
-  out.Goal("TAA temporal step ≤ 2× fxaa311-p39's time (1080p, 2 threads)", Fmt("%.2f×", taa_ratio),
+  out.Goal("TAA temporal step ≤ 2× fxaa311-p39's time (1080p, 2 threads)", FormatDouble("%.2f×", taa_ratio),
            taa_ratio > 0 && taa_ratio <= 2.0);
   TracingScalingGoal(tracing, out);
   PostScalingGoal(post, out);
@@ -187,7 +180,7 @@ int Main(int argc, char** argv) {
   out.Line("Machine: " + ctx["cpu"].get<std::string>() + ", " + std::to_string(ctx["hardware_threads"].get<int>()) +
            " hardware threads; " + ctx["date"].get<std::string>() + "; load average " +
            ctx["load_average_at_start"].get<std::string>() + " at start, " + ctx["load_average_at_end"].get<std::string>() +
-           " at end; bench wall time " + Fmt("%.0f s", total_s) + ".");
+           " at end; bench wall time " + FormatDouble("%.0f s", total_s) + ".");
   report["context"] = ctx;
   report["figures"] = out.figures;
   report["external"] = metrics.external;

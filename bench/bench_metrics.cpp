@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include "core/format.h"
 #include "core/color.h"
 #include "core/parallel.h"
 #include "io/image_io.h"
@@ -168,7 +169,7 @@ void MetricsTable(MetricsBench& mb, BenchOutput& out) {
       if (e) {
         ext = tool + " " + Range(**e, 1e3, "%.1f") + " ms";
         const double sp = (*e)->Median() / s.Median();
-        speed = Fmt("%.1f×", sp);
+        speed = FormatDouble("%.1f×", sp);
         fj["external"] = {{"tool", tool}, {"ms", StatsJson((*e)->samples, 1e3)}, {"speedup", sp}};
         if (std::string(m) == "ssim-run" && threads == 1) mb.ssim_speedup = sp;
       }
@@ -196,10 +197,10 @@ void MetricsTable(MetricsBench& mb, BenchOutput& out) {
 void MetricsGoals(const MetricsBench& mb, BenchOutput& out) {
   for (const auto& g : mb.nvidia_flip_goals) out.Goal(g.goal, g.measured, g.met);
   out.Goal("SSIM as in a run ≥ 15× faster than scikit-image's Gaussian SSIM (1 thread)",
-           mb.ssim_speedup > 0 ? Fmt("%.1f×", mb.ssim_speedup) : "skimage missing", mb.ssim_speedup >= 15.0);
+           mb.ssim_speedup > 0 ? FormatDouble("%.1f×", mb.ssim_speedup) : "skimage missing", mb.ssim_speedup >= 15.0);
   const double sp = Figure("metric-ssim-run/t1").Median() / Figure("metric-ssim-run/t2").Median();
   out.Goal("SSIM as in a run: 2 threads ≥ 1.8× one thread",
-           Fmt("%.2f×", sp) + "; the 2-thread runs got " + Fmt("%.2f", CoresUsed("metric-ssim-run/t2")) + " cores", sp >= 1.8);
+           FormatDouble("%.2f×", sp) + "; the 2-thread runs got " + FormatDouble("%.2f", CoresUsed("metric-ssim-run/t2")) + " cores", sp >= 1.8);
 }
 
 }  // namespace aalab::bench

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/format.h"
 #include "methods/registry.h"
 #include "scenes/library.h"
 #include "scenes/render.h"
@@ -56,12 +57,6 @@ Figure Measure(const Tracer& tracer, int w, int h, const RenderSpec& spec, int r
   return f;
 }
 
-std::string Fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 }  // namespace
 
 MsaaBenchResult RunMsaaBench(int width, int height, int reps, const std::vector<std::string>& scenes) {
@@ -83,8 +78,8 @@ MsaaBenchResult RunMsaaBench(int width, int height, int reps, const std::vector<
     const Figure s = Measure(tracer, width, height, ssaa, reps);
     auto per = [px](uint64_t v) { return static_cast<double>(v) / px; };
     auto range = [](const Figure& f) {
-      return Fmt("%.1f", f.Median()) + " (" + Fmt("%.1f", f.wall.Min()) + "–" +
-             Fmt("%.1f", f.wall.Max()) + ")";
+      return FormatDouble("%.1f", f.Median()) + " (" + FormatDouble("%.1f", f.wall.Min()) + "–" +
+             FormatDouble("%.1f", f.wall.Max()) + ")";
     };
     const double eval_ratio = per(s.counters.shading_evals) > 0
                                   ? per(m.counters.shading_evals) / per(s.counters.shading_evals)
@@ -92,15 +87,15 @@ MsaaBenchResult RunMsaaBench(int width, int height, int reps, const std::vector<
     const double time_ratio = m.Median() / s.Median();
     const double cpu_ratio = m.CpuMedian() / s.CpuMedian();
     auto rays = [&](const Figure& f) {
-      return Fmt("%.2f", per(f.counters.coverage_rays)) + " + " +
-             Fmt("%.2f", per(f.counters.primary_rays - f.counters.coverage_rays)) + " + " +
-             Fmt("%.2f", per(f.counters.shadow_rays));
+      return FormatDouble("%.2f", per(f.counters.coverage_rays)) + " + " +
+             FormatDouble("%.2f", per(f.counters.primary_rays - f.counters.coverage_rays)) + " + " +
+             FormatDouble("%.2f", per(f.counters.shadow_rays));
     };
-    md += "| " + name + " | " + Fmt("%.3f", per(m.counters.shading_evals)) + " | " +
-          Fmt("%.3f", per(s.counters.shading_evals)) + " | " + Fmt("%.2f", eval_ratio) + " | " + rays(m) + " | " +
-          rays(s) + " | " + Fmt("%.3f", per(m.counters.texture_lookups)) + " | " +
-          Fmt("%.3f", per(s.counters.texture_lookups)) + " | " + range(m) + " | " + range(s) + " | " +
-          Fmt("%.2f", time_ratio) + " | " + Fmt("%.2f", cpu_ratio) + " |\n";
+    md += "| " + name + " | " + FormatDouble("%.3f", per(m.counters.shading_evals)) + " | " +
+          FormatDouble("%.3f", per(s.counters.shading_evals)) + " | " + FormatDouble("%.2f", eval_ratio) + " | " + rays(m) + " | " +
+          rays(s) + " | " + FormatDouble("%.3f", per(m.counters.texture_lookups)) + " | " +
+          FormatDouble("%.3f", per(s.counters.texture_lookups)) + " | " + range(m) + " | " + range(s) + " | " +
+          FormatDouble("%.2f", time_ratio) + " | " + FormatDouble("%.2f", cpu_ratio) + " |\n";
     auto fig = [&](const Figure& f) {
       return nlohmann::ordered_json{{"shading_evals_per_px", per(f.counters.shading_evals)},
                                     {"coverage_rays_per_px", per(f.counters.coverage_rays)},

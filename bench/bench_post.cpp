@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 
+#include "core/format.h"
 #include "core/parallel.h"
 #include "methods/registry.h"
 #include "methods/rescale.h"
@@ -168,14 +169,14 @@ void PostTable(const PostBench& post, BenchOutput& out) {
       const std::string suffix = "/" + f.key + "/t" + std::to_string(threads);
       const Stats& floor = Figure("floor" + suffix);
       out.Line("| *floor: plain read+write* | " + f.key + " | " + std::to_string(threads) + " | " + Range(Mpix(floor, fpx), 1, "%.0f") +
-               " | 1 | " + Fmt("%.2f", CoresUsed("floor" + suffix)) + " |");
+               " | 1 | " + FormatDouble("%.2f", CoresUsed("floor" + suffix)) + " |");
       out.figures.push_back({{"group", "post"}, {"name", "floor"}, {"frame", f.desc}, {"threads", threads}, {"unit", "Mpix/s"},
                              {"value", StatsJson(Mpix(floor, fpx).samples, 1)}, {"ms", StatsJson(floor.samples, 1e3)}});
       for (const auto& name : post.filters) {
         const Stats& s = Figure(name + suffix);
         const double ratio = s.Median() / floor.Median();
         out.Line("| " + name + " | " + f.key + " | " + std::to_string(threads) + " | " + Range(Mpix(s, fpx), 1, "%.1f") + " | " +
-                 Fmt("%.1f", ratio) + " | " + Fmt("%.2f", CoresUsed(name + suffix)) + " |");
+                 FormatDouble("%.1f", ratio) + " | " + FormatDouble("%.2f", CoresUsed(name + suffix)) + " |");
         out.figures.push_back({{"group", "post"}, {"name", name}, {"frame", f.desc}, {"threads", threads}, {"unit", "Mpix/s"},
                                {"value", StatsJson(Mpix(s, fpx).samples, 1)}, {"ms", StatsJson(s.samples, 1e3)},
                                {"limit", "floor"}, {"ratio_to_limit", ratio}, {"cores_used", CoresUsed(name + suffix)}});
@@ -186,12 +187,12 @@ void PostTable(const PostBench& post, BenchOutput& out) {
     const std::string t = "/t" + std::to_string(threads);
     const Stats& floor = Figure("floor-rescale" + t);
     out.Line("| *floor: plain pass 2560x1440* | mesh | " + std::to_string(threads) + " | " + Range(Mpix(floor, 2560.0 * 1440 / 1e6), 1, "%.0f") +
-             " | 1 | " + Fmt("%.2f", CoresUsed("floor-rescale" + t)) + " |");
+             " | 1 | " + FormatDouble("%.2f", CoresUsed("floor-rescale" + t)) + " |");
     for (const char* name : {"rescale-bilinear", "rescale-bicubic"}) {
       const Stats& s = Figure(std::string(name) + t);
       const double ratio = s.Median() / floor.Median();
       out.Line("| " + std::string(name) + " 2560x1440→1080p | mesh | " + std::to_string(threads) + " | " + Range(Mpix(s, fpx), 1, "%.1f") +
-               " | " + Fmt("%.1f", ratio) + " | " + Fmt("%.2f", CoresUsed(std::string(name) + t)) + " |");
+               " | " + FormatDouble("%.1f", ratio) + " | " + FormatDouble("%.2f", CoresUsed(std::string(name) + t)) + " |");
       out.figures.push_back({{"group", "post"}, {"name", name}, {"frame", "mesh 2560x1440 -> 1920x1080"}, {"threads", threads},
                              {"unit", "Mpix/s (output)"}, {"value", StatsJson(Mpix(s, fpx).samples, 1)}, {"ms", StatsJson(s.samples, 1e3)},
                              {"limit", "plain read+write pass over the 2560x1440 frame"}, {"ratio_to_limit", ratio}});
@@ -200,9 +201,9 @@ void PostTable(const PostBench& post, BenchOutput& out) {
     const Stats& rs = Figure("ssaa-resolve-2x2" + t);
     const double ratio = rs.Median() / rf.Median();
     out.Line("| *floor: read 4 samples, write pixel* | mesh | " + std::to_string(threads) + " | " + Range(Mpix(rf, fpx), 1, "%.0f") +
-             " | 1 | " + Fmt("%.2f", CoresUsed("floor-resolve" + t)) + " |");
+             " | 1 | " + FormatDouble("%.2f", CoresUsed("floor-resolve" + t)) + " |");
     out.Line("| ssaa-resolve 2x2→1080p | mesh | " + std::to_string(threads) + " | " + Range(Mpix(rs, fpx), 1, "%.1f") + " | " +
-             Fmt("%.1f", ratio) + " | " + Fmt("%.2f", CoresUsed("ssaa-resolve-2x2" + t)) + " |");
+             FormatDouble("%.1f", ratio) + " | " + FormatDouble("%.2f", CoresUsed("ssaa-resolve-2x2" + t)) + " |");
     out.figures.push_back({{"group", "post"}, {"name", "ssaa-resolve-2x2"}, {"frame", "mesh 1920x1080, 4 samples/px"}, {"threads", threads},
                            {"unit", "Mpix/s"}, {"value", StatsJson(Mpix(rs, fpx).samples, 1)}, {"ms", StatsJson(rs.samples, 1e3)},
                            {"limit", "read the samples, write the pixels"}, {"ratio_to_limit", ratio}});
@@ -212,10 +213,10 @@ void PostTable(const PostBench& post, BenchOutput& out) {
 void PostFloorGoals(BenchOutput& out) {
   const Stats& s = Figure("fxaa311-p39/real/t1");
   const double r = s.Median() / Figure("floor/real/t1").Median();
-  out.Goal("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (1 thread)", Fmt("%.1f×", r), r <= 6.0);
+  out.Goal("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (1 thread)", FormatDouble("%.1f×", r), r <= 6.0);
   const Stats& s2 = Figure("fxaa311-p39/real/t2");
   const double r2 = s2.Median() / Figure("floor/real/t2").Median();
-  out.Goal("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (2 threads)", Fmt("%.1f×", r2), r2 <= 6.0);
+  out.Goal("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (2 threads)", FormatDouble("%.1f×", r2), r2 <= 6.0);
 }
 
 void PostScalingGoal(const PostBench& post, BenchOutput& out) {
@@ -232,7 +233,7 @@ void PostScalingGoal(const PostBench& post, BenchOutput& out) {
     for (const auto& f : post.frames) pc.push_back(CoresUsed(name + "/" + f.key + "/t2"));
   }
   out.Goal("2 threads ≥ 1.8× one thread, post filters (every filter and frame)",
-           "worst " + pn + " " + Fmt("%.2f×", pw) + "; the 2-thread runs got " + Fmt("%.2f", Stats{pc}.Median()) + " cores",
+           "worst " + pn + " " + FormatDouble("%.2f×", pw) + "; the 2-thread runs got " + FormatDouble("%.2f", Stats{pc}.Median()) + " cores",
            pw >= 1.8);
 }
 

@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "core/format.h"
 #include "harness/run/runner.h"
 #include "scenes/library.h"
 
@@ -132,8 +133,8 @@ void SuiteTable(SuiteBench& sb, BenchOutput& out) {
     if (s.w == 960 && s.threads == 2) sb.t2 = st.Median();
     const bool two = s.threads == 2 && per_mpix_1080 > 0;
     out.Line("| " + s.size + " | " + std::to_string(s.threads) + " | " + std::to_string(s.secs.size()) + " | " + Range(st, 1, "%.1f") +
-             " | " + Fmt("%.1f", per) + (two ? " (" + Fmt("%.2f", rel) + ")" : "") + " | " + Fmt("%.1f", sc.Median()) + " | " +
-             Fmt("%.1f", cper) + (two ? " (" + Fmt("%.2f", crel) + ")" : "") + " | " + Fmt("%.2f", sc.Median() / st.Median()) + " |");
+             " | " + FormatDouble("%.1f", per) + (two ? " (" + FormatDouble("%.2f", rel) + ")" : "") + " | " + FormatDouble("%.1f", sc.Median()) + " | " +
+             FormatDouble("%.1f", cper) + (two ? " (" + FormatDouble("%.2f", crel) + ")" : "") + " | " + FormatDouble("%.2f", sc.Median() / st.Median()) + " |");
     out.figures.push_back({{"group", "suite"}, {"size", s.size}, {"threads", s.threads}, {"unit", "s"}, {"value", StatsJson(s.secs, 1)},
                            {"cpu_s", StatsJson(s.cpu, 1)}, {"s_per_mpix", per}, {"cpu_s_per_mpix", cper}, {"suite", kSuiteName},
                            {"methods", kSuiteMethods}, {"ref_spp", kSuiteSpp}});
@@ -146,8 +147,8 @@ void SuiteTable(SuiteBench& sb, BenchOutput& out) {
     out.Line("");
     out.Line("| wall s | CPU s | cores used | peak memory (max RSS) |");
     out.Line("|---|---|---|---|");
-    out.Line("| " + Fmt("%.1f", d.wall_s) + " | " + Fmt("%.1f", d.cpu_s) + " | " + Fmt("%.2f", d.cpu_s / d.wall_s) + " | " +
-             Fmt("%.0f MB", d.max_rss_mb) + " |");
+    out.Line("| " + FormatDouble("%.1f", d.wall_s) + " | " + FormatDouble("%.1f", d.cpu_s) + " | " + FormatDouble("%.2f", d.cpu_s / d.wall_s) + " | " +
+             FormatDouble("%.0f MB", d.max_rss_mb) + " |");
     out.figures.push_back({{"group", "default-run"}, {"unit", "s"}, {"wall_s", d.wall_s}, {"cpu_s", d.cpu_s}, {"max_rss_mb", d.max_rss_mb}});
   }
 }
@@ -155,12 +156,12 @@ void SuiteTable(SuiteBench& sb, BenchOutput& out) {
 void SuiteGoals(const SuiteBench& sb, BenchOutput& out) {
   if (sb.per_mpix_1080 > 0) {
     out.Goal("suite time linear in pixel count within 15% (wall s per Mpix vs 1080p's, 2 threads)",
-             Fmt("worst deviation %.0f%%", 100 * sb.linear_worst), sb.linear_worst <= 0.15);
-    out.Goal("(same on CPU seconds, less exposed to other load)", Fmt("worst deviation %.0f%%", 100 * sb.linear_worst_cpu),
+             FormatDouble("worst deviation %.0f%%", 100 * sb.linear_worst), sb.linear_worst <= 0.15);
+    out.Goal("(same on CPU seconds, less exposed to other load)", FormatDouble("worst deviation %.0f%%", 100 * sb.linear_worst_cpu),
              sb.linear_worst_cpu <= 0.15);
   }
   if (sb.t1 > 0 && sb.t2 > 0) {
-    out.Goal("quick suite at 960x540: 2 threads ≥ 1.85× one thread", Fmt("%.2f×", sb.t1 / sb.t2), sb.t1 / sb.t2 >= 1.85);
+    out.Goal("quick suite at 960x540: 2 threads ≥ 1.85× one thread", FormatDouble("%.2f×", sb.t1 / sb.t2), sb.t1 / sb.t2 >= 1.85);
   }
 }
 
@@ -168,7 +169,7 @@ void DefaultRunGoal(const SuiteBench& sb, BenchOutput& out) {
   const DefaultRun& d = sb.default_run;
   if (!d.ok) return;
   out.Goal("default run (`aalab run`, prebuilt) ≤ 30 s wall and ≤ 300 MB peak memory",
-           Fmt("%.1f s", d.wall_s) + " wall (" + Fmt("%.1f", d.cpu_s) + " CPU s), " + Fmt("%.0f MB", d.max_rss_mb) + " peak",
+           FormatDouble("%.1f s", d.wall_s) + " wall (" + FormatDouble("%.1f", d.cpu_s) + " CPU s), " + FormatDouble("%.0f MB", d.max_rss_mb) + " peak",
            d.wall_s <= 30.0 && d.max_rss_mb <= 300.0);
 }
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <functional>
 
+#include "core/format.h"
 #include "core/parallel.h"
 #include "methods/fxaa311.h"
 #include "methods/registry.h"
@@ -36,11 +37,7 @@ Times Time(int reps, const std::function<void()>& prepare, const std::function<v
   return t;
 }
 
-std::string Fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", v);
-  return buf;
-}
+std::string Fmt(double v) { return FormatDouble("%.2f", v); }
 
 }  // namespace
 

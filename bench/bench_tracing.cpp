@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "bench/bench_bigmesh.h"
+#include "core/format.h"
 #include "scenes/library.h"
 #include "scenes/render.h"
 #include "scenes/tracer.h"
@@ -68,7 +69,7 @@ void TracingTable(const Settings& cfg, TracingBench& tb, BenchOutput& out) {
       if (threads == 1) tb.ratio_t1[name] = ratio;
       else tb.scaling[name] = Figure("reference/" + name + "/t1").Median() / rs.Median();
       out.Line("| " + name + " | " + std::to_string(threads) + " | " + Range(rr, 1, "%.1f") + " | " + Range(br, 1, "%.1f") + " | " +
-               Fmt("%.0f%%", 100 * ratio) + " | " + Fmt("%.2f", CoresUsed("reference/" + name + t)) + " |");
+               FormatDouble("%.0f%%", 100 * ratio) + " | " + FormatDouble("%.2f", CoresUsed("reference/" + name + t)) + " |");
       out.figures.push_back({{"group", "tracing"}, {"name", name}, {"threads", threads}, {"unit", "Mrays/s"},
                              {"reference", StatsJson(rr.samples, 1)}, {"bare_embree", StatsJson(br.samples, 1)},
                              {"reference_rays", tb.rays[name]}, {"limit", "bare Embree loop"}, {"ratio_to_limit", ratio}});
@@ -84,9 +85,9 @@ void BigMeshTable(BenchOutput& out) {
   out.Line("");
   out.Line("| BVH build ms | scene arrays MB | RSS added by the tracer MB | 1x Mrays/s t1 | t2 | bare Embree Mrays/s t1 | t2 |");
   out.Line("|---|---|---|---|---|---|---|");
-  out.Line("| " + Fmt("%.0f", bm.bvh_build_ms) + " | " + Fmt("%.1f", bm.scene_mb) + " | " + Fmt("%.1f", bm.rss_bvh_mb) + " | " +
-           Fmt("%.2f", bm.render_mrays_t1) + " | " + Fmt("%.2f", bm.render_mrays_t2) + " | " + Fmt("%.2f", bm.bare_mrays_t1) + " | " +
-           Fmt("%.2f", bm.bare_mrays_t2) + " |");
+  out.Line("| " + FormatDouble("%.0f", bm.bvh_build_ms) + " | " + FormatDouble("%.1f", bm.scene_mb) + " | " + FormatDouble("%.1f", bm.rss_bvh_mb) + " | " +
+           FormatDouble("%.2f", bm.render_mrays_t1) + " | " + FormatDouble("%.2f", bm.render_mrays_t2) + " | " + FormatDouble("%.2f", bm.bare_mrays_t1) + " | " +
+           FormatDouble("%.2f", bm.bare_mrays_t2) + " |");
   out.figures.push_back({{"group", "bigmesh"}, {"name", "torus"}, {"triangles", bm.triangles}, {"bvh_build_ms", bm.bvh_build_ms},
                          {"scene_mb", bm.scene_mb}, {"rss_tracer_mb", bm.rss_bvh_mb}, {"render_mrays_t1", bm.render_mrays_t1},
                          {"render_mrays_t2", bm.render_mrays_t2}, {"bare_mrays_t1", bm.bare_mrays_t1}, {"bare_mrays_t2", bm.bare_mrays_t2}});
@@ -101,7 +102,7 @@ void TracingRatioGoal(const TracingBench& tb, BenchOutput& out) {
   int below = 0;
   for (const auto& [n, r] : tb.ratio_t1) below += r < 0.7;
   out.Goal("reference tracing ≥ 70% of the bare Embree loop (every scene, 1 thread)",
-           "worst " + worst_name + " " + Fmt("%.0f%%", 100 * worst) + "; " + std::to_string(below) + " of " +
+           "worst " + worst_name + " " + FormatDouble("%.0f%%", 100 * worst) + "; " + std::to_string(below) + " of " +
                std::to_string(tb.ratio_t1.size()) + " scenes below 70%",
            below == 0);
 }
@@ -115,7 +116,7 @@ void TracingScalingGoal(const TracingBench& tb, BenchOutput& out) {
   std::vector<double> tc;
   for (const auto& name : tb.scenes) tc.push_back(CoresUsed("reference/" + name + "/t2"));
   out.Goal("2 threads ≥ 1.8× one thread, tracing (reference, every scene)",
-           "worst " + worst_name + " " + Fmt("%.2f×", worst) + "; the 2-thread runs got " + Fmt("%.2f", Stats{tc}.Median()) +
+           "worst " + worst_name + " " + FormatDouble("%.2f×", worst) + "; the 2-thread runs got " + FormatDouble("%.2f", Stats{tc}.Median()) +
                " cores (median CPU s / wall s)",
            worst >= 1.8);
 }

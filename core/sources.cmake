@@ -13,4 +13,5 @@ set(AALAB_CORE_SOURCES
   cleanup.cpp
   input_files.cpp
   raster_geometry.cpp
+  format.cpp
 )

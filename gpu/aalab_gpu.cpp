@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "gpu/gpu_methods.h"
+#include "gpu/main_json.h"
 #include "gpu/measure.h"
 #include "gpu/taa_gpu.h"
 #include "io/ppm.h"
@@ -321,72 +322,47 @@ std::string Sh(const std::string& cmd) {
   return out.empty() ? "unknown" : out;
 }
 
-std::string NowUtc() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
-
 // ---------------------------------------------------------------------------------------
-// JSON (hand-written: the tool needs only the C++ standard library).
+// The run's stages (Main runs them in order).
 
-std::string Q(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\', o += c;
-    else if (static_cast<unsigned char>(c) < 0x20) {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\u%04x", c);
-      o += b;
-    } else o += c;
-  }
-  return o + "\"";
+/// --probe-dump DIR: the raw probe data and its check against the texture rule, then exit.
+int DumpProbe(const std::string& dir) {
+  const TextureProbeData data = CollectTextureProbeData();
+  WriteTextureProbeData(data, dir);
+  std::printf("texture probe data written to %s\n", dir.c_str());
+  const TextureRuleCheck rule = CheckTextureRule(data);
+  std::printf("texture rule (core/sampler.h) against the probe: %lld of %lld samples differ\n", rule.Mismatches(),
+              rule.pairs + rule.quad8 + rule.coords + rule.quadf);
+  return ToInt(ExitCode::kOk);
 }
 
-std::string N(double v) {
-  if (!std::isfinite(v)) return "null";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
+const char kSmiQuery[] =
+    "nvidia-smi --query-gpu=driver_version,clocks.sm,clocks.max.sm,clocks.mem,temperature.gpu,power.draw "
+    "--format=csv,noheader 2>/dev/null";
 
-std::string StatsJson(const Stats& s) {
-  return "{\"median_ms\": " + N(s.median) + ", \"min_ms\": " + N(s.min) + ", \"max_ms\": " + N(s.max) + "}";
-}
-
-// ---------------------------------------------------------------------------------------
-
-int Main(int argc, char** argv) {
-  const Options o = ParseArgs(argc, argv);
-  if (!o.probe_dump.empty()) {
-    const TextureProbeData data = CollectTextureProbeData();
-    WriteTextureProbeData(data, o.probe_dump);
-    std::printf("texture probe data written to %s\n", o.probe_dump.c_str());
-    const TextureRuleCheck rule = CheckTextureRule(data);
-    std::printf("texture rule (core/sampler.h) against the probe: %lld of %lld samples differ\n",
-                rule.Mismatches(), rule.pairs + rule.quad8 + rule.coords + rule.quadf);
-    return ToInt(ExitCode::kOk);
-  }
-  std::vector<GpuMethod> methods;
-  for (const auto& s : o.methods) methods.push_back(ResolveGpuMethod(s));
-  for (const auto& s : o.taa_methods) CheckGpuTaaSpec(s);
-  const std::vector<FrameSet> sets = o.self_test ? SelfTestFrames(o.sizes) : ReadManifest(o.frames_dir);
-
+/// The device, its driver and nvidia-smi's readings before the measurements, printed.
+GpuDeviceFacts QueryDevice() {
   cudaDeviceProp prop{};
   cuda::Check(cudaGetDeviceProperties(&prop, 0), "cudaGetDeviceProperties");
-  int driver = 0, runtime = 0;
-  cudaDriverGetVersion(&driver);
-  cudaRuntimeGetVersion(&runtime);
-  const std::string smi_query =
-      "nvidia-smi --query-gpu=driver_version,clocks.sm,clocks.max.sm,clocks.mem,temperature.gpu,power.draw "
-      "--format=csv,noheader 2>/dev/null";
-  const std::string smi_before = Sh(smi_query);
-  const std::string nvidia_driver = Sh("nvidia-smi --query-gpu=driver_version --format=csv,noheader 2>/dev/null");
+  GpuDeviceFacts d;
+  d.name = prop.name;
+  d.major = prop.major;
+  d.minor = prop.minor;
+  d.multiprocessors = prop.multiProcessorCount;
+  d.l2_bytes = prop.l2CacheSize;
+  d.memory_bytes = static_cast<long long>(prop.totalGlobalMem);
+  cudaDriverGetVersion(&d.driver);
+  cudaRuntimeGetVersion(&d.runtime);
+  d.smi_before = Sh(kSmiQuery);
+  d.nvidia_driver = Sh("nvidia-smi --query-gpu=driver_version --format=csv,noheader 2>/dev/null");
   std::printf("device: %s (sm_%d%d, %d SMs, L2 %d MB), driver %s, CUDA driver API %d, runtime %d\n", prop.name,
-              prop.major, prop.minor, prop.multiProcessorCount, prop.l2CacheSize >> 20, nvidia_driver.c_str(), driver,
-              runtime);
+              prop.major, prop.minor, prop.multiProcessorCount, prop.l2CacheSize >> 20, d.nvidia_driver.c_str(),
+              d.driver, d.runtime);
+  return d;
+}
 
+/// The texture unit's filter probed and printed.
+TextureProbe ProbeAndPrint() {
   const TextureProbe probe = ProbeTextureFilter();
   std::printf("texture filter probe: %d distinct values over %d fractions; max error vs float fraction %.4f, "
               "vs fraction rounded to 1/256 %.4f, truncated %.4f (8-bit levels)\n",
@@ -395,253 +371,224 @@ int Main(int argc, char** argv) {
               "half-texel fetches: %d of %d pairs (a, b) differ from the CPU sampler, largest difference %.3g\n",
               probe.unorm_mismatches, probe.unorm_mismatches_cpu, probe.half_mismatches, probe.half_pairs,
               probe.half_max_err);
+  return probe;
+}
 
-  // SrgbDecode8's table on the device, for the sqrt-luminance pre-pass.
+/// What every measurement shares: the options, the device's sRGB decode table and stream,
+/// the result rows and the failed checks.
+struct GpuRun {
+  GpuRun(const Options& options, const float* device_decode) : o(options), decode(device_decode) {}
+  const Options& o;
+  const float* decode = nullptr;  ///< SrgbDecode8's table on the device (the sqrt-luminance pre-pass)
+  cudaStream_t stream{};
+  std::vector<Entry> entries;
+  int failures = 0;
+  void Fail(const std::string& what) {
+    ++failures;
+    std::printf("CHECK FAILED: %s\n", what.c_str());
+  }
+};
+
+/// The copy floors of one frame set at its output size, and the texture-path copy's exactness.
+struct CopyFloors {
+  double texture_ms = 0, linear_ms = 0;
+};
+
+CopyFloors MeasureCopies(GpuRun& run, const FrameSet& set, const std::string& size, GpuPipeline& p1) {
+  const Options& o = run.o;
+  Entry copy = MakeEntry(set.scene, size, "copy", "copy (point fetch + surface write)");
+  Entry copy_lin = MakeEntry(set.scene, size, "copy-linear", "copy (16-byte global loads/stores)");
+  p1.PoisonOutput();
+  p1.RunCopyTexture(run.stream);
+  cuda::Check(cudaStreamSynchronize(run.stream), "copy");
+  copy.has_fidelity = true;
+  copy.fid = Compare(p1.Output(), set.frame1x);
+  if (copy.fid.differing != 0) run.Fail(set.scene + " " + size + ": texture-path copy is not exact");
+  if (o.timing) {
+    copy.timed = copy_lin.timed = true;
+    copy.t = TimeLaunches([&] { p1.RunCopyTexture(run.stream); }, o.warmup, o.repeat, run.stream);
+    copy_lin.t = TimeLaunches([&] { p1.RunCopyLinear(run.stream); }, o.warmup, o.repeat, run.stream);
+    copy.ratio = 1.0;
+    copy_lin.ratio = copy_lin.t.median / copy.t.median;
+  }
+  const CopyFloors floors{copy.t.median, copy_lin.t.median};
+  copy.ratio_linear = copy.t.median / floors.linear_ms;
+  copy_lin.ratio_linear = 1.0;
+  run.entries.push_back(copy);
+  run.entries.push_back(copy_lin);
+  return floors;
+}
+
+/// One method on one frame set: the fidelity checks (texture path, software filter, the CPU
+/// with --sampler gpu-texture), the optional output file, the timings; printed and recorded.
+void MeasureMethod(GpuRun& run, const FrameSet& set, const std::string& size, const GpuMethod& m, GpuPipeline* p,
+                   const CopyFloors& floors) {
+  const Options& o = run.o;
+  cudaStream_t stream = run.stream;
+  const Image8& input = m.scaled_input ? set.scaled : set.frame1x;
+  if (m.scaled_input) {
+    const int rw = std::max(1, static_cast<int>(std::lround(m.plan.render.scale * set.width)));
+    const int rh = std::max(1, static_cast<int>(std::lround(m.plan.render.scale * set.height)));
+    if (rw != input.Width() || rh != input.Height()) {
+      throw UserError(set.scene + " " + size + ": the scaled frame is " + std::to_string(input.Width()) + "x" +
+                      std::to_string(input.Height()) + " but '" + m.spec + "' renders at " + std::to_string(rw) +
+                      "x" + std::to_string(rh));
+    }
+  }
+  Entry e = MakeEntry(set.scene, size, m.spec, m.kernels);
+  p->PoisonOutput();
+  p->Run(m, stream);
+  cuda::Check(cudaStreamSynchronize(stream), m.spec.c_str());
+  cuda::Check(cudaGetLastError(), m.spec.c_str());
+  const Image8 gpu = p->Output();
+  p->PoisonOutput();
+  p->Run(m, stream);
+  cuda::Check(cudaStreamSynchronize(stream), m.spec.c_str());
+  const Image8 gpu2 = p->Output();
+  e.all_written = AllOpaque(gpu);
+  e.deterministic = gpu.Data() == gpu2.Data();
+  const Image8 cpu = CpuOutput(m, input, set.width, set.height);
+  e.has_fidelity = true;
+  e.fid = Compare(gpu, cpu);
+  p->PoisonOutput();
+  p->Run(m, stream, /*software_filter=*/true);
+  cuda::Check(cudaStreamSynchronize(stream), m.spec.c_str());
+  e.has_soft = true;
+  e.soft = Compare(p->Output(), cpu);
+  e.has_hw_mode = true;
+  e.hw_mode = Compare(gpu, CpuOutput(m, input, set.width, set.height, SamplerArithmetic::kGpuTexture));
+  const std::string what = set.scene + " " + size + " " + m.spec;
+  if (!e.all_written) run.Fail(what + ": output pixels left unwritten");
+  if (!e.deterministic) run.Fail(what + ": two GPU runs differ");
+  if (e.soft.differing != 0) {
+    run.Fail(what + ": the software-filter variant differs from the CPU on " + std::to_string(e.soft.differing) +
+             " pixels (max diff " + std::to_string(e.soft.max_diff) + ")");
+  }
+  if (e.hw_mode.differing != 0) {
+    run.Fail(what + ": the CPU with --sampler gpu-texture differs from the texture path on " +
+             std::to_string(e.hw_mode.differing) + " pixels (max diff " + std::to_string(e.hw_mode.max_diff) + ")");
+  }
+  if (e.fid.identical_share < IdenticalFloor(set.scene)) {
+    run.Fail(what + ": identical share " + JsonNumber(e.fid.identical_share) + " < " +
+             JsonNumber(IdenticalFloor(set.scene)));
+  }
+  if (!o.outputs_dir.empty() && set.scene + "-" + size == o.outputs_scene) {
+    std::string file = set.scene + "-" + size + "-" + m.spec + ".ppm";
+    for (char& c : file) {
+      if (c == ':' || c == '=' || c == ',') c = '_';
+    }
+    WritePpm((fs::path(o.outputs_dir) / file).string(), gpu);
+  }
+  if (o.timing) {
+    e.timed = true;
+    e.t = TimeLaunches([&] { p->Run(m, stream); }, o.warmup, o.repeat, stream);
+    e.ratio = e.t.median / floors.texture_ms;
+    e.ratio_linear = e.t.median / floors.linear_ms;
+    if (m.smaa) {
+      for (int k = 0; k < 3; ++k) {
+        e.passes.emplace_back(kSmaaPassNames[k],
+                              TimeLaunches([&] { p->RunSmaaPass(m, k, stream); }, o.warmup, o.repeat, stream));
+      }
+    }
+    if (m.prepass && !m.scaled_input) e.pass = TimeLaunches([&] { p->RunPassOnly(m, stream); }, o.warmup, o.repeat, stream);
+  }
+  std::printf("%-16s %-10s %-34s identical %7.3f%% (sw filter %7.3f%%, cpu gpu-texture %7.3f%% max %d) <=1 %7.3f%% "
+              "max %3d  %s\n",
+              set.scene.c_str(), size.c_str(), m.spec.c_str(), 100.0 * e.fid.identical_share,
+              100.0 * e.soft.identical_share, 100.0 * e.hw_mode.identical_share, e.hw_mode.max_diff,
+              100.0 * e.fid.within1_share, e.fid.max_diff,
+              e.timed ? (JsonNumber(e.t.median) + " ms (" + JsonNumber(e.ratio) + "x copy)").c_str() : "");
+  run.entries.push_back(e);
+}
+
+/// One TAA spec over the frame set's sequence (gpu/taa_gpu.cpp); printed and recorded.
+void MeasureTaa(GpuRun& run, const FrameSet& set, const std::string& size, const std::string& spec,
+                const CopyFloors& floors) {
+  const Options& o = run.o;
+  std::vector<std::string> taa_failures;
+  Entry e = RunTaaSequence(spec, set.scene, set.taa, run.decode, o.timing, o.warmup, o.repeat, run.stream,
+                           &taa_failures);
+  for (const auto& f : taa_failures) run.Fail(f);
+  if (e.timed) {
+    e.ratio = e.t.median / floors.texture_ms;
+    e.ratio_linear = e.t.median / floors.linear_ms;
+  }
+  std::printf("%-16s %-10s %-34s worst frame identical %7.3f%% (sw filter %lld px differ) max %3d  %s\n",
+              set.scene.c_str(), size.c_str(), (e.spec + " x" + std::to_string(e.frames)).c_str(),
+              100.0 * e.fid.identical_share, e.soft.differing, e.fid.max_diff,
+              e.timed ? (JsonNumber(e.t.median) + " ms/frame (" + JsonNumber(e.ratio) + "x copy)").c_str() : "");
+  run.entries.push_back(e);
+}
+
+/// One frame set: the copy floors, every method, every TAA spec, the copy again after them.
+void MeasureFrameSet(GpuRun& run, const FrameSet& set, const std::vector<GpuMethod>& methods) {
+  const Options& o = run.o;
+  const std::string size = std::to_string(set.width) + "x" + std::to_string(set.height);
+  GpuPipeline p1(set.width, set.height, set.width, set.height, run.decode);
+  p1.Upload(set.frame1x);
+  std::unique_ptr<GpuPipeline> ps;
+  if (!set.scaled.Empty()) {
+    ps = std::make_unique<GpuPipeline>(set.scaled.Width(), set.scaled.Height(), set.width, set.height, run.decode);
+    ps->Upload(set.scaled);
+  }
+  const CopyFloors floors = MeasureCopies(run, set, size, p1);
+  for (const GpuMethod& m : methods) {
+    GpuPipeline* p = m.scaled_input ? ps.get() : &p1;
+    if (!p) continue;  // no scaled frame exported for this scene and size
+    MeasureMethod(run, set, size, m, p, floors);
+  }
+  for (const std::string& spec : o.taa_methods) {
+    if (set.taa.frames.empty()) break;
+    MeasureTaa(run, set, size, spec, floors);
+  }
+  if (o.timing) {
+    // The texture-path copy again after the methods: a drift of the clock (or another load on
+    // the GPU) during this frame's measurements shows as a difference to "copy".
+    Entry after = MakeEntry(set.scene, size, "copy-after", "copy (point fetch + surface write), after the methods");
+    after.timed = true;
+    after.t = TimeLaunches([&] { p1.RunCopyTexture(run.stream); }, o.warmup, o.repeat, run.stream);
+    after.ratio = after.t.median / floors.texture_ms;
+    after.ratio_linear = after.t.median / floors.linear_ms;
+    run.entries.push_back(after);
+  }
+}
+
+int Main(int argc, char** argv) {
+  const Options o = ParseArgs(argc, argv);
+  if (!o.probe_dump.empty()) return DumpProbe(o.probe_dump);
+  std::vector<GpuMethod> methods;
+  for (const auto& s : o.methods) methods.push_back(ResolveGpuMethod(s));
+  for (const auto& s : o.taa_methods) CheckGpuTaaSpec(s);
+  const std::vector<FrameSet> sets = o.self_test ? SelfTestFrames(o.sizes) : ReadManifest(o.frames_dir);
+
+  GpuDeviceFacts device = QueryDevice();
+  const TextureProbe probe = ProbeAndPrint();
   float decode_host[256];
   for (int k = 0; k < 256; ++k) decode_host[k] = SrgbDecode8(static_cast<uint8_t>(k));
   float* decode = nullptr;
   cuda::Check(cudaMalloc(reinterpret_cast<void**>(&decode), sizeof decode_host), "cudaMalloc");
   cuda::Check(cudaMemcpy(decode, decode_host, sizeof decode_host, cudaMemcpyHostToDevice), "upload");
-  cudaStream_t stream;
-  cuda::Check(cudaStreamCreate(&stream), "cudaStreamCreate");
+  GpuRun run(o, decode);
+  cuda::Check(cudaStreamCreate(&run.stream), "cudaStreamCreate");
 
-  std::vector<Entry> entries;
-  int failures = 0;
   const TextureRuleCheck rule = CheckTextureRule(CollectTextureProbeData());
   std::printf("texture rule (core/sampler.h, --sampler gpu-texture) against this device: pairs %lld/%lld, "
               "RGBA8 quads %lld/%lld, coordinates %lld/%lld, RGBA32F quads %lld/%lld differ\n",
               rule.pair_mismatches, rule.pairs, rule.quad8_mismatches, rule.quad8, rule.coord_mismatches, rule.coords,
               rule.quadf_mismatches, rule.quadf);
-  auto fail = [&](const std::string& what) {
-    ++failures;
-    std::printf("CHECK FAILED: %s\n", what.c_str());
-  };
-  if (rule.Mismatches() != 0) fail("the texture rule of --sampler gpu-texture does not match this device's texture unit");
+  if (rule.Mismatches() != 0) run.Fail("the texture rule of --sampler gpu-texture does not match this device's texture unit");
   if (!o.outputs_dir.empty()) fs::create_directories(o.outputs_dir);
-
-  for (const FrameSet& fs_ : sets) {
-    const std::string size = std::to_string(fs_.width) + "x" + std::to_string(fs_.height);
-    GpuPipeline p1(fs_.width, fs_.height, fs_.width, fs_.height, decode);
-    p1.Upload(fs_.frame1x);
-    std::unique_ptr<GpuPipeline> ps;
-    if (!fs_.scaled.Empty()) {
-      ps = std::make_unique<GpuPipeline>(fs_.scaled.Width(), fs_.scaled.Height(), fs_.width, fs_.height, decode);
-      ps->Upload(fs_.scaled);
-    }
-    // The copy floors, and the texture-path copy's exactness.
-    Entry copy = MakeEntry(fs_.scene, size, "copy", "copy (point fetch + surface write)");
-    Entry copy_lin = MakeEntry(fs_.scene, size, "copy-linear", "copy (16-byte global loads/stores)");
-    p1.PoisonOutput();
-    p1.RunCopyTexture(stream);
-    cuda::Check(cudaStreamSynchronize(stream), "copy");
-    copy.has_fidelity = true;
-    copy.fid = Compare(p1.Output(), fs_.frame1x);
-    if (copy.fid.differing != 0) fail(fs_.scene + " " + size + ": texture-path copy is not exact");
-    if (o.timing) {
-      copy.timed = copy_lin.timed = true;
-      copy.t = TimeLaunches([&] { p1.RunCopyTexture(stream); }, o.warmup, o.repeat, stream);
-      copy_lin.t = TimeLaunches([&] { p1.RunCopyLinear(stream); }, o.warmup, o.repeat, stream);
-      copy.ratio = 1.0;
-      copy_lin.ratio = copy_lin.t.median / copy.t.median;
-    }
-    entries.push_back(copy);
-    entries.push_back(copy_lin);
-    const double floor_ms = copy.t.median;
-    const double floor_linear_ms = copy_lin.t.median;
-    copy.ratio_linear = copy.t.median / floor_linear_ms;
-    copy_lin.ratio_linear = 1.0;
-    entries[entries.size() - 2].ratio_linear = copy.ratio_linear;
-    entries[entries.size() - 1].ratio_linear = 1.0;
-
-    for (const GpuMethod& m : methods) {
-      GpuPipeline* p = m.scaled_input ? ps.get() : &p1;
-      if (!p) continue;  // no scaled frame exported for this scene and size
-      const Image8& input = m.scaled_input ? fs_.scaled : fs_.frame1x;
-      if (m.scaled_input) {
-        const int rw = std::max(1, static_cast<int>(std::lround(m.plan.render.scale * fs_.width)));
-        const int rh = std::max(1, static_cast<int>(std::lround(m.plan.render.scale * fs_.height)));
-        if (rw != input.Width() || rh != input.Height()) {
-          throw UserError(fs_.scene + " " + size + ": the scaled frame is " + std::to_string(input.Width()) + "x" +
-                          std::to_string(input.Height()) + " but '" + m.spec + "' renders at " + std::to_string(rw) +
-                          "x" + std::to_string(rh));
-        }
-      }
-      Entry e = MakeEntry(fs_.scene, size, m.spec, m.kernels);
-      p->PoisonOutput();
-      p->Run(m, stream);
-      cuda::Check(cudaStreamSynchronize(stream), m.spec.c_str());
-      cuda::Check(cudaGetLastError(), m.spec.c_str());
-      const Image8 gpu = p->Output();
-      p->PoisonOutput();
-      p->Run(m, stream);
-      cuda::Check(cudaStreamSynchronize(stream), m.spec.c_str());
-      const Image8 gpu2 = p->Output();
-      e.all_written = AllOpaque(gpu);
-      e.deterministic = gpu.Data() == gpu2.Data();
-      const Image8 cpu = CpuOutput(m, input, fs_.width, fs_.height);
-      e.has_fidelity = true;
-      e.fid = Compare(gpu, cpu);
-      p->PoisonOutput();
-      p->Run(m, stream, /*software_filter=*/true);
-      cuda::Check(cudaStreamSynchronize(stream), m.spec.c_str());
-      e.has_soft = true;
-      e.soft = Compare(p->Output(), cpu);
-      e.has_hw_mode = true;
-      e.hw_mode = Compare(gpu, CpuOutput(m, input, fs_.width, fs_.height, SamplerArithmetic::kGpuTexture));
-      const std::string what = fs_.scene + " " + size + " " + m.spec;
-      if (!e.all_written) fail(what + ": output pixels left unwritten");
-      if (!e.deterministic) fail(what + ": two GPU runs differ");
-      if (e.soft.differing != 0) {
-        fail(what + ": the software-filter variant differs from the CPU on " + std::to_string(e.soft.differing) +
-             " pixels (max diff " + std::to_string(e.soft.max_diff) + ")");
-      }
-      if (e.hw_mode.differing != 0) {
-        fail(what + ": the CPU with --sampler gpu-texture differs from the texture path on " +
-             std::to_string(e.hw_mode.differing) + " pixels (max diff " + std::to_string(e.hw_mode.max_diff) + ")");
-      }
-      if (e.fid.identical_share < IdenticalFloor(fs_.scene)) {
-        fail(what + ": identical share " + N(e.fid.identical_share) + " < " + N(IdenticalFloor(fs_.scene)));
-      }
-      if (!o.outputs_dir.empty() && fs_.scene + "-" + size == o.outputs_scene) {
-        std::string file = fs_.scene + "-" + size + "-" + m.spec + ".ppm";
-        for (char& c : file) {
-          if (c == ':' || c == '=' || c == ',') c = '_';
-        }
-        WritePpm((fs::path(o.outputs_dir) / file).string(), gpu);
-      }
-      if (o.timing) {
-        e.timed = true;
-        e.t = TimeLaunches([&] { p->Run(m, stream); }, o.warmup, o.repeat, stream);
-        e.ratio = e.t.median / floor_ms;
-        e.ratio_linear = e.t.median / floor_linear_ms;
-        if (m.smaa) {
-          for (int k = 0; k < 3; ++k) {
-            e.passes.emplace_back(kSmaaPassNames[k],
-                                  TimeLaunches([&] { p->RunSmaaPass(m, k, stream); }, o.warmup, o.repeat, stream));
-          }
-        }
-        if (m.prepass && !m.scaled_input) e.pass = TimeLaunches([&] { p->RunPassOnly(m, stream); }, o.warmup, o.repeat, stream);
-      }
-      std::printf("%-16s %-10s %-34s identical %7.3f%% (sw filter %7.3f%%, cpu gpu-texture %7.3f%% max %d) <=1 %7.3f%% "
-                  "max %3d  %s\n",
-                  fs_.scene.c_str(), size.c_str(), m.spec.c_str(), 100.0 * e.fid.identical_share,
-                  100.0 * e.soft.identical_share, 100.0 * e.hw_mode.identical_share, e.hw_mode.max_diff,
-                  100.0 * e.fid.within1_share, e.fid.max_diff,
-                  e.timed ? (N(e.t.median) + " ms (" + N(e.ratio) + "x copy)").c_str() : "");
-      entries.push_back(e);
-    }
-    for (const std::string& spec : o.taa_methods) {
-      if (fs_.taa.frames.empty()) break;
-      std::vector<std::string> taa_failures;
-      Entry e = RunTaaSequence(spec, fs_.scene, fs_.taa, decode, o.timing, o.warmup, o.repeat, stream, &taa_failures);
-      for (const auto& f : taa_failures) fail(f);
-      if (e.timed) {
-        e.ratio = e.t.median / floor_ms;
-        e.ratio_linear = e.t.median / floor_linear_ms;
-      }
-      std::printf("%-16s %-10s %-34s worst frame identical %7.3f%% (sw filter %lld px differ) max %3d  %s\n",
-                  fs_.scene.c_str(), size.c_str(), (e.spec + " x" + std::to_string(e.frames)).c_str(),
-                  100.0 * e.fid.identical_share, e.soft.differing, e.fid.max_diff,
-                  e.timed ? (N(e.t.median) + " ms/frame (" + N(e.ratio) + "x copy)").c_str() : "");
-      entries.push_back(e);
-    }
-    if (o.timing) {
-      // The texture-path copy again after the methods: a drift of the clock (or another load on
-      // the GPU) during this frame's measurements shows as a difference to "copy".
-      Entry after = MakeEntry(fs_.scene, size, "copy-after", "copy (point fetch + surface write), after the methods");
-      after.timed = true;
-      after.t = TimeLaunches([&] { p1.RunCopyTexture(stream); }, o.warmup, o.repeat, stream);
-      after.ratio = after.t.median / floor_ms;
-      after.ratio_linear = after.t.median / floor_linear_ms;
-      entries.push_back(after);
-    }
-  }
-  const std::string smi_after = Sh(smi_query);
+  for (const FrameSet& set : sets) MeasureFrameSet(run, set, methods);
+  device.smi_after = Sh(kSmiQuery);
 
   if (!o.json_path.empty()) {
-    std::ostringstream j;
-    j << "{\n  \"schema\": \"aalab-gpu-timings\",\n  \"schema_version\": 1,\n";
-    j << "  \"generated_utc\": " << Q(NowUtc()) << ",\n";
-    j << "  \"device\": {\"name\": " << Q(prop.name) << ", \"compute_capability\": "
-      << Q(std::to_string(prop.major) + "." + std::to_string(prop.minor)) << ", \"multiprocessors\": "
-      << prop.multiProcessorCount << ", \"l2_bytes\": " << prop.l2CacheSize << ", \"memory_bytes\": "
-      << prop.totalGlobalMem << "},\n";
-    j << "  \"driver\": " << Q(nvidia_driver) << ",\n";
-    j << "  \"cuda_driver_api\": " << Q(std::to_string(driver / 1000) + "." + std::to_string(driver % 1000 / 10))
-      << ",\n  \"cuda_runtime\": " << Q(std::to_string(runtime / 1000) + "." + std::to_string(runtime % 1000 / 10))
-      << ",\n";
-    j << "  \"nvidia_smi_before\": " << Q(smi_before) << ",\n  \"nvidia_smi_after\": " << Q(smi_after) << ",\n";
-    j << "  \"nvidia_smi_fields\": \"driver_version, clocks.sm, clocks.max.sm, clocks.mem, temperature.gpu, "
-         "power.draw\",\n";
-    j << "  \"timing\": {\"method\": \"CUDA events recorded around each launch (all kernels of the method), on one "
-         "stream, after untimed warm-up launches; median/min/max over the timed launches\", \"warmup\": "
-      << o.warmup << ", \"repeat\": " << o.repeat
-      << ", \"clocks\": \"not locked: the GPU boosts as it likes; nvidia_smi_before/after record the clocks\", "
-         "\"floor\": \"copy\"},\n";
-    j << "  \"texture_probe\": {\"samples\": " << probe.samples << ", \"distinct_values\": " << probe.distinct_values
-      << ", \"max_err_float_fraction\": " << N(probe.err_float)
-      << ", \"max_err_fraction_rounded_1_256\": " << N(probe.err_round256)
-      << ", \"max_err_fraction_truncated_1_256\": " << N(probe.err_trunc256)
-      << ", \"unorm8_point_fetch_mismatches\": " << probe.unorm_mismatches
-      << ", \"unorm8_point_fetch_mismatches_vs_cpu\": " << probe.unorm_mismatches_cpu
-      << ", \"half_texel_pairs\": " << probe.half_pairs << ", \"half_texel_mismatches\": " << probe.half_mismatches
-      << ", \"half_texel_max_err\": " << N(probe.half_max_err) << "},\n";
-    j << "  \"texture_rule\": {\"pairs\": " << rule.pairs << ", \"pair_mismatches\": " << rule.pair_mismatches
-      << ", \"rgba8_quads\": " << rule.quad8 << ", \"rgba8_quad_mismatches\": " << rule.quad8_mismatches
-      << ", \"coordinates\": " << rule.coords << ", \"coordinate_mismatches\": " << rule.coord_mismatches
-      << ", \"rgba32f_quads\": " << rule.quadf << ", \"rgba32f_quad_mismatches\": " << rule.quadf_mismatches << "},\n";
-    j << "  \"results\": [\n";
-    for (size_t i = 0; i < entries.size(); ++i) {
-      const Entry& e = entries[i];
-      j << "    {\"scene\": " << Q(e.scene) << ", \"size\": " << Q(e.size) << ", \"method\": " << Q(e.spec)
-        << ", \"kernels\": " << Q(e.kernels);
-      if (e.timed) {
-        j << ", \"median_ms\": " << N(e.t.median) << ", \"min_ms\": " << N(e.t.min) << ", \"max_ms\": " << N(e.t.max)
-          << ", \"ratio_to_copy\": " << N(e.ratio) << ", \"ratio_to_copy_linear\": " << N(e.ratio_linear);
-        if (e.pass.median > 0) j << ", \"pass_only\": " << StatsJson(e.pass);
-        if (!e.passes.empty()) {
-          j << ", \"passes\": {";
-          for (size_t k = 0; k < e.passes.size(); ++k) {
-            j << (k ? ", " : "") << Q(e.passes[k].first) << ": " << StatsJson(e.passes[k].second);
-          }
-          j << "}";
-        }
-        if (e.frames > 0) {
-          j << ", \"frames\": " << e.frames << ", \"frame_median_ms\": [";
-          for (size_t k = 0; k < e.frame_ms.size(); ++k) j << (k ? ", " : "") << N(e.frame_ms[k]);
-          j << "]";
-        }
-      }
-      if (e.has_fidelity) {
-        j << ", \"fidelity\": {\"identical_share\": " << N(e.fid.identical_share) << ", \"max_diff\": " << e.fid.max_diff
-          << ", \"within_1_share\": " << N(e.fid.within1_share) << ", \"differing_pixels\": " << e.fid.differing
-          << ", \"mean_abs_diff\": " << N(e.fid.mean_abs_diff)
-          << ", \"deterministic\": " << (e.deterministic ? "true" : "false") << "}";
-      }
-      if (e.has_soft) {
-        j << ", \"fidelity_software_filter\": {\"identical_share\": " << N(e.soft.identical_share)
-          << ", \"max_diff\": " << e.soft.max_diff << ", \"differing_pixels\": " << e.soft.differing << "}";
-      }
-      if (e.has_hw_mode) {
-        j << ", \"fidelity_cpu_gpu_texture\": {\"identical_share\": " << N(e.hw_mode.identical_share)
-          << ", \"max_diff\": " << e.hw_mode.max_diff << ", \"differing_pixels\": " << e.hw_mode.differing << "}";
-      }
-      j << "}" << (i + 1 < entries.size() ? "," : "") << "\n";
-    }
-    j << "  ]\n}\n";
-    const std::string tmp = o.json_path + ".tmp";
-    {
-      std::ofstream f(tmp);
-      f << j.str();
-      if (!f) throw UserError("'" + o.json_path + "' cannot be written");
-    }
-    fs::rename(tmp, o.json_path);
-    std::printf("wrote %s (%zu results)\n", o.json_path.c_str(), entries.size());
+    WriteGpuTimingsJson(o.json_path, device, probe, rule, o.warmup, o.repeat, run.entries);
+    std::printf("wrote %s (%zu results)\n", o.json_path.c_str(), run.entries.size());
   }
   cudaFree(decode);
-  cudaStreamDestroy(stream);
-  if (failures > 0) std::printf("%d check(s) failed\n", failures);
-  return ToInt(o.check && failures > 0 ? ExitCode::kFailure : ExitCode::kOk);
+  cudaStreamDestroy(run.stream);
+  if (run.failures > 0) std::printf("%d check(s) failed\n", run.failures);
+  return ToInt(o.check && run.failures > 0 ? ExitCode::kFailure : ExitCode::kOk);
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ namespace aalab {
 // compiler vectorises, then Fxaa1TracePixel only for the pixels that pass it. Early-exit
 // pixels copy the input, as FxaaFilterReturn(rgbM) does, and count their 5 taps. Debug
 // views go through the reference. Tests compare both paths bit for bit, taps included
-// (tests/perf/fxaa_fast_test.cpp).
+// (tests/equivalence/fxaa_fast_test.cpp).
 
 Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_view, PostStats* stats) {
   // Debug views (and their name check) go through the reference, which checks p first as here;

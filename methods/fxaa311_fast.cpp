@@ -49,7 +49,7 @@ using Order = Fxaa311Params::Order;
 // rows anywhere) wait for a second pass, when the whole plane exists.
 // Tap counts are those of the reference: 5 for a pixel that exits, 9 + search + final
 // for an edge pixel. Tests compare this path with Fxaa311Reference bit for bit on real
-// and adversarial frames (tests/perf/fxaa_fast_test.cpp).
+// and adversarial frames (tests/equivalence/fxaa_fast_test.cpp).
 
 namespace {
 using namespace fxaa311_internal;

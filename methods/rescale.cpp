@@ -136,7 +136,7 @@ Image8 RescaleFrameReference(const Image8& in, int out_w, int out_h, Rescale kin
 // The production path: the same taps and float expressions as RescaleFrameReference, with
 // each tap's texel indices and fractions computed once per output column and row (they
 // depend on one axis each), k/255 from a table, and only the rgb channels filtered (alpha is
-// written as 255). Tested bit for bit against the reference (tests/perf/fxaa_fast_test.cpp).
+// written as 255). Tested bit for bit against the reference (tests/equivalence/fxaa_fast_test.cpp).
 
 namespace {
 

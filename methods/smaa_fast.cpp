@@ -26,7 +26,7 @@
 //     another texel, far below the 0.5/255 that would change the 8-bit result); above 8192
 //     px every pixel runs BlendPixel.
 //   InlineSampler is BilinearSampler::SampleNormalized operation for operation, inline.
-// Tap counts equal the reference's. tests/perf/smaa_fast_test.cpp compares this path with
+// Tap counts equal the reference's. tests/equivalence/smaa_fast_test.cpp compares this path with
 // SmaaReference bit for bit, taps and debug views included, at 1 and 2 threads.
 #include <algorithm>
 #include <cmath>

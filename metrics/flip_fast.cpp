@@ -22,7 +22,7 @@
 //    per scene and ErrorValues(side, test) computes only the test's half and the error.
 //
 // Precision: float32 as NVIDIA's implementations; against the double path per-pixel
-// |Δ| ≲ 1e-5 and the mean ≲ 1e-7 (tests/perf/metrics_fast_test.cpp, METRICS.md).
+// |Δ| ≲ 1e-5 and the mean ≲ 1e-7 (tests/equivalence/metrics_fast_test.cpp, METRICS.md).
 #include <algorithm>
 #include <array>
 #include <bit>

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/format.h"
 #include "reports/export_crops.h"
 #include "reports/export_tables.h"
 #include "reports/html_assets.h"
@@ -17,11 +18,7 @@ constexpr double kW = 660, kH = 420, kL = 70, kR = 20, kT = 16, kB = 52;
 const char* kFont = "DejaVu Sans, Helvetica, Arial, sans-serif";
 const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2"};
 
-std::string F(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", v);
-  return buf;
-}
+std::string F(double v) { return FormatDouble("%.1f", v); }
 
 /// Tick text: whole numbers in full ("1000", not "1e+03"), others to 3 significant digits.
 std::string Tick(double v) {

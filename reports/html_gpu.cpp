@@ -5,17 +5,13 @@
 #include <map>
 #include <vector>
 
+#include "core/format.h"
 #include "reports/html_page.h"
 
 namespace aalab::html {
 namespace {
 
-std::string Fmt(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
-std::string Ms(double v) { return Fmt(v < 1 ? "%.3f" : "%.2f", v); }
+std::string Ms(double v) { return FormatDouble(v < 1 ? "%.3f" : "%.2f", v); }
 
 // Sizes in first-seen order over the rows' gpu blocks.
 std::vector<std::string> Sizes(const Report& r) {
@@ -63,13 +59,13 @@ std::string GpuCell(const ResultRow& row) {
   for (const auto& s : g.sizes) {
     text += (text.empty() ? "" : " / ") + Ms(s.median_ms);
     title += "\n" + s.size + ": median " + Ms(s.median_ms) + " ms [" + Ms(s.min_ms) + "–" + Ms(s.max_ms) + "], " +
-             Fmt("%.2f", s.ratio_to_copy) + "× the copy floor (" + Ms(s.copy_ms) + " ms)";
+             FormatDouble("%.2f", s.ratio_to_copy) + "× the copy floor (" + Ms(s.copy_ms) + " ms)";
     if (s.identical_share) {
-      title += ", " + Fmt("%.3f", 100.0 * *s.identical_share) + "% of pixels identical to the CPU output";
+      title += ", " + FormatDouble("%.3f", 100.0 * *s.identical_share) + "% of pixels identical to the CPU output";
     }
     if (s.max_diff) title += ", largest difference " + std::to_string(*s.max_diff) + " levels";
   }
-  return "<td class=\"num\" data-v=\"" + Fmt("%.17g", g.sizes.front().median_ms) + "\" title=\"" +
+  return "<td class=\"num\" data-v=\"" + FormatDouble("%.17g", g.sizes.front().median_ms) + "\" title=\"" +
          HtmlEscape(title) + "\">" + text + "</td>";
 }
 
@@ -127,11 +123,11 @@ std::string GpuSummary(const Report& r) {
         continue;
       }
       const double ms = a.sum.at(s).first / it->second, ratio = a.sum.at(s).second / it->second;
-      h += "<td class=\"num\" data-v=\"" + Fmt("%.17g", ms) + "\">" + Ms(ms) + "</td><td class=\"num\" data-v=\"" +
-           Fmt("%.17g", ratio) + "\">" + Fmt("%.2f", ratio) + "</td>";
+      h += "<td class=\"num\" data-v=\"" + FormatDouble("%.17g", ms) + "\">" + Ms(ms) + "</td><td class=\"num\" data-v=\"" +
+           FormatDouble("%.17g", ratio) + "\">" + FormatDouble("%.2f", ratio) + "</td>";
     }
-    h += a.any_identical ? "<td class=\"num\" data-v=\"" + Fmt("%.17g", a.worst_identical) + "\">" +
-                               Fmt("%.3f", 100.0 * a.worst_identical) + "%</td>"
+    h += a.any_identical ? "<td class=\"num\" data-v=\"" + FormatDouble("%.17g", a.worst_identical) + "\">" +
+                               FormatDouble("%.3f", 100.0 * a.worst_identical) + "%</td>"
                          : std::string("<td class=\"num null\">—</td>");
     h += "</tr>\n";
   }

@@ -1,4 +1,5 @@
 #include "reports/html_report.h"
+#include "core/format.h"
 #include "reports/html_gpu.h"
 #include "reports/html_speed.h"
 #include "reports/html_stability.h"
@@ -31,23 +32,17 @@ using Json = nlohmann::ordered_json;
 /// Scores at least this close to the noise floor (dB) are marked.
 constexpr double kNearFloorDb = 3.0;
 
-std::string Printf(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
-
-std::string FmtMs(double v) { return Printf(v < 1 ? "%.3f" : v < 100 ? "%.2f" : "%.1f", v); }
-std::string FmtCount(double v) { return Printf("%.4g", v); }
+std::string FmtMs(double v) { return FormatDouble(v < 1 ? "%.3f" : v < 100 ? "%.2f" : "%.1f", v); }
+std::string FmtCount(double v) { return FormatDouble("%.4g", v); }
 /// The registry's printed precision (fixed decimals, else 4 significant digits); names it does
 /// not know: 2 decimals for `_db`, else 4 significant digits.
 std::string FmtMetric(const std::string& name, double v) {
   const MetricOutput* o = FindMetricOutput(name);
   const int decimals = o ? o->decimals : name.size() > 3 && name.compare(name.size() - 3, 3, "_db") == 0 ? 2 : -1;
-  return decimals >= 0 ? Printf(("%." + std::to_string(decimals) + "f").c_str(), v) : Printf("%.4g", v);
+  return decimals >= 0 ? FormatDouble(("%." + std::to_string(decimals) + "f").c_str(), v) : FormatDouble("%.4g", v);
 }
 /// Exact sort key for data-v (round-trips).
-std::string Key(double v) { return Printf("%.17g", v); }
+std::string Key(double v) { return FormatDouble("%.17g", v); }
 std::string Int(long v) { return std::to_string(v); }
 
 std::string Attr(std::string_view s) { return HtmlEscape(s); }
@@ -218,7 +213,7 @@ void SceneFacts(std::string& h, const SceneResult& s) {
     if (!s.motion_note.empty()) fact("motion vectors", HtmlEscape(s.motion_note));
     fact("reference", HtmlEscape(s.reference_note));
     fact("noise floor", HtmlEscape(s.noise_floor_null_reason));
-    fact("edge pixels", Printf("%.2f %%", 100.0 * s.edge_pixel_fraction));
+    fact("edge pixels", FormatDouble("%.2f %%", 100.0 * s.edge_pixel_fraction));
     fact("edge mask", HtmlEscape(s.edge_mask_source));
     fact("image scene", "<code>" + HtmlEscape(s.source) + "</code>");
     h += "</dl>\n";
@@ -230,18 +225,18 @@ void SceneFacts(std::string& h, const SceneResult& s) {
                         FmtCount(s.ref_primary_rays_per_px) + " + " + FmtCount(s.ref_shadow_rays_per_px) +
                         " rays/px, " + FmtCount(s.ref_texture_lookups_per_px) + " texture lookups/px");
   fact("noise floor",
-       s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db) + " (halves " +
-                                 Printf("%.2f dB", s.ref_halves_psnr_db ? *s.ref_halves_psnr_db : 0.0) + " + 6.02 dB)"
+       s.ref_floor_psnr_db ? FormatDouble("%.2f dB", *s.ref_floor_psnr_db) + " (halves " +
+                                 FormatDouble("%.2f dB", s.ref_halves_psnr_db ? *s.ref_halves_psnr_db : 0.0) + " + 6.02 dB)"
                            : std::string(s.ref_exact ? "infinite: the exact reference has no sampling noise"
                                                      : "none: the two half-references are identical (nothing to converge)"));
-  fact("edge pixels", Printf("%.2f %%", 100.0 * s.edge_pixel_fraction));
+  fact("edge pixels", FormatDouble("%.2f %%", 100.0 * s.edge_pixel_fraction));
   fact("edge mask", HtmlEscape(s.edge_mask_source));
   fact("BVH build", FmtMs(s.bvh_build_ms) + " ms (once per scene, not in method times)");
   if (s.content) {
     fact("content", std::to_string(s.content->triangles) + " triangles, " + std::to_string(s.content->textures) +
-                        " textures: mip chains " + Printf("%.1f MB", s.content->texture_bytes / 1e6) +
+                        " textures: mip chains " + FormatDouble("%.1f MB", s.content->texture_bytes / 1e6) +
                         " as stored (RGBA8, half for 16-bit images), " +
-                        Printf("%.1f MB", s.content->texture_bytes_rgba8 / 1e6) + " as RGBA8; loaded in " +
+                        FormatDouble("%.1f MB", s.content->texture_bytes_rgba8 / 1e6) + " as RGBA8; loaded in " +
                         FmtMs(s.content->load_ms) + " ms");
   }
   fact("scene file", "<code>" + HtmlEscape(s.source) + "</code>");
@@ -250,8 +245,8 @@ void SceneFacts(std::string& h, const SceneResult& s) {
 
 std::string FloorWarning(const SceneResult& s, const std::string& metric, double v) {
   if (!s.ref_floor_psnr_db || !html::IsPsnrMetric(metric) || v < *s.ref_floor_psnr_db - kNearFloorDb) return "";
-  std::string why = "Within " + Printf("%.0f", kNearFloorDb) + " dB of the reference's noise floor (" +
-                    Printf("%.2f", *s.ref_floor_psnr_db) + " dB at " + Int(s.ref_spp) +
+  std::string why = "Within " + FormatDouble("%.0f", kNearFloorDb) + " dB of the reference's noise floor (" +
+                    FormatDouble("%.2f", *s.ref_floor_psnr_db) + " dB at " + Int(s.ref_spp) +
                     " spp): the reference's own noise limits this score, so differences between such "
                     "scores are not meaningful. Re-run with a higher --ref-spp to separate them.";
   if (metric != "psnr_db") why += " (The floor is estimated over the whole image; on a subset of pixels it may differ.)";
@@ -281,9 +276,9 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
        (s.kind == "image" ? std::string("the user's own") + (s.ref_spp > 0 ? ", " + Int(s.ref_spp) + " spp" : "")
                           : s.ref_exact ? std::string("exact") : Int(s.ref_spp) + " spp") +
        "; noise floor ";
-  h += s.ref_floor_psnr_db ? Printf("%.2f dB", *s.ref_floor_psnr_db)
+  h += s.ref_floor_psnr_db ? FormatDouble("%.2f dB", *s.ref_floor_psnr_db)
                            : std::string(s.kind == "image" ? "unknown" : s.ref_exact ? "infinite" : "none");
-  h += "). <span class=\"warn\">⚠</span> marks a PSNR within " + Printf("%.0f", kNearFloorDb) +
+  h += "). <span class=\"warn\">⚠</span> marks a PSNR within " + FormatDouble("%.0f", kNearFloorDb) +
        " dB of the floor. Click or press Enter on a column header to sort." +
        [&hidden] {
          if (hidden.empty()) return std::string();
@@ -466,10 +461,10 @@ void TimeBreakdownTable(std::string& h, const std::vector<StageTime>& stages) {
        "<th scope=\"col\">stage</th><th scope=\"col\">wall s</th><th scope=\"col\">CPU s</th>"
        "<th scope=\"col\">share of wall</th><th scope=\"col\">cores busy</th></tr></thead><tbody>";
   for (const auto& t : stages) {
-    h += "<tr><th scope=\"row\">" + HtmlEscape(t.stage) + "</th><td>" + Printf("%.2f", t.wall_ms / 1e3) + "</td><td>" +
-         Printf("%.2f", t.cpu_ms / 1e3) + "</td><td>" +
-         (total > 0 ? Printf("%.1f%%", 100.0 * t.wall_ms / total) : std::string("—")) + "</td><td>" +
-         (t.wall_ms > 0 ? Printf("%.2f", t.cpu_ms / t.wall_ms) : std::string("—")) + "</td></tr>";
+    h += "<tr><th scope=\"row\">" + HtmlEscape(t.stage) + "</th><td>" + FormatDouble("%.2f", t.wall_ms / 1e3) + "</td><td>" +
+         FormatDouble("%.2f", t.cpu_ms / 1e3) + "</td><td>" +
+         (total > 0 ? FormatDouble("%.1f%%", 100.0 * t.wall_ms / total) : std::string("—")) + "</td><td>" +
+         (t.wall_ms > 0 ? FormatDouble("%.2f", t.cpu_ms / t.wall_ms) : std::string("—")) + "</td></tr>";
   }
   h += "</tbody></table>";
 }

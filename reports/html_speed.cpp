@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <map>
 
+#include "core/format.h"
 #include "reports/html_method_style.h"
 #include "reports/html_page.h"
 
@@ -40,11 +41,7 @@ std::optional<double> MetricOf(const ResultRow& row, const std::string& name) {
   return std::nullopt;
 }
 
-std::string Num(double v, const char* fmt = "%.1f") {
-  char b[32];
-  std::snprintf(b, sizeof b, fmt, v);
-  return b;
-}
+std::string Num(double v, const char* fmt = "%.1f") { return FormatDouble(fmt, v); }
 
 void Chart(std::string& h, const std::vector<const SpeedPoint*>& pts, bool temporal, const std::vector<std::string>& methods) {
   const double W = 340, H = 200, L = 52, R = 10, T = 22, B = 30;

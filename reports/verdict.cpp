@@ -1,5 +1,6 @@
 // The per-scene verdict (reports/verdict.h): pure functions of the result rows.
 #include "reports/verdict.h"
+#include "core/format.h"
 
 #include <cmath>
 #include <cstdio>
@@ -8,13 +9,7 @@ namespace aalab {
 
 namespace {
 
-std::string Fmt(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
-
-std::string FmtMs(double v) { return Fmt(v < 1 ? "%.3f" : v < 100 ? "%.2f" : "%.1f", v); }
+std::string FmtMs(double v) { return FormatDouble(v < 1 ? "%.3f" : v < 100 ? "%.2f" : "%.1f", v); }
 
 const MetricResult* Find(const ResultRow& row, const std::string& name) {
   for (const auto& m : row.metrics) {
@@ -91,14 +86,14 @@ std::string Names(const AxisVerdict& a) {
 
 std::string AxisText(const char* label, const AxisVerdict& a, bool psnr) {
   std::string s = std::string(label) + " → " + Names(a) + " ";
-  s += psnr ? Fmt("%.2f dB", a.value) : Fmt("%.4f", a.value);
+  s += psnr ? FormatDouble("%.2f dB", a.value) : FormatDouble("%.4f", a.value);
   if (a.winner == "none") {
     s += " (no method beats none)";
     return s;
   }
   if (a.none_value) {
     const double d = a.value - *a.none_value;
-    s += psnr ? Fmt(" (%+.2f dB over none", d) : Fmt(" (%+.4f vs none", d);
+    s += psnr ? FormatDouble(" (%+.2f dB over none", d) : FormatDouble(" (%+.4f vs none", d);
   } else {
     s += a.none_time_ms ? " (none has no value" : " (no none row";
   }

@@ -12,11 +12,10 @@
 
 #include "build_info.h"
 #include "core/parallel.h"
+#include "harness/run/context.h"
 #include "harness/run/runner.h"
 
 namespace aalab {
-
-namespace {
 
 std::string CpuModel() {
   std::ifstream f("/proc/cpuinfo");
@@ -29,6 +28,8 @@ std::string CpuModel() {
   }
   return "unknown";
 }
+
+namespace {
 
 std::string MemoryTotal() {
   std::ifstream f("/proc/meminfo");

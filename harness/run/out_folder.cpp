@@ -320,4 +320,13 @@ std::string CheckOutFile(const std::string& path, const std::vector<std::string>
   return out.string();
 }
 
+std::string SpecFileName(const std::string& spec) {
+  std::string s = spec;
+  for (char& c : s) {
+    if (c == ':' || c == ',') c = '_';
+    if (c == '=') c = '-';
+  }
+  return s;
+}
+
 }  // namespace aalab

@@ -71,4 +71,8 @@ class OutFolder {
 /// `apply` onto its own input), not a folder. Returns the normalised path.
 std::string CheckOutFile(const std::string& path, const std::vector<std::string>& inputs);
 
+/// A file or folder name from a method spec, as every output folder names a method's images:
+/// ':' and ',' become '_', '=' becomes '-' (e.g. "smaa:preset=high" → "smaa_preset-high").
+std::string SpecFileName(const std::string& spec);
+
 }  // namespace aalab

@@ -204,8 +204,12 @@ ResultRow NotApplicableRow(const PreparedScene& p, const MethodPlan& plan) {
   return row;
 }
 
-MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, uint64_t seed, int repeat,
-                       std::unique_ptr<TemporalState>* state, StageClock* clock, SamplerArithmetic sampler) {
+MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, const MethodRunSettings& run,
+                       std::unique_ptr<TemporalState>* state) {
+  const uint64_t seed = run.seed;
+  const int repeat = run.repeat;
+  const SamplerArithmetic sampler = run.sampler;
+  StageClock* const clock = run.clock;
   if (!p.tracer && !RunsOnImageScenes(plan, p.captured_motion)) return MethodOutput{NotApplicableRow(p, plan), {}, {}, {}};
   if (clock) clock->Enter("method_renders_filters");
   const int W = p.info.width, H = p.info.height;

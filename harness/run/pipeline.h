@@ -112,17 +112,25 @@ struct MethodOutput {
 /// A method with memory (plan.make_state) carries `*state` from frame to frame: RunMethod
 /// creates it when empty and advances it by one frame; state == nullptr runs a fresh
 /// sequence of one frame. Jittered renders (plan.render.jitter) use the prepared frame's
-/// index for the jitter and, from frame 1 on, pass exact motion vectors to the state. With a
-/// `clock`, charges rendering and filtering to "method_renders_filters" and scoring to
-/// "metrics". `sampler` goes to the post filter (PostOptions::sampler) and the rescale.
+/// index for the jitter and, from frame 1 on, pass exact motion vectors to the state. With
+/// `run.clock`, charges rendering and filtering to "method_renders_filters" and scoring to
+/// "metrics". `run.sampler` goes to the post filter (PostOptions::sampler) and the rescale.
 /// Scores `frame` (the output size) against the prepared scene: every metric and the 8-bit
 /// FLIP map, reusing the scores of a bit-identical earlier output; fills out->row.metrics,
 /// output_hash, out->flip_grey and moves the frame into out->output.
 void ScoreOutput(const PreparedScene& prepared, Image8 frame, MethodOutput* out, StageClock* clock = nullptr);
 
-MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat,
-                       std::unique_ptr<TemporalState>* state = nullptr, StageClock* clock = nullptr,
-                       SamplerArithmetic sampler = SamplerArithmetic::kGl);
+/// What every method of a run shares: how it is rendered, timed, filtered and charged.
+struct MethodRunSettings {
+  uint64_t seed = 1;  ///< the renderer's sample seed (RenderFrame)
+  int repeat = 1;     ///< timed runs after one warm-up (TimeRepeats)
+  /// The post filter's texel and bilinear arithmetic (PostOptions::sampler) and the rescale's.
+  SamplerArithmetic sampler = SamplerArithmetic::kGl;
+  StageClock* clock = nullptr;  ///< charges the stages when set
+};
+
+MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, const MethodRunSettings& run,
+                       std::unique_ptr<TemporalState>* state = nullptr);
 
 /// True when the plan needs nothing but the 1x frame: `none` and the post-only methods
 /// (MethodPlan::IsPostOnly), and on a view with motion vectors and jitter (`has_motion`) the

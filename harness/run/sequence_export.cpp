@@ -24,16 +24,6 @@ std::string FrameName(size_t t, const char* ext) {
   return buf;
 }
 
-/// A folder name from a method spec: ':' ',' → '_', '=' → '-' (as the run's image names).
-std::string FolderName(const std::string& spec) {  // checked by CheckOutputName before use
-  std::string s = spec;
-  for (char& c : s) {
-    if (c == ':' || c == ',') c = '_';
-    if (c == '=') c = '-';
-  }
-  return s;
-}
-
 std::string Setting(const Report& r, const std::string& key, const std::string& fallback) {
   for (const auto& [k, v] : r.settings) {
     if (k == key) return v;
@@ -69,7 +59,7 @@ SequenceExport ExportSequences(const std::string& run_dir, const std::string& ou
   }
   for (const auto& row : report.rows) {
     if (!row.frame_images.empty()) {
-      CheckOutputName(FolderName(row.spec), "method spec '" + row.spec + "' (row of scene '" + row.scene + "') in " + origin,
+      CheckOutputName(SpecFileName(row.spec), "method spec '" + row.spec + "' (row of scene '" + row.scene + "') in " + origin,
                       {"reference"});
     }
     for (const auto& f : row.frame_images) need(f);
@@ -112,7 +102,7 @@ SequenceExport ExportSequences(const std::string& run_dir, const std::string& ou
     nlohmann::ordered_json methods = nlohmann::ordered_json::array();
     for (const auto& row : report.rows) {
       if (row.scene != s.name || row.frame_images.empty()) continue;
-      const std::string folder = FolderName(row.spec);
+      const std::string folder = SpecFileName(row.spec);
       fs::create_directories(sdir / folder);
       for (size_t t = 0; t < row.frame_images.size(); ++t) {
         WriteImage8((sdir / folder / FrameName(t, "png")).string(), ReadImage8((run / row.frame_images[t]).string()));

@@ -393,7 +393,7 @@ SweepResult RunSweep(const SweepSettings& s) {
       for (const auto& w : windows) reference_crops.back().push_back(CropImage(ref8, w));
     }
     for (size_t p : share) {
-      MethodOutput mo = RunMethod(*prepared, plans[p], s.seed, s.repeat);
+      MethodOutput mo = RunMethod(*prepared, plans[p], MethodRunSettings{s.seed, s.repeat});
       if (!s.shard.Active()) {
         for (const auto& w : windows) point_crops.back()[p].push_back(CropImage(mo.output, w));
       }

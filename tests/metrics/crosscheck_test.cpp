@@ -44,7 +44,7 @@ TEST(CrossCheck, SsimMatchesScikitImage) {
 // The double-precision implementation (flip::ErrorValuesUncached) to libm differences; the
 // production path (float32, flip_fast.cpp, as NVIDIA's own tools compute) within float
 // rounding: ~1e-7 relative per operation, a few hundred operations a pixel, errors
-// averaging out in the mean (tests/perf/metrics_fast_test.cpp measures the same on frames).
+// averaging out in the mean (tests/equivalence/metrics_fast_test.cpp measures the same on frames).
 TEST(CrossCheck, FlipMatchesTwoDimensionalReference) {
   for (const Expected& e : kCases) {
     const auto [ref, test] = testimg::MakePair(e.w, e.h, e.seed);

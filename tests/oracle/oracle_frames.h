@@ -1,12 +1,12 @@
 // Frames for the FXAA oracle tests: the equivalence tests' synthetic and rendered frames
-// (tests/perf/frames.h) plus adversarial cases for the edge search and the thresholds.
+// (tests/equivalence/frames.h) plus adversarial cases for the edge search and the thresholds.
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "tests/perf/frames.h"
+#include "tests/equivalence/frames.h"
 
 namespace aalab::oracle {
 

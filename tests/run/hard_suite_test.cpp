@@ -35,7 +35,7 @@ TEST(HardSuite, EveryMethodOnEveryHardSceneIsFiniteOrNullWithReason) {
     auto prepared = PrepareScene(std::make_unique<Scene>(LoadScene(name)), 64, 36, 4, 1, 1);
     report.scenes.push_back(prepared->info);
     for (const auto& plan : plans) {
-      MethodOutput mo = RunMethod(*prepared, plan, 1, 1);
+      MethodOutput mo = RunMethod(*prepared, plan, MethodRunSettings{1, 1});
       ExpectStable(mo, name + " " + plan.spec);
       EXPECT_EQ(mo.output.Width(), 64);
       EXPECT_EQ(mo.output.Height(), 36);
@@ -54,7 +54,7 @@ TEST(HardSuite, DegenerateFrameSizesForEveryMethod) {
     auto prepared = PrepareScene(std::make_unique<Scene>(LoadScene("wedges")), w, h, 2, 1, 1);
     for (const auto& plan : plans) {
       const std::string where = std::to_string(w) + "x" + std::to_string(h) + " " + plan.spec;
-      MethodOutput mo = RunMethod(*prepared, plan, 1, 1);
+      MethodOutput mo = RunMethod(*prepared, plan, MethodRunSettings{1, 1});
       ExpectStable(mo, where);
       EXPECT_EQ(mo.output.Width(), w) << where;
       EXPECT_EQ(mo.output.Height(), h) << where;

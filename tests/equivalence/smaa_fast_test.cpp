@@ -7,7 +7,7 @@
 
 #include "core/parallel.h"
 #include "methods/smaa.h"
-#include "tests/perf/frames.h"
+#include "tests/equivalence/frames.h"
 
 namespace aalab {
 namespace {

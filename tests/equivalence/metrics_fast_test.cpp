@@ -8,7 +8,7 @@
 #include "core/parallel.h"
 #include "metrics/flip.h"
 #include "metrics/ssim.h"
-#include "tests/perf/frames.h"
+#include "tests/equivalence/frames.h"
 
 namespace aalab {
 namespace {

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "methods/registry.h"
-#include "tests/perf/frames.h"
+#include "tests/equivalence/frames.h"
 
 namespace aalab {
 namespace {

@@ -11,7 +11,7 @@
 #include "methods/fxaa311.h"
 #include "methods/registry.h"
 #include "methods/rescale.h"
-#include "tests/perf/frames.h"
+#include "tests/equivalence/frames.h"
 
 namespace aalab {
 namespace {
