@@ -119,10 +119,16 @@ struct MethodOutput {
 /// FLIP map, reusing the scores of a bit-identical earlier output; fills out->row.metrics,
 /// output_hash, out->flip_grey and moves the frame into out->output.
 void ScoreOutput(const PreparedScene& prepared, Image8 frame, MethodOutput* out, StageClock* clock = nullptr);
+/// The scores of `frame` (the output size) against the prepared scene: every metric and the
+/// 8-bit FLIP map, computed anew (no reuse, nothing stored): safe to call concurrently.
+PreparedScene::Scored ScoreFrame(const PreparedScene& prepared, const Image8& frame);
 
+/// `score` false: the row is rendered, filtered and timed but not scored: out.output holds
+/// the frame and row.output_hash its hash, row.metrics and flip_grey stay empty (for
+/// harness/run/score_rows.h, which scores a frame's rows together after its timed renders).
 MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, uint64_t seed, int repeat,
                        std::unique_ptr<TemporalState>* state = nullptr, StageClock* clock = nullptr,
-                       SamplerArithmetic sampler = SamplerArithmetic::kGl);
+                       SamplerArithmetic sampler = SamplerArithmetic::kGl, bool score = true);
 
 /// True when the plan needs nothing but the 1x frame: `none` and the post-only methods
 /// (MethodPlan::IsPostOnly), and on a view with motion vectors and jitter (`has_motion`) the

@@ -24,6 +24,7 @@
 #include "harness/run/out_folder.h"
 #include "harness/run/pipeline.h"
 #include "harness/run/reference_cache.h"
+#include "harness/run/score_rows.h"
 #include "harness/run/sequence.h"
 #include "harness/run/stage_clock.h"
 #include "scenes/library.h"
@@ -321,13 +322,16 @@ Report RunSuite(const RunSettings& s) {
       progress.Step(name + tag + " reference");
 
       const int fw = prepared->info.width, fh = prepared->info.height;  // a view's own size
+      // aalab's methods, rendered and timed one after another, then scored concurrently
+      // (harness/run/score_rows.h).
+      const auto method_rows = RunAndScoreRows(*prepared, plans, s.seed, s.repeat, &states, &clock, s.sampler,
+                                               last && s.debug_views);
       for (size_t m = 0; m < rows_per_frame; ++m) {
         // aalab's methods, then the user's supplied outputs (scored, not run).
         const MethodPlan* plan = m < plans.size() ? &plans[m] : nullptr;
         const std::string spec = plan ? plan->spec : supplied[m - plans.size()];
-        auto mo = std::make_shared<MethodOutput>(
-            plan ? RunMethod(*prepared, *plan, s.seed, s.repeat, &states[m], &clock, s.sampler)
-                 : SuppliedOutputRow(*prepared, spec, s.repeat, &clock));
+        auto mo = plan ? method_rows[m]
+                       : std::make_shared<MethodOutput>(SuppliedOutputRow(*prepared, spec, s.repeat, &clock));
         ResultRow& row = mo->row;
         if (!row.not_applicable.empty()) {  // a renderer-side method on an image scene: no images
           if (last) report.rows.push_back(std::move(row));
