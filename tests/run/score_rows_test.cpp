@@ -25,7 +25,9 @@ void ExpectSameRow(const MethodOutput& got, const MethodOutput& want, const std:
     const auto& w = want.row.metrics[i];
     EXPECT_EQ(g.name, w.name) << where;
     EXPECT_EQ(g.value.has_value(), w.value.has_value()) << where << " " << w.name;
-    if (g.value && w.value) EXPECT_EQ(*g.value, *w.value) << where << " " << w.name;  // same bits
+    if (g.value && w.value) {
+      EXPECT_EQ(*g.value, *w.value) << where << " " << w.name;  // same bits
+    }
     EXPECT_EQ(g.null_reason, w.null_reason) << where << " " << w.name;
   }
   EXPECT_EQ(got.row.not_applicable, want.row.not_applicable) << where;
