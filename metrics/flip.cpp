@@ -507,37 +507,101 @@ ImageF FlipErrorMap(const ImageF& reference, const ImageF& test, double ppd) {
 
 namespace {
 
-// `values` in ascending order. FLIP maps hold float values >= 0 (flip_fast.cpp): their bit
-// patterns order as unsigned integers, so they are sorted by an LSD radix sort (3 passes of
-// 11 bits) instead of a comparison sort; any other input takes std::sort. The result is the
-// same sequence either way (equal values are indistinguishable).
-std::vector<double> SortedValues(const std::vector<double>& values) {
-  std::vector<uint32_t> keys(values.size());
-  for (size_t i = 0; i < values.size(); ++i) {
-    const double v = values[i];
-    const float f = static_cast<float>(v);
-    if (!(v >= 0.0) || static_cast<double>(f) != v) {
-      std::vector<double> sorted = values;
-      std::sort(sorted.begin(), sorted.end());
-      return sorted;
+// Pooling (PoolFlip) sorts the values ascending and sums them in that order, as NVIDIA's
+// tool does. FLIP maps hold float values >= 0 (flip_fast.cpp): their bit patterns order as
+// unsigned integers, so they are sorted by an LSD radix sort (3 passes of 11 bits) whose
+// passes run in parallel: per chunk a histogram of the pass's digit, then every chunk
+// scatters its keys to offsets fixed by the histograms of the chunks before it (a stable
+// pass). The sorted sequence is unique (equal values are indistinguishable), so the result is
+// the same at any thread count and equals a std::sort of the values. Any other input (a value
+// < 0, NaN, or one that is not a float) takes std::sort.
+constexpr int kSortGrain = 1 << 15;  // keys per chunk (fixed: chunks never depend on threads)
+constexpr int kDigits = 2048;        // 11-bit digits
+
+// The values' float bit patterns, or nothing when some value is not a float >= 0.
+bool FloatKeys(const std::vector<double>& values, std::vector<uint32_t>* keys) {
+  const int n = static_cast<int>(values.size());
+  keys->resize(values.size());
+  std::vector<uint8_t> bad(static_cast<size_t>((n + kSortGrain - 1) / kSortGrain), 0);
+  ParallelForChunks(n, kSortGrain, [&](int b, int e) {
+    for (int i = b; i < e; ++i) {
+      const double v = values[static_cast<size_t>(i)];
+      const float f = static_cast<float>(v);
+      if (!(v >= 0.0) || static_cast<double>(f) != v) bad[static_cast<size_t>(b / kSortGrain)] = 1;
+      std::memcpy(&(*keys)[static_cast<size_t>(i)], &f, sizeof f);
     }
-    std::memcpy(&keys[i], &f, sizeof f);
-  }
-  std::vector<uint32_t> tmp(keys.size());
+  });
+  return std::find(bad.begin(), bad.end(), 1) == bad.end();
+}
+
+// Sorts `keys` ascending in place (parallel stable LSD radix, see above).
+void RadixSortKeys(std::vector<uint32_t>* keys) {
+  const int n = static_cast<int>(keys->size());
+  const int chunks = (n + kSortGrain - 1) / kSortGrain;
+  std::vector<uint32_t> tmp(keys->size());
+  std::vector<uint32_t> hist(static_cast<size_t>(chunks) * kDigits);
   for (int shift = 0; shift < 32; shift += 11) {
-    std::vector<size_t> count(2049, 0);
-    for (uint32_t k : keys) ++count[((k >> shift) & 2047u) + 1];
-    for (size_t b = 1; b < count.size(); ++b) count[b] += count[b - 1];
-    for (uint32_t k : keys) tmp[count[(k >> shift) & 2047u]++] = k;
-    keys.swap(tmp);
+    const uint32_t* src = keys->data();
+    uint32_t* dst = tmp.data();
+    std::fill(hist.begin(), hist.end(), 0u);
+    ParallelForChunks(n, kSortGrain, [&](int b, int e) {
+      uint32_t* h = &hist[static_cast<size_t>(b / kSortGrain) * kDigits];
+      for (int i = b; i < e; ++i) ++h[(src[i] >> shift) & (kDigits - 1)];
+    });
+    // Offsets: digit-major, then chunk order (hist becomes each chunk's first slot per digit).
+    uint32_t next = 0;
+    bool one_digit = false;
+    for (int d = 0; d < kDigits; ++d) {
+      uint32_t digit_total = 0;
+      for (int c = 0; c < chunks; ++c) {
+        uint32_t& h = hist[static_cast<size_t>(c) * kDigits + static_cast<size_t>(d)];
+        const uint32_t count = h;
+        h = next;
+        next += count;
+        digit_total += count;
+      }
+      if (digit_total == static_cast<uint32_t>(n)) one_digit = true;
+    }
+    if (one_digit) continue;  // every key has this digit: the pass would not move anything
+    ParallelForChunks(n, kSortGrain, [&](int b, int e) {
+      uint32_t* h = &hist[static_cast<size_t>(b / kSortGrain) * kDigits];
+      for (int i = b; i < e; ++i) dst[h[(src[i] >> shift) & (kDigits - 1)]++] = src[i];
+    });
+    keys->swap(tmp);
   }
-  std::vector<double> sorted(keys.size());
-  for (size_t i = 0; i < keys.size(); ++i) {
-    float f;
-    std::memcpy(&f, &keys[i], sizeof f);
-    sorted[i] = static_cast<double>(f);
+}
+
+double KeyValue(uint32_t key) {
+  float f;
+  std::memcpy(&f, &key, sizeof f);
+  return static_cast<double>(f);
+}
+
+// The value-weighted median (PoolFlip): sums in sorted order, one pass. The running sum is
+// kept at every kBlock-th element, so the crossing is found again by re-walking one block with
+// the very additions of the pass (the same bits as a second full running pass).
+template <typename Sorted>
+double WeightedMedianOfSorted(size_t n, const Sorted& at) {
+  constexpr size_t kBlock = 4096;
+  std::vector<double> block_start;  // running sum before element b · kBlock
+  block_start.reserve(n / kBlock + 1);
+  double total = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    if (i % kBlock == 0) block_start.push_back(total);
+    total += at(i);
   }
-  return sorted;
+  if (!(total > 0.0)) return 0.0;
+  const double half = 0.5 * total;
+  // The running sum never decreases (values >= 0); the crossing lies in the last block that
+  // starts at or below half.
+  size_t b = 0;
+  while (b + 1 < block_start.size() && !(block_start[b + 1] > half)) ++b;
+  double running = block_start[b];
+  for (size_t i = b * kBlock; i < n; ++i) {
+    running += at(i);
+    if (running > half) return at(i);
+  }
+  return 0.0;  // not reached: the running sum ends at total > half
 }
 
 }  // namespace
@@ -552,19 +616,14 @@ FlipPooled PoolFlip(const std::vector<double>& values) {
     p.max = std::max(p.max, v);
   }
   p.mean = sum / static_cast<double>(values.size());
-  const std::vector<double> sorted = SortedValues(values);
-  double total = 0.0;
-  for (double v : sorted) total += v;
-  p.weighted_median = 0.0;
-  if (total > 0.0) {
-    double running = 0.0;
-    for (double v : sorted) {
-      running += v;
-      if (running > 0.5 * total) {
-        p.weighted_median = v;
-        break;
-      }
-    }
+  std::vector<uint32_t> keys;
+  if (FloatKeys(values, &keys)) {
+    RadixSortKeys(&keys);
+    p.weighted_median = WeightedMedianOfSorted(keys.size(), [&](size_t i) { return KeyValue(keys[i]); });
+  } else {
+    std::vector<double> sorted = values;
+    std::sort(sorted.begin(), sorted.end());
+    p.weighted_median = WeightedMedianOfSorted(sorted.size(), [&](size_t i) { return sorted[i]; });
   }
   return p;
 }

@@ -205,7 +205,7 @@ ResultRow NotApplicableRow(const PreparedScene& p, const MethodPlan& plan) {
 }
 
 MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, const MethodRunSettings& run,
-                       std::unique_ptr<TemporalState>* state) {
+                       std::unique_ptr<TemporalState>* state, bool score) {
   const uint64_t seed = run.seed;
   const int repeat = run.repeat;
   const SamplerArithmetic sampler = run.sampler;
@@ -359,6 +359,11 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, const Met
   row.coverage_rays_per_px = static_cast<double>(counters.coverage_rays) / px;
   row.shading_evals_per_px = static_cast<double>(counters.shading_evals) / px;
   row.taps_per_px = static_cast<double>(post_stats.taps + rescale_stats.taps) / px;
+  if (!score) {
+    out.row.output_hash = HashBytes(frame.Data().data(), frame.Data().size());
+    out.output = std::move(frame);
+    return out;
+  }
   ScoreOutput(p, std::move(frame), &out, clock);
   return out;
 }
@@ -374,6 +379,15 @@ void ScoreOutput(const PreparedScene& p, Image8 frame, MethodOutput* out, StageC
     out->output = std::move(frame);
     return;
   }
+  PreparedScene::Scored scored = ScoreFrame(p, frame);
+  row.metrics = scored.metrics;
+  out->flip_grey = scored.flip_grey;
+  p.scored_by_hash[row.output_hash] = std::move(scored);
+  out->output = std::move(frame);
+}
+
+PreparedScene::Scored ScoreFrame(const PreparedScene& p, const Image8& frame) {
+  PreparedScene::Scored scored;
   const ImageF out_f = ToFloat(frame, 3);
   const std::vector<double> flip_values = flip::ErrorValues(*p.flip_reference, out_f);
   MetricInput in;
@@ -385,14 +399,13 @@ void ScoreOutput(const PreparedScene& p, Image8 frame, MethodOutput* out, StageC
   in.flip_values = &flip_values;
   in.flip_ppd = p.flip_ppd;
   in.ssim_reference = p.ssim_reference.get();
-  for (const auto& v : ComputeAllMetrics(in)) row.metrics.push_back({v.name, v.value, v.null_reason});
+  for (const auto& v : ComputeAllMetrics(in)) scored.metrics.push_back({v.name, v.value, v.null_reason});
   // The FLIP map for the page, 8 bits: round(255 · v), v in [0, 1].
-  out->flip_grey.resize(flip_values.size());
+  scored.flip_grey.resize(flip_values.size());
   for (size_t i = 0; i < flip_values.size(); ++i) {
-    out->flip_grey[i] = static_cast<uint8_t>(std::lround(std::clamp(flip_values[i], 0.0, 1.0) * 255.0));
+    scored.flip_grey[i] = static_cast<uint8_t>(std::lround(std::clamp(flip_values[i], 0.0, 1.0) * 255.0));
   }
-  p.scored_by_hash[row.output_hash] = {row.metrics, out->flip_grey};
-  out->output = std::move(frame);
+  return scored;
 }
 
 }  // namespace aalab

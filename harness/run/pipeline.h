@@ -119,6 +119,9 @@ struct MethodOutput {
 /// FLIP map, reusing the scores of a bit-identical earlier output; fills out->row.metrics,
 /// output_hash, out->flip_grey and moves the frame into out->output.
 void ScoreOutput(const PreparedScene& prepared, Image8 frame, MethodOutput* out, StageClock* clock = nullptr);
+/// The scores of `frame` (the output size) against the prepared scene: every metric and the
+/// 8-bit FLIP map, computed anew (no reuse, nothing stored): safe to call concurrently.
+PreparedScene::Scored ScoreFrame(const PreparedScene& prepared, const Image8& frame);
 
 /// What every method of a run shares: how it is rendered, timed, filtered and charged.
 struct MethodRunSettings {
@@ -129,8 +132,11 @@ struct MethodRunSettings {
   StageClock* clock = nullptr;  ///< charges the stages when set
 };
 
+/// `score` false: the row is rendered, filtered and timed but not scored: out.output holds
+/// the frame and row.output_hash its hash, row.metrics and flip_grey stay empty (for
+/// harness/run/score_rows.h, which scores a frame's rows together after its timed renders).
 MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, const MethodRunSettings& run,
-                       std::unique_ptr<TemporalState>* state = nullptr);
+                       std::unique_ptr<TemporalState>* state = nullptr, bool score = true);
 
 /// True when the plan needs nothing but the 1x frame: `none` and the post-only methods
 /// (MethodPlan::IsPostOnly), and on a view with motion vectors and jitter (`has_motion`) the

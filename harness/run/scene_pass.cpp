@@ -9,6 +9,7 @@
 #include "core/timer.h"
 #include "harness/run/image_scene.h"
 #include "harness/run/out_folder.h"
+#include "harness/run/score_rows.h"
 #include "harness/run/sequence.h"
 #include "io/image_io.h"
 #include "scenes/motion.h"
@@ -175,7 +176,7 @@ class SceneRun {
     for (int k = 0; k < frames_; ++k) {
       const std::string tag = frames_ > 1 ? ".f" + std::to_string(k) : "";
       PrepareFrame(k, tag);
-      std::vector<std::shared_ptr<MethodOutput>> outs = ScoreFrameRows(pass_, *prepared_, &states_, name_ + tag);
+      std::vector<std::shared_ptr<MethodOutput>> outs = ScoreFrameRows(pass_, *prepared_, &states_, name_ + tag, k == frames_ - 1);
       for (size_t m = 0; m < outs.size(); ++m) RecordRow(m, k, tag, std::move(outs[m]), rows);
     }
     return Finish();
@@ -273,17 +274,18 @@ class SceneRun {
 
 std::vector<std::shared_ptr<MethodOutput>> ScoreFrameRows(const ScenePass& pass, const PreparedScene& prepared,
                                                           std::vector<std::unique_ptr<TemporalState>>* states,
-                                                          const std::string& step_prefix) {
+                                                          const std::string& step_prefix, bool last_frame) {
   const RunPlan& plan = pass.plan;
   const RunSettings& s = pass.settings;
   const MethodRunSettings run{s.seed, s.repeat, s.sampler, pass.clock};
-  std::vector<std::shared_ptr<MethodOutput>> outs;
-  for (size_t m = 0; m < plan.RowsPerFrame(); ++m) {
-    // aalab's methods (run), then the user's supplied outputs (scored, not run).
-    outs.push_back(std::make_shared<MethodOutput>(
-        m < plan.methods.size() ? RunMethod(prepared, plan.methods[m], run, &(*states)[m])
-                                : SuppliedOutputRow(prepared, RowSpec(plan, m), s.repeat, pass.clock)));
-    const bool na = !outs.back()->row.not_applicable.empty();
+  // aalab's methods (run, then scored together), then the user's supplied outputs (scored, not run).
+  std::vector<std::shared_ptr<MethodOutput>> outs =
+      RunAndScoreRows(prepared, plan.methods, run, states, last_frame && s.debug_views);
+  for (size_t m = plan.methods.size(); m < plan.RowsPerFrame(); ++m) {
+    outs.push_back(std::make_shared<MethodOutput>(SuppliedOutputRow(prepared, RowSpec(plan, m), s.repeat, pass.clock)));
+  }
+  for (size_t m = 0; m < outs.size(); ++m) {
+    const bool na = !outs[m]->row.not_applicable.empty();
     pass.progress->Step(step_prefix + " " + RowSpec(plan, m) + (na ? " (not applicable)" : ""));
   }
   return outs;

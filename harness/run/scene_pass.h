@@ -36,11 +36,13 @@ struct ScenePass {
 };
 
 /// One frame's rows, in the run's row order (the methods, then the supplied outputs), each
-/// run and scored against the prepared frame. `states`: the methods' sequence states (one
-/// per method, carried from frame to frame).
+/// run and scored against the prepared frame: the methods rendered and timed one after
+/// another, then their outputs scored concurrently (harness/run/score_rows.h). `states`: the
+/// methods' sequence states (one per method, carried from frame to frame); `last_frame`: the
+/// rows keep the post filter's input for --debug-views only there.
 std::vector<std::shared_ptr<MethodOutput>> ScoreFrameRows(const ScenePass& pass, const PreparedScene& prepared,
                                                           std::vector<std::unique_ptr<TemporalState>>* states,
-                                                          const std::string& step_prefix);
+                                                          const std::string& step_prefix, bool last_frame);
 
 /// Runs one scene (all its frames) and returns what the report says about it; its rows are
 /// appended to `rows`. Consumes source.scene.

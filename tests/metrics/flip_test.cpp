@@ -4,6 +4,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -230,6 +234,79 @@ TEST(Flip, Pooling) {
   p = PoolFlip({0.0, 0.0});
   EXPECT_EQ(p.weighted_median, 0.0);
   EXPECT_EQ(p.max, 0.0);
+}
+
+// The value-weighted median as PoolFlip's doc block defines it, written plainly: std::sort,
+// the total in sorted order, then the first value whose running sum exceeds half of it.
+double SortedWeightedMedian(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  double total = 0.0;
+  for (double x : v) total += x;
+  if (!(total > 0.0)) return 0.0;
+  double running = 0.0;
+  for (double x : v) {
+    running += x;
+    if (running > 0.5 * total) return x;
+  }
+  return 0.0;
+}
+
+// Deterministic pseudo-random floats in [0, 1) (a 64-bit LCG, top 24 bits).
+std::vector<double> LcgFloats(size_t n, uint64_t seed, int levels = 0) {
+  std::vector<double> v(n);
+  uint64_t s = seed;
+  for (auto& x : v) {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double u = static_cast<double>(s >> 40) / 16777216.0;
+    x = levels > 0 ? std::floor(u * levels) / levels : u;
+  }
+  return v;
+}
+
+TEST(Flip, WeightedMedianEqualsTheSortBasedOneOnRandomAndAdversarialInputs) {
+  std::vector<std::pair<std::string, std::vector<double>>> cases;
+  // Several sort chunks (2^15 keys) and median blocks (4096): 200003 values.
+  cases.emplace_back("uniform", LcgFloats(200003, 7));
+  {  // FLIP-like: most pixels tiny, a few large (errors cube-shaped toward 0), floats.
+    auto v = LcgFloats(150001, 11);
+    for (auto& x : v) x = static_cast<double>(static_cast<float>(x * x * x * x));
+    cases.emplace_back("skewed", v);
+  }
+  cases.emplace_back("ties (16 levels)", LcgFloats(100000, 3, 16));
+  {  // exponents from 2^-126 up: every 11-bit digit of the key varies
+    auto v = LcgFloats(70000, 5);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = std::ldexp(static_cast<double>(static_cast<float>(v[i])), -static_cast<int>(i % 120));
+    cases.emplace_back("wide exponents", v);
+  }
+  cases.emplace_back("all equal", std::vector<double>(90000, 0.375));
+  cases.emplace_back("all zero", std::vector<double>(50000, 0.0));
+  {
+    std::vector<double> v(80000, 0.0);
+    v[123] = 0.25;
+    cases.emplace_back("one non-zero", v);
+  }
+  {  // two values, the crossing exactly at a tie between them and at a block edge
+    std::vector<double> v(8192, 0.5);
+    for (size_t i = 0; i < 4096; ++i) v[i] = 0.25;
+    cases.emplace_back("two levels", v);
+  }
+  {  // doubles that are not floats: the std::sort path
+    auto v = LcgFloats(40000, 9);
+    for (auto& x : v) x += 1e-12;
+    cases.emplace_back("not floats", v);
+  }
+  cases.emplace_back("one value", std::vector<double>{0.7});
+  for (const auto& [name, v] : cases) {
+    const double expected = SortedWeightedMedian(v);
+    for (int threads : {1, 2, 3}) {
+      SetThreadCount(threads);
+      EXPECT_EQ(PoolFlip(v).weighted_median, expected) << name << ", " << threads << " threads";
+    }
+  }
+  SetThreadCount(0);
+  // Hand-worked: the two-levels case's total is 4096·0.25 + 4096·0.5 = 3072, half 1536; the
+  // 0.25s sum to 1024, so the crossing is among the 0.5s.
+  EXPECT_EQ(SortedWeightedMedian(cases[7].second), 0.5);
 }
 
 TEST(Flip, BadInputsAreUserErrors) {

@@ -1,0 +1,62 @@
+#include "harness/run/score_rows.h"
+
+#include <map>
+#include <string>
+
+#include <tbb/task_arena.h>
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace aalab {
+
+std::vector<std::shared_ptr<MethodOutput>> RunAndScoreRows(const PreparedScene& prepared,
+                                                           const std::vector<MethodPlan>& plans,
+                                                           const MethodRunSettings& run,
+                                                           std::vector<std::unique_ptr<TemporalState>>* states,
+                                                           bool keep_inputs) {
+  StageClock* const clock = run.clock;
+  AALAB_CHECK(states && states->size() >= plans.size(), "one sequence state per plan");
+  std::vector<std::shared_ptr<MethodOutput>> rows;
+  rows.reserve(plans.size());
+  // The timed part: one row after another, nothing else running.
+  for (size_t m = 0; m < plans.size(); ++m) {
+    auto mo = std::make_shared<MethodOutput>(
+        RunMethod(prepared, plans[m], run, &(*states)[m], /*score=*/false));
+    if (!keep_inputs) mo->input = Image8();
+    rows.push_back(std::move(mo));
+  }
+  if (clock) clock->Enter("metrics");
+  // The distinct outputs still to score, in row order (the first row with each hash).
+  std::vector<size_t> todo;
+  std::map<std::string, size_t> first_of_hash;
+  for (size_t m = 0; m < rows.size(); ++m) {
+    const MethodOutput& mo = *rows[m];
+    if (!mo.row.not_applicable.empty()) continue;
+    const std::string& hash = mo.row.output_hash;
+    if (prepared.scored_by_hash.count(hash) || first_of_hash.count(hash)) continue;
+    first_of_hash.emplace(hash, m);
+    todo.push_back(m);
+  }
+  std::vector<PreparedScene::Scored> scores(todo.size());
+  // Each score runs isolated: while its own parallel loops wait, a thread takes no other
+  // row's score, so at most one score per thread is in flight (each holds ~50 MB of planes
+  // at 960x540).
+  ParallelFor(static_cast<int>(todo.size()), [&](int i) {
+    tbb::this_task_arena::isolate([&] {
+      scores[static_cast<size_t>(i)] = ScoreFrame(prepared, rows[todo[static_cast<size_t>(i)]]->output);
+    });
+  });
+  for (size_t i = 0; i < todo.size(); ++i) {
+    prepared.scored_by_hash.emplace(rows[todo[i]]->row.output_hash, std::move(scores[i]));
+  }
+  for (auto& mo : rows) {
+    if (!mo->row.not_applicable.empty()) continue;
+    const PreparedScene::Scored& s = prepared.scored_by_hash.at(mo->row.output_hash);
+    mo->row.metrics = s.metrics;
+    mo->flip_grey = s.flip_grey;
+  }
+  return rows;
+}
+
+}  // namespace aalab
