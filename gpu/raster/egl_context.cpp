@@ -51,8 +51,11 @@ std::string ContextOn(EGLDisplay dpy, const std::string& what) {
 
 std::string TryDevice(std::string* used) {
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  if (!HasExt(client, "EGL_EXT_platform_device") || !HasExt(client, "EGL_EXT_device_enumeration")) {
-    return "device platform: EGL has no EGL_EXT_platform_device / EGL_EXT_device_enumeration";
+  // EGL_EXT_device_base is EGL_EXT_device_enumeration plus EGL_EXT_device_query in one name:
+  // GLVND's libEGL with the NVIDIA driver lists only the former (measured on the H100).
+  const bool enumerate = HasExt(client, "EGL_EXT_device_enumeration") || HasExt(client, "EGL_EXT_device_base");
+  if (!HasExt(client, "EGL_EXT_platform_device") || !enumerate) {
+    return "device platform: EGL has no EGL_EXT_platform_device / EGL_EXT_device_enumeration (or EGL_EXT_device_base)";
   }
   auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
   auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
