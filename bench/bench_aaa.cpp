@@ -52,17 +52,32 @@ std::vector<Json> BenchAnalyticAa(int reps, std::string* table) {
   const Times sampled = Time(std::max(1, reps / 2), [&] { RenderReference(tracer, 1920, 1080, 16, 1, nullptr); });
   const double ratio = analytic.Median() / none.Median();
   const double ref_ratio = exact.Median() / sampled.Median();
-  figures.push_back({{"group", "analytic-aa"}, {"name", "aaa-render"}, {"frame", "sdf-circles 960x540"}, {"unit", "ms"},
-                     {"value", analytic.ToJson()}, {"limit", "none render"}, {"limit_ms", none.ToJson()},
-                     {"ratio_to_limit", ratio}, {"goal", "<= 1.5"}});
-  figures.push_back({{"group", "analytic-aa"}, {"name", "exact-reference"}, {"frame", "sdf-circles 1920x1080"},
-                     {"unit", "ms"}, {"value", exact.ToJson()}, {"limit", "256-spp sampled reference"},
-                     {"limit_ms", sampled.ToJson()}, {"ratio_to_limit", ref_ratio}, {"goal", "<= 1"}});
-  *table += "\n## Analytical AA\n\n| figure | ms median | limit | limit ms median | ratio | goal |\n|---|---|---|---|---|---|\n";
+  figures.push_back({{"group", "analytic-aa"},
+                     {"name", "aaa-render"},
+                     {"frame", "sdf-circles 960x540"},
+                     {"unit", "ms"},
+                     {"value", analytic.ToJson()},
+                     {"limit", "none render"},
+                     {"limit_ms", none.ToJson()},
+                     {"ratio_to_limit", ratio},
+                     {"goal", "<= 1.5"}});
+  figures.push_back({{"group", "analytic-aa"},
+                     {"name", "exact-reference"},
+                     {"frame", "sdf-circles 1920x1080"},
+                     {"unit", "ms"},
+                     {"value", exact.ToJson()},
+                     {"limit", "256-spp sampled reference"},
+                     {"limit_ms", sampled.ToJson()},
+                     {"ratio_to_limit", ref_ratio},
+                     {"goal", "<= 1"}});
+  *table +=
+      "\n## Analytical AA\n\n| figure | ms median | limit | limit ms median | ratio | goal "
+      "|\n|---|---|---|---|---|---|\n";
   *table += "| aaa render, sdf-circles 960x540 | " + FormatDouble("%.1f", analytic.Median()) + " | none render | " +
             FormatDouble("%.1f", none.Median()) + " | " + FormatDouble("%.2f", ratio) + " | <= 1.5 |\n";
-  *table += "| exact reference, sdf-circles 1920x1080 | " + FormatDouble("%.1f", exact.Median()) + " | 256-spp reference | " +
-            FormatDouble("%.1f", sampled.Median()) + " | " + FormatDouble("%.2f", ref_ratio) + " | <= 1 |\n";
+  *table += "| exact reference, sdf-circles 1920x1080 | " + FormatDouble("%.1f", exact.Median()) +
+            " | 256-spp reference | " + FormatDouble("%.1f", sampled.Median()) + " | " +
+            FormatDouble("%.2f", ref_ratio) + " | <= 1 |\n";
   return figures;
 }
 

@@ -58,7 +58,8 @@ Scene TorusScene(int n, int m) {
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < m; ++j) {
       const unsigned a = static_cast<unsigned>(i * m + j), b = static_cast<unsigned>(((i + 1) % n) * m + j);
-      const unsigned c = static_cast<unsigned>(((i + 1) % n) * m + (j + 1) % m), d = static_cast<unsigned>(i * m + (j + 1) % m);
+      const unsigned c = static_cast<unsigned>(((i + 1) % n) * m + (j + 1) % m),
+                     d = static_cast<unsigned>(i * m + (j + 1) % m);
       sh.triangles.emplace_back(a, b, c);
       sh.triangles.emplace_back(a, c, d);
     }
@@ -75,7 +76,8 @@ BigMeshFigures MeasureBigMesh(int n, int m, int width, int height, int reps) {
   const Shape& sh = scene.shapes[0];
   f.triangles = sh.triangles.size();
   f.scene_mb = static_cast<double>(sh.positions.size() * (sizeof(glm::vec3) * 2 + sizeof(glm::vec2)) +
-                                   sh.triangles.size() * sizeof(glm::uvec3)) / 1e6;
+                                   sh.triangles.size() * sizeof(glm::uvec3)) /
+               1e6;
   SetThreadCount(0);
   const double rss0 = ResidentMb();
   const auto t0 = std::chrono::steady_clock::now();

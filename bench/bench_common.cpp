@@ -115,12 +115,14 @@ void PlainPass(const Image8& in, Image8& out) {
 }
 
 void FailIdentity(const std::string& what) {
-  std::fprintf(stderr, "\n*** BIT-IDENTITY FAILURE: %s: the optimised path differs from its reference ***\n", what.c_str());
+  std::fprintf(stderr, "\n*** BIT-IDENTITY FAILURE: %s: the optimised path differs from its reference ***\n",
+               what.c_str());
   std::exit(2);
 }
 
 std::string Range(const Stats& s, double scale, const char* f) {
-  return FormatDouble(f, s.Median() * scale) + " (" + FormatDouble(f, s.Min() * scale) + "–" + FormatDouble(f, s.Max() * scale) + ")";
+  return FormatDouble(f, s.Median() * scale) + " (" + FormatDouble(f, s.Min() * scale) + "–" +
+         FormatDouble(f, s.Max() * scale) + ")";
 }
 
 Stats Mpix(const Stats& s, double mp) {  // median of rates = mp / median time

@@ -31,7 +31,7 @@ struct Settings {
   int suite_reps = 2;      ///< repetitions per suite configuration
   double min_time = 0.05;  ///< Google Benchmark min time per repetition, seconds
   int trace_w = 320, trace_h = 180, trace_grid = 8;
-  bool quick = false;      ///< a small subset, for checking the benchmark itself
+  bool quick = false;  ///< a small subset, for checking the benchmark itself
 };
 
 /// The size of the post-filter and metric frames.

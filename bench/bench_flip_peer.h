@@ -20,11 +20,11 @@ inline constexpr const char* kNvidiaFlipDefaultPath = "/opt/nvidia-flip/flip";
 
 /// The tool's figures on one pair.
 struct NvidiaFlipRun {
-  std::string path;                          ///< the tool looked for
-  std::string error;                         ///< non-empty: not measured, and why
+  std::string path;                           ///< the tool looked for
+  std::string error;                          ///< non-empty: not measured, and why
   std::map<int, std::vector<double>> eval_s;  ///< threads → evaluation times it printed (s)
-  double tool_mean = 0.0;                    ///< its mean (printed to 6 decimals)
-  double aalab_mean = 0.0;                   ///< aalab's flip_mean on the same 8-bit pair
+  double tool_mean = 0.0;                     ///< its mean (printed to 6 decimals)
+  double aalab_mean = 0.0;                    ///< aalab's flip_mean on the same 8-bit pair
 };
 
 /// Runs the tool on `reference` and `test` (written as PNG under `tmp_dir`) with `reps`
@@ -41,6 +41,7 @@ struct BenchGoal {
 /// The table rows of the comparison (through `line`) and its goals: `aalab_ms(threads)` is
 /// aalab's FLIP as in a run (reference half reused) on the bench pair, median ms.
 std::vector<BenchGoal> ReportNvidiaFlip(const NvidiaFlipRun& run, const std::function<double(int)>& aalab_ms,
-                                        const std::function<void(const std::string&)>& line, nlohmann::ordered_json* figures);
+                                        const std::function<void(const std::string&)>& line,
+                                        nlohmann::ordered_json* figures);
 
 }  // namespace aalab::bench

@@ -72,10 +72,14 @@ int ParseArgs(int argc, char** argv, Settings& cfg) {
       }
       return argv[++i];
     };
-    if (a == "--json") cfg.json_path = next();
-    else if (a == "--aalab") cfg.aalab_bin = next();
-    else if (a == "--reps") cfg.reps = std::stoi(next());
-    else if (a == "--quick") cfg.quick = true;
+    if (a == "--json")
+      cfg.json_path = next();
+    else if (a == "--aalab")
+      cfg.aalab_bin = next();
+    else if (a == "--reps")
+      cfg.reps = std::stoi(next());
+    else if (a == "--quick")
+      cfg.quick = true;
     else if (a == "--only-aaa") {  // bench/bench_aaa.cpp's figures alone, printed as markdown
       std::string table;
       const auto figs = BenchAnalyticAa(i + 1 < argc ? std::stoi(argv[++i]) : 5, &table);
@@ -168,8 +172,9 @@ int Main(int argc, char** argv) {
            taa_ratio > 0 && taa_ratio <= 2.0);
   TracingScalingGoal(tracing, out);
   PostScalingGoal(post, out);
-  SmaaGoals([](const std::string& k) { return Figure(k).Median(); },
-            [&out](const std::string& g, const std::string& m, bool met) { out.Goal(g, m, met); });  // bench/bench_smaa.cpp
+  SmaaGoals(
+      [](const std::string& k) { return Figure(k).Median(); },
+      [&out](const std::string& g, const std::string& m, bool met) { out.Goal(g, m, met); });  // bench/bench_smaa.cpp
   SuiteGoals(suite, out);
   DefaultRunGoal(suite, out);
 
@@ -179,8 +184,9 @@ int Main(int argc, char** argv) {
   out.Line("");
   out.Line("Machine: " + ctx["cpu"].get<std::string>() + ", " + std::to_string(ctx["hardware_threads"].get<int>()) +
            " hardware threads; " + ctx["date"].get<std::string>() + "; load average " +
-           ctx["load_average_at_start"].get<std::string>() + " at start, " + ctx["load_average_at_end"].get<std::string>() +
-           " at end; bench wall time " + FormatDouble("%.0f s", total_s) + ".");
+           ctx["load_average_at_start"].get<std::string>() + " at start, " +
+           ctx["load_average_at_end"].get<std::string>() + " at end; bench wall time " +
+           FormatDouble("%.0f s", total_s) + ".");
   report["context"] = ctx;
   report["figures"] = out.figures;
   report["external"] = metrics.external;

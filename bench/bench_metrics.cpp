@@ -43,12 +43,10 @@ MetricsBench RegisterMetricFigures(const Settings& cfg, const Image8& real_frame
   mb.ref = pair_ref, mb.img = pair_img, mb.none = pair_none;
   for (int threads : {1, 2}) {
     const std::string t = "/t" + std::to_string(threads);
-    Register("metric-psnr" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
-      benchmark::DoNotOptimize(MeanSquaredError(*pair_img, pair_ref->image).mse);
-    });
-    Register("metric-ssim" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
-      benchmark::DoNotOptimize(ComputeSsim(*pair_img, pair_ref->image).ssim);
-    });
+    Register("metric-psnr" + t, threads, cfg.reps, cfg.min_time,
+             [pair_ref, pair_img] { benchmark::DoNotOptimize(MeanSquaredError(*pair_img, pair_ref->image).mse); });
+    Register("metric-ssim" + t, threads, cfg.reps, cfg.min_time,
+             [pair_ref, pair_img] { benchmark::DoNotOptimize(ComputeSsim(*pair_img, pair_ref->image).ssim); });
     // SSIM as a run computes it per method: the reference's half prepared once per scene.
     Register("metric-ssim-run" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
       static const std::shared_ptr<const SsimReferenceSide> side = PrepareSsimReference(pair_ref->image);
@@ -57,7 +55,8 @@ MetricsBench RegisterMetricFigures(const Settings& cfg, const Image8& real_frame
     // FLIP as a run computes it per method (the reference's half reused after the first
     // method of a scene), and from scratch (the first method of a scene, or `aalab metrics`).
     Register("metric-flip" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
-      static const std::shared_ptr<const flip::ReferenceSide> side = flip::PrepareReference(pair_ref->image, kFlipDefaultPpd);
+      static const std::shared_ptr<const flip::ReferenceSide> side =
+          flip::PrepareReference(pair_ref->image, kFlipDefaultPpd);
       benchmark::DoNotOptimize(PoolFlip(flip::ErrorValues(*side, *pair_img)).mean);
     });
     Register("metric-flip-uncached" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
@@ -104,11 +103,13 @@ void RunExternalTools(const Settings& cfg, MetricsBench& mb) {
   write_raw(*mb.img, tmp / "a.f32");
   write_raw(mb.ref->image, tmp / "b.f32");
   Json& external = mb.external;
-  mb.nvidia_flip = RunNvidiaFlip(ToUnorm8(mb.ref->image), ToUnorm8(*mb.img), std::max(3, cfg.reps / 2 + 1), tmp.string());
+  mb.nvidia_flip =
+      RunNvidiaFlip(ToUnorm8(mb.ref->image), ToUnorm8(*mb.img), std::max(3, cfg.reps / 2 + 1), tmp.string());
   {
-    const std::string cmd = cfg.python + " " + cfg.script_dir + "/external_metrics.py " + (tmp / "a.f32").string() + " " +
-                            (tmp / "b.f32").string() + " " + std::to_string(kFrameW) + " " + std::to_string(kFrameH) + " " +
-                            std::to_string(std::max(3, cfg.reps / 2 + 1)) + " 2>/dev/null";
+    const std::string cmd = cfg.python + " " + cfg.script_dir + "/external_metrics.py " + (tmp / "a.f32").string() +
+                            " " + (tmp / "b.f32").string() + " " + std::to_string(kFrameW) + " " +
+                            std::to_string(kFrameH) + " " + std::to_string(std::max(3, cfg.reps / 2 + 1)) +
+                            " 2>/dev/null";
     const std::string out = RunCapture(cmd);
     try {
       external["skimage"] = Json::parse(out);
@@ -122,14 +123,16 @@ void RunExternalTools(const Settings& cfg, MetricsBench& mb) {
     const bool have_idiff = std::system("command -v idiff >/dev/null 2>&1") == 0;
     if (have_idiff) {
       std::vector<double> ms;
-      const std::string cmd = "idiff -fail 1 -warn 1 " + (tmp / "a.exr").string() + " " + (tmp / "b.exr").string() + " >/dev/null 2>&1";
+      const std::string cmd =
+          "idiff -fail 1 -warn 1 " + (tmp / "a.exr").string() + " " + (tmp / "b.exr").string() + " >/dev/null 2>&1";
       std::system(cmd.c_str());  // warm-up (page cache)
       for (int i = 0; i < std::max(3, cfg.reps / 2 + 1); ++i) {
         const auto t0 = std::chrono::steady_clock::now();
         std::system(cmd.c_str());
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       }
-      external["idiff"] = Json{{"samples_ms", ms}, {"what", "idiff process: load two 1080p float EXRs, compare (mean/RMS error, PSNR)"}};
+      external["idiff"] = Json{{"samples_ms", ms},
+                               {"what", "idiff process: load two 1080p float EXRs, compare (mean/RMS error, PSNR)"}};
     } else {
       external["idiff"] = Json{{"error", "idiff not installed"}};
     }
@@ -159,7 +162,11 @@ void MetricsTable(MetricsBench& mb, BenchOutput& out) {
     for (const char* m : {"psnr", "ssim", "ssim-run", "flip", "flip-uncached", "edge", "all"}) {
       const Stats& s = Figure(std::string("metric-") + m + t);
       std::string ext = "—", speed = "—";
-      Json fj = {{"group", "metrics"}, {"name", m}, {"threads", threads}, {"unit", "ms"}, {"value", StatsJson(s.samples, 1e3)}};
+      Json fj = {{"group", "metrics"},
+                 {"name", m},
+                 {"threads", threads},
+                 {"unit", "ms"},
+                 {"value", StatsJson(s.samples, 1e3)}};
       const std::optional<Stats>* e = nullptr;
       std::string tool;
       if ((std::string(m) == "ssim" || std::string(m) == "ssim-run") && sk_ssim) {
@@ -175,7 +182,8 @@ void MetricsTable(MetricsBench& mb, BenchOutput& out) {
       }
       if (std::string(m) == "psnr" && idiff_s && threads == 1) {
         ext += "; idiff process " + Range(*idiff_s, 1e3, "%.0f") + " ms";
-        fj["external_idiff"] = {{"tool", "idiff (whole process: load two float EXRs + compare)"}, {"ms", StatsJson(idiff_s->samples, 1e3)}};
+        fj["external_idiff"] = {{"tool", "idiff (whole process: load two float EXRs + compare)"},
+                                {"ms", StatsJson(idiff_s->samples, 1e3)}};
       }
       const std::string label = std::string(m) == "all"             ? "all metrics (ComputeAllMetrics, as a run)"
                                 : std::string(m) == "edge"          ? "edge/interior error (edge mask)"
@@ -184,7 +192,8 @@ void MetricsTable(MetricsBench& mb, BenchOutput& out) {
                                 : std::string(m) == "ssim-run"      ? "ssim (reference half reused, as in a run)"
                                 : std::string(m) == "flip-uncached" ? "flip (from scratch)"
                                                                     : m;
-      out.Line("| " + label + " | " + std::to_string(threads) + " | " + Range(s, 1e3, "%.1f") + " | " + ext + " | " + speed + " |");
+      out.Line("| " + label + " | " + std::to_string(threads) + " | " + Range(s, 1e3, "%.1f") + " | " + ext + " | " +
+               speed + " |");
       out.figures.push_back(fj);
     }
   }
@@ -200,7 +209,9 @@ void MetricsGoals(const MetricsBench& mb, BenchOutput& out) {
            mb.ssim_speedup > 0 ? FormatDouble("%.1f×", mb.ssim_speedup) : "skimage missing", mb.ssim_speedup >= 15.0);
   const double sp = Figure("metric-ssim-run/t1").Median() / Figure("metric-ssim-run/t2").Median();
   out.Goal("SSIM as in a run: 2 threads ≥ 1.8× one thread",
-           FormatDouble("%.2f×", sp) + "; the 2-thread runs got " + FormatDouble("%.2f", CoresUsed("metric-ssim-run/t2")) + " cores", sp >= 1.8);
+           FormatDouble("%.2f×", sp) + "; the 2-thread runs got " +
+               FormatDouble("%.2f", CoresUsed("metric-ssim-run/t2")) + " cores",
+           sp >= 1.8);
 }
 
 }  // namespace aalab::bench

@@ -15,9 +15,9 @@ namespace aalab::bench {
 struct MetricsBench {
   std::shared_ptr<Reference> ref;
   std::shared_ptr<ImageF> img, none;
-  Json external;               ///< bench.json's "external": skimage and idiff results
-  double ssim_speedup = 0.0;   ///< filled by MetricsTable: scikit-image SSIM / ours as in a run, 1 thread
-  NvidiaFlipRun nvidia_flip;   ///< NVIDIA's FLIP tool on the same pair (bench/bench_flip_peer.cpp)
+  Json external;                             ///< bench.json's "external": skimage and idiff results
+  double ssim_speedup = 0.0;                 ///< filled by MetricsTable: scikit-image SSIM / ours as in a run, 1 thread
+  NvidiaFlipRun nvidia_flip;                 ///< NVIDIA's FLIP tool on the same pair (bench/bench_flip_peer.cpp)
   std::vector<BenchGoal> nvidia_flip_goals;  ///< filled by MetricsTable
 };
 

@@ -62,14 +62,16 @@ int main(int argc, char** argv) {
     std::printf("| ssim (reference half reused, as in a run) | %d | %.1f |\n", threads, ssim);
   }
   SetThreadCount(0);
-  const std::filesystem::path tmp = std::filesystem::temp_directory_path() / ("aalab_bench_metrics_" + std::to_string(getpid()));
+  const std::filesystem::path tmp =
+      std::filesystem::temp_directory_path() / ("aalab_bench_metrics_" + std::to_string(getpid()));
   std::filesystem::create_directories(tmp);
   const bench::NvidiaFlipRun nv = bench::RunNvidiaFlip(ToUnorm8(ref.image), ToUnorm8(img), reps, tmp.string());
   nlohmann::ordered_json figures = nlohmann::ordered_json::array();
-  const auto goals = bench::ReportNvidiaFlip(nv, [&](int t) { return flip_ms[t]; }, [](const std::string& l) { std::printf("%s\n", l.c_str()); },
-                                             &figures);
+  const auto goals = bench::ReportNvidiaFlip(
+      nv, [&](int t) { return flip_ms[t]; }, [](const std::string& l) { std::printf("%s\n", l.c_str()); }, &figures);
   std::printf("\n| goal | measured | met |\n|---|---|---|\n");
-  for (const auto& g : goals) std::printf("| %s | %s | %s |\n", g.goal.c_str(), g.measured.c_str(), g.met ? "yes" : "no");
+  for (const auto& g : goals)
+    std::printf("| %s | %s | %s |\n", g.goal.c_str(), g.measured.c_str(), g.met ? "yes" : "no");
   std::filesystem::remove_all(tmp);
   return 0;
 }

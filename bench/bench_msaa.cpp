@@ -65,10 +65,11 @@ MsaaBenchResult RunMsaaBench(int width, int height, int reps, const std::vector<
   const RenderSpec ssaa = MakeMethod("ssaa-rgss").render;
   const double px = static_cast<double>(width) * height;
   std::string& md = out.markdown;
-  md += "## MSAA — msaa-4x vs ssaa-rgss (same 4 positions), " + std::to_string(width) + "x" +
-        std::to_string(height) + ", render time median (min–max) of " + std::to_string(reps) + " runs\n\n";
-  md += "| scene | shading evals/px MSAA | SSAA | ratio | rays/px MSAA (coverage + centre + shadow) | SSAA | "
-        "texture lookups/px MSAA | SSAA | wall ms MSAA | wall ms SSAA | wall ratio | CPU ratio |\n";
+  md += "## MSAA — msaa-4x vs ssaa-rgss (same 4 positions), " + std::to_string(width) + "x" + std::to_string(height) +
+        ", render time median (min–max) of " + std::to_string(reps) + " runs\n\n";
+  md +=
+      "| scene | shading evals/px MSAA | SSAA | ratio | rays/px MSAA (coverage + centre + shadow) | SSAA | "
+      "texture lookups/px MSAA | SSAA | wall ms MSAA | wall ms SSAA | wall ratio | CPU ratio |\n";
   md += "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   out.json = nlohmann::ordered_json::array();
   for (const auto& name : scenes) {
@@ -81,9 +82,8 @@ MsaaBenchResult RunMsaaBench(int width, int height, int reps, const std::vector<
       return FormatDouble("%.1f", f.Median()) + " (" + FormatDouble("%.1f", f.wall.Min()) + "–" +
              FormatDouble("%.1f", f.wall.Max()) + ")";
     };
-    const double eval_ratio = per(s.counters.shading_evals) > 0
-                                  ? per(m.counters.shading_evals) / per(s.counters.shading_evals)
-                                  : 0.0;
+    const double eval_ratio =
+        per(s.counters.shading_evals) > 0 ? per(m.counters.shading_evals) / per(s.counters.shading_evals) : 0.0;
     const double time_ratio = m.Median() / s.Median();
     const double cpu_ratio = m.CpuMedian() / s.CpuMedian();
     auto rays = [&](const Figure& f) {
@@ -92,8 +92,8 @@ MsaaBenchResult RunMsaaBench(int width, int height, int reps, const std::vector<
              FormatDouble("%.2f", per(f.counters.shadow_rays));
     };
     md += "| " + name + " | " + FormatDouble("%.3f", per(m.counters.shading_evals)) + " | " +
-          FormatDouble("%.3f", per(s.counters.shading_evals)) + " | " + FormatDouble("%.2f", eval_ratio) + " | " + rays(m) + " | " +
-          rays(s) + " | " + FormatDouble("%.3f", per(m.counters.texture_lookups)) + " | " +
+          FormatDouble("%.3f", per(s.counters.shading_evals)) + " | " + FormatDouble("%.2f", eval_ratio) + " | " +
+          rays(m) + " | " + rays(s) + " | " + FormatDouble("%.3f", per(m.counters.texture_lookups)) + " | " +
           FormatDouble("%.3f", per(s.counters.texture_lookups)) + " | " + range(m) + " | " + range(s) + " | " +
           FormatDouble("%.2f", time_ratio) + " | " + FormatDouble("%.2f", cpu_ratio) + " |\n";
     auto fig = [&](const Figure& f) {
@@ -123,8 +123,8 @@ MsaaBenchResult RunMsaaBench(int width, int height, int reps, const std::vector<
 
 void AppendMsaaBench(bool quick, std::ostringstream& table, nlohmann::ordered_json& report) {
   std::fprintf(stderr, "MSAA vs SSAA...\n");
-  const MsaaBenchResult r = quick ? RunMsaaBench(160, 90, 2, LibrarySceneNames())
-                                   : RunMsaaBench(480, 270, 5, LibrarySceneNames());
+  const MsaaBenchResult r =
+      quick ? RunMsaaBench(160, 90, 2, LibrarySceneNames()) : RunMsaaBench(480, 270, 5, LibrarySceneNames());
   table << "\n" << r.markdown;
   report["msaa"] = r.json;
 }

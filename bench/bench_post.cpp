@@ -73,7 +73,8 @@ void RegisterResolveFigures(const Settings& cfg, const std::shared_ptr<Image8>& 
       ParallelForChunks(FH, 8, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) {
           for (int x = 0; x < FW; ++x) {
-            ResolveBoxPixel(resolve_display, samples->data() + (static_cast<size_t>(y) * FW + x) * 4, 4, out_frame->Pixel(x, y));
+            ResolveBoxPixel(resolve_display, samples->data() + (static_cast<size_t>(y) * FW + x) * 4, 4,
+                            out_frame->Pixel(x, y));
           }
         }
       });
@@ -106,7 +107,8 @@ PostBench RegisterPostFigures(const Settings& cfg, Json& report) {
   SetThreadCount(0);
   PostBench pb;
   pb.frames.push_back({"real", "mesh 1920x1080 1x (rendered suite frame)", RenderFrame1x("mesh", kFrameW, kFrameH)});
-  pb.frames.push_back({"dense", "checker-plane 1920x1080 1x (edge-dense)", RenderFrame1x("checker-plane", kFrameW, kFrameH)});
+  pb.frames.push_back(
+      {"dense", "checker-plane 1920x1080 1x (edge-dense)", RenderFrame1x("checker-plane", kFrameW, kFrameH)});
   // Scaled frame for the rescale figures: 4/3 of 1080p, as scale43 renders it.
   auto scaled = std::make_shared<Image8>(RenderFrame1x("mesh", 2560, 1440));
 
@@ -133,7 +135,8 @@ PostBench RegisterPostFigures(const Settings& cfg, Json& report) {
     for (const auto& f : *frames) {
       const Image8* in = &f.img;
       const std::string suffix = "/" + f.key + "/t" + std::to_string(threads);
-      Register("floor" + suffix, threads, cfg.reps, cfg.min_time, [frames, in, out_frame] { PlainPass(*in, *out_frame); });
+      Register("floor" + suffix, threads, cfg.reps, cfg.min_time,
+               [frames, in, out_frame] { PlainPass(*in, *out_frame); });
       for (const auto& p : posts) {
         auto fn = p.fast;
         Register(p.name + suffix, threads, cfg.reps, cfg.min_time, [frames, in, fn] {
@@ -147,7 +150,8 @@ PostBench RegisterPostFigures(const Settings& cfg, Json& report) {
     auto big_out = std::make_shared<Image8>(2560, 1440, 4);
     const std::string t = "/t" + std::to_string(threads);
     Register("floor-rescale" + t, threads, cfg.reps, cfg.min_time, [scaled, big_out] { PlainPass(*scaled, *big_out); });
-    for (auto [name, kind] : {std::pair{"rescale-bilinear", Rescale::kBilinear}, std::pair{"rescale-bicubic", Rescale::kBicubic}}) {
+    for (auto [name, kind] :
+         {std::pair{"rescale-bilinear", Rescale::kBilinear}, std::pair{"rescale-bicubic", Rescale::kBicubic}}) {
       Register(std::string(name) + t, threads, cfg.reps, cfg.min_time, [scaled, kind = kind] {
         Image8 o = RescaleFrame(*scaled, 1920, 1080, kind, nullptr);
         benchmark::DoNotOptimize(o.Data().data());
@@ -168,55 +172,86 @@ void PostTable(const PostBench& post, BenchOutput& out) {
     for (int threads : {1, 2}) {
       const std::string suffix = "/" + f.key + "/t" + std::to_string(threads);
       const Stats& floor = Figure("floor" + suffix);
-      out.Line("| *floor: plain read+write* | " + f.key + " | " + std::to_string(threads) + " | " + Range(Mpix(floor, fpx), 1, "%.0f") +
-               " | 1 | " + FormatDouble("%.2f", CoresUsed("floor" + suffix)) + " |");
-      out.figures.push_back({{"group", "post"}, {"name", "floor"}, {"frame", f.desc}, {"threads", threads}, {"unit", "Mpix/s"},
-                             {"value", StatsJson(Mpix(floor, fpx).samples, 1)}, {"ms", StatsJson(floor.samples, 1e3)}});
+      out.Line("| *floor: plain read+write* | " + f.key + " | " + std::to_string(threads) + " | " +
+               Range(Mpix(floor, fpx), 1, "%.0f") + " | 1 | " + FormatDouble("%.2f", CoresUsed("floor" + suffix)) +
+               " |");
+      out.figures.push_back({{"group", "post"},
+                             {"name", "floor"},
+                             {"frame", f.desc},
+                             {"threads", threads},
+                             {"unit", "Mpix/s"},
+                             {"value", StatsJson(Mpix(floor, fpx).samples, 1)},
+                             {"ms", StatsJson(floor.samples, 1e3)}});
       for (const auto& name : post.filters) {
         const Stats& s = Figure(name + suffix);
         const double ratio = s.Median() / floor.Median();
-        out.Line("| " + name + " | " + f.key + " | " + std::to_string(threads) + " | " + Range(Mpix(s, fpx), 1, "%.1f") + " | " +
-                 FormatDouble("%.1f", ratio) + " | " + FormatDouble("%.2f", CoresUsed(name + suffix)) + " |");
-        out.figures.push_back({{"group", "post"}, {"name", name}, {"frame", f.desc}, {"threads", threads}, {"unit", "Mpix/s"},
-                               {"value", StatsJson(Mpix(s, fpx).samples, 1)}, {"ms", StatsJson(s.samples, 1e3)},
-                               {"limit", "floor"}, {"ratio_to_limit", ratio}, {"cores_used", CoresUsed(name + suffix)}});
+        out.Line("| " + name + " | " + f.key + " | " + std::to_string(threads) + " | " +
+                 Range(Mpix(s, fpx), 1, "%.1f") + " | " + FormatDouble("%.1f", ratio) + " | " +
+                 FormatDouble("%.2f", CoresUsed(name + suffix)) + " |");
+        out.figures.push_back({{"group", "post"},
+                               {"name", name},
+                               {"frame", f.desc},
+                               {"threads", threads},
+                               {"unit", "Mpix/s"},
+                               {"value", StatsJson(Mpix(s, fpx).samples, 1)},
+                               {"ms", StatsJson(s.samples, 1e3)},
+                               {"limit", "floor"},
+                               {"ratio_to_limit", ratio},
+                               {"cores_used", CoresUsed(name + suffix)}});
       }
     }
   }
   for (int threads : {1, 2}) {
     const std::string t = "/t" + std::to_string(threads);
     const Stats& floor = Figure("floor-rescale" + t);
-    out.Line("| *floor: plain pass 2560x1440* | mesh | " + std::to_string(threads) + " | " + Range(Mpix(floor, 2560.0 * 1440 / 1e6), 1, "%.0f") +
-             " | 1 | " + FormatDouble("%.2f", CoresUsed("floor-rescale" + t)) + " |");
+    out.Line("| *floor: plain pass 2560x1440* | mesh | " + std::to_string(threads) + " | " +
+             Range(Mpix(floor, 2560.0 * 1440 / 1e6), 1, "%.0f") + " | 1 | " +
+             FormatDouble("%.2f", CoresUsed("floor-rescale" + t)) + " |");
     for (const char* name : {"rescale-bilinear", "rescale-bicubic"}) {
       const Stats& s = Figure(std::string(name) + t);
       const double ratio = s.Median() / floor.Median();
-      out.Line("| " + std::string(name) + " 2560x1440→1080p | mesh | " + std::to_string(threads) + " | " + Range(Mpix(s, fpx), 1, "%.1f") +
-               " | " + FormatDouble("%.1f", ratio) + " | " + FormatDouble("%.2f", CoresUsed(std::string(name) + t)) + " |");
-      out.figures.push_back({{"group", "post"}, {"name", name}, {"frame", "mesh 2560x1440 -> 1920x1080"}, {"threads", threads},
-                             {"unit", "Mpix/s (output)"}, {"value", StatsJson(Mpix(s, fpx).samples, 1)}, {"ms", StatsJson(s.samples, 1e3)},
-                             {"limit", "plain read+write pass over the 2560x1440 frame"}, {"ratio_to_limit", ratio}});
+      out.Line("| " + std::string(name) + " 2560x1440→1080p | mesh | " + std::to_string(threads) + " | " +
+               Range(Mpix(s, fpx), 1, "%.1f") + " | " + FormatDouble("%.1f", ratio) + " | " +
+               FormatDouble("%.2f", CoresUsed(std::string(name) + t)) + " |");
+      out.figures.push_back({{"group", "post"},
+                             {"name", name},
+                             {"frame", "mesh 2560x1440 -> 1920x1080"},
+                             {"threads", threads},
+                             {"unit", "Mpix/s (output)"},
+                             {"value", StatsJson(Mpix(s, fpx).samples, 1)},
+                             {"ms", StatsJson(s.samples, 1e3)},
+                             {"limit", "plain read+write pass over the 2560x1440 frame"},
+                             {"ratio_to_limit", ratio}});
     }
     const Stats& rf = Figure("floor-resolve" + t);
     const Stats& rs = Figure("ssaa-resolve-2x2" + t);
     const double ratio = rs.Median() / rf.Median();
-    out.Line("| *floor: read 4 samples, write pixel* | mesh | " + std::to_string(threads) + " | " + Range(Mpix(rf, fpx), 1, "%.0f") +
-             " | 1 | " + FormatDouble("%.2f", CoresUsed("floor-resolve" + t)) + " |");
-    out.Line("| ssaa-resolve 2x2→1080p | mesh | " + std::to_string(threads) + " | " + Range(Mpix(rs, fpx), 1, "%.1f") + " | " +
-             FormatDouble("%.1f", ratio) + " | " + FormatDouble("%.2f", CoresUsed("ssaa-resolve-2x2" + t)) + " |");
-    out.figures.push_back({{"group", "post"}, {"name", "ssaa-resolve-2x2"}, {"frame", "mesh 1920x1080, 4 samples/px"}, {"threads", threads},
-                           {"unit", "Mpix/s"}, {"value", StatsJson(Mpix(rs, fpx).samples, 1)}, {"ms", StatsJson(rs.samples, 1e3)},
-                           {"limit", "read the samples, write the pixels"}, {"ratio_to_limit", ratio}});
+    out.Line("| *floor: read 4 samples, write pixel* | mesh | " + std::to_string(threads) + " | " +
+             Range(Mpix(rf, fpx), 1, "%.0f") + " | 1 | " + FormatDouble("%.2f", CoresUsed("floor-resolve" + t)) + " |");
+    out.Line("| ssaa-resolve 2x2→1080p | mesh | " + std::to_string(threads) + " | " + Range(Mpix(rs, fpx), 1, "%.1f") +
+             " | " + FormatDouble("%.1f", ratio) + " | " + FormatDouble("%.2f", CoresUsed("ssaa-resolve-2x2" + t)) +
+             " |");
+    out.figures.push_back({{"group", "post"},
+                           {"name", "ssaa-resolve-2x2"},
+                           {"frame", "mesh 1920x1080, 4 samples/px"},
+                           {"threads", threads},
+                           {"unit", "Mpix/s"},
+                           {"value", StatsJson(Mpix(rs, fpx).samples, 1)},
+                           {"ms", StatsJson(rs.samples, 1e3)},
+                           {"limit", "read the samples, write the pixels"},
+                           {"ratio_to_limit", ratio}});
   }
 }
 
 void PostFloorGoals(BenchOutput& out) {
   const Stats& s = Figure("fxaa311-p39/real/t1");
   const double r = s.Median() / Figure("floor/real/t1").Median();
-  out.Goal("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (1 thread)", FormatDouble("%.1f×", r), r <= 6.0);
+  out.Goal("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (1 thread)", FormatDouble("%.1f×", r),
+           r <= 6.0);
   const Stats& s2 = Figure("fxaa311-p39/real/t2");
   const double r2 = s2.Median() / Figure("floor/real/t2").Median();
-  out.Goal("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (2 threads)", FormatDouble("%.1f×", r2), r2 <= 6.0);
+  out.Goal("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (2 threads)", FormatDouble("%.1f×", r2),
+           r2 <= 6.0);
 }
 
 void PostScalingGoal(const PostBench& post, BenchOutput& out) {
@@ -233,7 +268,8 @@ void PostScalingGoal(const PostBench& post, BenchOutput& out) {
     for (const auto& f : post.frames) pc.push_back(CoresUsed(name + "/" + f.key + "/t2"));
   }
   out.Goal("2 threads ≥ 1.8× one thread, post filters (every filter and frame)",
-           "worst " + pn + " " + FormatDouble("%.2f×", pw) + "; the 2-thread runs got " + FormatDouble("%.2f", Stats{pc}.Median()) + " cores",
+           "worst " + pn + " " + FormatDouble("%.2f×", pw) + "; the 2-thread runs got " +
+               FormatDouble("%.2f", Stats{pc}.Median()) + " cores",
            pw >= 1.8);
 }
 

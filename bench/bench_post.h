@@ -20,7 +20,7 @@ struct PostFrame {
 
 /// What the post-filter figures registered, for their table and goals.
 struct PostBench {
-  std::vector<PostFrame> frames;  ///< frames[0]: the mesh scene's 1x frame ("real")
+  std::vector<PostFrame> frames;     ///< frames[0]: the mesh scene's 1x frame ("real")
   std::vector<std::string> filters;  ///< the post filters timed, in table order
 };
 

@@ -30,17 +30,20 @@ const int kSuiteSpp = 16;
 
 bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
   std::vector<SuiteRun>& suite = sb.runs;
-  suite = {{"480x270", 480, 270, 2, {}, {}}, {"960x540", 960, 540, 2, {}, {}},
-           {"1920x1080", 1920, 1080, 2, {}, {}}, {"960x540", 960, 540, 1, {}, {}}};
+  suite = {{"480x270", 480, 270, 2, {}, {}},
+           {"960x540", 960, 540, 2, {}, {}},
+           {"1920x1080", 1920, 1080, 2, {}, {}},
+           {"960x540", 960, 540, 1, {}, {}}};
   if (cfg.quick) suite = {{"480x270", 480, 270, 2, {}, {}}, {"960x540", 960, 540, 2, {}, {}}};
   const fs::path suite_out = fs::temp_directory_path() / ("aalab_bench_suite_" + std::to_string(getpid()));
   for (auto& s : suite) {
     const int reps = s.w >= 1920 ? 1 : cfg.suite_reps;  // 1080p: one run (keeps make bench under 10 min)
     for (int r = 0; r < reps; ++r) {
       fs::remove_all(suite_out);
-      const std::string cmd = cfg.aalab_bin + " run --suite " + kSuiteName + " --methods " + kSuiteMethods + " --size " + s.size +
-                              " --ref-spp " + std::to_string(kSuiteSpp) + " --repeat 1 --threads " + std::to_string(s.threads) +
-                              " --quiet --out " + suite_out.string() + " >/dev/null";
+      const std::string cmd = cfg.aalab_bin + " run --suite " + kSuiteName + " --methods " + kSuiteMethods +
+                              " --size " + s.size + " --ref-spp " + std::to_string(kSuiteSpp) +
+                              " --repeat 1 --threads " + std::to_string(s.threads) + " --quiet --out " +
+                              suite_out.string() + " >/dev/null";
       std::fprintf(stderr, "  suite %s threads %d (%d/%d)...\n", s.size.c_str(), s.threads, r + 1, reps);
       rusage c0{}, c1{};
       getrusage(RUSAGE_CHILDREN, &c0);
@@ -49,7 +52,8 @@ bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
       const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       getrusage(RUSAGE_CHILDREN, &c1);
       auto secs = [](const rusage& u) {
-        return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
+        return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+               (u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
       };
       s.cpu.push_back(secs(c1) - secs(c0));
       if (rc != 0) {
@@ -77,8 +81,8 @@ bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
     if (pid == 0) {
       const int null_fd = open("/dev/null", O_WRONLY);
       if (null_fd >= 0) dup2(null_fd, 1);
-      execl("/usr/bin/time", "/usr/bin/time", "-f", "%U %S %M", "-o", usage.c_str(), cfg.aalab_bin.c_str(), "run", "--quiet",
-            "--out", suite_out.c_str(), static_cast<char*>(nullptr));
+      execl("/usr/bin/time", "/usr/bin/time", "-f", "%U %S %M", "-o", usage.c_str(), cfg.aalab_bin.c_str(), "run",
+            "--quiet", "--out", suite_out.c_str(), static_cast<char*>(nullptr));
       _exit(127);
     }
     int status = 0;
@@ -93,7 +97,8 @@ bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
     }
     fs::remove(usage);
     if (!parsed) {
-      std::fprintf(stderr, "the default run failed (status %d; /usr/bin/time present? Debian package 'time')\n", status);
+      std::fprintf(stderr, "the default run failed (status %d; /usr/bin/time present? Debian package 'time')\n",
+                   status);
       return false;
     }
     default_run.ok = true;
@@ -109,7 +114,9 @@ void SuiteTable(SuiteBench& sb, BenchOutput& out) {
   out.Line("## Suite — wall time of `aalab run --suite " + kSuiteName + " --ref-spp " + std::to_string(kSuiteSpp) +
            " --repeat 1` with 7 methods (" + kSuiteMethods + ")");
   out.Line("");
-  out.Line("| size | threads | runs | wall s median (min–max) | wall s per Mpix (/ 1080p's) | CPU s median | CPU s per Mpix (/ 1080p's) | cores used |");
+  out.Line(
+      "| size | threads | runs | wall s median (min–max) | wall s per Mpix (/ 1080p's) | CPU s median | CPU s per Mpix "
+      "(/ 1080p's) | cores used |");
   out.Line("|---|---|---|---|---|---|---|---|");
   double cpu_per_mpix_1080 = 0.0;
   for (const auto& s : sb.runs) {
@@ -132,24 +139,39 @@ void SuiteTable(SuiteBench& sb, BenchOutput& out) {
     if (s.w == 960 && s.threads == 1) sb.t1 = st.Median();
     if (s.w == 960 && s.threads == 2) sb.t2 = st.Median();
     const bool two = s.threads == 2 && per_mpix_1080 > 0;
-    out.Line("| " + s.size + " | " + std::to_string(s.threads) + " | " + std::to_string(s.secs.size()) + " | " + Range(st, 1, "%.1f") +
-             " | " + FormatDouble("%.1f", per) + (two ? " (" + FormatDouble("%.2f", rel) + ")" : "") + " | " + FormatDouble("%.1f", sc.Median()) + " | " +
-             FormatDouble("%.1f", cper) + (two ? " (" + FormatDouble("%.2f", crel) + ")" : "") + " | " + FormatDouble("%.2f", sc.Median() / st.Median()) + " |");
-    out.figures.push_back({{"group", "suite"}, {"size", s.size}, {"threads", s.threads}, {"unit", "s"}, {"value", StatsJson(s.secs, 1)},
-                           {"cpu_s", StatsJson(s.cpu, 1)}, {"s_per_mpix", per}, {"cpu_s_per_mpix", cper}, {"suite", kSuiteName},
-                           {"methods", kSuiteMethods}, {"ref_spp", kSuiteSpp}});
+    out.Line("| " + s.size + " | " + std::to_string(s.threads) + " | " + std::to_string(s.secs.size()) + " | " +
+             Range(st, 1, "%.1f") + " | " + FormatDouble("%.1f", per) +
+             (two ? " (" + FormatDouble("%.2f", rel) + ")" : "") + " | " + FormatDouble("%.1f", sc.Median()) + " | " +
+             FormatDouble("%.1f", cper) + (two ? " (" + FormatDouble("%.2f", crel) + ")" : "") + " | " +
+             FormatDouble("%.2f", sc.Median() / st.Median()) + " |");
+    out.figures.push_back({{"group", "suite"},
+                           {"size", s.size},
+                           {"threads", s.threads},
+                           {"unit", "s"},
+                           {"value", StatsJson(s.secs, 1)},
+                           {"cpu_s", StatsJson(s.cpu, 1)},
+                           {"s_per_mpix", per},
+                           {"cpu_s_per_mpix", cper},
+                           {"suite", kSuiteName},
+                           {"methods", kSuiteMethods},
+                           {"ref_spp", kSuiteSpp}});
   }
   const DefaultRun& d = sb.default_run;
   if (d.ok) {
     out.Line("");
-    out.Line("## Default run — `aalab run` with its defaults (" + std::to_string(SuiteScenes("default").size()) + " scenes × " +
-             std::to_string(DefaultMethods().size()) + " methods, 960x540, 64 spp, 2 timed repeats), prebuilt");
+    out.Line("## Default run — `aalab run` with its defaults (" + std::to_string(SuiteScenes("default").size()) +
+             " scenes × " + std::to_string(DefaultMethods().size()) +
+             " methods, 960x540, 64 spp, 2 timed repeats), prebuilt");
     out.Line("");
     out.Line("| wall s | CPU s | cores used | peak memory (max RSS) |");
     out.Line("|---|---|---|---|");
-    out.Line("| " + FormatDouble("%.1f", d.wall_s) + " | " + FormatDouble("%.1f", d.cpu_s) + " | " + FormatDouble("%.2f", d.cpu_s / d.wall_s) + " | " +
-             FormatDouble("%.0f MB", d.max_rss_mb) + " |");
-    out.figures.push_back({{"group", "default-run"}, {"unit", "s"}, {"wall_s", d.wall_s}, {"cpu_s", d.cpu_s}, {"max_rss_mb", d.max_rss_mb}});
+    out.Line("| " + FormatDouble("%.1f", d.wall_s) + " | " + FormatDouble("%.1f", d.cpu_s) + " | " +
+             FormatDouble("%.2f", d.cpu_s / d.wall_s) + " | " + FormatDouble("%.0f MB", d.max_rss_mb) + " |");
+    out.figures.push_back({{"group", "default-run"},
+                           {"unit", "s"},
+                           {"wall_s", d.wall_s},
+                           {"cpu_s", d.cpu_s},
+                           {"max_rss_mb", d.max_rss_mb}});
   }
 }
 
@@ -157,11 +179,12 @@ void SuiteGoals(const SuiteBench& sb, BenchOutput& out) {
   if (sb.per_mpix_1080 > 0) {
     out.Goal("suite time linear in pixel count within 15% (wall s per Mpix vs 1080p's, 2 threads)",
              FormatDouble("worst deviation %.0f%%", 100 * sb.linear_worst), sb.linear_worst <= 0.15);
-    out.Goal("(same on CPU seconds, less exposed to other load)", FormatDouble("worst deviation %.0f%%", 100 * sb.linear_worst_cpu),
-             sb.linear_worst_cpu <= 0.15);
+    out.Goal("(same on CPU seconds, less exposed to other load)",
+             FormatDouble("worst deviation %.0f%%", 100 * sb.linear_worst_cpu), sb.linear_worst_cpu <= 0.15);
   }
   if (sb.t1 > 0 && sb.t2 > 0) {
-    out.Goal("quick suite at 960x540: 2 threads ≥ 1.85× one thread", FormatDouble("%.2f×", sb.t1 / sb.t2), sb.t1 / sb.t2 >= 1.85);
+    out.Goal("quick suite at 960x540: 2 threads ≥ 1.85× one thread", FormatDouble("%.2f×", sb.t1 / sb.t2),
+             sb.t1 / sb.t2 >= 1.85);
   }
 }
 
@@ -169,7 +192,8 @@ void DefaultRunGoal(const SuiteBench& sb, BenchOutput& out) {
   const DefaultRun& d = sb.default_run;
   if (!d.ok) return;
   out.Goal("default run (`aalab run`, prebuilt) ≤ 30 s wall and ≤ 300 MB peak memory",
-           FormatDouble("%.1f s", d.wall_s) + " wall (" + FormatDouble("%.1f", d.cpu_s) + " CPU s), " + FormatDouble("%.0f MB", d.max_rss_mb) + " peak",
+           FormatDouble("%.1f s", d.wall_s) + " wall (" + FormatDouble("%.1f", d.cpu_s) + " CPU s), " +
+               FormatDouble("%.0f MB", d.max_rss_mb) + " peak",
            d.wall_s <= 30.0 && d.max_rss_mb <= 300.0);
 }
 

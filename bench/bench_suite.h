@@ -28,9 +28,9 @@ struct SuiteBench {
   std::vector<SuiteRun> runs;
   DefaultRun default_run;
   // Filled by SuiteTable:
-  double per_mpix_1080 = 0.0;                          ///< wall s per Mpix at 1080p, 2 threads
-  double linear_worst = 0.0, linear_worst_cpu = 0.0;   ///< worst deviation from per_mpix_1080 (wall, CPU)
-  double t1 = 0, t2 = 0;                               ///< 960x540 wall s at 1 and 2 threads
+  double per_mpix_1080 = 0.0;                         ///< wall s per Mpix at 1080p, 2 threads
+  double linear_worst = 0.0, linear_worst_cpu = 0.0;  ///< worst deviation from per_mpix_1080 (wall, CPU)
+  double t1 = 0, t2 = 0;                              ///< 960x540 wall s at 1 and 2 threads
 };
 
 /// Runs the suite configurations and the default run; false (with a message) when a run failed.

@@ -66,39 +66,53 @@ TaaBench RunTaaBench(int reps, int threads) {
   in1.frame_index = 1;
   std::unique_ptr<TemporalState> copy;
   Image8 out;
-  const Times taa_t = Time(reps, [&] { copy = state->Clone(); }, [&] { out = copy->Step(in1, nullptr); });
+  const Times taa_t = Time(
+      reps, [&] { copy = state->Clone(); }, [&] { out = copy->Step(in1, nullptr); });
   // The simple implementation of the same step (the reference the production path is tested
   // against, bit for bit): the speed-up of the production path.
   Image8 out_ref;
-  const Times ref_t = Time(reps, [&] { copy = TaaReferenceCopy(*state); }, [&] { out_ref = copy->Step(in1, nullptr); });
+  const Times ref_t = Time(
+      reps, [&] { copy = TaaReferenceCopy(*state); }, [&] { out_ref = copy->Step(in1, nullptr); });
   if (!(out_ref == out)) std::fprintf(stderr, "TAA: the production step differs from the reference step\n");
 
   const Image8 frame1x = RenderFrame(t1, W, H, RenderSpec{}, 1, nullptr);
   Fxaa311Params p39;
   p39.steps = Fxaa311PresetSteps(39);
-  const Times fxaa_t = Time(reps, [] {}, [&] { out = Fxaa311(frame1x, p39, nullptr); });
+  const Times fxaa_t = Time(
+      reps, [] {}, [&] { out = Fxaa311(frame1x, p39, nullptr); });
   std::vector<glm::vec2> mv;
-  const Times mv_t = Time(reps, [] {}, [&] { mv = PreviousPositions(base, 1, f1, j1); });
+  const Times mv_t = Time(
+      reps, [] {}, [&] { mv = PreviousPositions(base, 1, f1, j1); });
 
   TaaBench b;
   const double ratio = taa_t.Median() / fxaa_t.Median();
   b.ratio = ratio;
   const std::string th = std::to_string(threads);
-  b.lines.push_back("## TAA — ms per 1920x1080 frame (motion-pan, frame 1), " + th + " threads; goal: taa ≤ 2× fxaa311-p39");
+  b.lines.push_back("## TAA — ms per 1920x1080 frame (motion-pan, frame 1), " + th +
+                    " threads; goal: taa ≤ 2× fxaa311-p39");
   b.lines.push_back("");
   b.lines.push_back("| stage | median ms (min–max) | / fxaa311-p39 |");
   b.lines.push_back("|---|---|---|");
-  b.lines.push_back("| taa temporal step (reproject, clip, blend) | " + Fmt(taa_t.Median()) + " (" + Fmt(taa_t.Min()) + "–" +
-                    Fmt(taa_t.Max()) + ") | " + Fmt(ratio) + (ratio <= 2.0 ? " (goal met)" : " (goal missed)") + " |");
-  b.lines.push_back("| taa temporal step, simple implementation (the reference it is tested against) | " + Fmt(ref_t.Median()) +
-                    " (" + Fmt(ref_t.Min()) + "–" + Fmt(ref_t.Max()) + ") | " + Fmt(ref_t.Median() / fxaa_t.Median()) + " |");
-  b.lines.push_back("| fxaa311-p39 post filter | " + Fmt(fxaa_t.Median()) + " (" + Fmt(fxaa_t.Min()) + "–" + Fmt(fxaa_t.Max()) +
-                    ") | 1.00 |");
-  b.lines.push_back("| motion vectors (exact, from the known motion) | " + Fmt(mv_t.Median()) + " (" + Fmt(mv_t.Min()) + "–" +
-                    Fmt(mv_t.Max()) + ") | " + Fmt(mv_t.Median() / fxaa_t.Median()) + " |");
+  b.lines.push_back("| taa temporal step (reproject, clip, blend) | " + Fmt(taa_t.Median()) + " (" + Fmt(taa_t.Min()) +
+                    "–" + Fmt(taa_t.Max()) + ") | " + Fmt(ratio) + (ratio <= 2.0 ? " (goal met)" : " (goal missed)") +
+                    " |");
+  b.lines.push_back("| taa temporal step, simple implementation (the reference it is tested against) | " +
+                    Fmt(ref_t.Median()) + " (" + Fmt(ref_t.Min()) + "–" + Fmt(ref_t.Max()) + ") | " +
+                    Fmt(ref_t.Median() / fxaa_t.Median()) + " |");
+  b.lines.push_back("| fxaa311-p39 post filter | " + Fmt(fxaa_t.Median()) + " (" + Fmt(fxaa_t.Min()) + "–" +
+                    Fmt(fxaa_t.Max()) + ") | 1.00 |");
+  b.lines.push_back("| motion vectors (exact, from the known motion) | " + Fmt(mv_t.Median()) + " (" + Fmt(mv_t.Min()) +
+                    "–" + Fmt(mv_t.Max()) + ") | " + Fmt(mv_t.Median() / fxaa_t.Median()) + " |");
   auto fig = [&](const std::string& name, const Times& t) {
-    b.figures.push_back({{"group", "taa"}, {"name", name}, {"frame", "motion-pan 1920x1080 frame 1"}, {"threads", threads},
-                         {"unit", "ms"}, {"median", t.Median()}, {"min", t.Min()}, {"max", t.Max()}, {"samples", t.samples}});
+    b.figures.push_back({{"group", "taa"},
+                         {"name", name},
+                         {"frame", "motion-pan 1920x1080 frame 1"},
+                         {"threads", threads},
+                         {"unit", "ms"},
+                         {"median", t.Median()},
+                         {"min", t.Min()},
+                         {"max", t.Max()},
+                         {"samples", t.samples}});
   };
   fig("taa-step", taa_t);
   fig("taa-step-reference", ref_t);

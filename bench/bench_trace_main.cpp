@@ -3,7 +3,8 @@
 // (RenderReference, 64 spp) beside the bare Embree loop (Tracer::BareTrace) on the same scene,
 // size and samples per pixel, and the method renders of the default run (ssaa-2x2, ssaa-4x4,
 // msaa-4x, 1x). The Mrays/s ratio counts primary + shadow rays of the reference against the
-// bare loop's primary rays, as make bench does. Default: 320x180, 5 repetitions, the default suite. Minimum over repetitions.
+// bare loop's primary rays, as make bench does. Default: 320x180, 5 repetitions, the default suite. Minimum over
+// repetitions.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -54,7 +55,9 @@ int main(int argc, char** argv) {
   }
   SetThreadCount(1);
   const int grid = 8;
-  std::printf("| scene | reference ms | bare Embree ms | bare / reference time | reference / bare Mrays/s (make bench's ratio) | ssaa-2x2 ms | ssaa-4x4 ms | msaa-4x ms | 1x ms |\n");
+  std::printf(
+      "| scene | reference ms | bare Embree ms | bare / reference time | reference / bare Mrays/s (make bench's ratio) "
+      "| ssaa-2x2 ms | ssaa-4x4 ms | msaa-4x ms | 1x ms |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   double sum_ref = 0, sum_bare = 0, sum_methods = 0;
   for (const auto& name : scenes) {
@@ -79,7 +82,7 @@ int main(int argc, char** argv) {
                 100.0 * bare / ref, 100.0 * (ref_rays / ref) / (bare_rays / bare), m[0], m[1], m[2], m[3]);
     std::fflush(stdout);
   }
-  std::printf("| all | %.1f | %.1f | %.0f%% | | methods sum %.1f | | | |\n", sum_ref, sum_bare, 100.0 * sum_bare / sum_ref,
-              sum_methods);
+  std::printf("| all | %.1f | %.1f | %.0f%% | | methods sum %.1f | | | |\n", sum_ref, sum_bare,
+              100.0 * sum_bare / sum_ref, sum_methods);
   return 0;
 }

@@ -42,9 +42,8 @@ TracingBench RegisterTracingFigures(const Settings& cfg) {
         Reference r = RenderReference(*tr, w, h, g, 1, nullptr);
         benchmark::DoNotOptimize(r.image.Data().data());
       });
-      Register("bare-embree/" + name + t, threads, cfg.trace_reps, cfg.min_time, [traced, tr, w, h, g] {
-        benchmark::DoNotOptimize(tr->BareTrace(w, h, g));
-      });
+      Register("bare-embree/" + name + t, threads, cfg.trace_reps, cfg.min_time,
+               [traced, tr, w, h, g] { benchmark::DoNotOptimize(tr->BareTrace(w, h, g)); });
     }
   }
   return tb;
@@ -53,7 +52,8 @@ TracingBench RegisterTracingFigures(const Settings& cfg) {
 void TracingTable(const Settings& cfg, TracingBench& tb, BenchOutput& out) {
   out.Line("");
   out.Line("## Tracing — reference render, " + std::to_string(cfg.trace_w) + "x" + std::to_string(cfg.trace_h) + ", " +
-           std::to_string(cfg.trace_grid * cfg.trace_grid) + " spp; ratio = reference Mrays/s / bare Embree loop Mrays/s");
+           std::to_string(cfg.trace_grid * cfg.trace_grid) +
+           " spp; ratio = reference Mrays/s / bare Embree loop Mrays/s");
   out.Line("");
   out.Line("| scene | threads | reference Mrays/s | bare Embree Mrays/s | reference / bare | cores used (ref) |");
   out.Line("|---|---|---|---|---|---|");
@@ -66,13 +66,22 @@ void TracingTable(const Settings& cfg, TracingBench& tb, BenchOutput& out) {
       const double bare_mr = static_cast<double>(cfg.trace_w) * cfg.trace_h * cfg.trace_grid * cfg.trace_grid / 1e6;
       const Stats rr = Mpix(rs, ref_mr), br = Mpix(bs, bare_mr);
       const double ratio = rr.Median() / br.Median();
-      if (threads == 1) tb.ratio_t1[name] = ratio;
-      else tb.scaling[name] = Figure("reference/" + name + "/t1").Median() / rs.Median();
-      out.Line("| " + name + " | " + std::to_string(threads) + " | " + Range(rr, 1, "%.1f") + " | " + Range(br, 1, "%.1f") + " | " +
-               FormatDouble("%.0f%%", 100 * ratio) + " | " + FormatDouble("%.2f", CoresUsed("reference/" + name + t)) + " |");
-      out.figures.push_back({{"group", "tracing"}, {"name", name}, {"threads", threads}, {"unit", "Mrays/s"},
-                             {"reference", StatsJson(rr.samples, 1)}, {"bare_embree", StatsJson(br.samples, 1)},
-                             {"reference_rays", tb.rays[name]}, {"limit", "bare Embree loop"}, {"ratio_to_limit", ratio}});
+      if (threads == 1)
+        tb.ratio_t1[name] = ratio;
+      else
+        tb.scaling[name] = Figure("reference/" + name + "/t1").Median() / rs.Median();
+      out.Line("| " + name + " | " + std::to_string(threads) + " | " + Range(rr, 1, "%.1f") + " | " +
+               Range(br, 1, "%.1f") + " | " + FormatDouble("%.0f%%", 100 * ratio) + " | " +
+               FormatDouble("%.2f", CoresUsed("reference/" + name + t)) + " |");
+      out.figures.push_back({{"group", "tracing"},
+                             {"name", name},
+                             {"threads", threads},
+                             {"unit", "Mrays/s"},
+                             {"reference", StatsJson(rr.samples, 1)},
+                             {"bare_embree", StatsJson(br.samples, 1)},
+                             {"reference_rays", tb.rays[name]},
+                             {"limit", "bare Embree loop"},
+                             {"ratio_to_limit", ratio}});
     }
   }
 }
@@ -81,16 +90,27 @@ void BigMeshTable(BenchOutput& out) {
   std::fprintf(stderr, "building and tracing the 1M-triangle torus...\n");
   const BigMeshFigures bm = MeasureBigMesh(1024, 512, 960, 540, 3);
   out.Line("");
-  out.Line("## Big mesh — a procedural torus of " + std::to_string(bm.triangles) + " triangles, 960x540 1x frame (best of 3)");
+  out.Line("## Big mesh — a procedural torus of " + std::to_string(bm.triangles) +
+           " triangles, 960x540 1x frame (best of 3)");
   out.Line("");
-  out.Line("| BVH build ms | scene arrays MB | RSS added by the tracer MB | 1x Mrays/s t1 | t2 | bare Embree Mrays/s t1 | t2 |");
+  out.Line(
+      "| BVH build ms | scene arrays MB | RSS added by the tracer MB | 1x Mrays/s t1 | t2 | bare Embree Mrays/s t1 | "
+      "t2 |");
   out.Line("|---|---|---|---|---|---|---|");
-  out.Line("| " + FormatDouble("%.0f", bm.bvh_build_ms) + " | " + FormatDouble("%.1f", bm.scene_mb) + " | " + FormatDouble("%.1f", bm.rss_bvh_mb) + " | " +
-           FormatDouble("%.2f", bm.render_mrays_t1) + " | " + FormatDouble("%.2f", bm.render_mrays_t2) + " | " + FormatDouble("%.2f", bm.bare_mrays_t1) + " | " +
+  out.Line("| " + FormatDouble("%.0f", bm.bvh_build_ms) + " | " + FormatDouble("%.1f", bm.scene_mb) + " | " +
+           FormatDouble("%.1f", bm.rss_bvh_mb) + " | " + FormatDouble("%.2f", bm.render_mrays_t1) + " | " +
+           FormatDouble("%.2f", bm.render_mrays_t2) + " | " + FormatDouble("%.2f", bm.bare_mrays_t1) + " | " +
            FormatDouble("%.2f", bm.bare_mrays_t2) + " |");
-  out.figures.push_back({{"group", "bigmesh"}, {"name", "torus"}, {"triangles", bm.triangles}, {"bvh_build_ms", bm.bvh_build_ms},
-                         {"scene_mb", bm.scene_mb}, {"rss_tracer_mb", bm.rss_bvh_mb}, {"render_mrays_t1", bm.render_mrays_t1},
-                         {"render_mrays_t2", bm.render_mrays_t2}, {"bare_mrays_t1", bm.bare_mrays_t1}, {"bare_mrays_t2", bm.bare_mrays_t2}});
+  out.figures.push_back({{"group", "bigmesh"},
+                         {"name", "torus"},
+                         {"triangles", bm.triangles},
+                         {"bvh_build_ms", bm.bvh_build_ms},
+                         {"scene_mb", bm.scene_mb},
+                         {"rss_tracer_mb", bm.rss_bvh_mb},
+                         {"render_mrays_t1", bm.render_mrays_t1},
+                         {"render_mrays_t2", bm.render_mrays_t2},
+                         {"bare_mrays_t1", bm.bare_mrays_t1},
+                         {"bare_mrays_t2", bm.bare_mrays_t2}});
 }
 
 void TracingRatioGoal(const TracingBench& tb, BenchOutput& out) {
@@ -116,8 +136,8 @@ void TracingScalingGoal(const TracingBench& tb, BenchOutput& out) {
   std::vector<double> tc;
   for (const auto& name : tb.scenes) tc.push_back(CoresUsed("reference/" + name + "/t2"));
   out.Goal("2 threads ≥ 1.8× one thread, tracing (reference, every scene)",
-           "worst " + worst_name + " " + FormatDouble("%.2f×", worst) + "; the 2-thread runs got " + FormatDouble("%.2f", Stats{tc}.Median()) +
-               " cores (median CPU s / wall s)",
+           "worst " + worst_name + " " + FormatDouble("%.2f×", worst) + "; the 2-thread runs got " +
+               FormatDouble("%.2f", Stats{tc}.Median()) + " cores (median CPU s / wall s)",
            worst >= 1.8);
 }
 

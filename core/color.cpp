@@ -42,9 +42,9 @@ constexpr float kEncodeExponent = 1.0f / 2.4f;
 constexpr double kPowMargin = 0x1p-31;
 
 struct EncodePowTables {
-  double scale[10];                // 2^(e·y) for e = -9..0
+  double scale[10];                   // 2^(e·y) for e = -9..0
   double head[256], inv_centre[256];  // m0^y and 1/m0 for bin i: m0 = 1 + (i + 0.5)/256
-  double c[7];                     // binomial coefficients C(y, k)
+  double c[7];                        // binomial coefficients C(y, k)
 };
 
 const EncodePowTables& PowTables() {
@@ -73,8 +73,7 @@ float EncodePow(float v) {
   const int i = static_cast<int>(frac >> 15);
   const double m = static_cast<double>(std::bit_cast<float>(frac | 0x3F800000u));
   const double s = m * t.inv_centre[i] - 1.0;
-  const double series =
-      1.0 + s * (t.c[1] + s * (t.c[2] + s * (t.c[3] + s * (t.c[4] + s * (t.c[5] + s * t.c[6])))));
+  const double series = 1.0 + s * (t.c[1] + s * (t.c[2] + s * (t.c[3] + s * (t.c[4] + s * (t.c[5] + s * t.c[6])))));
   const double d = t.scale[e + 9] * t.head[i] * series;
   const float lo = static_cast<float>(d * (1.0 - kPowMargin));
   const float hi = static_cast<float>(d * (1.0 + kPowMargin));

@@ -23,7 +23,7 @@ class InternalError : public std::logic_error {
 
 }  // namespace aalab
 
-#define AALAB_CHECK(cond, msg)                                 \
-  do {                                                         \
+#define AALAB_CHECK(cond, msg)                                         \
+  do {                                                                 \
     if (!(cond)) ::aalab::FailCheck(#cond, __FILE__, __LINE__, (msg)); \
   } while (0)

@@ -62,14 +62,12 @@ inline uint64_t HashTuple(uint64_t a, uint64_t b, uint64_t c, uint64_t d, uint64
 }
 
 /// A float in [0, 1) from the top 24 bits of a hash (exactly representable).
-inline float HashToUnitFloat(uint64_t h) {
-  return static_cast<float>(h >> 40) * (1.0f / 16777216.0f);
-}
+inline float HashToUnitFloat(uint64_t h) { return static_cast<float>(h >> 40) * (1.0f / 16777216.0f); }
 
 /// Jitter value in [0, 1) for pixel (x, y), sample index s, seed, dimension dim.
 inline float SampleJitter(int x, int y, int s, uint64_t seed, int dim) {
-  return HashToUnitFloat(HashTuple(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
-                                   static_cast<uint32_t>(s), seed, static_cast<uint32_t>(dim)));
+  return HashToUnitFloat(HashTuple(static_cast<uint32_t>(x), static_cast<uint32_t>(y), static_cast<uint32_t>(s), seed,
+                                   static_cast<uint32_t>(dim)));
 }
 
 }  // namespace aalab

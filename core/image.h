@@ -16,17 +16,16 @@ class Image {
  public:
   Image() = default;
   /// A width × height image with `channels` channels, every value set to `fill`.
-  Image(int width, int height, int channels, T fill = T{})
-      : width_(width), height_(height), channels_(channels) {
+  Image(int width, int height, int channels, T fill = T{}) : width_(width), height_(height), channels_(channels) {
     AALAB_CHECK(width >= 0 && height >= 0 && channels > 0, "bad image dimensions");
     data_.assign(static_cast<size_t>(width) * height * channels, fill);
   }
   /// A width × height image taking over `data` (width·height·channels values, interleaved).
   Image(int width, int height, int channels, std::vector<T> data)
       : width_(width), height_(height), channels_(channels), data_(std::move(data)) {
-    AALAB_CHECK(width >= 0 && height >= 0 && channels > 0 &&
-                    data_.size() == static_cast<size_t>(width) * height * channels,
-                "bad image dimensions or data size");
+    AALAB_CHECK(
+        width >= 0 && height >= 0 && channels > 0 && data_.size() == static_cast<size_t>(width) * height * channels,
+        "bad image dimensions or data size");
   }
 
   int Width() const { return width_; }
@@ -52,9 +51,7 @@ class Image {
   }
 
  private:
-  size_t Index(int x, int y) const {
-    return (static_cast<size_t>(y) * width_ + x) * channels_;
-  }
+  size_t Index(int x, int y) const { return (static_cast<size_t>(y) * width_ + x) * channels_; }
   int width_ = 0;
   int height_ = 0;
   int channels_ = 0;

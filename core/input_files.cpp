@@ -34,7 +34,8 @@ void NoteInputFile(const std::string& path) {
 std::string WhatIsAt(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) {
-    return errno == ENOENT || errno == ENOTDIR ? "does not exist" : std::string("cannot be examined: ") + std::strerror(errno);
+    return errno == ENOENT || errno == ENOTDIR ? "does not exist"
+                                               : std::string("cannot be examined: ") + std::strerror(errno);
   }
   if (S_ISREG(st.st_mode)) return "";
   if (S_ISDIR(st.st_mode)) return "is a folder";

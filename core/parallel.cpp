@@ -28,8 +28,8 @@ void SetThreadCount(int threads) {
   g_control.reset();
   g_threads = threads > 0 ? threads : 0;
   if (g_threads > 0) {
-    g_control = std::make_unique<tbb::global_control>(
-        tbb::global_control::max_allowed_parallelism, static_cast<size_t>(g_threads));
+    g_control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                      static_cast<size_t>(g_threads));
   }
 }
 

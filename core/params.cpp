@@ -51,8 +51,8 @@ std::string ParamDef::Describe() const {
     for (size_t i = 0; i < choices.size(); ++i) s += (i ? "|" : "") + choices[i];
     return s + "}";
   }
-  return name + "=" + FormatNumber(default_number) + " [" + FormatNumber(min) + ".." +
-         FormatNumber(max) + "]" + (kind == ParamKind::kInt ? " integer" : "");
+  return name + "=" + FormatNumber(default_number) + " [" + FormatNumber(min) + ".." + FormatNumber(max) + "]" +
+         (kind == ParamKind::kInt ? " integer" : "");
 }
 
 ParamDef FloatParam(std::string name, double def, double min, double max, std::string help) {
@@ -72,8 +72,7 @@ ParamDef IntParam(std::string name, int def, int min, int max, std::string help)
   return d;
 }
 
-ParamDef ChoiceParam(std::string name, std::string def, std::vector<std::string> choices,
-                     std::string help) {
+ParamDef ChoiceParam(std::string name, std::string def, std::vector<std::string> choices, std::string help) {
   ParamDef d;
   d.name = std::move(name);
   d.kind = ParamKind::kChoice;
@@ -89,9 +88,7 @@ double ParamValues::Number(const std::string& name) const {
   return it->second;
 }
 
-int ParamValues::Int(const std::string& name) const {
-  return static_cast<int>(Number(name));
-}
+int ParamValues::Int(const std::string& name) const { return static_cast<int>(Number(name)); }
 
 const std::string& ParamValues::Choice(const std::string& name) const {
   auto it = choices_.find(name);
@@ -99,9 +96,7 @@ const std::string& ParamValues::Choice(const std::string& name) const {
   return it->second;
 }
 
-bool ParamValues::Has(const std::string& name) const {
-  return numbers_.count(name) || choices_.count(name);
-}
+bool ParamValues::Has(const std::string& name) const { return numbers_.count(name) || choices_.count(name); }
 
 void ParamValues::Record(const std::string& name, const std::string& text, bool overridden) {
   bool found = false;
@@ -170,9 +165,7 @@ ParamValues ResolveParams(const std::string& what, const std::vector<ParamDef>& 
       std::vector<std::string> names;
       for (const auto& d : defs) names.push_back(d.Describe());
       throw UserError(what + ": unknown parameter '" + key + "' (" +
-                      (names.empty() ? std::string("it takes no parameters")
-                                     : "allowed: " + JoinNames(names)) +
-                      ")");
+                      (names.empty() ? std::string("it takes no parameters") : "allowed: " + JoinNames(names)) + ")");
     }
     if (def->kind == ParamKind::kChoice) {
       bool ok = false;
@@ -189,16 +182,13 @@ ParamValues ResolveParams(const std::string& what, const std::vector<ParamDef>& 
     const char* last = text.data() + text.size();
     auto res = std::from_chars(first, last, v);
     if (res.ec != std::errc() || res.ptr != last || !std::isfinite(v)) {
-      throw UserError(what + ": parameter '" + key + "' = '" + text + "' is not a number (" +
-                      def->Describe() + ")");
+      throw UserError(what + ": parameter '" + key + "' = '" + text + "' is not a number (" + def->Describe() + ")");
     }
     if (def->kind == ParamKind::kInt && v != std::floor(v)) {
-      throw UserError(what + ": parameter '" + key + "' = '" + text + "' must be an integer (" +
-                      def->Describe() + ")");
+      throw UserError(what + ": parameter '" + key + "' = '" + text + "' must be an integer (" + def->Describe() + ")");
     }
     if (v < def->min || v > def->max) {
-      throw UserError(what + ": parameter '" + key + "' = '" + text + "' is out of range (" +
-                      def->Describe() + ")");
+      throw UserError(what + ": parameter '" + key + "' = '" + text + "' is out of range (" + def->Describe() + ")");
     }
     values.SetNumber(key, v, true);
   }

@@ -14,11 +14,11 @@ enum class ParamKind { kFloat, kInt, kChoice };
 struct ParamDef {
   std::string name;
   ParamKind kind = ParamKind::kFloat;
-  double default_number = 0.0;             ///< for kFloat / kInt
-  std::string default_choice;              ///< for kChoice
-  double min = 0.0;                        ///< inclusive, for kFloat / kInt
-  double max = 0.0;                        ///< inclusive, for kFloat / kInt
-  std::vector<std::string> choices;        ///< for kChoice
+  double default_number = 0.0;       ///< for kFloat / kInt
+  std::string default_choice;        ///< for kChoice
+  double min = 0.0;                  ///< inclusive, for kFloat / kInt
+  double max = 0.0;                  ///< inclusive, for kFloat / kInt
+  std::vector<std::string> choices;  ///< for kChoice
   std::string help;
 
   /// "name=default [min..max]" or "name=default {a|b|c}", for listings and errors.
@@ -28,8 +28,7 @@ struct ParamDef {
 /// Convenience constructors for registry tables.
 ParamDef FloatParam(std::string name, double def, double min, double max, std::string help);
 ParamDef IntParam(std::string name, int def, int min, int max, std::string help);
-ParamDef ChoiceParam(std::string name, std::string def, std::vector<std::string> choices,
-                     std::string help);
+ParamDef ChoiceParam(std::string name, std::string def, std::vector<std::string> choices, std::string help);
 
 /// Resolved parameter values: every defined parameter has a value (default or override).
 class ParamValues {

@@ -12,7 +12,7 @@ const std::vector<SampleOffset16>& StandardSamplePositions(int n) {
   static const std::vector<SampleOffset16> k1 = {{0, 0}};
   static const std::vector<SampleOffset16> k2 = {{4, 4}, {-4, -4}};
   static const std::vector<SampleOffset16> k4 = {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}};
-  static const std::vector<SampleOffset16> k8 = {{1, -3}, {-1, 3}, {5, 1},  {-3, -5},
+  static const std::vector<SampleOffset16> k8 = {{1, -3}, {-1, 3},  {5, 1}, {-3, -5},
                                                  {-5, 5}, {-7, -1}, {3, 7}, {7, -7}};
   static const std::vector<SampleOffset16> k16 = {{1, 1},  {-1, -3}, {-3, 2}, {4, -1}, {-5, -2}, {2, 5},
                                                   {5, 3},  {3, -5},  {-2, 6}, {0, -7}, {-4, -6}, {-6, 4},
@@ -58,8 +58,7 @@ std::vector<std::pair<float, float>> RenderSpec::FixedOffsets() const {
       }
       return out;
     }
-    case SamplePattern::kRotatedGrid:
-      return {{0.375f, 0.125f}, {0.875f, 0.375f}, {0.125f, 0.625f}, {0.625f, 0.875f}};
+    case SamplePattern::kRotatedGrid: return {{0.375f, 0.125f}, {0.875f, 0.375f}, {0.125f, 0.625f}, {0.625f, 0.875f}};
     case SamplePattern::kJitter:
     case SamplePattern::kStratified: break;
   }

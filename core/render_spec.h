@@ -41,8 +41,8 @@ enum class MsaaShading {
 
 /// When MSAA runs the alpha test of a cut-out material.
 enum class MsaaAlphaTest {
-  kShade,   ///< once per shading evaluation; a failed test discards all samples of that primitive
-  kSample,  ///< at every coverage sample (sample-rate alpha test)
+  kShade,     ///< once per shading evaluation; a failed test discards all samples of that primitive
+  kSample,    ///< at every coverage sample (sample-rate alpha test)
   kCoverage,  ///< alpha-to-coverage: the shading point's alpha picks how many samples stay
               ///< (⌊α·N + Bayer 4×4 dither⌋, in sample index order; docs/msaa.md)
 };
@@ -114,12 +114,12 @@ struct SpecularAaSpec {
 /// a box filter over the pixel, sRGB-encoded and stored as RGBA8 (alpha 255).
 struct RenderSpec {
   SamplePattern pattern = SamplePattern::kCenter;
-  int grid = 1;        ///< n for kOrderedGrid / kStratified
-  int spp = 1;         ///< samples per pixel for kJitter (derived for the others)
-  double scale = 1.0;  ///< render size = round(scale · W) × round(scale · H)
-  MsaaSpec msaa;       ///< MSAA (off by default); when on it replaces `pattern`
-  AnalyticSpec aaa;    ///< analytical AA (off unless aaa.enabled); uses the kCenter pattern
-  JitterSpec jitter;   ///< TAA: per-frame jitter of the kCenter sample (off by default)
+  int grid = 1;                ///< n for kOrderedGrid / kStratified
+  int spp = 1;                 ///< samples per pixel for kJitter (derived for the others)
+  double scale = 1.0;          ///< render size = round(scale · W) × round(scale · H)
+  MsaaSpec msaa;               ///< MSAA (off by default); when on it replaces `pattern`
+  AnalyticSpec aaa;            ///< analytical AA (off unless aaa.enabled); uses the kCenter pattern
+  JitterSpec jitter;           ///< TAA: per-frame jitter of the kCenter sample (off by default)
   SpecularAaSpec specular_aa;  ///< geometric specular AA of glTF materials (off by default)
 
   /// Samples per pixel this pattern takes (MSAA: coverage samples).

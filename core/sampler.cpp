@@ -8,9 +8,7 @@
 
 namespace aalab {
 
-const char* SamplerArithmeticName(SamplerArithmetic a) {
-  return a == SamplerArithmetic::kGl ? "gl" : "gpu-texture";
-}
+const char* SamplerArithmeticName(SamplerArithmetic a) { return a == SamplerArithmetic::kGl ? "gl" : "gpu-texture"; }
 
 SamplerArithmetic ParseSamplerArithmetic(const std::string& name) {
   if (name == "gl") return SamplerArithmetic::kGl;
@@ -66,7 +64,7 @@ double HwNormalizedAxis(float s, int size) {
 float RoundFloatTiesUp(double x) {
   if (x == 0.0 || !std::isfinite(x)) return static_cast<float>(x);
   int e = 0;
-  const double m = std::frexp(x, &e);  // x = m·2^e, |m| in [0.5, 1)
+  const double m = std::frexp(x, &e);                    // x = m·2^e, |m| in [0.5, 1)
   const double q = std::floor(std::ldexp(m, 24) + 0.5);  // 24 significant bits
   return static_cast<float>(std::ldexp(q, e - 24));
 }
@@ -168,8 +166,7 @@ Float4 SampleBilinear(const ImageF& img, float u, float v) {
   const int ya = std::clamp(f.y0, 0, h - 1), yb = std::clamp(f.y0 + 1, 0, h - 1);
   float out[4] = {0, 0, 0, 0};
   for (int c = 0; c < nc && c < 4; ++c) {
-    out[c] = BilinearBlend(img.At(xa, ya, c), img.At(xb, ya, c), img.At(xa, yb, c),
-                           img.At(xb, yb, c), f);
+    out[c] = BilinearBlend(img.At(xa, ya, c), img.At(xb, ya, c), img.At(xa, yb, c), img.At(xb, yb, c), f);
   }
   return Float4{out[0], out[1], out[2], out[3]};
 }

@@ -81,9 +81,7 @@ struct Float4 {
 /// The float a GL implementation reads for UNORM8 value k: k · fl(1/255), the product
 /// rounded to float (Mesa llvmpipe's float path; it differs from k/255 in the last bit for
 /// 126 of the 256 values). Every 8-bit texel read in aalab goes through this.
-[[gnu::always_inline]] inline float UnormToFloat(uint8_t k) {
-  return static_cast<float>(k) * (1.0f / 255.0f);
-}
+[[gnu::always_inline]] inline float UnormToFloat(uint8_t k) { return static_cast<float>(k) * (1.0f / 255.0f); }
 
 /// The texel value of code k under arithmetic `a`.
 [[gnu::always_inline]] inline float TexelValue(uint8_t k, SamplerArithmetic a) {
@@ -137,8 +135,14 @@ enum class SubTexel { kExact, kFixed8 };
   if (mode == SubTexel::kFixed8) {
     fx = std::nearbyint(fx * 256.0f) * (1.0f / 256.0f);
     fy = std::nearbyint(fy * 256.0f) * (1.0f / 256.0f);
-    if (fx == 1.0f) { x0f += 1.0f; fx = 0.0f; }
-    if (fy == 1.0f) { y0f += 1.0f; fy = 0.0f; }
+    if (fx == 1.0f) {
+      x0f += 1.0f;
+      fx = 0.0f;
+    }
+    if (fy == 1.0f) {
+      y0f += 1.0f;
+      fy = 0.0f;
+    }
   }
   BilinearFootprint f;
   f.fx = fx;
@@ -152,8 +156,7 @@ enum class SubTexel { kExact, kFixed8 };
 /// c = (x0, y0+1), d = (x0+1, y0+1): lerp(lerp(a, b, fx), lerp(c, d, fx), fy), as Mesa's
 /// llvmpipe filters in float (lp_build_lerp_2d) on a CPU without FMA. With clamped texels
 /// a lerp between equal values returns them exactly, so clamp-to-edge needs no special case.
-[[gnu::always_inline]] inline float BilinearBlend(float a, float b, float c, float d,
-                                                  const BilinearFootprint& f) {
+[[gnu::always_inline]] inline float BilinearBlend(float a, float b, float c, float d, const BilinearFootprint& f) {
   return FilterLerp(FilterLerp(a, b, f.fx), FilterLerp(c, d, f.fx), f.fy);
 }
 

@@ -11,8 +11,7 @@ class Stopwatch {
   void Restart() { start_ = std::chrono::steady_clock::now(); }
   /// Milliseconds since construction or the last Restart().
   double ElapsedMs() const {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
-        .count();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
   }
 
  private:

@@ -123,22 +123,36 @@ Options ParseArgs(int argc, char** argv) {
   };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--frames") o.frames_dir = value(i, a);
-    else if (a == "--json") o.json_path = value(i, a);
-    else if (a == "--outputs") o.outputs_dir = value(i, a);
-    else if (a == "--outputs-scene") o.outputs_scene = value(i, a);
-    else if (a == "--methods") o.methods = SplitSpecs(value(i, a));
-    else if (a == "--taa-methods") o.taa_methods = SplitSpecs(value(i, a));
-    else if (a == "--warmup") o.warmup = ParseInt(a, value(i, a), 0, 100000);
-    else if (a == "--repeat") o.repeat = ParseInt(a, value(i, a), 1, 100000);
-    else if (a == "--self-test") o.self_test = true;
-    else if (a == "--sizes") o.sizes = ParseSizes(value(i, a));
-    else if (a == "--probe-dump") o.probe_dump = value(i, a);
-    else if (a == "--check") o.check = true;
-    else if (a == "--no-timing") o.timing = false;
+    if (a == "--frames")
+      o.frames_dir = value(i, a);
+    else if (a == "--json")
+      o.json_path = value(i, a);
+    else if (a == "--outputs")
+      o.outputs_dir = value(i, a);
+    else if (a == "--outputs-scene")
+      o.outputs_scene = value(i, a);
+    else if (a == "--methods")
+      o.methods = SplitSpecs(value(i, a));
+    else if (a == "--taa-methods")
+      o.taa_methods = SplitSpecs(value(i, a));
+    else if (a == "--warmup")
+      o.warmup = ParseInt(a, value(i, a), 0, 100000);
+    else if (a == "--repeat")
+      o.repeat = ParseInt(a, value(i, a), 1, 100000);
+    else if (a == "--self-test")
+      o.self_test = true;
+    else if (a == "--sizes")
+      o.sizes = ParseSizes(value(i, a));
+    else if (a == "--probe-dump")
+      o.probe_dump = value(i, a);
+    else if (a == "--check")
+      o.check = true;
+    else if (a == "--no-timing")
+      o.timing = false;
     else if (a == "--help" || a == "-h") {
       std::printf(
-          "usage: aalab_gpu (--frames DIR | --self-test [--sizes WxH,...]) [--json FILE] [--methods SPECS] [--repeat N]\n"
+          "usage: aalab_gpu (--frames DIR | --self-test [--sizes WxH,...]) [--json FILE] [--methods SPECS] [--repeat "
+          "N]\n"
           "                 [--warmup N] [--no-timing] [--check] [--outputs DIR --outputs-scene NAME]\n"
           "  --frames DIR     frames written by `aalab export-frames` (DIR/frames.tsv)\n"
           "  --self-test      synthetic frames (noise, shapes, odd sizes) instead of files\n"
@@ -168,8 +182,9 @@ Options ParseArgs(int argc, char** argv) {
   if (o.taa_methods.empty()) {
     o.taa_methods = DefaultGpuTaaSpecs();
     if (o.self_test) {
-      for (const char* v : {"taa-prod:precision=rgba16f", "taa-prod:dilate=off,history=bilinear,clip=minmax,feedback=fixed",
-                            "taa-prod:history=catmull-rom-5,disocclusion=off,clip=none,luma_weight=on,precision=rgba16f"}) {
+      for (const char* v :
+           {"taa-prod:precision=rgba16f", "taa-prod:dilate=off,history=bilinear,clip=minmax,feedback=fixed",
+            "taa-prod:history=catmull-rom-5,disocclusion=off,clip=none,luma_weight=on,precision=rgba16f"}) {
         o.taa_methods.push_back(v);
       }
     }
@@ -225,7 +240,8 @@ std::vector<FrameSet> ReadManifest(const std::string& dir) {
         throw UserError(where + ": TAA frame " + std::to_string(t) + " out of order (expected " +
                         std::to_string(set->taa.frames.size()) + ")");
       }
-      if (img.Width() != w || img.Height() != h) throw UserError(where + ": '" + f[4] + "' is not " + f[2] + "x" + f[3]);
+      if (img.Width() != w || img.Height() != h)
+        throw UserError(where + ": '" + f[4] + "' is not " + f[2] + "x" + f[3]);
       std::vector<float> prev;
       if (t > 0) {
         const std::string stem = f[4].size() > 4 ? f[4].substr(0, f[4].size() - 4) : f[4];
@@ -234,7 +250,8 @@ std::vector<FrameSet> ReadManifest(const std::string& dir) {
       set->taa.frames.push_back(std::move(img));
       set->taa.previous.push_back(std::move(prev));
     } else if (f[1] == "1x") {
-      if (img.Width() != w || img.Height() != h) throw UserError(where + ": '" + f[4] + "' is not " + f[2] + "x" + f[3]);
+      if (img.Width() != w || img.Height() != h)
+        throw UserError(where + ": '" + f[4] + "' is not " + f[2] + "x" + f[3]);
       set->frame1x = std::move(img);
     } else {
       set->scaled = std::move(img);
@@ -364,13 +381,14 @@ GpuDeviceFacts QueryDevice() {
 /// The texture unit's filter probed and printed.
 TextureProbe ProbeAndPrint() {
   const TextureProbe probe = ProbeTextureFilter();
-  std::printf("texture filter probe: %d distinct values over %d fractions; max error vs float fraction %.4f, "
-              "vs fraction rounded to 1/256 %.4f, truncated %.4f (8-bit levels)\n",
-              probe.distinct_values, probe.samples, probe.err_float, probe.err_round256, probe.err_trunc256);
-  std::printf("point fetches: %d of 256 UNORM8 values differ from k/255.0f, %d from the CPU's k*fl(1/255); "
-              "half-texel fetches: %d of %d pairs (a, b) differ from the CPU sampler, largest difference %.3g\n",
-              probe.unorm_mismatches, probe.unorm_mismatches_cpu, probe.half_mismatches, probe.half_pairs,
-              probe.half_max_err);
+  std::printf(
+      "texture filter probe: %d distinct values over %d fractions; max error vs float fraction %.4f, "
+      "vs fraction rounded to 1/256 %.4f, truncated %.4f (8-bit levels)\n",
+      probe.distinct_values, probe.samples, probe.err_float, probe.err_round256, probe.err_trunc256);
+  std::printf(
+      "point fetches: %d of 256 UNORM8 values differ from k/255.0f, %d from the CPU's k*fl(1/255); "
+      "half-texel fetches: %d of %d pairs (a, b) differ from the CPU sampler, largest difference %.3g\n",
+      probe.unorm_mismatches, probe.unorm_mismatches_cpu, probe.half_mismatches, probe.half_pairs, probe.half_max_err);
   return probe;
 }
 
@@ -431,8 +449,8 @@ void MeasureMethod(GpuRun& run, const FrameSet& set, const std::string& size, co
     const int rh = std::max(1, static_cast<int>(std::lround(m.plan.render.scale * set.height)));
     if (rw != input.Width() || rh != input.Height()) {
       throw UserError(set.scene + " " + size + ": the scaled frame is " + std::to_string(input.Width()) + "x" +
-                      std::to_string(input.Height()) + " but '" + m.spec + "' renders at " + std::to_string(rw) +
-                      "x" + std::to_string(rh));
+                      std::to_string(input.Height()) + " but '" + m.spec + "' renders at " + std::to_string(rw) + "x" +
+                      std::to_string(rh));
     }
   }
   Entry e = MakeEntry(set.scene, size, m.spec, m.kernels);
@@ -490,14 +508,15 @@ void MeasureMethod(GpuRun& run, const FrameSet& set, const std::string& size, co
                               TimeLaunches([&] { p->RunSmaaPass(m, k, stream); }, o.warmup, o.repeat, stream));
       }
     }
-    if (m.prepass && !m.scaled_input) e.pass = TimeLaunches([&] { p->RunPassOnly(m, stream); }, o.warmup, o.repeat, stream);
+    if (m.prepass && !m.scaled_input)
+      e.pass = TimeLaunches([&] { p->RunPassOnly(m, stream); }, o.warmup, o.repeat, stream);
   }
-  std::printf("%-16s %-10s %-34s identical %7.3f%% (sw filter %7.3f%%, cpu gpu-texture %7.3f%% max %d) <=1 %7.3f%% "
-              "max %3d  %s\n",
-              set.scene.c_str(), size.c_str(), m.spec.c_str(), 100.0 * e.fid.identical_share,
-              100.0 * e.soft.identical_share, 100.0 * e.hw_mode.identical_share, e.hw_mode.max_diff,
-              100.0 * e.fid.within1_share, e.fid.max_diff,
-              e.timed ? (JsonNumber(e.t.median) + " ms (" + JsonNumber(e.ratio) + "x copy)").c_str() : "");
+  std::printf(
+      "%-16s %-10s %-34s identical %7.3f%% (sw filter %7.3f%%, cpu gpu-texture %7.3f%% max %d) <=1 %7.3f%% "
+      "max %3d  %s\n",
+      set.scene.c_str(), size.c_str(), m.spec.c_str(), 100.0 * e.fid.identical_share, 100.0 * e.soft.identical_share,
+      100.0 * e.hw_mode.identical_share, e.hw_mode.max_diff, 100.0 * e.fid.within1_share, e.fid.max_diff,
+      e.timed ? (JsonNumber(e.t.median) + " ms (" + JsonNumber(e.ratio) + "x copy)").c_str() : "");
   run.entries.push_back(e);
 }
 
@@ -506,8 +525,8 @@ void MeasureTaa(GpuRun& run, const FrameSet& set, const std::string& size, const
                 const CopyFloors& floors) {
   const Options& o = run.o;
   std::vector<std::string> taa_failures;
-  Entry e = RunTaaSequence(spec, set.scene, set.taa, run.decode, o.timing, o.warmup, o.repeat, run.stream,
-                           &taa_failures);
+  Entry e =
+      RunTaaSequence(spec, set.scene, set.taa, run.decode, o.timing, o.warmup, o.repeat, run.stream, &taa_failures);
   for (const auto& f : taa_failures) run.Fail(f);
   if (e.timed) {
     e.ratio = e.t.median / floors.texture_ms;
@@ -572,11 +591,13 @@ int Main(int argc, char** argv) {
   cuda::Check(cudaStreamCreate(&run.stream), "cudaStreamCreate");
 
   const TextureRuleCheck rule = CheckTextureRule(CollectTextureProbeData());
-  std::printf("texture rule (core/sampler.h, --sampler gpu-texture) against this device: pairs %lld/%lld, "
-              "RGBA8 quads %lld/%lld, coordinates %lld/%lld, RGBA32F quads %lld/%lld differ\n",
-              rule.pair_mismatches, rule.pairs, rule.quad8_mismatches, rule.quad8, rule.coord_mismatches, rule.coords,
-              rule.quadf_mismatches, rule.quadf);
-  if (rule.Mismatches() != 0) run.Fail("the texture rule of --sampler gpu-texture does not match this device's texture unit");
+  std::printf(
+      "texture rule (core/sampler.h, --sampler gpu-texture) against this device: pairs %lld/%lld, "
+      "RGBA8 quads %lld/%lld, coordinates %lld/%lld, RGBA32F quads %lld/%lld differ\n",
+      rule.pair_mismatches, rule.pairs, rule.quad8_mismatches, rule.quad8, rule.coord_mismatches, rule.coords,
+      rule.quadf_mismatches, rule.quadf);
+  if (rule.Mismatches() != 0)
+    run.Fail("the texture rule of --sampler gpu-texture does not match this device's texture unit");
   if (!o.outputs_dir.empty()) fs::create_directories(o.outputs_dir);
   for (const FrameSet& set : sets) MeasureFrameSet(run, set, methods);
   device.smi_after = Sh(kSmiQuery);

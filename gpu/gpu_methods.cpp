@@ -105,7 +105,8 @@ GpuMethod ResolveGpuMethod(const std::string& spec) {
     m.sm = SmaaArgsFrom(*ps);
     kernels.insert(kernels.end(), std::begin(kSmaaPassNames), std::end(kSmaaPassNames));
   } else if (plan.post) {
-    throw InternalError("method '" + plan.name + "' is marked as having a CUDA twin but its post filter has no typed configuration");
+    throw InternalError("method '" + plan.name +
+                        "' is marked as having a CUDA twin but its post filter has no typed configuration");
   }
   if (m.scaled_input) kernels.push_back(m.rescale == Rescale::kBicubic ? "rescale-bicubic" : "rescale-bilinear");
   for (const auto& k : kernels) m.kernels += (m.kernels.empty() ? "" : " + ") + k;

@@ -14,18 +14,18 @@ namespace aalab {
 
 /// One method as the GPU runs it.
 struct GpuMethod {
-  std::string spec;      ///< canonical spec, as a report row's `spec`
-  std::string kernels;   ///< the kernels launched, in order ("luma-rec601 + fxaa311")
-  bool scaled_input = false;   ///< reads the frame rendered at plan.render.scale (scale43*)
-  bool fxaa1 = false;          ///< runs the FXAA 1.0 kernel (args f1)
-  bool fxaa311 = false;        ///< runs the FXAA 3.11 kernel (args f3)
-  bool prepass = false;        ///< FXAA 3.11 luma pre-pass before the FXAA kernel
-  bool smaa = false;           ///< runs SMAA's three kernels (args sm)
+  std::string spec;           ///< canonical spec, as a report row's `spec`
+  std::string kernels;        ///< the kernels launched, in order ("luma-rec601 + fxaa311")
+  bool scaled_input = false;  ///< reads the frame rendered at plan.render.scale (scale43*)
+  bool fxaa1 = false;         ///< runs the FXAA 1.0 kernel (args f1)
+  bool fxaa311 = false;       ///< runs the FXAA 3.11 kernel (args f3)
+  bool prepass = false;       ///< FXAA 3.11 luma pre-pass before the FXAA kernel
+  bool smaa = false;          ///< runs SMAA's three kernels (args sm)
   Rescale rescale = Rescale::kNone;
   cuda::Fxaa1Args f1{};
   cuda::Fxaa311Args f3{};
   cuda::SmaaArgs sm{};
-  MethodPlan plan;             ///< the CPU method (reference output)
+  MethodPlan plan;  ///< the CPU method (reference output)
 };
 
 /// Resolves `spec` through the registry and maps it to kernels. Throws UserError for a

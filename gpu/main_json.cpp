@@ -22,19 +22,21 @@ std::string NowUtc() {
 std::string Q(const std::string& s) {
   std::string o = "\"";
   for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\', o += c;
+    if (c == '"' || c == '\\')
+      o += '\\', o += c;
     else if (static_cast<unsigned char>(c) < 0x20) {
       char b[8];
       std::snprintf(b, sizeof b, "\\u%04x", c);
       o += b;
-    } else o += c;
+    } else
+      o += c;
   }
   return o + "\"";
 }
 
 std::string StatsJson(const Stats& s) {
-  return "{\"median_ms\": " + JsonNumber(s.median) + ", \"min_ms\": " + JsonNumber(s.min) + ", \"max_ms\": " +
-         JsonNumber(s.max) + "}";
+  return "{\"median_ms\": " + JsonNumber(s.median) + ", \"min_ms\": " + JsonNumber(s.min) +
+         ", \"max_ms\": " + JsonNumber(s.max) + "}";
 }
 
 }  // namespace
@@ -52,15 +54,17 @@ void WriteGpuTimingsJson(const std::string& path, const GpuDeviceFacts& device, 
   std::ostringstream j;
   j << "{\n  \"schema\": \"aalab-gpu-timings\",\n  \"schema_version\": 1,\n";
   j << "  \"generated_utc\": " << Q(NowUtc()) << ",\n";
-  j << "  \"device\": {\"name\": " << Q(device.name) << ", \"compute_capability\": "
-    << Q(std::to_string(device.major) + "." + std::to_string(device.minor)) << ", \"multiprocessors\": "
-    << device.multiprocessors << ", \"l2_bytes\": " << device.l2_bytes << ", \"memory_bytes\": "
-    << device.memory_bytes << "},\n";
+  j << "  \"device\": {\"name\": " << Q(device.name)
+    << ", \"compute_capability\": " << Q(std::to_string(device.major) + "." + std::to_string(device.minor))
+    << ", \"multiprocessors\": " << device.multiprocessors << ", \"l2_bytes\": " << device.l2_bytes
+    << ", \"memory_bytes\": " << device.memory_bytes << "},\n";
   j << "  \"driver\": " << Q(device.nvidia_driver) << ",\n";
-  j << "  \"cuda_driver_api\": " << Q(std::to_string(device.driver / 1000) + "." + std::to_string(device.driver % 1000 / 10))
-    << ",\n  \"cuda_runtime\": " << Q(std::to_string(device.runtime / 1000) + "." + std::to_string(device.runtime % 1000 / 10))
+  j << "  \"cuda_driver_api\": "
+    << Q(std::to_string(device.driver / 1000) + "." + std::to_string(device.driver % 1000 / 10))
+    << ",\n  \"cuda_runtime\": "
+    << Q(std::to_string(device.runtime / 1000) + "." + std::to_string(device.runtime % 1000 / 10)) << ",\n";
+  j << "  \"nvidia_smi_before\": " << Q(device.smi_before) << ",\n  \"nvidia_smi_after\": " << Q(device.smi_after)
     << ",\n";
-  j << "  \"nvidia_smi_before\": " << Q(device.smi_before) << ",\n  \"nvidia_smi_after\": " << Q(device.smi_after) << ",\n";
   j << "  \"nvidia_smi_fields\": \"driver_version, clocks.sm, clocks.max.sm, clocks.mem, temperature.gpu, "
        "power.draw\",\n";
   j << "  \"timing\": {\"method\": \"CUDA events recorded around each launch (all kernels of the method), on one "
@@ -86,8 +90,9 @@ void WriteGpuTimingsJson(const std::string& path, const GpuDeviceFacts& device, 
     j << "    {\"scene\": " << Q(e.scene) << ", \"size\": " << Q(e.size) << ", \"method\": " << Q(e.spec)
       << ", \"kernels\": " << Q(e.kernels);
     if (e.timed) {
-      j << ", \"median_ms\": " << JsonNumber(e.t.median) << ", \"min_ms\": " << JsonNumber(e.t.min) << ", \"max_ms\": " << JsonNumber(e.t.max)
-        << ", \"ratio_to_copy\": " << JsonNumber(e.ratio) << ", \"ratio_to_copy_linear\": " << JsonNumber(e.ratio_linear);
+      j << ", \"median_ms\": " << JsonNumber(e.t.median) << ", \"min_ms\": " << JsonNumber(e.t.min)
+        << ", \"max_ms\": " << JsonNumber(e.t.max) << ", \"ratio_to_copy\": " << JsonNumber(e.ratio)
+        << ", \"ratio_to_copy_linear\": " << JsonNumber(e.ratio_linear);
       if (e.pass.median > 0) j << ", \"pass_only\": " << StatsJson(e.pass);
       if (!e.passes.empty()) {
         j << ", \"passes\": {";
@@ -103,9 +108,9 @@ void WriteGpuTimingsJson(const std::string& path, const GpuDeviceFacts& device, 
       }
     }
     if (e.has_fidelity) {
-      j << ", \"fidelity\": {\"identical_share\": " << JsonNumber(e.fid.identical_share) << ", \"max_diff\": " << e.fid.max_diff
-        << ", \"within_1_share\": " << JsonNumber(e.fid.within1_share) << ", \"differing_pixels\": " << e.fid.differing
-        << ", \"mean_abs_diff\": " << JsonNumber(e.fid.mean_abs_diff)
+      j << ", \"fidelity\": {\"identical_share\": " << JsonNumber(e.fid.identical_share)
+        << ", \"max_diff\": " << e.fid.max_diff << ", \"within_1_share\": " << JsonNumber(e.fid.within1_share)
+        << ", \"differing_pixels\": " << e.fid.differing << ", \"mean_abs_diff\": " << JsonNumber(e.fid.mean_abs_diff)
         << ", \"deterministic\": " << (e.deterministic ? "true" : "false") << "}";
     }
     if (e.has_soft) {

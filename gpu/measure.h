@@ -32,9 +32,9 @@ struct Entry {
   bool timed = false;
   Stats t, pass;  ///< pass: FXAA pass alone for pre-pass methods (pass.median 0 otherwise)
   std::vector<std::pair<std::string, Stats>> passes;  ///< each kernel alone (SMAA)
-  std::vector<double> frame_ms;  ///< per-frame medians of a sequence (TAA), frame 0 first
-  int frames = 0;                ///< frames of a sequence (TAA; 0 for a still method)
-  double ratio = 0, ratio_linear = 0;  ///< over the texture-path copy / the linear copy
+  std::vector<double> frame_ms;                       ///< per-frame medians of a sequence (TAA), frame 0 first
+  int frames = 0;                                     ///< frames of a sequence (TAA; 0 for a still method)
+  double ratio = 0, ratio_linear = 0;                 ///< over the texture-path copy / the linear copy
   bool has_fidelity = false;
   Fidelity fid;  ///< a sequence: its worst frame
   bool has_soft = false;
@@ -44,8 +44,7 @@ struct Entry {
   bool deterministic = true, all_written = true;
 };
 
-Entry MakeEntry(const std::string& scene, const std::string& size, const std::string& spec,
-                const std::string& kernels);
+Entry MakeEntry(const std::string& scene, const std::string& size, const std::string& spec, const std::string& kernels);
 
 /// Median (mean of the middle two for an even count), min and max of `v` (not empty).
 Stats Summarize(std::vector<double> v);

@@ -58,7 +58,8 @@ cuda::TaaArgs TaaArgsFrom(const ParamValues& v) {  // the fields methods/taa.cpp
 cuda::TaaProdArgs TaaProdArgsFrom(const ParamValues& v, const std::string& spec) {
   const TaaProdParams p = TaaProdParamsFrom(v);
   if (p.reconstruct != TaaReconstruct::kBox || p.sharpen > 0.0f) {
-    throw UserError("'" + spec + "': the CUDA twin of taa-prod runs filter=box and sharpen=0 only (filter=gauss needs "
+    throw UserError("'" + spec +
+                    "': the CUDA twin of taa-prod runs filter=box and sharpen=0 only (filter=gauss needs "
                     "expf, not bit-identical to the CPU's; sharpen is a second pass)");
   }
   cuda::TaaProdArgs a{};

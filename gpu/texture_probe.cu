@@ -205,7 +205,8 @@ std::vector<float> AxisCoords(int size, bool normalized) {
   std::vector<float> ss;
   for (float u : us) ss.push_back(u / static_cast<float>(size));
   for (uint32_t i = 0; i < 16384; ++i) {
-    ss.push_back(-0.01f + 1.02f * static_cast<float>(MixBits32(i + 77U * static_cast<uint32_t>(size)) >> 8) / 16777216.0f);
+    ss.push_back(-0.01f +
+                 1.02f * static_cast<float>(MixBits32(i + 77U * static_cast<uint32_t>(size)) >> 8) / 16777216.0f);
   }
   return ss;
 }
@@ -267,7 +268,7 @@ TextureProbeData CollectTextureProbeData() {
         cuda::Check(cudaMalloc(reinterpret_cast<void**>(&dout), cs.size() * sizeof(float)), "cudaMalloc");
         const int n = static_cast<int>(cs.size());
         CoordKernel<<<(n + 255) / 256, 256>>>(normalized ? f.LinearNorm() : f.LinearPx(), dc, dout, n, axis,
-                                               normalized ? 0.5f : 0.5f);
+                                              normalized ? 0.5f : 0.5f);
         cuda::Check(cudaGetLastError(), "coordinate probe launch");
         const std::vector<float> out = HostCopy(dout, cs.size());
         cudaFree(dc);
@@ -285,9 +286,9 @@ TextureProbeData CollectTextureProbeData() {
     cudaArray_t arr = nullptr;
     const cudaChannelFormatDesc desc = cudaCreateChannelDesc<float4>();
     cuda::Check(cudaMallocArray(&arr, &desc, kQuadFW, kQuadFH), "cudaMallocArray");
-    cuda::Check(cudaMemcpy2DToArray(arr, 0, 0, d.quadf_tex.data(), kQuadFW * 16, kQuadFW * 16, kQuadFH,
-                                    cudaMemcpyHostToDevice),
-                "upload");
+    cuda::Check(
+        cudaMemcpy2DToArray(arr, 0, 0, d.quadf_tex.data(), kQuadFW * 16, kQuadFW * 16, kQuadFH, cudaMemcpyHostToDevice),
+        "upload");
     cudaResourceDesc res{};
     res.resType = cudaResourceTypeArray;
     res.res.array.array = arr;
@@ -369,7 +370,8 @@ TextureRuleCheck CheckTextureRule(const TextureProbeData& d) {
     auto at = [&](int x, int y, int c) { return t[(static_cast<size_t>(y) * kQuad8W + x) * 4 + c]; };
     const HwWeights w = HwWeightsOf(q.kx, q.ky);
     for (int c = 0; c < 4; ++c) {
-      const float rule = HwFilter8(at(q.x, q.y, c), at(q.x + 1, q.y, c), at(q.x, q.y + 1, c), at(q.x + 1, q.y + 1, c), w);
+      const float rule =
+          HwFilter8(at(q.x, q.y, c), at(q.x + 1, q.y, c), at(q.x, q.y + 1, c), at(q.x + 1, q.y + 1, c), w);
       ++r.quad8;
       if (rule != q.out[c]) ++r.quad8_mismatches;
     }
@@ -383,8 +385,8 @@ TextureRuleCheck CheckTextureRule(const TextureProbeData& d) {
     ++r.coords;
     if (rule != c.out) {
       if (r.coord_mismatches < 8) {
-        std::fprintf(stderr, "texture rule: size %d axis %d %s coordinate %.9g: GPU %.9g, rule %.9g\n", c.size,
-                     c.axis, c.normalized ? "normalised" : "texel", c.coord, c.out, rule);
+        std::fprintf(stderr, "texture rule: size %d axis %d %s coordinate %.9g: GPU %.9g, rule %.9g\n", c.size, c.axis,
+                     c.normalized ? "normalised" : "texel", c.coord, c.out, rule);
       }
       ++r.coord_mismatches;
     }

@@ -259,9 +259,9 @@ std::string CheckPlausibleSize(const OpenedImage& f, const OIIO::ImageSpec& spec
     why = "the file is uncompressed";
   }
   if (static_cast<double>(f.file_bytes) >= min_bytes) return "";
-  return "its header claims " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels, which needs at least " +
-         std::to_string(static_cast<long long>(min_bytes)) + " bytes (" + why + "), but the file has " +
-         std::to_string(f.file_bytes) + " (truncated or corrupt)";
+  return "its header claims " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+         " pixels, which needs at least " + std::to_string(static_cast<long long>(min_bytes)) + " bytes (" + why +
+         "), but the file has " + std::to_string(f.file_bytes) + " (truncated or corrupt)";
 }
 
 /// Reads rows [y0, y1) of channels [cb, ce) of the current part as `type` (float unless
@@ -416,8 +416,8 @@ std::string FindChannel(const std::vector<std::string>& names, const std::string
     if (n == name) return n;
   }
   for (const auto& n : names) {
-    if (n.size() == name.size() &&
-        std::equal(n.begin(), n.end(), name.begin(), [](char a, char b) { return std::tolower(a) == std::tolower(b); })) {
+    if (n.size() == name.size() && std::equal(n.begin(), n.end(), name.begin(),
+                                              [](char a, char b) { return std::tolower(a) == std::tolower(b); })) {
       return n;
     }
   }
@@ -455,8 +455,9 @@ LoadedImage ReadOpened(OpenedImage& f, const std::string& path, size_t max_pixel
     names = {y};
     grey = true;
   } else {
-    throw UserError("image '" + path + "' has no channels named R, G and B (its channels: " + Join(all) +
-                    "); colour is read from channels R, G, B (A optional), or from a grey file (one channel, or Y and A)");
+    throw UserError(
+        "image '" + path + "' has no channels named R, G and B (its channels: " + Join(all) +
+        "); colour is read from channels R, G, B (A optional), or from a grey file (one channel, or Y and A)");
   }
   if (!a.empty() && names[0] != a) names.push_back(a);
   LoadedImage result;
@@ -531,8 +532,8 @@ TexturePixels ReadCodes(OpenedImage& f, const std::string& path, size_t max_pixe
     const size_t count = static_cast<size_t>(yend - y) * static_cast<size_t>(w);
     rows.resize(count * static_cast<size_t>(nc));
     if (!ReadRows(*f.in, spec, 0, y, yend, 0, nc, rows.data(), OIIO::TypeDesc::UINT8) || f.in->has_error()) {
-      throw UserError("cannot read image '" + path + "' (truncated or corrupt?) near row " + std::to_string(y) +
-                      ": " + FirstReadError(*f.in));
+      throw UserError("cannot read image '" + path + "' (truncated or corrupt?) near row " + std::to_string(y) + ": " +
+                      FirstReadError(*f.in));
     }
     const size_t base = t.rgba8.size();
     t.rgba8.resize(base + 4 * count);
@@ -563,8 +564,7 @@ TexturePixels ReadTexturePixels(const ImageSource& src, size_t max_pixels, bool 
   OpenedImage f = OpenSource(src);
   const OIIO::ImageSpec& spec = f.parts[0];
   if (spec.nchannels < 1 || spec.nchannels > 4) {
-    throw UserError("image '" + src.name + "' has " + std::to_string(spec.nchannels) +
-                    " channels (allowed: 1 to 4)");
+    throw UserError("image '" + src.name + "' has " + std::to_string(spec.nchannels) + " channels (allowed: 1 to 4)");
   }
   if (spec.format == OIIO::TypeDesc::UINT8) return ReadCodes(f, src.name, max_pixels, charged);
   const LoadedImage img = ReadOpened(f, src.name, max_pixels, charged);

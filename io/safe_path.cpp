@@ -48,7 +48,8 @@ fs::path ResolveInside(const fs::path& base, const std::string& rel, const std::
   const fs::path real_base = fs::weakly_canonical(b, ec);
   const fs::path real = ec ? fs::path() : fs::weakly_canonical(abs_joined, ec);
   if (ec || !Inside(real_base, real) || real == real_base) {
-    throw UserError(what + ": '" + rel + "' leads out of the folder through a symlink (to '" + real.string() + "')" + rule);
+    throw UserError(what + ": '" + rel + "' leads out of the folder through a symlink (to '" + real.string() + "')" +
+                    rule);
   }
   return joined;
 }
@@ -66,7 +67,8 @@ void CheckOutputName(const std::string& name, const std::string& what, const std
                         std::string s;
                         for (const auto& x : reserved) s += (s.empty() ? "" : ", ") + x;
                         return s;
-                      }() + "); give it another name");
+                      }() +
+                      "); give it another name");
     }
   }
 }

@@ -18,8 +18,9 @@ std::string FontPath() {
                         "/usr/local/share/fonts/DejaVuSans.ttf"}) {
     if (std::filesystem::is_regular_file(p)) return p;
   }
-  throw UserError("no DejaVu Sans font for the figure labels (looked for /usr/share/fonts/truetype/dejavu/"
-                  "DejaVuSans.ttf); install the Debian package fonts-dejavu-core");
+  throw UserError(
+      "no DejaVu Sans font for the figure labels (looked for /usr/share/fonts/truetype/dejavu/"
+      "DejaVuSans.ttf); install the Debian package fonts-dejavu-core");
 }
 
 }  // namespace

@@ -51,7 +51,9 @@ MethodPlan MakeAaa(const ParamValues& p) {
   RenderSpec r;
   r.aaa.enabled = true;
   const std::string& ps = p.Choice("pixel_size");
-  r.aaa.pixel_size = ps == "object" ? AaaPixelSize::kObject : ps == "length" ? AaaPixelSize::kLength : AaaPixelSize::kFwidth;
+  r.aaa.pixel_size = ps == "object"   ? AaaPixelSize::kObject
+                     : ps == "length" ? AaaPixelSize::kLength
+                                      : AaaPixelSize::kFwidth;
   const std::string& bl = p.Choice("blend");
   r.aaa.blend = bl == "division" ? AaaBlend::kDivision : bl == "linstep" ? AaaBlend::kLinstep : AaaBlend::kSmoothstep;
   r.aaa.shrink = p.Number("shrink");
@@ -79,7 +81,8 @@ std::vector<MethodEntry> AaaMethods() {
   };
   std::vector<MethodEntry> out;
   for (const AaaPreset& pr : kPresets) {
-    out.push_back({pr.name, pr.help,
+    out.push_back({pr.name,
+                   pr.help,
                    {ChoiceParam("pixel_size", pr.pixel_size, {"object", "length", "fwidth"},
                                 "pixel size: per-object constant, length(dFdx, dFdy) or fwidth"),
                     ChoiceParam("blend", pr.blend, {"division", "linstep", "smoothstep"},

@@ -58,11 +58,11 @@ namespace aalab {
 
 namespace {
 
-constexpr int kInKernel = 16;     // CMAA2_CS_INPUT_KERNEL_SIZE_X/Y
-constexpr int kOutKernel = 14;    // CMAA2_CS_OUTPUT_KERNEL_SIZE_X/Y
-constexpr int kGroup = 128;       // CMAA2_PROCESS_CANDIDATES_NUM_THREADS
-constexpr int kSlmItems = 768;    // CMAA2_BLEND_ITEM_SLM_SIZE
-constexpr int kApplyWalk = 32;    // DeferredColorApply2x2CS's maxLoops
+constexpr int kInKernel = 16;            // CMAA2_CS_INPUT_KERNEL_SIZE_X/Y
+constexpr int kOutKernel = 14;           // CMAA2_CS_OUTPUT_KERNEL_SIZE_X/Y
+constexpr int kGroup = 128;              // CMAA2_PROCESS_CANDIDATES_NUM_THREADS
+constexpr int kSlmItems = 768;           // CMAA2_BLEND_ITEM_SLM_SIZE
+constexpr int kApplyWalk = 32;           // DeferredColorApply2x2CS's maxLoops
 constexpr float kMaxLineLength = 86.0f;  // c_maxLineLength
 
 float Div(float a, float b) { return a / b; }  // IEEE division (what lavapipe runs; see the doc block)
@@ -96,7 +96,8 @@ uint16_t F32ToF16(float f) {  // f32tof16 for f in [0, 2): round to nearest even
   uint32_t h = m >> shift;
   const uint32_t rest = m & ((1u << shift) - 1u), half = 1u << (shift - 1);
   if (rest > half || (rest == half && (h & 1u))) ++h;
-  if (e >= 1) h = (static_cast<uint32_t>(e) << 10) + (h - 0x400u);  // drop the implicit bit; carries roll into the exponent
+  if (e >= 1)
+    h = (static_cast<uint32_t>(e) << 10) + (h - 0x400u);  // drop the implicit bit; carries roll into the exponent
   return static_cast<uint16_t>(h);
 }
 
@@ -164,11 +165,15 @@ Edges DetectEdges(const Frame& f, const Cmaa2Params& p, const Consts& k) {
   // Local contrast adaptation (ComputeLocalContrastV/H) and the threshold: edge right of
   // (x, y) and edge below (x, y).
   auto right = [&](int x, int y) {
-    const float lc = std::max(std::max(at(dB, x, y - 1), at(dB, x, y)), std::max(at(dB, x + 1, y - 1), at(dB, x + 1, y))) * k.contrast;
+    const float lc =
+        std::max(std::max(at(dB, x, y - 1), at(dB, x, y)), std::max(at(dB, x + 1, y - 1), at(dB, x + 1, y))) *
+        k.contrast;
     return (at(dR, x, y) - lc) > k.threshold;
   };
   auto below = [&](int x, int y) {
-    const float lc = std::max(std::max(at(dR, x - 1, y), at(dR, x, y)), std::max(at(dR, x - 1, y + 1), at(dR, x, y + 1))) * k.contrast;
+    const float lc =
+        std::max(std::max(at(dR, x - 1, y), at(dR, x, y)), std::max(at(dR, x - 1, y + 1), at(dR, x, y + 1))) *
+        k.contrast;
     return (at(dB, x, y) - lc) > k.threshold;
   };
   Edges e{w2, h, std::vector<uint8_t>(static_cast<size_t>(w2) * static_cast<size_t>(h))};
@@ -248,7 +253,12 @@ struct Item {  // one deferred colour sample
 class Processor {
  public:
   Processor(const Frame& f, const Edges& e, const Consts& k, Cmaa2Stats& s)
-      : f_(f), e_(e), k_(k), s_(s), qw_((f.w + 1) / 2), quads_(static_cast<size_t>(qw_) * static_cast<size_t>((f.h + 1) / 2)) {}
+      : f_(f),
+        e_(e),
+        k_(k),
+        s_(s),
+        qw_((f.w + 1) / 2),
+        quads_(static_cast<size_t>(qw_) * static_cast<size_t>((f.h + 1) / 2)) {}
 
   // ProcessCandidatesCS for one workgroup (up to 128 candidates), waves of `lanes` threads.
   void Group(const std::pair<int, int>* cand, int n, int lanes) {
@@ -334,7 +344,8 @@ class Processor {
   static uint32_t Pack(const V3& c) {  // Pack_R11G11B10_E4_FLOAT
     const float hi = std::bit_cast<float>(0x3FFFFFFFu);
     auto h = [&](float v) { return static_cast<uint32_t>(F32ToF16(std::fminf(std::fmaxf(v, 0.0f), hi))); };
-    return (((h(c[0]) + 4u) >> 3) & 0x7FFu) | (((h(c[1]) + 4u) << 8) & 0x3FF800u) | (((h(c[2]) + 8u) << 18) & 0xFFC00000u);
+    return (((h(c[0]) + 4u) >> 3) & 0x7FFu) | (((h(c[1]) + 4u) << 8) & 0x3FF800u) |
+           (((h(c[2]) + 8u) << 18) & 0xFFC00000u);
   }
   static V3 Unpack(uint32_t v) {
     return {F16ToF32((v << 3) & 0x3FF8u), F16ToF32((v >> 8) & 0x3FF8u), F16ToF32((v >> 18) & 0x3FF0u)};
@@ -447,7 +458,8 @@ class Processor {
     return k * r.dampen;
   }
 
-  void CollectBlendZs(int x, int y, bool horizontal, bool inverted, float quality, float left, float right, Slot* out) const {
+  void CollectBlendZs(int x, int y, bool horizontal, bool inverted, float quality, float left, float right,
+                      Slot* out) const {
     const Ramp r = RampOf(quality, left, right);
     for (float i = r.from; i <= r.to; i += 1.0f) {
       Slot s;
@@ -488,7 +500,8 @@ class Processor {
     }
     const V3 center = f_.At(px, py), from = f_.At(px + bx * s, py + by * s);
     V3 out;
-    for (int ch = 0; ch < 3; ++ch) out[static_cast<size_t>(ch)] = Lerp(center[static_cast<size_t>(ch)], from[static_cast<size_t>(ch)], k);
+    for (int ch = 0; ch < 3; ++ch)
+      out[static_cast<size_t>(ch)] = Lerp(center[static_cast<size_t>(ch)], from[static_cast<size_t>(ch)], k);
     Store(px, py, out, true);
   }
 
@@ -519,7 +532,9 @@ float Cmaa2LinearToSrgb(float x) {
   return 1.055f * std::pow(std::fabs(x), 1.0f / 2.4f) - 0.055f;
 }
 
-std::array<float, 3> Cmaa2PackUnpack(const std::array<float, 3>& rgb) { return Processor::Unpack(Processor::Pack(rgb)); }
+std::array<float, 3> Cmaa2PackUnpack(const std::array<float, 3>& rgb) {
+  return Processor::Unpack(Processor::Pack(rgb));
+}
 
 std::vector<float> Cmaa2Linear(const std::vector<float>& rgb, int w, int h, const Cmaa2Params& p,
                                std::vector<uint8_t>* written, Cmaa2Stats* stats) {
@@ -567,7 +582,8 @@ Image8 Cmaa2(const Image8& in, const Cmaa2Params& p, Cmaa2Stats* stats) {
     for (int x = 0; x < w; ++x) {
       const size_t pi = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
       if (!written[pi]) continue;
-      for (int ch = 0; ch < 3; ++ch) out.Pixel(x, y)[ch] = StoreUnorm8(Cmaa2LinearToSrgb(lin[pi * 3 + static_cast<size_t>(ch)]));
+      for (int ch = 0; ch < 3; ++ch)
+        out.Pixel(x, y)[ch] = StoreUnorm8(Cmaa2LinearToSrgb(lin[pi * 3 + static_cast<size_t>(ch)]));
     }
   }
   return out;
@@ -599,7 +615,9 @@ MethodEntry Cmaa2Entry(const std::string& name, int preset, const std::string& w
               Cmaa2Stats s;
               Image8 out = Cmaa2(in, cp, &s);
               // Taps: 8 colour loads per pixel for the edges, and per candidate its edge and colour loads.
-              if (stats) stats->taps += 8u * static_cast<uint64_t>(in.Width()) * static_cast<uint64_t>(in.Height()) + 2u * s.blend_items;
+              if (stats)
+                stats->taps +=
+                    8u * static_cast<uint64_t>(in.Width()) * static_cast<uint64_t>(in.Height()) + 2u * s.blend_items;
               return out;
             };
             return plan;

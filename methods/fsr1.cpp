@@ -321,9 +321,12 @@ MethodPlan EasuPlan(const std::string& name, const ParamValues& v, bool fxaa, bo
 
 std::vector<MethodEntry> Fsr1Methods() {
   std::vector<MethodEntry> out;
-  out.push_back({"scale43-easu", "render at 1/upscale (default 3/4), FSR 1 EASU to the output size", {UpscaleParam()},
+  out.push_back({"scale43-easu",
+                 "render at 1/upscale (default 3/4), FSR 1 EASU to the output size",
+                 {UpscaleParam()},
                  [](const ParamValues& v) { return EasuPlan("scale43-easu", v, false, false); }});
-  out.push_back({"scale43-easu-rcas", "render at 1/upscale (default 3/4), FSR 1 EASU, then RCAS at the output size",
+  out.push_back({"scale43-easu-rcas",
+                 "render at 1/upscale (default 3/4), FSR 1 EASU, then RCAS at the output size",
                  {UpscaleParam(), SharpnessParam()},
                  [](const ParamValues& v) { return EasuPlan("scale43-easu-rcas", v, false, true); }});
   out.push_back({"scale43-fxaa-high-easu-rcas",

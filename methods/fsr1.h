@@ -25,9 +25,9 @@ Fsr1EasuConst Fsr1EasuCon(float in_w, float in_h, float out_w, float out_h);
 uint32_t Fsr1RcasCon(float sharpness_stops);
 
 /// ffx_a.h's approximations, bit for bit (float bits as unsigned, integer subtract / shift).
-float Fsr1PrxLoRcp(float a);  ///< APrxLoRcpF1: 0x7ef07ebb - bits(a)
-float Fsr1PrxMedRcp(float a); ///< APrxMedRcpF1: b = 0x7ef19fff - bits(a), then b·(−b·a + 2)
-float Fsr1PrxLoRsq(float a);  ///< APrxLoRsqF1: 0x5f347d74 - (bits(a) >> 1)
+float Fsr1PrxLoRcp(float a);   ///< APrxLoRcpF1: 0x7ef07ebb - bits(a)
+float Fsr1PrxMedRcp(float a);  ///< APrxMedRcpF1: b = 0x7ef19fff - bits(a), then b·(−b·a + 2)
+float Fsr1PrxLoRsq(float a);   ///< APrxLoRsqF1: 0x5f347d74 - (bits(a) >> 1)
 
 /// A frame as the shader's texture reads it: three float planes, texel (x, y) of channel c at
 /// [c][y·w + x], each the UNORM8 code through TexelValue (the run's sampler arithmetic).

@@ -120,10 +120,8 @@ float FxaaLuma(const Rgb& c) { return c.g * kLumaGreen + c.r; }
 // min/max nesting; early exit when range < max(EDGE_THRESHOLD_MIN, rangeMax·EDGE_THRESHOLD)
 // (strict '<' as printed: a range equal to the threshold is processed).
 bool LocalContrastExit(Fxaa1Trace& t, const Fxaa1Params& p) {
-  const float range_min =
-      std::min(t.luma_m, std::min(std::min(t.luma_n, t.luma_w), std::min(t.luma_s, t.luma_e)));
-  t.range_max =
-      std::max(t.luma_m, std::max(std::max(t.luma_n, t.luma_w), std::max(t.luma_s, t.luma_e)));
+  const float range_min = std::min(t.luma_m, std::min(std::min(t.luma_n, t.luma_w), std::min(t.luma_s, t.luma_e)));
+  t.range_max = std::max(t.luma_m, std::max(std::max(t.luma_n, t.luma_w), std::max(t.luma_s, t.luma_e)));
   t.range = t.range_max - range_min;
   return t.range < std::max(p.edge_threshold_min, t.range_max * p.edge_threshold);
 }
@@ -211,8 +209,7 @@ Rgb SearchFetch(BilinearSampler& tex, float u, float v, float ax, float ay, int 
 // texels (1, 1.5, 2, 2.5 for N = 1..4) and step N texels (the header's
 // FXAA_SEARCH_ACCELERATION blocks). As in the loop printed in the whitepaper, a direction
 // still searching after the last fetch has already advanced one more step.
-void SearchEnds(Fxaa1Trace& t, BilinearSampler& tex, float cu, float cv, float side,
-                const Fxaa1Params& p) {
+void SearchEnds(Fxaa1Trace& t, BilinearSampler& tex, float cu, float cv, float side, const Fxaa1Params& p) {
   const float ax = t.horz_span ? 1.0f : 0.0f;
   const float ay = t.horz_span ? 0.0f : 1.0f;
   const int accel = p.search_acceleration;
@@ -286,11 +283,10 @@ View ParseView(const std::string& name) {
 
 void CheckRange(const char* name, double v, double lo, double hi) {
   if (!(v >= lo && v <= hi)) {
-    throw UserError(std::string("fxaa1: parameter ") + name + "=" + FormatNumber(v) +
-                    " is out of range [" + FormatNumber(lo) + ".." + FormatNumber(hi) + "]");
+    throw UserError(std::string("fxaa1: parameter ") + name + "=" + FormatNumber(v) + " is out of range [" +
+                    FormatNumber(lo) + ".." + FormatNumber(hi) + "]");
   }
 }
-
 
 // Debug colours (see the header block). `grey` is lumaO = lumaM / (1 + 0.587/0.299).
 Rgb DebugColour(const Fxaa1Trace& t, View view, const Fxaa1Params& p) {
@@ -298,14 +294,10 @@ Rgb DebugColour(const Fxaa1Trace& t, View view, const Fxaa1Params& p) {
   const Rgb g{grey, grey, grey};
   if (t.early_exit) return g;
   switch (view) {
-    case View::kPassthrough:
-      return Rgb{1.0f, p.subpix_cap > 0.0f ? t.blend_l / p.subpix_cap : 0.0f, 0.0f};
-    case View::kHorzVert:
-      return t.horz_span ? Rgb{1.0f, 0.75f, 0.0f} : Rgb{0.0f, 0.5f, 1.0f};
-    case View::kPair:
-      return t.pair_n ? Rgb{0.0f, 0.0f, 1.0f} : Rgb{0.0f, 1.0f, 0.0f};
-    case View::kNegPos:
-      return t.direction_n ? Rgb{1.0f, 0.0f, 0.0f} : Rgb{0.0f, 0.0f, 1.0f};
+    case View::kPassthrough: return Rgb{1.0f, p.subpix_cap > 0.0f ? t.blend_l / p.subpix_cap : 0.0f, 0.0f};
+    case View::kHorzVert: return t.horz_span ? Rgb{1.0f, 0.75f, 0.0f} : Rgb{0.0f, 0.5f, 1.0f};
+    case View::kPair: return t.pair_n ? Rgb{0.0f, 0.0f, 1.0f} : Rgb{0.0f, 1.0f, 0.0f};
+    case View::kNegPos: return t.direction_n ? Rgb{1.0f, 0.0f, 0.0f} : Rgb{0.0f, 0.0f, 1.0f};
     case View::kOffset: {
       if (t.offset == 0.0f) return g;
       const float amount = std::min(1.0f, std::fabs(t.offset) * 2.0f);
@@ -363,8 +355,7 @@ Fxaa1Params Fxaa1Preset(int preset) {
 }
 
 const std::vector<std::string>& Fxaa1DebugViews() {
-  static const std::vector<std::string> views = {"passthrough", "horzvert", "pair", "negpos",
-                                                 "offset"};
+  static const std::vector<std::string> views = {"passthrough", "horzvert", "pair", "negpos", "offset"};
   return views;
 }
 
@@ -416,8 +407,7 @@ Fxaa1Trace Fxaa1TracePixel(BilinearSampler& tex, int x, int y, const Fxaa1Params
   t.offset = SubPixelShift(t, side);
 
   // Step 7 — re-sample the input at the shifted position (one bilinear fetch).
-  const Rgb rgb_f = ToRgb(tex.Sample(cu + (t.horz_span ? 0.0f : t.offset),
-                                     cv + (t.horz_span ? t.offset : 0.0f)));
+  const Rgb rgb_f = ToRgb(tex.Sample(cu + (t.horz_span ? 0.0f : t.offset), cv + (t.horz_span ? t.offset : 0.0f)));
   t.rgb_f[0] = rgb_f.r;
   t.rgb_f[1] = rgb_f.g;
   t.rgb_f[2] = rgb_f.b;
@@ -428,8 +418,7 @@ Fxaa1Trace Fxaa1TracePixel(BilinearSampler& tex, int x, int y, const Fxaa1Params
   return t;
 }
 
-Image8 Fxaa1Reference(const Image8& in, const Fxaa1Params& p, const std::string& debug_view,
-                      PostStats* stats) {
+Image8 Fxaa1Reference(const Image8& in, const Fxaa1Params& p, const std::string& debug_view, PostStats* stats) {
   Fxaa1CheckParams(p);
   const View view = ParseView(debug_view);
   AALAB_CHECK(in.Channels() == 4, "fxaa1 needs an RGBA8 frame");
@@ -486,8 +475,7 @@ std::vector<ParamDef> Fxaa1ParamDefs(const Fxaa1Params& d) {
                  "FXAA_EDGE_THRESHOLD: skip pixels whose local luma range < this x local max luma"),
       FloatParam("edge_threshold_min", d.edge_threshold_min, 0.0, 1.0,
                  "FXAA_EDGE_THRESHOLD_MIN: floor of the contrast threshold (skips darks), luma units"),
-      IntParam("search_steps", d.search_steps, 1, 64,
-               "FXAA_SEARCH_STEPS: end-of-edge search fetches per direction"),
+      IntParam("search_steps", d.search_steps, 1, 64, "FXAA_SEARCH_STEPS: end-of-edge search fetches per direction"),
       IntParam("search_acceleration", d.search_acceleration, 1, 4,
                "FXAA_SEARCH_ACCELERATION: texel pairs per search fetch (anisotropic box filter)"),
       FloatParam("search_threshold", d.search_threshold, 0.0, 1.0,
@@ -533,27 +521,26 @@ std::vector<ParamDef> PresetDefs(int preset) {
 
 MethodEntry Fxaa1Entry(int preset, const std::string& help, bool in_default_list = false) {
   const std::string name = "fxaa1-p" + std::to_string(preset);
-  MethodEntry entry{
-      name, help, PresetDefs(preset), [name](const ParamValues& v) {
-        const Fxaa1Params params = ParamsFromValues(v);
-        MethodPlan plan;
-        plan.name = name;
-        plan.params = v;
-        plan.render = RenderSpec{};  // 1x centre samples
-        plan.post = [params](const Image8& in, const PostOptions& options, PostStats* stats) {
-          Fxaa1Params p = params;
-          p.sampler = options.sampler;
-          return Fxaa1(in, p, options.debug_view, stats);
-        };
-        plan.post_reference = [params](const Image8& in, const PostOptions& options, PostStats* stats) {
-          Fxaa1Params p = params;
-          p.sampler = options.sampler;
-          return Fxaa1Reference(in, p, options.debug_view, stats);
-        };
-        plan.config = params;
-        plan.debug_views = Fxaa1DebugViews();
-        return plan;
-      }};
+  MethodEntry entry{name, help, PresetDefs(preset), [name](const ParamValues& v) {
+                      const Fxaa1Params params = ParamsFromValues(v);
+                      MethodPlan plan;
+                      plan.name = name;
+                      plan.params = v;
+                      plan.render = RenderSpec{};  // 1x centre samples
+                      plan.post = [params](const Image8& in, const PostOptions& options, PostStats* stats) {
+                        Fxaa1Params p = params;
+                        p.sampler = options.sampler;
+                        return Fxaa1(in, p, options.debug_view, stats);
+                      };
+                      plan.post_reference = [params](const Image8& in, const PostOptions& options, PostStats* stats) {
+                        Fxaa1Params p = params;
+                        p.sampler = options.sampler;
+                        return Fxaa1Reference(in, p, options.debug_view, stats);
+                      };
+                      plan.config = params;
+                      plan.debug_views = Fxaa1DebugViews();
+                      return plan;
+                    }};
   entry.in_default_list = in_default_list;
   return entry;
 }

@@ -49,15 +49,15 @@ struct Fxaa1Trace {
   float range_max = 0, range = 0;
   bool early_exit = false;  ///< range < max(EDGE_THRESHOLD_MIN, rangeMax·EDGE_THRESHOLD)
   // Sub-pixel aliasing test and lowpass.
-  float blend_l = 0;         ///< amount of rgbL blended in at the end, in [0, CAP]
+  float blend_l = 0;  ///< amount of rgbL blended in at the end, in [0, CAP]
   float rgb_l[3] = {0, 0, 0};
   // Vertical/horizontal edge test.
   float edge_vert = 0, edge_horz = 0;
-  bool horz_span = false;    ///< edgeHorz >= edgeVert: the edge runs along x
+  bool horz_span = false;  ///< edgeHorz >= edgeVert: the edge runs along x
   // Pairing and end-of-edge search.
-  bool pair_n = false;       ///< paired with N (horz) / W (vert); false = S / E
-  float luma_pair = 0;       ///< average luma of M and its pair (the shader's lumaN)
-  float gradient = 0;        ///< |luma(pair) - lumaM| · SEARCH_THRESHOLD (the stop limit)
+  bool pair_n = false;  ///< paired with N (horz) / W (vert); false = S / E
+  float luma_pair = 0;  ///< average luma of M and its pair (the shader's lumaN)
+  float gradient = 0;   ///< |luma(pair) - lumaM| · SEARCH_THRESHOLD (the stop limit)
   float luma_end_n = 0, luma_end_p = 0;
   bool done_n = false, done_p = false;  ///< the search found an end (else ran out of steps)
   int fetches_n = 0, fetches_p = 0;     ///< search fetch instructions issued per direction
@@ -84,12 +84,10 @@ Fxaa1Trace Fxaa1TracePixel(BilinearSampler& tex, int x, int y, const Fxaa1Params
 /// This is the production path (luma plane once per frame, row-wise contrast check, only
 /// edge pixels through Fxaa1TracePixel; debug views through Fxaa1Reference): same bits and
 /// taps as Fxaa1Reference.
-Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_view,
-             PostStats* stats);
+Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_view, PostStats* stats);
 
 /// The simple implementation of Fxaa1: Fxaa1TracePixel for every pixel. Kept as the
 /// reference the production path is tested against, bit for bit.
-Image8 Fxaa1Reference(const Image8& in, const Fxaa1Params& p, const std::string& debug_view,
-                      PostStats* stats);
+Image8 Fxaa1Reference(const Image8& in, const Fxaa1Params& p, const std::string& debug_view, PostStats* stats);
 
 }  // namespace aalab

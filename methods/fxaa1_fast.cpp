@@ -38,7 +38,7 @@ Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_vi
   static const auto tables = [] {
     std::array<std::array<float, 256>, 2> t{};
     for (int k = 0; k < 256; ++k) {
-      t[0][k] = UnormToFloat(static_cast<uint8_t>(k));               // r
+      t[0][k] = UnormToFloat(static_cast<uint8_t>(k));                    // r
       t[1][k] = UnormToFloat(static_cast<uint8_t>(k)) * kFxaa1LumaGreen;  // g · (0.587/0.299)
     }
     return t;

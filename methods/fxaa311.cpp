@@ -161,8 +161,8 @@ void CopyPixel(const Image8& src, int x, int y, uint8_t* out) {
 }
 
 // One invocation of FxaaPixelShader for pixel (x, y). Variable names are the shader's.
-void ShadePixel(BilinearSampler& tex, const Image8& src, int x, int y, const Fxaa311Params& prm,
-                float rcpX, float rcpY, uint8_t* out) {
+void ShadePixel(BilinearSampler& tex, const Image8& src, int x, int y, const Fxaa311Params& prm, float rcpX, float rcpY,
+                uint8_t* out) {
   const Luma lm = prm.luma;
   const bool glsl = prm.order == Order::kSeed003Glsl;
   const std::vector<float>& P = prm.steps;
@@ -172,8 +172,8 @@ void ShadePixel(BilinearSampler& tex, const Image8& src, int x, int y, const Fxa
   float posMy = (static_cast<float>(y) + 0.5f) / static_cast<float>(src.Height());
   // The 3x3 taps as the shader writes them (see "Taps" above).
   auto tap = [&](int dx, int dy) {
-    if (glsl) return tex.SampleNormalizedOffset(posMx, posMy, dx, dy);  // textureLodOffset
-    return tex.SampleNormalized(posMx + static_cast<float>(dx) * rcpX,  // texture2D(tex,
+    if (glsl) return tex.SampleNormalizedOffset(posMx, posMy, dx, dy);   // textureLodOffset
+    return tex.SampleNormalized(posMx + static_cast<float>(dx) * rcpX,   // texture2D(tex,
                                 posMy + static_cast<float>(dy) * rcpY);  //   posM + off·rcp)
   };
   const Float4 rgbyM = tap(0, 0);  // FxaaTexTop(tex, posM)
@@ -437,10 +437,8 @@ const std::vector<float>& FxaaTutorialSteps(const std::string& level) {
   // seed 000, section 3.7: the first search step is 1 ("uvP = edgeUV + uvStep"), then
   // EDGE_STEP_SIZES, then LAST_EDGE_STEP_GUESS.
   static const std::vector<float> low = {1.0f, 1.5f, 2.0f, 2.0f, 8.0f};
-  static const std::vector<float> medium = {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f,
-                                            2.0f, 2.0f, 4.0f, 8.0f};
-  static const std::vector<float> high = {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.5f,
-                                          2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f};
+  static const std::vector<float> medium = {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f};
+  static const std::vector<float> high = {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f};
   if (level == "low") return low;
   if (level == "medium") return medium;
   if (level == "high") return high;
@@ -479,8 +477,7 @@ std::vector<ParamDef> FxaaParamDefs(double thr, double thr_min, const std::strin
   };
 }
 
-MethodPlan FxaaPlan(const std::string& name, const ParamValues& v, std::vector<float> steps,
-                    Order order) {
+MethodPlan FxaaPlan(const std::string& name, const ParamValues& v, std::vector<float> steps, Order order) {
   Fxaa311Params fp;
   fp.steps = std::move(steps);
   fp.subpix = static_cast<float>(v.Number("subpix"));
@@ -506,8 +503,8 @@ std::string StepsText(const std::vector<float>& steps) {
   return s + "; reach " + FormatNumber(reach) + " px";
 }
 
-MethodEntry FxaaEntry(const std::string& name, const std::string& help, std::vector<float> steps,
-                      double thr, double thr_min, const std::string& luma, Order order) {
+MethodEntry FxaaEntry(const std::string& name, const std::string& help, std::vector<float> steps, double thr,
+                      double thr_min, const std::string& luma, Order order) {
   return {name, help + " (steps " + StepsText(steps) + ")", FxaaParamDefs(thr, thr_min, luma),
           [name, steps, order](const ParamValues& v) { return FxaaPlan(name, v, steps, order); }};
 }
@@ -519,26 +516,23 @@ std::vector<MethodEntry> Fxaa311Methods() {
   for (int id : Fxaa311PresetIds()) {
     const char* kind = id < 20 ? "medium dither" : id < 30 ? "low dither" : "extreme quality";
     out.push_back(FxaaEntry("fxaa311-p" + std::to_string(id),
-                            "FXAA 3.11 Quality preset " + std::to_string(id) + ", " + kind,
-                            Fxaa311PresetSteps(id), 0.166, 0.0833, "rec601", Order::kFxaa311));
+                            "FXAA 3.11 Quality preset " + std::to_string(id) + ", " + kind, Fxaa311PresetSteps(id),
+                            0.166, 0.0833, "rec601", Order::kFxaa311));
   }
   out.push_back(FxaaEntry("fxaa-low", "FXAA 3.11, Catlike Coding tutorial low quality (= preset 22)",
-                          FxaaTutorialSteps("low"), 0.166, 0.0833, "sqrt-luminance",
-                          Order::kFxaa311));
-  out.push_back(FxaaEntry("fxaa-medium",
-                          "FXAA 3.11, Catlike Coding tutorial medium quality (= preset 27's table)",
-                          FxaaTutorialSteps("medium"), 0.166, 0.0833, "sqrt-luminance",
-                          Order::kFxaa311));
+                          FxaaTutorialSteps("low"), 0.166, 0.0833, "sqrt-luminance", Order::kFxaa311));
+  out.push_back(FxaaEntry("fxaa-medium", "FXAA 3.11, Catlike Coding tutorial medium quality (= preset 27's table)",
+                          FxaaTutorialSteps("medium"), 0.166, 0.0833, "sqrt-luminance", Order::kFxaa311));
   out.push_back(FxaaEntry("fxaa-high", "FXAA 3.11, Catlike Coding tutorial high quality (= preset 39)",
-                          FxaaTutorialSteps("high"), 0.166, 0.0833, "sqrt-luminance",
-                          Order::kFxaa311));
+                          FxaaTutorialSteps("high"), 0.166, 0.0833, "sqrt-luminance", Order::kFxaa311));
   out.push_back(FxaaEntry("fxaa-iter12",
                           "widely copied GLSL FXAA with 12 iterations (seed 003): preset 39 steps, "
                           "thresholds 0.125/0.0312, luma from rgb per tap, that GLSL's float order",
                           Fxaa311PresetSteps(39), 0.125, 0.0312, "rec601-rgb", Order::kSeed003Glsl));
   // In `aalab run`'s default list: two presets, the tutorial's high quality and the GLSL copy.
   for (auto& e : out) {
-    e.in_default_list = e.name == "fxaa311-p12" || e.name == "fxaa311-p39" || e.name == "fxaa-high" || e.name == "fxaa-iter12";
+    e.in_default_list =
+        e.name == "fxaa311-p12" || e.name == "fxaa311-p39" || e.name == "fxaa-high" || e.name == "fxaa-iter12";
   }
   return out;
 }

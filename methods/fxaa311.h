@@ -39,9 +39,9 @@ struct Fxaa311Params {
   /// taps; P1..P(n-2) are advanced before a further fetch; P(n-1) is advanced after the
   /// final fetch (a guess) and never fetched.
   std::vector<float> steps;
-  float subpix = 0.75f;               ///< fxaaQualitySubpix, amount of sub-pixel blending
-  float edge_threshold = 0.166f;      ///< fxaaQualityEdgeThreshold (relative to max luma)
-  float edge_threshold_min = 0.0833f; ///< fxaaQualityEdgeThresholdMin (absolute)
+  float subpix = 0.75f;                ///< fxaaQualitySubpix, amount of sub-pixel blending
+  float edge_threshold = 0.166f;       ///< fxaaQualityEdgeThreshold (relative to max luma)
+  float edge_threshold_min = 0.0833f;  ///< fxaaQualityEdgeThresholdMin (absolute)
   Luma luma = Luma::kRec601;
   Order order = Order::kFxaa311;
   SamplerArithmetic sampler = SamplerArithmetic::kGl;  ///< texel/filter arithmetic (PostOptions)
@@ -56,8 +56,7 @@ const std::vector<std::string>& Fxaa311LumaNames();
 /// holds the luma rounded to 8 bits (StoreUnorm8, GL's UNORM store); for kGreen and
 /// kRec601Rgb a plain copy (those modes read luma from rgb at each tap). kRec601 reads the
 /// texels as TexelValue(k, sampler), as the GPU pre-pass reads them through the texture unit.
-Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma,
-                        SamplerArithmetic sampler = SamplerArithmetic::kGl);
+Image8 Fxaa311LumaFrame(const Image8& in, Fxaa311Params::Luma luma, SamplerArithmetic sampler = SamplerArithmetic::kGl);
 
 /// The luma the shader reads from one tap of the frame Fxaa311LumaFrame prepared
 /// (FxaaLuma): alpha, green, or dot(rgb, (0.299, 0.587, 0.114)) evaluated as

@@ -238,8 +238,8 @@ int ContrastRowBytes(RowTriple<uint8_t> r, int w, const TapGrid& g, int y, const
 // ShadePixel for a pixel that passed the early exit with range > 0, lumas from the plane.
 // Statement order and float expressions are ShadePixel's; returns the taps it took.
 template <typename P>
-uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler& tex, const Image8& src,
-                   int x, int y, const Fxaa311Params& prm, float rcpX, float rcpY, uint8_t* out) {
+uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler& tex, const Image8& src, int x, int y,
+                   const Fxaa311Params& prm, float rcpX, float rcpY, uint8_t* out) {
   const bool glsl = prm.order == Order::kSeed003Glsl;
   const bool rgb_taps = prm.luma == Luma::kRec601Rgb;  // bilinear lumas need filtered rgb
   const std::vector<float>& P_ = prm.steps;
@@ -399,7 +399,6 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler&
   out[3] = 255;
   return taps;
 }
-
 
 template <typename P>
 Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* stats) {

@@ -146,8 +146,7 @@ template <typename P>
 // exact and whose texel lumas put the test within the grid's deviation of a tie: true
 // when the pixel goes on (passes the test and has range > 0).
 template <typename P>
-bool EdgeByTaps(const LumaPlane<P>& pl, const Image8& src, const TapGrid& g, int x, int y,
-                const Fxaa311Params& prm) {
+bool EdgeByTaps(const LumaPlane<P>& pl, const Image8& src, const TapGrid& g, int x, int y, const Fxaa311Params& prm) {
   const TapAxis& cx = g.cols[x];
   const TapAxis& ry = g.rows[y];
   auto L = [&](int dx, int dy) { return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma); };

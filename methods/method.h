@@ -74,11 +74,11 @@ enum class Rescale { kNone, kBilinear, kBicubic, kEasu };
 
 /// A fully resolved method: everything the runner needs.
 struct MethodPlan {
-  std::string name;          ///< registry name ("fxaa311-p39")
-  std::string spec;          ///< canonical spec: name plus overrides in definition order
-  ParamValues params;        ///< every parameter, resolved
+  std::string name;    ///< registry name ("fxaa311-p39")
+  std::string spec;    ///< canonical spec: name plus overrides in definition order
+  ParamValues params;  ///< every parameter, resolved
   RenderSpec render;
-  PostFilter post;           ///< empty when the method has no post filter
+  PostFilter post;                       ///< empty when the method has no post filter
   std::vector<std::string> debug_views;  ///< views `post` supports ("" excluded)
   Rescale rescale = Rescale::kNone;
   /// A filter run on the output-size frame after the rescale (FSR 1's RCAS after EASU);
@@ -91,7 +91,8 @@ struct MethodPlan {
   /// The family's typed parameters, built by the family's factory from `params`: for a post
   /// filter the struct its `post` runs with (Fxaa1Params, Fxaa311Params, SmaaParams; for
   /// scale43-fxaa-high its FXAA's); empty for families whose `render`, `rescale` and
-  /// `params` say everything (TAA: its state is private to methods/taa.cpp). Read with Config<T>(), not by parsing `name`.
+  /// `params` say everything (TAA: its state is private to methods/taa.cpp). Read with Config<T>(), not by parsing
+  /// `name`.
   std::any config;
   /// For a post filter with a separate production path: the plain reference implementation
   /// that `post` equals bit for bit (same output, same taps); empty otherwise.
@@ -108,9 +109,7 @@ struct MethodPlan {
     return std::any_cast<T>(&config);
   }
   /// True when the method works on a finished 1x frame alone (usable by `aalab apply`).
-  bool IsPostOnly() const {
-    return post && render.IsPlain1x() && rescale == Rescale::kNone;
-  }
+  bool IsPostOnly() const { return post && render.IsPlain1x() && rescale == Rescale::kNone; }
   /// True for methods with memory (TAA): they need a sequence, and a still run's default list leaves them out.
   bool NeedsHistory() const { return static_cast<bool>(make_state); }
   /// True when the method changes nothing: a plain 1x render, no post filter, no state, no rescale (`none`).

@@ -46,12 +46,13 @@ namespace aalab {
 namespace {
 
 std::vector<ParamDef> MsaaParams() {
-  return {ChoiceParam("shading", "center", {"center", "centroid"},
-                      "where a primitive is shaded: the pixel centre (extrapolated) or the centroid rule"),
-          ChoiceParam("alpha_test", "shade", {"shade", "sample", "a2c"},
-                      "alpha test once per shading evaluation (discard), at every coverage sample, or alpha-to-coverage"),
-          ChoiceParam("resolve", "display", {"display", "hdr-linear"},
-                      "tonemap each sample then average (display) or average radiance then tonemap (hdr-linear)")};
+  return {
+      ChoiceParam("shading", "center", {"center", "centroid"},
+                  "where a primitive is shaded: the pixel centre (extrapolated) or the centroid rule"),
+      ChoiceParam("alpha_test", "shade", {"shade", "sample", "a2c"},
+                  "alpha test once per shading evaluation (discard), at every coverage sample, or alpha-to-coverage"),
+      ChoiceParam("resolve", "display", {"display", "hdr-linear"},
+                  "tonemap each sample then average (display) or average radiance then tonemap (hdr-linear)")};
 }
 
 /// The render request of msaa-<n>x with resolved parameters.
@@ -60,7 +61,9 @@ RenderSpec MsaaRender(int samples, const ParamValues& p) {
   r.msaa.samples = samples;
   r.msaa.shading = p.Choice("shading") == "centroid" ? MsaaShading::kCentroid : MsaaShading::kCenter;
   const std::string& at = p.Choice("alpha_test");
-  r.msaa.alpha_test = at == "sample" ? MsaaAlphaTest::kSample : at == "a2c" ? MsaaAlphaTest::kCoverage : MsaaAlphaTest::kShade;
+  r.msaa.alpha_test = at == "sample" ? MsaaAlphaTest::kSample
+                      : at == "a2c"  ? MsaaAlphaTest::kCoverage
+                                     : MsaaAlphaTest::kShade;
   r.msaa.resolve = p.Choice("resolve") == "hdr-linear" ? MsaaResolve::kHdrLinear : MsaaResolve::kDisplay;
   return r;
 }

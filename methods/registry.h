@@ -10,11 +10,11 @@ namespace aalab {
 
 /// What the listings say about one method family (one family file).
 struct MethodFamily {
-  std::string name;    ///< MethodEntry::family ("fxaa311")
-  std::string title;   ///< "FXAA 3.11 Quality"
-  std::string files;   ///< the family's source files, comma separated
-  std::string page;    ///< its docs page ("" = none)
-  std::string source;  ///< BibTeX keys of reports/export_bibliography.cpp, comma separated ("" = nothing to cite)
+  std::string name;       ///< MethodEntry::family ("fxaa311")
+  std::string title;      ///< "FXAA 3.11 Quality"
+  std::string files;      ///< the family's source files, comma separated
+  std::string page;       ///< its docs page ("" = none)
+  std::string source;     ///< BibTeX keys of reports/export_bibliography.cpp, comma separated ("" = nothing to cite)
   bool gpu_twin = false;  ///< CUDA twins in methods/cuda/, run by the GPU tool (gpu/)
 };
 

@@ -60,14 +60,10 @@ MethodPlan ScalePlan(const std::string& name, const ParamValues& v, bool fxaa) {
 
 std::vector<MethodEntry> RenderScaleMethods() {
   std::vector<MethodEntry> out;
-  out.push_back({"scale43",
-                 "render scale alone (default 4/3), centre samples, rescaled to the output size",
-                 ScaleParams(),
-                 [](const ParamValues& v) { return ScalePlan("scale43", v, false); }});
-  out.push_back({"scale43-fxaa-high",
-                 "render scale (default 4/3) + tutorial high-quality FXAA at that size, rescaled",
-                 ScaleParams(),
-                 [](const ParamValues& v) { return ScalePlan("scale43-fxaa-high", v, true); }});
+  out.push_back({"scale43", "render scale alone (default 4/3), centre samples, rescaled to the output size",
+                 ScaleParams(), [](const ParamValues& v) { return ScalePlan("scale43", v, false); }});
+  out.push_back({"scale43-fxaa-high", "render scale (default 4/3) + tutorial high-quality FXAA at that size, rescaled",
+                 ScaleParams(), [](const ParamValues& v) { return ScalePlan("scale43-fxaa-high", v, true); }});
   out.back().in_default_list = true;
   return out;
 }

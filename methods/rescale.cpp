@@ -57,7 +57,7 @@ struct Axis {
 Axis BicubicAxis(int X, int n_out, int n_in) {
   const float s = (static_cast<float>(X) + 0.5f) / static_cast<float>(n_out);
   const float u = s * static_cast<float>(n_in);  // input pixel coordinates
-  const float x = u - 0.5f;                       // texel-centre space
+  const float x = u - 0.5f;                      // texel-centre space
   const float i = std::floor(x);
   const float t = x - i;
   const BsplineTaps b = BsplineCubicTaps(t);
@@ -77,8 +77,7 @@ Image8 RescaleFrameReference(const Image8& in, int out_w, int out_h, Rescale kin
   AALAB_CHECK(out_w > 0 && out_h > 0, "RescaleFrame needs a positive output size");
   if (kind == Rescale::kEasu) return Fsr1Easu(in, out_w, out_h, stats, sampler);
   if (kind == Rescale::kNone) {
-    AALAB_CHECK(out_w == in.Width() && out_h == in.Height(),
-                "Rescale::kNone with a frame of another size");
+    AALAB_CHECK(out_w == in.Width() && out_h == in.Height(), "Rescale::kNone with a frame of another size");
     return in;
   }
   AALAB_CHECK(!in.Empty(), "RescaleFrame needs a non-empty frame");
@@ -113,8 +112,7 @@ Image8 RescaleFrameReference(const Image8& in, int out_w, int out_h, Rescale kin
           const float a01[3] = {c01.r, c01.g, c01.b};
           const float a11[3] = {c11.r, c11.g, c11.b};
           for (int c = 0; c < 3; ++c) {
-            rgb[c] = ay.g0 * (ax.g0 * a00[c] + ax.g1 * a10[c]) +
-                     ay.g1 * (ax.g0 * a01[c] + ax.g1 * a11[c]);
+            rgb[c] = ay.g0 * (ax.g0 * a00[c] + ax.g1 * a10[c]) + ay.g1 * (ax.g0 * a01[c] + ax.g1 * a11[c]);
           }
         }
         uint8_t* o = out.Pixel(X, Y);
@@ -188,8 +186,7 @@ inline uint8_t Quantize(float v) {  // QuantizeUnorm8: lround(vÂ·255) = floor(vÂ
 
 }  // namespace
 
-Image8 RescaleFrame(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats,
-                    SamplerArithmetic sampler) {
+Image8 RescaleFrame(const Image8& in, int out_w, int out_h, Rescale kind, PostStats* stats, SamplerArithmetic sampler) {
   AALAB_CHECK(in.Channels() == 4, "RescaleFrame needs an RGBA8 frame");
   AALAB_CHECK(out_w > 0 && out_h > 0, "RescaleFrame needs a positive output size");
   if (kind == Rescale::kEasu) return Fsr1Easu(in, out_w, out_h, stats, sampler);

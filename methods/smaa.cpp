@@ -320,7 +320,8 @@ std::vector<ParamDef> SmaaParamDefs(const SmaaParams& d, double threshold) {
       FloatParam("local_contrast", d.local_contrast_factor, 0.0, 10.0,
                  "drop an edge when a neighbouring edge has this many times its contrast "
                  "(SMAA_LOCAL_CONTRAST_ADAPTATION_FACTOR)"),
-      ChoiceParam("diag", d.diag ? "on" : "off", {"on", "off"}, "diagonal pattern detection (off = SMAA_DISABLE_DIAG_DETECTION)"),
+      ChoiceParam("diag", d.diag ? "on" : "off", {"on", "off"},
+                  "diagonal pattern detection (off = SMAA_DISABLE_DIAG_DETECTION)"),
       ChoiceParam("corner", d.corner ? "on" : "off", {"on", "off"},
                   "corner detection/rounding (off = SMAA_DISABLE_CORNER_DETECTION)"),
       ChoiceParam("detection", "luma", {"luma", "color"},
@@ -344,7 +345,8 @@ MethodEntry SmaaEntry(const std::string& preset, double threshold, const std::st
             sp.local_contrast_factor = static_cast<float>(v.Number("local_contrast"));
             sp.diag = v.Choice("diag") == "on";
             sp.corner = v.Choice("corner") == "on";
-            sp.detection = v.Choice("detection") == "color" ? SmaaParams::Detection::kColor : SmaaParams::Detection::kLuma;
+            sp.detection =
+                v.Choice("detection") == "color" ? SmaaParams::Detection::kColor : SmaaParams::Detection::kLuma;
             sp.subtexel = v.Choice("subtexel") == "exact" ? SubTexel::kExact : SubTexel::kFixed8;
             MethodPlan plan;
             plan.name = name;
@@ -370,9 +372,12 @@ MethodEntry SmaaEntry(const std::string& preset, double threshold, const std::st
 std::vector<MethodEntry> SmaaMethods() {
   std::vector<MethodEntry> out = {
       SmaaEntry("low", 0.15, "SMAA 1x, reference preset LOW: threshold 0.15, 4 search steps, no diagonals, no corners"),
-      SmaaEntry("medium", 0.1, "SMAA 1x, reference preset MEDIUM: threshold 0.1, 8 search steps, no diagonals, no corners"),
-      SmaaEntry("high", 0.1, "SMAA 1x, reference preset HIGH: threshold 0.1, 16 search steps, 8 diagonal, corner rounding 25"),
-      SmaaEntry("ultra", 0.05, "SMAA 1x, reference preset ULTRA: threshold 0.05, 32 search steps, 16 diagonal, corner rounding 25"),
+      SmaaEntry("medium", 0.1,
+                "SMAA 1x, reference preset MEDIUM: threshold 0.1, 8 search steps, no diagonals, no corners"),
+      SmaaEntry("high", 0.1,
+                "SMAA 1x, reference preset HIGH: threshold 0.1, 16 search steps, 8 diagonal, corner rounding 25"),
+      SmaaEntry("ultra", 0.05,
+                "SMAA 1x, reference preset ULTRA: threshold 0.05, 32 search steps, 16 diagonal, corner rounding 25"),
   };
   for (auto& e : out) e.in_default_list = e.name == "smaa-high";  // in `aalab run`'s default list
   return out;

@@ -16,14 +16,14 @@ namespace aalab {
 struct SmaaParams {
   enum class Detection { kLuma, kColor };  ///< SMAALumaEdgeDetectionPS / SMAAColorEdgeDetectionPS
   Detection detection = Detection::kLuma;
-  float threshold = 0.1f;               ///< SMAA_THRESHOLD, [0, 0.5]
-  int max_search_steps = 16;            ///< SMAA_MAX_SEARCH_STEPS, [0, 112]
-  int max_search_steps_diag = 8;        ///< SMAA_MAX_SEARCH_STEPS_DIAG, [0, 20]
-  int corner_rounding = 25;             ///< SMAA_CORNER_ROUNDING, [0, 100]
-  float local_contrast_factor = 2.0f;   ///< SMAA_LOCAL_CONTRAST_ADAPTATION_FACTOR
-  bool diag = true;                     ///< false = SMAA_DISABLE_DIAG_DETECTION
-  bool corner = true;                   ///< false = SMAA_DISABLE_CORNER_DETECTION
-  SubTexel subtexel = SubTexel::kFixed8;  ///< bilinear fraction precision of every fetch
+  float threshold = 0.1f;                              ///< SMAA_THRESHOLD, [0, 0.5]
+  int max_search_steps = 16;                           ///< SMAA_MAX_SEARCH_STEPS, [0, 112]
+  int max_search_steps_diag = 8;                       ///< SMAA_MAX_SEARCH_STEPS_DIAG, [0, 20]
+  int corner_rounding = 25;                            ///< SMAA_CORNER_ROUNDING, [0, 100]
+  float local_contrast_factor = 2.0f;                  ///< SMAA_LOCAL_CONTRAST_ADAPTATION_FACTOR
+  bool diag = true;                                    ///< false = SMAA_DISABLE_DIAG_DETECTION
+  bool corner = true;                                  ///< false = SMAA_DISABLE_CORNER_DETECTION
+  SubTexel subtexel = SubTexel::kFixed8;               ///< bilinear fraction precision of every fetch
   SamplerArithmetic sampler = SamplerArithmetic::kGl;  ///< texel/filter arithmetic (PostOptions)
 };
 
@@ -45,8 +45,7 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
 /// The plain implementation: the three passes over every pixel, statement by statement as
 /// SMAA.hlsl, every fetch through BilinearSampler (mode params.subtexel), the edge and blend
 /// textures stored as 8-bit render targets. The reference Smaa is tested against.
-Image8 SmaaReference(const Image8& in, const SmaaParams& params, const std::string& debug_view,
-                     PostStats* stats);
+Image8 SmaaReference(const Image8& in, const SmaaParams& params, const std::string& debug_view, PostStats* stats);
 
 /// The edge texture of pass 1 alone (RGBA8: r = left edge, g = top edge, each 0 or 255).
 Image8 SmaaEdgeTexture(const Image8& in, const SmaaParams& params);

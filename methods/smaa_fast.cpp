@@ -79,7 +79,8 @@ inline uint8_t EdgeBits(const EdgeInputs& d, float thr, float lcf) {
   const float mx = std::max(std::max(d.dx, d.dr), d.dll);
   const float my = std::max(std::max(d.dy, d.db), d.dtt);
   const float final_delta = std::max(mx, my);
-  return static_cast<uint8_t>((ex && lcf * d.dx >= final_delta ? kLeft : 0) | (ey && lcf * d.dy >= final_delta ? kTop : 0));
+  return static_cast<uint8_t>((ex && lcf * d.dx >= final_delta ? kLeft : 0) |
+                              (ey && lcf * d.dy >= final_delta ? kTop : 0));
 }
 
 // The per-channel products of SmaaReference's Luma(Texel): entry k = UnormToFloat(k)·weight.
@@ -115,8 +116,8 @@ int SafeByteDifference(float thr) {
 
 // Row prefilter: cand[x] = 1 unless every rgb byte of pixel x differs from the pixel on its
 // left and the one above by at most `safe` (then EdgePixel discards it). Vectorisable.
-void CandidateRow(const uint8_t* __restrict row, const uint8_t* __restrict top, int w, int safe, uint8_t* __restrict tmp,
-                  uint8_t* __restrict cand) {
+void CandidateRow(const uint8_t* __restrict row, const uint8_t* __restrict top, int w, int safe,
+                  uint8_t* __restrict tmp, uint8_t* __restrict cand) {
   const int n = 4 * w;
   const uint8_t s = static_cast<uint8_t>(std::max(safe, 0));
   for (int i = 0; i < n; ++i) {
@@ -176,8 +177,8 @@ void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t
         EdgeInputs d;
         if (luma) {
           const float Lc = L(C), Lleft = L(Cl), Ltop = L(rt + 4 * x);
-          d = {std::fabs(Lc - Lleft), std::fabs(Lc - Ltop), std::fabs(Lc - L(Cr)), std::fabs(Lc - L(rb + 4 * x)),
-               std::fabs(Lleft - L(Cll)), std::fabs(Ltop - L(rtt + 4 * x))};
+          d = {std::fabs(Lc - Lleft),         std::fabs(Lc - Ltop),      std::fabs(Lc - L(Cr)),
+               std::fabs(Lc - L(rb + 4 * x)), std::fabs(Lleft - L(Cll)), std::fabs(Ltop - L(rtt + 4 * x))};
         } else {
           d = {diff(C, Cl), diff(C, rt + 4 * x), diff(C, Cr), diff(C, rb + 4 * x), diff(C, Cll), diff(C, rtt + 4 * x)};
         }
@@ -385,7 +386,8 @@ void BlendFlags(const BlendTex& b, bool precise, int y, uint8_t* col, uint8_t* f
   }
   const uint8_t* own = b.Row(y);
   const uint8_t* below = b.Row(std::min(y + 1, h - 1));
-  for (int x = 0; x < w - 1; ++x) flags[x] = (own[4 * x] | own[4 * x + 2] | own[4 * (x + 1) + 3] | below[4 * x + 1]) != 0;
+  for (int x = 0; x < w - 1; ++x)
+    flags[x] = (own[4 * x] | own[4 * x + 2] | own[4 * (x + 1) + 3] | below[4 * x + 1]) != 0;
   const int x = w - 1;
   flags[x] = (own[4 * x] | own[4 * x + 2] | own[4 * x + 3] | below[4 * x + 1]) != 0;
 }
@@ -458,8 +460,8 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
   blend.w = in.Width();
   blend.h = in.Height();
   blend.px.reset(new uint8_t[4 * in.PixelCount()]);  // rows cleared by WeightsFast
-  const bool precise = params.subtexel == SubTexel::kFixed8 && in.Width() <= kMaxShortcutSize &&
-                       in.Height() <= kMaxShortcutSize;
+  const bool precise =
+      params.subtexel == SubTexel::kFixed8 && in.Width() <= kMaxShortcutSize && in.Height() <= kMaxShortcutSize;
   if (!precise) blend.nz.reset(new uint8_t[in.PixelCount()]);  // only the footprint test of BlendFlags reads it
   blend.row_any.assign(static_cast<size_t>(in.Height()), 0);
   WeightsFast(edges, params, &blend, &taps);

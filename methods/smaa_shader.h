@@ -66,7 +66,10 @@ AALAB_HD inline float Max(float a, float b) {
 struct Frame {
   float W = 0, H = 0, rx = 0, ry = 0;
   AALAB_HD Frame(int w, int h)
-      : W(static_cast<float>(w)), H(static_cast<float>(h)), rx(1.0f / static_cast<float>(w)), ry(1.0f / static_cast<float>(h)) {}
+      : W(static_cast<float>(w)),
+        H(static_cast<float>(h)),
+        rx(1.0f / static_cast<float>(w)),
+        ry(1.0f / static_cast<float>(h)) {}
   AALAB_HD F2 Texcoord(int x, int y) const {
     return {(static_cast<float>(x) + 0.5f) / W, (static_cast<float>(y) + 0.5f) / H};
   }

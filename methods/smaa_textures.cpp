@@ -32,18 +32,46 @@ namespace {
 
 using D2 = std::pair<double, double>;
 
-constexpr int kSizeOrtho = 16;   // SIZE_ORTHO
-constexpr int kSizeDiag = 20;    // SIZE_DIAG
-constexpr int kSamplesDiag = 30; // SAMPLES_DIAG
+constexpr int kSizeOrtho = 16;               // SIZE_ORTHO
+constexpr int kSizeDiag = 20;                // SIZE_DIAG
+constexpr int kSamplesDiag = 30;             // SAMPLES_DIAG
 constexpr double kSmoothMaxDistance = 32.0;  // SMOOTH_MAX_DISTANCE
 
 // Tile (column, row) of each pattern in its block (the script's edgesortho / edgesdiag).
 // Orthogonal: the tile is the pair of rounded crossing-edge codes round(4·e1), round(4·e2)
 // that SMAAArea looks up (codes 0, 1, 3, 4); diagonal: the pair of codes 2·c.x + c.y.
-constexpr std::array<std::array<int, 2>, 16> kTileOrtho = {{{0, 0}, {3, 0}, {0, 3}, {3, 3}, {1, 0}, {4, 0}, {1, 3}, {4, 3},
-                                                            {0, 1}, {3, 1}, {0, 4}, {3, 4}, {1, 1}, {4, 1}, {1, 4}, {4, 4}}};
-constexpr std::array<std::array<int, 2>, 16> kTileDiag = {{{0, 0}, {1, 0}, {0, 2}, {1, 2}, {2, 0}, {3, 0}, {2, 2}, {3, 2},
-                                                           {0, 1}, {1, 1}, {0, 3}, {1, 3}, {2, 1}, {3, 1}, {2, 3}, {3, 3}}};
+constexpr std::array<std::array<int, 2>, 16> kTileOrtho = {{{0, 0},
+                                                            {3, 0},
+                                                            {0, 3},
+                                                            {3, 3},
+                                                            {1, 0},
+                                                            {4, 0},
+                                                            {1, 3},
+                                                            {4, 3},
+                                                            {0, 1},
+                                                            {3, 1},
+                                                            {0, 4},
+                                                            {3, 4},
+                                                            {1, 1},
+                                                            {4, 1},
+                                                            {1, 4},
+                                                            {4, 4}}};
+constexpr std::array<std::array<int, 2>, 16> kTileDiag = {{{0, 0},
+                                                           {1, 0},
+                                                           {0, 2},
+                                                           {1, 2},
+                                                           {2, 0},
+                                                           {3, 0},
+                                                           {2, 2},
+                                                           {3, 2},
+                                                           {0, 1},
+                                                           {1, 1},
+                                                           {0, 3},
+                                                           {1, 3},
+                                                           {2, 1},
+                                                           {3, 1},
+                                                           {2, 3},
+                                                           {3, 3}}};
 
 // Area under the segment p1→p2 within the pixel column [x, x+1], split by the side of the
 // edge it lies on: (area below, area above) as the script's inner area().
@@ -56,7 +84,8 @@ D2 SegmentArea(D2 p1, D2 p2, double x) {
   const double y2 = p1.second + dy * (x2 - p1.first) / dx;
   const bool inside = (x1 >= p1.first && x1 < p2.first) || (x2 > p1.first && x2 <= p2.first);
   if (!inside) return {0.0, 0.0};
-  const bool trapezoid = std::copysign(1.0, y1) == std::copysign(1.0, y2) || std::fabs(y1) < 1e-4 || std::fabs(y2) < 1e-4;
+  const bool trapezoid =
+      std::copysign(1.0, y1) == std::copysign(1.0, y2) || std::fabs(y1) < 1e-4 || std::fabs(y2) < 1e-4;
   if (trapezoid) {
     const double a = (y1 + y2) / 2.0;
     return a < 0.0 ? D2{std::fabs(a), 0.0} : D2{0.0, std::fabs(a)};

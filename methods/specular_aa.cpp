@@ -55,16 +55,18 @@ MethodPlan MakeSpecularAa(const ParamValues& p) {
 }  // namespace
 
 std::vector<MethodEntry> SpecularAaMethods() {
-  return {{"gsaa",
-           "specular AA: GGX roughness widened by the vertex normal's variance over the pixel (Tokuyoshi & Kaplanyan 2021); "
-           "toksvig=1 adds the normal map's own variance per mip level (Toksvig / vMF), 1 spp",
-           {FloatParam("sigma2", 0.15915494309189535, 0.0, 4.0, "variance of the pixel filter kernel (1/(2 pi))"),
-            FloatParam("kappa", 0.18, 0.0, 1.0, "clamp of the added alpha^2"),
-            ChoiceParam("derivatives", "vertex", {"vertex", "mapped"},
-                        "whose normal the geometric term differentiates (mapped: the normal-mapped normal)"),
-            FloatParam("toksvig", 0.0, 0.0, 1.0, "weight of the normal map's variance term (0: off; 1: Toksvig / vMF)"),
-            FloatParam("toksvig_max", 0.04, 0.0, 1.0, "clamp of the normal map term's added alpha^2 (HDRP: threshold^2)")},
-           MakeSpecularAa}};
+  return {
+      {"gsaa",
+       "specular AA: GGX roughness widened by the vertex normal's variance over the pixel (Tokuyoshi & Kaplanyan "
+       "2021); "
+       "toksvig=1 adds the normal map's own variance per mip level (Toksvig / vMF), 1 spp",
+       {FloatParam("sigma2", 0.15915494309189535, 0.0, 4.0, "variance of the pixel filter kernel (1/(2 pi))"),
+        FloatParam("kappa", 0.18, 0.0, 1.0, "clamp of the added alpha^2"),
+        ChoiceParam("derivatives", "vertex", {"vertex", "mapped"},
+                    "whose normal the geometric term differentiates (mapped: the normal-mapped normal)"),
+        FloatParam("toksvig", 0.0, 0.0, 1.0, "weight of the normal map's variance term (0: off; 1: Toksvig / vMF)"),
+        FloatParam("toksvig_max", 0.04, 0.0, 1.0, "clamp of the normal map term's added alpha^2 (HDRP: threshold^2)")},
+       MakeSpecularAa}};
 }
 
 }  // namespace aalab

@@ -31,9 +31,11 @@ MethodPlan Plan(const std::string& name, const ParamValues& p, RenderSpec render
 
 std::vector<MethodEntry> SupersampleMethods() {
   std::vector<MethodEntry> out;
-  out.push_back({"none", "no anti-aliasing: one sample at each pixel centre, 8-bit", {},
-                 [](const ParamValues& p) { return Plan("none", p, RenderSpec{}); }});
-  out.push_back({"ssaa-2x2", "supersampling, ordered 2x2 grid (4 spp), box resolve in linear light",
+  out.push_back({"none", "no anti-aliasing: one sample at each pixel centre, 8-bit", {}, [](const ParamValues& p) {
+                   return Plan("none", p, RenderSpec{});
+                 }});
+  out.push_back({"ssaa-2x2",
+                 "supersampling, ordered 2x2 grid (4 spp), box resolve in linear light",
                  {},
                  [](const ParamValues& p) {
                    RenderSpec r;
@@ -41,7 +43,8 @@ std::vector<MethodEntry> SupersampleMethods() {
                    r.grid = 2;
                    return Plan("ssaa-2x2", p, r);
                  }});
-  out.push_back({"ssaa-4x4", "supersampling, ordered 4x4 grid (16 spp), box resolve in linear light",
+  out.push_back({"ssaa-4x4",
+                 "supersampling, ordered 4x4 grid (16 spp), box resolve in linear light",
                  {},
                  [](const ParamValues& p) {
                    RenderSpec r;
@@ -49,14 +52,14 @@ std::vector<MethodEntry> SupersampleMethods() {
                    r.grid = 4;
                    return Plan("ssaa-4x4", p, r);
                  }});
-  out.push_back({"ssaa-rgss", "supersampling, 4-sample rotated grid, box resolve in linear light",
-                 {},
-                 [](const ParamValues& p) {
-                   RenderSpec r;
-                   r.pattern = SamplePattern::kRotatedGrid;
-                   return Plan("ssaa-rgss", p, r);
-                 }});
-  out.push_back({"ssaa-jitter", "supersampling, spp uniformly jittered samples (hash of pixel, index, seed)",
+  out.push_back(
+      {"ssaa-rgss", "supersampling, 4-sample rotated grid, box resolve in linear light", {}, [](const ParamValues& p) {
+         RenderSpec r;
+         r.pattern = SamplePattern::kRotatedGrid;
+         return Plan("ssaa-rgss", p, r);
+       }});
+  out.push_back({"ssaa-jitter",
+                 "supersampling, spp uniformly jittered samples (hash of pixel, index, seed)",
                  {IntParam("spp", 8, 1, 1024, "samples per pixel")},
                  [](const ParamValues& p) {
                    RenderSpec r;

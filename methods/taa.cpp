@@ -180,10 +180,10 @@ AALAB_TAA_CLONES void BoxRow(const float* __restrict r0, const float* __restrict
 /// take the current linear colour (cur, 3 floats per pixel). Writes the new history (3
 /// floats per pixel) and the planar output colour for the encode.
 struct RowIn {
-  const float *hy, *hco, *hcg;           // history in YCoCg
-  const float *lo[3], *hi[3];             // the box (when clip)
-  const float *cy, *cco, *ccg;           // current YCoCg, padded
-  const float* cur;                      // current linear RGB
+  const float *hy, *hco, *hcg;  // history in YCoCg
+  const float *lo[3], *hi[3];   // the box (when clip)
+  const float *cy, *cco, *ccg;  // current YCoCg, padded
+  const float* cur;             // current linear RGB
   const uint8_t* valid;
 };
 // std::clamp(v, 0, 1) as selects: v < 0 ? 0 : (1 < v ? 1 : v).
@@ -335,8 +335,16 @@ class TaaState : public TemporalState {
             }
           }
         }
-        RowIn ri{hy, hco, hcg, {lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, planes_[0].data() + rc,
-                 planes_[1].data() + rc, planes_[2].data() + rc, cur.data(), valid.data()};
+        RowIn ri{hy,
+                 hco,
+                 hcg,
+                 {lo[0], lo[1], lo[2]},
+                 {hi[0], hi[1], hi[2]},
+                 planes_[0].data() + rc,
+                 planes_[1].data() + rc,
+                 planes_[2].data() + rc,
+                 cur.data(),
+                 valid.data()};
         if (clip) {
           BlendRow<true>(ri, W, p_.alpha, next, outc[0], outc[1], outc[2]);
         } else {
@@ -383,7 +391,8 @@ class TaaState : public TemporalState {
         const float* c = &cur_[3 * i];
         const float px = have_history ? (*in.previous)[2 * i] : 0.0f;
         const float py = have_history ? (*in.previous)[2 * i + 1] : 0.0f;
-        if (!have_history || !(px >= 0.0f && px <= static_cast<float>(W) && py >= 0.0f && py <= static_cast<float>(H))) {
+        if (!have_history ||
+            !(px >= 0.0f && px <= static_cast<float>(W) && py >= 0.0f && py <= static_cast<float>(H))) {
           std::copy(c, c + 3, out);
         } else {
           float h[3];
@@ -472,7 +481,8 @@ std::vector<MethodEntry> TaaMethods() {
   std::vector<MethodEntry> out;
   out.push_back(
       {"taa",
-       "temporal AA: Halton(2,3) jitter, exact reprojection, YCoCg variance clip, exponential blend (needs --frames > 1 to accumulate)",
+       "temporal AA: Halton(2,3) jitter, exact reprojection, YCoCg variance clip, exponential blend (needs --frames > "
+       "1 to accumulate)",
        {IntParam("samples", 16, 1, 256, "Halton(2,3) jitter points cycled (indices 1..samples)"),
         FloatParam("alpha", 0.1, 0.01, 1.0, "weight of the current frame in the exponential blend"),
         ChoiceParam("clip", "variance", {"variance", "minmax", "none"},

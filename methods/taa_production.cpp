@@ -106,7 +106,7 @@ float RoundToHalf(float v) {
   float r;
   if (mag >= 65520.0f) {  // rounds past the largest half (65504)
     r = std::numeric_limits<float>::infinity();
-  } else if (mag < 6.103515625e-05f) {  // subnormal halves: a fixed step of 2^-24
+  } else if (mag < 6.103515625e-05f) {                    // subnormal halves: a fixed step of 2^-24
     r = std::nearbyint(mag * 16777216.0f) / 16777216.0f;  // default rounding: ties to even
   } else {
     // Normal halves keep 10 of the float's 23 mantissa bits: round the low 13 to even.
@@ -150,8 +150,8 @@ class TaaProdState : public TemporalState {
       for (int c = 0; c < 3; ++c) cur_[3 * i + c] = decode_[px[c]];
       ycc_[i] = ToYCoCg(&cur_[3 * i]);
     }
-    const bool have_history = !history_.empty() && hist_w_ == W && hist_h_ == H && prev_rw_ == rw &&
-                              prev_rh_ == rh && in.previous != nullptr;
+    const bool have_history =
+        !history_.empty() && hist_w_ == W && hist_h_ == H && prev_rw_ == rw && prev_rh_ == rh && in.previous != nullptr;
     const bool use_depth = in.depth != nullptr;
     // Motion vectors in render pixels (previous − centre), NaN where none.
     mv_.assign(2 * rn, std::numeric_limits<float>::quiet_NaN());
@@ -166,7 +166,8 @@ class TaaProdState : public TemporalState {
     }
     next_.resize(4 * n);
     out_.resize(3 * n);
-    const float sx = static_cast<float>(rw) / static_cast<float>(W), sy = static_cast<float>(rh) / static_cast<float>(H);
+    const float sx = static_cast<float>(rw) / static_cast<float>(W),
+                sy = static_cast<float>(rh) / static_cast<float>(H);
     ParallelFor(H, [&](int oy) {
       for (int ox = 0; ox < W; ++ox) {
         const size_t o = static_cast<size_t>(oy) * W + ox;
@@ -257,7 +258,8 @@ class TaaProdState : public TemporalState {
     const float tx = fx - x0f, ty = fy - y0f;
     const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
     auto texel = [&](int x, int y) {
-      return &history_[4 * (static_cast<size_t>(std::clamp(y, 0, hist_h_ - 1)) * hist_w_ + std::clamp(x, 0, hist_w_ - 1))];
+      return &history_[4 *
+                       (static_cast<size_t>(std::clamp(y, 0, hist_h_ - 1)) * hist_w_ + std::clamp(x, 0, hist_w_ - 1))];
     };
     if (p_.history == TaaHistoryFilter::kBilinear) {
       const float *a = texel(x0, y0), *b = texel(x0 + 1, y0), *c0 = texel(x0, y0 + 1), *d = texel(x0 + 1, y0 + 1);
@@ -399,8 +401,9 @@ std::vector<ParamDef> TaaProdParamDefs() {
       FloatParam("alpha_min", d.alpha_min, 0.01, 1.0, "feedback=adaptive: weight when still and in agreement"),
       FloatParam("alpha_max", d.alpha_max, 0.01, 1.0, "feedback=adaptive: weight at motion_px or full contrast"),
       FloatParam("motion_px", d.motion_px, 0.5, 256.0, "feedback=adaptive: speed (px/frame) reaching alpha_max"),
-      ChoiceParam("luma_weight", "off", {"off", "on"},
-                  "feedback=adaptive: raise alpha with the current/history luminance difference (Lottes, Pedersen 2016)"),
+      ChoiceParam(
+          "luma_weight", "off", {"off", "on"},
+          "feedback=adaptive: raise alpha with the current/history luminance difference (Lottes, Pedersen 2016)"),
       FloatParam("sharpen", d.sharpen, 0.0, 2.0, "unsharp amount on the output (0 = off; history unsharpened)"),
       ChoiceParam("precision", "rgba32f", {"rgba32f", "rgba16f"}, "history storage precision"),
   };

@@ -16,9 +16,9 @@ enum class TaaReconstruct {
 };
 /// How the history is fetched at the reprojected position.
 enum class TaaHistoryFilter {
-  kBilinear,      ///< 2x2 texels (today's `taa`)
-  kCatmullRom,    ///< 4x4 texels, separable Catmull-Rom (what UE4's 9-tap bilinear trick computes)
-  kCatmullRom5,   ///< the 4x4 without its 4 corners, renormalised (Jimenez 2016's 5 bilinear taps)
+  kBilinear,     ///< 2x2 texels (today's `taa`)
+  kCatmullRom,   ///< 4x4 texels, separable Catmull-Rom (what UE4's 9-tap bilinear trick computes)
+  kCatmullRom5,  ///< the 4x4 without its 4 corners, renormalised (Jimenez 2016's 5 bilinear taps)
 };
 enum class TaaRectify { kVariance, kMinMax, kNone };
 enum class TaaFeedback { kFixed, kAdaptive };
@@ -36,12 +36,12 @@ struct TaaProdParams {
   TaaRectify clip = TaaRectify::kVariance;
   float gamma = 1.0f;
   TaaFeedback feedback = TaaFeedback::kAdaptive;
-  float alpha = 0.1f;       ///< kFixed: weight of the current frame
-  float alpha_min = 0.04f;  ///< kAdaptive: floor of the weight when still (UE4 0.04)
-  float alpha_max = 0.2f;   ///< kAdaptive: weight at motion_px and beyond (UE4 0.2), or at full contrast
-  float motion_px = 8.0f;   ///< kAdaptive: output px per frame at which alpha reaches alpha_max
-  bool luma_weight = false; ///< kAdaptive: also raise alpha with the luminance difference (Lottes)
-  float sharpen = 0.0f;     ///< unsharp amount on the output only (0 = off)
+  float alpha = 0.1f;        ///< kFixed: weight of the current frame
+  float alpha_min = 0.04f;   ///< kAdaptive: floor of the weight when still (UE4 0.04)
+  float alpha_max = 0.2f;    ///< kAdaptive: weight at motion_px and beyond (UE4 0.2), or at full contrast
+  float motion_px = 8.0f;    ///< kAdaptive: output px per frame at which alpha reaches alpha_max
+  bool luma_weight = false;  ///< kAdaptive: also raise alpha with the luminance difference (Lottes)
+  float sharpen = 0.0f;      ///< unsharp amount on the output only (0 = off)
   TaaPrecision precision = TaaPrecision::kFloat32;
 };
 

@@ -27,7 +27,7 @@ namespace {
 
 constexpr double kBinEdges[] = {0.0, 1.0, 2.0, 4.0, 8.0, 16.0, 1e300};
 constexpr const char* kBinNames[] = {"area_bias_rel_r0_1", "area_bias_rel_r1_2",  "area_bias_rel_r2_4",
-                                     "area_bias_rel_r4_8",   "area_bias_rel_r8_16", "area_bias_rel_r16_64"};
+                                     "area_bias_rel_r4_8", "area_bias_rel_r8_16", "area_bias_rel_r16_64"};
 constexpr int kBins = 6;
 constexpr float kMinContrast = 0.05f;  // linear; below it the read-back coverage is noise
 
@@ -74,9 +74,9 @@ std::vector<MetricValue> Compute(const MetricInput& in) {
     if (den > 0) {
       out.push_back({name, num / den, ""});
     } else {
-      out.push_back({name, std::nullopt, in.coverage_probes && !in.coverage_probes->empty()
-                                             ? "no disk with enough contrast in this group"
-                                             : none_reason});
+      out.push_back({name, std::nullopt,
+                     in.coverage_probes && !in.coverage_probes->empty() ? "no disk with enough contrast in this group"
+                                                                        : none_reason});
     }
   };
   value("area_bias_px2", sum_px2, n);
@@ -104,8 +104,8 @@ std::vector<MetricEntry> CoverageBiasMetrics() {
                        ""});
   }
   return {{"coverage_bias",
-           "signed area error of isolated flat disks (grow > 0, shrink < 0), overall and per radius bin",
-           outputs, Compute, false}};
+           "signed area error of isolated flat disks (grow > 0, shrink < 0), overall and per radius bin", outputs,
+           Compute, false}};
 }
 
 }  // namespace aalab

@@ -28,8 +28,7 @@
 namespace aalab {
 namespace {
 
-const char* const kNames[] = {"edge_psnr_db", "edge_rmse", "interior_psnr_db",
-                              "edge_error_removed"};
+const char* const kNames[] = {"edge_psnr_db", "edge_rmse", "interior_psnr_db", "edge_error_removed"};
 
 std::vector<MetricValue> AllNull(const std::string& reason) {
   std::vector<MetricValue> out;
@@ -45,9 +44,8 @@ MetricValue Psnr(const std::string& name, const MseResult& r, const std::string&
 
 void RequireMask(const ImageF& mask, const ImageF& reference) {
   if (mask.Width() != reference.Width() || mask.Height() != reference.Height()) {
-    throw UserError("edge mask: size " + std::to_string(mask.Width()) + "x" +
-                    std::to_string(mask.Height()) + " differs from the reference " +
-                    std::to_string(reference.Width()) + "x" +
+    throw UserError("edge mask: size " + std::to_string(mask.Width()) + "x" + std::to_string(mask.Height()) +
+                    " differs from the reference " + std::to_string(reference.Width()) + "x" +
                     std::to_string(reference.Height()) + "; masks are never resampled");
   }
   if (mask.Channels() != 1) {

@@ -27,8 +27,7 @@ namespace aalab {
 std::vector<double> AbsErrorValues(const ImageF& a, const ImageF& b) {
   RequireSameShape(a, b, "abs error");
   if (a.Channels() < 3) {
-    throw UserError("abs error: needs RGB images (got " + std::to_string(a.Channels()) +
-                    " channels)");
+    throw UserError("abs error: needs RGB images (got " + std::to_string(a.Channels()) + " channels)");
   }
   std::vector<double> out;
   out.reserve(a.PixelCount());
@@ -85,14 +84,14 @@ std::vector<MetricValue> ComputeAbsError(const MetricInput& in) {
   size_t end = n;
   for (int i = 0; i < 3; ++i) {
     const size_t k = rank_index(percents[i]);
-    if (k < end) std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.begin() + static_cast<std::ptrdiff_t>(end));
+    if (k < end)
+      std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k),
+                       v.begin() + static_cast<std::ptrdiff_t>(end));
     p[i] = v[k];
     end = k;
   }
-  return {MetricValue{"abs_err_p50", p[2], ""},
-          MetricValue{"abs_err_p95", p[1], ""},
-          MetricValue{"abs_err_p99", p[0], ""},
-          MetricValue{"abs_err_max", max, ""}};
+  return {MetricValue{"abs_err_p50", p[2], ""}, MetricValue{"abs_err_p95", p[1], ""},
+          MetricValue{"abs_err_p99", p[0], ""}, MetricValue{"abs_err_max", max, ""}};
 }
 
 }  // namespace

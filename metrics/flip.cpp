@@ -89,12 +89,9 @@ using Matrix = std::array<std::array<double, 3>, 3>;
 // Linear sRGB → XYZ (D65), as rational numbers in NVIDIA's code (from the image-engineering
 // technote on sRGB/XYZ).
 const Matrix& RgbToXyzMatrix() {
-  static const Matrix m = {{{10135552.0 / 24577794.0, 8788810.0 / 24577794.0,
-                             4435075.0 / 24577794.0},
-                            {2613072.0 / 12288897.0, 8788810.0 / 12288897.0,
-                             887015.0 / 12288897.0},
-                            {1425312.0 / 73733382.0, 8788810.0 / 73733382.0,
-                             70074185.0 / 73733382.0}}};
+  static const Matrix m = {{{10135552.0 / 24577794.0, 8788810.0 / 24577794.0, 4435075.0 / 24577794.0},
+                            {2613072.0 / 12288897.0, 8788810.0 / 12288897.0, 887015.0 / 12288897.0},
+                            {1425312.0 / 73733382.0, 8788810.0 / 73733382.0, 70074185.0 / 73733382.0}}};
   return m;
 }
 
@@ -133,16 +130,14 @@ double LabF(double t) {
 
 void CheckPpd(double ppd) {
   if (!std::isfinite(ppd) || !(ppd > 0.0)) {
-    throw UserError("flip: pixels per degree must be a finite number > 0 (got " +
-                    std::to_string(ppd) + ")");
+    throw UserError("flip: pixels per degree must be a finite number > 0 (got " + std::to_string(ppd) + ")");
   }
 }
 
 void CheckPair(const ImageF& reference, const ImageF& test) {
   RequireSameShape(reference, test, "flip");
   if (reference.Channels() < 3) {
-    throw UserError("flip: needs RGB images (got " + std::to_string(reference.Channels()) +
-                    " channels)");
+    throw UserError("flip: needs RGB images (got " + std::to_string(reference.Channels()) + " channels)");
   }
 }
 
@@ -176,8 +171,7 @@ Planes ToYCxCz(const ImageF& img) {
   ParallelForChunks(p.h, kGrain, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       for (int x = 0; x < p.w; ++x) {
-        const Color lin = {SrgbToLinear(img.At(x, y, 0)), SrgbToLinear(img.At(x, y, 1)),
-                           SrgbToLinear(img.At(x, y, 2))};
+        const Color lin = {SrgbToLinear(img.At(x, y, 0)), SrgbToLinear(img.At(x, y, 1)), SrgbToLinear(img.At(x, y, 2))};
         const Color o = XyzToYCxCz(LinearRgbToXyz(lin));
         const size_t i = static_cast<size_t>(y) * p.w + x;
         p.y[i] = o[0];
@@ -322,9 +316,7 @@ std::vector<double> ColorErrorFromPlanes(const Planes& ref, const Planes& test, 
   const std::vector<Color> a = FilteredHuntLab(ref, k);
   const std::vector<Color> b = FilteredHuntLab(test, k);
   std::vector<double> out(a.size());
-  ForEachPixel(out.size(), [&](size_t i) {
-    out[i] = RemapColorError(std::pow(HyAB(a[i], b[i]), kQc));
-  });
+  ForEachPixel(out.size(), [&](size_t i) { out[i] = RemapColorError(std::pow(HyAB(a[i], b[i]), kQc)); });
   return out;
 }
 
@@ -373,9 +365,7 @@ Color XyzToLab(const Color& xyz) {
   return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
 }
 
-Color HuntAdjust(const Color& lab) {
-  return {lab[0], 0.01 * lab[0] * lab[1], 0.01 * lab[0] * lab[2]};
-}
+Color HuntAdjust(const Color& lab) { return {lab[0], 0.01 * lab[0] * lab[1], 0.01 * lab[0] * lab[2]}; }
 
 double HyAB(const Color& p, const Color& q) {
   const double da = p[1] - q[1], db = p[2] - q[2];
@@ -462,8 +452,14 @@ FeatureKernels MakeFeatureKernels(double ppd) {
     k.dg[t] = -x * g;
     k.ddg[t] = (x * x / (k.sigma * k.sigma) - 1.0) * g;
     g_sum += g;
-    if (k.dg[t] > 0.0) dg_pos += k.dg[t]; else dg_neg -= k.dg[t];
-    if (k.ddg[t] > 0.0) ddg_pos += k.ddg[t]; else ddg_neg -= k.ddg[t];
+    if (k.dg[t] > 0.0)
+      dg_pos += k.dg[t];
+    else
+      dg_neg -= k.dg[t];
+    if (k.ddg[t] > 0.0)
+      ddg_pos += k.ddg[t];
+    else
+      ddg_neg -= k.ddg[t];
   }
   for (int t = 0; t < taps; ++t) {
     k.g[t] /= g_sum;
@@ -638,29 +634,30 @@ std::vector<MetricValue> ComputeFlipMetric(const MetricInput& in) {
             MetricValue{"flip_median_weighted", std::nullopt, "empty image"},
             MetricValue{"flip_max", std::nullopt, "empty image"}};
   }
-  const FlipPooled p = in.flip_values ? PoolFlip(*in.flip_values)
-                                      : PoolFlip(flip::ErrorValues(*in.reference, *in.image, in.flip_ppd));
-  return {MetricValue{"flip_mean", p.mean, ""},
-          MetricValue{"flip_median_weighted", p.weighted_median, ""},
+  const FlipPooled p =
+      in.flip_values ? PoolFlip(*in.flip_values) : PoolFlip(flip::ErrorValues(*in.reference, *in.image, in.flip_ppd));
+  return {MetricValue{"flip_mean", p.mean, ""}, MetricValue{"flip_median_weighted", p.weighted_median, ""},
           MetricValue{"flip_max", p.max, ""}};
 }
 
 }  // namespace
 
 std::vector<MetricEntry> FlipMetrics() {
-  return {{"flip",
-           "LDR-FLIP (Andersson 2020) at the viewing condition's pixels/degree (--viewing; default 67): mean, value-weighted median and "
-           "max of the per-pixel error in [0,1]",
-           {{"flip_mean", "FLIP mean", "", Improves::kLower, kSignificantDigits,
-             "LDR-FLIP per-pixel error (0..1) averaged over the image, at the run's viewing condition (pixels per "
-             "degree in the header; default 67).",
-             "Rewards what a viewer sees when flipping between the result and the reference at this viewing "
-             "distance: both jaggies and lost sharpness count, fine detail below the eye's resolution does not. A "
-             "method that trades aliasing for blur can score worse than no AA."},
-            {"flip_median_weighted", "FLIP wtd. median", "", Improves::kLower, kSignificantDigits,
-             "Value-weighted median of the LDR-FLIP error (as NVIDIA's FLIP tool prints).", ""},
-            {"flip_max", "FLIP max", "", Improves::kLower, kSignificantDigits, "Largest per-pixel LDR-FLIP error.", ""}},
-           &ComputeFlipMetric}};
+  return {
+      {"flip",
+       "LDR-FLIP (Andersson 2020) at the viewing condition's pixels/degree (--viewing; default 67): mean, "
+       "value-weighted median and "
+       "max of the per-pixel error in [0,1]",
+       {{"flip_mean", "FLIP mean", "", Improves::kLower, kSignificantDigits,
+         "LDR-FLIP per-pixel error (0..1) averaged over the image, at the run's viewing condition (pixels per "
+         "degree in the header; default 67).",
+         "Rewards what a viewer sees when flipping between the result and the reference at this viewing "
+         "distance: both jaggies and lost sharpness count, fine detail below the eye's resolution does not. A "
+         "method that trades aliasing for blur can score worse than no AA."},
+        {"flip_median_weighted", "FLIP wtd. median", "", Improves::kLower, kSignificantDigits,
+         "Value-weighted median of the LDR-FLIP error (as NVIDIA's FLIP tool prints).", ""},
+        {"flip_max", "FLIP max", "", Improves::kLower, kSignificantDigits, "Largest per-pixel LDR-FLIP error.", ""}},
+       &ComputeFlipMetric}};
 }
 
 }  // namespace aalab

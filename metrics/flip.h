@@ -45,11 +45,11 @@ namespace flip {
 /// A colour triple (RGB, XYZ, YCxCz or Lab, as the function says).
 using Color = std::array<double, 3>;
 
-inline constexpr double kQc = 0.7;    ///< exponent on the HyAB distance
-inline constexpr double kPc = 0.4;    ///< breakpoint of the colour remap, fraction of cmax
-inline constexpr double kPt = 0.95;   ///< remapped value at the breakpoint
-inline constexpr double kW = 0.082;   ///< feature filter peak-to-trough width, degrees
-inline constexpr double kQf = 0.5;    ///< exponent on the feature difference
+inline constexpr double kQc = 0.7;   ///< exponent on the HyAB distance
+inline constexpr double kPc = 0.4;   ///< breakpoint of the colour remap, fraction of cmax
+inline constexpr double kPt = 0.95;  ///< remapped value at the breakpoint
+inline constexpr double kW = 0.082;  ///< feature filter peak-to-trough width, degrees
+inline constexpr double kQf = 0.5;   ///< exponent on the feature difference
 /// D65 reference white (X, Y, Z) as in NVIDIA's code; equals the row sums of the RGB→XYZ
 /// matrix to ~1e-10, so linear white maps to Lab (100, 0, 0).
 inline constexpr Color kWhite = {0.950428545, 1.0, 1.088900371};
@@ -59,8 +59,8 @@ inline constexpr Color kWhite = {0.950428545, 1.0, 1.088900371};
 struct CsfParams {
   double a1, b1, a2, b2;
 };
-inline constexpr CsfParams kCsfY = {1.0, 0.0047, 0.0, 1e-5};   ///< achromatic (Y)
-inline constexpr CsfParams kCsfCx = {1.0, 0.0053, 0.0, 1e-5};  ///< red-green (Cx)
+inline constexpr CsfParams kCsfY = {1.0, 0.0047, 0.0, 1e-5};    ///< achromatic (Y)
+inline constexpr CsfParams kCsfCx = {1.0, 0.0053, 0.0, 1e-5};   ///< red-green (Cx)
 inline constexpr CsfParams kCsfCz = {34.1, 0.04, 13.5, 0.025};  ///< blue-yellow (Cz)
 
 /// sRGB decode of one encoded value, clamped to [0, 1] first (NaN → 0).

@@ -4,7 +4,8 @@
 // tests compare this path with.
 //
 // Layout:
-//  - The image goes to YCxCz planes (float; the achromatic plane as Ŷ = (Y + 16)/116). The sRGB decode is a table lookup when a value
+//  - The image goes to YCxCz planes (float; the achromatic plane as Ŷ = (Y + 16)/116). The sRGB decode is a table
+//  lookup when a value
 //    is exactly k/255 (every 8-bit frame a run scores), the double formula otherwise.
 //  - The image is cut into fixed chunks of kChunkRows rows (in parallel). A chunk streams its
 //    rows through two rings: the horizontal CSF sums (Y, Cx, and the two Cz Gaussians) of the
@@ -125,7 +126,7 @@ Planes ToPlanes(const ImageF& img) {
 
 // Kernels as float.
 struct Kernels {
-  int rc = 0, rf = 0;  // CSF and feature radii
+  int rc = 0, rf = 0;                  // CSF and feature radii
   std::vector<float> y, cx, cz1, cz2;  // CSF, 2·rc + 1 taps
   std::vector<float> g, dg, ddg;       // features, 2·rf + 1 taps
 };
@@ -153,9 +154,8 @@ Kernels MakeKernels(double ppd) {
 // the same squared offset), so each sum pairs the two taps of one weight:
 // k(0)·v(x) + Σ_{i=1..r} k(i)·(v(x+i) + v(x−i)), i in increasing order.
 AALAB_FLIP_CLONES
-void HorizontalCsf(const float* py, const float* pcx, const float* pcz, int w, int r, const float* ky,
-                   const float* kcx, const float* kcz1, const float* kcz2, float* oy, float* ocx, float* ocz1,
-                   float* ocz2) {
+void HorizontalCsf(const float* py, const float* pcx, const float* pcz, int w, int r, const float* ky, const float* kcx,
+                   const float* kcz1, const float* kcz2, float* oy, float* ocx, float* ocz1, float* ocz2) {
   int x = 0;
   for (; x + kLanes <= w; x += kLanes) {
     float sy[kLanes], scx[kLanes], s1[kLanes], s2[kLanes];
@@ -377,7 +377,8 @@ inline float LabFf(float t) {
 AALAB_FLIP_CLONES
 void HuntLabRow(const float* __restrict sy, const float* __restrict scx, const float* __restrict scz, int w,
                 const FloatMatrices& m, float* __restrict L, float* __restrict A, float* __restrict B) {
-  const float wx = static_cast<float>(kWhite[0]), wy = static_cast<float>(kWhite[1]), wz = static_cast<float>(kWhite[2]);
+  const float wx = static_cast<float>(kWhite[0]), wy = static_cast<float>(kWhite[1]),
+              wz = static_cast<float>(kWhite[2]);
   const float iwx = static_cast<float>(1.0 / kWhite[0]), iwz = static_cast<float>(1.0 / kWhite[2]);
   const float r0 = m.to_rgb[0][0], r1 = m.to_rgb[0][1], r2 = m.to_rgb[0][2];
   const float g0 = m.to_rgb[1][0], g1 = m.to_rgb[1][1], g2 = m.to_rgb[1][2];
@@ -406,7 +407,8 @@ void HuntLabRow(const float* __restrict sy, const float* __restrict scx, const f
 // feature(y, edge, point) receive each finished row (w values).
 
 template <typename ColourSink, typename FeatureSink>
-void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSink& colour, const FeatureSink& feature) {
+void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSink& colour,
+               const FeatureSink& feature) {
   static const FloatMatrices m;
   const int w = p.w, h = p.h;
   // Colour: ring of 2·rc + 1 rows × 4 planes.
@@ -416,7 +418,9 @@ void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSi
     std::vector<float> pad(static_cast<size_t>(3) * pw);
     std::vector<float> acc(static_cast<size_t>(3) * w), lab(static_cast<size_t>(3) * w);
     std::vector<const float*> ry(taps), rcx(taps), rcz1(taps), rcz2(taps);
-    auto slot = [&](int plane, int yy) { return ring.data() + (static_cast<size_t>(plane) * taps + (yy + taps * 4) % taps) * w; };
+    auto slot = [&](int plane, int yy) {
+      return ring.data() + (static_cast<size_t>(plane) * taps + (yy + taps * 4) % taps) * w;
+    };
     for (int yy = y0 - r; yy < y1 + r; ++yy) {
       const size_t row = static_cast<size_t>(ClampI(yy, 0, h - 1)) * w;
       for (int i = 0; i < pw; ++i) {
@@ -435,8 +439,8 @@ void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSi
         rcz1[t] = slot(2, y - r + t);
         rcz2[t] = slot(3, y - r + t);
       }
-      VerticalCsf(ry.data(), rcx.data(), rcz1.data(), rcz2.data(), w, taps, k.y.data(), k.cx.data(), k.cz1.data(), k.cz2.data(), acc.data(),
-                  acc.data() + w, acc.data() + 2 * w);
+      VerticalCsf(ry.data(), rcx.data(), rcz1.data(), rcz2.data(), w, taps, k.y.data(), k.cx.data(), k.cz1.data(),
+                  k.cz2.data(), acc.data(), acc.data() + w, acc.data() + 2 * w);
       HuntLabRow(acc.data(), acc.data() + w, acc.data() + 2 * w, w, m, lab.data(), lab.data() + w, lab.data() + 2 * w);
       colour(y, lab.data(), lab.data() + w, lab.data() + 2 * w);
     }
@@ -447,11 +451,14 @@ void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSi
     std::vector<float> ring(static_cast<size_t>(3) * taps * w);
     std::vector<float> pad(pw), out(static_cast<size_t>(2) * w);
     std::vector<const float*> rg(taps), rdg(taps), rddg(taps);
-    auto slot = [&](int plane, int yy) { return ring.data() + (static_cast<size_t>(plane) * taps + (yy + taps * 4) % taps) * w; };
+    auto slot = [&](int plane, int yy) {
+      return ring.data() + (static_cast<size_t>(plane) * taps + (yy + taps * 4) % taps) * w;
+    };
     for (int yy = y0 - r; yy < y1 + r; ++yy) {
       const size_t row = static_cast<size_t>(ClampI(yy, 0, h - 1)) * w;
       for (int i = 0; i < pw; ++i) pad[i] = p.y[row + ClampI(i - r, 0, w - 1)];
-      HorizontalFeatures(pad.data(), w, r, k.g.data(), k.dg.data(), k.ddg.data(), slot(0, yy), slot(1, yy), slot(2, yy));
+      HorizontalFeatures(pad.data(), w, r, k.g.data(), k.dg.data(), k.ddg.data(), slot(0, yy), slot(1, yy),
+                         slot(2, yy));
       const int y = yy - r;
       if (y < y0) continue;
       for (int t = 0; t < taps; ++t) {
@@ -459,7 +466,8 @@ void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSi
         rdg[t] = slot(1, y - r + t);
         rddg[t] = slot(2, y - r + t);
       }
-      VerticalFeatures(rg.data(), rdg.data(), rddg.data(), w, r, k.g.data(), k.dg.data(), k.ddg.data(), out.data(), out.data() + w);
+      VerticalFeatures(rg.data(), rdg.data(), rddg.data(), w, r, k.g.data(), k.dg.data(), k.ddg.data(), out.data(),
+                       out.data() + w);
       feature(y, out.data(), out.data() + w);
     }
   }

@@ -115,8 +115,7 @@ struct MseResult {
   double mse = 0.0;
   size_t pixels = 0;
 };
-MseResult MeanSquaredError(const ImageF& a, const ImageF& b, const ImageF* mask = nullptr,
-                           bool invert = false);
+MseResult MeanSquaredError(const ImageF& a, const ImageF& b, const ImageF* mask = nullptr, bool invert = false);
 
 /// PSNR in dB for peak 1.0 from an MSE: 10·log10(1 / mse); empty when mse == 0 (identical).
 std::optional<double> PsnrFromMse(double mse);

@@ -14,9 +14,9 @@ namespace aalab {
 
 void RequireSameShape(const ImageF& a, const ImageF& b, const std::string& what) {
   if (a.Width() != b.Width() || a.Height() != b.Height()) {
-    throw UserError(what + ": sizes differ (" + std::to_string(a.Width()) + "x" +
-                    std::to_string(a.Height()) + " vs " + std::to_string(b.Width()) + "x" +
-                    std::to_string(b.Height()) + "); images are never resampled to match");
+    throw UserError(what + ": sizes differ (" + std::to_string(a.Width()) + "x" + std::to_string(a.Height()) + " vs " +
+                    std::to_string(b.Width()) + "x" + std::to_string(b.Height()) +
+                    "); images are never resampled to match");
   }
   if (a.Channels() != b.Channels()) {
     throw UserError(what + ": channel counts differ (" + std::to_string(a.Channels()) + " vs " +
@@ -69,7 +69,8 @@ std::vector<MetricValue> ComputePsnr(const MetricInput& in) {
 }  // namespace
 
 std::vector<MetricEntry> PsnrMetrics() {
-  return {{"psnr", "PSNR (dB, peak 1.0) and MSE on sRGB-encoded RGB over the whole image",
+  return {{"psnr",
+           "PSNR (dB, peak 1.0) and MSE on sRGB-encoded RGB over the whole image",
            {{"psnr_db", "PSNR", "dB", Improves::kHigher, 2,
              "PSNR against the reference over all pixels (sRGB-encoded RGB, peak 1).",
              "Rewards closeness to the reference pixel by pixel. Blur that halves an edge's error scores well "

@@ -99,14 +99,15 @@ std::string MetricTablesMarkdown() {
       "|---|---|---|---|---|---|---|---|\n";
   for (const MetricEntry& e : MetricRegistry()) {
     for (const MetricOutput& o : e.outputs) {
-      md += "| `" + o.key + "` | " + e.name + " | " + Cell(o.label) + " | " + (o.unit.empty() ? "—" : o.unit) +
-            " | " + DirectionText(o.better) + " | " + PrecisionText(o) + " | " +
+      md += "| `" + o.key + "` | " + e.name + " | " + Cell(o.label) + " | " + (o.unit.empty() ? "—" : o.unit) + " | " +
+            DirectionText(o.better) + " | " + PrecisionText(o) + " | " +
             (e.inputs == MetricInputs::kImage ? "image" : "sequence (`--frames N > 1`)") + " | " +
             (e.source.empty() ? "aalab (METRICS.md)" : e.source) + " |\n";
     }
   }
-  md += "\nWhat the page says about each value (its column tooltip, and under the chart what the axis "
-        "rewards):\n\n| value | what it is | what it rewards |\n|---|---|---|\n";
+  md +=
+      "\nWhat the page says about each value (its column tooltip, and under the chart what the axis "
+      "rewards):\n\n| value | what it is | what it rewards |\n|---|---|---|\n";
   for (const MetricEntry& e : MetricRegistry()) {
     for (const MetricOutput& o : e.outputs) {
       md += "| `" + o.key + "` | " + Cell(o.help) + " | " + (o.rewards.empty() ? "—" : Cell(o.rewards)) + " |\n";
@@ -131,12 +132,10 @@ std::vector<MetricValue> ComputeAllMetrics(const MetricInput& in) {
     } else {
       values = row.compute(in);
     }
-    AALAB_CHECK(values.size() == row.outputs.size(), "metric '" + row.name +
-                                                         "' returned the wrong number of values");
+    AALAB_CHECK(values.size() == row.outputs.size(), "metric '" + row.name + "' returned the wrong number of values");
     for (size_t i = 0; i < values.size(); ++i) {
       AALAB_CHECK(values[i].name == row.outputs[i].key,
-                  "metric '" + row.name + "' returned '" + values[i].name + "', expected '" +
-                      row.outputs[i].key + "'");
+                  "metric '" + row.name + "' returned '" + values[i].name + "', expected '" + row.outputs[i].key + "'");
       if (values[i].value && !std::isfinite(*values[i].value)) {
         values[i].value.reset();
         values[i].null_reason = "non-finite result (input has NaN/Inf pixels)";

@@ -283,7 +283,9 @@ double ChannelSsim(const ImageF& a, const ImageF& b, int c, const std::array<dou
     for (int r = r0; r < r1; ++r) row_sums[r] = 0.0;
     for (int x0 = 0; x0 < nx; x0 += kStripCols) {
       const int sx = std::min(kStripCols, nx - x0);
-      auto slot = [&](int plane, int yy) { return ring.data() + (static_cast<size_t>(plane) * kTaps + yy % kTaps) * kStripCols; };
+      auto slot = [&](int plane, int yy) {
+        return ring.data() + (static_cast<size_t>(plane) * kTaps + yy % kTaps) * kStripCols;
+      };
       for (int yy = r0; yy < r1 + 2 * kSsimRadius; ++yy) {  // input rows of this chunk
         HorizontalRow(a.Row(yy) + static_cast<size_t>(x0) * ca + c, ca, sx + 2 * kSsimRadius, sx, w.data(), ra.data(),
                       raa.data(), slot(0, yy), slot(2, yy));
@@ -384,8 +386,8 @@ void VerticalAndMapPrepared(const double* const* rows_a, const double* const* ro
 }  // namespace
 
 struct SsimReferenceSide {
-  const ImageF* image = nullptr;  // the reference (for the cross term E_w[xy]); not owned
-  int nx = 0, ny = 0;  // valid region; 0 when the image is smaller than the window
+  const ImageF* image = nullptr;                     // the reference (for the cross term E_w[xy]); not owned
+  int nx = 0, ny = 0;                                // valid region; 0 when the image is smaller than the window
   std::array<std::vector<double>, 3> mean, mean_sq;  // E_w[y], E_w[y²] per channel, nx × ny row-major
 };
 
@@ -404,7 +406,9 @@ void PrepareChannel(SsimReferenceSide* side, int c, const std::array<double, kTa
     std::vector<double> ring(static_cast<size_t>(2) * kTaps * kStripCols);
     for (int x0 = 0; x0 < nx; x0 += kStripCols) {
       const int sx = std::min(kStripCols, nx - x0);
-      auto slot = [&](int plane, int yy) { return ring.data() + (static_cast<size_t>(plane) * kTaps + yy % kTaps) * kStripCols; };
+      auto slot = [&](int plane, int yy) {
+        return ring.data() + (static_cast<size_t>(plane) * kTaps + yy % kTaps) * kStripCols;
+      };
       for (int yy = r0; yy < r1 + 2 * kSsimRadius; ++yy) {
         HorizontalRow(b.Row(yy) + static_cast<size_t>(x0) * cb + c, cb, sx + 2 * kSsimRadius, sx, w.data(), rb.data(),
                       rbb.data(), slot(0, yy), slot(1, yy));
@@ -440,7 +444,9 @@ double ChannelSsimPrepared(const ImageF& a, const SsimReferenceSide& side, int c
     for (int x0 = 0; x0 < nx; x0 += kStripCols) {
       const int sx = std::min(kStripCols, nx - x0);
       const int sw = sx + 2 * kSsimRadius;
-      auto slot = [&](int plane, int yy) { return ring.data() + (static_cast<size_t>(plane) * kTaps + yy % kTaps) * kStripCols; };
+      auto slot = [&](int plane, int yy) {
+        return ring.data() + (static_cast<size_t>(plane) * kTaps + yy % kTaps) * kStripCols;
+      };
       for (int yy = r0; yy < r1 + 2 * kSsimRadius; ++yy) {
         HorizontalRow(a.Row(yy) + static_cast<size_t>(x0) * ca + c, ca, sw, sx, w.data(), ra.data(), raa.data(),
                       slot(0, yy), slot(1, yy));
@@ -471,7 +477,8 @@ double ChannelSsimPrepared(const ImageF& a, const SsimReferenceSide& side, int c
 
 std::vector<MetricValue> ComputeSsimMetric(const MetricInput& in) {
   AALAB_CHECK(in.image && in.reference, "ssim needs image and reference");
-  const SsimResult r = in.ssim_reference ? ComputeSsim(*in.image, *in.ssim_reference) : ComputeSsim(*in.image, *in.reference);
+  const SsimResult r =
+      in.ssim_reference ? ComputeSsim(*in.image, *in.ssim_reference) : ComputeSsim(*in.image, *in.reference);
   return {MetricValue{"ssim", r.ssim, r.null_reason}};
 }
 
@@ -485,8 +492,7 @@ template <typename Channel>
 SsimResult ComputeSsimWith(const ImageF& a, const ImageF& b, Channel channel) {
   RequireSameShape(a, b, "ssim");
   if (a.Channels() < 3) {
-    throw UserError("ssim: needs RGB images (got " + std::to_string(a.Channels()) +
-                    " channels)");
+    throw UserError("ssim: needs RGB images (got " + std::to_string(a.Channels()) + " channels)");
   }
   SsimResult out;
   if (a.Width() < 2 * kSsimRadius + 1 || a.Height() < 2 * kSsimRadius + 1) {

@@ -73,14 +73,16 @@ std::vector<double> FilteredLuminance(const ImageF& img, const std::vector<doubl
   ParallelFor(H, [&](int j) {
     for (int i = 0; i < W; ++i) {
       double s = 0.0;
-      for (int t = -r; t <= r; ++t) s += k[static_cast<size_t>(t + r)] * y[static_cast<size_t>(j) * W + std::clamp(i + t, 0, W - 1)];
+      for (int t = -r; t <= r; ++t)
+        s += k[static_cast<size_t>(t + r)] * y[static_cast<size_t>(j) * W + std::clamp(i + t, 0, W - 1)];
       tmp[static_cast<size_t>(j) * W + i] = s;
     }
   });
   ParallelFor(H, [&](int j) {
     for (int i = 0; i < W; ++i) {
       double s = 0.0;
-      for (int t = -r; t <= r; ++t) s += k[static_cast<size_t>(t + r)] * tmp[static_cast<size_t>(std::clamp(j + t, 0, H - 1)) * W + i];
+      for (int t = -r; t <= r; ++t)
+        s += k[static_cast<size_t>(t + r)] * tmp[static_cast<size_t>(std::clamp(j + t, 0, H - 1)) * W + i];
       out[static_cast<size_t>(j) * W + i] = s;
     }
   });
@@ -120,7 +122,8 @@ WindowTable MakeWindowTable(size_t m, double fps) {
   }
   tab.w2.assign(m, 0.0);
   for (size_t k = 1; k < m; ++k) {
-    const double w = fps > 0.0 ? TemporalCsfWeight(static_cast<double>(std::min(k, m - k)) * fps / static_cast<double>(m)) : 1.0;
+    const double w =
+        fps > 0.0 ? TemporalCsfWeight(static_cast<double>(std::min(k, m - k)) * fps / static_cast<double>(m)) : 1.0;
     tab.w2[k] = w * w;
   }
   return tab;

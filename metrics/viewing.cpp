@@ -85,8 +85,8 @@ ViewingCondition ResolveViewing(const std::string& text) {
   bool ppd_override = false, geometry_override = false;
   for (const auto& name : v.Overridden()) {
     ppd_override = ppd_override || name == "ppd";
-    geometry_override = geometry_override || name == "display_w" || name == "display_h" ||
-                        name == "diagonal_in" || name == "distance_m";
+    geometry_override = geometry_override || name == "display_w" || name == "display_h" || name == "diagonal_in" ||
+                        name == "distance_m";
   }
   if (ppd_override) {
     c.ppd = v.Number("ppd");
@@ -138,7 +138,8 @@ std::vector<std::pair<std::string, std::string>> ViewingCondition::Settings() co
 
 std::string ViewingCondition::Describe() const {
   char buf[256];
-  std::snprintf(buf, sizeof buf, "%s: %dx%d, %.4g in at %.3g m = %.4g px/deg%s, %.4g cd/m2 peak, %.4g lux ambient, %.4g fps",
+  std::snprintf(buf, sizeof buf,
+                "%s: %dx%d, %.4g in at %.3g m = %.4g px/deg%s, %.4g cd/m2 peak, %.4g lux ambient, %.4g fps",
                 spec.c_str(), display_width_px, display_height_px, diagonal_in, distance_m, ppd,
                 ppd_given ? " (given)" : "", peak_cd_m2, ambient_lux, fps);
   return buf;

@@ -17,13 +17,13 @@ struct ViewingCondition {
   std::string preset;  ///< the preset it started from
   std::string spec;    ///< canonical spec: the preset plus the overrides given, in order
   int display_width_px = 0, display_height_px = 0;
-  double diagonal_in = 0.0;     ///< display diagonal in inches (square pixels assumed)
-  double distance_m = 0.0;      ///< viewing distance
-  double ppd = 0.0;             ///< pixels per degree of visual angle at the display centre
-  bool ppd_given = false;       ///< ppd set by the preset or an override, not by the geometry
-  double peak_cd_m2 = 0.0;      ///< display peak luminance, cd/m² (recorded, see METRICS.md)
-  double ambient_lux = 0.0;     ///< illuminance of the surroundings, lux (recorded)
-  double fps = 0.0;             ///< frames per second of a sequence
+  double diagonal_in = 0.0;  ///< display diagonal in inches (square pixels assumed)
+  double distance_m = 0.0;   ///< viewing distance
+  double ppd = 0.0;          ///< pixels per degree of visual angle at the display centre
+  bool ppd_given = false;    ///< ppd set by the preset or an override, not by the geometry
+  double peak_cd_m2 = 0.0;   ///< display peak luminance, cd/m² (recorded, see METRICS.md)
+  double ambient_lux = 0.0;  ///< illuminance of the surroundings, lux (recorded)
+  double fps = 0.0;          ///< frames per second of a sequence
 
   /// The (key, value) pairs the report's settings carry, all as text: viewing, ppd, fps,
   /// display_px, display_diagonal_in, viewing_distance_m, peak_cd_m2, ambient_lux.

@@ -80,7 +80,9 @@ Threshold ParseMetricThreshold(const std::string& text, const std::string& what)
   }
   double v = 0;
   if (!ParseNumber(num, &v) || v < 0) {
-    throw UserError(what + " '" + text + "' is not a non-negative number (absolute, e.g. 0.005) or percentage (relative to the baseline value, e.g. 2%)");
+    throw UserError(what + " '" + text +
+                    "' is not a non-negative number (absolute, e.g. 0.005) or percentage (relative to the baseline "
+                    "value, e.g. 2%)");
   }
   t.value = t.relative ? v / 100.0 : v;
   return t;
@@ -95,7 +97,9 @@ Threshold ParseTimeThreshold(const std::string& text, const std::string& what) {
   } else if (num.size() > 2 && num.compare(num.size() - 2, 2, "ms") == 0) {
     num.resize(num.size() - 2);
   } else {
-    throw UserError(what + " '" + text + "' needs a unit: a percentage of the baseline median (e.g. 10%) or milliseconds (e.g. 0.5ms), or 'off'");
+    throw UserError(
+        what + " '" + text +
+        "' needs a unit: a percentage of the baseline median (e.g. 10%) or milliseconds (e.g. 0.5ms), or 'off'");
   }
   double v = 0;
   if (!ParseNumber(num, &v) || v < 0) {
@@ -148,15 +152,17 @@ void ValidateCompareOptions(const CompareOptions& o) {
     }
     if (!seen.insert(m).second) throw UserError("--metrics: metric '" + m + "' is listed twice");
     if (!IsDbMetric(m) && !o.metric_change.count(m) && !o.metric_change.count("*") && !HasDefaultTolerance(m)) {
-      throw UserError("--metrics: '" + m + "' is not in dB, so --max-drop-db does not apply; give its tolerance with "
-                      "--max-metric-change (absolute, e.g. 0.005, or relative, e.g. 2%; per metric: " + m +
-                      "=0.005) or leave it out of --metrics");
+      throw UserError("--metrics: '" + m +
+                      "' is not in dB, so --max-drop-db does not apply; give its tolerance with "
+                      "--max-metric-change (absolute, e.g. 0.005, or relative, e.g. 2%; per metric: " +
+                      m + "=0.005) or leave it out of --metrics");
     }
   }
   for (const auto& [name, t] : o.metric_change) {
     if (o.metrics.empty()) {
-      throw UserError("--max-metric-change applies to non-dB metrics, but no --metrics are given and the default "
-                      "metrics (edge_psnr_db, psnr_db) are in dB");
+      throw UserError(
+          "--max-metric-change applies to non-dB metrics, but no --metrics are given and the default "
+          "metrics (edge_psnr_db, psnr_db) are in dB");
     }
     if (name != "*" && !seen.count(name)) {
       throw UserError("--max-metric-change names '" + name + "', which --metrics does not compare");
@@ -166,8 +172,8 @@ void ValidateCompareOptions(const CompareOptions& o) {
     throw UserError("--max-time-increase must be non-negative");
   }
   if (!std::isfinite(o.warn_drop_db) || o.warn_drop_db < 0 || o.warn_drop_db > o.max_drop_db) {
-    throw UserError("--warn-drop-db " + FormatFixed(o.warn_drop_db, 3) + " must be a number of dB from 0 to --max-drop-db (" +
-                    FormatFixed(o.max_drop_db, 3) + ")");
+    throw UserError("--warn-drop-db " + FormatFixed(o.warn_drop_db, 3) +
+                    " must be a number of dB from 0 to --max-drop-db (" + FormatFixed(o.max_drop_db, 3) + ")");
   }
   if (!std::isfinite(o.time_floor_ms) || o.time_floor_ms < 0) {
     throw UserError("--time-floor must be a non-negative duration");
@@ -222,7 +228,8 @@ void AddSpecMapping(const std::string& text, std::map<std::string, std::string>*
     if (text[i] == '=' && LooksLikeSpec(text.substr(0, i)) && LooksLikeSpec(text.substr(i + 1))) splits.push_back(i);
   }
   if (splits.size() != 1) {
-    throw UserError("--map '" + text + "' is not OLD=NEW (the baseline row's method spec, '=', the current row's; "
+    throw UserError("--map '" + text +
+                    "' is not OLD=NEW (the baseline row's method spec, '=', the current row's; "
                     "e.g. fxaa311-p39=fxaa311-p39:subpix=0)");
   }
   const std::string from = text.substr(0, splits[0]), to = text.substr(splits[0] + 1);

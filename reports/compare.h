@@ -141,15 +141,15 @@ const char* VerdictName(Verdict v);
 /// One compared value of one matched row.
 struct CompareLine {
   std::string scene, spec;
-  std::string quantity;  ///< metric name, or "time_ms"
+  std::string quantity;                 ///< metric name, or "time_ms"
   std::optional<double> base, current;  ///< +inf for a null `identical` on higher-is-better
   std::string base_null, current_null;  ///< null reasons ("" when a number)
   std::optional<double> delta;          ///< current − base (may be ±inf)
   std::string threshold;                ///< the rule applied, as text
   Verdict verdict = Verdict::kUnchanged;
-  std::string note;                     ///< why, when the numbers alone do not say
-  std::string base_spec;                ///< the baseline row's spec (differs from spec under --map)
-  bool gated = true;                    ///< counts towards the exit code (CompareOptions::fail_on)
+  std::string note;       ///< why, when the numbers alone do not say
+  std::string base_spec;  ///< the baseline row's spec (differs from spec under --map)
+  bool gated = true;      ///< counts towards the exit code (CompareOptions::fail_on)
 };
 
 /// True for a metric's line, false for the time line ("time_ms").
@@ -158,23 +158,23 @@ bool IsQualityLine(const CompareLine& line);
 /// A matched row pair.
 struct RowMatch {
   std::string scene, spec;
-  std::string base_spec;                    ///< the baseline row's spec (differs from spec under --map)
-  int base_index = -1, current_index = -1;  ///< into the reports' rows
-  bool bit_identical = false;               ///< equal output_hash
-  bool regression = false, changed = false; ///< any line regressed / any line not unchanged
+  std::string base_spec;                     ///< the baseline row's spec (differs from spec under --map)
+  int base_index = -1, current_index = -1;   ///< into the reports' rows
+  bool bit_identical = false;                ///< equal output_hash
+  bool regression = false, changed = false;  ///< any line regressed / any line not unchanged
 };
 
 struct CompareResult {
-  std::vector<std::string> metrics;          ///< the metrics compared
-  std::vector<std::string> cannot_compare;   ///< reasons for exit 2 (settings, params, metrics)
-  std::vector<std::string> missing_rows;     ///< "scene / spec" only in the baseline
-  std::vector<std::string> extra_rows;       ///< "scene / spec" only in the current report
-  std::vector<std::string> notes;            ///< said once (timing not judged, noise unknown)
-  std::vector<std::string> capture_warnings; ///< "scene: warning" of the current report's scenes
-  bool strict = false;                       ///< capture warnings fail (exit 1)
+  std::vector<std::string> metrics;           ///< the metrics compared
+  std::vector<std::string> cannot_compare;    ///< reasons for exit 2 (settings, params, metrics)
+  std::vector<std::string> missing_rows;      ///< "scene / spec" only in the baseline
+  std::vector<std::string> extra_rows;        ///< "scene / spec" only in the current report
+  std::vector<std::string> notes;             ///< said once (timing not judged, noise unknown)
+  std::vector<std::string> capture_warnings;  ///< "scene: warning" of the current report's scenes
+  bool strict = false;                        ///< capture warnings fail (exit 1)
   CompareOptions::FailOn fail_on = CompareOptions::FailOn::kQuality;
   std::vector<RowMatch> rows;
-  std::vector<CompareLine> lines;            ///< every compared value, unchanged ones included
+  std::vector<CompareLine> lines;                       ///< every compared value, unchanged ones included
   int regressions = 0, improvements = 0, warnings = 0;  ///< regressions: gated ones only
 
   /// 2 could not compare (anything in cannot_compare / missing_rows / extra_rows), 1 at

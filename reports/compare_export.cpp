@@ -53,16 +53,28 @@ nlohmann::ordered_json CompareToJson(const CompareResult& r, const std::string& 
          {"capture_warnings", r.capture_warnings}};
   J rows = J::array();
   for (const auto& m : r.rows) {
-    rows.push_back({{"scene", m.scene}, {"spec", m.spec}, {"baseline_spec", m.base_spec},
-                    {"bit_identical", m.bit_identical}, {"regression", m.regression}, {"changed", m.changed}});
+    rows.push_back({{"scene", m.scene},
+                    {"spec", m.spec},
+                    {"baseline_spec", m.base_spec},
+                    {"bit_identical", m.bit_identical},
+                    {"regression", m.regression},
+                    {"changed", m.changed}});
   }
   j["rows"] = rows;
   J lines = J::array();
   for (const auto& l : r.lines) {
-    lines.push_back({{"scene", l.scene}, {"spec", l.spec}, {"baseline_spec", l.base_spec}, {"quantity", l.quantity},
-                     {"baseline", Number(l.base)}, {"current", Number(l.current)},
-                     {"baseline_null", l.base_null}, {"current_null", l.current_null}, {"delta", Number(l.delta)},
-                     {"threshold", l.threshold}, {"verdict", VerdictName(l.verdict)}, {"gated", l.gated},
+    lines.push_back({{"scene", l.scene},
+                     {"spec", l.spec},
+                     {"baseline_spec", l.base_spec},
+                     {"quantity", l.quantity},
+                     {"baseline", Number(l.base)},
+                     {"current", Number(l.current)},
+                     {"baseline_null", l.base_null},
+                     {"current_null", l.current_null},
+                     {"delta", Number(l.delta)},
+                     {"threshold", l.threshold},
+                     {"verdict", VerdictName(l.verdict)},
+                     {"gated", l.gated},
                      {"note", l.note}});
   }
   j["lines"] = lines;

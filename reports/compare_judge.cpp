@@ -29,7 +29,8 @@ struct MetricLookup {
 
 MetricLookup Lookup(const ResultRow& row, const std::string& name) {
   for (const auto& m : row.metrics) {
-    if (m.name == name) return {true, m.value, m.value ? std::string() : (m.null_reason.empty() ? "no reason given" : m.null_reason)};
+    if (m.name == name)
+      return {true, m.value, m.value ? std::string() : (m.null_reason.empty() ? "no reason given" : m.null_reason)};
   }
   return {};
 }
@@ -95,8 +96,7 @@ void CheckComparable(const Report& base, const Report& cur, CompareResult* res) 
   // The viewing condition (absent = the default, 67 px/deg at 60 fps, as before it existed):
   // FLIP and the perceptual temporal error depend on it.
   // The sampler (absent = gl) likewise: the post filters' texel arithmetic changes their outputs.
-  for (const auto& [key, def] :
-       {std::pair<const char*, const char*>{"ppd", "67"}, {"fps", "60"}, {"sampler", "gl"}}) {
+  for (const auto& [key, def] : {std::pair<const char*, const char*>{"ppd", "67"}, {"fps", "60"}, {"sampler", "gl"}}) {
     std::string a = SettingValue(base, key), b = SettingValue(cur, key);
     if (a.empty()) a = def;
     if (b.empty()) b = def;
@@ -236,7 +236,7 @@ void JudgeMetricValues(const CompareOptions& o, const std::string& metric, Bette
       l->note = "now identical to the reference (infinite PSNR)";
     } else {
       const double allowed = tol.Allowed(*l->base);
-      l->verdict = gain == 0.0 ? Verdict::kUnchanged
+      l->verdict = gain == 0.0       ? Verdict::kUnchanged
                    : gain < -allowed ? Verdict::kRegression
                    : gain > allowed  ? Verdict::kImproved
                                      : Verdict::kWithin;
@@ -415,16 +415,19 @@ void AddClosingNotes(const CompareOptions& o, bool judge_time, const Tally& tall
   if (tally.bit_identical_value_changes > 0) {
     res->notes.push_back(std::to_string(tally.bit_identical_value_changes) +
                          " value(s) of rows with bit-identical output differ (so the reference or a metric changed, "
-                         "not the method); counted as unchanged. E.g. " + tally.bit_identical_example);
+                         "not the method); counted as unchanged. E.g. " +
+                         tally.bit_identical_example);
   }
   const bool gate_time = o.fail_on != CompareOptions::FailOn::kQuality;
   if (o.check_time && !gate_time) {
-    res->notes.push_back("time is shown, not gated (--fail-on quality, the default): a time change beyond the noise "
-                         "test is a warning; gate it with --fail-on time or any");
+    res->notes.push_back(
+        "time is shown, not gated (--fail-on quality, the default): a time change beyond the noise "
+        "test is a warning; gate it with --fail-on time or any");
   }
   if (tally.few_samples && judge_time && gate_time) {
-    res->notes.push_back("some rows have fewer than 2 timed repeats: their timing spread is 0, so any increase beyond "
-                         "the threshold counts (run with --repeat 3 or more)");
+    res->notes.push_back(
+        "some rows have fewer than 2 timed repeats: their timing spread is 0, so any increase beyond "
+        "the threshold counts (run with --repeat 3 or more)");
   }
 }
 

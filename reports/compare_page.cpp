@@ -96,8 +96,8 @@ std::string AbViewHost(const CompareResult& r, const std::vector<size_t>& order,
   if (choices.size() < 2) return "";
   nlohmann::json crops = nlohmann::json::array();
   for (const auto& c : sc->crops) crops.push_back({c[0], c[1], c[2], c[3]});
-  const nlohmann::json d = {{"width", sc->width}, {"height", sc->height}, {"crops", crops}, {"choices", choices},
-                            {"a", choices[0]["key"]}, {"b", choices[1]["key"]}};
+  const nlohmann::json d = {{"width", sc->width}, {"height", sc->height},   {"crops", crops},
+                            {"choices", choices}, {"a", choices[0]["key"]}, {"b", choices[1]["key"]}};
   return "<h3>Any two side by side</h3>\n<div class=\"abview abview-host\" data-ab=\"" + HtmlEscape(d.dump()) +
          "\"></div>\n";
 }
@@ -112,8 +112,11 @@ std::string CompareHtml(const CompareResult& r, const std::vector<std::vector<Ht
   h << "<h1>aalab compare</h1>\n<p>baseline <code>" << HtmlEscape(base_name) << "</code>, current <code>"
     << HtmlEscape(cur_name) << "</code></p>\n";
   h << "<p class=\"" << (code == 0 ? "improved" : "regression") << "\">exit " << code << ": "
-    << (code == 0 ? "no regression" : code == 1 ? "regression" : "could not compare") << " &mdash; " << r.rows.size()
-    << " rows compared, " << r.regressions << " regression(s), " << r.improvements << " improvement(s)</p>\n";
+    << (code == 0   ? "no regression"
+        : code == 1 ? "regression"
+                    : "could not compare")
+    << " &mdash; " << r.rows.size() << " rows compared, " << r.regressions << " regression(s), " << r.improvements
+    << " improvement(s)</p>\n";
   auto list = [&h](const std::string& title, const std::vector<std::string>& items) {
     if (items.empty()) return;
     h << "<h2>" << HtmlEscape(title) << " (" << items.size() << ")</h2>\n<ul>\n";
@@ -146,9 +149,9 @@ std::string CompareHtml(const CompareResult& r, const std::vector<std::vector<Ht
       if (l.scene != m.scene || l.spec != m.spec) continue;
       h << "<tr><td class=\"l\">" << HtmlEscape(l.quantity) << "</td><td>" << HtmlEscape(LineValueText(l, true))
         << "</td><td>" << HtmlEscape(LineValueText(l, false)) << "</td><td>"
-        << (l.delta ? HtmlEscape(CompareDeltaText(l.quantity, *l.delta)) : "-") << "</td><td>" << HtmlEscape(l.threshold)
-        << "</td><td class=\"l " << verdict_class(l.verdict) << "\">" << VerdictName(l.verdict)
-        << (l.note.empty() ? "" : ": " + HtmlEscape(l.note)) << "</td></tr>\n";
+        << (l.delta ? HtmlEscape(CompareDeltaText(l.quantity, *l.delta)) : "-") << "</td><td>"
+        << HtmlEscape(l.threshold) << "</td><td class=\"l " << verdict_class(l.verdict) << "\">"
+        << VerdictName(l.verdict) << (l.note.empty() ? "" : ": " + HtmlEscape(l.note)) << "</td></tr>\n";
     }
     h << "</table>\n<div class=\"imgs\">\n";
     for (const auto& im : images[k]) {

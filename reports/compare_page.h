@@ -14,10 +14,10 @@ namespace aalab {
 
 /// One image shown on the HTML page.
 struct HtmlImage {
-  std::string label;   ///< "baseline output", "current output", "reference"
-  std::string source;  ///< path of the image as the report names it, joined to its folder
-  std::string href;    ///< path relative to the HTML file; empty when not available
-  std::string missing; ///< why it is not shown (when href is empty)
+  std::string label;    ///< "baseline output", "current output", "reference"
+  std::string source;   ///< path of the image as the report names it, joined to its folder
+  std::string href;     ///< path relative to the HTML file; empty when not available
+  std::string missing;  ///< why it is not shown (when href is empty)
 };
 
 /// The images to show per changed row, in the order of result.rows filtered to changed or

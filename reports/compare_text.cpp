@@ -37,13 +37,14 @@ std::string LineValueText(const CompareLine& l, bool base) {
   return "null (" + reason + ")";
 }
 
-std::string FormatCompareText(const CompareResult& r, const Report& base, const Report& cur, const std::string& base_name,
-                              const std::string& cur_name, bool all) {
+std::string FormatCompareText(const CompareResult& r, const Report& base, const Report& cur,
+                              const std::string& base_name, const std::string& cur_name, bool all) {
   std::ostringstream out;
   auto describe = [](const Report& rep) {
     auto it = rep.context.find("git_commit");
     return "commit " + (it == rep.context.end() ? std::string("unknown") : it->second) + ", size " +
-           SettingValue(rep, "size") + ", ref_spp " + SettingValue(rep, "ref_spp") + ", seed " + SettingValue(rep, "seed");
+           SettingValue(rep, "size") + ", ref_spp " + SettingValue(rep, "ref_spp") + ", seed " +
+           SettingValue(rep, "seed");
   };
   out << "baseline: " << base_name << " (" << describe(base) << ")\n";
   out << "current:  " << cur_name << " (" << describe(cur) << ")\n";
@@ -104,8 +105,11 @@ std::string FormatCompareText(const CompareResult& r, const Report& base, const 
   out << "summary: " << r.rows.size() << " rows compared on " << (metrics.empty() ? "(none)" : metrics)
       << (r.lines.empty() || r.lines.back().quantity != "time_ms" ? "" : " and time") << " (" << identical
       << " bit-identical outputs); gating " << FailOnName(r.fail_on) << "; " << r.regressions << " regression(s), "
-      << r.warnings << " warning(s), " << r.improvements << " improvement(s); exit "
-      << code << (code == 0 ? " (no regression)" : code == 1 ? " (regression)" : " (could not compare)") << "\n";
+      << r.warnings << " warning(s), " << r.improvements << " improvement(s); exit " << code
+      << (code == 0   ? " (no regression)"
+          : code == 1 ? " (regression)"
+                      : " (could not compare)")
+      << "\n";
   return out.str();
 }
 

@@ -179,9 +179,10 @@ std::string BibtexFile(const std::vector<std::pair<std::string, std::string>>& u
   }
   o += "%   the tool: aalab\n\n";
   for (const auto& key : keys) o += BibEntry(key) + "\n\n";
-  o += std::string("@misc{aalab,\n  key          = {aalab},\n"
-                   "  title        = {aalab: anti-aliasing measured against the truth},\n"
-                   "  note         = {Version ") +
+  o += std::string(
+           "@misc{aalab,\n  key          = {aalab},\n"
+           "  title        = {aalab: anti-aliasing measured against the truth},\n"
+           "  note         = {Version ") +
        AALAB_VERSION + ", commit " + AALAB_GIT_COMMIT + "}\n}\n";
   return o;
 }

@@ -59,7 +59,8 @@ std::vector<double> LinTicks(double lo, double hi) {
     }
   }
   std::vector<double> out;
-  for (double v = std::ceil(lo / step) * step; v <= hi + step * 1e-9; v += step) out.push_back(std::fabs(v) < step * 1e-9 ? 0 : v);
+  for (double v = std::ceil(lo / step) * step; v <= hi + step * 1e-9; v += step)
+    out.push_back(std::fabs(v) < step * 1e-9 ? 0 : v);
   return out;
 }
 
@@ -94,18 +95,20 @@ std::string QualityTimeChartSvg(const std::vector<ExportSource>& sources, const 
   }
   std::string o = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!--\n";
   for (const auto& line : provenance) o += "  " + XmlEscape(line) + "\n";
-  o += "-->\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + F(kW) + "\" height=\"" + F(kH) + "\" viewBox=\"0 0 " +
-       F(kW) + " " + F(kH) + "\" font-family=\"" + kFont + "\" font-size=\"11\">\n<metadata>";
+  o += "-->\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + F(kW) + "\" height=\"" + F(kH) +
+       "\" viewBox=\"0 0 " + F(kW) + " " + F(kH) + "\" font-family=\"" + kFont + "\" font-size=\"11\">\n<metadata>";
   for (const auto& line : provenance) o += XmlEscape(line) + "\n";
   o += "</metadata>\n<desc>" +
        XmlEscape("Mean " + info.label + " against mean time per frame over the chosen scenes (" +
                  std::to_string(sel.scenes.size()) + " asked; the tables' notes name any left out). " +
                  ConditionsSentence(sources.front().report, sel.metric) +
-                 (unplotted.empty() ? "" : " Not plotted: " + [&] {
-                   std::string s;
-                   for (const auto& u : unplotted) s += (s.empty() ? "" : "; ") + u;
-                   return s;
-                 }())) +
+                 (unplotted.empty() ? ""
+                                    : " Not plotted: " +
+                                          [&] {
+                                            std::string s;
+                                            for (const auto& u : unplotted) s += (s.empty() ? "" : "; ") + u;
+                                            return s;
+                                          }())) +
        "</desc>\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   if (!std::isfinite(lx0)) {
     o += "<text x=\"" + F(kW / 2) + "\" y=\"" + F(kH / 2) + "\" text-anchor=\"middle\">No method has a value of " +
@@ -134,7 +137,8 @@ std::string QualityTimeChartSvg(const std::vector<ExportSource>& sources, const 
   std::string ticks;
   for (double v : LogTicks(std::pow(10.0, lx0), std::pow(10.0, lx1))) {
     o += "<line x1=\"" + F(X(v)) + "\" x2=\"" + F(X(v)) + "\" y1=\"" + F(kT) + "\" y2=\"" + F(kH - kB) + "\"/>\n";
-    ticks += "<text x=\"" + F(X(v)) + "\" y=\"" + F(kH - kB + 15) + "\" text-anchor=\"middle\">" + Tick(v) + "</text>\n";
+    ticks +=
+        "<text x=\"" + F(X(v)) + "\" y=\"" + F(kH - kB + 15) + "\" text-anchor=\"middle\">" + Tick(v) + "</text>\n";
   }
   for (double v : LinTicks(y0, y1)) {
     o += "<line x1=\"" + F(kL) + "\" x2=\"" + F(kW - kR) + "\" y1=\"" + F(Y(v)) + "\" y2=\"" + F(Y(v)) + "\"/>\n";
@@ -149,7 +153,9 @@ std::string QualityTimeChartSvg(const std::vector<ExportSource>& sources, const 
   o += "<text transform=\"translate(16 " + F(kT + (kH - kT - kB) / 2) +
        ") rotate(-90)\" text-anchor=\"middle\" font-size=\"12\">" +
        XmlEscape("mean " + info.label + (info.unit.empty() ? "" : " (" + info.unit + ")") + ", " +
-                 (info.better > 0 ? "higher is better" : info.better < 0 ? "lower is better" : "direction unknown")) +
+                 (info.better > 0   ? "higher is better"
+                  : info.better < 0 ? "lower is better"
+                                    : "direction unknown")) +
        "</text>\n";
   std::vector<Box> placed;
   for (const auto& pts : series) {
@@ -179,8 +185,8 @@ std::string QualityTimeChartSvg(const std::vector<ExportSource>& sources, const 
         bool end;
       };
       // Beside the point first, then further up or down with a leader line.
-      std::vector<Try> tries = {{7, 4, false}, {7, -6, false}, {7, 14, false}, {-7, 4, true}, {-7, -6, true},
-                                {-7, 14, true}, {-w / 2, -9, false}, {-w / 2, 17, false}};
+      std::vector<Try> tries = {{7, 4, false},  {7, -6, false}, {7, 14, false},      {-7, 4, true},
+                                {-7, -6, true}, {-7, 14, true}, {-w / 2, -9, false}, {-w / 2, 17, false}};
       for (double dy = 26; dy <= 86; dy += 12) {
         for (const double sign : {-1.0, 1.0}) {
           tries.push_back({12, sign * dy + 4, false});

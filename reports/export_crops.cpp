@@ -158,8 +158,8 @@ CropFigure ComposeCropFigure(const std::vector<ExportSource>& sources, const Cro
   std::vector<Column> cols{{"Reference", fig.reference_path, 0}};
   for (const auto& spec : o.methods) {
     for (size_t s = 0; s < sources.size(); ++s) {
-      cols.push_back({sources.size() > 1 ? spec + " (" + sources[s].label + ")" : spec,
-                      OutputOf(sources[s], o.scene, spec), s});
+      cols.push_back(
+          {sources.size() > 1 ? spec + " (" + sources[s].label + ")" : spec, OutputOf(sources[s], o.scene, spec), s});
     }
   }
   int tile_w = 0;
@@ -234,7 +234,8 @@ CropFigure ComposeCropFigure(const std::vector<ExportSource>& sources, const Cro
       for (int j = 0; j < c[3]; ++j) {
         for (int i = 0; i < c[2]; ++i) {
           int sum = 0;
-          for (int ch = 0; ch < 3; ++ch) sum += std::abs(img.At(c[0] + i, c[1] + j, ch) - ref.At(c[0] + i, c[1] + j, ch));
+          for (int ch = 0; ch < 3; ++ch)
+            sum += std::abs(img.At(c[0] + i, c[1] + j, ch) - ref.At(c[0] + i, c[1] + j, ch));
           err.At(i, j, 0) = static_cast<float>(sum / (3.0 * 255.0));
         }
       }
@@ -265,18 +266,21 @@ std::string CropFigureToSvg(const CropFigure& fig, const std::vector<std::string
   std::string o = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!--\n";
   for (const auto& line : provenance) o += "  " + XmlEscape(line) + "\n";
   o += "-->\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(fig.width) + "\" height=\"" +
-       std::to_string(fig.height) + "\" viewBox=\"0 0 " + std::to_string(fig.width) + " " +
-       std::to_string(fig.height) + "\">\n<metadata>";
+       std::to_string(fig.height) + "\" viewBox=\"0 0 " + std::to_string(fig.width) + " " + std::to_string(fig.height) +
+       "\">\n<metadata>";
   for (const auto& line : provenance) o += XmlEscape(line) + "\n";
   o += "</metadata>\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   for (const auto& t : fig.tiles) {
     // One path per colour: each horizontal run of equal pixels is "Mx yhNv1h-Nz" in source
     // pixels, scaled by the zoom. crispEdges keeps the squares' edges unblended.
     o += "<g transform=\"translate(" + std::to_string(t.x) + " " + std::to_string(t.y) + ") scale(" +
-         std::to_string(t.zoom) + ")\" shape-rendering=\"crispEdges\" data-crop=\"" + std::to_string(t.crop[0]) +
-         " " + std::to_string(t.crop[1]) + " " + std::to_string(t.crop[2]) + " " + std::to_string(t.crop[3]) +
-         "\" data-kind=\"" + (t.path.empty() ? "scale" : t.heatmap ? "heatmap" : "image") + "\" data-image=\"" +
-         XmlEscape(t.path) + "\">\n";
+         std::to_string(t.zoom) + ")\" shape-rendering=\"crispEdges\" data-crop=\"" + std::to_string(t.crop[0]) + " " +
+         std::to_string(t.crop[1]) + " " + std::to_string(t.crop[2]) + " " + std::to_string(t.crop[3]) +
+         "\" data-kind=\"" +
+         (t.path.empty() ? "scale"
+          : t.heatmap    ? "heatmap"
+                         : "image") +
+         "\" data-image=\"" + XmlEscape(t.path) + "\">\n";
     std::map<uint32_t, std::string> runs;
     std::vector<uint32_t> order;
     for (int j = 0; j < t.crop[3]; ++j) {
@@ -305,9 +309,10 @@ std::string CropFigureToSvg(const CropFigure& fig, const std::vector<std::string
     o += "</g>\n";
   }
   for (const auto& l : fig.labels) {
-    o += "<text x=\"" + std::to_string(l.x) + "\" y=\"" + std::to_string(l.y) + "\" font-family=\"DejaVu Sans, "
-         "Helvetica, Arial, sans-serif\" font-size=\"" + std::to_string(l.size) + "\">" + XmlEscape(l.text) +
-         "</text>\n";
+    o += "<text x=\"" + std::to_string(l.x) + "\" y=\"" + std::to_string(l.y) +
+         "\" font-family=\"DejaVu Sans, "
+         "Helvetica, Arial, sans-serif\" font-size=\"" +
+         std::to_string(l.size) + "\">" + XmlEscape(l.text) + "</text>\n";
   }
   return o + "</svg>\n";
 }

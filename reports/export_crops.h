@@ -17,10 +17,10 @@ namespace aalab {
 /// What the figure shows. Empty fields take the defaults of DefaultCropFigure.
 struct CropFigureOptions {
   std::string scene;
-  std::vector<std::string> methods;          ///< specs (from every report, in that order)
-  std::vector<std::array<int, 4>> crops;     ///< [x, y, w, h] in output pixels
-  int zoom = 0;                              ///< pixel replication factor; 0 = tiles of about 128 px
-  bool heatmap = false;                      ///< add the error heatmap row under each crop
+  std::vector<std::string> methods;       ///< specs (from every report, in that order)
+  std::vector<std::array<int, 4>> crops;  ///< [x, y, w, h] in output pixels
+  int zoom = 0;                           ///< pixel replication factor; 0 = tiles of about 128 px
+  bool heatmap = false;                   ///< add the error heatmap row under each crop
 };
 
 /// Defaults for the default suite: the scene (of `scenes`) where the chosen metric spreads
@@ -34,12 +34,12 @@ CropFigureOptions DefaultCropFigure(const std::vector<ExportSource>& sources, co
 
 /// One image tile of the figure: which pixels of which file, where.
 struct FigureTile {
-  int x = 0, y = 0;               ///< top-left in figure pixels
+  int x = 0, y = 0;  ///< top-left in figure pixels
   int zoom = 1;
-  std::array<int, 4> crop{};      ///< source rectangle [x, y, w, h]
-  std::string path;               ///< image file (relative to the report folder of `source`)
-  size_t source = 0;              ///< index into the sources
-  bool heatmap = false;           ///< |this − reference| through viridis instead of the image
+  std::array<int, 4> crop{};  ///< source rectangle [x, y, w, h]
+  std::string path;           ///< image file (relative to the report folder of `source`)
+  size_t source = 0;          ///< index into the sources
+  bool heatmap = false;       ///< |this − reference| through viridis instead of the image
 };
 
 /// A text label (left-aligned at x, baseline at y), `size` px high.
@@ -54,8 +54,8 @@ struct CropFigure {
   int width = 0, height = 0;
   std::vector<FigureTile> tiles;
   std::vector<FigureLabel> labels;
-  std::string reference_path;     ///< the reference PNG of source 0, for the heatmaps
-  Image8 pixels;                  ///< RGBA8, white background, tiles drawn
+  std::string reference_path;  ///< the reference PNG of source 0, for the heatmaps
+  Image8 pixels;               ///< RGBA8, white background, tiles drawn
 };
 
 /// Reads an 8-bit image (the CLI passes io's ReadImage8) by source index and path

@@ -140,7 +140,8 @@ ExportSelection ResolveSelection(const std::vector<ExportSource>& sources, const
       if (!FindScene(src.report, name)) {
         std::vector<std::string> have;
         for (const auto& s : src.report.scenes) have.push_back(s.name);
-        throw UserError("--scenes: scene '" + name + "' is not in report '" + src.dir + "' (it has: " + Join(have) + ")");
+        throw UserError("--scenes: scene '" + name + "' is not in report '" + src.dir + "' (it has: " + Join(have) +
+                        ")");
       }
     }
     for (const auto& spec : sel.methods) {

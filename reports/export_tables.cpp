@@ -157,8 +157,9 @@ MeanScope ScopeOf(const Report& r, const ExportSelection& sel) {
 }
 
 std::string ScopeSentence(const MeanScope& s, size_t total) {
-  std::string out = "Means over " + (s.left.empty() ? "all " + std::to_string(total)
-                                                    : std::to_string(s.used.size()) + " of " + std::to_string(total)) +
+  std::string out = "Means over " +
+                    (s.left.empty() ? "all " + std::to_string(total)
+                                    : std::to_string(s.used.size()) + " of " + std::to_string(total)) +
                     " scenes";
   if (!s.left.empty()) out += " (left out, not every method has a value there: " + Join(s.left, "; ") + ")";
   return out + ".";
@@ -287,7 +288,8 @@ ExportTable MetricTable(const std::vector<ExportSource>& sources, const ExportSe
         TableCell c;
         if (!na.count(sel.methods[m]) && !scope.used.empty()) {
           double sum = 0;
-          for (const auto& scene : scope.used) sum += *MetricOf(*FindRow(src.report, scene, sel.methods[m]), sel.metric);
+          for (const auto& scene : scope.used)
+            sum += *MetricOf(*FindRow(src.report, scene, sel.methods[m]), sel.metric);
           c.value = sum / static_cast<double>(scope.used.size());
         }
         t.cells[m].push_back(c);
@@ -304,8 +306,10 @@ ExportTable MetricTable(const std::vector<ExportSource>& sources, const ExportSe
               Conditions(sources, sel.metric);
   for (const auto& n : scope_notes) t.notes.push_back(n);
   if (!floor_notes.empty()) {
-    t.notes.push_back("†: within 3 dB of the reference's noise floor or above it, so not distinguishable from "
-                      "the reference at its sample count: " + Join(floor_notes, ", ") + ".");
+    t.notes.push_back(
+        "†: within 3 dB of the reference's noise floor or above it, so not distinguishable from "
+        "the reference at its sample count: " +
+        Join(floor_notes, ", ") + ".");
   }
   for (const auto& [why, scenes] : empty_why) {
     t.notes.push_back("Empty cells (" + Join({scenes.begin(), scenes.end()}, ", ") + "): " + why + ".");
@@ -318,8 +322,12 @@ ExportTable CostTable(const std::vector<ExportSource>& sources, const ExportSele
   const std::string unit = info.unit.empty() ? "" : " (" + info.unit + ")";
   ExportTable t;
   t.row_header = "Method";
-  t.columns = {MetricWithUnit(sel.metric), "Gain" + unit, "Time (ms)", "Added (ms)",
-               "Gain/ms" + (info.unit.empty() ? "" : " (" + info.unit + "/ms)"), "Pareto"};
+  t.columns = {MetricWithUnit(sel.metric),
+               "Gain" + unit,
+               "Time (ms)",
+               "Added (ms)",
+               "Gain/ms" + (info.unit.empty() ? "" : " (" + info.unit + "/ms)"),
+               "Pareto"};
   t.column_groups.assign(t.columns.size(), "");
   std::vector<std::pair<size_t, size_t>> group_rows;
   bool any_baseless = false, any_nonpositive = false;
@@ -365,17 +373,18 @@ ExportTable CostTable(const std::vector<ExportSource>& sources, const ExportSele
     for (const auto& [b, e] : group_rows) MarkBest(t, col, betters[col], b, e);
   }
   const std::string scope_text = sel.scenes.size() > 1 ? "means over the scenes" : "on " + sel.scenes.front();
-  t.caption = "Cost of accuracy (" + scope_text + "): " + info.label + ", its gain over no AA (none; " +
-              (info.better < 0 ? "none's value minus the method's, positive = less error"
-                               : "the method's value minus none's") +
-              "), time per frame (mean of the per-scene medians), time added over none, gain per ms added, and "
-              "whether the method is on the Pareto front of quality against time. Fastest first; best per "
-              "column in bold." +
-              RunsSentence(sources) + Conditions(sources, sel.metric);
+  t.caption =
+      "Cost of accuracy (" + scope_text + "): " + info.label + ", its gain over no AA (none; " +
+      (info.better < 0 ? "none's value minus the method's, positive = less error" : "the method's value minus none's") +
+      "), time per frame (mean of the per-scene medians), time added over none, gain per ms added, and "
+      "whether the method is on the Pareto front of quality against time. Fastest first; best per "
+      "column in bold." +
+      RunsSentence(sources) + Conditions(sources, sel.metric);
   if (any_baseless) t.notes.push_back("No gain or time added without a none row with a value.");
   if (any_nonpositive) {
-    t.notes.push_back("Gain/ms is empty where the time added is 0 ms or less: not measurably slower than none in "
-                      "this run, so no gain per ms.");
+    t.notes.push_back(
+        "Gain/ms is empty where the time added is 0 ms or less: not measurably slower than none in "
+        "this run, so no gain per ms.");
   }
   return t;
 }

@@ -24,14 +24,14 @@ struct TableCell {
 
 /// A table in a form every writer shares.
 struct ExportTable {
-  std::string caption;       ///< plain text (writers escape it)
-  std::string row_header;    ///< header of the label column ("Method")
+  std::string caption;                     ///< plain text (writers escape it)
+  std::string row_header;                  ///< header of the label column ("Method")
   std::vector<std::string> columns;        ///< data column headers, units included
   std::vector<std::string> column_groups;  ///< per data column: its group ("" = none), e.g. the run's label
   std::vector<std::string> row_labels;
-  std::vector<std::string> row_groups;     ///< per row: its group ("" = none)
+  std::vector<std::string> row_groups;        ///< per row: its group ("" = none)
   std::vector<std::vector<TableCell>> cells;  ///< rows × columns
-  std::vector<std::string> notes;          ///< sentences under the table (why a cell is empty, ...)
+  std::vector<std::string> notes;             ///< sentences under the table (why a cell is empty, ...)
 };
 
 /// One method's point over the chosen scenes: the mean of the metric and of the median

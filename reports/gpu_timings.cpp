@@ -37,7 +37,8 @@ GpuTimingsFile ReadGpuTimingsFile(const std::string& path) {
     }
     const int version = doc.at("schema_version").get<int>();
     if (version != 1) {
-      throw UserError("'" + path + "': schema_version " + std::to_string(version) + " is not supported (this aalab reads 1)");
+      throw UserError("'" + path + "': schema_version " + std::to_string(version) +
+                      " is not supported (this aalab reads 1)");
     }
     g.device = doc.at("device").at("name").get<std::string>();
     g.driver = doc.at("driver").get<std::string>();
@@ -108,8 +109,8 @@ int MergeGpuTimings(Report& report, const GpuTimingsFile& gpu) {
     ++matched;
   }
   if (matched > 0) {
-    report.context["gpu_timings"] = gpu.device + ", driver " + gpu.driver + ", CUDA " + gpu.cuda_runtime +
-                                    ", measured " + gpu.generated_utc;
+    report.context["gpu_timings"] =
+        gpu.device + ", driver " + gpu.driver + ", CUDA " + gpu.cuda_runtime + ", measured " + gpu.generated_utc;
   }
   return matched;
 }

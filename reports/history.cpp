@@ -94,8 +94,8 @@ HistoryEntry EntryFromJson(const Json& j, const std::string& where) {
 }  // namespace
 
 const std::vector<std::string>& HistorySeriesKeys() {
-  static const std::vector<std::string> keys = {"size", "ref_spp", "seed", "scenes", "methods", "frames",
-                                                "sampler", "ppd", "fps"};
+  static const std::vector<std::string> keys = {"size",   "ref_spp", "seed", "scenes", "methods",
+                                                "frames", "sampler", "ppd",  "fps"};
   return keys;
 }
 
@@ -203,8 +203,8 @@ std::string HistoryLine(const HistoryEntry& e) {
   }
   j["rows"] = rows;
   if (e.accepted) {
-    j["accepted"] = {{"by", e.accepted->by}, {"at", e.accepted->at}, {"why", e.accepted->why},
-                     {"baseline", e.accepted->baseline}};
+    j["accepted"] = {
+        {"by", e.accepted->by}, {"at", e.accepted->at}, {"why", e.accepted->why}, {"baseline", e.accepted->baseline}};
   }
   return j.dump();
 }
@@ -263,8 +263,8 @@ void CheckSeriesCompatible(const std::vector<HistoryEntry>& entries, const Histo
   for (const auto& x : entries) {
     const bool same_label = x.series == e.series && x.commit == e.commit && x.date == e.date;  // said below
     if (!same_label && content(x) == mine) {
-      throw UserError("the history already holds this report (line " + std::to_string(x.line) + ", series '" + x.series +
-                      "', commit " + x.commit + ", from '" + x.source +
+      throw UserError("the history already holds this report (line " + std::to_string(x.line) + ", series '" +
+                      x.series + "', commit " + x.commit + ", from '" + x.source +
                       "'): the same rows, output hashes and timing samples; a report is added once");
     }
   }
@@ -288,7 +288,8 @@ void CheckSeriesCompatible(const std::vector<HistoryEntry>& entries, const Histo
     for (size_t i = 0; i < diffs.size(); ++i) s += (i ? "; " : "") + diffs[i];
     throw UserError("report '" + e.source + "' does not match series '" + e.series + "' (line " +
                     std::to_string(last->line) + "): " + s +
-                    ". Entries of a series must agree on size, ref_spp, seed, scenes, methods, frames, the sampler and the viewing condition (ppd, fps); start another series "
+                    ". Entries of a series must agree on size, ref_spp, seed, scenes, methods, frames, the sampler and "
+                    "the viewing condition (ppd, fps); start another series "
                     "with --series NAME");
   }
 }

@@ -24,12 +24,12 @@ constexpr int kHistoryVersion = 1;
 
 /// One report in the database.
 struct HistoryEntry {
-  int line = 0;          ///< 1-based line in the file (0 before it is written)
-  std::string series;    ///< series name
-  std::string commit;    ///< git commit of the build that ran the report
-  std::string date;      ///< when the report was made (ISO 8601, UTC)
-  std::string source;    ///< path of the report file as given to `history add`
-  Report report;         ///< settings, context and rows (no scenes, no images)
+  int line = 0;        ///< 1-based line in the file (0 before it is written)
+  std::string series;  ///< series name
+  std::string commit;  ///< git commit of the build that ran the report
+  std::string date;    ///< when the report was made (ISO 8601, UTC)
+  std::string source;  ///< path of the report file as given to `history add`
+  Report report;       ///< settings, context and rows (no scenes, no images)
   /// Set when the report was accepted as a baseline (`aalab baseline accept`): who, when
   /// (UTC), why, and the baseline folder.
   struct Acceptance {

@@ -19,10 +19,10 @@ namespace {
 
 /// One point of a trend chart.
 struct TrendPoint {
-  std::optional<double> value;  ///< +inf: identical to the reference
-  std::optional<double> lo, hi; ///< min–max bar (time)
-  std::string null_text;        ///< when value is empty
-  std::string mark;             ///< "", "regression", "improved", "cannot"
+  std::optional<double> value;   ///< +inf: identical to the reference
+  std::optional<double> lo, hi;  ///< min–max bar (time)
+  std::string null_text;         ///< when value is empty
+  std::string mark;              ///< "", "regression", "improved", "cannot"
   std::string tooltip;
 };
 
@@ -74,15 +74,17 @@ std::string SvgTrend(const std::string& title, const std::string& unit, const st
     return T + (H - T - B) * (1.0 - (v - lo) / (hi - lo));
   };
   std::ostringstream s;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W << " "
-    << H << "\" role=\"img\"><title>" << HtmlEscape(title) << "</title>\n";
-  s << "<text x=\"" << L << "\" y=\"13\" font-size=\"12\">" << HtmlEscape(title) << " (" << HtmlEscape(unit) << ")</text>\n";
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W
+    << " " << H << "\" role=\"img\"><title>" << HtmlEscape(title) << "</title>\n";
+  s << "<text x=\"" << L << "\" y=\"13\" font-size=\"12\">" << HtmlEscape(title) << " (" << HtmlEscape(unit)
+    << ")</text>\n";
   s << "<line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L << "\" y2=\"" << H - B << "\" stroke=\"#888\"/>"
-    << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << W - R << "\" y2=\"" << H - B << "\" stroke=\"#888\"/>\n";
+    << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << W - R << "\" y2=\"" << H - B
+    << "\" stroke=\"#888\"/>\n";
   const int digits = unit == "dB" ? 2 : 3;
-  s << "<text x=\"" << L - 4 << "\" y=\"" << T + 4 << "\" font-size=\"10\" text-anchor=\"end\">" << FormatFixed(hi, digits)
-    << "</text><text x=\"" << L - 4 << "\" y=\"" << H - B << "\" font-size=\"10\" text-anchor=\"end\">"
-    << FormatFixed(lo, digits) << "</text>\n";
+  s << "<text x=\"" << L - 4 << "\" y=\"" << T + 4 << "\" font-size=\"10\" text-anchor=\"end\">"
+    << FormatFixed(hi, digits) << "</text><text x=\"" << L - 4 << "\" y=\"" << H - B
+    << "\" font-size=\"10\" text-anchor=\"end\">" << FormatFixed(lo, digits) << "</text>\n";
   if (!labels.empty()) {
     s << "<text x=\"" << X(0) << "\" y=\"" << H - 8 << "\" font-size=\"10\" text-anchor=\"start\">"
       << HtmlEscape(labels.front()) << "</text>";
@@ -122,7 +124,8 @@ std::string SvgTrend(const std::string& title, const std::string& unit, const st
   // The method's colour and marker (html_method_style.h), as in every other chart; a point
   // marked against the previous entry is filled with its verdict's colour.
   const std::string colour = html::StyleOfMethod(spec).colour;
-  if (!path.empty()) s << "<path d=\"" << path << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\"/>\n";
+  if (!path.empty())
+    s << "<path d=\"" << path << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\"/>\n";
   for (size_t i = 0; i < n; ++i) {
     const auto& p = pts[i];
     const std::string color = p.mark == "regression" ? "#d00020"
@@ -192,8 +195,8 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
   h << "<h1>aalab history</h1>\n<p>Trend per scene &times; method. Marked points crossed a threshold against the "
        "previous entry of the series (the rule of <code>aalab compare</code>: dB metrics more than "
     << FormatFixed(options.max_drop_db, 3) << " dB; time more than "
-    << (options.check_time ? options.time_increase.Text("ms") : std::string("(off)"))
-    << ", the " << FormatFixed(options.time_floor_ms, 3)
+    << (options.check_time ? options.time_increase.Text("ms") : std::string("(off)")) << ", the "
+    << FormatFixed(options.time_floor_ms, 3)
     << " ms floor and both repeats' spreads, on the same machine configuration; time crossings are marked whatever "
        "compare's --fail-on): "
        "<span class=\"regression\">red = regression</span>, <span class=\"improved\">green = improvement</span>, "
@@ -205,7 +208,8 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
       if (e.series == series) es.push_back(&e);
     }
     // Date order (ISO 8601 text sorts by date); entries of one date keep the file's order.
-    std::stable_sort(es.begin(), es.end(), [](const HistoryEntry* a, const HistoryEntry* b) { return a->date < b->date; });
+    std::stable_sort(es.begin(), es.end(),
+                     [](const HistoryEntry* a, const HistoryEntry* b) { return a->date < b->date; });
     ++page.series;
     page.entries += static_cast<int>(es.size());
     bool has_edge = true;
@@ -216,8 +220,8 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
         has_edge = has_edge && found;
       }
     }
-    std::vector<std::string> metrics = has_edge ? std::vector<std::string>{"edge_psnr_db", "psnr_db"}
-                                                : std::vector<std::string>{"psnr_db"};
+    std::vector<std::string> metrics =
+        has_edge ? std::vector<std::string>{"edge_psnr_db", "psnr_db"} : std::vector<std::string>{"psnr_db"};
     bool has_temporal = true;  // motion runs (--frames > 1): the temporal error too
     for (const auto* e : es) {
       for (const auto& r : e->report.rows) {
@@ -238,8 +242,8 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
       cmp[i] = CompareReports(es[i - 1]->report, es[i]->report, opt);
       page.regressions += cmp[i].regressions;
       page.improvements += cmp[i].improvements;
-      page.cannot_compare += static_cast<int>(cmp[i].cannot_compare.size() + cmp[i].missing_rows.size() +
-                                              cmp[i].extra_rows.size());
+      page.cannot_compare +=
+          static_cast<int>(cmp[i].cannot_compare.size() + cmp[i].missing_rows.size() + cmp[i].extra_rows.size());
     }
     h << "<section><h2>series " << HtmlEscape(series) << "</h2>\n<p>settings:";
     for (const auto& k : HistorySeriesKeys()) {
@@ -249,7 +253,8 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
          "<th>regressions</th><th>improvements</th><th class=\"l\">could not compare / notes</th></tr>\n";
     for (size_t i = 0; i < es.size(); ++i) {
       h << "<tr><td>" << i + 1 << "</td><td class=\"l\"><code title=\"" << HtmlEscape(es[i]->commit) << "\">"
-        << HtmlEscape(Short(*es[i])) << "</code></td><td class=\"l\">" << HtmlEscape(es[i]->date) << "</td><td class=\"l\">";
+        << HtmlEscape(Short(*es[i])) << "</code></td><td class=\"l\">" << HtmlEscape(es[i]->date)
+        << "</td><td class=\"l\">";
       {
         // The run's own page, when it is still next to its report.
         std::error_code ec;
@@ -328,7 +333,8 @@ HistoryPage HistoryHtml(const std::vector<HistoryEntry>& entries, const std::str
               found = true;
               if (m.value) {
                 p.value = *m.value;
-                p.tooltip += FormatFixed(*m.value, 3) + (q.size() > 3 && q.compare(q.size() - 3, 3, "_db") == 0 ? " dB" : "");
+                p.tooltip +=
+                    FormatFixed(*m.value, 3) + (q.size() > 3 && q.compare(q.size() - 3, 3, "_db") == 0 ? " dB" : "");
               } else if (m.null_reason == "identical") {
                 p.value = std::numeric_limits<double>::infinity();
                 p.tooltip += "infinite (identical)";

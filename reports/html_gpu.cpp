@@ -97,18 +97,21 @@ std::string GpuSummary(const Report& r) {
       }
     }
   }
-  std::string h = "<h3>GPU cost of the post filters</h3>\n<div class=\"table-wrap\"><table class=\"gpu sortable\">"
-                  "<caption>Each post filter's CUDA twin on <b>" +
-                  HtmlEscape(g->device) + "</b> (driver " + HtmlEscape(g->driver) + ", CUDA " +
-                  HtmlEscape(g->cuda_runtime) + ", measured " + HtmlEscape(g->measured_utc) +
-                  "): mean over scenes of the median ms per frame (CUDA events, clocks not locked) and of the ratio "
-                  "to a copy kernel of the same frame; identical = worst share of pixels equal to the CPU output. "
-                  "See docs/gpu.md.</caption>\n<thead><tr><th scope=\"col\" data-type=\"text\"><button "
-                  "type=\"button\">Method</button></th><th scope=\"col\" data-type=\"text\"><button "
-                  "type=\"button\">Kernels</button></th>";
+  std::string h =
+      "<h3>GPU cost of the post filters</h3>\n<div class=\"table-wrap\"><table class=\"gpu sortable\">"
+      "<caption>Each post filter's CUDA twin on <b>" +
+      HtmlEscape(g->device) + "</b> (driver " + HtmlEscape(g->driver) + ", CUDA " + HtmlEscape(g->cuda_runtime) +
+      ", measured " + HtmlEscape(g->measured_utc) +
+      "): mean over scenes of the median ms per frame (CUDA events, clocks not locked) and of the ratio "
+      "to a copy kernel of the same frame; identical = worst share of pixels equal to the CPU output. "
+      "See docs/gpu.md.</caption>\n<thead><tr><th scope=\"col\" data-type=\"text\"><button "
+      "type=\"button\">Method</button></th><th scope=\"col\" data-type=\"text\"><button "
+      "type=\"button\">Kernels</button></th>";
   for (const auto& s : sizes) {
-    h += "<th scope=\"col\"><button type=\"button\">ms " + HtmlEscape(s) + "</button></th><th scope=\"col\"><button "
-         "type=\"button\">× copy " + HtmlEscape(s) + "</button></th>";
+    h += "<th scope=\"col\"><button type=\"button\">ms " + HtmlEscape(s) +
+         "</button></th><th scope=\"col\"><button "
+         "type=\"button\">× copy " +
+         HtmlEscape(s) + "</button></th>";
   }
   h += "<th scope=\"col\"><button type=\"button\">Identical</button></th></tr></thead>\n<tbody>\n";
   for (const auto& spec : order) {
@@ -123,8 +126,9 @@ std::string GpuSummary(const Report& r) {
         continue;
       }
       const double ms = a.sum.at(s).first / it->second, ratio = a.sum.at(s).second / it->second;
-      h += "<td class=\"num\" data-v=\"" + FormatDouble("%.17g", ms) + "\">" + Ms(ms) + "</td><td class=\"num\" data-v=\"" +
-           FormatDouble("%.17g", ratio) + "\">" + FormatDouble("%.2f", ratio) + "</td>";
+      h += "<td class=\"num\" data-v=\"" + FormatDouble("%.17g", ms) + "\">" + Ms(ms) +
+           "</td><td class=\"num\" data-v=\"" + FormatDouble("%.17g", ratio) + "\">" + FormatDouble("%.2f", ratio) +
+           "</td>";
     }
     h += a.any_identical ? "<td class=\"num\" data-v=\"" + FormatDouble("%.17g", a.worst_identical) + "\">" +
                                FormatDouble("%.3f", 100.0 * a.worst_identical) + "%</td>"

@@ -48,10 +48,9 @@ MethodStyle StyleOfMethod(const std::string& spec) {
   // The registry's families (aalab list methods), colour-blind-friendly where it counts
   // (Okabe-Ito first); other families hash into the extra palette.
   static const std::map<std::string, std::string> kFamily = {
-      {"none", "#7f7f7f"},  {"ssaa", "#0072b2"},  {"msaa", "#56b4e9"},    {"fxaa1", "#e69f00"},
-      {"fxaa311", "#d55e00"}, {"fxaa", "#f0e442"}, {"smaa", "#009e73"},   {"cmaa2", "#cc79a7"},
-      {"taa", "#6a3d9a"},   {"taau", "#b15928"},  {"gsaa", "#17becf"},    {"scale43", "#8c564b"},
-      {"rcas", "#bcbd22"},  {"aaa", "#1f3f7f"},   {"fsr1", "#e7298a"},
+      {"none", "#7f7f7f"}, {"ssaa", "#0072b2"},    {"msaa", "#56b4e9"},  {"fxaa1", "#e69f00"}, {"fxaa311", "#d55e00"},
+      {"fxaa", "#f0e442"}, {"smaa", "#009e73"},    {"cmaa2", "#cc79a7"}, {"taa", "#6a3d9a"},   {"taau", "#b15928"},
+      {"gsaa", "#17becf"}, {"scale43", "#8c564b"}, {"rcas", "#bcbd22"},  {"aaa", "#1f3f7f"},   {"fsr1", "#e7298a"},
   };
   static const std::array<const char*, 8> kExtra = {"#66a61e", "#a6761d", "#7570b3", "#1b9e77",
                                                     "#e6ab02", "#666666", "#d95f02", "#386cb0"};

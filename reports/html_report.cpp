@@ -94,12 +94,8 @@ Json MetaJson(const Report& r) {
   }
   for (const auto& name : names) {
     const html::MetricInfo info = html::DescribeMetric(name);
-    metrics[name] = {{"label", info.label},
-                     {"unit", info.unit},
-                     {"better", info.better},
-                     {"help", info.help},
-                     {"rewards", info.rewards},
-                     {"psnr", html::IsPsnrMetric(name)}};
+    metrics[name] = {{"label", info.label}, {"unit", info.unit},       {"better", info.better},
+                     {"help", info.help},   {"rewards", info.rewards}, {"psnr", html::IsPsnrMetric(name)}};
   }
   for (const char* first : {"edge_psnr_db", "psnr_db", "flip_mean"}) {
     if (std::find(names.begin(), names.end(), first) != names.end()) axis.push_back(first);
@@ -162,18 +158,20 @@ void Header(std::string& h, const Report& r) {
          "</b>: " + HtmlEscape(s.warnings.front()) + "</p>\n";
   }
   const std::string spp = SettingOf(r, "ref_spp");
-  h += "<p class=\"facts\">Reference " + HtmlEscape(spp) + (std::isdigit(static_cast<unsigned char>(spp.empty() ? 'x' : spp.back())) ? " spp" : "") + " · seed " +
+  h += "<p class=\"facts\">Reference " + HtmlEscape(spp) +
+       (std::isdigit(static_cast<unsigned char>(spp.empty() ? 'x' : spp.back())) ? " spp" : "") + " · seed " +
        HtmlEscape(SettingOf(r, "seed")) + " · " + HtmlEscape(SettingOf(r, "repeat")) + " timed run(s) after " +
        HtmlEscape(SettingOf(r, "warmup")) + " warm-up · " + HtmlEscape(ContextOf(r, "cpu")) + ", " +
        HtmlEscape(ContextOf(r, "threads")) + " of " + HtmlEscape(ContextOf(r, "hardware_threads")) +
-       " threads · aalab " + HtmlEscape(ContextOf(r, "tool_version")) + " @ " +
-       HtmlEscape(ContextOf(r, "git_commit")) + " (" + HtmlEscape(ContextOf(r, "build_type")) + ")</p>\n";
+       " threads · aalab " + HtmlEscape(ContextOf(r, "tool_version")) + " @ " + HtmlEscape(ContextOf(r, "git_commit")) +
+       " (" + HtmlEscape(ContextOf(r, "build_type")) + ")</p>\n";
   if (!SettingOf(r, "ppd").empty()) {
-    h += "<p class=\"facts viewing\">Viewing condition <b>" + HtmlEscape(SettingOf(r, "viewing")) + "</b>: " +
-         HtmlEscape(SettingOf(r, "display_px")) + " display, " + HtmlEscape(SettingOf(r, "display_diagonal_in")) +
-         " in at " + HtmlEscape(SettingOf(r, "viewing_distance_m")) + " m → <b>" + HtmlEscape(SettingOf(r, "ppd")) +
-         " pixels per degree</b> (FLIP and the perceptual temporal error use it), " +
-         HtmlEscape(SettingOf(r, "fps")) + " fps, peak " + HtmlEscape(SettingOf(r, "peak_cd_m2")) + " cd/m², ambient " +
+    h += "<p class=\"facts viewing\">Viewing condition <b>" + HtmlEscape(SettingOf(r, "viewing")) +
+         "</b>: " + HtmlEscape(SettingOf(r, "display_px")) + " display, " +
+         HtmlEscape(SettingOf(r, "display_diagonal_in")) + " in at " + HtmlEscape(SettingOf(r, "viewing_distance_m")) +
+         " m → <b>" + HtmlEscape(SettingOf(r, "ppd")) +
+         " pixels per degree</b> (FLIP and the perceptual temporal error use it), " + HtmlEscape(SettingOf(r, "fps")) +
+         " fps, peak " + HtmlEscape(SettingOf(r, "peak_cd_m2")) + " cd/m², ambient " +
          HtmlEscape(SettingOf(r, "ambient_lux")) + " lux (recorded)</p>\n";
   }
   h += "<p class=\"links\"><a href=\"report.json\">report.json</a> (all numbers, every timed sample) · "
@@ -201,14 +199,16 @@ void SceneFacts(std::string& h, const SceneResult& s) {
     h += "<div><dt>" + k + "</dt><dd>" + v + "</dd></div>";
   };
   fact("output", Int(s.width) + "×" + Int(s.height) + " px");
-  fact("effects", s.effects.empty() ? "—" : [&] {
-    std::string e;
-    for (const auto& x : s.effects) e += (e.empty() ? "" : ", ") + HtmlEscape(x);
-    return e;
-  }());
+  fact(
+      "effects", s.effects.empty() ? "—" : [&] {
+        std::string e;
+        for (const auto& x : s.effects) e += (e.empty() ? "" : ", ") + HtmlEscape(x);
+        return e;
+      }());
   if (s.kind == "image") {  // a user's own frames (docs/own-frames.md): no renderer, no noise floor
-    fact("1x frame", s.frame_ms_given ? "the user's own 8-bit frame; render time from the manifest (frame_ms), cost unknown"
-                                      : "the user's own 8-bit frame; render time and cost unknown (0 here)");
+    fact("1x frame", s.frame_ms_given
+                         ? "the user's own 8-bit frame; render time from the manifest (frame_ms), cost unknown"
+                         : "the user's own 8-bit frame; render time and cost unknown (0 here)");
     for (const auto& w : s.warnings) fact("<span class=\"warn\">⚠ mismatch</span>", HtmlEscape(w));
     if (!s.motion_note.empty()) fact("motion vectors", HtmlEscape(s.motion_note));
     fact("reference", HtmlEscape(s.reference_note));
@@ -221,14 +221,16 @@ void SceneFacts(std::string& h, const SceneResult& s) {
   }
   if (s.ref_exact) {
     fact("reference", "exact: closed-form pixel coverage (double), " + FmtMs(s.reference_ms) + " ms");
-  } else fact("reference", Int(s.ref_spp) + " spp, " + FmtMs(s.reference_ms) + " ms, " +
-                        FmtCount(s.ref_primary_rays_per_px) + " + " + FmtCount(s.ref_shadow_rays_per_px) +
-                        " rays/px, " + FmtCount(s.ref_texture_lookups_per_px) + " texture lookups/px");
+  } else
+    fact("reference", Int(s.ref_spp) + " spp, " + FmtMs(s.reference_ms) + " ms, " +
+                          FmtCount(s.ref_primary_rays_per_px) + " + " + FmtCount(s.ref_shadow_rays_per_px) +
+                          " rays/px, " + FmtCount(s.ref_texture_lookups_per_px) + " texture lookups/px");
   fact("noise floor",
-       s.ref_floor_psnr_db ? FormatDouble("%.2f dB", *s.ref_floor_psnr_db) + " (halves " +
-                                 FormatDouble("%.2f dB", s.ref_halves_psnr_db ? *s.ref_halves_psnr_db : 0.0) + " + 6.02 dB)"
-                           : std::string(s.ref_exact ? "infinite: the exact reference has no sampling noise"
-                                                     : "none: the two half-references are identical (nothing to converge)"));
+       s.ref_floor_psnr_db
+           ? FormatDouble("%.2f dB", *s.ref_floor_psnr_db) + " (halves " +
+                 FormatDouble("%.2f dB", s.ref_halves_psnr_db ? *s.ref_halves_psnr_db : 0.0) + " + 6.02 dB)"
+           : std::string(s.ref_exact ? "infinite: the exact reference has no sampling noise"
+                                     : "none: the two half-references are identical (nothing to converge)"));
   fact("edge pixels", FormatDouble("%.2f %%", 100.0 * s.edge_pixel_fraction));
   fact("edge mask", HtmlEscape(s.edge_mask_source));
   fact("BVH build", FmtMs(s.bvh_build_ms) + " ms (once per scene, not in method times)");
@@ -249,7 +251,8 @@ std::string FloorWarning(const SceneResult& s, const std::string& metric, double
                     FormatDouble("%.2f", *s.ref_floor_psnr_db) + " dB at " + Int(s.ref_spp) +
                     " spp): the reference's own noise limits this score, so differences between such "
                     "scores are not meaningful. Re-run with a higher --ref-spp to separate them.";
-  if (metric != "psnr_db") why += " (The floor is estimated over the whole image; on a subset of pixels it may differ.)";
+  if (metric != "psnr_db")
+    why += " (The floor is estimated over the whole image; on a subset of pixels it may differ.)";
   return "<span class=\"warn\" role=\"img\" aria-label=\"near the noise floor\" title=\"" + Attr(why) + "\">⚠</span>";
 }
 
@@ -274,10 +277,13 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
   h += "<div class=\"table-wrap\"><table class=\"metrics sortable\" id=\"table-" + Int(index) + "\" data-scene=\"" +
        Attr(s.name) + "\">\n<caption>Every method on <b>" + HtmlEscape(s.name) + "</b> against the reference (" +
        (s.kind == "image" ? std::string("the user's own") + (s.ref_spp > 0 ? ", " + Int(s.ref_spp) + " spp" : "")
-                          : s.ref_exact ? std::string("exact") : Int(s.ref_spp) + " spp") +
+        : s.ref_exact     ? std::string("exact")
+                          : Int(s.ref_spp) + " spp") +
        "; noise floor ";
   h += s.ref_floor_psnr_db ? FormatDouble("%.2f dB", *s.ref_floor_psnr_db)
-                           : std::string(s.kind == "image" ? "unknown" : s.ref_exact ? "infinite" : "none");
+                           : std::string(s.kind == "image" ? "unknown"
+                                         : s.ref_exact     ? "infinite"
+                                                           : "none");
   h += "). <span class=\"warn\">⚠</span> marks a PSNR within " + FormatDouble("%.0f", kNearFloorDb) +
        " dB of the floor. Click or press Enter on a column header to sort." +
        [&hidden] {
@@ -291,19 +297,16 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
   for (const auto& m : metrics) {
     const html::MetricInfo info = html::DescribeMetric(m);
     const std::string dir = info.better > 0 ? " ↑" : info.better < 0 ? " ↓" : "";
-    const std::string dir_text = info.better > 0   ? " Higher is better."
-                                 : info.better < 0 ? " Lower is better."
-                                                   : "";
-    h += "<th scope=\"col\" data-metric=\"" + Attr(m) + "\"" +
-         (info.better > 0 ? " data-first=\"descending\"" : "") + " title=\"" + Attr(m + ": " + info.help + dir_text) +
-         "\"><button type=\"button\">" + HtmlEscape(info.label) +
+    const std::string dir_text = info.better > 0 ? " Higher is better." : info.better < 0 ? " Lower is better." : "";
+    h += "<th scope=\"col\" data-metric=\"" + Attr(m) + "\"" + (info.better > 0 ? " data-first=\"descending\"" : "") +
+         " title=\"" + Attr(m + ": " + info.help + dir_text) + "\"><button type=\"button\">" + HtmlEscape(info.label) +
          (info.unit.empty() ? "" : " <span class=\"unit\">" + HtmlEscape(info.unit) + "</span>") + dir +
          "</button></th>";
   }
   h += "<th scope=\"col\" title=\"Wall time per frame of the timed stages (render + post + resample), median "
        "[min–max] over the timed runs. See the timing methodology.\"><button type=\"button\">Time ms "
-       "<span class=\"unit\">median [min–max]</span></button></th>"
-       + html::GpuHeader(r) +
+       "<span class=\"unit\">median [min–max]</span></button></th>" +
+       html::GpuHeader(r) +
        "<th scope=\"col\" title=\"Camera rays + shadow rays per output pixel (hardware-independent)\"><button "
        "type=\"button\">Rays/px <span class=\"unit\">primary + shadow</span></button></th>"
        "<th scope=\"col\" title=\"Texture (colour and alpha pattern) evaluations per output pixel\"><button "
@@ -356,8 +359,9 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
                          Int(static_cast<long>(row.total.samples_ms.size())) + " timed runs)";
     if (row.render_shared) stages += "; the render is the 1x frame shared with none (timed once, for none)";
     if (!row.supplied.empty()) {
-      stages = row.total.samples_ms.empty() ? "no time given in the manifest (the output's \"ms\")"
-                                            : "the time per frame the manifest gives (the output's \"ms\"), not measured by aalab";
+      stages = row.total.samples_ms.empty()
+                   ? "no time given in the manifest (the output's \"ms\")"
+                   : "the time per frame the manifest gives (the output's \"ms\"), not measured by aalab";
     } else if (row.method == "none" && s.kind == "image") {
       stages = s.frame_ms_given ? "the render time per frame the manifest gives (\"frame_ms\"), not measured by aalab"
                                 : "unknown: the manifest gives no \"frame_ms\" (recorded as 0)";
@@ -374,8 +378,8 @@ void SceneTable(std::string& h, const Report& r, const SceneResult& s, int index
          FmtCount(row.primary_rays_per_px) + " + " + FmtCount(row.shadow_rays_per_px) + "</td>";
     h += "<td class=\"num\" data-v=\"" + Key(row.texture_lookups_per_px) + "\">" +
          FmtCount(row.texture_lookups_per_px) + "</td>";
-    h += "<td class=\"num\" data-v=\"" + Key(row.shading_evals_per_px) + "\">" +
-         FmtCount(row.shading_evals_per_px) + "</td>";
+    h += "<td class=\"num\" data-v=\"" + Key(row.shading_evals_per_px) + "\">" + FmtCount(row.shading_evals_per_px) +
+         "</td>";
     h += "<td class=\"num\" data-v=\"" + Key(row.taps_per_px) + "\">" + FmtCount(row.taps_per_px) + "</td></tr>\n";
   }
   h += "</tbody></table></div>\n";
@@ -437,10 +441,10 @@ void Methodology(std::string& h, const Report& r) {
        "<li><b>Not counted.</b> Writing images, computing metrics, rendering the reference, building the BVH "
        "(shown per scene).</li>\n";
   h += "<li><b>Machine.</b> " + HtmlEscape(ContextOf(r, "cpu")) + ", " + HtmlEscape(ContextOf(r, "hardware_threads")) +
-       " hardware threads (" + HtmlEscape(ContextOf(r, "threads")) + " used), " +
-       HtmlEscape(ContextOf(r, "memory")) + ", host <code>" + HtmlEscape(ContextOf(r, "host")) + "</code>; " +
-       HtmlEscape(ContextOf(r, "build_type")) + " build, " + HtmlEscape(ContextOf(r, "compiler")) + ", " +
-       HtmlEscape(ContextOf(r, "float_flags")) + ". Other processes on the machine add noise.</li>\n";
+       " hardware threads (" + HtmlEscape(ContextOf(r, "threads")) + " used), " + HtmlEscape(ContextOf(r, "memory")) +
+       ", host <code>" + HtmlEscape(ContextOf(r, "host")) + "</code>; " + HtmlEscape(ContextOf(r, "build_type")) +
+       " build, " + HtmlEscape(ContextOf(r, "compiler")) + ", " + HtmlEscape(ContextOf(r, "float_flags")) +
+       ". Other processes on the machine add noise.</li>\n";
   h += "<li><b>CPU time is not GPU cost.</b> These are the times of this implementation: an Embree CPU ray "
        "tracer and a CPU emulation of GPU texture filtering. On a GPU the balance differs (rasterisation "
        "instead of rays, hardware texture filtering), so a time ratio here does not predict a GPU frame time. "
@@ -461,8 +465,8 @@ void TimeBreakdownTable(std::string& h, const std::vector<StageTime>& stages) {
        "<th scope=\"col\">stage</th><th scope=\"col\">wall s</th><th scope=\"col\">CPU s</th>"
        "<th scope=\"col\">share of wall</th><th scope=\"col\">cores busy</th></tr></thead><tbody>";
   for (const auto& t : stages) {
-    h += "<tr><th scope=\"row\">" + HtmlEscape(t.stage) + "</th><td>" + FormatDouble("%.2f", t.wall_ms / 1e3) + "</td><td>" +
-         FormatDouble("%.2f", t.cpu_ms / 1e3) + "</td><td>" +
+    h += "<tr><th scope=\"row\">" + HtmlEscape(t.stage) + "</th><td>" + FormatDouble("%.2f", t.wall_ms / 1e3) +
+         "</td><td>" + FormatDouble("%.2f", t.cpu_ms / 1e3) + "</td><td>" +
          (total > 0 ? FormatDouble("%.1f%%", 100.0 * t.wall_ms / total) : std::string("—")) + "</td><td>" +
          (t.wall_ms > 0 ? FormatDouble("%.2f", t.cpu_ms / t.wall_ms) : std::string("—")) + "</td></tr>";
   }
@@ -494,8 +498,9 @@ std::string RenderHtmlReport(const Report& r) {
   h.reserve(64 * 1024 + r.rows.size() * 2048);
   h += "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-       "<meta name=\"generator\" content=\"aalab " + Attr(ContextOf(r, "tool_version")) + "\">\n<title>aalab report — " +
-       HtmlEscape(SettingOf(r, "suite")) + " " + HtmlEscape(SettingOf(r, "size")) + "</title>\n<style>\n";
+       "<meta name=\"generator\" content=\"aalab " +
+       Attr(ContextOf(r, "tool_version")) + "\">\n<title>aalab report — " + HtmlEscape(SettingOf(r, "suite")) + " " +
+       HtmlEscape(SettingOf(r, "size")) + "</title>\n<style>\n";
   h += "\n";
   h += html::PageStyle();
   h += "</style>\n</head>\n<body>\n<a class=\"skip\" href=\"#main\">Skip to content</a>\n";
@@ -509,8 +514,8 @@ std::string RenderHtmlReport(const Report& r) {
        "gallery are in the scene tabs.</p>\n";
   h += "<h3>Verdict per scene</h3>\n<ul class=\"verdicts\">\n";
   for (const SceneVerdict& v : Verdicts(r)) {
-    h += "<li" + std::string(v.disagree ? " class=\"disagree\"" : "") + "><b>" + HtmlEscape(v.scene) + "</b>: " +
-         HtmlEscape(v.line) + "</li>\n";
+    h += "<li" + std::string(v.disagree ? " class=\"disagree\"" : "") + "><b>" + HtmlEscape(v.scene) +
+         "</b>: " + HtmlEscape(v.line) + "</li>\n";
   }
   h += "</ul>\n";
   QualityCostBlock(h, "suite", nullptr);
@@ -523,8 +528,8 @@ std::string RenderHtmlReport(const Report& r) {
   h += "</main>\n";
   ContextSection(h, r);
   h += "<div id=\"tooltip\" role=\"tooltip\" hidden></div>\n";
-  h += "<script type=\"application/json\" id=\"aalab-data\">" + JsonForScriptTag(ReportToJson(r).dump()) +
-       "</script>\n";
+  h +=
+      "<script type=\"application/json\" id=\"aalab-data\">" + JsonForScriptTag(ReportToJson(r).dump()) + "</script>\n";
   h += "<script type=\"application/json\" id=\"aalab-meta\">" + JsonForScriptTag(MetaJson(r).dump()) +
        "</script>\n<script>\n";
   h += html::PageScript();

@@ -43,7 +43,8 @@ std::optional<double> MetricOf(const ResultRow& row, const std::string& name) {
 
 std::string Num(double v, const char* fmt = "%.1f") { return FormatDouble(fmt, v); }
 
-void Chart(std::string& h, const std::vector<const SpeedPoint*>& pts, bool temporal, const std::vector<std::string>& methods) {
+void Chart(std::string& h, const std::vector<const SpeedPoint*>& pts, bool temporal,
+           const std::vector<std::string>& methods) {
   const double W = 340, H = 200, L = 52, R = 10, T = 22, B = 30;
   double smin = 1e30, smax = -1e30, ymax = 0.0;
   for (const SpeedPoint* p : pts) {
@@ -76,7 +77,8 @@ void Chart(std::string& h, const std::vector<const SpeedPoint*>& pts, bool tempo
     }
     std::string marks;
     for (const SpeedPoint* p : pts) {
-      if (p->method == methods[m]) marks += html::MarkerSvg(methods[m], X(p->speed), Y(temporal ? p->temporal_perceptual : p->flip_mean), 3.5);
+      if (p->method == methods[m])
+        marks += html::MarkerSvg(methods[m], X(p->speed), Y(temporal ? p->temporal_perceptual : p->flip_mean), 3.5);
     }
     h += "<g><title>" + HtmlEscape(methods[m]) + "</title><polyline fill=\"none\" stroke-width=\"1.5\" stroke=\"" +
          html::StyleOfMethod(methods[m]).colour + "\" points=\"" + line + "\"/>" + marks + "</g>";

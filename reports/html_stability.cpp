@@ -54,8 +54,8 @@ void AppendStabilitySection(std::string& h, const Report& r) {
           }
           list += (list.empty() ? "" : ", ") + m;
         }
-        detail += "<li><code>" + HtmlEscape(metric) + "</code> null — " + HtmlEscape(reason) + ": " +
-                  HtmlEscape(list) + "</li>";
+        detail += "<li><code>" + HtmlEscape(metric) + "</code> null — " + HtmlEscape(reason) + ": " + HtmlEscape(list) +
+                  "</li>";
       }
     }
     // One status line per scene; the null values, their reasons and methods on demand.
@@ -63,14 +63,16 @@ void AppendStabilitySection(std::string& h, const Report& r) {
     const std::string line =
         std::string(bad ? "<span class=\"bad\">✗</span> " : "<span class=\"ok\">✓</span> ") + "<b>" +
         HtmlEscape(s->name) + "</b>" + (hard ? " <span class=\"tag\">hard</span>" : "") + ": " +
-        std::to_string(n_rows) + " rows, " + std::to_string(finite) + " finite, " + std::to_string(nulls) +
-        " null" + (null_by_reason.empty() ? "" : " (" + std::to_string(null_by_reason.size()) +
-                                                                  (null_by_reason.size() == 1 ? " reason)" : " reasons)")) +
+        std::to_string(n_rows) + " rows, " + std::to_string(finite) + " finite, " + std::to_string(nulls) + " null" +
+        (null_by_reason.empty()
+             ? ""
+             : " (" + std::to_string(null_by_reason.size()) + (null_by_reason.size() == 1 ? " reason)" : " reasons)")) +
         ", " + (bad ? "<strong>" + std::to_string(bad) + " invalid</strong>" : std::string("0 invalid"));
-    rows += "<li" + std::string(hard ? " class=\"hard\"" : "") + " data-scene=\"" + HtmlEscape(s->name) + "\">" +
-            (detail.empty() ? line
-                            : "<details><summary>" + line + "</summary><ul class=\"nulls\">" + detail + "</ul></details>") +
-            "</li>\n";
+    rows +=
+        "<li" + std::string(hard ? " class=\"hard\"" : "") + " data-scene=\"" + HtmlEscape(s->name) + "\">" +
+        (detail.empty() ? line
+                        : "<details><summary>" + line + "</summary><ul class=\"nulls\">" + detail + "</ul></details>") +
+        "</li>\n";
   }
   h += "<section id=\"stability\" class=\"prose\">\n<h2>Numerical stability</h2>\n<p>Every metric value of every "
        "row is either a finite number or <code>null</code> with a reason; NaN and Infinity never reach the "

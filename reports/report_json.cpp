@@ -170,7 +170,7 @@ nlohmann::ordered_json ReportToJson(const Report& r) {
                        {"scene_and_bvh_ms", Num(s.sequence_scene_ms)},
                        {"reference_ms", Num(s.sequence_reference_ms)},
                        {"reference_frames", s.frame_images}};
-    if (!s.frame_exr_images.empty()) j["sequence"]["reference_frames_exr"] = s.frame_exr_images;
+      if (!s.frame_exr_images.empty()) j["sequence"]["reference_frames_exr"] = s.frame_exr_images;
     }
     scenes.push_back(j);
   }
@@ -282,7 +282,8 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       s.ref_shadow_rays_per_px = ref.at("shadow_rays_per_px").get<double>();
       s.ref_texture_lookups_per_px = ref.at("texture_lookups_per_px").get<double>();
       // Optional fields (added after schema 1 first shipped; older reports lack them).
-      if (ref.contains("noise_floor_null_reason")) s.noise_floor_null_reason = ref.at("noise_floor_null_reason").get<std::string>();
+      if (ref.contains("noise_floor_null_reason"))
+        s.noise_floor_null_reason = ref.at("noise_floor_null_reason").get<std::string>();
       if (ref.contains("note")) s.reference_note = ref.at("note").get<std::string>();
       s.frame_ms_given = j.value("frame_ms_given", false);
       if (j.contains("motion_vectors")) s.motion_note = j.at("motion_vectors").get<std::string>();
@@ -378,8 +379,8 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
     }
     if (doc.contains("time_breakdown")) {  // optional: absent in older reports
       for (const auto& j : doc.at("time_breakdown")) {
-        r.time_breakdown.push_back({j.at("stage").get<std::string>(), j.at("wall_ms").get<double>(),
-                                    j.at("cpu_ms").get<double>()});
+        r.time_breakdown.push_back(
+            {j.at("stage").get<std::string>(), j.at("wall_ms").get<double>(), j.at("cpu_ms").get<double>()});
       }
     }
   } catch (const nlohmann::json::exception& e) {

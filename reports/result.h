@@ -30,8 +30,8 @@ struct MetricResult {
 struct GpuTimingAt {
   std::string size;  ///< "1920x1080"
   double median_ms = 0, min_ms = 0, max_ms = 0;
-  double copy_ms = 0;        ///< the copy floor's median in the same run, same size
-  double ratio_to_copy = 0;  ///< median_ms / copy_ms
+  double copy_ms = 0;                     ///< the copy floor's median in the same run, same size
+  double ratio_to_copy = 0;               ///< median_ms / copy_ms
   std::optional<double> identical_share;  ///< share of pixels equal to the CPU output
   std::optional<int> max_diff;            ///< largest rgb difference to the CPU output, 8-bit levels
 };
@@ -63,8 +63,8 @@ struct RasterTiming {
 /// One scene × method result.
 struct ResultRow {
   std::string scene;
-  std::string method;  ///< registry name
-  std::string spec;    ///< canonical spec (name plus overrides)
+  std::string method;                                       ///< registry name
+  std::string spec;                                         ///< canonical spec (name plus overrides)
   std::vector<std::pair<std::string, std::string>> params;  ///< every parameter, resolved
   int render_width = 0, render_height = 0;
   int samples_per_pixel = 1;
@@ -82,7 +82,7 @@ struct ResultRow {
   std::optional<double> analytic_edge_share;
   double analytic_pixels_per_px = 0, distance_evals_per_px = 0;
   std::vector<MetricResult> metrics;
-  std::string output_hash;  ///< FNV-1a 64 of the output's RGBA8 bytes, hex
+  std::string output_hash;                    ///< FNV-1a 64 of the output's RGBA8 bytes, hex
   std::map<std::string, std::string> images;  ///< role → path relative to the report folder
   /// Motion runs (--frames > 1) only: per-frame series (name → one value per frame, null
   /// where undefined) and the output PNG of every frame. Empty for still runs.
@@ -95,7 +95,7 @@ struct ResultRow {
   /// the user's own pipeline, scored like any method's output but not run by aalab): where the
   /// frames came from. Timings are the manifest's `ms` (render = total) or empty.
   std::string supplied;
-  std::optional<GpuTiming> gpu;  ///< set by `aalab merge-gpu` / `run --gpu-timings`
+  std::optional<GpuTiming> gpu;            ///< set by `aalab merge-gpu` / `run --gpu-timings`
   std::optional<RasterTiming> gpu_raster;  ///< set by `run --gpu-timings` / `merge-gpu` with a raster file
 };
 
@@ -104,7 +104,7 @@ struct SceneResult {
   std::string name, description, source;
   std::vector<std::string> effects;
   int width = 0, height = 0;
-  int ref_spp = 0;     ///< 0 for the exact reference
+  int ref_spp = 0;         ///< 0 for the exact reference
   bool ref_exact = false;  ///< closed-form exact reference (scenes/exact_reference.h)
   double bvh_build_ms = 0, reference_ms = 0;
   /// Scenes with glTF content: triangles, image textures and their mip chains' memory.
@@ -135,8 +135,9 @@ struct SceneResult {
   /// 1x frame and reference, harness/run/image_scene.h).
   std::string kind = "rendered";
   /// How the edge mask was made (the report shows it).
-  std::string edge_mask_source = "geometry: the reference's samples see more than one surface, a shadow boundary "
-                                 "or an alpha cut-out; dilated by 1 px";
+  std::string edge_mask_source =
+      "geometry: the reference's samples see more than one surface, a shadow boundary "
+      "or an alpha cut-out; dilated by 1 px";
   std::string reference_note;           ///< how an image scene's reference file was read ("" otherwise)
   std::string noise_floor_null_reason;  ///< why ref_floor_psnr_db is null, when it is ("" otherwise)
   /// Image scenes: whether the manifest gave the 1x frame's render time (`frame_ms`); the
@@ -159,16 +160,16 @@ struct StageTime {
 /// The share of the work a partial report holds: written by `run --shard K/N` and
 /// `sweep --shard K/N`, read by `aalab merge` (harness/run/shard.h). Absent in whole reports.
 struct ShardInfo {
-  int index = 0, count = 0;       ///< shard K of N
-  std::string unit;               ///< what was split: "scene" or "grid point"
-  int total_units = 0;            ///< the units of the whole run
-  std::vector<std::string> units; ///< this shard's units, in the run's order
+  int index = 0, count = 0;        ///< shard K of N
+  std::string unit;                ///< what was split: "scene" or "grid point"
+  int total_units = 0;             ///< the units of the whole run
+  std::vector<std::string> units;  ///< this shard's units, in the run's order
 };
 
 /// A whole run.
 struct Report {
   int schema_version = 1;
-  std::map<std::string, std::string> context;       ///< tool/git/build/library/machine facts
+  std::map<std::string, std::string> context;                 ///< tool/git/build/library/machine facts
   std::vector<std::pair<std::string, std::string>> settings;  ///< run settings, as given
   std::vector<SceneResult> scenes;
   std::vector<ResultRow> rows;

@@ -51,18 +51,21 @@ std::string ParetoSvg(const SweepResult& r) {
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W
     << " " << H << "\" role=\"img\"><title>Pareto front: " << HtmlEscape(obj) << " vs method time</title>\n";
   s << "<line x1=\"" << L << "\" y1=\"" << T << "\" x2=\"" << L << "\" y2=\"" << H - B << "\" stroke=\"#888\"/>"
-    << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << W - R << "\" y2=\"" << H - B << "\" stroke=\"#888\"/>\n";
+    << "<line x1=\"" << L << "\" y1=\"" << H - B << "\" x2=\"" << W - R << "\" y2=\"" << H - B
+    << "\" stroke=\"#888\"/>\n";
   const int dq = IsDbMetric(obj) ? 2 : 4;
-  s << "<text x=\"" << L - 4 << "\" y=\"" << T + 4 << "\" font-size=\"11\" text-anchor=\"end\">" << FormatFixed(qmax, dq)
-    << "</text><text x=\"" << L - 4 << "\" y=\"" << H - B << "\" font-size=\"11\" text-anchor=\"end\">"
-    << FormatFixed(qmin, dq) << "</text>\n";
+  s << "<text x=\"" << L - 4 << "\" y=\"" << T + 4 << "\" font-size=\"11\" text-anchor=\"end\">"
+    << FormatFixed(qmax, dq) << "</text><text x=\"" << L - 4 << "\" y=\"" << H - B
+    << "\" font-size=\"11\" text-anchor=\"end\">" << FormatFixed(qmin, dq) << "</text>\n";
   s << "<text x=\"" << L << "\" y=\"" << H - B + 14 << "\" font-size=\"11\">" << FormatFixed(tmin, 3) << "</text>"
-    << "<text x=\"" << W - R << "\" y=\"" << H - B + 14 << "\" font-size=\"11\" text-anchor=\"end\">" << FormatFixed(tmax, 3)
-    << "</text>\n";
-  s << "<text x=\"" << (L + W - R) / 2 << "\" y=\"" << H - 8 << "\" font-size=\"12\" text-anchor=\"middle\">method time, "
+    << "<text x=\"" << W - R << "\" y=\"" << H - B + 14 << "\" font-size=\"11\" text-anchor=\"end\">"
+    << FormatFixed(tmax, 3) << "</text>\n";
+  s << "<text x=\"" << (L + W - R) / 2 << "\" y=\"" << H - 8
+    << "\" font-size=\"12\" text-anchor=\"middle\">method time, "
        "mean over scenes of the median (ms) &#8594; cheaper to the left</text>\n";
-  s << "<text x=\"14\" y=\"" << (T + H - B) / 2 << "\" font-size=\"12\" text-anchor=\"middle\" transform=\"rotate(-90 14 "
-    << (T + H - B) / 2 << ")\">" << HtmlEscape(obj) << " (mean over scenes)</text>\n";
+  s << "<text x=\"14\" y=\"" << (T + H - B) / 2
+    << "\" font-size=\"12\" text-anchor=\"middle\" transform=\"rotate(-90 14 " << (T + H - B) / 2 << ")\">"
+    << HtmlEscape(obj) << " (mean over scenes)</text>\n";
   std::string path;
   for (size_t i : r.pareto_front) {
     const auto& m = r.points[i].objectives.at(obj).mean;
@@ -75,8 +78,9 @@ std::string ParetoSvg(const SweepResult& r) {
     const auto& p = r.points[i];
     const auto& m = p.objectives.at(obj);
     if (!m.mean) continue;
-    s << "<g><title>" << HtmlEscape(p.spec + ": " + SweepMeanText(obj, m) + ", " + FormatFixed(p.mean_time_ms, 3) + " ms" +
-                                     (p.pareto ? " (Pareto front)" : ""))
+    s << "<g><title>"
+      << HtmlEscape(p.spec + ": " + SweepMeanText(obj, m) + ", " + FormatFixed(p.mean_time_ms, 3) + " ms" +
+                    (p.pareto ? " (Pareto front)" : ""))
       << "</title><circle cx=\"" << X(p.mean_time_ms) << "\" cy=\"" << Y(*m.mean) << "\" r=\"" << (p.pareto ? 5 : 3)
       << "\" fill=\"" << (p.pareto ? "#d00020" : "#8899aa") << "\"/></g>\n";
   }
@@ -123,9 +127,9 @@ std::string HeatmapSvg(const SweepResult& r, size_t a, size_t b) {
   const double cw = 76, ch = 30, L = 120, T = 52;
   const double W = L + cw * cols + 10, H = T + ch * rows + 10;
   std::ostringstream s;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W << " "
-    << H << "\" role=\"img\"><title>" << HtmlEscape(obj) << " over " << HtmlEscape(one ? A.name : A.name + " x " + Bx.name)
-    << "</title>\n";
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W
+    << " " << H << "\" role=\"img\"><title>" << HtmlEscape(obj) << " over "
+    << HtmlEscape(one ? A.name : A.name + " x " + Bx.name) << "</title>\n";
   s << "<text x=\"" << L << "\" y=\"14\" font-size=\"12\">" << HtmlEscape(Bx.name) << " &#8594;"
     << (one ? "" : "  (rows: " + HtmlEscape(A.name) + ")") << "</text>\n";
   for (size_t j = 0; j < cols; ++j) {
@@ -153,11 +157,13 @@ std::string HeatmapSvg(const SweepResult& r, size_t a, size_t b) {
         label = SweepValueText(obj, *c);
       }
       const std::string text_color = c && t < 0.55 ? "#ffffff" : "#000000";
-      s << "<g><title>" << HtmlEscape((one ? "" : A.name + "=" + A.values[i] + ", ") + Bx.name + "=" + Bx.values[j] + ": " +
-                                      label + (r.axes.size() > 2 ? " (best over the other parameters)" : ""))
+      s << "<g><title>"
+        << HtmlEscape((one ? "" : A.name + "=" + A.values[i] + ", ") + Bx.name + "=" + Bx.values[j] + ": " + label +
+                      (r.axes.size() > 2 ? " (best over the other parameters)" : ""))
         << "</title><rect x=\"" << L + cw * j << "\" y=\"" << T + ch * i << "\" width=\"" << cw - 1 << "\" height=\""
         << ch - 1 << "\" fill=\"" << fill << "\""
-        << (c && c == best_value ? " stroke=\"#d00020\" stroke-width=\"3\"" : "") << "/><text x=\"" << L + cw * j + cw / 2 << "\" y=\"" << T + ch * i + ch / 2 + 4
+        << (c && c == best_value ? " stroke=\"#d00020\" stroke-width=\"3\"" : "") << "/><text x=\""
+        << L + cw * j + cw / 2 << "\" y=\"" << T + ch * i + ch / 2 + 4
         << "\" font-size=\"11\" text-anchor=\"middle\" fill=\"" << text_color << "\">" << HtmlEscape(label)
         << "</text></g>";
     }
@@ -201,8 +207,8 @@ std::string SweepAbViewHost(const SweepResult& r, const std::string& scene,
     const auto& c = sc->crops[static_cast<size_t>(w)];
     crops.push_back({c[0], c[1], c[2], c[3]});
   }
-  const nlohmann::json d = {{"width", sc->width}, {"height", sc->height}, {"crops", crops}, {"choices", choices},
-                            {"a", a}, {"b", b}};
+  const nlohmann::json d = {
+      {"width", sc->width}, {"height", sc->height}, {"crops", crops}, {"choices", choices}, {"a", a}, {"b", b}};
   return "<div class=\"abview abview-host\" data-ab=\"" + HtmlEscape(d.dump()) + "\"></div>\n";
 }
 
@@ -223,13 +229,15 @@ std::string SweepHtml(const SweepResult& r) {
   for (const auto& o : r.objectives) {
     auto it = r.best.find(o);
     if (it == r.best.end()) {
-      h << "<tr><td class=\"l\">" << HtmlEscape(o) << "</td><td colspan=\"4\" class=\"l\">every point is null</td></tr>\n";
+      h << "<tr><td class=\"l\">" << HtmlEscape(o)
+        << "</td><td colspan=\"4\" class=\"l\">every point is null</td></tr>\n";
       continue;
     }
     const auto& p = r.points[it->second];
-    h << "<tr><td class=\"l\">" << HtmlEscape(o) << "</td><td>" << HtmlEscape(SweepMeanText(o, p.objectives.at(o))) << "</td><td>"
-      << FormatFixed(p.mean_time_ms, 3) << "</td><td class=\"l\">" << HtmlEscape(JoinOverrides(p.overrides))
-      << "</td><td class=\"l\"><code>" << HtmlEscape(p.spec) << "</code></td></tr>\n";
+    h << "<tr><td class=\"l\">" << HtmlEscape(o) << "</td><td>" << HtmlEscape(SweepMeanText(o, p.objectives.at(o)))
+      << "</td><td>" << FormatFixed(p.mean_time_ms, 3) << "</td><td class=\"l\">"
+      << HtmlEscape(JoinOverrides(p.overrides)) << "</td><td class=\"l\"><code>" << HtmlEscape(p.spec)
+      << "</code></td></tr>\n";
   }
   h << "</table>\n";
   for (const auto& d : r.disagreements) {
@@ -253,7 +261,9 @@ std::string SweepHtml(const SweepResult& r) {
     for (const auto& c : r.scene_changes) {
       h << "<tr><td class=\"l\">" << HtmlEscape(c.scene) << "</td>";
       for (const auto& v : c.values) {
-        auto txt = [&v](const std::optional<double>& x) { return x ? SweepValueText(v.objective, *x) : std::string("null"); };
+        auto txt = [&v](const std::optional<double>& x) {
+          return x ? SweepValueText(v.objective, *x) : std::string("null");
+        };
         std::string delta = "-";
         if (v.at_default && v.suggested && std::isfinite(*v.at_default) && std::isfinite(*v.suggested)) {
           const double d = *v.suggested - *v.at_default;
@@ -283,12 +293,14 @@ std::string SweepHtml(const SweepResult& r) {
       for (const auto& c : r.crops) {
         if (c.scene != sc) continue;
         windows = std::max(windows, c.window + 1);
-        if (std::find(cols.begin(), cols.end(), std::make_pair(c.role, c.spec)) == cols.end()) cols.emplace_back(c.role, c.spec);
+        if (std::find(cols.begin(), cols.end(), std::make_pair(c.role, c.spec)) == cols.end())
+          cols.emplace_back(c.role, c.spec);
       }
       h << "<h3>" << HtmlEscape(sc) << "</h3>\n<table class=\"sweep-crops\"><tr>";
       for (const auto& [role, spec] : cols) {
-        h << "<th title=\"" << HtmlEscape(spec) << "\">" << HtmlEscape(role) << "<br><code style=\"font-weight:normal\">"
-          << HtmlEscape(spec.empty() ? std::string("reference") : spec) << "</code></th>";
+        h << "<th title=\"" << HtmlEscape(spec) << "\">" << HtmlEscape(role)
+          << "<br><code style=\"font-weight:normal\">" << HtmlEscape(spec.empty() ? std::string("reference") : spec)
+          << "</code></th>";
       }
       h << "</tr>\n";
       for (int w = 0; w < windows; ++w) {
@@ -309,7 +321,8 @@ std::string SweepHtml(const SweepResult& r) {
       const std::string ab = SweepAbViewHost(r, sc, cols, windows);
       if (!ab.empty()) {
         h << "<p>Any two side by side (the crop windows of " << HtmlEscape(sc)
-          << "; keys 1&#8211;9 pick the window, f flips A and B):</p>\n" << ab;
+          << "; keys 1&#8211;9 pick the window, f flips A and B):</p>\n"
+          << ab;
       }
     }
   }

@@ -32,11 +32,11 @@ struct ObjectiveMean {
 /// One grid point, summarised over scenes.
 struct SweepPoint {
   std::vector<std::pair<std::string, std::string>> overrides;  ///< axis name → value
-  std::string spec;                                             ///< canonical spec
+  std::string spec;                                            ///< canonical spec
   std::map<std::string, ObjectiveMean> objectives;
-  double mean_time_ms = 0;  ///< mean over scenes of the method time's median (MethodTime)
+  double mean_time_ms = 0;    ///< mean over scenes of the method time's median (MethodTime)
   double time_spread_ms = 0;  ///< mean over scenes of the method time's max − min over repeats (its noise)
-  bool pareto = false;      ///< on the front of the first objective vs time
+  bool pareto = false;        ///< on the front of the first objective vs time
 };
 
 /// The suggested point against the shipped default on one scene.
@@ -46,8 +46,8 @@ struct SweepSceneChange {
     std::string objective;
     std::optional<double> at_default, suggested;  ///< +inf: identical to the reference
   };
-  std::vector<Value> values;                      ///< one per objective
-  double default_ms = 0, suggested_ms = 0;        ///< the method time's median
+  std::vector<Value> values;                ///< one per objective
+  double default_ms = 0, suggested_ms = 0;  ///< the method time's median
   double default_spread_ms = 0, suggested_spread_ms = 0;
 };
 
@@ -61,27 +61,27 @@ struct SweepCrop {
 };
 
 struct SweepResult {
-  std::string method;                 ///< registry name
+  std::string method;  ///< registry name
   std::vector<GridAxis> axes;
   std::vector<std::string> objectives;
-  std::string objective_note;         ///< set when the default objective fell back to psnr_db
-  int reference_renders = 0;          ///< PrepareScene calls (one per rendered scene; image-scene views render none)
+  std::string objective_note;  ///< set when the default objective fell back to psnr_db
+  int reference_renders = 0;   ///< PrepareScene calls (one per rendered scene; image-scene views render none)
   std::vector<SweepPoint> points;
-  std::vector<size_t> pareto_front;   ///< indices into points, by time
-  std::map<std::string, size_t> best; ///< objective → best point (absent when all are null)
-  std::map<std::string, int> best_ties;  ///< objective → other points with the same best mean
-  std::string suggested_preset;       ///< spec of the suggested point (SummarizeSweep's rule)
-  std::optional<size_t> suggested;    ///< its index
-  std::string suggestion_rule;        ///< how it was chosen, in words
-  std::optional<size_t> default_point;  ///< the point whose swept values are the --method's own
-  std::string default_note;           ///< why there is none (the defaults are not on the grid)
-  std::vector<std::string> disagreements;  ///< objectives whose picks differ, said loudly
+  std::vector<size_t> pareto_front;             ///< indices into points, by time
+  std::map<std::string, size_t> best;           ///< objective → best point (absent when all are null)
+  std::map<std::string, int> best_ties;         ///< objective → other points with the same best mean
+  std::string suggested_preset;                 ///< spec of the suggested point (SummarizeSweep's rule)
+  std::optional<size_t> suggested;              ///< its index
+  std::string suggestion_rule;                  ///< how it was chosen, in words
+  std::optional<size_t> default_point;          ///< the point whose swept values are the --method's own
+  std::string default_note;                     ///< why there is none (the defaults are not on the grid)
+  std::vector<std::string> disagreements;       ///< objectives whose picks differ, said loudly
   std::vector<SweepSceneChange> scene_changes;  ///< suggested vs default, per scene
-  std::vector<SweepCrop> crops;       ///< written by an unsharded sweep (empty after a merge)
-  Report report;                      ///< context, settings, scenes, rows (scene-major); a shard's block
-  std::vector<size_t> row_point;      ///< point index of each report row
-  std::vector<std::string> specs;     ///< every grid point's spec, in grid order
-  std::string base_spec;              ///< --method as given
+  std::vector<SweepCrop> crops;                 ///< written by an unsharded sweep (empty after a merge)
+  Report report;                                ///< context, settings, scenes, rows (scene-major); a shard's block
+  std::vector<size_t> row_point;                ///< point index of each report row
+  std::vector<std::string> specs;               ///< every grid point's spec, in grid order
+  std::string base_spec;                        ///< --method as given
   std::string out_dir;
 };
 

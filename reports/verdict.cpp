@@ -26,8 +26,8 @@ const ResultRow* NoneRow(const std::vector<ResultRow>& rows, const std::string& 
 }
 
 /// The winner on `metric` (higher is better when `higher`), ties within `tie`.
-std::optional<AxisVerdict> Axis(const std::vector<ResultRow>& rows, const std::string& scene,
-                                const std::string& metric, bool higher, double tie) {
+std::optional<AxisVerdict> Axis(const std::vector<ResultRow>& rows, const std::string& scene, const std::string& metric,
+                                bool higher, double tie) {
   // The best value first, then the first row in report order within `tie` of it.
   std::optional<double> top;
   for (const auto& row : rows) {
@@ -98,8 +98,9 @@ std::string AxisText(const char* label, const AxisVerdict& a, bool psnr) {
     s += a.none_time_ms ? " (none has no value" : " (no none row";
   }
   s += ", " + FmtMs(a.time_ms) + " ms";
-  if (a.none_time_ms) s += ", " + std::string(a.time_ms >= *a.none_time_ms ? "+" : "-") +
-                           FmtMs(std::fabs(a.time_ms - *a.none_time_ms)) + " ms over none";
+  if (a.none_time_ms)
+    s += ", " + std::string(a.time_ms >= *a.none_time_ms ? "+" : "-") + FmtMs(std::fabs(a.time_ms - *a.none_time_ms)) +
+         " ms over none";
   s += ")";
   return s;
 }

@@ -17,12 +17,12 @@ inline constexpr double kVerdictFlipTie = 5e-5;
 
 /// The winner on one axis of one scene.
 struct AxisVerdict {
-  std::string metric;               ///< "edge_psnr_db" or "flip_mean"
-  std::string winner;               ///< first row in report order within the tie tolerance of the best value
-  std::vector<std::string> tied;    ///< the other specs within the tie tolerance of the best value
-  double value = 0;                 ///< the winner's value
-  std::optional<double> none_value; ///< `none`'s value on this axis (absent: no none row or null)
-  double time_ms = 0;               ///< the winner's median total time per frame
+  std::string metric;                  ///< "edge_psnr_db" or "flip_mean"
+  std::string winner;                  ///< first row in report order within the tie tolerance of the best value
+  std::vector<std::string> tied;       ///< the other specs within the tie tolerance of the best value
+  double value = 0;                    ///< the winner's value
+  std::optional<double> none_value;    ///< `none`'s value on this axis (absent: no none row or null)
+  double time_ms = 0;                  ///< the winner's median total time per frame
   std::optional<double> none_time_ms;  ///< `none`'s median total time (absent: no none row)
 };
 

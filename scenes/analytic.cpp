@@ -184,8 +184,8 @@ void ScreenBounds(const CameraRays& cam, glm::dvec3 c, double r, double margin, 
   a->y1 = 1e30;
   double lx = 1e300, ly = 1e300, hx = -1e300, hy = -1e300;
   for (int k = 0; k < 8; ++k) {
-    const glm::dvec3 corner = c + cam.right * ((k & 1) ? r : -r) + cam.up * ((k & 2) ? r : -r) +
-                              cam.fwd * ((k & 4) ? r : -r);
+    const glm::dvec3 corner =
+        c + cam.right * ((k & 1) ? r : -r) + cam.up * ((k & 2) ? r : -r) + cam.fwd * ((k & 4) ? r : -r);
     double x, y;
     if (!cam.Project(corner, &x, &y)) return;
     lx = std::min(lx, x);
@@ -295,7 +295,8 @@ Image8 RenderAnalyticFrame(const Tracer& tracer, int width, int height, const An
         for (int x = x0; x < x1; ++x) pos.push_back({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f});
       }
       res.assign(pos.size(), SampleResult{});
-      tracer.Trace(pos.data(), static_cast<int>(pos.size()), width, height, res.data(), &per_tile[static_cast<size_t>(t)]);
+      tracer.Trace(pos.data(), static_cast<int>(pos.size()), width, height, res.data(),
+                   &per_tile[static_cast<size_t>(t)]);
       slow_pos.clear();
       slow_px.clear();
       slow_layers.clear();
@@ -347,7 +348,7 @@ Image8 RenderAnalyticFrame(const Tracer& tracer, int width, int height, const An
       if (slow_pos.empty()) continue;
       slow_res.assign(slow_pos.size(), SampleResult{});
       behind->Trace(slow_pos.data(), static_cast<int>(slow_pos.size()), width, height, slow_res.data(),
-                   &per_tile[static_cast<size_t>(t)]);
+                    &per_tile[static_cast<size_t>(t)]);
       for (size_t s = 0; s < slow_pos.size(); ++s) {
         const SampleResult& b = slow_res[s];
         const std::array<float, 3> bl = DisplayLinear(sc.display, {b.rgb[0], b.rgb[1], b.rgb[2]});

@@ -141,8 +141,8 @@ double CapsulePolyArea(Vec2d a, Vec2d b, double r, const ConvexPoly& p) {
   rect = ClipHalfPlane(rect, n.x, n.y, na + r);
   rect = ClipHalfPlane(rect, -n.x, -n.y, -(na - r));
   const double area_rect = std::fabs(SignedArea(rect));
-  const ConvexPoly cap_a = ClipHalfPlane(p, u.x, u.y, ua);      // u·x ≤ ua
-  const ConvexPoly cap_b = ClipHalfPlane(p, -u.x, -u.y, -ub);   // u·x ≥ ub
+  const ConvexPoly cap_a = ClipHalfPlane(p, u.x, u.y, ua);     // u·x ≤ ua
+  const ConvexPoly cap_b = ClipHalfPlane(p, -u.x, -u.y, -ub);  // u·x ≥ ub
   return area_rect + DiskPolyArea(a, r, cap_a) + DiskPolyArea(b, r, cap_b);
 }
 

@@ -26,19 +26,19 @@ namespace aalab {
 
 namespace {
 
-constexpr int kBin = 16;          // screen bins of 16 × 16 px for candidate lists
+constexpr int kBin = 16;  // screen bins of 16 × 16 px for candidate lists
 constexpr int kMaxCurvedPerPiece = 24;
 
 enum class FlatKind { kDisk, kCapsule, kTriangle };
 
 struct FlatShape {
   FlatKind kind = FlatKind::kDisk;
-  int shape = 0;        // index into Scene::shapes (= /objects index)
-  Vec2d a, b, c;        // disk: a = centre; capsule: a–b; triangle: a, b, c
-  double r = 0;         // disk / capsule radius in px
+  int shape = 0;  // index into Scene::shapes (= /objects index)
+  Vec2d a, b, c;  // disk: a = centre; capsule: a–b; triangle: a, b, c
+  double r = 0;   // disk / capsule radius in px
   double zmin = 0, zmax = 0;
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // image bounding box
-  ConvexPoly tri;       // triangle as a polygon
+  ConvexPoly tri;                         // triangle as a polygon
 };
 
 bool Curved(const FlatShape& s) { return s.kind != FlatKind::kTriangle; }
@@ -128,13 +128,15 @@ FlatScene Flatten(const Scene& scene, int width, int height) {
     f.shape = idx;
     switch (sh.kind) {
       case ShapeKind::kCylinder:
-        fs.refusal = ObjectPath(idx) + " is a cylinder: the exact reference takes disks facing the camera, spheres, "
+        fs.refusal = ObjectPath(idx) +
+                     " is a cylinder: the exact reference takes disks facing the camera, spheres, "
                      "capsules and triangle shapes (a cylinder's outline has elliptic caps)";
         return fs;
       case ShapeKind::kDisk: {
         const double facing = std::fabs(glm::dot(glm::dvec3(glm::normalize(sh.normal)), proj.fwd));
         if (facing < 1.0 - 1e-6) {
-          fs.refusal = ObjectPath(idx) + " is a disk whose normal is not parallel to the view direction: the exact "
+          fs.refusal = ObjectPath(idx) +
+                       " is a disk whose normal is not parallel to the view direction: the exact "
                        "reference takes disks facing the camera only (others image as ellipses)";
           return fs;
         }
@@ -161,8 +163,7 @@ FlatScene Flatten(const Scene& scene, int width, int height) {
         f.zmax = std::max(z0, z1) + sh.radius;
         break;
       }
-      case ShapeKind::kTriangles:
-        break;
+      case ShapeKind::kTriangles: break;
     }
     if (sh.kind == ShapeKind::kTriangles) {
       for (const glm::uvec3& t : sh.triangles) {
@@ -244,7 +245,8 @@ FlatScene Flatten(const Scene& scene, int width, int height) {
       if (s.x1 <= t.x0 || t.x1 <= s.x0 || s.y1 <= t.y0 || t.y1 <= s.y0) continue;
       const double ov = OverlapArea(s, t);
       if (ov > 1e-9 * std::min(ShapeArea(s), ShapeArea(t)) && !(s.zmax < t.zmin || t.zmax < s.zmin)) {
-        fs.refusal = ObjectPath(s.shape) + " has triangles that overlap in the image at overlapping depths: the "
+        fs.refusal = ObjectPath(s.shape) +
+                     " has triangles that overlap in the image at overlapping depths: the "
                      "exact reference needs one of two overlapping triangles wholly in front of the other";
         return fs;
       }
@@ -274,8 +276,8 @@ void CoverPixel(const std::vector<FlatShape>& shapes, const std::vector<int>& ca
     if (Curved(s)) {
       // Quick reject / accept on the pixel's centre distance (half-diagonal √2/2).
       const Vec2d ctr{px + 0.5, py + 0.5};
-      const double dist = s.kind == FlatKind::kDisk ? std::hypot(ctr.x - s.a.x, ctr.y - s.a.y)
-                                                    : PointSegmentDistance(ctr, s.a, s.b);
+      const double dist =
+          s.kind == FlatKind::kDisk ? std::hypot(ctr.x - s.a.x, ctr.y - s.a.y) : PointSegmentDistance(ctr, s.a, s.b);
       if (dist >= s.r + 0.7072) continue;
       const bool full = dist <= s.r - 0.7072;
       for (Piece& p : pieces) {
@@ -296,7 +298,8 @@ void CoverPixel(const std::vector<FlatShape>& shapes, const std::vector<int>& ca
           continue;
         }
         double a = std::fabs(SignedArea(in));
-        for (int d = 0; d < p.nsub; ++d) a -= CurvedArea(shapes[static_cast<size_t>(p.sub[static_cast<size_t>(d)])], in);
+        for (int d = 0; d < p.nsub; ++d)
+          a -= CurvedArea(shapes[static_cast<size_t>(p.sub[static_cast<size_t>(d)])], in);
         cov += std::max(0.0, a);
         // piece \ T: the part outside edge 0, then inside 0 and outside 1, then inside 0, 1
         // and outside 2.
@@ -421,7 +424,8 @@ std::vector<DiskProbe> DiskProbes(const Scene& scene, int width, int height, con
     if (!isolated) continue;
     p.radius_px = s.r;
     p.area_px = M_PI * s.r * s.r;
-    const glm::vec3 col = scene.materials[static_cast<size_t>(scene.shapes[static_cast<size_t>(s.shape)].material)].color;
+    const glm::vec3 col =
+        scene.materials[static_cast<size_t>(scene.shapes[static_cast<size_t>(s.shape)].material)].color;
     p.inside = DisplayLinear(scene.display, {col.x, col.y, col.z});
     for (int c = 0; c < 3; ++c) p.outside[static_cast<size_t>(c)] = SrgbDecode(o[c]);
     out.push_back(p);

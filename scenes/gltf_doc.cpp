@@ -25,8 +25,8 @@ using u128 = unsigned __int128;
 
 const std::vector<std::string>& GltfSupportedExtensions() {
   static const std::vector<std::string> k = {
-      "KHR_materials_unlit",        "KHR_texture_transform",   "KHR_materials_emissive_strength",
-      "KHR_mesh_quantization",      "EXT_meshopt_compression", "KHR_draco_mesh_compression",
+      "KHR_materials_unlit",   "KHR_texture_transform",   "KHR_materials_emissive_strength",
+      "KHR_mesh_quantization", "EXT_meshopt_compression", "KHR_draco_mesh_compression",
       "KHR_lights_punctual"};
   return k;
 }
@@ -84,9 +84,12 @@ bool Base64DecodeImpl(const std::string& in, size_t from, std::vector<uint8_t>& 
 
 int ComponentBytes(long long type) {
   switch (type) {
-    case 5120: case 5121: return 1;
-    case 5122: case 5123: return 2;
-    case 5125: case 5126: return 4;
+    case 5120:
+    case 5121: return 1;
+    case 5122:
+    case 5123: return 2;
+    case 5125:
+    case 5126: return 4;
     default: return 0;
   }
 }
@@ -108,13 +111,14 @@ std::vector<uint8_t> LoadBuffer(const GltfDoc& d, const Json& b, size_t i, const
   if (len < 1) d.Fail(At(at, "byteLength"), "is required (an integer >= 1)");
   std::vector<uint8_t> bytes;
   if (!b.contains("uri")) {
-    const bool fallback = b.contains("extensions") && b["extensions"].is_object() &&
-                          b["extensions"].contains("EXT_meshopt_compression");
+    const bool fallback =
+        b.contains("extensions") && b["extensions"].is_object() && b["extensions"].contains("EXT_meshopt_compression");
     if (fallback) return {};  // a meshopt fallback buffer: never read (its views are decoded)
-    if (!has_bin || i != 0) d.Fail(at, "has no uri and no GLB BIN chunk holds it (only buffer 0 of a .glb may omit uri)");
+    if (!has_bin || i != 0)
+      d.Fail(at, "has no uri and no GLB BIN chunk holds it (only buffer 0 of a .glb may omit uri)");
     if (static_cast<size_t>(len) > glb_bin.size()) {
-      d.Fail(At(at, "byteLength"), "declares " + std::to_string(len) + " bytes but the GLB BIN chunk has " +
-                                       std::to_string(glb_bin.size()));
+      d.Fail(At(at, "byteLength"),
+             "declares " + std::to_string(len) + " bytes but the GLB BIN chunk has " + std::to_string(glb_bin.size()));
     }
     bytes.assign(glb_bin.begin(), glb_bin.begin() + len);
     return bytes;
@@ -135,7 +139,8 @@ std::vector<uint8_t> LoadBuffer(const GltfDoc& d, const Json& b, size_t i, const
     bytes.assign(s.begin(), s.end());
   }
   if (bytes.size() < static_cast<size_t>(len)) {
-    d.Fail(At(at, "byteLength"), "declares " + std::to_string(len) + " bytes but the data has " + std::to_string(bytes.size()));
+    d.Fail(At(at, "byteLength"),
+           "declares " + std::to_string(len) + " bytes but the data has " + std::to_string(bytes.size()));
   }
   bytes.resize(static_cast<size_t>(len));
   return bytes;
@@ -152,7 +157,8 @@ std::vector<uint8_t> DecodeMeshopt(const GltfDoc& d, const Json& e, const std::s
   const long long count = GltfInt(d, e, "count", at, -1, 1, kMaxGltfAccessorCount);
   if (len < 0 || stride < 0 || count < 0) d.Fail(at, "needs byteLength, byteStride and count");
   const auto& src = d.buffers[static_cast<size_t>(b)];
-  if (static_cast<u128>(off) + static_cast<u128>(len) > src.size()) d.Fail(at, "compressed bytes lie outside buffer " + std::to_string(b));
+  if (static_cast<u128>(off) + static_cast<u128>(len) > src.size())
+    d.Fail(at, "compressed bytes lie outside buffer " + std::to_string(b));
   const std::string mode = e.contains("mode") && e["mode"].is_string() ? e["mode"].get<std::string>() : "";
   const std::string filter = e.contains("filter") && e["filter"].is_string() ? e["filter"].get<std::string>() : "NONE";
   std::vector<uint8_t> out(static_cast<size_t>(count) * static_cast<size_t>(stride));
@@ -160,10 +166,14 @@ std::vector<uint8_t> DecodeMeshopt(const GltfDoc& d, const Json& e, const std::s
   int rc = -1;
   if (mode == "ATTRIBUTES") {
     rc = stride % 4 == 0 ? meshopt_decodeVertexBuffer(out.data(), count, stride, p, len) : -1;
-    if (rc == 0 && filter == "OCTAHEDRAL") meshopt_decodeFilterOct(out.data(), count, stride);
-    else if (rc == 0 && filter == "QUATERNION") meshopt_decodeFilterQuat(out.data(), count, stride);
-    else if (rc == 0 && filter == "EXPONENTIAL") meshopt_decodeFilterExp(out.data(), count, stride);
-    else if (rc == 0 && filter != "NONE") d.Fail(At(at, "filter"), "'" + filter + "' is not a meshopt filter");
+    if (rc == 0 && filter == "OCTAHEDRAL")
+      meshopt_decodeFilterOct(out.data(), count, stride);
+    else if (rc == 0 && filter == "QUATERNION")
+      meshopt_decodeFilterQuat(out.data(), count, stride);
+    else if (rc == 0 && filter == "EXPONENTIAL")
+      meshopt_decodeFilterExp(out.data(), count, stride);
+    else if (rc == 0 && filter != "NONE")
+      d.Fail(At(at, "filter"), "'" + filter + "' is not a meshopt filter");
   } else if (mode == "TRIANGLES" && (stride == 2 || stride == 4) && count % 3 == 0) {
     rc = meshopt_decodeIndexBuffer(out.data(), count, stride, p, len);
   } else if (mode == "INDICES" && (stride == 2 || stride == 4)) {
@@ -204,7 +214,8 @@ void CheckAccessor(const GltfDoc& d, const Json& a, size_t i, const std::vector<
       const Json& bv = d.j["bufferViews"][static_cast<size_t>(v)];
       const long long s = GltfInt(d, bv, "byteStride", At("/bufferViews", static_cast<size_t>(v)), 0, 4, 252);
       if (s > 0) {
-        if (static_cast<u128>(s) < elem) d.Fail(At(at, "bufferView"), "its byteStride " + std::to_string(s) + " is shorter than one element");
+        if (static_cast<u128>(s) < elem)
+          d.Fail(At(at, "bufferView"), "its byteStride " + std::to_string(s) + " is shorter than one element");
         stride = static_cast<u128>(s);
       }
     }
@@ -262,20 +273,51 @@ RawAccessor Raw(const GltfDoc& d, long long index, const std::string& from) {
 
 float Component(const uint8_t* p, int ctype, bool normalized) {
   switch (ctype) {
-    case 5120: { int8_t v; std::memcpy(&v, p, 1); return normalized ? std::max(v / 127.0f, -1.0f) : v; }
-    case 5121: { uint8_t v = *p; return normalized ? v / 255.0f : v; }
-    case 5122: { int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(v / 32767.0f, -1.0f) : v; }
-    case 5123: { uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0f : v; }
-    case 5125: { uint32_t v; std::memcpy(&v, p, 4); return static_cast<float>(v); }
-    default: { float v; std::memcpy(&v, p, 4); return v; }
+    case 5120: {
+      int8_t v;
+      std::memcpy(&v, p, 1);
+      return normalized ? std::max(v / 127.0f, -1.0f) : v;
+    }
+    case 5121: {
+      uint8_t v = *p;
+      return normalized ? v / 255.0f : v;
+    }
+    case 5122: {
+      int16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? std::max(v / 32767.0f, -1.0f) : v;
+    }
+    case 5123: {
+      uint16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? v / 65535.0f : v;
+    }
+    case 5125: {
+      uint32_t v;
+      std::memcpy(&v, p, 4);
+      return static_cast<float>(v);
+    }
+    default: {
+      float v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
   }
 }
 
 uint32_t UComponent(const uint8_t* p, int ctype) {
   switch (ctype) {
     case 5121: return *p;
-    case 5123: { uint16_t v; std::memcpy(&v, p, 2); return v; }
-    default: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+    case 5123: {
+      uint16_t v;
+      std::memcpy(&v, p, 2);
+      return v;
+    }
+    default: {
+      uint32_t v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
   }
 }
 
@@ -289,13 +331,16 @@ void ApplySparse(const GltfDoc& d, long long index, int elem_bytes, Put put) {
   const long long count = a["count"].get<long long>();
   const int it = s["indices"]["componentType"].get<int>();
   size_t sz = 0;
-  const uint8_t* ip = d.ViewBytes(s["indices"]["bufferView"].get<long long>(), &sz) + s["indices"].value("byteOffset", 0ll);
-  const uint8_t* vp = d.ViewBytes(s["values"]["bufferView"].get<long long>(), &sz) + s["values"].value("byteOffset", 0ll);
+  const uint8_t* ip =
+      d.ViewBytes(s["indices"]["bufferView"].get<long long>(), &sz) + s["indices"].value("byteOffset", 0ll);
+  const uint8_t* vp =
+      d.ViewBytes(s["values"]["bufferView"].get<long long>(), &sz) + s["values"].value("byteOffset", 0ll);
   for (long long k = 0; k < n; ++k) {
     const uint32_t e = UComponent(ip + k * ComponentBytes(it), it);
     if (e >= count) {
-      d.Fail("/accessors/" + std::to_string(index) + "/sparse/indices", "index " + std::to_string(e) + " is beyond the accessor's " +
-                 std::to_string(count) + " elements (rule: index out of range)");
+      d.Fail("/accessors/" + std::to_string(index) + "/sparse/indices",
+             "index " + std::to_string(e) + " is beyond the accessor's " + std::to_string(count) +
+                 " elements (rule: index out of range)");
     }
     put(static_cast<size_t>(e), vp + k * elem_bytes);
   }
@@ -306,8 +351,9 @@ void ApplySparse(const GltfDoc& d, long long index, int elem_bytes, Put put) {
 /// every `name` is a string and every `extensions` an object of objects. Walked with an
 /// explicit stack (no recursion however deep the JSON nests).
 void CheckShapes(const GltfDoc& d) {
-  static const char* kLists[] = {"accessors", "animations", "buffers", "bufferViews", "cameras", "images", "materials",
-                                 "meshes",    "nodes",      "samplers", "scenes",     "skins",   "textures"};
+  static const char* kLists[] = {"accessors", "animations", "buffers", "bufferViews", "cameras",
+                                 "images",    "materials",  "meshes",  "nodes",       "samplers",
+                                 "scenes",    "skins",      "textures"};
   for (const char* list : kLists) {
     const Json& a = GltfArray(d, d.j, list, "");
     for (size_t i = 0; i < a.size(); ++i) {
@@ -317,7 +363,9 @@ void CheckShapes(const GltfDoc& d) {
   if (d.j.contains("scene")) {
     const long long n = static_cast<long long>(GltfArray(d, d.j, "scenes", "").size());
     const long long s = GltfInt(d, d.j, "scene", "", 0, 0, 1ll << 40);
-    if (s >= n) d.Fail("/scene", "names scene " + std::to_string(s) + ", which does not exist (" + std::to_string(n) + " defined) (rule: index out of range)");
+    if (s >= n)
+      d.Fail("/scene", "names scene " + std::to_string(s) + ", which does not exist (" + std::to_string(n) +
+                           " defined) (rule: index out of range)");
   }
   std::vector<std::pair<const Json*, std::string>> stack = {{&d.j, ""}};
   while (!stack.empty()) {
@@ -375,8 +423,10 @@ long long GltfIndex(const GltfDoc& d, const Json& o, const char* key, const std:
   const long long n = static_cast<long long>(GltfArray(d, d.j, list, "").size());
   if (!o.is_object() || !o.contains(key)) return -1;
   const Json& v = o.at(key);
-  if (!v.is_number_integer() && !v.is_number_unsigned()) d.Fail(At(at, key), "must be an integer index into /" + std::string(list));
-  if (v.is_number_unsigned() ? v.get<unsigned long long>() >= static_cast<unsigned long long>(n) : (v.get<long long>() < 0 || v.get<long long>() >= n)) {
+  if (!v.is_number_integer() && !v.is_number_unsigned())
+    d.Fail(At(at, key), "must be an integer index into /" + std::string(list));
+  if (v.is_number_unsigned() ? v.get<unsigned long long>() >= static_cast<unsigned long long>(n)
+                             : (v.get<long long>() < 0 || v.get<long long>() >= n)) {
     d.Fail(At(at, key), "names " + std::string(list) + " " + v.dump() + ", which does not exist (" + std::to_string(n) +
                             " defined) (rule: index out of range)");
   }
@@ -395,29 +445,35 @@ const uint8_t* GltfDoc::ViewBytes(long long view, size_t* size) const {
   return buf.data() + bv.value("byteOffset", 0ll);
 }
 
-long long GltfInt(const GltfDoc& d, const Json& o, const char* key, const std::string& at, long long fallback, long long lo,
-                  long long hi) {
+long long GltfInt(const GltfDoc& d, const Json& o, const char* key, const std::string& at, long long fallback,
+                  long long lo, long long hi) {
   if (!o.is_object() || !o.contains(key)) return fallback;
   const Json& v = o.at(key);
   const std::string where = At(at, key);
   if (v.is_number_unsigned()) {
     if (v.get<unsigned long long>() > static_cast<unsigned long long>(hi)) {
-      d.Fail(where, std::to_string(v.get<unsigned long long>()) + " is out of range (allowed: " + std::to_string(lo) + " to " + std::to_string(hi) + ")");
+      d.Fail(where, std::to_string(v.get<unsigned long long>()) + " is out of range (allowed: " + std::to_string(lo) +
+                        " to " + std::to_string(hi) + ")");
     }
   } else if (!v.is_number_integer()) {
     d.Fail(where, "must be an integer");
   }
   const long long x = v.get<long long>();
-  if (x < lo || x > hi) d.Fail(where, std::to_string(x) + " is out of range (allowed: " + std::to_string(lo) + " to " + std::to_string(hi) + ")");
+  if (x < lo || x > hi)
+    d.Fail(where,
+           std::to_string(x) + " is out of range (allowed: " + std::to_string(lo) + " to " + std::to_string(hi) + ")");
   return x;
 }
 
-double GltfNum(const GltfDoc& d, const Json& o, const char* key, const std::string& at, double fallback, double lo, double hi) {
+double GltfNum(const GltfDoc& d, const Json& o, const char* key, const std::string& at, double fallback, double lo,
+               double hi) {
   if (!o.is_object() || !o.contains(key)) return fallback;
   const Json& v = o.at(key);
   if (!v.is_number()) d.Fail(At(at, key), "must be a number");
   const double x = v.get<double>();
-  if (!(x >= lo && x <= hi)) d.Fail(At(at, key), std::to_string(x) + " is out of range (allowed: " + std::to_string(lo) + " to " + std::to_string(hi) + ")");
+  if (!(x >= lo && x <= hi))
+    d.Fail(At(at, key),
+           std::to_string(x) + " is out of range (allowed: " + std::to_string(lo) + " to " + std::to_string(hi) + ")");
   return x;
 }
 
@@ -432,7 +488,8 @@ std::vector<double> GltfNumbers(const GltfDoc& d, const Json& o, const char* key
                                 const std::vector<double>& fallback) {
   if (!o.is_object() || !o.contains(key)) return fallback;
   const Json& a = o.at(key);
-  if (!a.is_array() || a.size() != count) d.Fail(At(at, key), "must be an array of " + std::to_string(count) + " numbers");
+  if (!a.is_array() || a.size() != count)
+    d.Fail(At(at, key), "must be an array of " + std::to_string(count) + " numbers");
   std::vector<double> v;
   for (size_t i = 0; i < count; ++i) {
     if (!a[i].is_number() || !std::isfinite(a[i].get<double>())) d.Fail(At(At(at, key), i), "must be a finite number");
@@ -441,7 +498,9 @@ std::vector<double> GltfNumbers(const GltfDoc& d, const Json& o, const char* key
   return v;
 }
 
-long long GltfAccessorCount(const GltfDoc& d, long long index, const std::string& from) { return Raw(d, index, from).count; }
+long long GltfAccessorCount(const GltfDoc& d, long long index, const std::string& from) {
+  return Raw(d, index, from).count;
+}
 
 std::vector<float> ReadGltfFloats(const GltfDoc& d, long long index, const std::string& from, int comps) {
   const RawAccessor r = Raw(d, index, from);
@@ -454,7 +513,8 @@ std::vector<float> ReadGltfFloats(const GltfDoc& d, long long index, const std::
   if (r.data) {
     for (long long i = 0; i < r.count; ++i) {
       const uint8_t* p = r.data + static_cast<size_t>(i) * r.stride;
-      for (int c = 0; c < comps; ++c) out[static_cast<size_t>(i) * comps + c] = Component(p + c * cb, r.ctype, r.normalized);
+      for (int c = 0; c < comps; ++c)
+        out[static_cast<size_t>(i) * comps + c] = Component(p + c * cb, r.ctype, r.normalized);
     }
   }
   ApplySparse(d, index, cb * comps, [&](size_t e, const uint8_t* p) {
@@ -473,7 +533,9 @@ std::vector<uint32_t> ReadGltfUints(const GltfDoc& d, long long index, const std
   const int cb = ComponentBytes(r.ctype);
   if (r.data) {
     for (long long i = 0; i < r.count; ++i) {
-      for (int c = 0; c < comps; ++c) out[static_cast<size_t>(i) * comps + c] = UComponent(r.data + static_cast<size_t>(i) * r.stride + c * cb, r.ctype);
+      for (int c = 0; c < comps; ++c)
+        out[static_cast<size_t>(i) * comps + c] =
+            UComponent(r.data + static_cast<size_t>(i) * r.stride + c * cb, r.ctype);
     }
   }
   ApplySparse(d, index, cb * comps, [&](size_t e, const uint8_t* p) {
@@ -525,11 +587,13 @@ GltfDoc ReadGltfDoc(const std::string& path) {
     if (std::find(sup.begin(), sup.end(), e.get<std::string>()) == sup.end()) missing.push_back(e.get<std::string>());
   }
   if (!missing.empty()) {
-    d.Fail("/extensionsRequired", "requires " + JoinList(missing) + ", which aalab does not draw (supported: " + JoinList(sup) + ")");
+    d.Fail("/extensionsRequired",
+           "requires " + JoinList(missing) + ", which aalab does not draw (supported: " + JoinList(sup) + ")");
   }
   for (const Json& e : GltfArray(d, j, "extensionsUsed", "")) {
     if (!e.is_string()) d.Fail("/extensionsUsed", "must hold strings");
-    if (std::find(sup.begin(), sup.end(), e.get<std::string>()) == sup.end()) d.ignored_extensions.push_back(e.get<std::string>());
+    if (std::find(sup.begin(), sup.end(), e.get<std::string>()) == sup.end())
+      d.ignored_extensions.push_back(e.get<std::string>());
   }
   // Buffers, then views, then accessors: each checked before anything refers to it.
   const Json& buffers = GltfArray(d, j, "buffers", "");
@@ -543,21 +607,26 @@ GltfDoc ReadGltfDoc(const std::string& path) {
     if (!v.is_object()) d.Fail(at, "must be an object");
     const long long b = GltfInt(d, v, "buffer", at, -1, 0, 1ll << 40);
     if (b < 0 || b >= static_cast<long long>(d.buffers.size())) {
-      d.Fail(At(at, "buffer"), "names buffer " + std::to_string(b) + ", which does not exist (rule: index out of range)");
+      d.Fail(At(at, "buffer"),
+             "names buffer " + std::to_string(b) + ", which does not exist (rule: index out of range)");
     }
     const long long off = GltfInt(d, v, "byteOffset", at, 0, 0, 1ll << 62);
     const long long len = GltfInt(d, v, "byteLength", at, -1, 1, 1ll << 62);
     if (len < 1) d.Fail(At(at, "byteLength"), "is required (an integer >= 1)");
     const long long stride = GltfInt(d, v, "byteStride", at, 0, 4, 252);
     if (stride % 4 != 0) d.Fail(At(at, "byteStride"), std::to_string(stride) + " is not a multiple of 4");
-    const bool meshopt = v.contains("extensions") && v["extensions"].is_object() && v["extensions"].contains("EXT_meshopt_compression");
+    const bool meshopt =
+        v.contains("extensions") && v["extensions"].is_object() && v["extensions"].contains("EXT_meshopt_compression");
     if (meshopt) {
-      d.decoded_views[i] = DecodeMeshopt(d, v["extensions"]["EXT_meshopt_compression"], At(at, "extensions/EXT_meshopt_compression"));
-      if (static_cast<long long>(d.decoded_views[i].size()) < len) d.Fail(at, "decoded meshopt data is shorter than byteLength");
+      d.decoded_views[i] =
+          DecodeMeshopt(d, v["extensions"]["EXT_meshopt_compression"], At(at, "extensions/EXT_meshopt_compression"));
+      if (static_cast<long long>(d.decoded_views[i].size()) < len)
+        d.Fail(at, "decoded meshopt data is shorter than byteLength");
       d.decoded_views[i].resize(static_cast<size_t>(len));
     } else if (static_cast<u128>(off) + static_cast<u128>(len) > d.buffers[static_cast<size_t>(b)].size()) {
-      d.Fail(at, "bytes " + std::to_string(off) + " + " + std::to_string(len) + " lie outside buffer " + std::to_string(b) + " (" +
-                     std::to_string(d.buffers[static_cast<size_t>(b)].size()) + " bytes) (rule: buffer view bounds)");
+      d.Fail(at, "bytes " + std::to_string(off) + " + " + std::to_string(len) + " lie outside buffer " +
+                     std::to_string(b) + " (" + std::to_string(d.buffers[static_cast<size_t>(b)].size()) +
+                     " bytes) (rule: buffer view bounds)");
     }
     view_len.push_back(len);
   }

@@ -47,7 +47,8 @@ std::string GltfAt(const std::string& base, const std::string& key);
 std::string GltfAt(const std::string& base, size_t i);
 /// The index member `key` of `o` (at `at`) into the top-level array `list`: -1 when absent;
 /// a non-integer or an index outside the array fails (rule: index out of range).
-long long GltfIndex(const GltfDoc& d, const nlohmann::json& o, const char* key, const std::string& at, const char* list);
+long long GltfIndex(const GltfDoc& d, const nlohmann::json& o, const char* key, const std::string& at,
+                    const char* list);
 /// The file a relative URI names (`uri` of a buffer or image, at JSON path `at`): the URI
 /// percent-decoded (RFC 3986 §2.1; glTF 2.0 §3.3: "my%20tex.png" names "my tex.png") and
 /// resolved against the glTF file's folder. A '%' without two hex digits after it, or

@@ -11,23 +11,27 @@ void DecodeGltfDraco(const GltfDoc& d, const nlohmann::json& ext, const std::str
                      const std::map<std::string, int>& comps, GltfPrimData& out) {
   const long long view = GltfInt(d, ext, "bufferView", at, -1, 0, static_cast<long long>(d.decoded_views.size()) - 1);
   if (view < 0) d.Fail(at + "/bufferView", "is required");
-  if (!ext.contains("attributes") || !ext["attributes"].is_object()) d.Fail(at + "/attributes", "is required (an object)");
+  if (!ext.contains("attributes") || !ext["attributes"].is_object())
+    d.Fail(at + "/attributes", "is required (an object)");
   size_t size = 0;
   const uint8_t* bytes = d.ViewBytes(view, &size);
   draco::DecoderBuffer buf;
   buf.Init(reinterpret_cast<const char*>(bytes), size);
   draco::Decoder dec;
   auto result = dec.DecodeMeshFromBuffer(&buf);
-  if (!result.ok() || !result.value()) d.Fail(at, "Draco data does not decode (" + result.status().error_msg_string() + ")");
+  if (!result.ok() || !result.value())
+    d.Fail(at, "Draco data does not decode (" + result.status().error_msg_string() + ")");
   const std::unique_ptr<draco::Mesh> mesh = std::move(result).value();
   out.vertices = mesh->num_points();
   for (const auto& [name, n] : comps) {
     if (!ext["attributes"].contains(name)) continue;
     const long long id = GltfInt(d, ext["attributes"], name.c_str(), at + "/attributes", -1, 0, 1 << 30);
     const draco::PointAttribute* a = mesh->GetAttributeByUniqueId(static_cast<uint32_t>(id));
-    if (!a) d.Fail(at + "/attributes/" + name, "names Draco attribute " + std::to_string(id) + ", which the data lacks");
+    if (!a)
+      d.Fail(at + "/attributes/" + name, "names Draco attribute " + std::to_string(id) + ", which the data lacks");
     if (a->num_components() != n) {
-      d.Fail(at + "/attributes/" + name, "Draco attribute has " + std::to_string(a->num_components()) + " components (needs " + std::to_string(n) + ")");
+      d.Fail(at + "/attributes/" + name, "Draco attribute has " + std::to_string(a->num_components()) +
+                                             " components (needs " + std::to_string(n) + ")");
     }
     std::vector<float>& v = out.attr[name];
     v.assign(static_cast<size_t>(out.vertices) * n, 0.0f);

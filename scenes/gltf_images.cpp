@@ -27,7 +27,8 @@ GltfImageBytes LocateImage(const GltfDoc& d, long long index) {
   const Json& im = d.j["images"][static_cast<size_t>(index)];
   const std::string at = GltfAt("/images", static_cast<size_t>(index));
   GltfImageBytes s;
-  const std::string mime = im.contains("mimeType") && im["mimeType"].is_string() ? im["mimeType"].get<std::string>() : "";
+  const std::string mime =
+      im.contains("mimeType") && im["mimeType"].is_string() ? im["mimeType"].get<std::string>() : "";
   s.hint = mime == "image/jpeg" ? "jpg" : "png";
   if (im.contains("bufferView")) {
     const long long v = GltfIndex(d, im, "bufferView", at, "bufferViews");
@@ -68,11 +69,12 @@ void ReadGltfImages(const GltfDoc& d, const std::vector<std::pair<long long, boo
     GltfImageBytes src = LocateImage(d, img);
     if (!src.file.empty()) out.files_read.push_back(src.file);
     if (decode) {
-      const TextureHeader h = ProbeTextureImage(src.name, src.file, src.file.empty() ? src.data.data() : nullptr, src.data.size(), src.hint);
+      const TextureHeader h = ProbeTextureImage(src.name, src.file, src.file.empty() ? src.data.data() : nullptr,
+                                                src.data.size(), src.hint);
       budget += h.Bytes8Chain();
       if (budget > kMaxGltfTextureBytes8) {
         d.Fail(GltfAt("/images", static_cast<size_t>(img)), "the textures' RGBA8 mip chains exceed the budget of " +
-                                                            std::to_string(kMaxGltfTextureBytes8 >> 20) + " MiB");
+                                                                std::to_string(kMaxGltfTextureBytes8 >> 20) + " MiB");
       }
       // The command's decode budget (io), charged here in file order rather than by the
       // parallel decodes below: past it, the same image is named at any thread count.

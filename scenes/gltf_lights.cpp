@@ -41,8 +41,10 @@ glm::mat4 GltfNodeLocalMatrix(const nlohmann::json& node) {
   }
   glm::vec3 t(0.0f), s(1.0f);
   glm::quat r(1.0f, 0.0f, 0.0f, 0.0f);
-  if (node.contains("translation")) t = {node["translation"][0].get<float>(), node["translation"][1].get<float>(), node["translation"][2].get<float>()};
-  if (node.contains("scale")) s = {node["scale"][0].get<float>(), node["scale"][1].get<float>(), node["scale"][2].get<float>()};
+  if (node.contains("translation"))
+    t = {node["translation"][0].get<float>(), node["translation"][1].get<float>(), node["translation"][2].get<float>()};
+  if (node.contains("scale"))
+    s = {node["scale"][0].get<float>(), node["scale"][1].get<float>(), node["scale"][2].get<float>()};
   if (node.contains("rotation")) {
     const auto& q = node["rotation"];  // glTF: x, y, z, w
     r = glm::quat(q[3].get<float>(), q[0].get<float>(), q[1].get<float>(), q[2].get<float>());
@@ -68,7 +70,8 @@ std::vector<std::optional<glm::mat4>> GltfNodeWorldMatrices(const nlohmann::json
     const nlohmann::json& sc = gltf["scenes"][si];
     if (sc.contains("nodes")) {
       for (size_t k = 0; k < sc["nodes"].size(); ++k) {
-        roots.emplace_back(sc["nodes"][k].get<size_t>(), "/scenes/" + std::to_string(si) + "/nodes/" + std::to_string(k));
+        roots.emplace_back(sc["nodes"][k].get<size_t>(),
+                           "/scenes/" + std::to_string(si) + "/nodes/" + std::to_string(k));
       }
     }
   } else {
@@ -94,7 +97,8 @@ std::vector<std::optional<glm::mat4>> GltfNodeWorldMatrices(const nlohmann::json
   while (!stack.empty()) {
     const Item item = stack.back();
     stack.pop_back();
-    if (item.node >= n) Fail(item.path, "node " + std::to_string(item.node) + " does not exist (" + std::to_string(n) + " nodes)");
+    if (item.node >= n)
+      Fail(item.path, "node " + std::to_string(item.node) + " does not exist (" + std::to_string(n) + " nodes)");
     if (world[item.node]) {
       Fail(item.path, "node " + std::to_string(item.node) +
                           " is reached twice (a cycle or a second parent; glTF nodes form strict trees)");
@@ -105,7 +109,8 @@ std::vector<std::optional<glm::mat4>> GltfNodeWorldMatrices(const nlohmann::json
     if (!node.contains("children")) continue;
     const auto& ch = node["children"];
     for (size_t k = ch.size(); k-- > 0;) {
-      stack.push_back({ch[k].get<size_t>(), w, "/nodes/" + std::to_string(item.node) + "/children/" + std::to_string(k)});
+      stack.push_back(
+          {ch[k].get<size_t>(), w, "/nodes/" + std::to_string(item.node) + "/children/" + std::to_string(k)});
     }
   }
   return world;
@@ -122,7 +127,8 @@ std::vector<Light> GltfPunctualLights(const nlohmann::json& gltf) {
   for (size_t i = 0; i < defs.size(); ++i) {
     const std::string p = base + "/" + std::to_string(i);
     const nlohmann::json& d = defs[i];
-    if (!d.is_object() || !d.contains("type") || !d["type"].is_string()) Fail(p + "/type", "missing (allowed: directional, point, spot)");
+    if (!d.is_object() || !d.contains("type") || !d["type"].is_string())
+      Fail(p + "/type", "missing (allowed: directional, point, spot)");
     const std::string type = d["type"].get<std::string>();
     Light l;
     if (type == "directional") {
@@ -181,7 +187,8 @@ std::vector<Light> GltfPunctualLights(const nlohmann::json& gltf) {
     l.position = glm::vec3(w[3]);
     const glm::vec3 dir = glm::mat3(w) * glm::vec3(0.0f, 0.0f, -1.0f);
     const float len = glm::length(dir);
-    if (!(len > 0.0f) || !std::isfinite(len)) Fail("/nodes/" + std::to_string(i), "the node's matrix has no direction for its light (zero scale)");
+    if (!(len > 0.0f) || !std::isfinite(len))
+      Fail("/nodes/" + std::to_string(i), "the node's matrix has no direction for its light (zero scale)");
     l.direction = dir / len;
     out.push_back(l);
   }

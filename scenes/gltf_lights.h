@@ -2,7 +2,8 @@
 /// file's JSON as the extension's specification defines them (intensity in candela for point
 /// and spot, lux for directional; a light shines down its node's −Z; node scale ignored).
 /// Pure functions of the parsed JSON; LoadGltf calls GltfPunctualLights on the document it
-/// parsed (GltfContent::lights) and scenes/scene_parse.cpp places them by the object's transform. docs/lighting.md "Punctual lights".
+/// parsed (GltfContent::lights) and scenes/scene_parse.cpp places them by the object's transform. docs/lighting.md
+/// "Punctual lights".
 #pragma once
 #include <optional>
 #include <string>

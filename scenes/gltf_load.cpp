@@ -29,7 +29,6 @@ using Json = nlohmann::json;
 
 namespace {
 
-
 /// A node's local transform (matrix, or T · R · S), in double.
 glm::dmat4 LocalMatrix(const GltfDoc& d, const Json& n, const std::string& at) {
   if (n.contains("matrix")) {
@@ -69,14 +68,17 @@ NodeGraph WalkNodes(const GltfDoc& d) {
     if (!nodes[i].is_object()) d.Fail(at, "must be an object");
     const Json& ch = GltfArray(d, nodes[i], "children", at);
     for (size_t k = 0; k < ch.size(); ++k) {
-      if (!ch[k].is_number_integer() || ch[k].get<long long>() < 0 || ch[k].get<long long>() >= static_cast<long long>(n)) {
-        d.Fail(GltfAt(GltfAt(at, "children"), k), "names node " + ch[k].dump() + ", which does not exist (rule: index out of range)");
+      if (!ch[k].is_number_integer() || ch[k].get<long long>() < 0 ||
+          ch[k].get<long long>() >= static_cast<long long>(n)) {
+        d.Fail(GltfAt(GltfAt(at, "children"), k),
+               "names node " + ch[k].dump() + ", which does not exist (rule: index out of range)");
       }
       const size_t c = ch[k].get<size_t>();
       if (c == i) d.Fail(GltfAt(GltfAt(at, "children"), k), "a node is its own child (rule: recursive nodes)");
       if (parent[c] >= 0) {
-        d.Fail(GltfAt(GltfAt(at, "children"), k), "node " + std::to_string(c) + " already has parent " + std::to_string(parent[c]) +
-                                              " (rule: a node has one parent; shared or recursive nodes are invalid)");
+        d.Fail(GltfAt(GltfAt(at, "children"), k),
+               "node " + std::to_string(c) + " already has parent " + std::to_string(parent[c]) +
+                   " (rule: a node has one parent; shared or recursive nodes are invalid)");
       }
       parent[c] = static_cast<long long>(i);
     }
@@ -105,11 +107,15 @@ NodeGraph WalkNodes(const GltfDoc& d) {
     if (!scenes[static_cast<size_t>(si)].is_object()) d.Fail(at, "must be an object");
     const Json& sn = GltfArray(d, scenes[static_cast<size_t>(si)], "nodes", at);
     for (size_t k = 0; k < sn.size(); ++k) {
-      if (!sn[k].is_number_integer() || sn[k].get<long long>() < 0 || sn[k].get<long long>() >= static_cast<long long>(n)) {
-        d.Fail(GltfAt(GltfAt(at, "nodes"), k), "names node " + sn[k].dump() + ", which does not exist (rule: index out of range)");
+      if (!sn[k].is_number_integer() || sn[k].get<long long>() < 0 ||
+          sn[k].get<long long>() >= static_cast<long long>(n)) {
+        d.Fail(GltfAt(GltfAt(at, "nodes"), k),
+               "names node " + sn[k].dump() + ", which does not exist (rule: index out of range)");
       }
       const size_t r = sn[k].get<size_t>();
-      if (parent[r] >= 0) d.Fail(GltfAt(GltfAt(at, "nodes"), k), "node " + std::to_string(r) + " is not a root (it has parent " + std::to_string(parent[r]) + ")");
+      if (parent[r] >= 0)
+        d.Fail(GltfAt(GltfAt(at, "nodes"), k),
+               "node " + std::to_string(r) + " is not a root (it has parent " + std::to_string(parent[r]) + ")");
       roots.push_back(r);
     }
   } else {
@@ -128,7 +134,9 @@ NodeGraph WalkNodes(const GltfDoc& d) {
     if (g.reached[i]) d.Fail(GltfAt("/nodes", i), "is reached twice from the scene (rule: a node has one parent)");
     g.reached[i] = 1;
     if (parent[i] >= 0) depth[i] = depth[static_cast<size_t>(parent[i])] + 1;
-    if (depth[i] > kMaxGltfNodeDepth) d.Fail(GltfAt("/nodes", i), "lies " + std::to_string(depth[i]) + " nodes deep (rule: node depth, at most " + std::to_string(kMaxGltfNodeDepth) + ")");
+    if (depth[i] > kMaxGltfNodeDepth)
+      d.Fail(GltfAt("/nodes", i), "lies " + std::to_string(depth[i]) + " nodes deep (rule: node depth, at most " +
+                                      std::to_string(kMaxGltfNodeDepth) + ")");
     const glm::dmat4 local = LocalMatrix(d, nodes[i], GltfAt("/nodes", i));
     g.world[i] = parent[i] >= 0 ? g.world[static_cast<size_t>(parent[i])] * local : local;
     g.order.push_back(i);
@@ -140,15 +148,19 @@ NodeGraph WalkNodes(const GltfDoc& d) {
 
 /// The vertex streams of primitive `pr` (plain accessors or Draco).
 GltfPrimData ReadPrimitive(const GltfDoc& d, const Json& pr, const std::string& at, std::vector<std::string>& notes) {
-  static const std::map<std::string, int> kComps = {{"POSITION", 3},   {"NORMAL", 3},   {"TANGENT", 4},  {"TEXCOORD_0", 2},
-                                                    {"TEXCOORD_1", 2}, {"JOINTS_0", 4}, {"WEIGHTS_0", 4}};
+  static const std::map<std::string, int> kComps = {{"POSITION", 3},   {"NORMAL", 3},     {"TANGENT", 4},
+                                                    {"TEXCOORD_0", 2}, {"TEXCOORD_1", 2}, {"JOINTS_0", 4},
+                                                    {"WEIGHTS_0", 4}};
   GltfPrimData p;
-  if (!pr.contains("attributes") || !pr["attributes"].is_object()) d.Fail(GltfAt(at, "attributes"), "is required (an object)");
+  if (!pr.contains("attributes") || !pr["attributes"].is_object())
+    d.Fail(GltfAt(at, "attributes"), "is required (an object)");
   const Json& attrs = pr["attributes"];
   if (!attrs.contains("POSITION")) d.Fail(GltfAt(at, "attributes"), "has no POSITION");
-  const bool draco = pr.contains("extensions") && pr["extensions"].is_object() && pr["extensions"].contains("KHR_draco_mesh_compression");
+  const bool draco = pr.contains("extensions") && pr["extensions"].is_object() &&
+                     pr["extensions"].contains("KHR_draco_mesh_compression");
   if (draco) {
-    DecodeGltfDraco(d, pr["extensions"]["KHR_draco_mesh_compression"], GltfAt(at, "extensions/KHR_draco_mesh_compression"), kComps, p);
+    DecodeGltfDraco(d, pr["extensions"]["KHR_draco_mesh_compression"],
+                    GltfAt(at, "extensions/KHR_draco_mesh_compression"), kComps, p);
   }
   for (const auto& [name, comps] : kComps) {
     if (!attrs.contains(name) || p.attr.count(name)) continue;
@@ -163,8 +175,9 @@ GltfPrimData ReadPrimitive(const GltfDoc& d, const Json& pr, const std::string& 
   p.vertices = static_cast<long long>(p.attr["POSITION"].size() / 3);
   for (const auto& [name, v] : p.attr) {
     if (static_cast<long long>(v.size()) != p.vertices * kComps.at(name)) {
-      d.Fail(GltfAt(GltfAt(at, "attributes"), name), "has " + std::to_string(v.size() / kComps.at(name)) + " elements but POSITION has " +
-                                                 std::to_string(p.vertices) + " (rule: attribute counts must match)");
+      d.Fail(GltfAt(GltfAt(at, "attributes"), name), "has " + std::to_string(v.size() / kComps.at(name)) +
+                                                         " elements but POSITION has " + std::to_string(p.vertices) +
+                                                         " (rule: attribute counts must match)");
     }
   }
   if (attrs.contains("COLOR_0")) notes.push_back(at + ": vertex colours (COLOR_0) are not drawn");
@@ -177,19 +190,24 @@ GltfPrimData ReadPrimitive(const GltfDoc& d, const Json& pr, const std::string& 
 }
 
 /// Applies morph targets at `weights` to POSITION, NORMAL and TANGENT (xyz).
-void ApplyMorph(const GltfDoc& d, const Json& pr, const std::string& at, const std::vector<double>& weights, GltfPrimData& p) {
+void ApplyMorph(const GltfDoc& d, const Json& pr, const std::string& at, const std::vector<double>& weights,
+                GltfPrimData& p) {
   const Json& targets = GltfArray(d, pr, "targets", at);
   for (size_t t = 0; t < targets.size() && t < weights.size(); ++t) {
     if (weights[t] == 0.0) continue;
     const std::string tat = GltfAt(GltfAt(at, "targets"), t);
     for (const char* name : {"POSITION", "NORMAL", "TANGENT"}) {
       if (!targets[t].is_object() || !targets[t].contains(name) || !p.attr.count(name)) continue;
-      const std::vector<float> delta = ReadGltfFloats(d, GltfIndex(d, targets[t], name, tat, "accessors"), GltfAt(tat, name), 3);
+      const std::vector<float> delta =
+          ReadGltfFloats(d, GltfIndex(d, targets[t], name, tat, "accessors"), GltfAt(tat, name), 3);
       std::vector<float>& v = p.attr[name];
       const int comps = std::string(name) == "TANGENT" ? 4 : 3;
-      if (static_cast<long long>(delta.size() / 3) != p.vertices) d.Fail(GltfAt(tat, name), "count differs from POSITION's (rule: attribute counts must match)");
+      if (static_cast<long long>(delta.size() / 3) != p.vertices)
+        d.Fail(GltfAt(tat, name), "count differs from POSITION's (rule: attribute counts must match)");
       for (long long i = 0; i < p.vertices; ++i) {
-        for (int c = 0; c < 3; ++c) v[static_cast<size_t>(i * comps + c)] += static_cast<float>(weights[t]) * delta[static_cast<size_t>(i * 3 + c)];
+        for (int c = 0; c < 3; ++c)
+          v[static_cast<size_t>(i * comps + c)] +=
+              static_cast<float>(weights[t]) * delta[static_cast<size_t>(i * 3 + c)];
       }
     }
   }
@@ -198,8 +216,8 @@ void ApplyMorph(const GltfDoc& d, const Json& pr, const std::string& at, const s
 glm::vec3 V3(const std::vector<float>& v, size_t i) { return {v[i * 3], v[i * 3 + 1], v[i * 3 + 2]}; }
 
 /// One primitive placed by `world` (or skinned by `joints`) as one triangle shape.
-Shape BuildShape(const GltfDoc& d, const GltfPrimData& p, const std::string& at, long long mode, const glm::dmat4& world,
-                 const std::vector<glm::dmat4>* joints) {
+Shape BuildShape(const GltfDoc& d, const GltfPrimData& p, const std::string& at, long long mode,
+                 const glm::dmat4& world, const std::vector<glm::dmat4>* joints) {
   Shape s;
   s.kind = ShapeKind::kTriangles;
   s.source = "gltf";
@@ -221,7 +239,10 @@ Shape BuildShape(const GltfDoc& d, const GltfPrimData& p, const std::string& at,
         const size_t j = static_cast<size_t>(jn[i * 4 + k]);
         const double w = wt[i * 4 + k];
         if (w == 0.0) continue;
-        if (j >= joints->size()) d.Fail(GltfAt(at, "attributes/JOINTS_0"), "vertex " + std::to_string(i) + " names joint " + std::to_string(j) + " beyond the skin's " + std::to_string(joints->size()) + " (rule: index out of range)");
+        if (j >= joints->size())
+          d.Fail(GltfAt(at, "attributes/JOINTS_0"), "vertex " + std::to_string(i) + " names joint " +
+                                                        std::to_string(j) + " beyond the skin's " +
+                                                        std::to_string(joints->size()) + " (rule: index out of range)");
         m += (*joints)[j] * w;
       }
     }
@@ -229,19 +250,22 @@ Shape BuildShape(const GltfDoc& d, const GltfPrimData& p, const std::string& at,
     const glm::dvec3 q = glm::dvec3(m * glm::dvec4(glm::dvec3(V3(pos, i)), 1.0));
     for (int c = 0; c < 3; ++c) {
       if (!std::isfinite(q[c]) || std::fabs(q[c]) > 1e8) {
-        d.Fail(GltfAt(at, "attributes/POSITION"), "vertex " + std::to_string(i) + " has a NaN, infinite or out-of-range (|x| > 1e8) position");
+        d.Fail(GltfAt(at, "attributes/POSITION"),
+               "vertex " + std::to_string(i) + " has a NaN, infinite or out-of-range (|x| > 1e8) position");
       }
     }
     s.positions[i] = glm::vec3(q);
     if (p.attr.count("TEXCOORD_0")) {
       const auto& uv = p.attr.at("TEXCOORD_0");
       s.uvs[i] = {uv[i * 2], uv[i * 2 + 1]};
-      if (!std::isfinite(s.uvs[i].x) || !std::isfinite(s.uvs[i].y)) d.Fail(GltfAt(at, "attributes/TEXCOORD_0"), "has a non-finite texture coordinate");
+      if (!std::isfinite(s.uvs[i].x) || !std::isfinite(s.uvs[i].y))
+        d.Fail(GltfAt(at, "attributes/TEXCOORD_0"), "has a non-finite texture coordinate");
     }
     if (!s.uvs1.empty()) {
       const auto& uv = p.attr.at("TEXCOORD_1");
       s.uvs1[i] = {uv[i * 2], uv[i * 2 + 1]};
-      if (!std::isfinite(s.uvs1[i].x) || !std::isfinite(s.uvs1[i].y)) d.Fail(GltfAt(at, "attributes/TEXCOORD_1"), "has a non-finite texture coordinate");
+      if (!std::isfinite(s.uvs1[i].x) || !std::isfinite(s.uvs1[i].y))
+        d.Fail(GltfAt(at, "attributes/TEXCOORD_1"), "has a non-finite texture coordinate");
     }
     if (has_n) {
       const glm::dmat3 nrm = glm::transpose(glm::inverse(lin));
@@ -252,7 +276,8 @@ Shape BuildShape(const GltfDoc& d, const GltfPrimData& p, const std::string& at,
         const auto& t = p.attr.at("TANGENT");
         const glm::vec3 wt = glm::vec3(lin * glm::dvec3(t[i * 4], t[i * 4 + 1], t[i * 4 + 2]));
         const float tl = glm::length(wt);
-        s.tangents[i] = glm::vec4((tl > 0.0f && std::isfinite(tl)) ? wt / tl : glm::vec3(1, 0, 0), t[i * 4 + 3] < 0.0f ? -1.0f : 1.0f);
+        s.tangents[i] = glm::vec4((tl > 0.0f && std::isfinite(tl)) ? wt / tl : glm::vec3(1, 0, 0),
+                                  t[i * 4 + 3] < 0.0f ? -1.0f : 1.0f);
       }
     }
   }
@@ -263,15 +288,17 @@ Shape BuildShape(const GltfDoc& d, const GltfPrimData& p, const std::string& at,
   }
   for (size_t k = 0; k < idx.size(); ++k) {
     if (idx[k] >= nv) {
-      d.Fail(GltfAt(at, "indices"), "element " + std::to_string(k) + " is index " + std::to_string(idx[k]) + ", beyond the primitive's " +
-                                    std::to_string(nv) + " vertices (rule: index out of range)");
+      d.Fail(GltfAt(at, "indices"), "element " + std::to_string(k) + " is index " + std::to_string(idx[k]) +
+                                        ", beyond the primitive's " + std::to_string(nv) +
+                                        " vertices (rule: index out of range)");
     }
   }
   if (mode == 4) {
     for (size_t k = 0; k + 2 < idx.size(); k += 3) s.triangles.emplace_back(idx[k], idx[k + 1], idx[k + 2]);
   } else if (mode == 5) {  // strip: the winding alternates (glTF 2.0 §3.7.2.1)
     for (size_t k = 0; k + 2 < idx.size(); ++k) {
-      s.triangles.push_back(k % 2 == 0 ? glm::uvec3(idx[k], idx[k + 1], idx[k + 2]) : glm::uvec3(idx[k + 1], idx[k], idx[k + 2]));
+      s.triangles.push_back(k % 2 == 0 ? glm::uvec3(idx[k], idx[k + 1], idx[k + 2])
+                                       : glm::uvec3(idx[k + 1], idx[k], idx[k + 2]));
     }
   } else {  // fan
     for (size_t k = 1; k + 1 < idx.size(); ++k) s.triangles.emplace_back(idx[k], idx[k + 1], idx[0]);
@@ -300,7 +327,8 @@ class MaterialReader {
       const Json& mat = d_.j["materials"][static_cast<size_t>(index)];
       const std::string at = GltfAt("/materials", static_cast<size_t>(index));
       if (!mat.is_object()) d_.Fail(at, "must be an object");
-      if (mat.contains("name") && mat["name"].is_string() && !mat["name"].get<std::string>().empty()) m.name += ":" + mat["name"].get<std::string>();
+      if (mat.contains("name") && mat["name"].is_string() && !mat["name"].get<std::string>().empty())
+        m.name += ":" + mat["name"].get<std::string>();
       for (const char* k : {"pbrMetallicRoughness", "normalTexture", "occlusionTexture", "emissiveTexture"}) {
         if (mat.contains(k) && !mat[k].is_object()) d_.Fail(GltfAt(at, k), "must be an object");
       }
@@ -315,9 +343,13 @@ class MaterialReader {
         g.mr_tex = Tex(pbr, "metallicRoughnessTexture", pat, false);
       }
       g.normal_tex = Tex(mat, "normalTexture", at, false);
-      if (g.normal_tex.Has()) g.normal_scale = static_cast<float>(GltfNum(d_, mat["normalTexture"], "scale", GltfAt(at, "normalTexture"), 1.0, -1e7, 1e7));
+      if (g.normal_tex.Has())
+        g.normal_scale =
+            static_cast<float>(GltfNum(d_, mat["normalTexture"], "scale", GltfAt(at, "normalTexture"), 1.0, -1e7, 1e7));
       g.occlusion_tex = Tex(mat, "occlusionTexture", at, false);
-      if (g.occlusion_tex.Has()) g.occlusion_strength = static_cast<float>(GltfNum(d_, mat["occlusionTexture"], "strength", GltfAt(at, "occlusionTexture"), 1.0, 0.0, 1.0));
+      if (g.occlusion_tex.Has())
+        g.occlusion_strength = static_cast<float>(
+            GltfNum(d_, mat["occlusionTexture"], "strength", GltfAt(at, "occlusionTexture"), 1.0, 0.0, 1.0));
       g.emissive_tex = Tex(mat, "emissiveTexture", at, true);
       const std::vector<double> e = GltfNumbers(d_, mat, "emissiveFactor", at, 3, {0, 0, 0});
       double strength = 1.0;
@@ -325,19 +357,23 @@ class MaterialReader {
         const Json& x = mat["extensions"];
         if (x.contains("KHR_materials_unlit")) m.shading = Shading::kUnlit;
         if (x.contains("KHR_materials_emissive_strength")) {
-          strength = GltfNum(d_, x["KHR_materials_emissive_strength"], "emissiveStrength", GltfAt(at, "extensions/KHR_materials_emissive_strength"), 1.0, 0.0, 1e7);
+          strength = GltfNum(d_, x["KHR_materials_emissive_strength"], "emissiveStrength",
+                             GltfAt(at, "extensions/KHR_materials_emissive_strength"), 1.0, 0.0, 1e7);
         }
       }
       g.emissive = glm::vec3(glm::dvec3(e[0], e[1], e[2]) * strength);
-      const std::string mode = mat.contains("alphaMode") && mat["alphaMode"].is_string() ? mat["alphaMode"].get<std::string>() : "OPAQUE";
-      if (mode != "OPAQUE" && mode != "MASK" && mode != "BLEND") d_.Fail(GltfAt(at, "alphaMode"), "'" + mode + "' (allowed: OPAQUE, MASK, BLEND)");
+      const std::string mode =
+          mat.contains("alphaMode") && mat["alphaMode"].is_string() ? mat["alphaMode"].get<std::string>() : "OPAQUE";
+      if (mode != "OPAQUE" && mode != "MASK" && mode != "BLEND")
+        d_.Fail(GltfAt(at, "alphaMode"), "'" + mode + "' (allowed: OPAQUE, MASK, BLEND)");
       g.alpha_mode = mode == "MASK" ? AlphaMode::kMask : mode == "BLEND" ? AlphaMode::kBlend : AlphaMode::kOpaque;
       m.alpha_cutoff = static_cast<float>(GltfNum(d_, mat, "alphaCutoff", at, 0.5, 0.0, 1e7));
       if (mat.contains("doubleSided")) {
         if (!mat["doubleSided"].is_boolean()) d_.Fail(GltfAt(at, "doubleSided"), "must be a boolean");
         g.double_sided = mat["doubleSided"].get<bool>();
       }
-      for (float v : {g.base_factor.x, g.base_factor.y, g.base_factor.z, g.base_factor.w, g.emissive.x, g.emissive.y, g.emissive.z}) {
+      for (float v : {g.base_factor.x, g.base_factor.y, g.base_factor.z, g.base_factor.w, g.emissive.x, g.emissive.y,
+                      g.emissive.z}) {
         if (!std::isfinite(v) || v < -1e7f || v > 1e7f) d_.Fail(at, "has a non-finite or huge factor");
       }
     }
@@ -359,7 +395,8 @@ class MaterialReader {
     const long long tex = GltfIndex(d_, info, "index", iat, "textures");
     if (tex < 0) d_.Fail(GltfAt(iat, "index"), "is required");
     ref.texcoord = static_cast<int>(GltfInt(d_, info, "texCoord", iat, 0, 0, 1 << 20));
-    if (info.contains("extensions") && info["extensions"].is_object() && info["extensions"].contains("KHR_texture_transform")) {
+    if (info.contains("extensions") && info["extensions"].is_object() &&
+        info["extensions"].contains("KHR_texture_transform")) {
       const Json& x = info["extensions"]["KHR_texture_transform"];
       const std::string xat = GltfAt(iat, "extensions/KHR_texture_transform");
       const std::vector<double> off = GltfNumbers(d_, x, "offset", xat, 2, {0, 0});
@@ -369,10 +406,12 @@ class MaterialReader {
       // uv' = T · R · S · uv with R = [[cos r, sin r], [−sin r, cos r]] (rows), as the
       // Khronos sample viewer and three.js apply it (counter-clockwise in the image, v down).
       const double c = std::cos(r), s = std::sin(r);
-      ref.uv_transform = glm::mat3x2(glm::vec2(c * sc[0], -s * sc[0]), glm::vec2(s * sc[1], c * sc[1]), glm::vec2(off[0], off[1]));
+      ref.uv_transform =
+          glm::mat3x2(glm::vec2(c * sc[0], -s * sc[0]), glm::vec2(s * sc[1], c * sc[1]), glm::vec2(off[0], off[1]));
       ref.transformed = true;
     }
-    if (ref.texcoord > 1) d_.Fail(GltfAt(iat, "texCoord"), "TEXCOORD_" + std::to_string(ref.texcoord) + " (aalab reads sets 0 and 1)");
+    if (ref.texcoord > 1)
+      d_.Fail(GltfAt(iat, "texCoord"), "TEXCOORD_" + std::to_string(ref.texcoord) + " (aalab reads sets 0 and 1)");
     const Json& t = d_.j["textures"][static_cast<size_t>(tex)];
     const std::string tat = GltfAt("/textures", static_cast<size_t>(tex));
     const long long source = GltfIndex(d_, t, "source", tat, "images");
@@ -383,11 +422,13 @@ class MaterialReader {
       const std::string sat = GltfAt("/samplers", static_cast<size_t>(sampler));
       const long long mag = GltfInt(d_, sm, "magFilter", sat, 9729, 9728, 9729);
       const long long min = GltfInt(d_, sm, "minFilter", sat, 9987, 9728, 9987);
-      if (min > 9729 && min < 9984) d_.Fail(GltfAt(sat, "minFilter"), std::to_string(min) + " (allowed: 9728, 9729, 9984, 9985, 9986, 9987)");
+      if (min > 9729 && min < 9984)
+        d_.Fail(GltfAt(sat, "minFilter"), std::to_string(min) + " (allowed: 9728, 9729, 9984, 9985, 9986, 9987)");
       ref.filter = SamplerFilterOf(static_cast<int>(mag), static_cast<int>(min));
       for (const char* w : {"wrapS", "wrapT"}) {
         const long long v = GltfInt(d_, sm, w, sat, 10497, 10497, 33648);
-        if (v != 10497 && v != 33071 && v != 33648) d_.Fail(GltfAt(sat, w), std::to_string(v) + " (allowed: 10497, 33071, 33648)");
+        if (v != 10497 && v != 33071 && v != 33648)
+          d_.Fail(GltfAt(sat, w), std::to_string(v) + " (allowed: 10497, 33071, 33648)");
         (std::string(w) == "wrapS" ? ref.wrap_s : ref.wrap_t) = ToWrap(v);
       }
     }
@@ -421,7 +462,8 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
   }
   for (const char* part : {"animations", "skins"}) {
     if (!GltfArray(d, d.j, part, "").empty()) {
-      out.notes.push_back(std::string("has ") + part + ": drawn at the static pose (nodes' own transforms; no animation sampled)");
+      out.notes.push_back(std::string("has ") + part +
+                          ": drawn at the static pose (nodes' own transforms; no animation sampled)");
     }
   }
   const NodeGraph graph = WalkNodes(d);
@@ -448,18 +490,22 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
       std::vector<float> ibm;
       const long long ia = GltfIndex(d, skin, "inverseBindMatrices", sat, "accessors");
       if (ia >= 0) ibm = ReadGltfFloats(d, ia, GltfAt(sat, "inverseBindMatrices"), 16);
-      if (!ibm.empty() && ibm.size() / 16 < js.size()) d.Fail(GltfAt(sat, "inverseBindMatrices"), "has fewer matrices than the skin has joints");
+      if (!ibm.empty() && ibm.size() / 16 < js.size())
+        d.Fail(GltfAt(sat, "inverseBindMatrices"), "has fewer matrices than the skin has joints");
       for (size_t k = 0; k < js.size(); ++k) {
         if (!js[k].is_number_integer() || js[k].get<long long>() < 0 || js[k].get<size_t>() >= nodes.size()) {
-          d.Fail(GltfAt(GltfAt(sat, "joints"), k), "names node " + js[k].dump() + ", which does not exist (rule: index out of range)");
+          d.Fail(GltfAt(GltfAt(sat, "joints"), k),
+                 "names node " + js[k].dump() + ", which does not exist (rule: index out of range)");
         }
         glm::dmat4 b(1.0);
         for (int c = 0; c < 16 && !ibm.empty(); ++c) b[c / 4][c % 4] = ibm[k * 16 + static_cast<size_t>(c)];
         joints.push_back(graph.world[js[k].get<size_t>()] * b);
       }
     }
-    std::vector<double> weights = GltfNumbers(d, mesh, "weights", mat_at, GltfArray(d, mesh, "weights", mat_at).size(), {});
-    if (node.contains("weights")) weights = GltfNumbers(d, node, "weights", nat, GltfArray(d, node, "weights", nat).size(), {});
+    std::vector<double> weights =
+        GltfNumbers(d, mesh, "weights", mat_at, GltfArray(d, mesh, "weights", mat_at).size(), {});
+    if (node.contains("weights"))
+      weights = GltfNumbers(d, node, "weights", nat, GltfArray(d, node, "weights", nat).size(), {});
     const Json& prims = GltfArray(d, mesh, "primitives", mat_at);
     for (size_t pi = 0; pi < prims.size(); ++pi) {
       const Json& pr = prims[pi];
@@ -524,11 +570,13 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
     const std::string type = cj.contains("type") && cj["type"].is_string() ? cj["type"].get<std::string>() : "";
     if (type == "perspective" && cj.contains("perspective")) {
       cam.type = CameraType::kPerspective;
-      cam.fov_y_deg = static_cast<float>(GltfNum(d, cj["perspective"], "yfov", GltfAt(at, "perspective"), -1.0, 1e-6, 3.12) * 57.29577951308232);
+      cam.fov_y_deg = static_cast<float>(
+          GltfNum(d, cj["perspective"], "yfov", GltfAt(at, "perspective"), -1.0, 1e-6, 3.12) * 57.29577951308232);
       if (!(cam.fov_y_deg > 0.0f)) d.Fail(GltfAt(at, "perspective/yfov"), "is required (radians in (0, 3.12))");
     } else if (type == "orthographic" && cj.contains("orthographic")) {
       cam.type = CameraType::kOrthographic;
-      cam.height = static_cast<float>(2.0 * GltfNum(d, cj["orthographic"], "ymag", GltfAt(at, "orthographic"), -1.0, -1e9, 1e9));
+      cam.height =
+          static_cast<float>(2.0 * GltfNum(d, cj["orthographic"], "ymag", GltfAt(at, "orthographic"), -1.0, -1e9, 1e9));
       if (!(cam.height != 0.0f)) d.Fail(GltfAt(at, "orthographic/ymag"), "is required (non-zero)");
       cam.height = std::fabs(cam.height);
     } else {
@@ -555,7 +603,8 @@ GltfContent LoadGltf(const std::string& path, const GltfLoadOptions& options) {
   const Json& buffers = GltfArray(d, d.j, "buffers", "");
   for (size_t i = 0; i < buffers.size(); ++i) {
     const Json& b = buffers[i];
-    if (b.is_object() && b.contains("uri") && b["uri"].is_string() && b["uri"].get<std::string>().rfind("data:", 0) != 0) {
+    if (b.is_object() && b.contains("uri") && b["uri"].is_string() &&
+        b["uri"].get<std::string>().rfind("data:", 0) != 0) {
       out.files_read.push_back(GltfUriFile(d, b["uri"].get<std::string>(), GltfAt(GltfAt("/buffers", i), "uri")));
     }
   }

@@ -20,8 +20,8 @@ struct GltfContent {
                                     ///< indexes `materials`
   std::vector<Material> materials;  ///< TextureRef::image indexes `images`
   std::vector<std::shared_ptr<const MipChain>> images;
-  std::vector<Camera> cameras;      ///< the file's cameras, in node order, placed by their nodes
-  std::vector<Light> lights;        ///< KHR_lights_punctual lights (scenes/gltf_lights.h), in world space of the file
+  std::vector<Camera> cameras;  ///< the file's cameras, in node order, placed by their nodes
+  std::vector<Light> lights;    ///< KHR_lights_punctual lights (scenes/gltf_lights.h), in world space of the file
   size_t triangles = 0;
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  ///< of every vertex drawn
   /// Notes for the user: extensions used but not drawn (one line listing all), animations,
@@ -29,9 +29,9 @@ struct GltfContent {
   std::vector<std::string> notes;
   /// Files read beyond the glTF itself (external buffers and images).
   std::vector<std::string> files_read;
-  double load_seconds = 0.0;     ///< wall time of LoadGltf
-  size_t texture_bytes = 0;      ///< bytes of the mip chains as stored
-  size_t texture_bytes8 = 0;     ///< bytes of the same chains as RGBA8
+  double load_seconds = 0.0;  ///< wall time of LoadGltf
+  size_t texture_bytes = 0;   ///< bytes of the mip chains as stored
+  size_t texture_bytes8 = 0;  ///< bytes of the same chains as RGBA8
 };
 
 struct GltfLoadOptions {

@@ -15,7 +15,6 @@
 // SH9 irradiance, which can ring below zero for a small bright source, is clamped at 0.
 #include "scenes/ibl.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <mutex>
@@ -40,9 +39,14 @@ float Smoothstep(float e0, float e1, float x) {
 /// (Y00; Y1-1 ∝ y, Y10 ∝ z, Y11 ∝ x; Y2-2 ∝ xy, Y2-1 ∝ yz, Y20 ∝ 3z² − 1, Y21 ∝ xz,
 /// Y22 ∝ x² − y²). aalab's "up" is +Y, which makes no difference to the projection.
 std::array<double, 9> ShBasis(glm::dvec3 d) {
-  return {0.282094791773878, 0.488602511902920 * d.y, 0.488602511902920 * d.z, 0.488602511902920 * d.x,
-          1.092548430592079 * d.x * d.y, 1.092548430592079 * d.y * d.z,
-          0.315391565252520 * (3.0 * d.z * d.z - 1.0), 1.092548430592079 * d.x * d.z,
+  return {0.282094791773878,
+          0.488602511902920 * d.y,
+          0.488602511902920 * d.z,
+          0.488602511902920 * d.x,
+          1.092548430592079 * d.x * d.y,
+          1.092548430592079 * d.y * d.z,
+          0.315391565252520 * (3.0 * d.z * d.z - 1.0),
+          1.092548430592079 * d.x * d.z,
           0.546274215296040 * (d.x * d.x - d.y * d.y)};
 }
 
@@ -149,7 +153,9 @@ std::array<glm::vec3, 9> ProjectSh9(const EquirectMap& m) {
   std::vector<std::array<double, 6>> col(static_cast<size_t>(m.width));  // ∫ 1, sin, cos, sin², cos², sin·cos dφ
   for (int i = 0; i < m.width; ++i) {
     const double a = i * dphi, b = (i + 1) * dphi;
-    col[i] = {b - a, std::cos(a) - std::cos(b), std::sin(b) - std::sin(a),
+    col[i] = {b - a,
+              std::cos(a) - std::cos(b),
+              std::sin(b) - std::sin(a),
               0.5 * (b - a) - 0.25 * (std::sin(2.0 * b) - std::sin(2.0 * a)),
               0.5 * (b - a) + 0.25 * (std::sin(2.0 * b) - std::sin(2.0 * a)),
               0.5 * (std::sin(b) * std::sin(b) - std::sin(a) * std::sin(a))};
@@ -161,13 +167,13 @@ std::array<glm::vec3, 9> ProjectSh9(const EquirectMap& m) {
     for (int i = 0; i < m.width; ++i) {
       const std::array<double, 6>& c = col[i];
       const double w[9] = {0.282094791773878 * c[0] * r1,
-                           0.488602511902920 * c[0] * rmu,                  // y
-                           0.488602511902920 * -c[2] * rsin,                // z = −sinθ cosφ
-                           0.488602511902920 * c[1] * rsin,                 // x = sinθ sinφ
-                           1.092548430592079 * c[1] * rmusin,               // xy
-                           1.092548430592079 * -c[2] * rmusin,              // yz
+                           0.488602511902920 * c[0] * rmu,                        // y
+                           0.488602511902920 * -c[2] * rsin,                      // z = −sinθ cosφ
+                           0.488602511902920 * c[1] * rsin,                       // x = sinθ sinφ
+                           1.092548430592079 * c[1] * rmusin,                     // xy
+                           1.092548430592079 * -c[2] * rmusin,                    // yz
                            0.315391565252520 * (3.0 * c[4] * rsin2 - c[0] * r1),  // 3z² − 1
-                           1.092548430592079 * -c[5] * rsin2,               // xz
+                           1.092548430592079 * -c[5] * rsin2,                     // xz
                            0.546274215296040 * (c[3] * rsin2 - c[0] * rmu2)};     // x² − y²
       const glm::dvec3 l(m.texels[static_cast<size_t>(j) * m.width + i]);
       for (int k = 0; k < 9; ++k) acc[k] += l * w[k];
@@ -180,8 +186,8 @@ std::array<glm::vec3, 9> ProjectSh9(const EquirectMap& m) {
 
 glm::vec3 Sh9Irradiance(const std::array<glm::vec3, 9>& sh, glm::vec3 n) {
   const std::array<double, 9> y = ShBasis(glm::dvec3(n));
-  const double band[9] = {kPiD, 2.0 * kPiD / 3.0, 2.0 * kPiD / 3.0, 2.0 * kPiD / 3.0, kPiD / 4.0,
-                          kPiD / 4.0, kPiD / 4.0, kPiD / 4.0, kPiD / 4.0};
+  const double band[9] = {kPiD,       2.0 * kPiD / 3.0, 2.0 * kPiD / 3.0, 2.0 * kPiD / 3.0, kPiD / 4.0,
+                          kPiD / 4.0, kPiD / 4.0,       kPiD / 4.0,       kPiD / 4.0};
   glm::dvec3 e(0.0);
   for (int k = 0; k < 9; ++k) e += glm::dvec3(sh[k]) * (band[k] * y[k]);
   return glm::max(glm::vec3(e), glm::vec3(0.0f));
@@ -235,7 +241,8 @@ EquirectMap PrefilterGgx(const EquirectMap& src, float alpha, int out_w, int out
         }
       }
       // wsum > 0 always (r's own texel neighbourhood lies in the lobe); guard anyway.
-      out.texels[static_cast<size_t>(oj) * out_w + oi] = wsum > 0.0 ? glm::vec3(sum / wsum) : SampleEquirect(src, glm::vec3(r));
+      out.texels[static_cast<size_t>(oj) * out_w + oi] =
+          wsum > 0.0 ? glm::vec3(sum / wsum) : SampleEquirect(src, glm::vec3(r));
     }
   });
   return out;

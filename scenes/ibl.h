@@ -62,9 +62,9 @@ glm::vec2 BrdfLut(float nv, float roughness);
 
 /// A scene's environment, ready to shade with.
 struct Environment {
-  std::string name;          ///< "studio", "uniform" or the map's path, for messages
-  float intensity = 1.0f;    ///< scales every radiance
-  float rotation_deg = 0.0f; ///< turns the map about +Y (counter-clockwise seen from above)
+  std::string name;           ///< "studio", "uniform" or the map's path, for messages
+  float intensity = 1.0f;     ///< scales every radiance
+  float rotation_deg = 0.0f;  ///< turns the map about +Y (counter-clockwise seen from above)
   float cos_rot = 1.0f, sin_rot = 0.0f;
   /// specular[0] is the map itself (roughness 0: a mirror), specular[k] its GGX prefilter at
   /// roughness k / (kIblLevels − 1).

@@ -70,8 +70,8 @@ std::string Advice(const std::vector<std::string>& have, ChannelRole role) {
                                                       : "[\"ViewLayer.Vector.X\", \"ViewLayer.Vector.Y\"]";
   std::string s = "the file has the channels " + Quoted(have);
   if (!layers.empty()) s += " (layers " + Quoted(layers) + ")";
-  s += "; name the " + RoleName(role) + " with {\"path\": ..., \"layer\": \"LAYER\"} or {\"path\": ..., \"channels\": " +
-       example + "}";
+  s += "; name the " + RoleName(role) +
+       " with {\"path\": ..., \"layer\": \"LAYER\"} or {\"path\": ..., \"channels\": " + example + "}";
   return s;
 }
 
@@ -128,7 +128,7 @@ std::vector<std::string> Automatic(const std::vector<std::string>& have, Channel
     case ChannelRole::kDepth: {
       if (have.size() == 1) return have;
       if (Has(have, "Z")) return {"Z"};  // RGBA+Z
-      std::vector<std::string> z;  // LAYER.Depth.Z (Blender), or one LAYER.Z
+      std::vector<std::string> z;        // LAYER.Depth.Z (Blender), or one LAYER.Z
       for (const auto& n : have) {
         if (LastPart(n) == "Z" && LastPart(LayerOf(n)) == "Depth") z.push_back(n);
       }
@@ -186,10 +186,12 @@ std::vector<std::string> PickChannels(const std::vector<std::string>& have, Chan
     if (channels.size() < MinCount(role) || channels.size() > MaxCount(role) ||
         (role == ChannelRole::kColour && channels.size() == 2)) {
       *why = RoleName(role) + " takes " +
-             (MinCount(role) == MaxCount(role) ? std::to_string(MinCount(role))
-                                               : std::to_string(MinCount(role)) + " to " + std::to_string(MaxCount(role))) +
+             (MinCount(role) == MaxCount(role)
+                  ? std::to_string(MinCount(role))
+                  : std::to_string(MinCount(role)) + " to " + std::to_string(MaxCount(role))) +
              " channel(s), \"channels\" lists " + std::to_string(channels.size());
-      if (role == ChannelRole::kColour) *why = "colour takes 3 channels (R, G, B) or 1 (grey), \"channels\" lists " + std::to_string(channels.size());
+      if (role == ChannelRole::kColour)
+        *why = "colour takes 3 channels (R, G, B) or 1 (grey), \"channels\" lists " + std::to_string(channels.size());
       return {};
     }
     for (const auto& c : channels) {

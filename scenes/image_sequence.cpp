@@ -71,7 +71,9 @@ std::optional<std::string> ExpandFramePattern(const std::string& pattern, int nu
 }
 
 std::string MotionConvention::Describe() const {
-  std::string s = units == Units::kPixels ? "pixels" : units == Units::kUv ? "UV (1 = the frame's size)" : "NDC (2 = the frame's size)";
+  std::string s = units == Units::kPixels ? "pixels"
+                  : units == Units::kUv   ? "UV (1 = the frame's size)"
+                                          : "NDC (2 = the frame's size)";
   s += points_to_previous ? ", pointing to the previous position (previous − current)"
                           : ", velocity (current − previous)";
   s += y_up ? ", y up" : ", y down";

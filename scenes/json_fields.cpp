@@ -142,9 +142,7 @@ glm::vec3 JsonField::Vec3Or(const std::string& key, glm::vec3 def, double min, d
   return Has(key) ? Child(key).Vec3(min, max) : def;
 }
 
-bool JsonField::BoolOr(const std::string& key, bool def) const {
-  return Has(key) ? Child(key).Bool() : def;
-}
+bool JsonField::BoolOr(const std::string& key, bool def) const { return Has(key) ? Child(key).Bool() : def; }
 
 std::string JsonField::StringOr(const std::string& key, const std::string& def) const {
   return Has(key) ? Child(key).String() : def;

@@ -71,8 +71,8 @@ std::vector<std::string> SuiteScenes(const std::string& suite) {
   std::vector<std::string> names;
   for (const auto& n : entry.at("scenes")) {
     if (!n.is_string()) {
-      throw UserError("suite '" + suite + "' in '" + SceneLibraryDir() + "/suites.json': scene names must be strings, got " +
-                      std::string(n.type_name()));
+      throw UserError("suite '" + suite + "' in '" + SceneLibraryDir() +
+                      "/suites.json': scene names must be strings, got " + std::string(n.type_name()));
     }
     names.push_back(n.get<std::string>());
   }
@@ -81,8 +81,8 @@ std::vector<std::string> SuiteScenes(const std::string& suite) {
 
 Scene LoadScene(const std::string& name) {
   if (IsModelPath(name)) return LoadModelScene(name);  // a .glb / .gltf given as a scene
-  const bool is_path = name.find('/') != std::string::npos ||
-                       (name.size() > 5 && name.substr(name.size() - 5) == ".json");
+  const bool is_path =
+      name.find('/') != std::string::npos || (name.size() > 5 && name.substr(name.size() - 5) == ".json");
   if (is_path) return LoadSceneFile(name);
   const auto names = LibrarySceneNames();
   if (std::find(names.begin(), names.end(), name) == names.end()) {

@@ -41,7 +41,8 @@ std::shared_ptr<const Environment> ParseEnvironment(const JsonField& f, const st
   f.RequireObject({"map", "intensity", "rotation_deg"});
   const float intensity = static_cast<float>(f.NumberOr("intensity", 1.0, 0.0, 1e6));
   const float rotation = static_cast<float>(f.NumberOr("rotation_deg", 0.0, -360.0, 360.0));
-  if (!f.Has("map")) f.Fail("an environment needs a \"map\": \"studio\", an equirectangular .hdr/.exr file, or [r, g, b]");
+  if (!f.Has("map"))
+    f.Fail("an environment needs a \"map\": \"studio\", an equirectangular .hdr/.exr file, or [r, g, b]");
   const JsonField map = f.Child("map");
   if (map.Value().is_array()) {
     // A uniform environment of radiance [r, g, b] (the white furnace).
@@ -57,7 +58,8 @@ std::shared_ptr<const Environment> ParseEnvironment(const JsonField& f, const st
   if (name == "studio") return StudioEnvironmentShared(intensity, rotation);
   const fs::path p = fs::path(base_dir) / name;
   if (!fs::is_regular_file(p)) {
-    map.Fail("environment map '" + p.string() + "' not found (allowed: \"studio\", an equirectangular .hdr or .exr "
+    map.Fail("environment map '" + p.string() +
+             "' not found (allowed: \"studio\", an equirectangular .hdr or .exr "
              "file relative to the scene file, or [r, g, b])");
   }
   EquirectMap m;

@@ -16,7 +16,8 @@ using Json = nlohmann::json;
 
 bool IsModelPath(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext == ".glb" || ext == ".gltf";
 }
 
@@ -29,8 +30,9 @@ std::string KebabName(const std::string& stem) {
   for (size_t i = 0; i < stem.size(); ++i) {
     const unsigned char c = static_cast<unsigned char>(stem[i]);
     const bool upper = std::isupper(c) != 0;
-    const bool boundary = i > 0 && (upper || std::isdigit(static_cast<unsigned char>(stem[i - 1])) != std::isdigit(c)) &&
-                          std::isalnum(static_cast<unsigned char>(stem[i - 1])) && !std::isupper(static_cast<unsigned char>(stem[i - 1]));
+    const bool boundary =
+        i > 0 && (upper || std::isdigit(static_cast<unsigned char>(stem[i - 1])) != std::isdigit(c)) &&
+        std::isalnum(static_cast<unsigned char>(stem[i - 1])) && !std::isupper(static_cast<unsigned char>(stem[i - 1]));
     if (std::isalnum(c)) {
       if (boundary && !out.empty() && out.back() != '-') out += '-';
       out += static_cast<char>(std::tolower(c));
@@ -83,7 +85,8 @@ Json ModelSceneJson(const std::string& path) {
     camera = {{"type", "perspective"}, {"position", {p.x, p.y, p.z}}, {"look_at", {c.x, c.y, c.z}}, {"fov_y", 40}};
   }
   return Json{{"name", KebabName(fs::path(path).stem().string())},
-              {"description", "the glTF model " + fs::path(path).filename().string() + " with aalab's default sun and studio environment"},
+              {"description", "the glTF model " + fs::path(path).filename().string() +
+                                  " with aalab's default sun and studio environment"},
               {"effects", effects},
               {"camera", camera},
               {"display", {{"exposure", 1.0}, {"tonemap", "aces"}}},
@@ -93,8 +96,12 @@ Json ModelSceneJson(const std::string& path) {
               // of a flat ambient term, and a sun of 1.2π lux (glTF units).
               {"environment", {{"map", "studio"}, {"intensity", 1.0}}},
               {"light_units", "gltf"},
-              {"lights", {{{"type", "directional"}, {"direction", {0.4, -1.0, -0.6}}, {"color", {1.0, 0.95, 0.85}},
-                           {"intensity", 3.7699112}, {"shadows", lit}}}},
+              {"lights",
+               {{{"type", "directional"},
+                 {"direction", {0.4, -1.0, -0.6}},
+                 {"color", {1.0, 0.95, 0.85}},
+                 {"intensity", 3.7699112},
+                 {"shadows", lit}}}},
               {"objects", {{{"shape", "gltf"}, {"file", fs::absolute(path).lexically_normal().string()}}}}};
 }
 
@@ -105,8 +112,8 @@ Scene LoadModelScene(const std::string& path) {
   std::string effects;
   for (const Json& e : j["effects"]) effects += (effects.empty() ? "" : ", ") + e.get<std::string>();
   std::cerr << "aalab: scene from model '" << path << "': camera "
-            << (j["camera"]["type"] == "gltf" ? "the file's first" : "framing the model's bounds") << "; effects " << effects
-            << " (aalab scene " << path << " writes this scene file)\n";
+            << (j["camera"]["type"] == "gltf" ? "the file's first" : "framing the model's bounds") << "; effects "
+            << effects << " (aalab scene " << path << " writes this scene file)\n";
   Scene s = ParseScene(j.dump(), path, fs::path(path).parent_path().string());
   s.path = path;
   return s;

@@ -1,7 +1,7 @@
 /// A glTF model (.glb / .gltf) as a scene of its own, so that `aalab run --scenes model.glb`
 /// works with no scene file: the file's first camera, else one framing the model's bounds;
-/// the default studio environment (image-based lighting) and a sun; the effects inferred from the file's materials. `aalab scene model.glb`
-/// writes the same scene file, to edit.
+/// the default studio environment (image-based lighting) and a sun; the effects inferred from the file's materials.
+/// `aalab scene model.glb` writes the same scene file, to edit.
 #pragma once
 #include <string>
 

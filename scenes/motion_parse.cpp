@@ -22,7 +22,8 @@ double KeyFrame(const JsonField& key, int frames, double previous, bool first) {
     f.Fail("frame " + std::to_string(t) + " is outside the sequence: keys lie in [0, " + std::to_string(frames - 1) +
            "] (animation.frames = " + std::to_string(frames) + ")");
   }
-  if (!first && !(t > previous)) f.Fail("key frames must increase strictly (previous key at " + std::to_string(previous) + ")");
+  if (!first && !(t > previous))
+    f.Fail("key frames must increase strictly (previous key at " + std::to_string(previous) + ")");
   return t;
 }
 

@@ -25,7 +25,8 @@ SurfaceFrame RenderSurfaceFrame(const Tracer& tracer, int width, int height, Fra
     std::vector<SamplePos> pos(static_cast<size_t>(width));
     std::vector<SampleResult> res(static_cast<size_t>(width));
     for (int x = 0; x < width; ++x) {
-      pos[static_cast<size_t>(x)] = {static_cast<float>(x) + (0.5f + jitter.x), static_cast<float>(y) + (0.5f + jitter.y)};
+      pos[static_cast<size_t>(x)] = {static_cast<float>(x) + (0.5f + jitter.x),
+                                     static_cast<float>(y) + (0.5f + jitter.y)};
     }
     tracer.Trace(pos.data(), width, width, height, res.data(), &per_row[static_cast<size_t>(y)]);
     for (int x = 0; x < width; ++x) {

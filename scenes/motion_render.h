@@ -14,9 +14,9 @@ namespace aalab {
 
 /// A 1-spp frame with its per-pixel hit: shape index (-1: background) and world position.
 struct SurfaceFrame {
-  Image8 image;                    ///< RGBA8 back buffer, as RenderFrame's kCenter frame
-  std::vector<int32_t> surface;    ///< row-major, width × height
-  std::vector<glm::vec3> position; ///< world-space hit point (unused for background)
+  Image8 image;                     ///< RGBA8 back buffer, as RenderFrame's kCenter frame
+  std::vector<int32_t> surface;     ///< row-major, width × height
+  std::vector<glm::vec3> position;  ///< world-space hit point (unused for background)
 };
 
 /// Renders one sample per pixel at (x + 0.5 + jitter.x, y + 0.5 + jitter.y), through the

@@ -49,15 +49,15 @@ void PlaceStratifiedPixel(uint64_t pixel_hash, int grid, uint64_t seed, float fx
   const float g = static_cast<float>(grid);
   for (int j = 0; j < grid; ++j) {
     for (int i = 0; i < grid; ++i) {
-    const int s = j * grid + i;
-    uint64_t h = MixBits(pixel_hash ^ (static_cast<uint64_t>(static_cast<uint32_t>(s)) + 0x85157af5a2a6b5f1ULL));
-    h = MixBits(h ^ (seed + 0xd6e8feb86659fd93ULL));
-    const float j0 = HashToUnitFloat(MixBits(h ^ (0ULL + 0xa0761d6478bd642fULL)));
-    const float j1 = HashToUnitFloat(MixBits(h ^ (1ULL + 0xa0761d6478bd642fULL)));
-    const float ox = (static_cast<float>(i) + j0) / g;
-    const float oy = (static_cast<float>(j) + j1) / g;
-    out[s].x = fx + ox;
-    out[s].y = fy + oy;
+      const int s = j * grid + i;
+      uint64_t h = MixBits(pixel_hash ^ (static_cast<uint64_t>(static_cast<uint32_t>(s)) + 0x85157af5a2a6b5f1ULL));
+      h = MixBits(h ^ (seed + 0xd6e8feb86659fd93ULL));
+      const float j0 = HashToUnitFloat(MixBits(h ^ (0ULL + 0xa0761d6478bd642fULL)));
+      const float j1 = HashToUnitFloat(MixBits(h ^ (1ULL + 0xa0761d6478bd642fULL)));
+      const float ox = (static_cast<float>(i) + j0) / g;
+      const float oy = (static_cast<float>(j) + j1) / g;
+      out[s].x = fx + ox;
+      out[s].y = fy + oy;
     }
   }
 }
@@ -99,8 +99,8 @@ struct TileScratch {
 /// one Tracer::Trace call per tile (all its samples, pixel by pixel, row-major); counters
 /// merge per tile in tile order.
 template <typename Place, typename Resolve>
-void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Place& place,
-                 const Resolve& resolve, TraceCounters* counters, TextureFootprint footprint) {
+void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Place& place, const Resolve& resolve,
+                 TraceCounters* counters, TextureFootprint footprint) {
   const Display& display = tracer.GetScene().display;
   AALAB_CHECK(width > 0 && height > 0 && spp > 0, "render size and spp must be positive");
   const int tiles_x = (width + kTile - 1) / kTile;

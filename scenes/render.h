@@ -82,13 +82,13 @@ ImageF RenderFrameLinear(const Tracer& tracer, int width, int height, const Rend
 
 /// The supersampled ground truth.
 struct Reference {
-  ImageF image;      ///< sRGB-encoded RGB float (not quantised), all n×n samples
-  ImageF half_a;     ///< the same from the strata with (i + j) even
-  ImageF half_b;     ///< ... and (i + j) odd: independent of half_a
-  ImageF edge_mask;  ///< 1 where the pixel's samples see more than one surface, a shadow
-                     ///< boundary or an alpha cut-out; dilated by 1 px; else 0 (1 channel)
+  ImageF image;          ///< sRGB-encoded RGB float (not quantised), all n×n samples
+  ImageF half_a;         ///< the same from the strata with (i + j) even
+  ImageF half_b;         ///< ... and (i + j) odd: independent of half_a
+  ImageF edge_mask;      ///< 1 where the pixel's samples see more than one surface, a shadow
+                         ///< boundary or an alpha cut-out; dilated by 1 px; else 0 (1 channel)
   ImageF edge_mask_raw;  ///< the same before dilation
-  int grid = 0;      ///< n: n×n samples per pixel
+  int grid = 0;          ///< n: n×n samples per pixel
 };
 
 /// Renders the reference: grid × grid stratified jittered samples per pixel (grid even, ≥ 2),

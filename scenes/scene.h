@@ -28,10 +28,10 @@ enum class TexturePattern { kChecker, kStripes, kNoise };
 /// color_b (t = 1); alpha tests compare t against the material's cutoff.
 struct Texture {
   TexturePattern pattern = TexturePattern::kChecker;
-  float scale = 1.0f;        ///< pattern cells per uv unit
-  float angle_deg = 0.0f;    ///< stripes: direction of the stripes' normal in the uv plane
-  float duty = 0.5f;         ///< stripes: fraction of each period with t = 1
-  uint32_t seed = 0;         ///< noise: hash seed
+  float scale = 1.0f;      ///< pattern cells per uv unit
+  float angle_deg = 0.0f;  ///< stripes: direction of the stripes' normal in the uv plane
+  float duty = 0.5f;       ///< stripes: fraction of each period with t = 1
+  uint32_t seed = 0;       ///< noise: hash seed
   glm::vec3 color_a{0.0f};
   glm::vec3 color_b{1.0f};
 };
@@ -66,28 +66,28 @@ struct GltfMaterial {
   glm::vec4 base_factor{1.0f};  ///< baseColorFactor (linear RGBA)
   TextureRef base_tex;          ///< baseColorTexture (sRGB RGB, linear alpha)
   float metallic = 1.0f, roughness = 1.0f;
-  TextureRef mr_tex;            ///< metallicRoughnessTexture: B = metallic, G = roughness
-  TextureRef normal_tex;        ///< normalTexture (tangent space, linear)
+  TextureRef mr_tex;      ///< metallicRoughnessTexture: B = metallic, G = roughness
+  TextureRef normal_tex;  ///< normalTexture (tangent space, linear)
   float normal_scale = 1.0f;
-  glm::vec3 emissive{0.0f};     ///< emissiveFactor × KHR_materials_emissive_strength
-  TextureRef emissive_tex;      ///< emissiveTexture (sRGB)
-  TextureRef occlusion_tex;     ///< occlusionTexture (R), applied to the ambient term only
+  glm::vec3 emissive{0.0f};  ///< emissiveFactor × KHR_materials_emissive_strength
+  TextureRef emissive_tex;   ///< emissiveTexture (sRGB)
+  TextureRef occlusion_tex;  ///< occlusionTexture (R), applied to the ambient term only
   float occlusion_strength = 1.0f;
   AlphaMode alpha_mode = AlphaMode::kOpaque;
-  bool double_sided = true;     ///< doubleSided (false: back faces are still drawn; see docs)
+  bool double_sided = true;  ///< doubleSided (false: back faces are still drawn; see docs)
 };
 
 struct Material {
   std::string name;
   Shading shading = Shading::kUnlit;
-  glm::vec3 color{1.0f};                 ///< base colour (scene-linear; may exceed 1 for emitters)
-  std::optional<Texture> texture;        ///< replaces `color` when present (needs `textures`)
-  glm::vec3 specular{0.0f};              ///< Blinn-Phong specular colour (needs `specular`)
-  float shininess = 0.0f;                ///< Blinn-Phong exponent
-  std::optional<Texture> alpha;          ///< cut-out pattern (needs `alpha_test`)
-  float alpha_cutoff = 0.5f;             ///< surface is kept where pattern t >= cutoff
-                                         ///< (glTF MASK: where alpha >= alphaCutoff)
-  std::optional<GltfMaterial> gltf;      ///< a material read from a glTF file
+  glm::vec3 color{1.0f};             ///< base colour (scene-linear; may exceed 1 for emitters)
+  std::optional<Texture> texture;    ///< replaces `color` when present (needs `textures`)
+  glm::vec3 specular{0.0f};          ///< Blinn-Phong specular colour (needs `specular`)
+  float shininess = 0.0f;            ///< Blinn-Phong exponent
+  std::optional<Texture> alpha;      ///< cut-out pattern (needs `alpha_test`)
+  float alpha_cutoff = 0.5f;         ///< surface is kept where pattern t >= cutoff
+                                     ///< (glTF MASK: where alpha >= alphaCutoff)
+  std::optional<GltfMaterial> gltf;  ///< a material read from a glTF file
 
   /// True when hits on it may be rejected by an alpha test (procedural `alpha` or glTF MASK).
   bool CutOut() const { return alpha.has_value() || (gltf && gltf->alpha_mode == AlphaMode::kMask); }
@@ -106,8 +106,8 @@ struct Light {
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< directional, spot: the direction light travels
   glm::vec3 position{0.0f};                ///< point, spot: position
   glm::vec3 color{1.0f};
-  float intensity = 1.0f;                  ///< directional: irradiance / π; point, spot: intensity / π (/d²)
-  bool shadows = false;                    ///< casts shadows (needs `shadows`)
+  float intensity = 1.0f;  ///< directional: irradiance / π; point, spot: intensity / π (/d²)
+  bool shadows = false;    ///< casts shadows (needs `shadows`)
   /// Spot: cosines of KHR_lights_punctual's innerConeAngle and outerConeAngle.
   float cos_inner = 1.0f, cos_outer = 0.70710678f;
   /// Point, spot: KHR_lights_punctual `range` (0: infinite; else the smooth window
@@ -137,10 +137,10 @@ struct Shape {
   int material = 0;    ///< index into Scene::materials
   // kTriangles
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;  ///< per vertex (empty: flat shading)
-  std::vector<glm::vec2> uvs;      ///< per vertex
-  std::vector<glm::vec2> uvs1;     ///< per vertex, glTF TEXCOORD_1 (empty: none)
-  std::vector<glm::vec4> tangents; ///< per vertex, xyz + handedness w (glTF meshes; may be empty)
+  std::vector<glm::vec3> normals;   ///< per vertex (empty: flat shading)
+  std::vector<glm::vec2> uvs;       ///< per vertex
+  std::vector<glm::vec2> uvs1;      ///< per vertex, glTF TEXCOORD_1 (empty: none)
+  std::vector<glm::vec4> tangents;  ///< per vertex, xyz + handedness w (glTF meshes; may be empty)
   std::vector<glm::uvec3> triangles;
   // kSphere / kDisk: centre + radius (+ normal for the disk, + frame for uv)
   glm::vec3 center{0.0f};
@@ -156,10 +156,10 @@ struct Shape {
 /// One keyframe of an object's motion: a transform applied after the object's own
 /// `transform`, about the motion's pivot (scenes/README.md "Animation").
 struct MotionKey {
-  double frame = 0.0;           ///< sequence time in frames, within [0, Animation::frames − 1]
+  double frame = 0.0;  ///< sequence time in frames, within [0, Animation::frames − 1]
   glm::vec3 translate{0.0f};
-  glm::vec3 rotate_deg{0.0f};   ///< about X, then Y, then Z, around the pivot
-  float scale = 1.0f;           ///< uniform (analytic shapes stay exact)
+  glm::vec3 rotate_deg{0.0f};  ///< about X, then Y, then Z, around the pivot
+  float scale = 1.0f;          ///< uniform (analytic shapes stay exact)
 };
 
 /// One keyframe of the camera's motion, relative to the scene's `camera`.
@@ -180,9 +180,9 @@ struct ObjectMotion {
 /// A scene's motion over a sequence of frames. frames == 0: a still scene (any number of
 /// frames shows the same image).
 struct Animation {
-  int frames = 0;                       ///< length of the declared sequence, 2..100000
-  std::vector<CameraKey> camera;        ///< empty: the camera is still
-  std::vector<ObjectMotion> objects;    ///< referenced by Shape::motion
+  int frames = 0;                     ///< length of the declared sequence, 2..100000
+  std::vector<CameraKey> camera;      ///< empty: the camera is still
+  std::vector<ObjectMotion> objects;  ///< referenced by Shape::motion
   bool Moves() const { return frames > 0; }
 };
 
@@ -241,7 +241,6 @@ CameraBasis CameraBasisOf(const Camera& cam);
 Scene LoadSceneFile(const std::string& path);
 
 /// Parses scene JSON text; `origin` names it in messages and `base_dir` resolves mesh paths.
-Scene ParseScene(const std::string& json_text, const std::string& origin,
-                 const std::string& base_dir);
+Scene ParseScene(const std::string& json_text, const std::string& origin, const std::string& base_dir);
 
 }  // namespace aalab

@@ -124,7 +124,8 @@ uint64_t SceneContentHash(const Scene& s) {
       // defaults, so fingerprints of files without them stay as they were.
       if (!(t->filter == SamplerFilter{}) || t->texcoord != 0 || t->transformed) {
         h.S("texref");
-        h.I(t->filter.mag_nearest), h.I(t->filter.min_nearest), h.I(static_cast<int64_t>(t->filter.mip)), h.I(t->texcoord);
+        h.I(t->filter.mag_nearest), h.I(t->filter.min_nearest), h.I(static_cast<int64_t>(t->filter.mip)),
+            h.I(t->texcoord);
         for (int c = 0; c < 3; ++c) h.V2(t->uv_transform[c]);
       }
     }

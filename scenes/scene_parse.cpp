@@ -62,7 +62,7 @@ Texture ParseTexture(const JsonField& f) {
   f.RequireObject({"pattern", "scale", "angle", "duty", "seed", "color_a", "color_b"});
   Texture t;
   const std::string p = f.Child("pattern").Choice({"checker", "stripes", "noise"});
-  t.pattern = p == "checker" ? TexturePattern::kChecker
+  t.pattern = p == "checker"   ? TexturePattern::kChecker
               : p == "stripes" ? TexturePattern::kStripes
                                : TexturePattern::kNoise;
   t.scale = static_cast<float>(f.NumberOr("scale", 1.0, 0.0, 1e6, true));
@@ -84,7 +84,8 @@ Material ParseMaterial(const JsonField& f, const std::string& name) {
   if (f.Has("specular")) {
     m.specular = f.Child("specular").Vec3(0.0, 1e7);
     m.shininess = static_cast<float>(f.Child("shininess").Number(1.0, 1e6));
-    if (m.shading != Shading::kLambert) f.Child("specular").Fail("specular needs shading 'lambert' (it is lit by the scene's lights)");
+    if (m.shading != Shading::kLambert)
+      f.Child("specular").Fail("specular needs shading 'lambert' (it is lit by the scene's lights)");
   } else if (f.Has("shininess")) {
     f.Child("shininess").Fail("shininess without 'specular'");
   }
@@ -95,8 +96,8 @@ Material ParseMaterial(const JsonField& f, const std::string& name) {
 }
 
 Light ParseLight(const JsonField& f, LightUnits units) {
-  f.RequireObject({"type", "direction", "position", "color", "intensity", "shadows", "inner_cone_deg",
-                   "outer_cone_deg", "range"});
+  f.RequireObject(
+      {"type", "direction", "position", "color", "intensity", "shadows", "inner_cone_deg", "outer_cone_deg", "range"});
   Light l;
   const std::string type = f.Child("type").Choice({"directional", "point", "spot"});
   if (type == "directional" || type == "spot") {
@@ -121,7 +122,8 @@ Light ParseLight(const JsonField& f, LightUnits units) {
   if (type == "spot") {
     const double inner = f.NumberOr("inner_cone_deg", 0.0, 0.0, 90.0);
     const double outer = f.NumberOr("outer_cone_deg", 45.0, 0.0, 90.0, true);
-    if (!(inner < outer)) f.Fail("a spot light needs inner_cone_deg < outer_cone_deg (KHR_lights_punctual: 0 <= inner < outer <= 90)");
+    if (!(inner < outer))
+      f.Fail("a spot light needs inner_cone_deg < outer_cone_deg (KHR_lights_punctual: 0 <= inner < outer <= 90)");
     l.cos_inner = static_cast<float>(std::cos(inner * 3.14159265358979323846 / 180.0));
     l.cos_outer = static_cast<float>(std::cos(outer * 3.14159265358979323846 / 180.0));
   } else {
@@ -210,7 +212,9 @@ Shape ParseShape(const JsonField& f, const std::string& base_dir) {
       if (glm::length(ref) == 0.0f) {
         ref = c;
       } else if (glm::dot(glm::normalize(c), glm::normalize(ref)) < 0.999f) {
-        pts.Fail("polygon is not convex and planar (fan triangulation needs a convex planar polygon; use 'triangles' or a mesh)");
+        pts.Fail(
+            "polygon is not convex and planar (fan triangulation needs a convex planar polygon; use 'triangles' or a "
+            "mesh)");
       }
     }
     if (glm::length(ref) == 0.0f) pts.Fail("polygon has zero area (all points collinear)");
@@ -301,8 +305,9 @@ void AddGltfObject(Scene& s, const JsonField& o, const std::string& base_dir, st
   }
   {
     char line[256];
-    std::snprintf(line, sizeof line, "loaded in %.3f s: %zu triangles, %zu textures (%.1f MB as stored, %.1f MB as RGBA8)",
-                  g.load_seconds, g.triangles, g.images.size(), g.texture_bytes / 1e6, g.texture_bytes8 / 1e6);
+    std::snprintf(line, sizeof line,
+                  "loaded in %.3f s: %zu triangles, %zu textures (%.1f MB as stored, %.1f MB as RGBA8)", g.load_seconds,
+                  g.triangles, g.images.size(), g.texture_bytes / 1e6, g.texture_bytes8 / 1e6);
     std::cerr << "aalab: glTF file '" << p.string() << "' " << line << "\n";
   }
   s.files_read.push_back(p.string());
@@ -389,8 +394,8 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
                     " (numbers must be finite doubles; JSON has no NaN or Infinity)");
   }
   const JsonField root(doc, origin, "");
-  root.RequireObject({"name", "description", "effects", "camera", "display", "background", "ambient",
-                      "materials", "lights", "light_units", "environment", "objects", "animation"});
+  root.RequireObject({"name", "description", "effects", "camera", "display", "background", "ambient", "materials",
+                      "lights", "light_units", "environment", "objects", "animation"});
   Scene s;
   s.name = root.Child("name").String();
   for (char c : s.name) {
@@ -436,9 +441,11 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
   const JsonField mats = root.Child("materials");
   bool any_gltf = false;  // a scene of glTF objects only brings its materials from the files
   if (root.Has("objects") && root.Child("objects").Value().is_array()) {
-    for (const auto& o : root.Child("objects").Value()) any_gltf |= o.is_object() && o.contains("shape") && o["shape"] == "gltf";
+    for (const auto& o : root.Child("objects").Value())
+      any_gltf |= o.is_object() && o.contains("shape") && o["shape"] == "gltf";
   }
-  if (!mats.Value().is_object() || (mats.Value().empty() && !any_gltf)) mats.Fail("expected an object of named materials");
+  if (!mats.Value().is_object() || (mats.Value().empty() && !any_gltf))
+    mats.Fail("expected an object of named materials");
   std::map<std::string, int> mat_index;
   for (auto it = mats.Value().begin(); it != mats.Value().end(); ++it) {
     mat_index[it.key()] = static_cast<int>(s.materials.size());
@@ -459,7 +466,7 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
 
   const JsonField objs = root.Child("objects");
   if (objs.ArraySize() == 0) objs.Fail("a scene needs at least one object");
-  std::vector<Camera> gltf_cameras;             // the cameras of the first glTF object
+  std::vector<Camera> gltf_cameras;               // the cameras of the first glTF object
   std::map<int, size_t> gltf_object_of_material;  // material index -> the glTF object it came from
   std::vector<bool> mat_used(s.materials.size(), false);
   for (size_t i = 0; i < objs.ArraySize(); ++i) {
@@ -492,7 +499,8 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
       float smin = 1.0f;
       for (const MotionKey& k : motion.keys) smin = std::min(smin, k.scale);
       if (shape.kind != ShapeKind::kTriangles && !(shape.radius * smin >= FLT_MIN)) {
-        o.Child("motion").Fail("the " + shape.source + "'s radius times the smallest motion scale underflows single precision");
+        o.Child("motion").Fail("the " + shape.source +
+                               "'s radius times the smallest motion scale underflows single precision");
       }
       shape.motion = static_cast<int>(s.animation.objects.size());
       s.animation.objects.push_back(motion);
@@ -547,8 +555,10 @@ Scene ParseScene(const std::string& text, const std::string& origin, const std::
   if (lit && s.lights.empty() && s.ambient == glm::vec3(0.0f) && !s.environment) {
     root.Fail("lambert materials need lights, an ambient term or an environment (the scene would be black)");
   }
-  if (!lit && !s.lights.empty() && root.Has("lights")) root.Child("lights").Fail("lights without any lambert material light nothing");
-  if (!lit && s.environment) root.Child("environment").Fail("an environment without any lambert or glTF PBR material lights nothing");
+  if (!lit && !s.lights.empty() && root.Has("lights"))
+    root.Child("lights").Fail("lights without any lambert material light nothing");
+  if (!lit && s.environment)
+    root.Child("environment").Fail("an environment without any lambert or glTF PBR material lights nothing");
   for (int e = 0; e < kEffectCount; ++e) {
     if (s.effects[e] && !used[e]) {
       effects.Fail("effect '" + std::string(EffectName(static_cast<Effect>(e))) +

@@ -125,8 +125,8 @@ Shape LoadObjMesh(const std::string& path) {
   config.vertex_color = false;
   tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(path, config)) {
-    throw UserError("mesh '" + path + "': " +
-                    (reader.Error().empty() ? std::string("cannot read file") : reader.Error()));
+    throw UserError("mesh '" + path +
+                    "': " + (reader.Error().empty() ? std::string("cannot read file") : reader.Error()));
   }
   const auto& attrib = reader.GetAttrib();
   Shape s;

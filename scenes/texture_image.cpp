@@ -225,9 +225,8 @@ ImageSource Source(const std::string& name, const std::string& path, const uint8
 /// The header rules (size, channel count), checked before any texel is read.
 void CheckHeader(const ImageHeader& h, const std::string& name) {
   if (h.width <= 0 || h.height <= 0 || h.width > kMaxTextureSize || h.height > kMaxTextureSize) {
-    throw UserError("texture " + name + " has size " + std::to_string(h.width) + "x" +
-                    std::to_string(h.height) + " (allowed: 1 to " + std::to_string(kMaxTextureSize) +
-                    " texels a side)");
+    throw UserError("texture " + name + " has size " + std::to_string(h.width) + "x" + std::to_string(h.height) +
+                    " (allowed: 1 to " + std::to_string(kMaxTextureSize) + " texels a side)");
   }
   if (h.channels < 1 || h.channels > 4) {
     throw UserError("texture " + name + " has " + std::to_string(h.channels) + " channels (allowed: 1 to 4)");
@@ -299,8 +298,7 @@ int WrapIndex(int i, int n, WrapMode mode) {
       const int r = i % n;
       return r < 0 ? r + n : r;
     }
-    case WrapMode::kClampToEdge:
-      return std::clamp(i, 0, n - 1);
+    case WrapMode::kClampToEdge: return std::clamp(i, 0, n - 1);
     case WrapMode::kMirroredRepeat: {
       const int period = 2 * n;
       int r = i % period;
@@ -366,7 +364,8 @@ glm::vec4 SampleTexture(const MipChain& chain, glm::vec2 uv, const UvDerivs& d, 
   const float lx = std::hypot(d.dx.x * w, d.dx.y * h);
   const float ly = std::hypot(d.dy.x * w, d.dy.y * h);
   const float pmax = std::max(lx, ly), pmin = std::min(lx, ly);
-  if (!(pmax > 0.0f) || !std::isfinite(pmax)) return SampleLevelLerp(chain, uv, MipLambda(d, l0.width, l0.height), wrap_s, wrap_t);
+  if (!(pmax > 0.0f) || !std::isfinite(pmax))
+    return SampleLevelLerp(chain, uv, MipLambda(d, l0.width, l0.height), wrap_s, wrap_t);
   const float ratio = pmin > 0.0f ? pmax / pmin : static_cast<float>(filter.max_aniso);
   const int n = std::clamp(static_cast<int>(std::ceil(ratio)), 1, filter.max_aniso);
   const float lambda = std::log2(pmax / static_cast<float>(n));
@@ -383,7 +382,7 @@ SamplerFilter SamplerFilterOf(int mag, int min) {
   SamplerFilter f;
   f.mag_nearest = mag == 9728;
   f.min_nearest = min == 9728 || min == 9984 || min == 9986;
-  f.mip = (min == 9728 || min == 9729) ? SamplerFilter::Mip::kNone
+  f.mip = (min == 9728 || min == 9729)   ? SamplerFilter::Mip::kNone
           : (min == 9984 || min == 9985) ? SamplerFilter::Mip::kNearest
                                          : SamplerFilter::Mip::kLinear;
   return f;
@@ -410,15 +409,13 @@ glm::vec4 SampleTextureFiltered(const MipChain& chain, glm::vec2 uv, const UvDer
   if (!(lambda > 0.0f)) return tap(l0, sampler.mag_nearest);  // magnification (and NaN)
   const int last = static_cast<int>(chain.levels.size()) - 1;
   switch (sampler.mip) {
-    case SamplerFilter::Mip::kNone:
-      return tap(l0, sampler.min_nearest);
+    case SamplerFilter::Mip::kNone: return tap(l0, sampler.min_nearest);
     case SamplerFilter::Mip::kNearest: {
       // OpenGL 4.6 eq. 8.13: level ⌈λ + ½⌉ − 1 (round half down), clamped to the chain.
       const int k = std::clamp(static_cast<int>(std::ceil(lambda + 0.5f)) - 1, 0, last);
       return tap(chain.levels[static_cast<size_t>(k)], sampler.min_nearest);
     }
-    case SamplerFilter::Mip::kLinear:
-      break;
+    case SamplerFilter::Mip::kLinear: break;
   }
   if (lambda >= static_cast<float>(last)) return tap(chain.levels[static_cast<size_t>(last)], sampler.min_nearest);
   const int k = static_cast<int>(std::floor(lambda));

@@ -51,8 +51,7 @@ uint16_t FloatToHalf(float f);
 
 inline glm::vec4 MipLevel::Fetch(size_t i) const {
   switch (format) {
-    case TexelFormat::kFloat:
-      return texels[i];
+    case TexelFormat::kFloat: return texels[i];
     case TexelFormat::kSrgb8: {
       const uint8_t* p = &bytes[4 * i];
       const float* s = Srgb8Table();

@@ -92,7 +92,7 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
       case ShapeKind::kSphere:
       case ShapeKind::kDisk: {
         g = rtcNewGeometry(im.device, s.kind == ShapeKind::kSphere ? RTC_GEOMETRY_TYPE_SPHERE_POINT
-                                                                 : RTC_GEOMETRY_TYPE_ORIENTED_DISC_POINT);
+                                                                   : RTC_GEOMETRY_TYPE_ORIENTED_DISC_POINT);
         auto* v = static_cast<float*>(
             rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
         v[0] = s.center.x;
@@ -111,7 +111,7 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
       case ShapeKind::kCapsule:
       case ShapeKind::kCylinder: {
         g = rtcNewGeometry(im.device, s.kind == ShapeKind::kCapsule ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE
-                                                                  : RTC_GEOMETRY_TYPE_CONE_LINEAR_CURVE);
+                                                                    : RTC_GEOMETRY_TYPE_CONE_LINEAR_CURVE);
         auto* v = static_cast<float*>(
             rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 2));
         v[0] = s.p0.x;
@@ -125,8 +125,8 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
         auto* idx = static_cast<unsigned*>(
             rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), 1));
         idx[0] = 0;
-        auto* flags = static_cast<unsigned char*>(
-            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_FLAGS, 0, RTC_FORMAT_UCHAR, 1, 1));
+        auto* flags =
+            static_cast<unsigned char*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_FLAGS, 0, RTC_FORMAT_UCHAR, 1, 1));
         flags[0] = 0;  // a single segment: no neighbours, so both ends are capped
         break;
       }
@@ -150,7 +150,7 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
 Tracer::~Tracer() = default;
 
 void tracer_detail::IntersectRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear,
-                   const float* tfar, const int* idx, int n, Hit* hits, bool coherent) {
+                                  const float* tfar, const int* idx, int n, Hit* hits, bool coherent) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -323,8 +323,8 @@ void OrthographicRays(const SamplePos* pos, int count, float width, float height
 void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width,
                                int height, glm::vec3* org, glm::vec3* dir) {
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h = cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f)
-                                                            : cam.height * 0.5f;
+  const float half_h =
+      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
   if (cam.type == CameraType::kPerspective) {
     PerspectiveRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
                     im.forward, im.right, im.up, org, dir);
@@ -393,8 +393,8 @@ struct TraceScratch {
 
 }  // namespace
 
-void Tracer::Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out,
-                   TraceCounters* counters, TextureFootprint footprint) const {
+void Tracer::Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out, TraceCounters* counters,
+                   TextureFootprint footprint) const {
   const Impl& im = *impl_;
   const Scene& sc = scene_;
   TraceCounters local;
@@ -432,8 +432,8 @@ uint64_t Tracer::BareTrace(int width, int height, int grid) const {
   const Impl& im = *impl_;
   const Camera& cam = scene_.camera;
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h = cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f)
-                                                            : cam.height * 0.5f;
+  const float half_h =
+      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
   const bool persp = cam.type == CameraType::kPerspective;
   constexpr int kTileSize = 8;
   const int tiles_x = (width + kTileSize - 1) / kTileSize;

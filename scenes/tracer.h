@@ -36,11 +36,11 @@ struct TraceCounters {
 
 /// One shaded camera sample.
 struct SampleResult {
-  float rgb[3] = {0, 0, 0};  ///< scene-linear radiance
-  int32_t surface = -1;      ///< index of the shape seen (-1: background)
-  uint32_t shadowed = 0;     ///< bit i: shadow-casting light i is blocked at this sample
+  float rgb[3] = {0, 0, 0};                          ///< scene-linear radiance
+  int32_t surface = -1;                              ///< index of the shape seen (-1: background)
+  uint32_t shadowed = 0;                             ///< bit i: shadow-casting light i is blocked at this sample
   float t = std::numeric_limits<float>::infinity();  ///< ray distance to the surface seen (+inf: background)
-  float position[3] = {0, 0, 0};  ///< world-space hit point (origin + t·dir; 0 for background)
+  float position[3] = {0, 0, 0};                     ///< world-space hit point (origin + t·dir; 0 for background)
 };
 
 /// Camera sample position on a width × height image plane, in continuous pixel coordinates
@@ -61,9 +61,9 @@ struct TextureFootprint {
   /// derivatives are taken over the same footprint as the texture's.
   float gsaa_sigma2 = 0.0f;
   float gsaa_kappa = 0.0f;
-  bool gsaa = false;           ///< specular AA on (RenderSpec::specular_aa.enabled)
-  bool gsaa_mapped = false;    ///< derivatives of the normal-mapped normal (else the vertex normal)
-  float gsaa_toksvig = 0.0f;   ///< weight of the normal map's variance (scenes/toksvig.h)
+  bool gsaa = false;              ///< specular AA on (RenderSpec::specular_aa.enabled)
+  bool gsaa_mapped = false;       ///< derivatives of the normal-mapped normal (else the vertex normal)
+  float gsaa_toksvig = 0.0f;      ///< weight of the normal map's variance (scenes/toksvig.h)
   float gsaa_toksvig_max = 0.0f;  ///< clamp of the normal map's added α²
 };
 
@@ -81,8 +81,8 @@ class Tracer {
 
   /// Traces and shades `count` samples on a width × height image plane. Thread-safe (call
   /// from many threads at once); results depend only on the inputs.
-  void Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out,
-             TraceCounters* counters, TextureFootprint footprint = {}) const;
+  void Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out, TraceCounters* counters,
+             TextureFootprint footprint = {}) const;
 
   /// MSAA (docs/msaa.md): traces `pixels` pixels of `msaa.samples` = N coverage samples each
   /// (sample_pos[p·N + s], sample index order) with one visibility ray per sample, then
@@ -92,8 +92,8 @@ class Tracer {
   /// whose alpha test fails at its shading point is discarded from all its samples, which
   /// then see what lies behind it. shading_evals[p] (when not null) receives pixel p's
   /// number of shading evaluations. Thread-safe; results depend only on the inputs.
-  void TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos, int pixels, const MsaaSpec& msaa,
-                 int width, int height, SampleResult* out, uint32_t* shading_evals, TraceCounters* counters,
+  void TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos, int pixels, const MsaaSpec& msaa, int width,
+                 int height, SampleResult* out, uint32_t* shading_evals, TraceCounters* counters,
                  TextureFootprint footprint = {}) const;
 
   const Scene& GetScene() const { return scene_; }

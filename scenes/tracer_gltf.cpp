@@ -61,7 +61,7 @@ bool OffsetRays(const Tracer::Impl& im, const Camera& cam, glm::vec3 org, glm::v
 bool BaryOnPlane(const Shape& s, unsigned prim, const Ray& r, double* w1, double* w2) {
   const glm::uvec3 tri = s.triangles[prim];
   const glm::dvec3 p0(s.positions[tri.x]), e1 = glm::dvec3(s.positions[tri.y]) - p0,
-      e2 = glm::dvec3(s.positions[tri.z]) - p0;
+                                           e2 = glm::dvec3(s.positions[tri.z]) - p0;
   const glm::dvec3 n = glm::cross(e1, e2);
   const double denom = glm::dot(n, glm::dvec3(r.d));
   if (!(std::fabs(denom) > 1e-300)) return false;
@@ -268,7 +268,9 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
     const bool mapped = sc.Has(Effect::kNormalMap) && g.normal_tex.Has();
     // The normal texture's own coordinate set and footprint, as fetched above.
     const int nset = g.normal_tex.texcoord == 1 ? 1 : 0;
-    const UvDerivs d = !mapped || !any_tex ? UvDerivs{} : tex.derivs[nset] ? tex.d[nset] : HitUvDerivs(im, sc, h, org, dir, fp, nset);
+    const UvDerivs d = !mapped || !any_tex ? UvDerivs{}
+                       : tex.derivs[nset]  ? tex.d[nset]
+                                           : HitUvDerivs(im, sc, h, org, dir, fp, nset);
     Ray rx, ry;
     if (shape.kind == ShapeKind::kTriangles && OffsetRays(im, sc.camera, org, dir, fp, &rx, &ry)) {
       const glm::vec3 n_hit = VertexNormal(shape, h.prim, h.u, h.v, h.ng);

@@ -79,8 +79,8 @@ T* Sized(std::vector<T>& v, size_t n) {
 /// arrays (idx == nullptr: ray k itself); hits[k] receives its hit. Rays with tnear >= tfar
 /// are skipped. The packets hold the same rays, in the same lanes, whether or not an index
 /// list is used, so the result never depends on how the caller stores its rays.
-void IntersectRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear,
-                   const float* tfar, const int* idx, int n, Hit* hits, bool coherent);
+void IntersectRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear, const float* tfar,
+                   const int* idx, int n, Hit* hits, bool coherent);
 
 /// Whether each of n rays (tnear[i] < tfar[i]) meets anything in [tnear, tfar], in 16-wide
 /// packets (rtcOccluded16): occluded[i] = 1 or 0. The same answer as "IntersectRays finds a
@@ -104,9 +104,9 @@ struct LayerScratch {
 /// round) up to kMaxAlphaLayers rounds; so does a ray that meets the back of a single-sided
 /// glTF material (always: a rasterizer culls at coverage). Adds the rays to counters.primary_rays and
 /// counters.coverage_rays, the alpha lookups to counters.texture_lookups.
-void ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org,
-                        const glm::vec3* dir, int count, float* tnear, float* tfar, Hit* hits, LayerScratch& ls,
-                        TraceCounters& counters, const Footprint& fp);
+void ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org, const glm::vec3* dir,
+                        int count, float* tnear, float* tfar, Hit* hits, LayerScratch& ls, TraceCounters& counters,
+                        const Footprint& fp);
 
 /// True when the cut-out material `m` keeps the hit h (procedural pattern t >= cutoff, or glTF
 /// MASK alpha >= alphaCutoff, the alpha filtered with the ray's footprint).

@@ -59,12 +59,12 @@ struct Fragment {
   int shape = -1;
   unsigned prim = 0;
   bool back = false;
-  int next = -1;       // next fragment of the same pixel (-1: last)
-  uint32_t mask = 0;   // covered samples, bit s = sample index s
-  int first = 0;       // global index of its first covered sample at creation
+  int next = -1;      // next fragment of the same pixel (-1: last)
+  uint32_t mask = 0;  // covered samples, bit s = sample index s
+  int first = 0;      // global index of its first covered sample at creation
   bool discarded = false;
   uint32_t keep = 0xFFFFFFFFu;  // alpha-to-coverage: the samples it keeps (bit s)
-  Hit hit;             // shading point, seen along the ray (org, dir)
+  Hit hit;                      // shading point, seen along the ray (org, dir)
   glm::vec3 org{0.0f}, dir{0.0f};
 };
 
@@ -116,8 +116,8 @@ struct MsaaScratch {
 }  // namespace
 
 void Tracer::TraceMsaa(const SamplePos* sample_pos, const SamplePos* centre_pos, int pixels, const MsaaSpec& msaa,
-                       int width, int height, SampleResult* out, uint32_t* shading_evals,
-                       TraceCounters* counters, TextureFootprint footprint) const {
+                       int width, int height, SampleResult* out, uint32_t* shading_evals, TraceCounters* counters,
+                       TextureFootprint footprint) const {
   const Impl& im = *impl_;
   const Scene& sc = scene_;
   const int N = msaa.samples;

@@ -22,12 +22,11 @@ inline bool UnderCi() {
 /// Skips the current test with `message` (a std::string); under CI (UnderCi()) fails it with
 /// the same message instead. Use only at the top level of a TEST body or a fixture's SetUp:
 /// like GTEST_SKIP and GTEST_FAIL it returns from the enclosing function.
-#define AALAB_SKIP_OR_FAIL_UNDER_CI(message)                                                              \
-  do {                                                                                                    \
-    const std::string aalab_skip_message_ = (message);                                                    \
-    if (::aalab::testenv::UnderCi()) {                                                                    \
-      GTEST_FAIL() << "CI is set, so a missing test dependency is a failure, not a skip: "                \
-                   << aalab_skip_message_;                                                                \
-    }                                                                                                     \
-    GTEST_SKIP() << aalab_skip_message_ << " (skipped: not under CI)";                                    \
+#define AALAB_SKIP_OR_FAIL_UNDER_CI(message)                                                                       \
+  do {                                                                                                             \
+    const std::string aalab_skip_message_ = (message);                                                             \
+    if (::aalab::testenv::UnderCi()) {                                                                             \
+      GTEST_FAIL() << "CI is set, so a missing test dependency is a failure, not a skip: " << aalab_skip_message_; \
+    }                                                                                                              \
+    GTEST_SKIP() << aalab_skip_message_ << " (skipped: not under CI)";                                             \
   } while (0)

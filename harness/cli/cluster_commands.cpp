@@ -77,7 +77,8 @@ void RegisterClusterCommands(CLI::App& app, Commands& commands) {
         return ToInt(ExitCode::kCouldNotCompare);
       }
       if (r.same) {
-        std::printf("same results: '%s' and '%s' (timings and context aside)\n", (*pair)[0].c_str(), (*pair)[1].c_str());
+        std::printf("same results: '%s' and '%s' (timings and context aside)\n", (*pair)[0].c_str(),
+                    (*pair)[1].c_str());
         return ToInt(ExitCode::kOk);
       }
       std::printf("different results: '%s' (A) and '%s' (B)\n", (*pair)[0].c_str(), (*pair)[1].c_str());

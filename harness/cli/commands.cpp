@@ -34,8 +34,8 @@ std::vector<std::string> SplitList(const std::string& text) {
   std::string item;
   while (std::getline(ss, item, ',')) {
     if (item.empty()) throw UserError("empty item in list '" + text + "'");
-    const bool continues = !cur.empty() && cur.find(':') != std::string::npos &&
-                           item.find('=') != std::string::npos && item.find(':') == std::string::npos;
+    const bool continues = !cur.empty() && cur.find(':') != std::string::npos && item.find('=') != std::string::npos &&
+                           item.find(':') == std::string::npos;
     if (continues) {
       cur += "," + item;
     } else {
@@ -104,7 +104,9 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   auto list_what = std::make_shared<std::string>();
   auto list_markdown = std::make_shared<bool>(false);
   list->add_option("what", *list_what, "scenes | methods | metrics | viewing")->required();
-  list->add_flag("--markdown", *list_markdown, "methods: the family table of README.md and docs/cli.md; metrics: the tables of metrics/METRICS.md (Markdown)");
+  list->add_flag(
+      "--markdown", *list_markdown,
+      "methods: the family table of README.md and docs/cli.md; metrics: the tables of metrics/METRICS.md (Markdown)");
   list->callback([&commands, list_what, list_markdown] {
     commands.action = [list_what, list_markdown] { return ListCommand(*list_what, *list_markdown); };
   });
@@ -122,7 +124,10 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   render->add_option("--spp", ra->spp, "samples per pixel: 1 (pixel centre) or n*n stratified")->capture_default_str();
   render->add_option("--seed", ra->seed, "jitter seed")->capture_default_str();
   render->add_option("--threads", ra->threads, "worker threads (0 = all)")->capture_default_str();
-  render->add_option("--out", ra->out, "output file: .exr (display-linear float resolve, not quantised) or .png (sRGB 8-bit)")->required();
+  render
+      ->add_option("--out", ra->out,
+                   "output file: .exr (display-linear float resolve, not quantised) or .png (sRGB 8-bit)")
+      ->required();
   render->callback([&commands, ra] {
     commands.action = [ra] {
       int w = 0, h = 0;
@@ -131,7 +136,8 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       int n = 0;
       while ((n + 1) * (n + 1) <= ra->spp) ++n;
       if (ra->spp < 1 || ra->spp > 4096 || n * n != ra->spp) {
-        throw UserError("--spp " + std::to_string(ra->spp) + " must be a square number from 1 to 4096 (1, 4, 9, 16, ..., 256)");
+        throw UserError("--spp " + std::to_string(ra->spp) +
+                        " must be a square number from 1 to 4096 (1, 4, 9, 16, ..., 256)");
       }
       const std::string ext = fs::path(ra->out).extension().string();
       if (ext != ".exr" && ext != ".png") throw UserError("--out '" + ra->out + "' must end in .exr or .png");
@@ -164,12 +170,17 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   auto run_methods = std::make_shared<std::string>();
   auto run_size = std::make_shared<std::string>("960x540");
   run->add_option("--suite", rs->suite, "suite name (see aalab list scenes)")->capture_default_str();
-  run->add_option("--scenes", *run_scenes, "comma-separated library scene names or scene file paths (overrides --suite)");
-  run->add_option("--methods", *run_methods, "comma-separated method specs, e.g. none,fxaa311-p39:subpix=0.5 (default: one or two of each family; 'all': every registered method)");
+  run->add_option("--scenes", *run_scenes,
+                  "comma-separated library scene names or scene file paths (overrides --suite)");
+  run->add_option("--methods", *run_methods,
+                  "comma-separated method specs, e.g. none,fxaa311-p39:subpix=0.5 (default: one or two of each family; "
+                  "'all': every registered method)");
   run->add_option("--size", *run_size, "output size WxH")->capture_default_str();
-  run->add_option("--ref-spp", rs->ref_spp, "reference samples per pixel: n*n, n even (4, 16, 64, 256, 1024)")->capture_default_str();
-  run->add_option("--reference", rs->reference,
-                  "sampled (--ref-spp stratified samples) or exact (closed-form coverage; flat unlit orthographic scenes)")
+  run->add_option("--ref-spp", rs->ref_spp, "reference samples per pixel: n*n, n even (4, 16, 64, 256, 1024)")
+      ->capture_default_str();
+  run->add_option(
+         "--reference", rs->reference,
+         "sampled (--ref-spp stratified samples) or exact (closed-form coverage; flat unlit orthographic scenes)")
       ->capture_default_str();
   run->add_option("--seed", rs->seed, "jitter seed")->capture_default_str();
   run->add_option("--threads", rs->threads, "worker threads (0 = all hardware threads)")->capture_default_str();
@@ -213,8 +224,9 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       if (!run_shard->empty()) rs->shard = ParseShard(*run_shard);
       if (!run_gpu->empty()) {
         if (rs->shard.Active() || rs->references_only) {
-          throw UserError("--gpu-timings needs a whole run (not --shard or --references-only); attach the timings to "
-                          "the merged report with aalab merge-gpu");
+          throw UserError(
+              "--gpu-timings needs a whole run (not --shard or --references-only); attach the timings to "
+              "the merged report with aalab merge-gpu");
         }
         CheckGpuTimingsFile(*run_gpu);  // before any work
       }
@@ -228,16 +240,17 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       const Report report = RunSuite(*rs);
       if (report.shard) {
         std::printf("%s", FormatTimeBreakdown(report.time_breakdown).c_str());
-        std::printf("shard %d/%d: %zu of %d scenes, %zu results\npartial report: %s (merge the shards with aalab merge)\n",
-                    report.shard->index, report.shard->count, report.scenes.size(), report.shard->total_units,
-                    report.rows.size(), (fs::absolute(rs->out_dir) / "report.json").string().c_str());
+        std::printf(
+            "shard %d/%d: %zu of %d scenes, %zu results\npartial report: %s (merge the shards with aalab merge)\n",
+            report.shard->index, report.shard->count, report.scenes.size(), report.shard->total_units,
+            report.rows.size(), (fs::absolute(rs->out_dir) / "report.json").string().c_str());
         return ToInt(ExitCode::kOk);
       }
       std::printf("%s", FormatTimeBreakdown(report.time_breakdown).c_str());
       std::printf("%s", FormatVerdicts(Verdicts(report)).c_str());
       if (!run_gpu->empty()) std::printf("%s\n", AttachGpuTimings(rs->out_dir, *run_gpu).c_str());
-      std::printf("wrote %zu results for %zu scenes\nhtml:   %s\nreport: %s\n", report.rows.size(), report.scenes.size(),
-                  (fs::absolute(rs->out_dir) / "index.html").string().c_str(),
+      std::printf("wrote %zu results for %zu scenes\nhtml:   %s\nreport: %s\n", report.rows.size(),
+                  report.scenes.size(), (fs::absolute(rs->out_dir) / "index.html").string().c_str(),
                   (fs::absolute(rs->out_dir) / "report.json").string().c_str());
       return ToInt(ExitCode::kOk);
     };
@@ -253,8 +266,9 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   apply->add_option("--method", aa->method, "method spec, e.g. fxaa311-p39:subpix=0.5")->required();
   apply->add_option("--debug", aa->debug, "debug view instead of the filtered image (see aalab list methods)");
   apply->add_option("--threads", aa->threads, "worker threads (0 = all)");
-  apply->add_option("--sampler", aa->sampler,
-                    "texel and bilinear arithmetic: gl (llvmpipe's) or gpu-texture (the H100 texture unit's)")
+  apply
+      ->add_option("--sampler", aa->sampler,
+                   "texel and bilinear arithmetic: gl (llvmpipe's) or gpu-texture (the H100 texture unit's)")
       ->capture_default_str();
   apply->add_option("input", aa->in, "input image (PNG, JPEG, TIFF, EXR)")->required();
   apply->add_option("output", aa->out, "output image (.png, .jpg, .tif)")->required();
@@ -278,7 +292,8 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
       }
       const std::string ext = fs::path(aa->out).extension().string();
       if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".tif" && ext != ".tiff") {
-        throw UserError("output '" + aa->out + "' must end in .png, .jpg, .jpeg, .tif or .tiff (an 8-bit display image)");
+        throw UserError("output '" + aa->out +
+                        "' must end in .png, .jpg, .jpeg, .tif or .tiff (an 8-bit display image)");
       }
       CheckOutFile(aa->out, {aa->in});  // never onto its own input, never a folder
       const LoadedImage img = ReadImage(aa->in);
@@ -294,7 +309,8 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
         }
       }
       if (img.is_float) {
-        std::fprintf(stderr, "aalab: '%s' holds float data: treated as scene-linear and passed through the display "
+        std::fprintf(stderr,
+                     "aalab: '%s' holds float data: treated as scene-linear and passed through the display "
                      "transform (exposure 1, tonemap none = clamp to [0,1], sRGB encode, 8-bit) before filtering\n",
                      aa->in.c_str());
       }

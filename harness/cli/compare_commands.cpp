@@ -118,7 +118,8 @@ void WriteCompareHtml(const std::string& out, const CompareResult& res, const Re
     f.read(head.data(), static_cast<std::streamsize>(head.size()));
     head.resize(static_cast<size_t>(f.gcount()));
     if (!fs::is_regular_file(page) || head.find("<h1>aalab compare</h1>") == std::string::npos) {
-      throw UserError("--html '" + out + "' exists and was not written by aalab compare; refusing to replace it "
+      throw UserError("--html '" + out +
+                      "' exists and was not written by aalab compare; refusing to replace it "
                       "(aalab never overwrites a file it did not write): give another file name");
     }
   }
@@ -127,7 +128,8 @@ void WriteCompareHtml(const std::string& out, const CompareResult& res, const Re
   const fs::path files = dir / files_name;
   const fs::path marker = files / ".aalab-compare";
   if (fs::exists(files) && !(fs::is_directory(files) && fs::exists(marker))) {
-    throw UserError("--html: '" + files.string() + "' exists and was not written by aalab compare; refusing to replace it");
+    throw UserError("--html: '" + files.string() +
+                    "' exists and was not written by aalab compare; refusing to replace it");
   }
   std::vector<std::vector<HtmlImage>> images =
       CompareHtmlImages(res, base, cur, FolderOf(a.baseline), FolderOf(a.current));
@@ -190,16 +192,18 @@ void WriteCompareHtml(const std::string& out, const CompareResult& res, const Re
   std::printf("wrote %s (%zu changed rows; images copied to %s)\n", page.string().c_str(), images.size(),
               files.string().c_str());
   if (missing > 0) {
-    std::fprintf(stderr, "aalab: note: %d image(s) not available for the HTML page (reports without their images "
-                 "folder); the page says which\n", missing);
+    std::fprintf(stderr,
+                 "aalab: note: %d image(s) not available for the HTML page (reports without their images "
+                 "folder); the page says which\n",
+                 missing);
   }
 }
 
 int CompareCommand(const CompareArgs& a) {
   try {
-    const CompareOptions o = BuildOptions(a.max_drop_db, a.metrics, a.metric_change, a.time_increase,
-                                          a.time_across_machines, a.maps, a.warn_drop_db, a.fail_on, a.time_floor,
-                                          a.strict);
+    const CompareOptions o =
+        BuildOptions(a.max_drop_db, a.metrics, a.metric_change, a.time_increase, a.time_across_machines, a.maps,
+                     a.warn_drop_db, a.fail_on, a.time_floor, a.strict);
     // The result files may not overwrite an input, nor each other.
     std::vector<std::string> inputs = {a.baseline, a.current};
     for (const std::string* out : {&a.json, &a.junit, &a.html}) {
@@ -294,8 +298,9 @@ int HistoryAdd(const HistoryAddArgs& a) {
       prev = &x;
     }
   }
-  std::printf("added commit %s (%s, %zu rows) to series '%s' in %s (line %d, entry %d of the series)\n", e.commit.c_str(),
-              e.date.c_str(), e.report.rows.size(), e.series.c_str(), a.db.c_str(), line, in_series + 1);
+  std::printf("added commit %s (%s, %zu rows) to series '%s' in %s (line %d, entry %d of the series)\n",
+              e.commit.c_str(), e.date.c_str(), e.report.rows.size(), e.series.c_str(), a.db.c_str(), line,
+              in_series + 1);
   if (prev) {
     CompareOptions o;
     const CompareResult c = CompareReports(prev->report, e.report, o);
@@ -325,10 +330,11 @@ int HistoryReport(const HistoryReportArgs& a) {
   WriteTextFile((folder.Begin() / "index.html").string(), page.html);
   folder.Commit();
   const fs::path index = fs::path(a.out) / "index.html";
-  std::printf("wrote %s: %d series, %d entries, %d charts; threshold crossings between consecutive entries: "
-              "%d regression(s), %d improvement(s), %d could-not-compare item(s)\n",
-              index.string().c_str(), page.series, page.entries, page.charts, page.regressions, page.improvements,
-              page.cannot_compare);
+  std::printf(
+      "wrote %s: %d series, %d entries, %d charts; threshold crossings between consecutive entries: "
+      "%d regression(s), %d improvement(s), %d could-not-compare item(s)\n",
+      index.string().c_str(), page.series, page.entries, page.charts, page.regressions, page.improvements,
+      page.cannot_compare);
   return ToInt(ExitCode::kOk);
 }
 
@@ -351,14 +357,16 @@ int BaselineAccept(const BaselineAcceptArgs& a) {
   const fs::path src = fs::path(a.run_dir);
   const fs::path report_path = src / "report.json";
   if (!fs::is_directory(src) || !fs::is_regular_file(report_path)) {
-    throw UserError("'" + a.run_dir + "' is not a run folder (no report.json in it): give the folder of an aalab run "
+    throw UserError("'" + a.run_dir +
+                    "' is not a run folder (no report.json in it): give the folder of an aalab run "
                     "(its --out)");
   }
   const Report report = ReadReportFile(report_path.string());  // a malformed report is refused before any change
   if (!a.db.empty()) ValidateSeriesName(a.series);
   // The history database is checked (readable, well-formed) before the baseline changes.
   std::string raw;
-  const std::vector<HistoryEntry> entries = a.db.empty() ? std::vector<HistoryEntry>{} : ReadHistoryFile(a.db, true, &raw);
+  const std::vector<HistoryEntry> entries =
+      a.db.empty() ? std::vector<HistoryEntry>{} : ReadHistoryFile(a.db, true, &raw);
   const std::string now = UtcDate(std::time(nullptr));
   std::optional<HistoryEntry> entry;
   if (!a.db.empty()) {
@@ -438,11 +446,13 @@ void RegisterCompareCommands(CLI::App& app, Commands& commands) {
   auto* bl = app.add_subcommand("baseline", "manage the baseline that aalab compare gates against");
   bl->require_subcommand(1);
   auto* acc = bl->add_subcommand(
-      "accept", "replace the baseline folder with a run's folder (the output rule applies) and record who, when and why");
+      "accept",
+      "replace the baseline folder with a run's folder (the output rule applies) and record who, when and why");
   auto ba = std::make_shared<BaselineAcceptArgs>();
   acc->add_option("run", ba->run_dir, "the run folder to accept (holds report.json)")->required();
-  acc->add_option("--to", ba->to, "the baseline folder (e.g. ci/baseline): replaced only when it is an earlier aalab "
-                                  "output holding nothing else")
+  acc->add_option("--to", ba->to,
+                  "the baseline folder (e.g. ci/baseline): replaced only when it is an earlier aalab "
+                  "output holding nothing else")
       ->required();
   acc->add_option("--why", ba->why, "why the numbers moved (recorded in BASELINE.txt and the history)")->required();
   acc->add_option("--by", ba->by, "who accepts (default: $GITHUB_ACTOR, $USER or $LOGNAME)");
@@ -457,7 +467,8 @@ void RegisterCompareCommands(CLI::App& app, Commands& commands) {
   auto ca = std::make_shared<CompareArgs>();
   cmp->add_option("baseline", ca->baseline, "baseline report.json")->required();
   cmp->add_option("current", ca->current, "current report.json")->required();
-  cmp->add_option("--max-drop-db", ca->max_drop_db, "largest allowed drop of a dB metric (PSNR) before it is a regression")
+  cmp->add_option("--max-drop-db", ca->max_drop_db,
+                  "largest allowed drop of a dB metric (PSNR) before it is a regression")
       ->capture_default_str();
   cmp->add_option("--metrics", ca->metrics,
                   "comma-separated metrics to compare (default: edge_psnr_db,psnr_db when both reports have "

@@ -125,18 +125,21 @@ std::string FigureLatex(const std::vector<ExportSource>& sources, const CropFigu
   for (const auto& m : o.methods) methods += (methods.empty() ? "" : ", ") + m;
   std::string caption = "Crops [x, y, w, h] = " + CropList(o.crops) + " of scene " + o.scene + " (" +
                         std::to_string(scene->width) + "x" + std::to_string(scene->height) + "), enlarged " +
-                        std::to_string(o.zoom) + "x by pixel replication: the reference and the output of " +
-                        methods + ".";
-  if (sources.size() > 1) caption += " Each method is shown for every run in order (" + [&] {
-    std::string s;
-    for (const auto& src : sources) s += (s.empty() ? "" : ", ") + src.label;
-    return s;
-  }() + ").";
+                        std::to_string(o.zoom) + "x by pixel replication: the reference and the output of " + methods +
+                        ".";
+  if (sources.size() > 1)
+    caption += " Each method is shown for every run in order (" + [&] {
+      std::string s;
+      for (const auto& src : sources) s += (s.empty() ? "" : ", ") + src.label;
+      return s;
+    }() + ").";
   if (o.heatmap) {
     char full[32];
     std::snprintf(full, sizeof full, "%g", static_cast<double>(kErrorHeatmapMax));
-    caption += std::string(" Under each crop: the absolute error against the reference (mean over RGB of the 8-bit "
-                           "values), viridis from 0 to ") + full + " and above.";
+    caption += std::string(
+                   " Under each crop: the absolute error against the reference (mean over RGB of the 8-bit "
+                   "values), viridis from 0 to ") +
+               full + " and above.";
   }
   // Each report's own conditions (viewing, sampler, reference): the first's, then any other
   // report's that differ, named by its label.
@@ -148,9 +151,10 @@ std::string FigureLatex(const std::vector<ExportSource>& sources, const CropFigu
   }
   std::string o_tex;
   for (const auto& line : provenance) o_tex += "% " + line + "\n";
-  o_tex += "% Needs \\usepackage{graphicx}.\n\\begin{figure*}[tbp]\n\\centering\n"
-           "\\includegraphics[width=\\linewidth]{figure_crops.png}\n\\caption{" +
-           LatexEscape(caption) + "}\n\\label{fig:aalab-crops}\n\\end{figure*}\n";
+  o_tex +=
+      "% Needs \\usepackage{graphicx}.\n\\begin{figure*}[tbp]\n\\centering\n"
+      "\\includegraphics[width=\\linewidth]{figure_crops.png}\n\\caption{" +
+      LatexEscape(caption) + "}\n\\label{fig:aalab-crops}\n\\end{figure*}\n";
   return o_tex;
 }
 
@@ -184,10 +188,11 @@ int RunExport(const ExportArgs& a) {
   fig_asked.zoom = a.zoom;
   fig_asked.heatmap = a.heatmap;
   if (!a.crops.empty()) {
-    const std::string scene_name = a.figure_scene.empty() ? DefaultCropFigure(sources, sel, fig_asked).scene
-                                                          : a.figure_scene;
+    const std::string scene_name =
+        a.figure_scene.empty() ? DefaultCropFigure(sources, sel, fig_asked).scene : a.figure_scene;
     const SceneResult* scene = FindScene(sources.front().report, scene_name);
-    if (!scene) throw UserError("--figure-scene: scene '" + scene_name + "' is not in report '" + sources.front().dir + "'");
+    if (!scene)
+      throw UserError("--figure-scene: scene '" + scene_name + "' is not in report '" + sources.front().dir + "'");
     fig_asked.scene = scene_name;
     fig_asked.crops = ParseCrops(a.crops, *scene);
   }
@@ -195,7 +200,9 @@ int RunExport(const ExportArgs& a) {
   CropFigure fig = ComposeCropFigure(sources, fig_opts, [&](size_t s, const std::string& rel) {
     // The report names the image; it must lie inside the report's folder (safe_path.h).
     return ReadImage8(
-        ResolveInside(sources[s].dir, rel, "image path in report '" + (fs::path(sources[s].dir) / "report.json").string() + "'").string());
+        ResolveInside(sources[s].dir, rel,
+                      "image path in report '" + (fs::path(sources[s].dir) / "report.json").string() + "'")
+            .string());
   });
   for (const auto& l : fig.labels) DrawText(fig.pixels, l.x, l.y, l.text, l.size);
 

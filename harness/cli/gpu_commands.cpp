@@ -99,7 +99,8 @@ int ExportFrames(const ExportArgs& a) {
     for (const auto& spec : SplitCommaList(a.render_methods, "--render-methods")) {
       const MethodPlan plan = MakeMethod(spec);
       if (!plan.render.msaa.On() && plan.render.pattern != SamplePattern::kOrderedGrid) {
-        throw UserError("--render-methods '" + spec + "' is not an MSAA or ordered-grid SSAA method (allowed: msaa-2x, "
+        throw UserError("--render-methods '" + spec +
+                        "' is not an MSAA or ordered-grid SSAA method (allowed: msaa-2x, "
                         "msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4: what aalab_raster draws)");
       }
       render_methods.emplace_back(spec, plan.render);
@@ -177,8 +178,9 @@ int ExportGeometry(const GeometryArgs& a) {
     }
   }
   if (drawn.empty()) {
-    throw UserError("the raster path can draw none of the scenes given (it draws still triangle scenes with unlit or "
-                    "lambert solid colours and directional lights; of the library: wedges, mesh)");
+    throw UserError(
+        "the raster path can draw none of the scenes given (it draws still triangle scenes with unlit or "
+        "lambert solid colours and directional lights; of the library: wedges, mesh)");
   }
   std::vector<std::string> inputs = names;
   for (const auto& file : InputFilesRead()) inputs.push_back(file);
@@ -234,8 +236,10 @@ std::string AttachGpuTimings(const std::string& dir, const std::string& gpu_json
     what = "GPU timings (" + gpu.device + ", driver " + gpu.driver + ")";
   }
   if (matched == 0) {
-    throw UserError("'" + gpu_json + "' has timings for none of the report's rows (rows are matched by scene and "
-                    "method spec; the GPU file covers scenes " + JoinNames(scenes) + ")");
+    throw UserError("'" + gpu_json +
+                    "' has timings for none of the report's rows (rows are matched by scene and "
+                    "method spec; the GPU file covers scenes " +
+                    JoinNames(scenes) + ")");
   }
   WriteTextFile(report_path.string(), ReportToJson(report).dump(2) + "\n");
   WriteTextFile((fs::path(dir) / "index.html").string(), RenderHtmlReport(report));
@@ -244,8 +248,8 @@ std::string AttachGpuTimings(const std::string& dir, const std::string& gpu_json
 }
 
 void RegisterGpuCommands(CLI::App& app, Commands& commands) {
-  auto* ex = app.add_subcommand("export-frames",
-                                "render the 1x (and render-scale) frames of scenes as PPM for the GPU tool (docs/gpu.md)");
+  auto* ex = app.add_subcommand(
+      "export-frames", "render the 1x (and render-scale) frames of scenes as PPM for the GPU tool (docs/gpu.md)");
   auto ea = std::make_shared<ExportArgs>();
   ex->add_option("--suite", ea->suite, "suite name (see aalab list scenes)")->capture_default_str();
   ex->add_option("--scenes", ea->scenes, "comma-separated scene names or files (overrides --suite)");
@@ -262,8 +266,8 @@ void RegisterGpuCommands(CLI::App& app, Commands& commands) {
   ex->add_option("--out", ea->out, "output folder (frames.tsv + PPM files)")->required();
   ex->callback([&commands, ea] { commands.action = [ea] { return ExportFrames(*ea); }; });
 
-  auto* eg = app.add_subcommand("export-geometry",
-                                "write the triangle scenes' geometry, camera and shading for the raster tool (docs/gpu.md)");
+  auto* eg = app.add_subcommand(
+      "export-geometry", "write the triangle scenes' geometry, camera and shading for the raster tool (docs/gpu.md)");
   auto ga = std::make_shared<GeometryArgs>();
   eg->add_option("--suite", ga->suite, "suite name (see aalab list scenes)")->capture_default_str();
   eg->add_option("--scenes", ga->scenes, "comma-separated scene names or files (overrides --suite)");
@@ -272,7 +276,8 @@ void RegisterGpuCommands(CLI::App& app, Commands& commands) {
   eg->add_option("--out", ga->out, "output folder (geometry.tsv + one .geom file per scene)")->required();
   eg->callback([&commands, ga] { commands.action = [ga] { return ExportGeometry(*ga); }; });
 
-  auto* mg = app.add_subcommand("merge-gpu", "attach aalab_gpu's timings (JSON) to a report's rows and redraw its page");
+  auto* mg =
+      app.add_subcommand("merge-gpu", "attach aalab_gpu's timings (JSON) to a report's rows and redraw its page");
   auto dir = std::make_shared<std::string>();
   auto file = std::make_shared<std::string>();
   mg->add_option("report_dir", *dir, "report folder (holds report.json)")->required();

@@ -49,8 +49,12 @@ void HandleSignals() {
     while (sigwait(&set, &sig) != 0) {
     }
     const int removed = RemoveUnfinishedForExit();
-    const char* what = sig == SIGINT ? "interrupted (SIGINT)" : sig == SIGHUP ? "hung up (SIGHUP)" : "terminated (SIGTERM)";
-    const ExitCode code = sig == SIGINT ? ExitCode::kInterrupted : sig == SIGHUP ? ExitCode::kHangup : ExitCode::kTerminated;
+    const char* what = sig == SIGINT   ? "interrupted (SIGINT)"
+                       : sig == SIGHUP ? "hung up (SIGHUP)"
+                                       : "terminated (SIGTERM)";
+    const ExitCode code = sig == SIGINT   ? ExitCode::kInterrupted
+                          : sig == SIGHUP ? ExitCode::kHangup
+                                          : ExitCode::kTerminated;
     const std::string line = std::string("aalab: ") + what + ": stopped; removed " + std::to_string(removed) +
                              " unfinished output path(s), left everything that was there before as it was\n";
     if (::write(STDERR_FILENO, line.data(), line.size()) < 0) {
@@ -67,8 +71,8 @@ std::string Allowed(const CLI::Option* opt) {
   std::string what = type.rfind("INT", 0) == 0     ? "a whole number"
                      : type.rfind("UINT", 0) == 0  ? "a whole number >= 0"
                      : type.rfind("FLOAT", 0) == 0 ? "a number"
-                     : opt->get_type_size() == 0 ? "no value (a flag)"
-                                                 : "a value (" + (type.empty() ? std::string("text") : type) + ")";
+                     : opt->get_type_size() == 0   ? "no value (a flag)"
+                                                   : "a value (" + (type.empty() ? std::string("text") : type) + ")";
   const std::string def = opt->get_default_str();
   if (!def.empty()) what += ", default " + def;
   return opt->get_name() + " takes " + what + ": " + opt->get_description();
@@ -92,12 +96,14 @@ std::string DescribeParseError(CLI::App& app, const CLI::ParseError& e) {
   }
   bool negative = false;  // "-3": CLI11 reads a negative number as an unknown option
   for (size_t i = 0; i + 1 < msg.size(); ++i) {
-    negative = negative || (msg[i] == '-' && (i == 0 || msg[i - 1] == ' ') && std::isdigit(static_cast<unsigned char>(msg[i + 1])));
+    negative = negative ||
+               (msg[i] == '-' && (i == 0 || msg[i - 1] == ' ') && std::isdigit(static_cast<unsigned char>(msg[i + 1])));
   }
   if (msg.find("not expected") != std::string::npos && negative) {
     msg += " (a value that starts with '-' is read as an option: write --option=-value; see --help for the options)";
   } else if (msg.find("not expected") != std::string::npos) {
-    msg += " (see 'aalab " + (apps.size() == 1 ? apps[0]->get_name() + " " : std::string()) + "--help' for the options)";
+    msg +=
+        " (see 'aalab " + (apps.size() == 1 ? apps[0]->get_name() + " " : std::string()) + "--help' for the options)";
   } else if (msg.find("subcommand is required") != std::string::npos && apps.size() == 1 &&
              !apps[0]->get_subcommands({}).empty()) {
     // `aalab history` alone: that command's own usage, not the top-level list.

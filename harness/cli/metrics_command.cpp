@@ -101,18 +101,21 @@ int RunMetrics(const std::string& ref_path, const std::string& img_path, const s
 }  // namespace
 
 void RegisterMetricsCommand(CLI::App& app, Commands& commands) {
-  auto* cmd = app.add_subcommand("metrics", "every metric for any two images (same size and channel count; never resampled)");
+  auto* cmd =
+      app.add_subcommand("metrics", "every metric for any two images (same size and channel count; never resampled)");
   struct Args {
     std::string reference, image, mask, none, viewing;
     bool json = false;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("--reference", a->reference, "reference image (8-bit = sRGB-encoded; float/EXR = display-linear)")->required();
+  cmd->add_option("--reference", a->reference, "reference image (8-bit = sRGB-encoded; float/EXR = display-linear)")
+      ->required();
   cmd->add_option("image", a->image, "image to score")->required();
   cmd->add_option("--mask", a->mask, "edge mask image (white = edge), e.g. images/<scene>/edge_mask.png");
   cmd->add_option("--none", a->none, "the no-AA image, for edge_error_removed");
-  cmd->add_option("--viewing", a->viewing,
-                  "viewing condition PRESET[:key=value,...] for FLIP's pixels per degree (default 67; aalab list viewing)");
+  cmd->add_option(
+      "--viewing", a->viewing,
+      "viewing condition PRESET[:key=value,...] for FLIP's pixels per degree (default 67; aalab list viewing)");
   cmd->add_flag("--json", a->json, "print JSON instead of a table");
   cmd->callback([&commands, a] {
     commands.action = [a] { return RunMetrics(a->reference, a->image, a->mask, a->none, a->json, a->viewing); };

@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kSweepNotes = R"(Each scene's reference and 1x frame are rendered once and reused for every grid point.
+constexpr const char* kSweepNotes =
+    R"(Each scene's reference and 1x frame are rendered once and reused for every grid point.
 Grid values go through the method's parameter table (unknown parameter or out-of-range value:
 the method's own error); a parameter given twice is an error; at most 1024 points.
 Objectives (default flip_mean, then edge_psnr_db: squared-error objectives reward blur):
@@ -33,7 +34,8 @@ per scene. Writes DIR/sweep.json, DIR/index.html and DIR/crops/ (via DIR.partial
 }  // namespace
 
 void RegisterSweepCommands(CLI::App& app, Commands& commands) {
-  auto* sw = app.add_subcommand("sweep", "tune one method over a parameter grid; prints the best setting and a preset line");
+  auto* sw =
+      app.add_subcommand("sweep", "tune one method over a parameter grid; prints the best setting and a preset line");
   struct Args {
     SweepSettings s;
     std::string scenes, size = "960x540", objectives, shard;
@@ -50,16 +52,21 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
                  "preset (default: flip_mean,edge_psnr_db; psnr_db when edge PSNR is not computed)");
   sw->add_option("--out", a->s.out_dir, "output folder")->capture_default_str();
   sw->add_option("--size", a->size, "output size WxH")->capture_default_str();
-  sw->add_option("--ref-spp", a->s.ref_spp, "reference samples per pixel: n*n, n even (4, 16, 64, 256, 1024); default as aalab run")
+  sw->add_option("--ref-spp", a->s.ref_spp,
+                 "reference samples per pixel: n*n, n even (4, 16, 64, 256, 1024); default as aalab run")
       ->capture_default_str();
-  sw->add_option("--reference", a->s.reference,
-                 "sampled (--ref-spp stratified samples) or exact (closed-form coverage; flat unlit orthographic scenes)")
+  sw->add_option(
+        "--reference", a->s.reference,
+        "sampled (--ref-spp stratified samples) or exact (closed-form coverage; flat unlit orthographic scenes)")
       ->capture_default_str();
   sw->add_option("--seed", a->s.seed, "jitter seed")->capture_default_str();
-  sw->add_option("--repeat", a->s.repeat, "timed repeats after one warm-up (default as aalab run; 3+ gives the time spread the suggestion uses)")->capture_default_str();
+  sw->add_option("--repeat", a->s.repeat,
+                 "timed repeats after one warm-up (default as aalab run; 3+ gives the time spread the suggestion uses)")
+      ->capture_default_str();
   sw->add_option("--threads", a->s.threads, "worker threads (0 = all hardware threads)")->capture_default_str();
-  sw->add_option("--viewing", a->s.viewing,
-                 "viewing condition PRESET[:key=value,...] for FLIP (default: 'default', 67 px/deg; aalab list viewing)");
+  sw->add_option(
+      "--viewing", a->s.viewing,
+      "viewing condition PRESET[:key=value,...] for FLIP (default: 'default', 67 px/deg; aalab list viewing)");
   sw->add_flag("--quiet", a->s.quiet, "no progress on stderr");
   sw->add_option("--shard", a->shard,
                  "K/N: run shard K (0..N-1) of N, its share of the grid points on every scene, for 'aalab merge' "
@@ -84,11 +91,11 @@ void RegisterSweepCommands(CLI::App& app, Commands& commands) {
       }
       const SweepResult r = RunSweep(a->s);
       if (r.report.shard) {
-        std::printf("sweep shard %d/%d: %zu of %d grid points on %zu scenes\npartial sweep: %s (merge the shards with "
-                    "aalab merge)\n",
-                    r.report.shard->index, r.report.shard->count, r.report.shard->units.size(),
-                    r.report.shard->total_units, r.report.scenes.size(),
-                    (fs::absolute(r.out_dir) / "sweep.json").string().c_str());
+        std::printf(
+            "sweep shard %d/%d: %zu of %d grid points on %zu scenes\npartial sweep: %s (merge the shards with "
+            "aalab merge)\n",
+            r.report.shard->index, r.report.shard->count, r.report.shard->units.size(), r.report.shard->total_units,
+            r.report.scenes.size(), (fs::absolute(r.out_dir) / "sweep.json").string().c_str());
         return ToInt(ExitCode::kOk);
       }
       std::fputs(SweepSummaryText(r).c_str(), stdout);

@@ -41,8 +41,8 @@ CaptureCheck CheckCapture(const ImageF& none, const ImageF& ref, const ImageF& m
   for (size_t i = 0; i < none.PixelCount(); ++i) {
     const bool edge = mask.Data()[i] > 0.5f;
     for (int c = 0; c < 3; ++c) {
-      const double d = static_cast<double>(none.Data()[3 * i + static_cast<size_t>(c)]) -
-                       ref.Data()[3 * i + static_cast<size_t>(c)];
+      const double d =
+          static_cast<double>(none.Data()[3 * i + static_cast<size_t>(c)]) - ref.Data()[3 * i + static_cast<size_t>(c)];
       (edge ? sq_edge : sq_in) += d * d;
       if (!edge) r.bias[c] += d;
     }
@@ -80,25 +80,32 @@ CaptureCheck CheckCapture(const ImageF& none, const ImageF& ref, const ImageF& m
   std::string what;
   if (biased) {
     what = "over the interior (non-edge) pixels, none is on average " + Fixed(std::fabs(worst) * levels, 1) +
-           " levels (of 255) " + (worst > 0 ? "brighter" : "darker") + " than the reference (per channel R, G, B: " +
-           Fixed(r.bias[0] * levels, 1) + ", " + Fixed(r.bias[1] * levels, 1) + ", " + Fixed(r.bias[2] * levels, 1) +
+           " levels (of 255) " + (worst > 0 ? "brighter" : "darker") +
+           " than the reference (per channel R, G, B: " + Fixed(r.bias[0] * levels, 1) + ", " +
+           Fixed(r.bias[1] * levels, 1) + ", " + Fixed(r.bias[2] * levels, 1) +
            "; AA changes edges, not the mean of flat areas)";
   }
   if (unexplained) {
     what += std::string(what.empty() ? "" : "; ") + "the interior error (RMS " + Fixed(r.interior_rms * levels, 1) +
-            " levels) is " + (r.edge_rms > 0 ? Fixed(r.interior_rms / r.edge_rms, 2) + "x the edge error" : "there with no edges") +
+            " levels) is " +
+            (r.edge_rms > 0 ? Fixed(r.interior_rms / r.edge_rms, 2) + "x the edge error" : "there with no edges") +
             " — anti-aliasing cannot explain it";
   }
   // The likely cause: the reading that fits best, if one fits much better.
   std::string cause;
   if (r.rms_if_linear < 0.5 * r.interior_rms) {
-    cause = "the reference looks like linear values stored as display-encoded: sRGB-encoding it brings the interior "
-            "error to RMS " + Fixed(r.rms_if_linear * levels, 1) +
-            " levels (write the 16-bit PNG after the sRGB transform, or give the linear values as .exr)";
+    cause =
+        "the reference looks like linear values stored as display-encoded: sRGB-encoding it brings the interior "
+        "error to RMS " +
+        Fixed(r.rms_if_linear * levels, 1) +
+        " levels (write the 16-bit PNG after the sRGB transform, or give the linear values as .exr)";
   } else if (r.rms_if_double_encoded < 0.5 * r.interior_rms) {
-    cause = "the reference looks sRGB-encoded twice (or the frame is linear): decoding it once brings the interior "
-            "error to RMS " + Fixed(r.rms_if_double_encoded * levels, 1) + " levels (give an .exr reference as linear, "
-            "display-linear values)";
+    cause =
+        "the reference looks sRGB-encoded twice (or the frame is linear): decoding it once brings the interior "
+        "error to RMS " +
+        Fixed(r.rms_if_double_encoded * levels, 1) +
+        " levels (give an .exr reference as linear, "
+        "display-linear values)";
   } else if (r.rms_with_gain < 0.5 * r.interior_rms && std::fabs(r.best_gain - 1.0) > 0.02) {
     cause = "an exposure difference: the reference times " + Fixed(r.best_gain, 3) +
             " in linear light brings the interior error to RMS " + Fixed(r.rms_with_gain * levels, 1) +

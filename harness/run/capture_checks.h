@@ -20,14 +20,14 @@ inline constexpr double kInteriorRmsFloor = 0.03;  ///< ≈ 30.5 dB interior PSN
 
 /// What the check measured on one frame (sRGB-encoded units; interior = not in the mask).
 struct CaptureCheck {
-  double bias[3] = {0, 0, 0};     ///< mean of none − reference over interior pixels, per channel
+  double bias[3] = {0, 0, 0};  ///< mean of none − reference over interior pixels, per channel
   double interior_rms = 0, edge_rms = 0;
   size_t interior_px = 0, edge_px = 0;
   /// Interior RMS error if the reference had been read differently: as linear values that
   /// still need the sRGB encode, or as sRGB values that were wrongly encoded once more.
   double rms_if_linear = 0, rms_if_double_encoded = 0;
-  double best_gain = 1;        ///< the exposure gain on the linear reference that fits none best
-  double rms_with_gain = 0;    ///< interior RMS with that gain
+  double best_gain = 1;               ///< the exposure gain on the linear reference that fits none best
+  double rms_with_gain = 0;           ///< interior RMS with that gain
   std::vector<std::string> warnings;  ///< empty: nothing AA cannot explain
 };
 

@@ -41,7 +41,6 @@ std::string ReadText(const std::string& path) {
   return ss.str();
 }
 
-
 }  // namespace
 
 bool IsImageSceneManifest(const std::string& path) {
@@ -206,7 +205,8 @@ std::unique_ptr<PreparedScene> PrepareSource(SceneSource& source, int width, int
   sr.reference_note = v.reference_note;
   sr.ref_spp = v.reference_spp;  // 0: unknown
   if (!v.reference_origin.empty() || v.reference_spp > 0) {
-    sr.reference_note += "; made by " + (v.reference_origin.empty() ? std::string("(renderer not given)") : v.reference_origin) +
+    sr.reference_note += "; made by " +
+                         (v.reference_origin.empty() ? std::string("(renderer not given)") : v.reference_origin) +
                          (v.reference_spp > 0 ? ", " + std::to_string(v.reference_spp) + " samples per pixel" : "") +
                          " (the manifest's reference_info)";
   }
@@ -253,9 +253,11 @@ MethodOutput SuppliedOutputRow(const PreparedScene& p, const std::string& name, 
   row.spec = name;
   row.render_width = p.info.width;
   row.render_height = p.info.height;
-  const auto it = std::find_if(p.supplied.begin(), p.supplied.end(), [&](const SuppliedFrame& s) { return s.name == name; });
+  const auto it =
+      std::find_if(p.supplied.begin(), p.supplied.end(), [&](const SuppliedFrame& s) { return s.name == name; });
   if (it == p.supplied.end()) {
-    row.not_applicable = "no '" + name + "' frames were supplied for this scene (outputs are given per view in an "
+    row.not_applicable = "no '" + name +
+                         "' frames were supplied for this scene (outputs are given per view in an "
                          "image scene's manifest)";
     for (const std::string& metric : ImageMetricKeys()) {
       row.metrics.push_back({metric, std::nullopt, "not applicable: " + row.not_applicable});

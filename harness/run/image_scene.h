@@ -20,19 +20,19 @@ namespace aalab {
 
 /// One view of an image scene (one frame of it, for a sequence), read and validated.
 struct ImageView {
-  std::string name;         ///< lowercase-kebab, unique in the run
+  std::string name;  ///< lowercase-kebab, unique in the run
   std::string description;
-  std::string manifest;     ///< the manifest's path, as given
-  size_t index = 0;         ///< position in the manifest's "views"
-  Image8 frame;             ///< the 1x frame (RGBA8, alpha 255)
-  ImageF reference;         ///< sRGB-encoded float RGB, not quantised (what Reference::image holds)
-  std::string reference_note;  ///< how the reference file was read
-  ImageF edge_mask_raw;     ///< the mask before dilation (the given mask when one was given)
-  ImageF edge_mask;         ///< the mask the edge metrics use
-  std::string edge_mask_source;  ///< how the mask was made, for the report
-  int frames = 1;           ///< frames in the view's sequence (1: a still view)
-  int frame_index = 0;      ///< the frame this holds
-  std::optional<double> frame_ms;  ///< the 1x frame's render time per frame, when given
+  std::string manifest;                ///< the manifest's path, as given
+  size_t index = 0;                    ///< position in the manifest's "views"
+  Image8 frame;                        ///< the 1x frame (RGBA8, alpha 255)
+  ImageF reference;                    ///< sRGB-encoded float RGB, not quantised (what Reference::image holds)
+  std::string reference_note;          ///< how the reference file was read
+  ImageF edge_mask_raw;                ///< the mask before dilation (the given mask when one was given)
+  ImageF edge_mask;                    ///< the mask the edge metrics use
+  std::string edge_mask_source;        ///< how the mask was made, for the report
+  int frames = 1;                      ///< frames in the view's sequence (1: a still view)
+  int frame_index = 0;                 ///< the frame this holds
+  std::optional<double> frame_ms;      ///< the 1x frame's render time per frame, when given
   std::vector<SuppliedFrame> outputs;  ///< the user's own AA outputs of this frame
   /// Motion vectors and jitter given (TAA can run): this frame's jitter and, from frame 1 on,
   /// TAA's `previous` positions derived from the motion vectors (image_sequence.h).
@@ -60,7 +60,7 @@ std::vector<ImageView> LoadImageScene(const std::string& manifest_path);
 
 /// One entry of `--scenes`: a scene the tracer renders, or a view of an image scene.
 struct SceneSource {
-  std::unique_ptr<Scene> scene;        ///< set for a rendered scene
+  std::unique_ptr<Scene> scene;  ///< set for a rendered scene
   /// Set for an image-scene view: its name, manifest and index only (validated, pixels not
   /// kept); PrepareSource reads the images again, so a run holds one view's pixels at a time.
   std::unique_ptr<ImageView> view;

@@ -56,9 +56,9 @@ FieldRef ParseFieldRef(const JsonField& f) {
 
 /// An image a view names, read and described.
 struct ViewImage {
-  std::string rel;   ///< as written in the manifest
-  std::string path;  ///< resolved against the manifest's folder
-  ImageF pixels;     ///< the channels read (colour: always 3)
+  std::string rel;                 ///< as written in the manifest
+  std::string path;                ///< resolved against the manifest's folder
+  ImageF pixels;                   ///< the channels read (colour: always 3)
   std::vector<std::string> names;  ///< which channels were read
   ImageFileInfo info;
 };
@@ -130,9 +130,9 @@ std::string FramePath(const JsonField& f, const ViewSequence& seq, int k) {
   if (f.Value().is_array()) {
     const size_t n = f.ArraySize();
     if (n != static_cast<size_t>(seq.frames)) {
-      f.Fail("lists " + std::to_string(n) + " file(s) but the view has " + std::to_string(seq.frames) +
-             " frame(s) (" + (seq.declared ? "\"sequence\": {\"frames\": " + std::to_string(seq.frames) + "}"
-                                           : std::string("no \"sequence\": a still view takes one path")) +
+      f.Fail("lists " + std::to_string(n) + " file(s) but the view has " + std::to_string(seq.frames) + " frame(s) (" +
+             (seq.declared ? "\"sequence\": {\"frames\": " + std::to_string(seq.frames) + "}"
+                           : std::string("no \"sequence\": a still view takes one path")) +
              "); give one file per frame, or a numbered pattern such as frame_%04d.png");
     }
     return f.At(static_cast<size_t>(k)).String();
@@ -192,7 +192,7 @@ Image8 ReadDisplayFrame(const FieldRef& f, const std::string& rel, const fs::pat
   const ViewImage img = ReadViewImage(f, rel, base, {".png", ".tif", ".tiff"});
   if (img.info.is_float || img.info.bits != 8) {
     f.field.Fail("'" + img.rel + "' stores " + img.info.Describe() + " samples; " + what +
-           " must be 8-bit integer (the RGBA8 back buffer, sRGB-encoded)");
+                 " must be 8-bit integer (the RGBA8 back buffer, sRGB-encoded)");
   }
   if (w > 0) RequireSize(f.field, img, w, h, frame_rel);
   const int W = img.info.width, H = img.info.height;
@@ -297,8 +297,8 @@ void ReadEdgeMask(const JsonField& v, const ViewSequence& seq, int k, const fs::
   if (has_ids) {
     const JsonField idf = v.Child("object_ids");
     const FieldRef ir = ParseFieldRef(idf);
-    const ViewImage ids = ReadViewImage(ir, FramePath(ir.path, seq, k), base, {".png", ".tif", ".tiff", ".exr"},
-                                        ChannelRole::kIds);
+    const ViewImage ids =
+        ReadViewImage(ir, FramePath(ir.path, seq, k), base, {".png", ".tif", ".tiff", ".exr"}, ChannelRole::kIds);
     const int n = SubsampleFactor(idf, ids, W, H, frame_rel);
     if (!ids.info.is_float && ids.info.bits != 8 && ids.info.bits != 16) {
       idf.Fail("'" + ids.rel + "' stores " + ids.info.Describe() +
@@ -330,17 +330,18 @@ void ReadEdgeMask(const JsonField& v, const ViewSequence& seq, int k, const fs::
     for (int y = 0; y < H; ++y) {
       for (int x = 0; x < W; ++x) {
         if (depth.pixels.At(x, y, 0) < 0.0f) {
-          df.Fail("'" + depth.rel + "' has a negative depth at pixel (" + std::to_string(x) + ", " +
-                  std::to_string(y) + "); depths are distances >= 0");
+          df.Fail("'" + depth.rel + "' has a negative depth at pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                  "); depths are distances >= 0");
         }
       }
     }
     const ImageF d = dn > 1 ? EdgesFromDepthBlocks(depth.pixels, dn) : EdgesFromDepth(FirstChannels(depth.pixels, 1));
     view->edge_mask_raw = has_ids ? UnionMask(view->edge_mask_raw, d) : d;
     how += std::string(has_ids ? " or " : "") + "depth" + (dn > 1 ? " at " + std::to_string(dn) + "x" : std::string()) +
-           " ('" + depth.rel + (dn > 1 ? "': within a pixel's sub-samples the depth varies by more than "
-                                       : "': a 4-neighbour's depth differs by more than ") + ShortNumber(kDepthEdgeRelativeJump * 100.0f) +
-           " % of the nearer one" +
+           " ('" + depth.rel +
+           (dn > 1 ? "': within a pixel's sub-samples the depth varies by more than "
+                   : "': a 4-neighbour's depth differs by more than ") +
+           ShortNumber(kDepthEdgeRelativeJump * 100.0f) + " % of the nearer one" +
            (infinite ? "; " + std::to_string(infinite) + " px of +Inf read as no surface" : std::string()) + ")";
   }
   view->edge_mask = DilateMask(view->edge_mask_raw);
@@ -402,8 +403,9 @@ void ReadMotion(const JsonField& v, const ViewSequence& seq, int k, const fs::pa
   if (!has_mv && !has_jitter) return;
   if (has_mv != has_jitter) {
     v.Child(has_mv ? "motion_vectors" : "jitter")
-        .Fail("motion vectors and jitter go together (aalab's TAA runs on a captured sequence only with both): "
-              "give \"jitter\": [[dx, dy], ...] (one per frame, pixels) and \"motion_vectors\"");
+        .Fail(
+            "motion vectors and jitter go together (aalab's TAA runs on a captured sequence only with both): "
+            "give \"jitter\": [[dx, dy], ...] (one per frame, pixels) and \"motion_vectors\"");
   }
   if (!seq.declared || seq.frames < 2) {
     v.Child("motion_vectors").Fail("motion vectors need a sequence: give \"sequence\": {\"frames\": N} with N >= 2");
@@ -423,12 +425,13 @@ void ReadMotion(const JsonField& v, const ViewSequence& seq, int k, const fs::pa
   mf.RequireObject({"path", "layer", "channels", "units", "direction", "y", "includes_jitter"});
   MotionConvention c;
   const std::string units = mf.Has("units") ? mf.Child("units").Choice({"pixels", "uv", "ndc"}) : "pixels";
-  c.units = units == "uv" ? MotionConvention::Units::kUv
+  c.units = units == "uv"    ? MotionConvention::Units::kUv
             : units == "ndc" ? MotionConvention::Units::kNdc
                              : MotionConvention::Units::kPixels;
   if (!mf.Has("direction")) {
-    mf.Fail("missing \"direction\": \"to_previous\" (the vector points to where the surface was: previous − "
-            "current) or \"velocity\" (current − previous, as Unity and Unreal write it)");
+    mf.Fail(
+        "missing \"direction\": \"to_previous\" (the vector points to where the surface was: previous − "
+        "current) or \"velocity\" (current − previous, as Unity and Unreal write it)");
   }
   c.points_to_previous = mf.Child("direction").Choice({"to_previous", "velocity"}) == "to_previous";
   c.y_up = (mf.Has("y") ? mf.Child("y").Choice({"down", "up"}) : "down") == "up";
@@ -487,6 +490,5 @@ ImageView ParseView(const JsonField& v, const fs::path& base, const std::string&
   ReadMotion(v, seq, k, base, frame_rel, &view);
   return view;
 }
-
 
 }  // namespace aalab

@@ -26,9 +26,9 @@ namespace fs = std::filesystem;
 namespace {
 
 /// Context facts that name the program: shards built differently may compute different bits.
-const char* const kProgramFacts[] = {"tool_version",   "git_commit",          "build_type",
-                                     "compiler",       "float_flags",         "embree_version",
-                                     "openimageio_version", "tbb_version",    "nlohmann_json_version"};
+const char* const kProgramFacts[] = {"tool_version",         "git_commit",     "build_type",          "compiler",
+                                     "float_flags",          "embree_version", "openimageio_version", "tbb_version",
+                                     "nlohmann_json_version"};
 
 std::string Get(const std::vector<std::pair<std::string, std::string>>& kv, const std::string& key) {
   for (const auto& [k, v] : kv) {
@@ -73,7 +73,8 @@ std::vector<std::pair<size_t, size_t>> CheckShardSet(const std::vector<const Rep
   std::vector<int> owner(static_cast<size_t>(n), -1);
   for (size_t i = 0; i < reports.size(); ++i) {
     const int k = reports[i]->shard->index;
-    if (k < 0 || k >= n) throw UserError("merge: '" + dirs[i] + "' claims shard " + std::to_string(k) + " of " + std::to_string(n));
+    if (k < 0 || k >= n)
+      throw UserError("merge: '" + dirs[i] + "' claims shard " + std::to_string(k) + " of " + std::to_string(n));
     if (owner[static_cast<size_t>(k)] >= 0) {
       throw UserError("merge: shard " + std::to_string(k) + "/" + std::to_string(n) + " is given twice: '" +
                       dirs[static_cast<size_t>(owner[static_cast<size_t>(k)])] + "' and '" + dirs[i] + "'");
@@ -119,9 +120,10 @@ std::vector<std::pair<size_t, size_t>> CheckShardSet(const std::vector<const Rep
     const ShardInfo& s = *reports[i]->shard;
     const std::vector<size_t> share = ShardShare(total, ShardSpec{k, n});
     if (s.units.size() != share.size()) {
-      throw UserError("merge: '" + dirs[i] + "' (shard " + std::to_string(s.index) + "/" + std::to_string(n) + ") holds " + std::to_string(s.units.size()) + " " +
-                      s.unit + "(s) where the split of " + std::to_string(total) + " gives it " +
-                      std::to_string(share.size()) + ": the folder is incomplete or from another run");
+      throw UserError("merge: '" + dirs[i] + "' (shard " + std::to_string(s.index) + "/" + std::to_string(n) +
+                      ") holds " + std::to_string(s.units.size()) + " " + s.unit + "(s) where the split of " +
+                      std::to_string(total) + " gives it " + std::to_string(share.size()) +
+                      ": the folder is incomplete or from another run");
     }
     for (size_t j = 0; j < share.size(); ++j) {
       const auto [it, fresh] = seen.emplace(s.units[j], dirs[i]);
@@ -148,13 +150,15 @@ Report MergeRunReports(const std::vector<Report>& reports, const std::vector<std
     std::vector<std::string> names;
     for (const auto& sc : r.scenes) names.push_back(sc.name);
     if (names != r.shard->units) {
-      throw UserError("merge: '" + dirs[i] + "' lists scenes that differ from its shard's units: the report is damaged");
+      throw UserError("merge: '" + dirs[i] +
+                      "' lists scenes that differ from its shard's units: the report is damaged");
     }
     size_t scene = 0;
     for (const auto& row : r.rows) {
       while (scene < names.size() && names[scene] != row.scene) ++scene;
       if (scene == names.size()) {
-        throw UserError("merge: '" + dirs[i] + "' has a row of scene '" + row.scene + "' out of order or not in its share");
+        throw UserError("merge: '" + dirs[i] + "' has a row of scene '" + row.scene +
+                        "' out of order or not in its share");
       }
     }
   }
@@ -247,7 +251,8 @@ MergeResult MergeShards(const std::vector<std::string>& dirs, const std::string&
   for (const auto& d : dirs) {
     if (!fs::is_directory(d)) throw UserError("merge: '" + d + "' is not a folder");
     const bool run = fs::exists(fs::path(d) / "report.json"), sweep = fs::exists(fs::path(d) / "sweep.json");
-    if (!run && !sweep) throw UserError("merge: '" + d + "' holds neither report.json nor sweep.json: not a shard's output");
+    if (!run && !sweep)
+      throw UserError("merge: '" + d + "' holds neither report.json nor sweep.json: not a shard's output");
     runs += run ? 1 : 0;
     sweeps += sweep ? 1 : 0;
   }

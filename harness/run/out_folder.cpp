@@ -94,7 +94,8 @@ std::string WhyNotReplaceable(const fs::path& dir, const std::string& kind) {
   if (!fs::exists(marker) && kind == "history" && IsLegacyHistoryFolder(dir, files)) return "";
   if (!f || !std::getline(f, header) || header != MarkerHeader() || !std::getline(f, kind_line)) {
     return "it is not empty and was not written by aalab (it has no " + std::string(kOutputMarker) +
-           ", the list of files aalab wrote, and is not a run folder of an older aalab build holding only its report, page and the images the report names)";
+           ", the list of files aalab wrote, and is not a run folder of an older aalab build holding only its report, "
+           "page and the images the report names)";
   }
   if (kind_line != "kind " + kind) {
     return "it holds an aalab output of another kind (" + kind_line.substr(std::min<size_t>(5, kind_line.size())) +
@@ -134,7 +135,8 @@ std::string Unescape(const std::string& s) {
 /// another device than its parent. Such a folder cannot be renamed (EBUSY) nor be the target
 /// of a rename from its parent's file system (EXDEV).
 bool IsMountPoint(const fs::path& dir) {
-  struct stat a {}, b {};
+  struct stat a {
+  }, b{};
   if (::stat(dir.c_str(), &a) == 0 && ::stat(dir.parent_path().c_str(), &b) == 0 && a.st_dev != b.st_dev) return true;
   std::ifstream f("/proc/self/mountinfo");
   for (std::string line; std::getline(f, line);) {
@@ -191,7 +193,8 @@ OutFolder::OutFolder(const std::string& dir, const std::string& kind, const std:
       throw UserError("--out " + shown +
                       " is a mount point (a bind mount or another file system): aalab builds the output beside it "
                       "in DIR.partial and renames it into place at the end, which a mount point refuses. Give a "
-                      "folder inside it instead (e.g. --out " + (dir_ / "results").string() + ")");
+                      "folder inside it instead (e.g. --out " +
+                      (dir_ / "results").string() + ")");
     }
     if (const std::string why = WhyNotReplaceable(dir_, kind); !why.empty()) {
       throw UserError("--out " + shown + " cannot be replaced: " + why +
@@ -229,8 +232,8 @@ OutFolder::OutFolder(const std::string& dir, const std::string& kind, const std:
     const std::string lock = (partial_ / kLockFile).string();
     const int fd = ::open(lock.c_str(), O_RDWR | O_CLOEXEC);
     if (fd < 0) {
-      throw UserError("--out " + shown + ": '" + partial_.string() +
-                      "' exists and was not made by aalab (no " + kLockFile + " in it); move it away or choose another --out");
+      throw UserError("--out " + shown + ": '" + partial_.string() + "' exists and was not made by aalab (no " +
+                      kLockFile + " in it); move it away or choose another --out");
     }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       std::ifstream f(lock);
@@ -243,7 +246,8 @@ OutFolder::OutFolder(const std::string& dir, const std::string& kind, const std:
     }
     fs::remove_all(partial_, ec);  // a killed command's leftover; we hold its lock meanwhile
     ::close(fd);
-    if (ec) throw UserError("--out " + shown + ": cannot remove the leftover '" + partial_.string() + "': " + ec.message());
+    if (ec)
+      throw UserError("--out " + shown + ": cannot remove the leftover '" + partial_.string() + "': " + ec.message());
   }
   throw UserError("--out " + shown + ": another command keeps creating '" + partial_.string() + "'");
 }
@@ -278,8 +282,8 @@ void OutFolder::Commit() {
     // Files may have appeared during a long run: checked again just before the replacement.
     if (const std::string why = WhyNotReplaceable(dir_, kind_); !why.empty()) {
       KeepPartial();
-      throw UserError("--out '" + dir_.string() + "' cannot be replaced: " + why + ". The finished output is kept in '" +
-                      partial_.string() + "': move it where you want it");
+      throw UserError("--out '" + dir_.string() + "' cannot be replaced: " + why +
+                      ". The finished output is kept in '" + partial_.string() + "': move it where you want it");
     }
   }
   auto lock = LockUnfinished();  // an interruption waits until the renames are done
@@ -288,8 +292,8 @@ void OutFolder::Commit() {
   if (had_old && ::rename(dir_.c_str(), old.c_str()) != 0) {
     const int err = errno;
     KeepPartial();
-    throw UserError("cannot replace '" + dir_.string() + "': " + std::strerror(err) + ". The finished output is kept in '" +
-                    partial_.string() + "': move it where you want it");
+    throw UserError("cannot replace '" + dir_.string() + "': " + std::strerror(err) +
+                    ". The finished output is kept in '" + partial_.string() + "': move it where you want it");
   }
   if (::rename(partial_.c_str(), dir_.c_str()) != 0) {
     const int err = errno;

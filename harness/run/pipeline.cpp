@@ -210,7 +210,8 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, const Met
   const int repeat = run.repeat;
   const SamplerArithmetic sampler = run.sampler;
   StageClock* const clock = run.clock;
-  if (!p.tracer && !RunsOnImageScenes(plan, p.captured_motion)) return MethodOutput{NotApplicableRow(p, plan), {}, {}, {}};
+  if (!p.tracer && !RunsOnImageScenes(plan, p.captured_motion))
+    return MethodOutput{NotApplicableRow(p, plan), {}, {}, {}};
   if (clock) clock->Enter("method_renders_filters");
   const int W = p.info.width, H = p.info.height;
   const double px = static_cast<double>(W) * H;
@@ -306,7 +307,7 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, const Met
     Image8 filtered;
     std::unique_ptr<TemporalState> advanced;
     for (int r = 0; r <= repeat; ++r) {  // r = 0: the untimed warm-up, as TimeRepeats
-      advanced = st->Clone();  // the copy is not part of the method's cost
+      advanced = st->Clone();            // the copy is not part of the method's cost
       PostStats ps;
       Stopwatch w;
       filtered = advanced->Step(tin, &ps);

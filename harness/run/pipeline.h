@@ -25,10 +25,10 @@ namespace aalab {
 /// A frame anti-aliased by the user's own pipeline (an engine's TAA, DLSS, FSR...), given
 /// under the user's name: a row of the report beside aalab's methods, supplied, not run.
 struct SuppliedFrame {
-  std::string name;           ///< lowercase-kebab, never one of aalab's method names
-  std::string file;           ///< as the manifest names it (this frame's file)
-  Image8 frame;               ///< RGBA8, alpha 255
-  std::optional<double> ms;   ///< the user's measured time per frame, when given
+  std::string name;          ///< lowercase-kebab, never one of aalab's method names
+  std::string file;          ///< as the manifest names it (this frame's file)
+  Image8 frame;              ///< RGBA8, alpha 255
+  std::optional<double> ms;  ///< the user's measured time per frame, when given
 };
 
 /// A scene ready for methods. Everything here is computed once per scene.
@@ -36,11 +36,11 @@ struct PreparedScene {
   std::unique_ptr<Scene> scene;
   std::unique_ptr<Tracer> tracer;
   Reference ref;
-  Image8 frame1x;             ///< the 1x centre-sample frame (the `none` output)
-  ImageF none_f;              ///< frame1x as float RGB
-  TraceCounters counters1x;   ///< cost of frame1x
-  Timing render1x;            ///< timing of frame1x over the repeats
-  SceneResult info;           ///< what the report says about the scene (images filled by the caller)
+  Image8 frame1x;            ///< the 1x centre-sample frame (the `none` output)
+  ImageF none_f;             ///< frame1x as float RGB
+  TraceCounters counters1x;  ///< cost of frame1x
+  Timing render1x;           ///< timing of frame1x over the repeats
+  SceneResult info;          ///< what the report says about the scene (images filled by the caller)
   /// The reference's half of LDR-FLIP, computed once and shared by every method's score.
   std::shared_ptr<const flip::ReferenceSide> flip_reference;
   double flip_ppd = kFlipDefaultPpd;  ///< the viewing condition's pixels per degree FLIP uses

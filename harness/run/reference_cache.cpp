@@ -60,7 +60,9 @@ class Writer {
     if (n > 0) std::memcpy(bytes_.data() + at, p, n);
   }
   template <typename T>
-  void Pod(T v) { Raw(&v, sizeof v); }
+  void Pod(T v) {
+    Raw(&v, sizeof v);
+  }
   void Img(const ImageF& im) {
     Pod<int32_t>(im.Width());
     Pod<int32_t>(im.Height());

@@ -22,7 +22,8 @@ RunScenes LoadRunScenes(const RunSettings& s) {
   r.grid = ReferenceGridForSpp(s.ref_spp);
   r.names = s.scenes.empty() ? SuiteScenes(s.suite) : s.scenes;
   if (s.frames < 1 || s.frames > kMaxFrames) {
-    throw UserError("--frames " + std::to_string(s.frames) + " is out of range (1.." + std::to_string(kMaxFrames) + ")");
+    throw UserError("--frames " + std::to_string(s.frames) + " is out of range (1.." + std::to_string(kMaxFrames) +
+                    ")");
   }
   r.sources = LoadSceneSources(r.names);
   r.exact = CheckReferenceKind(s.reference, r.sources);
@@ -30,8 +31,8 @@ RunScenes LoadRunScenes(const RunSettings& s) {
     if (src.scene) CheckSequenceLength(*src.scene, s.frames);
     if (src.view && src.view->frames > 1 && s.frames > src.view->frames) {
       throw UserError("--frames " + std::to_string(s.frames) + " runs past the sequence of view '" + src.Name() +
-                      "' of image scene '" + src.view->manifest + "', which has " +
-                      std::to_string(src.view->frames) + " frames (allowed: 1.." + std::to_string(src.view->frames) +
+                      "' of image scene '" + src.view->manifest + "', which has " + std::to_string(src.view->frames) +
+                      " frames (allowed: 1.." + std::to_string(src.view->frames) +
                       "; without --frames a sequence view runs all its frames)");
     }
   }
@@ -78,11 +79,13 @@ int RunPlan::TotalSteps() const {
 }
 
 RunPlan ResolveRun(const RunSettings& s) {
-  if (s.repeat < 1 || s.repeat > 1000) throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
+  if (s.repeat < 1 || s.repeat > 1000)
+    throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
   RunPlan plan;
   plan.frames = s.frames;
   plan.scenes = LoadRunScenes(s);
-  if (s.frame_exr && s.frames < 2) throw UserError("--frame-exr writes each frame's reference of a motion run: it needs --frames N > 1");
+  if (s.frame_exr && s.frames < 2)
+    throw UserError("--frame-exr writes each frame's reference of a motion run: it needs --frames N > 1");
   plan.viewing = ResolveViewing(s.viewing);
   plan.shard = KeepShardShare(s.shard, &plan.scenes.sources);
   bool any_sequence = false;
@@ -92,7 +95,8 @@ RunPlan ResolveRun(const RunSettings& s) {
   plan.supplied = SuppliedOutputNames(plan.scenes.sources);
   for (const auto& name : plan.supplied) {
     for (const auto& p : plan.methods) {
-      if (p.spec == name) throw UserError("output '" + name + "' of an image scene has the name of a method of this run");
+      if (p.spec == name)
+        throw UserError("output '" + name + "' of an image scene has the name of a method of this run");
     }
   }
   return plan;
@@ -123,7 +127,8 @@ std::vector<std::pair<std::string, std::string>> RunReportSettings(const RunSett
   std::string seed = std::to_string(s.seed);
   if (!view_sizes.empty()) {
     const std::string views = JoinNames(view_sizes);
-    size = any_rendered ? size + " (rendered scenes; image-scene views: " + views + ")" : views + " (the views' own size)";
+    size =
+        any_rendered ? size + " (rendered scenes; image-scene views: " + views + ")" : views + " (the views' own size)";
     ref_spp = any_rendered ? ref_spp + " (rendered scenes; image-scene views: the user's own)" : "the user's own";
     if (!any_rendered) seed = "(not used: image scenes only)";
   }

@@ -33,13 +33,13 @@ RunScenes LoadRunScenes(const RunSettings& s);
 /// without the methods with memory on a still run), the user's supplied outputs, the viewing
 /// condition.
 struct RunPlan {
-  RunScenes scenes;                       ///< sources: this shard's share, in run order
-  std::optional<ShardInfo> shard;         ///< set for --shard K/N
+  RunScenes scenes;                ///< sources: this shard's share, in run order
+  std::optional<ShardInfo> shard;  ///< set for --shard K/N
   ViewingCondition viewing;
   std::vector<std::string> method_specs;  ///< as the report's settings list them
   std::vector<MethodPlan> methods;
-  std::vector<std::string> supplied;      ///< image scenes' outputs: rows after the methods
-  int frames = 1;                         ///< --frames
+  std::vector<std::string> supplied;  ///< image scenes' outputs: rows after the methods
+  int frames = 1;                     ///< --frames
 
   /// A sequence view runs its own frames (all of them, or the first --frames); everything
   /// else runs --frames.

@@ -128,7 +128,8 @@ int RenderReferencesOnly(const RunSettings& s, int* cached) {
     bool hit = false;
     ObtainReference(scene, tracer, s.width, s.height, grid, s.seed, exact, &cache, &hit);
     (hit ? found : rendered) += 1;
-    progress.Step(scene.name + (u.frame >= 0 ? ".f" + std::to_string(u.frame) : "") + (hit ? " (cached)" : " reference"));
+    progress.Step(scene.name + (u.frame >= 0 ? ".f" + std::to_string(u.frame) : "") +
+                  (hit ? " (cached)" : " reference"));
   }
   if (cached) *cached = found;
   return rendered;

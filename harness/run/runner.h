@@ -17,17 +17,17 @@ struct RunSettings {
   std::vector<std::string> scenes;   ///< overrides the suite when non-empty (names or paths)
   std::vector<std::string> methods;  ///< empty: the default method list
   int width = 960, height = 540;
-  int ref_spp = 64;   ///< the default run's budget (README "How long"); 256+ for publication
+  int ref_spp = 64;                   ///< the default run's budget (README "How long"); 256+ for publication
   std::string reference = "sampled";  ///< "sampled" (ref_spp stratified samples) or "exact"
   uint64_t seed = 1;
   int threads = 0;  ///< 0: all hardware threads
   int repeat = 2;   ///< timed repeats after one warm-up
   std::string out_dir = "out";
   bool debug_views = false;
-  bool quiet = false;  ///< no progress on stderr
-  int frames = 1;      ///< sequence length (1..kMaxFrames; 1 = a still run, as before)
-  ShardSpec shard;           ///< --shard K/N: this process's share of the scenes (docs/cluster.md)
-  std::string ref_cache;     ///< --ref-cache DIR: read/write references there ("" = none)
+  bool quiet = false;            ///< no progress on stderr
+  int frames = 1;                ///< sequence length (1..kMaxFrames; 1 = a still run, as before)
+  ShardSpec shard;               ///< --shard K/N: this process's share of the scenes (docs/cluster.md)
+  std::string ref_cache;         ///< --ref-cache DIR: read/write references there ("" = none)
   bool references_only = false;  ///< --references-only: fill the cache, write no report
   /// --viewing PRESET[:key=value,...]: the display and observer of the perceptual metrics
   /// (metrics/viewing.h); "" = the default preset (67 px/deg, every result as before).

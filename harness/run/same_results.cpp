@@ -93,7 +93,8 @@ SameResults CompareResultFolders(const std::string& a, const std::string& b, siz
   // Both must be aalab reports of the schema this build reads (a sweep.json holds a report's
   // scenes and rows without a schema version of its own): checked before any comparison.
   for (const auto& [doc, path] : {std::pair<const Json&, const fs::path&>{da, ra}, {db, rb}}) {
-    if (!doc.is_object()) throw UserError("same-results: '" + path.string() + "' is not an aalab report (not a JSON object)");
+    if (!doc.is_object())
+      throw UserError("same-results: '" + path.string() + "' is not an aalab report (not a JSON object)");
     Json check = doc;
     if (path.filename() == "sweep.json") {
       const Json version = check.value("sweep_version", Json());
@@ -121,7 +122,8 @@ SameResults CompareResultFolders(const std::string& a, const std::string& b, siz
         line += "only in A";
       } else {
         const std::string value = op.at("value").dump();
-        line += (kind == "add" ? "only in B: " : "B has ") + (value.size() > 120 ? value.substr(0, 117) + "..." : value);
+        line +=
+            (kind == "add" ? "only in B: " : "B has ") + (value.size() > 120 ? value.substr(0, 117) + "..." : value);
       }
       differ(line);
     }

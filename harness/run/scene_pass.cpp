@@ -51,8 +51,9 @@ FrameSource MovingFrames(const ScenePass& pass, std::shared_ptr<const Scene> seq
             pass.clock->Enter("references");
             auto frame_scene = std::make_unique<Scene>(SceneAtFrame(*sequence, k));
             const double scene_build_ms = build.ElapsedMs();
-            auto prepared = PrepareScene(std::move(frame_scene), s.width, s.height, pass.plan.scenes.grid, s.seed,
-                                         s.repeat, pass.plan.scenes.exact, pass.clock, pass.cache, pass.plan.viewing.ppd);
+            auto prepared =
+                PrepareScene(std::move(frame_scene), s.width, s.height, pass.plan.scenes.grid, s.seed, s.repeat,
+                             pass.plan.scenes.exact, pass.clock, pass.cache, pass.plan.viewing.ppd);
             *scene_ms += scene_build_ms;
             return prepared;
           }};
@@ -133,7 +134,9 @@ class SceneImages {
     row->images["flip_map"] = base + ".flip.png";
   }
 
-  void Flush() { ParallelFor(static_cast<int>(writes_.size()), [&](int i) { writes_[static_cast<size_t>(i)](); }); }
+  void Flush() {
+    ParallelFor(static_cast<int>(writes_.size()), [&](int i) { writes_[static_cast<size_t>(i)](); });
+  }
 
   std::vector<std::string> reference_frames, reference_frames_exr;
 
@@ -176,7 +179,8 @@ class SceneRun {
     for (int k = 0; k < frames_; ++k) {
       const std::string tag = frames_ > 1 ? ".f" + std::to_string(k) : "";
       PrepareFrame(k, tag);
-      std::vector<std::shared_ptr<MethodOutput>> outs = ScoreFrameRows(pass_, *prepared_, &states_, name_ + tag, k == frames_ - 1);
+      std::vector<std::shared_ptr<MethodOutput>> outs =
+          ScoreFrameRows(pass_, *prepared_, &states_, name_ + tag, k == frames_ - 1);
       for (size_t m = 0; m < outs.size(); ++m) RecordRow(m, k, tag, std::move(outs[m]), rows);
     }
     return Finish();
@@ -193,7 +197,10 @@ class SceneRun {
       // first frames that have any, then a count).
       for (const auto& w : prepared_->info.warnings) {
         std::fprintf(stderr, "aalab: warning: scene '%s': %s\n", name_.c_str(), w.c_str());
-        if (warnings_.size() < 3) warnings_.push_back(w); else ++more_warnings_;
+        if (warnings_.size() < 3)
+          warnings_.push_back(w);
+        else
+          ++more_warnings_;
       }
       scene_ms_ += prepared_->info.bvh_build_ms;
       reference_ms_ += prepared_->info.reference_ms;
@@ -204,7 +211,8 @@ class SceneRun {
     if (k == frames_ - 1) {  // `prepared_` (and so its reference) lives until the scene's writes are done
       result_ = prepared_->info;
       result_.warnings = warnings_;
-      if (more_warnings_) result_.warnings.push_back(std::to_string(more_warnings_) + " more frame(s) with such warnings");
+      if (more_warnings_)
+        result_.warnings.push_back(std::to_string(more_warnings_) + " more frame(s) with such warnings");
       images_.QueueReference(prepared_->ref, &result_);
     }
     pass_.progress->Step(name_ + tag + " reference");

@@ -21,8 +21,7 @@ std::vector<std::shared_ptr<MethodOutput>> RunAndScoreRows(const PreparedScene& 
   rows.reserve(plans.size());
   // The timed part: one row after another, nothing else running.
   for (size_t m = 0; m < plans.size(); ++m) {
-    auto mo = std::make_shared<MethodOutput>(
-        RunMethod(prepared, plans[m], run, &(*states)[m], /*score=*/false));
+    auto mo = std::make_shared<MethodOutput>(RunMethod(prepared, plans[m], run, &(*states)[m], /*score=*/false));
     if (!keep_inputs) mo->input = Image8();
     rows.push_back(std::move(mo));
   }
@@ -43,9 +42,8 @@ std::vector<std::shared_ptr<MethodOutput>> RunAndScoreRows(const PreparedScene& 
   // row's score, so at most one score per thread is in flight (each holds ~50 MB of planes
   // at 960x540).
   ParallelFor(static_cast<int>(todo.size()), [&](int i) {
-    tbb::this_task_arena::isolate([&] {
-      scores[static_cast<size_t>(i)] = ScoreFrame(prepared, rows[todo[static_cast<size_t>(i)]]->output);
-    });
+    tbb::this_task_arena::isolate(
+        [&] { scores[static_cast<size_t>(i)] = ScoreFrame(prepared, rows[todo[static_cast<size_t>(i)]]->output); });
   });
   for (size_t i = 0; i < todo.size(); ++i) {
     prepared.scored_by_hash.emplace(rows[todo[i]]->row.output_hash, std::move(scores[i]));

@@ -59,8 +59,8 @@ SequenceExport ExportSequences(const std::string& run_dir, const std::string& ou
   }
   for (const auto& row : report.rows) {
     if (!row.frame_images.empty()) {
-      CheckOutputName(SpecFileName(row.spec), "method spec '" + row.spec + "' (row of scene '" + row.scene + "') in " + origin,
-                      {"reference"});
+      CheckOutputName(SpecFileName(row.spec),
+                      "method spec '" + row.spec + "' (row of scene '" + row.scene + "') in " + origin, {"reference"});
     }
     for (const auto& f : row.frame_images) need(f);
   }
@@ -96,9 +96,10 @@ SequenceExport ExportSequences(const std::string& run_dir, const std::string& ou
       ++res.frames;
     }
     ++res.sequences;
-    js["reference"] = {{"folder", s.name + "/reference"}, {"png", "%05d.png"},
-                       {"exr", s.frame_exr_images.empty() ? nlohmann::ordered_json(nullptr)
-                                                          : nlohmann::ordered_json("%05d.exr")}};
+    js["reference"] = {
+        {"folder", s.name + "/reference"},
+        {"png", "%05d.png"},
+        {"exr", s.frame_exr_images.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json("%05d.exr")}};
     nlohmann::ordered_json methods = nlohmann::ordered_json::array();
     for (const auto& row : report.rows) {
       if (row.scene != s.name || row.frame_images.empty()) continue;

@@ -97,7 +97,8 @@ void WriteSweepCrops(SweepResult* res, const std::vector<std::vector<std::vector
   for (size_t si = 0; si < point_crops.size() && si < res->report.scenes.size(); ++si) {
     const std::string& scene = res->report.scenes[si].name;
     std::string folder;  // scene names may be paths: keep letters, digits, '-', '_', '.'
-    for (char c : scene) folder += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ? c : '_';
+    for (char c : scene)
+      folder += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ? c : '_';
     folder = "s" + std::to_string(si) + "-" + folder;
     fs::create_directories(dir / "crops" / folder);
     for (size_t k = 0; k < reference_crops[si].size(); ++k) {
@@ -133,12 +134,14 @@ std::vector<GridAxis> ParseGrid(const std::vector<std::string>& args, const std:
     axis.name = arg.substr(0, eq);
     for (size_t i = 0; i < axes.size(); ++i) {
       if (axes[i].name == axis.name) {
-        throw UserError("parameter '" + axis.name + "' is given twice (--grid " + given[i] + " and --grid " + arg + ")");
+        throw UserError("parameter '" + axis.name + "' is given twice (--grid " + given[i] + " and --grid " + arg +
+                        ")");
       }
     }
     for (const auto& [k, v] : base.overrides) {
       if (k == axis.name) {
-        throw UserError("parameter '" + axis.name + "' is set both in --method '" + base_spec + "' and in --grid " + arg);
+        throw UserError("parameter '" + axis.name + "' is set both in --method '" + base_spec + "' and in --grid " +
+                        arg);
       }
     }
     const std::string list = arg.substr(eq + 1);
@@ -176,7 +179,8 @@ std::vector<std::string> ExpandGrid(const std::string& base_spec, std::vector<Gr
       exact *= a.values.size();
     }
     throw UserError("the grid " + shape + " has " + (overflow ? std::string("too many") : std::to_string(exact)) +
-                    " points; the limit is " + std::to_string(kMaxSweepPoints) + " (sweep fewer values or split the sweep)");
+                    " points; the limit is " + std::to_string(kMaxSweepPoints) +
+                    " (sweep fewer values or split the sweep)");
   }
   // Each value through the method's own parameter table, to its canonical text.
   for (auto& a : *axes) {
@@ -192,7 +196,8 @@ std::vector<std::string> ExpandGrid(const std::string& base_spec, std::vector<Gr
       AALAB_CHECK(!text.empty(), "a resolved parameter has a value");
       for (size_t i = 0; i < canon.size(); ++i) {
         if (canon[i] == text) {
-          throw UserError("--grid " + a.name + ": values '" + a.values[i] + "' and '" + v + "' are the same value (" + text + ")");
+          throw UserError("--grid " + a.name + ": values '" + a.values[i] + "' and '" + v + "' are the same value (" +
+                          text + ")");
         }
       }
       canon.push_back(text);
@@ -213,8 +218,8 @@ std::vector<std::string> ExpandGrid(const std::string& base_spec, std::vector<Gr
   return specs;
 }
 
-std::vector<size_t> ParetoFront(const std::vector<double>& t, const std::vector<std::optional<double>>& q, Better better,
-                                const std::vector<double>& noise) {
+std::vector<size_t> ParetoFront(const std::vector<double>& t, const std::vector<std::optional<double>>& q,
+                                Better better, const std::vector<double>& noise) {
   AALAB_CHECK(t.size() == q.size(), "one time per quality");
   AALAB_CHECK(noise.empty() || noise.size() == t.size(), "one noise per time");
   auto at_least = [better](double a, double b) { return better == Better::kHigher ? a >= b : a <= b; };
@@ -276,7 +281,8 @@ ObjectiveMean MeanOverScenes(const std::vector<const ResultRow*>& rows, const st
 SweepResult RunSweep(const SweepSettings& s) {
   SetThreadCount(s.threads);
   // Validate everything before any work.
-  if (s.repeat < 1 || s.repeat > 1000) throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
+  if (s.repeat < 1 || s.repeat > 1000)
+    throw UserError("--repeat " + std::to_string(s.repeat) + " is out of range (1..1000)");
   const int ref_grid = ReferenceGridForSpp(s.ref_spp);
   if (s.scenes.empty()) throw UserError("give the scenes to sweep with --scenes a,b (see aalab list scenes)");
   if (s.method.empty()) throw UserError("give the method to tune with --method NAME (see aalab list methods)");
@@ -285,7 +291,8 @@ SweepResult RunSweep(const SweepSettings& s) {
   if (MakeMethod(s.method).make_state) {
     // A sweep scores one still frame per point; a method with memory only shows its quality
     // over a sequence.
-    throw UserError("method '" + res.method + "' accumulates over frames, and sweep scores single frames: compare its " +
+    throw UserError("method '" + res.method +
+                    "' accumulates over frames, and sweep scores single frames: compare its " +
                     "variants with aalab run --frames N --methods " + res.method + ":...,...");
   }
   const ViewingCondition viewing = ResolveViewing(s.viewing);
@@ -310,9 +317,11 @@ SweepResult RunSweep(const SweepSettings& s) {
   }
   for (size_t i = 0; i < res.objectives.size(); ++i) {
     const std::string& o = res.objectives[i];
-    if (!MetricDirection(o)) throw UserError("--objective: unknown metric '" + o + "' (known: " + KnownMetricsText() + ")");
+    if (!MetricDirection(o))
+      throw UserError("--objective: unknown metric '" + o + "' (known: " + KnownMetricsText() + ")");
     if (!is_produced(o)) {
-      throw UserError("--objective: metric '" + o + "' is not computed by this build (computed: " + JoinNames(produced) + ")");
+      throw UserError("--objective: metric '" + o +
+                      "' is not computed by this build (computed: " + JoinNames(produced) + ")");
     }
     for (size_t j = 0; j < i; ++j) {
       if (res.objectives[j] == o) throw UserError("--objective: metric '" + o + "' is listed twice");
@@ -380,8 +389,8 @@ SweepResult RunSweep(const SweepSettings& s) {
   for (auto& source : scenes) {
     if (share.empty()) break;  // a shard beyond the grid's points: nothing to render
     const std::string name = source.Name();
-    const auto prepared = PrepareSource(source, s.width, s.height, ref_grid, s.seed, s.repeat, exact,
-                                        nullptr, cache ? &*cache : nullptr, 0, viewing.ppd);
+    const auto prepared = PrepareSource(source, s.width, s.height, ref_grid, s.seed, s.repeat, exact, nullptr,
+                                        cache ? &*cache : nullptr, 0, viewing.ppd);
     if (prepared->tracer) ++res.reference_renders;  // an image-scene view renders nothing
     report.scenes.push_back(prepared->info);
     Progress(s.quiet, ++done, total, name + " reference", clock);
@@ -497,7 +506,8 @@ void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
   }
   // Ties go to the point closest to the preset it sweeps from (--method: its defaults and
   // overrides), then the first in grid order.
-  const std::vector<std::pair<std::string, std::string>> defaults = MakeMethod(res.base_spec.empty() ? res.method : res.base_spec).params.Ordered();
+  const std::vector<std::pair<std::string, std::string>> defaults =
+      MakeMethod(res.base_spec.empty() ? res.method : res.base_spec).params.Ordered();
   std::vector<double> distance;
   for (const auto& pt : res.points) distance.push_back(DistanceFromDefaults(pt, res.axes, defaults));
   for (const auto& o : res.objectives) {
@@ -532,7 +542,8 @@ void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
       bool slower = false;
       for (size_t q : tied) {
         // Time ranks tied points only when both spreads are measured (>= 2 repeats).
-        slower = slower || (!std::isnan(noise[p]) && !std::isnan(noise[q]) && times[q] < times[p] - (noise[p] + noise[q]));
+        slower =
+            slower || (!std::isnan(noise[p]) && !std::isnan(noise[q]) && times[q] < times[p] - (noise[p] + noise[q]));
       }
       if (slower) continue;
       if (!pick || distance[p] < distance[*pick]) pick = p;
@@ -607,9 +618,10 @@ void SummarizeSweep(SweepResult* result, const std::vector<MethodPlan>& plans) {
 std::string SweepSummaryText(const SweepResult& r) {
   std::ostringstream o;
   std::string shape;
-  for (const auto& a : r.axes) shape += (shape.empty() ? "" : " x ") + a.name + " (" + std::to_string(a.values.size()) + ")";
-  o << "sweep: " << r.method << " over " << shape << " = " << r.points.size() << " points on "
-    << r.report.scenes.size() << " scenes; " << r.reference_renders << " reference renders\n";
+  for (const auto& a : r.axes)
+    shape += (shape.empty() ? "" : " x ") + a.name + " (" + std::to_string(a.values.size()) + ")";
+  o << "sweep: " << r.method << " over " << shape << " = " << r.points.size() << " points on " << r.report.scenes.size()
+    << " scenes; " << r.reference_renders << " reference renders\n";
   if (!r.objective_note.empty()) o << "note: " << r.objective_note << "\n";
   for (const auto& obj : r.objectives) {
     auto it = r.best.find(obj);
@@ -619,8 +631,9 @@ std::string SweepSummaryText(const SweepResult& r) {
       continue;
     }
     const SweepPoint& p = r.points[it->second];
-    o << "best " << obj << " (mean over " << r.report.scenes.size() << " scenes): " << SweepMeanText(obj, p.objectives.at(obj))
-      << " at " << JoinOverrides(p.overrides) << " (method time " << FormatFixed(p.mean_time_ms, 3) << " ms)";
+    o << "best " << obj << " (mean over " << r.report.scenes.size()
+      << " scenes): " << SweepMeanText(obj, p.objectives.at(obj)) << " at " << JoinOverrides(p.overrides)
+      << " (method time " << FormatFixed(p.mean_time_ms, 3) << " ms)";
     const int ties = r.best_ties.at(obj);
     if (ties > 0) o << "; " << ties << " other point(s) tie, the one closest to the defaults is shown";
     o << "\n";
@@ -661,7 +674,8 @@ std::string SweepSummaryText(const SweepResult& r) {
         << FormatFixed(c.default_spread_ms, 3) << ", " << FormatFixed(c.suggested_spread_ms, 3) << ")\n";
     }
   }
-  if (!r.crops.empty()) o << "crops: " << r.crops.size() << " images in crops/ (default, suggested, each objective's pick, extremes)\n";
+  if (!r.crops.empty())
+    o << "crops: " << r.crops.size() << " images in crops/ (default, suggested, each objective's pick, extremes)\n";
   return o.str();
 }
 

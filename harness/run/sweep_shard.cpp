@@ -95,9 +95,13 @@ Json SweepToJson(const SweepResult& res) {
     auto num = [](const std::optional<double>& v) {
       return v && std::isfinite(*v) ? Json(*v) : v ? Json("inf") : Json(nullptr);
     };
-    for (const auto& v : c.values) vals[v.objective] = {{"default", num(v.at_default)}, {"suggested", num(v.suggested)}};
-    changes.push_back({{"scene", c.scene}, {"objectives", vals}, {"default_ms", c.default_ms},
-                       {"suggested_ms", c.suggested_ms}, {"default_spread_ms", c.default_spread_ms},
+    for (const auto& v : c.values)
+      vals[v.objective] = {{"default", num(v.at_default)}, {"suggested", num(v.suggested)}};
+    changes.push_back({{"scene", c.scene},
+                       {"objectives", vals},
+                       {"default_ms", c.default_ms},
+                       {"suggested_ms", c.suggested_ms},
+                       {"default_spread_ms", c.default_spread_ms},
                        {"suggested_spread_ms", c.suggested_spread_ms}});
   }
   j["scene_changes"] = changes;
@@ -182,7 +186,8 @@ MergeResult MergeSweepFolders(const std::vector<std::string>& dirs, const std::s
   for (size_t i = 0; i < shards.size(); ++i) {
     const Json& d = shards[i].doc;
     if (shards[i].report.shard->unit != "grid point") {
-      throw UserError("merge: '" + dirs[i] + "' is a shard of " + shards[i].report.shard->unit + "s, not of grid points");
+      throw UserError("merge: '" + dirs[i] + "' is a shard of " + shards[i].report.shard->unit +
+                      "s, not of grid points");
     }
     for (const char* key : {"method", "base_spec", "axes", "objectives", "specs"}) {
       if (d.at(key) != d0.at(key)) {
@@ -207,14 +212,15 @@ MergeResult MergeSweepFolders(const std::vector<std::string>& dirs, const std::s
   SweepResult res;
   res.method = d0.at("method").get<std::string>();
   res.base_spec = d0.at("base_spec").get<std::string>();
-  for (const auto& a : d0.at("axes")) res.axes.push_back({a.at("name").get<std::string>(), a.at("values").get<std::vector<std::string>>()});
+  for (const auto& a : d0.at("axes"))
+    res.axes.push_back({a.at("name").get<std::string>(), a.at("values").get<std::vector<std::string>>()});
   res.objectives = d0.at("objectives").get<std::vector<std::string>>();
   res.specs = d0.at("specs").get<std::vector<std::string>>();
   res.objective_note = d0.value("objective_note", std::string());
   res.reference_renders = shards[zero].doc.at("reference_renders").get<int>();
   if (res.specs.size() != order.size()) {
-    throw UserError("merge: the shards' grid has " + std::to_string(res.specs.size()) + " points but the split counts " +
-                    std::to_string(order.size()));
+    throw UserError("merge: the shards' grid has " + std::to_string(res.specs.size()) +
+                    " points but the split counts " + std::to_string(order.size()));
   }
   Report& m = res.report;
   m.context = shards[zero].report.context;

@@ -93,8 +93,8 @@ __device__ __forceinline__ float4 BilinearPx(cudaTextureObject_t lin_px, cudaTex
 /// A bilinear fetch at normalised coordinates (s, t), as GL's texture(): the texture unit, or
 /// the CPU's SampleNormalized (u = s·W, v = t·H in float32, then SoftBilinear).
 template <bool kSoft>
-__device__ __forceinline__ float4 BilinearNorm(cudaTextureObject_t lin_norm, cudaTextureObject_t point, float s, float t,
-                                               int w, int h) {
+__device__ __forceinline__ float4 BilinearNorm(cudaTextureObject_t lin_norm, cudaTextureObject_t point, float s,
+                                               float t, int w, int h) {
   if constexpr (kSoft) {
     return SoftBilinear(point, s * static_cast<float>(w), t * static_cast<float>(h), w, h);
   } else {

@@ -31,7 +31,7 @@ __device__ __forceinline__ float3 Rgb(const float4& c) { return make_float3(c.x,
 // SearchFetch: one bilinear fetch, or the mean of n probes along the edge.
 template <bool kSoft>
 __device__ __forceinline__ float3 SearchFetch(cudaTextureObject_t lin, cudaTextureObject_t pt, float u, float v,
-                                             float ax, float ay, int n, int w, int h) {
+                                              float ax, float ay, int n, int w, int h) {
   if (n == 1) return Rgb(BilinearPx<kSoft>(lin, pt, u, v, w, h));
   float3 sum = make_float3(0.0f, 0.0f, 0.0f);
   for (int k = 0; k < n; ++k) {
@@ -47,8 +47,8 @@ __device__ __forceinline__ float Lerp3(float a, float b, float amount_of_a) {
 }
 
 template <bool kSoft>
-__global__ void Fxaa1Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin,
-                                                   cudaSurfaceObject_t out, int w, int h, Fxaa1Args p) {
+__global__ void Fxaa1Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin, cudaSurfaceObject_t out, int w, int h,
+                            Fxaa1Args p) {
   const int x = blockIdx.x * blockDim.x + threadIdx.x;
   const int y = blockIdx.y * blockDim.y + threadIdx.y;
   if (x >= w || y >= h) return;
@@ -160,11 +160,11 @@ __global__ void Fxaa1Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin,
 
 void LaunchFxaa1(const GpuFrame& in, GpuFrame& out, const Fxaa1Args& args, cudaStream_t stream, bool software_filter) {
   if (software_filter) {
-    Fxaa1Kernel<true><<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(in.Point(), in.LinearPx(),
-                                                                                out.Surface(), in.Width(), in.Height(), args);
+    Fxaa1Kernel<true><<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(
+        in.Point(), in.LinearPx(), out.Surface(), in.Width(), in.Height(), args);
   } else {
-    Fxaa1Kernel<false><<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(in.Point(), in.LinearPx(),
-                                                                                 out.Surface(), in.Width(), in.Height(), args);
+    Fxaa1Kernel<false><<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(
+        in.Point(), in.LinearPx(), out.Surface(), in.Width(), in.Height(), args);
   }
 }
 

@@ -55,8 +55,8 @@ __global__ void Fxaa311Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin, c
       return BilinearPx<kSoft>(lin_px, pt, posMx * static_cast<float>(w) + static_cast<float>(dx),
                                posMy * static_cast<float>(h) + static_cast<float>(dy), w, h);
     }
-    return BilinearNorm<kSoft>(lin, pt, posMx + static_cast<float>(dx) * rcpX, posMy + static_cast<float>(dy) * rcpY,
-                               w, h);
+    return BilinearNorm<kSoft>(lin, pt, posMx + static_cast<float>(dx) * rcpX, posMy + static_cast<float>(dy) * rcpY, w,
+                               h);
   };
   const float4 rgbyM = tap(0, 0);
   const float lumaM = TapLuma(rgbyM, lm);
@@ -167,7 +167,7 @@ __global__ void Fxaa311Kernel(cudaTextureObject_t pt, cudaTextureObject_t lin, c
   if (!doneP) posPx += offNPx * P[1];
   if (!doneP) posPy += offNPy * P[1];
 
-  // The shader's nested if(doneNP) blocks; unrolled so P[k] has constant indices.
+    // The shader's nested if(doneNP) blocks; unrolled so P[k] has constant indices.
 #pragma unroll
   for (int k = 2; k < kMaxFxaaSteps; ++k) {
     if (k >= prm.step_count || !doneNP) break;

@@ -75,8 +75,8 @@ __global__ void CopyTextureKernel(cudaTextureObject_t in, cudaSurfaceObject_t ou
   const int y = blockIdx.y * blockDim.y + threadIdx.y;
   if (x >= w || y >= h) return;
   const float4 c = TexelAt(in, x, y);
-  surf2Dwrite(make_uchar4(QuantizeUnorm8(c.x), QuantizeUnorm8(c.y), QuantizeUnorm8(c.z), QuantizeUnorm8(c.w)),
-              out, x * 4, y);
+  surf2Dwrite(make_uchar4(QuantizeUnorm8(c.x), QuantizeUnorm8(c.y), QuantizeUnorm8(c.z), QuantizeUnorm8(c.w)), out,
+              x * 4, y);
 }
 
 __global__ void CopyLinearKernel(const uint4* __restrict__ in, uint4* __restrict__ out, size_t n) {
@@ -103,15 +103,15 @@ __global__ void LumaKernel(cudaTextureObject_t in, cudaSurfaceObject_t out, int 
     const float b = decode[QuantizeUnorm8(c.z)];
     l = sqrtf((r * 0.2126729f + g * 0.7151522f) + b * 0.0721750f);
   }
-  surf2Dwrite(make_uchar4(QuantizeUnorm8(c.x), QuantizeUnorm8(c.y), QuantizeUnorm8(c.z), StoreUnorm8(l)), out,
-              x * 4, y);
+  surf2Dwrite(make_uchar4(QuantizeUnorm8(c.x), QuantizeUnorm8(c.y), QuantizeUnorm8(c.z), StoreUnorm8(l)), out, x * 4,
+              y);
 }
 
 }  // namespace
 
 void LaunchCopyTexture(const GpuFrame& in, GpuFrame& out, cudaStream_t stream) {
   CopyTextureKernel<<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(in.Point(), out.Surface(), in.Width(),
-                                                                                in.Height());
+                                                                               in.Height());
 }
 
 void LaunchCopyLinear(const void* in, void* out, size_t bytes, cudaStream_t stream) {
@@ -129,10 +129,10 @@ void LaunchLumaPrepass(const GpuFrame& in, GpuFrame& out, LumaSource luma, const
   const int sq = luma == LumaSource::kSqrtLuminance ? 1 : 0;
   if (software_filter) {
     LumaKernel<true><<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(in.Point(), out.Surface(), in.Width(),
-                                                                               in.Height(), sq, srgb_decode);
+                                                                                in.Height(), sq, srgb_decode);
   } else {
     LumaKernel<false><<<Grid2D(in.Width(), in.Height()), Block2D(), 0, stream>>>(in.Point(), out.Surface(), in.Width(),
-                                                                                in.Height(), sq, srgb_decode);
+                                                                                 in.Height(), sq, srgb_decode);
   }
 }
 

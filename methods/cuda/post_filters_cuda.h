@@ -98,8 +98,7 @@ void LaunchFxaa311(const GpuFrame& in, GpuFrame& out, const Fxaa311Args& args, c
 
 /// RescaleFrame (methods/rescale.h) of `in` to out's size: bicubic = false gives one
 /// bilinear tap at normalised coordinates, true the B-spline from four bilinear taps.
-void LaunchRescale(const GpuFrame& in, GpuFrame& out, bool bicubic, cudaStream_t stream,
-                   bool software_filter = false);
+void LaunchRescale(const GpuFrame& in, GpuFrame& out, bool bicubic, cudaStream_t stream, bool software_filter = false);
 
 /// SMAA 1x parameters as SmaaParams (methods/smaa.h), flattened.
 struct SmaaArgs {

@@ -4,9 +4,9 @@
 //   bicubic   the B-spline folded into four bilinear fetches in texel coordinates
 //             (linear_px view), with BsplineCubicTaps' expressions in float32.
 // Deviation from the CPU (reported by the gpu tool): the texture unit's 8-bit fixed-point
-// filter weights and its k/255 texel values (the CPU: k·fl(1/255)). At the 4/3 scale the fractions are multiples of 1/8 for bilinear (exact in
-// 8 bits) but arbitrary for the bicubic taps (w1/g0, w3/g1), which the hardware rounds to
-// 1/256 of a texel.
+// filter weights and its k/255 texel values (the CPU: k·fl(1/255)). At the 4/3 scale the fractions are multiples of 1/8
+// for bilinear (exact in 8 bits) but arbitrary for the bicubic taps (w1/g0, w3/g1), which the hardware rounds to 1/256
+// of a texel.
 #include "methods/cuda/device_ops.cuh"
 #include "methods/cuda/post_filters_cuda.h"
 

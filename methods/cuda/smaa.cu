@@ -204,11 +204,11 @@ void LaunchSmaaWeights(const GpuFrame& edges, const GpuFrame& area, const GpuFra
                        const SmaaArgs& args, cudaStream_t stream, bool software_filter) {
   const dim3 grid = Grid2D(edges.Width(), edges.Height());
   if (software_filter) {
-    WeightsKernel<true><<<grid, Block2D(), 0, stream>>>(TexOf(edges), TexOf(area), TexOf(search), blend.Surface(),
-                                                        args);
+    WeightsKernel<true>
+        <<<grid, Block2D(), 0, stream>>>(TexOf(edges), TexOf(area), TexOf(search), blend.Surface(), args);
   } else {
-    WeightsKernel<false><<<grid, Block2D(), 0, stream>>>(TexOf(edges), TexOf(area), TexOf(search), blend.Surface(),
-                                                         args);
+    WeightsKernel<false>
+        <<<grid, Block2D(), 0, stream>>>(TexOf(edges), TexOf(area), TexOf(search), blend.Surface(), args);
   }
 }
 

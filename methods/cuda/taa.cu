@@ -116,7 +116,8 @@ void LaunchTaaResolve(const GpuFrame& frame, const float* previous, const GpuHis
       (history && (history->Width() != w || history->Height() != h))) {
     throw std::runtime_error("LaunchTaaResolve: frame, history and output sizes differ");
   }
-  if (next.Half() || (history && history->Half())) throw std::runtime_error("LaunchTaaResolve: taa's history is RGBA32F");
+  if (next.Half() || (history && history->Half()))
+    throw std::runtime_error("LaunchTaaResolve: taa's history is RGBA32F");
   if (!history) previous = nullptr;  // no history: every pixel takes the current colour
   const cudaTextureObject_t hp = history ? history->Point() : 0, hl = history ? history->Linear() : 0;
   const dim3 grid = Grid2D(w, h);
@@ -124,8 +125,8 @@ void LaunchTaaResolve(const GpuFrame& frame, const float* previous, const GpuHis
     TaaKernel<true><<<grid, Block2D(), 0, stream>>>(frame.Point(), previous, hp, hl, next.Surface(), out.Surface(), w,
                                                     h, args, decode, encode_starts);
   } else {
-    TaaKernel<false><<<grid, Block2D(), 0, stream>>>(frame.Point(), previous, hp, hl, next.Surface(), out.Surface(),
-                                                     w, h, args, decode, encode_starts);
+    TaaKernel<false><<<grid, Block2D(), 0, stream>>>(frame.Point(), previous, hp, hl, next.Surface(), out.Surface(), w,
+                                                     h, args, decode, encode_starts);
   }
 }
 

@@ -42,8 +42,8 @@ __device__ __forceinline__ void CatmullRom(float t, float* w) {
 
 // TaaProdState::FetchHistory at output position (hx, hy).
 template <bool kSoft>
-__device__ __forceinline__ void FetchHistory(cudaTextureObject_t pt, cudaTextureObject_t lin, float hx, float hy,
-                                             int w, int h, int mode, float* out) {
+__device__ __forceinline__ void FetchHistory(cudaTextureObject_t pt, cudaTextureObject_t lin, float hx, float hy, int w,
+                                             int h, int mode, float* out) {
   const float fx = hx - 0.5f, fy = hy - 0.5f;
   const float x0f = floorf(fx), y0f = floorf(fy);
   const float tx = fx - x0f, ty = fy - y0f;
@@ -118,8 +118,8 @@ __device__ __forceinline__ int ClosestDepth(const float* __restrict__ depth, int
 
 template <bool kSoft, bool kHalf>
 __global__ void TaaProdKernel(cudaTextureObject_t frame, TaaProdFrame in, cudaTextureObject_t hist_pt,
-                              cudaTextureObject_t hist_lin, cudaSurfaceObject_t hist_out, cudaSurfaceObject_t out, int w,
-                              int h, TaaProdArgs a, const float* __restrict__ decode_g,
+                              cudaTextureObject_t hist_lin, cudaSurfaceObject_t hist_out, cudaSurfaceObject_t out,
+                              int w, int h, TaaProdArgs a, const float* __restrict__ decode_g,
                               const float* __restrict__ starts_g) {
   __shared__ BlockShared sh;
   StageBlock(sh, frame, w, h, decode_g, starts_g);
@@ -163,9 +163,10 @@ __global__ void TaaProdKernel(cudaTextureObject_t frame, TaaProdFrame in, cudaTe
     Ycc hyc = ToYCoCg(hrgb[0], hrgb[1], hrgb[2]);
     if (a.clip != 2) hyc = RectifyInTile(sh, hyc, a.clip, a.gamma);
     const Ycc cy = ToYCoCg(cur[0], cur[1], cur[2]);
-    const float count = tex2D<float4>(hist_pt, static_cast<float>(min(max(static_cast<int>(floorf(hx)), 0), w - 1)) + 0.5f,
-                                      static_cast<float>(min(max(static_cast<int>(floorf(hy)), 0), h - 1)) + 0.5f)
-                            .w;
+    const float count =
+        tex2D<float4>(hist_pt, static_cast<float>(min(max(static_cast<int>(floorf(hx)), 0), w - 1)) + 0.5f,
+                      static_cast<float>(min(max(static_cast<int>(floorf(hy)), 0), h - 1)) + 0.5f)
+            .w;
     float alpha = a.alpha;
     if (a.adaptive) {
       const float speed = sqrtf(ovx * ovx + ovy * ovy);
@@ -188,8 +189,9 @@ __global__ void TaaProdKernel(cudaTextureObject_t frame, TaaProdFrame in, cudaTe
     res[2] = StdClamp(tt - o.co, 0.0f, 1.0f);
   } while (false);
   if constexpr (kHalf) {
-    const ushort4 hv = make_ushort4(__half_as_ushort(__float2half_rn(res[0])), __half_as_ushort(__float2half_rn(res[1])),
-                                    __half_as_ushort(__float2half_rn(res[2])), __half_as_ushort(__float2half_rn(res[3])));
+    const ushort4 hv =
+        make_ushort4(__half_as_ushort(__float2half_rn(res[0])), __half_as_ushort(__float2half_rn(res[1])),
+                     __half_as_ushort(__float2half_rn(res[2])), __half_as_ushort(__float2half_rn(res[3])));
     surf2Dwrite(hv, hist_out, x * 8, y);
   } else {
     surf2Dwrite(make_float4(res[0], res[1], res[2], res[3]), hist_out, x * 16, y);

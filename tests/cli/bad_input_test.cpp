@@ -58,7 +58,8 @@ TEST(CliBadInput, AbsurdFrameSizesAreRefusedWithTheLimit) {
   }
   ExpectUserError("render --scene wedges --size 100000x100000 --out " + (dir / "x.png").string(),
                   {"--size '100000x100000'", "16384", "64 Mpx"});
-  ExpectUserError("run --scenes wedges --ref-spp 65536 --out " + (dir / "r").string(), {"reference spp 65536", "2..64"});
+  ExpectUserError("run --scenes wedges --ref-spp 65536 --out " + (dir / "r").string(),
+                  {"reference spp 65536", "2..64"});
   ExpectUserError("run --scenes wedges --repeat 100000 --out " + (dir / "r").string(), {"--repeat 100000", "1..1000"});
   ExpectUserError("render --scene wedges --spp 1000000 --out " + (dir / "x.png").string(), {"--spp 1000000", "4096"});
   ExpectUserError("run --scenes wedges --threads -1 --out " + (dir / "r").string(), {"--threads -1", "0 = all"});
@@ -98,8 +99,8 @@ TEST(CliBadInput, MalformedSceneFilesNameTheFileAndTheProblem) {
   for (const auto& c : cases) {
     SCOPED_TRACE(c.file);
     const std::string scene = (dir / c.file).string();
-    ExpectUserError("run --scenes wedges," + scene + " --methods none --size 16x9 --ref-spp 4 --repeat 1 --quiet --out " +
-                        (dir / "report").string(),
+    ExpectUserError("run --scenes wedges," + scene +
+                        " --methods none --size 16x9 --ref-spp 4 --repeat 1 --quiet --out " + (dir / "report").string(),
                     c.parts);
   }
   for (const char* file : {"overflow.json", "deep.json"}) {
@@ -163,9 +164,9 @@ TEST(CliBadInput, BrokenImagesAreRejectedWithPositionOrLimit) {
   // refused before any allocation.
   WritePngHeader(dir / "huge.png", 20000, 20000);
   WritePngHeader(dir / "wide.png", 1000000, 300);  // libpng's own width limit is 1e6
-  const std::vector<std::string> inputs = {"good.png", "nan.exr",   "inf.exr",     "five.exr", "full.exr",
-                                           "full.tif", "trunc.exr", "trunc.tif",   "trunc.png", "zero.png",
-                                           "folder.png", "huge.png", "wide.png"};
+  const std::vector<std::string> inputs = {"good.png",   "nan.exr",   "inf.exr",   "five.exr",  "full.exr",
+                                           "full.tif",   "trunc.exr", "trunc.tif", "trunc.png", "zero.png",
+                                           "folder.png", "huge.png",  "wide.png"};
 
   struct Case {
     std::string file;
@@ -194,7 +195,8 @@ TEST(CliBadInput, BrokenImagesAreRejectedWithPositionOrLimit) {
   ExpectUserError("apply --method fxaa311-p39 " + (dir / "nan.exr").string() + " " + out, cases[0].parts);
   ExpectUserError("metrics --reference " + good + " " + (dir / "nan.exr").string(), cases[0].parts);
   ExpectUserError("metrics --reference " + (dir / "huge.png").string() + " " + good, cases[8].parts);
-  ExpectUserError("metrics --reference " + good + " " + good + " --mask " + (dir / "trunc.tif").string(), {"trunc.tif"});
+  ExpectUserError("metrics --reference " + good + " " + good + " --mask " + (dir / "trunc.tif").string(),
+                  {"trunc.tif"});
   ExpectOnly(dir, inputs);
   fs::remove_all(dir);
 }

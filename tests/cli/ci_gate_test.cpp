@@ -97,13 +97,15 @@ TEST(CiGate, SameBinaryUnderLoadPassesAndPlantedRegressionsFail) {
   for (const auto& row : j["rows"]) EXPECT_TRUE(row["bit_identical"].get<bool>()) << row.dump();
   std::string junit = ReadText(dir / "compare.xml");
   EXPECT_NE(junit.find("tests=\"" + std::to_string(base["rows"].size() + 1) + "\" failures=\"0\" errors=\"0\""),
-            std::string::npos) << junit;
+            std::string::npos)
+      << junit;
 
   // A planted regression: the preset fxaa311-p39 changed (edge_threshold 0.166 -> 1: FXAA
   // leaves every edge aliased). The renamed row cannot be compared by name (exit 2) ...
   ASSERT_TRUE(specs.count("fxaa311-p39"));
   std::string methods;
-  for (const auto& s : specs) methods += (methods.empty() ? "" : ",") + (s == "fxaa311-p39" ? s + ":edge_threshold=1" : s);
+  for (const auto& s : specs)
+    methods += (methods.empty() ? "" : ",") + (s == "fxaa311-p39" ? s + ":edge_threshold=1" : s);
   r = Recipe(dir / "changed", methods);
   ASSERT_EQ(r.code, 0) << r.output;
   r = Gate(dir / "base", dir / "changed", dir);
@@ -138,8 +140,9 @@ TEST(CiGate, SameBinaryUnderLoadPassesAndPlantedRegressionsFail) {
   EXPECT_NE(r.output.find("wedges  fxaa311-p39 -> fxaa311-p39:subpix=1  edge_psnr_db"), std::string::npos) << r.output;
 
   // Usage errors of compare are "could not compare" (2), never "regression" (1).
-  for (const char* args : {"compare", "compare a.json", "compare a.json b.json --bogus", "compare a.json b.json --fail-on nope",
-                           "compare a.json b.json --map nonsense", "compare a.json b.json --warn-drop-db 1"}) {
+  for (const char* args :
+       {"compare", "compare a.json", "compare a.json b.json --bogus", "compare a.json b.json --fail-on nope",
+        "compare a.json b.json --map nonsense", "compare a.json b.json --warn-drop-db 1"}) {
     r = Aalab(args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
   }

@@ -26,9 +26,6 @@ using aalab::clitest::Aalab;
 using aalab::clitest::CmdResult;
 using aalab::clitest::TempDir;
 
-
-
-
 /// Expects the 8-bit image file at `path` to hold exactly the RGB bytes of `want`.
 void ExpectFileIs(const fs::path& path, const aalab::Image8& want) {
   ASSERT_TRUE(fs::exists(path)) << path;
@@ -59,7 +56,8 @@ aalab::Image8 LibraryFrame(const std::string& scene, int w, int h, int grid) {
 void ExpectFails(const std::string& args, const std::vector<std::string>& parts) {
   const CmdResult r = Aalab(args);
   EXPECT_NE(r.code, 0) << args << "\n" << r.output;
-  for (const auto& p : parts) EXPECT_NE(r.output.find(p), std::string::npos) << args << "\noutput: " << r.output << "\nmissing: " << p;
+  for (const auto& p : parts)
+    EXPECT_NE(r.output.find(p), std::string::npos) << args << "\noutput: " << r.output << "\nmissing: " << p;
 }
 
 TEST(Cli, VersionAndHelp) {
@@ -74,7 +72,8 @@ TEST(Cli, VersionAndHelp) {
 TEST(Cli, ListsNameEverything) {
   CmdResult r = Aalab("list methods");
   EXPECT_EQ(r.code, 0);
-  for (const char* m : {"none", "ssaa-4x4", "ssaa-jitter", "spp=8 [1..1024]"}) EXPECT_NE(r.output.find(m), std::string::npos) << m;
+  for (const char* m : {"none", "ssaa-4x4", "ssaa-jitter", "spp=8 [1..1024]"})
+    EXPECT_NE(r.output.find(m), std::string::npos) << m;
   r = Aalab("list scenes");
   EXPECT_EQ(r.code, 0);
   for (const char* s : {"wedges", "mesh", "suites:", "quick"}) EXPECT_NE(r.output.find(s), std::string::npos) << s;
@@ -85,7 +84,8 @@ TEST(Cli, ListsNameEverything) {
 TEST(Cli, UnknownNamesListValidChoices) {
   const fs::path out = TempDir("bad");
   ExpectFails("run --scenes wedgez --out " + (out / "r").string(), {"unknown scene 'wedgez'", "wedges"});
-  ExpectFails("run --scenes wedges --methods fxaa9 --out " + (out / "r").string(), {"unknown method 'fxaa9'", "ssaa-4x4"});
+  ExpectFails("run --scenes wedges --methods fxaa9 --out " + (out / "r").string(),
+              {"unknown method 'fxaa9'", "ssaa-4x4"});
   ExpectFails("run --scenes wedges --methods ssaa-jitter:sp=2 --out " + (out / "r").string(),
               {"unknown parameter 'sp'", "spp=8 [1..1024]"});
   ExpectFails("run --scenes wedges --methods ssaa-jitter:spp=0 --out " + (out / "r").string(), {"out of range"});
@@ -112,8 +112,10 @@ TEST(Cli, BadSceneFileNamesFileAndField) {
 TEST(Cli, RunWritesReportCoveringTheMatrix) {
   const fs::path dir = TempDir("run");
   const fs::path out = dir / "report";
-  const CmdResult r = Aalab("run --scenes wedges,circle --methods none,ssaa-2x2,ssaa-jitter:spp=4 --size 48x27 "
-                            "--ref-spp 16 --repeat 1 --quiet --out " + out.string());
+  const CmdResult r = Aalab(
+      "run --scenes wedges,circle --methods none,ssaa-2x2,ssaa-jitter:spp=4 --size 48x27 "
+      "--ref-spp 16 --repeat 1 --quiet --out " +
+      out.string());
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("report.json"), std::string::npos);
   std::ifstream f(out / "report.json");
@@ -159,7 +161,9 @@ TEST(Cli, RunWritesReportCoveringTheMatrix) {
     EXPECT_FALSE(row["images"].contains("error_heatmap"));
   }
   // A second run replaces the folder (it holds a report.json).
-  EXPECT_EQ(Aalab("run --scenes wedges --methods none --size 16x9 --ref-spp 4 --repeat 1 --quiet --out " + out.string()).code, 0);
+  EXPECT_EQ(
+      Aalab("run --scenes wedges --methods none --size 16x9 --ref-spp 4 --repeat 1 --quiet --out " + out.string()).code,
+      0);
   // A folder that is not an aalab report is never replaced.
   const fs::path foreign = dir / "foreign";
   fs::create_directories(foreign);
@@ -220,7 +224,8 @@ TEST(Cli, MetricsCommand) {
   EXPECT_NE(r.output.find("edge_psnr_db           null (no edge mask)"), std::string::npos) << r.output;
   ExpectFails("metrics --reference " + (dir / "ref.png").string() + " " + (dir / "small.png").string(),
               {"sizes differ", "32x18", "16x9", "never resampled"});
-  ExpectFails("metrics --reference " + (dir / "nope.png").string() + " " + (dir / "ref.png").string(), {"does not exist"});
+  ExpectFails("metrics --reference " + (dir / "nope.png").string() + " " + (dir / "ref.png").string(),
+              {"does not exist"});
   std::ofstream(dir / "trunc.png") << "\x89PNG\r\n";
   ExpectFails("metrics --reference " + (dir / "trunc.png").string() + " " + (dir / "ref.png").string(), {"trunc.png"});
   // The viewing condition sets FLIP's pixels per degree: `default` is the plain command's 67,
@@ -276,7 +281,8 @@ TEST(Cli, ApplyErrorsLeaveNoOutput) {
   const std::string in = (dir / "in.png").string();
   ASSERT_EQ(Aalab("render --scene wedges --size 32x18 --out " + in).code, 0);
   const std::string out = (dir / "out.png").string();
-  ExpectFails("apply --method fxaa1-p3 " + (dir / "missing.png").string() + " " + out, {"missing.png", "does not exist"});
+  ExpectFails("apply --method fxaa1-p3 " + (dir / "missing.png").string() + " " + out,
+              {"missing.png", "does not exist"});
   std::ofstream(dir / "trunc.png") << "\x89PNG\r\n\x1a\n";
   ExpectFails("apply --method fxaa1-p3 " + (dir / "trunc.png").string() + " " + out, {"trunc.png"});
   std::ofstream(dir / "text.png") << "not an image at all";

@@ -16,8 +16,9 @@ namespace fs = std::filesystem;
 using clitest::Aalab;
 using clitest::TempDir;
 
-const char* kArgs = " --scenes circle,wedges,thin-wires --methods none,fxaa311-p39,ssaa-2x2 --size 47x29 --ref-spp 16 "
-                    "--repeat 1 --quiet";
+const char* kArgs =
+    " --scenes circle,wedges,thin-wires --methods none,fxaa311-p39,ssaa-2x2 --size 47x29 --ref-spp 16 "
+    "--repeat 1 --quiet";
 
 TEST(ClusterCli, ShardMergeAndSameResults) {
   const fs::path dir = TempDir("cluster-cli");

@@ -24,9 +24,6 @@ using aalab::clitest::CmdResult;
 
 fs::path TempDir(const std::string& name) { return aalab::clitest::TempDir("cmp-" + name); }
 
-
-
-
 Json ReadJson(const fs::path& p) {
   std::ifstream f(p);
   return Json::parse(f);
@@ -76,8 +73,8 @@ TEST(CompareCli, FlagsAnInjectedQualityDropAndWritesHtml) {
   }
   WriteJson(cur, j);
   const fs::path html = dir / "cmp" / "compare.html";
-  const CmdResult r = Aalab("compare " + base.string() + " " + cur.string() + " --max-time-increase off --html " +
-                            html.string());
+  const CmdResult r =
+      Aalab("compare " + base.string() + " " + cur.string() + " --max-time-increase off --html " + html.string());
   EXPECT_EQ(r.code, 1) << r.output;
   for (const char* s : {"wedges  fxaa1-p3  psnr_db", "circle  fxaa1-p3  psnr_db", "REGRESSION", "-0.100 dB",
                         "exit 1 (regression)", "(2 bit-identical outputs)"}) {
@@ -90,14 +87,15 @@ TEST(CompareCli, FlagsAnInjectedQualityDropAndWritesHtml) {
   page << std::ifstream(html).rdbuf();
   EXPECT_NE(page.str().find("src=\"compare_files/row1-baseline-output.png\""), std::string::npos);
   EXPECT_NE(page.str().find("src=\"compare_files/row1-reference.png\""), std::string::npos);
-  for (const char* f : {"row1-baseline-output.png", "row1-current-output.png", "row1-reference.png",
-                        "row2-current-output.png"}) {
+  for (const char* f :
+       {"row1-baseline-output.png", "row1-current-output.png", "row1-reference.png", "row2-current-output.png"}) {
     EXPECT_TRUE(fs::exists(dir / "cmp" / "compare_files" / f)) << f;
   }
   EXPECT_FALSE(fs::exists(dir / "cmp" / "compare_files.partial"));
   // A folder that is not ours is never replaced.
   fs::create_directories(dir / "mine_files");
-  const CmdResult refused = Aalab("compare " + base.string() + " " + cur.string() + " --html " + (dir / "mine.html").string());
+  const CmdResult refused =
+      Aalab("compare " + base.string() + " " + cur.string() + " --html " + (dir / "mine.html").string());
   EXPECT_EQ(refused.code, 2) << refused.output;
   EXPECT_TRUE(Has(refused, "not written by aalab compare")) << refused.output;
 
@@ -151,8 +149,11 @@ TEST(CompareCli, MissingRowsAndMismatchedSettingsExit2) {
   EXPECT_TRUE(Has(r, "schema_version 2 is not supported")) << r.output;
   // A real run at another size.
   const fs::path small = dir / "small";
-  ASSERT_EQ(Aalab("run --scenes wedges,circle --methods none,fxaa1-p3 --size 16x9 --ref-spp 16 --repeat 1 --quiet --out " +
-                  small.string()).code, 0);
+  ASSERT_EQ(
+      Aalab("run --scenes wedges,circle --methods none,fxaa1-p3 --size 16x9 --ref-spp 16 --repeat 1 --quiet --out " +
+            small.string())
+          .code,
+      0);
   r = Aalab("compare " + base.string() + " " + (small / "report.json").string());
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_TRUE(Has(r, "setting 'size' differs")) << r.output;
@@ -177,7 +178,8 @@ TEST(CompareCli, MissingRowsAndMismatchedSettingsExit2) {
   // The rules are in --help.
   r = Aalab("compare --help");
   EXPECT_EQ(r.code, 0);
-  for (const char* s : {"max - min of samples_ms", "Exit codes: 0 no regression; 1 regression (gated)", "2 could not compare", "--fail-on quality (default)"}) {
+  for (const char* s : {"max - min of samples_ms", "Exit codes: 0 no regression; 1 regression (gated)",
+                        "2 could not compare", "--fail-on quality (default)"}) {
     EXPECT_TRUE(Has(r, s)) << s << "\n" << r.output;
   }
 }
@@ -214,15 +216,19 @@ TEST(HistoryCli, AddsReportsRejectsMismatchedSeriesAndWritesTrends) {
   }
   // Another size does not join the series ...
   const fs::path small = dir / "small";
-  ASSERT_EQ(Aalab("run --scenes wedges,circle --methods none,fxaa1-p3 --size 16x9 --ref-spp 16 --repeat 1 --quiet --out " +
-                  small.string()).code, 0);
+  ASSERT_EQ(
+      Aalab("run --scenes wedges,circle --methods none,fxaa1-p3 --size 16x9 --ref-spp 16 --repeat 1 --quiet --out " +
+            small.string())
+          .code,
+      0);
   r = Aalab("history add " + (small / "report.json").string() + " --db " + db.string() + " --commit 3333333");
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_TRUE(Has(r, "does not match series 'default'")) << r.output;
   EXPECT_TRUE(Has(r, "size: series 48x27, report 16x9")) << r.output;
   EXPECT_TRUE(Has(r, "--series NAME")) << r.output;
   // ... but starts another one with --series (date from the file's modification time).
-  r = Aalab("history add " + (small / "report.json").string() + " --db " + db.string() + " --commit 3333333 --series small");
+  r = Aalab("history add " + (small / "report.json").string() + " --db " + db.string() +
+            " --commit 3333333 --series small");
   EXPECT_EQ(r.code, 0) << r.output;
   // The trend page.
   r = Aalab("history report --db " + db.string() + " --out " + (dir / "trend").string());
@@ -248,9 +254,10 @@ TEST(HistoryCli, AddsReportsRejectsMismatchedSeriesAndWritesTrends) {
 TEST(SweepCli, PerceptualObjectiveAtAViewingCondition) {
   // flip_mean as the objective (lower is better): the best point is the one with the lowest
   // mean FLIP, computed at the viewing condition the sweep records.
-  const SweepRun s = Sweep("sweep-flip", "--scenes wedges,circle --method fxaa311-p39 --grid subpix=0,0.5,1 "
-                                         "--objective flip_mean,edge_psnr_db --viewing tv-1080p-2m --size 48x27 "
-                                         "--ref-spp 4 --repeat 1");
+  const SweepRun s = Sweep("sweep-flip",
+                           "--scenes wedges,circle --method fxaa311-p39 --grid subpix=0,0.5,1 "
+                           "--objective flip_mean,edge_psnr_db --viewing tv-1080p-2m --size 48x27 "
+                           "--ref-spp 4 --repeat 1");
   ASSERT_EQ(s.r.code, 0);
   const CmdResult& r = s.r;
   const Json& j = s.j;
@@ -260,7 +267,8 @@ TEST(SweepCli, PerceptualObjectiveAtAViewingCondition) {
   size_t best = 0;
   for (size_t p = 0; p < j["points"].size(); ++p) {
     if (j["points"][p]["objectives"]["flip_mean"]["mean"].get<double>() <
-        j["points"][best]["objectives"]["flip_mean"]["mean"].get<double>()) best = p;
+        j["points"][best]["objectives"]["flip_mean"]["mean"].get<double>())
+      best = p;
   }
   EXPECT_EQ(j["best"]["flip_mean"]["point"], best);
   EXPECT_EQ(j["suggested_preset"], j["points"][best]["spec"]);  // the first objective drives it
@@ -269,8 +277,9 @@ TEST(SweepCli, PerceptualObjectiveAtAViewingCondition) {
 }
 
 TEST(SweepCli, RendersEachReferenceOnceAndWritesTheFront) {
-  const SweepRun s = Sweep("sweep", "--scenes wedges,circle --method fxaa1-p3 --grid edge_threshold=0.125,1 "
-                                    "--grid subpix_cap=0,0.75 --objective psnr_db,mse --size 48x27 --ref-spp 4 --repeat 1");
+  const SweepRun s = Sweep("sweep",
+                           "--scenes wedges,circle --method fxaa1-p3 --grid edge_threshold=0.125,1 "
+                           "--grid subpix_cap=0,0.75 --objective psnr_db,mse --size 48x27 --ref-spp 4 --repeat 1");
   ASSERT_EQ(s.r.code, 0);
   const CmdResult& r = s.r;
   const fs::path &dir = s.dir, &out = s.out;
@@ -316,8 +325,8 @@ TEST(SweepCli, RendersEachReferenceOnceAndWritesTheFront) {
 
 TEST(SweepCli, GridErrorsNameTheProblem) {
   const fs::path dir = TempDir("sweep-bad");
-  const std::string common = " --scenes wedges --size 16x9 --ref-spp 4 --repeat 1 --quiet --objective psnr_db --out " +
-                             (dir / "s").string();
+  const std::string common =
+      " --scenes wedges --size 16x9 --ref-spp 4 --repeat 1 --quiet --objective psnr_db --out " + (dir / "s").string();
   struct Case {
     std::string args;
     std::vector<std::string> parts;
@@ -331,7 +340,8 @@ TEST(SweepCli, GridErrorsNameTheProblem) {
       {"--method fxaa1-p3 --grid edge_threshold=0.5,0.50", {"are the same value"}},
       {"--method fxaa1-p3 --grid edge_threshold", {"is not NAME=V1,V2"}},
       {"--method fxaa9 --grid edge_threshold=0.1", {"unknown method 'fxaa9'"}},
-      {"--method fxaa1-p3 --grid search_steps=1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22,23,24,25,26,27,28,"
+      {"--method fxaa1-p3 --grid "
+       "search_steps=1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22,23,24,25,26,27,28,"
        "29,30,31,32 --grid subpix_cap=0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1 --grid edge_threshold=0.1,0.2,0.3",
        {"has 1056 points; the limit is 1024"}},
   };
@@ -341,8 +351,8 @@ TEST(SweepCli, GridErrorsNameTheProblem) {
     EXPECT_TRUE(Has(r, "aalab: error:")) << r.output;
     for (const auto& p : c.parts) EXPECT_TRUE(Has(r, p)) << c.args << "\nmissing: " << p << "\n" << r.output;
   }
-  const CmdResult r = Aalab("sweep --method fxaa1-p3 --grid edge_threshold=0.1 --objective nope" + common.substr(0, common.find(" --objective")) +
-                            " --out " + (dir / "s").string());
+  const CmdResult r = Aalab("sweep --method fxaa1-p3 --grid edge_threshold=0.1 --objective nope" +
+                            common.substr(0, common.find(" --objective")) + " --out " + (dir / "s").string());
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_TRUE(Has(r, "unknown metric 'nope'")) << r.output;
   EXPECT_FALSE(fs::exists(dir / "s"));  // nothing written by a refused sweep
@@ -419,8 +429,9 @@ TEST(BaselineCli, AcceptReplacesThroughTheOutputRuleAndRecordsWhoWhenWhy) {
 }
 
 TEST(SweepCli, ObjectivesDisagreeLoudlyAndTheSuggestionIsComparedWithTheDefault) {
-  const SweepRun s = Sweep("sweep-verdict", "--scenes wedges,circle --method fxaa311-p39 --grid subpix=0,0.75,1 "
-                                            "--size 64x36 --ref-spp 16 --repeat 3");
+  const SweepRun s = Sweep("sweep-verdict",
+                           "--scenes wedges,circle --method fxaa311-p39 --grid subpix=0,0.75,1 "
+                           "--size 64x36 --ref-spp 16 --repeat 3");
   ASSERT_EQ(s.r.code, 0);
   const CmdResult& r = s.r;
   const Json& j = s.j;

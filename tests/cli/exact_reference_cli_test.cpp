@@ -34,8 +34,10 @@ TEST(CliExactReference, RefusesNonFlatScenesAndUnknownKinds) {
 TEST(CliExactReference, RunWritesTheExactReferenceAndAaaCounters) {
   const fs::path dir = TempDir("exact_ref_run");
   const fs::path out = dir / "r";
-  const CmdResult r = Aalab("run --scenes sdf-circles --reference exact --methods none,aaa --size 240x135 --repeat 1 "
-                            "--quiet --out " + out.string() + " 2>&1");
+  const CmdResult r = Aalab(
+      "run --scenes sdf-circles --reference exact --methods none,aaa --size 240x135 --repeat 1 "
+      "--quiet --out " +
+      out.string() + " 2>&1");
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream f(out / "report.json");
   const auto doc = nlohmann::json::parse(f);
@@ -54,7 +56,8 @@ TEST(CliExactReference, RunWritesTheExactReferenceAndAaaCounters) {
   EXPECT_LE(share, 1.0);
   EXPECT_FALSE(doc.at("rows").at(0).at("cost").contains("analytic_edge_share"));
   // aaa beats none against the exact truth on its own test card.
-  EXPECT_GT(aaa.at("metrics").at("psnr_db").get<double>(), doc.at("rows").at(0).at("metrics").at("psnr_db").get<double>() + 5);
+  EXPECT_GT(aaa.at("metrics").at("psnr_db").get<double>(),
+            doc.at("rows").at(0).at("metrics").at("psnr_db").get<double>() + 5);
   std::ifstream h(out / "index.html");
   std::stringstream ss;
   ss << h.rdbuf();

@@ -37,8 +37,8 @@ std::string Slurp(const fs::path& p) {
 /// A tiny run: wedges (edges) and detail-texture (no edge pixels: edge PSNR is null there).
 fs::path TinyRun(const fs::path& root, const std::string& methods = "none,fxaa-high,ssaa-2x2") {
   const fs::path run = root / "run";
-  const CmdResult r = Aalab("run --size 96x54 --scenes wedges,detail-texture --methods " + methods + " --out " +
-                            run.string());
+  const CmdResult r =
+      Aalab("run --size 96x54 --scenes wedges,detail-texture --methods " + methods + " --out " + run.string());
   EXPECT_EQ(r.code, 0) << r.output;
   return run;
 }
@@ -182,7 +182,8 @@ TEST(ExportCli, NumbersFiguresAndProvenanceMatchTheReport) {
   // crop windows; the PNG's pixels at every image tile equal the report's images there.
   const std::string svg = Slurp(out / "figure_crops.svg");
   const aalab::Image8 png = aalab::ReadImage8((out / "figure_crops.png").string());
-  const std::regex group(R"re(<g transform="translate\((\d+) (\d+)\) scale\((\d+)\)"[^>]*data-crop="(\d+) (\d+) (\d+) (\d+)" data-kind="(image|heatmap)" data-image="([^"]+)">)re");
+  const std::regex group(
+      R"re(<g transform="translate\((\d+) (\d+)\) scale\((\d+)\)"[^>]*data-crop="(\d+) (\d+) (\d+) (\d+)" data-kind="(image|heatmap)" data-image="([^"]+)">)re");
   const auto& crops = report["scenes"][0]["crops"];
   int tiles = 0, heat = 0;
   for (auto g = std::sregex_iterator(svg.begin(), svg.end(), group); g != std::sregex_iterator(); ++g) {
@@ -230,7 +231,8 @@ TEST(ExportCli, NumbersFiguresAndProvenanceMatchTheReport) {
   for (const auto& spec : specs) EXPECT_NE(chart.find("data-spec=\"" + spec + "\""), std::string::npos) << spec;
 
   // Again into the same folder: it holds export.json, so it is replaced.
-  EXPECT_EQ(Aalab("export " + run.string() + " --out " + out.string() + " --scenes wedges --methods none,ssaa-2x2").code, 0);
+  EXPECT_EQ(
+      Aalab("export " + run.string() + " --out " + out.string() + " --scenes wedges --methods none,ssaa-2x2").code, 0);
   EXPECT_EQ(Csv(Slurp(out / "metric_table.csv"))[0], (std::vector<std::string>{"Method", "wedges"}));
 
   // Before/after: the same report twice under two labels.

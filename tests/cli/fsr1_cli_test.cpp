@@ -36,7 +36,8 @@ TEST(Fsr1Cli, EasuAndRcasRunInTheirStages) {
   EXPECT_EQ(rows["rcas:sharpness=0"]["cost"]["taps_per_px"].get<double>(), 5.0);
   // `rcas` is RCAS of the 1x frame (`none`'s output), at sharpness 0.
   const aalab::Image8 none = aalab::ReadImage8((dir / rows["none"]["images"]["output"].get<std::string>()).string());
-  const aalab::Image8 rcas = aalab::ReadImage8((dir / rows["rcas:sharpness=0"]["images"]["output"].get<std::string>()).string());
+  const aalab::Image8 rcas =
+      aalab::ReadImage8((dir / rows["rcas:sharpness=0"]["images"]["output"].get<std::string>()).string());
   EXPECT_TRUE(rcas == aalab::Fsr1Rcas(none, 0.0f, nullptr));
   EXPECT_FALSE(rcas == none);
 }

@@ -66,9 +66,11 @@ TEST(GltfCli, SpecularAaChangesOnlyWhereTheNormalVaries) {
   // varies within every pixel, so its variance term (toksvig=1) and the old derivatives of the
   // mapped normal (derivatives=mapped) differ.
   const fs::path dir = TempDir("gltf-gsaa");
-  const CmdResult r = Aalab("run --scenes real-grazing,real-glossy --methods none,gsaa,gsaa:toksvig=1,gsaa:derivatives=mapped "
-                            "--size 96x54 --ref-spp 4 "
-                            "--repeat 1 --quiet --out " + (dir / "out").string());
+  const CmdResult r = Aalab(
+      "run --scenes real-grazing,real-glossy --methods none,gsaa,gsaa:toksvig=1,gsaa:derivatives=mapped "
+      "--size 96x54 --ref-spp 4 "
+      "--repeat 1 --quiet --out " +
+      (dir / "out").string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream f(dir / "out" / "report.json");
   const auto doc = nlohmann::json::parse(f);
@@ -83,19 +85,20 @@ TEST(GltfCli, SpecularAaChangesOnlyWhereTheNormalVaries) {
 
 TEST(GltfCli, BadFileIsRefusedAndNothingIsWritten) {
   const fs::path dir = TempDir("gltf-bad");
-  std::ofstream(dir / "broken.gltf") << R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 12, "uri": "gone.bin"}]})";
+  std::ofstream(dir / "broken.gltf")
+      << R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 12, "uri": "gone.bin"}]})";
   std::ofstream(dir / "scene.json") << R"({"name": "bad-gltf", "effects": ["lambert", "specular"],
       "camera": {"type": "perspective", "position": [0, 0, 5], "look_at": [0, 0, 0], "fov_y": 40},
       "ambient": [1, 1, 1], "materials": {}, "objects": [{"shape": "gltf", "file": "broken.gltf"}]})";
-  const CmdResult r = Aalab("render --scene " + (dir / "scene.json").string() + " --size 32x16 --out " +
-                            (dir / "out.png").string());
+  const CmdResult r =
+      Aalab("render --scene " + (dir / "scene.json").string() + " --size 32x16 --out " + (dir / "out.png").string());
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("/objects/0/file"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("at /buffers/0/uri"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("gone.bin' not found"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out.png"));
-  const CmdResult run = Aalab("run --scenes " + (dir / "scene.json").string() + " --size 32x16 --out " +
-                              (dir / "run").string());
+  const CmdResult run =
+      Aalab("run --scenes " + (dir / "scene.json").string() + " --size 32x16 --out " + (dir / "run").string());
   EXPECT_EQ(run.code, 1) << run.output;
   EXPECT_FALSE(fs::exists(dir / "run" / "report.json"));
   fs::remove_all(dir);
@@ -106,9 +109,10 @@ TEST(GltfCli, UndeclaredEffectOfAGltfMaterialIsNamed) {
   const fs::path dir = TempDir("gltf-effects");
   std::ofstream(dir / "scene.json") << std::string(R"({"name": "fence", "effects": ["lambert", "specular", "textures"],
       "camera": {"type": "gltf"}, "ambient": [1, 1, 1], "materials": {},
-      "objects": [{"shape": "gltf", "file": ")") + AALAB_SOURCE_DIR + R"(/scenes/library/real/fence.glb"}]})";
-  const CmdResult r = Aalab("render --scene " + (dir / "scene.json").string() + " --size 32x16 --out " +
-                            (dir / "out.png").string());
+      "objects": [{"shape": "gltf", "file": ")") +
+                                           AALAB_SOURCE_DIR + R"(/scenes/library/real/fence.glb"}]})";
+  const CmdResult r =
+      Aalab("render --scene " + (dir / "scene.json").string() + " --size 32x16 --out " + (dir / "out.png").string());
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("alphaMode MASK"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("alpha_test"), std::string::npos) << r.output;

@@ -30,8 +30,10 @@ std::string ReadText(const fs::path& p) {
 const fs::path& RunDir() {
   static const fs::path dir = [] {
     const fs::path d = TempDir("gpu-cli") / "run";
-    const auto r = Aalab("run --scenes wedges --methods none,fxaa1-p3,fxaa311-p39 --size 33x17 --ref-spp 4 "
-                         "--repeat 1 --quiet --out " + d.string());
+    const auto r = Aalab(
+        "run --scenes wedges --methods none,fxaa1-p3,fxaa311-p39 --size 33x17 --ref-spp 4 "
+        "--repeat 1 --quiet --out " +
+        d.string());
     EXPECT_EQ(r.code, 0) << r.output;
     return d;
   }();
@@ -86,8 +88,8 @@ TEST(ExportFrames, TaaFramesAreJitteredRendersWithTheirPreviousPositions) {
   // Frame 0 is taa's first render: `aalab run --methods taa` on one frame has no history, so its
   // output is that render decoded and encoded again (EncodeSrgb8(SrgbDecode8(k)) = k).
   const fs::path run = dir / "run";
-  const auto rr = Aalab("run --scenes wedges --methods taa --size 33x17 --ref-spp 4 --repeat 1 --quiet --out " +
-                        run.string());
+  const auto rr =
+      Aalab("run --scenes wedges --methods taa --size 33x17 --ref-spp 4 --repeat 1 --quiet --out " + run.string());
   ASSERT_EQ(rr.code, 0) << rr.output;
   std::string taa_png;
   const auto report = nlohmann::json::parse(ReadText(run / "report.json"));
@@ -168,8 +170,9 @@ TEST(SamplerOption, GpuTextureIsRecordedAndChangesOnlyTheFilters) {
   // --sampler gpu-texture: the report records it, the render and `none` keep their bits
   // (nothing samples there), the filters run. The default run does not name a sampler.
   const fs::path dir = TempDir("sampler-option");
-  const std::string common = "run --scenes wedges --methods none,fxaa311-p39,smaa-high,scale43 --size 61x37 "
-                             "--ref-spp 4 --repeat 1 --quiet --out ";
+  const std::string common =
+      "run --scenes wedges --methods none,fxaa311-p39,smaa-high,scale43 --size 61x37 "
+      "--ref-spp 4 --repeat 1 --quiet --out ";
   auto r = Aalab(common + (dir / "gl").string());
   ASSERT_EQ(r.code, 0) << r.output;
   r = Aalab(common + (dir / "hw").string() + " --sampler gpu-texture");

@@ -36,8 +36,8 @@ TEST(CliImageScene, RunSweepAndABadManifest) {
   const fs::path dir = TempDir("image-scene");
   const fs::path manifest = MakeImageScene(dir);
 
-  CmdResult r = Aalab("run --scenes " + manifest.string() + " --methods none,fxaa311-p12,ssaa-2x2 --repeat 1 --quiet --out " +
-                      (dir / "img").string());
+  CmdResult r = Aalab("run --scenes " + manifest.string() +
+                      " --methods none,fxaa311-p12,ssaa-2x2 --repeat 1 --quiet --out " + (dir / "img").string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream rf(dir / "img/report.json");
   const nlohmann::json rep = nlohmann::json::parse(rf);

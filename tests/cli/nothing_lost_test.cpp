@@ -46,7 +46,8 @@ void WriteJson(const fs::path& p, const nlohmann::json& j) { WriteText(p, j.dump
 
 void ExpectFail(const CmdResult& r, int code, const std::vector<std::string>& parts, const std::string& what) {
   EXPECT_EQ(r.code, code) << what << "\n" << r.output;
-  for (const auto& p : parts) EXPECT_NE(r.output.find(p), std::string::npos) << what << "\nmissing: " << p << "\n" << r.output;
+  for (const auto& p : parts)
+    EXPECT_NE(r.output.find(p), std::string::npos) << what << "\nmissing: " << p << "\n" << r.output;
 }
 
 /// Every file under `dir` (relative), for "nothing else was written" checks.
@@ -66,8 +67,8 @@ TEST(NothingLost, MergeRefusesImagePathsThatLeaveTheShardOrOut) {
   ASSERT_EQ(Aalab("run " + kSmall + " --shard 0/1 --out " + (dir / "s0").string()).code, 0);
   WriteText(dir / "victim.png", "the user's file");
   const nlohmann::json good = ReadJson(dir / "s0" / "report.json");
-  for (const std::string& evil : {std::string("../victim.png"), (dir / "victim.png").string(),
-                                  std::string("images/../../victim.png")}) {
+  for (const std::string& evil :
+       {std::string("../victim.png"), (dir / "victim.png").string(), std::string("images/../../victim.png")}) {
     nlohmann::json j = good;
     j["rows"][0]["images"]["output"] = evil;
     WriteJson(dir / "s0" / "report.json", j);
@@ -92,7 +93,8 @@ TEST(NothingLost, MergeRefusesImagePathsThatLeaveTheShardOrOut) {
 TEST(NothingLost, ExportSequencesRefusesNamesAndPathsThatLeave) {
   const fs::path dir = TempDir("nl-seq");
   ASSERT_EQ(Aalab("run --scenes motion-pan --methods none --frames 2 --size 24x16 --ref-spp 4 --repeat 1 --quiet "
-                  "--out " + (dir / "run").string())
+                  "--out " +
+                  (dir / "run").string())
                 .code,
             0);
   const nlohmann::json good = ReadJson(dir / "run" / "report.json");
@@ -172,9 +174,9 @@ TEST(NothingLost, ImageScenesKeepTheirInputsAndReservedNames) {
   EXPECT_TRUE(fs::exists(res / "images" / "circle" / "none.png"));
   // A supplied output called `reference` would overwrite the reference's images.
   WriteManifest(dir / "m.json", "res/images/circle/none.png", "res/images/circle/reference.png", "reference");
-  ExpectFail(Aalab("run --scenes " + (dir / "m.json").string() + " --methods none --quiet --out " +
-                   (dir / "out").string()),
-             1, {"'reference' is reserved"}, "output named reference");
+  ExpectFail(
+      Aalab("run --scenes " + (dir / "m.json").string() + " --methods none --quiet --out " + (dir / "out").string()), 1,
+      {"'reference' is reserved"}, "output named reference");
   // Manifest paths stay inside the manifest's folder.
   WriteText(dir / "sub" / "x.txt", "");
   WriteManifest(dir / "sub" / "m.json", "../res/images/circle/none.png", "../res/images/circle/reference.png");
@@ -243,9 +245,11 @@ TEST(NothingLost, AFileAddedDuringARunIsNeverDeletedAndTheWorkIsKept) {
   const fs::path dir = TempDir("nl-added");
   const fs::path res = dir / "res";
   ASSERT_EQ(Aalab("run " + kSmall + " --out " + res.string()).code, 0);
-  const pid_t pid = SpawnAalab("run --scenes circle,wedges --methods none,fxaa311-p39,smaa-high --size 160x90 --ref-spp 64 "
-                          "--repeat 1 --quiet --out " + res.string(),
-                          dir / "log.txt");
+  const pid_t pid = SpawnAalab(
+      "run --scenes circle,wedges --methods none,fxaa311-p39,smaa-high --size 160x90 --ref-spp 64 "
+      "--repeat 1 --quiet --out " +
+          res.string(),
+      dir / "log.txt");
   ASSERT_TRUE(WaitForPath(res.string() + ".partial"));
   WriteText(res / "added-during-run.txt", "written while aalab worked");
   int status = 0;
@@ -270,7 +274,8 @@ TEST(NothingLost, ARunNeverReplacesASweepsFolder) {
   const fs::path dir = TempDir("nl-kind");
   const fs::path sw = dir / "sweep";
   ASSERT_EQ(Aalab("sweep --scenes circle --method fxaa311-p39 --grid subpix=0,1 --objective psnr_db --size 24x16 "
-                  "--ref-spp 4 --repeat 1 --quiet --out " + sw.string())
+                  "--ref-spp 4 --repeat 1 --quiet --out " +
+                  sw.string())
                 .code,
             0);
   const auto before = FilesUnder(sw);
@@ -284,7 +289,8 @@ TEST(NothingLost, ARunNeverReplacesASweepsFolder) {
   const fs::path run = dir / "run";
   ASSERT_EQ(Aalab("run " + kSmall + " --out " + run.string()).code, 0);
   ExpectFail(Aalab("sweep --scenes circle --method fxaa311-p39 --grid subpix=0,1 --objective psnr_db --size 24x16 "
-                   "--ref-spp 4 --repeat 1 --quiet --out " + run.string()),
+                   "--ref-spp 4 --repeat 1 --quiet --out " +
+                   run.string()),
              1, {"another kind (run"}, "sweep onto a run");
   EXPECT_TRUE(fs::exists(run / "report.json"));
   fs::remove_all(dir);
@@ -338,9 +344,9 @@ TEST(NothingLost, AClosedStdoutNeverLosesTheReport) {
   // (status 141). Now: the run finishes, commits, exits 0 and says on stderr what was lost.
   const fs::path dir = TempDir("nl-pipe");
   const std::string res = (dir / "res").string();
-  const CmdResult r = RunCommand("bash -c '" + std::string(AALAB_BINARY_DIR) + "/aalab run " + kSmall + " --out " +
-                                 res + " 2>" + (dir / "err.txt").string() +
-                                 " | (exec 0<&-; sleep 0.1); echo status=${PIPESTATUS[0]}'");
+  const CmdResult r =
+      RunCommand("bash -c '" + std::string(AALAB_BINARY_DIR) + "/aalab run " + kSmall + " --out " + res + " 2>" +
+                 (dir / "err.txt").string() + " | (exec 0<&-; sleep 0.1); echo status=${PIPESTATUS[0]}'");
   EXPECT_NE(r.output.find("status=0"), std::string::npos) << r.output << Bytes(dir / "err.txt");
   EXPECT_TRUE(fs::exists(dir / "res" / "report.json"));
   EXPECT_NE(Bytes(dir / "err.txt").find("standard output was closed"), std::string::npos) << Bytes(dir / "err.txt");
@@ -352,17 +358,18 @@ TEST(NothingLost, AClosedStdoutNeverLosesTheReport) {
 TEST(NothingLost, TheSamplerIsAConditionOfCompareHistoryAndExport) {
   const fs::path dir = TempDir("nl-sampler");
   ASSERT_EQ(Aalab("run " + kSmall + " --out " + (dir / "gl").string()).code, 0);
-  ASSERT_EQ(Aalab("run " + kSmall + " --sampler gpu-texture --viewing tv-1080p-2m --out " + (dir / "tex").string()).code,
-            0);
-  ExpectFail(Aalab("compare " + (dir / "gl" / "report.json").string() + " " + (dir / "tex" / "report.json").string()), 2,
-             {"setting 'sampler' differs: baseline gl, current gpu-texture"}, "compare gl vs gpu-texture");
+  ASSERT_EQ(
+      Aalab("run " + kSmall + " --sampler gpu-texture --viewing tv-1080p-2m --out " + (dir / "tex").string()).code, 0);
+  ExpectFail(Aalab("compare " + (dir / "gl" / "report.json").string() + " " + (dir / "tex" / "report.json").string()),
+             2, {"setting 'sampler' differs: baseline gl, current gpu-texture"}, "compare gl vs gpu-texture");
   const std::string db = (dir / "db.jsonl").string();
-  ASSERT_EQ(Aalab("history add " + (dir / "gl" / "report.json").string() + " --db " + db + " --date 2026-01-01").code, 0);
+  ASSERT_EQ(Aalab("history add " + (dir / "gl" / "report.json").string() + " --db " + db + " --date 2026-01-01").code,
+            0);
   ExpectFail(Aalab("history add " + (dir / "tex" / "report.json").string() + " --db " + db + " --date 2026-01-02"), 1,
              {"sampler: series gl, report gpu-texture"}, "history add across samplers");
-  ASSERT_EQ(Aalab("export " + (dir / "gl").string() + " " + (dir / "tex").string() + " --out " + (dir / "pub").string())
-                .code,
-            0);
+  ASSERT_EQ(
+      Aalab("export " + (dir / "gl").string() + " " + (dir / "tex").string() + " --out " + (dir / "pub").string()).code,
+      0);
   const std::string tex = Bytes(dir / "pub" / "figure_crops.tex");
   EXPECT_NE(tex.find("gl: "), std::string::npos) << tex;
   EXPECT_NE(tex.find("Post-filter sampler: gl."), std::string::npos) << tex;
@@ -402,9 +409,9 @@ TEST(NothingLost, OptionErrorsExitWithEachCommandsOwnCode) {
   ExpectFail(Aalab("export-sequences " + (dir / "pipe.json").string() + " --out " + (dir / "x").string()), 1,
              {"is a FIFO (named pipe), not a run folder"}, "fifo export-sequences");
   WriteText(dir / "s" / "mesh.json",
-        R"({"name": "m", "effects": ["unlit"], "camera": {"type": "orthographic", "position": [0,0,10], )"
-        R"("look_at": [0,0,0], "height": 4}, "materials": {"w": {"shading": "unlit"}}, )"
-        R"("objects": [{"shape": "mesh", "file": "dir.obj", "material": "w"}]})");
+            R"({"name": "m", "effects": ["unlit"], "camera": {"type": "orthographic", "position": [0,0,10], )"
+            R"("look_at": [0,0,0], "height": 4}, "materials": {"w": {"shading": "unlit"}}, )"
+            R"("objects": [{"shape": "mesh", "file": "dir.obj", "material": "w"}]})");
   fs::create_directories(dir / "s" / "dir.obj");
   ExpectFail(Aalab("run --scenes " + (dir / "s" / "mesh.json").string() + " --out " + (dir / "x").string()), 1,
              {"dir.obj' is a folder"}, "folder mesh");
@@ -415,17 +422,19 @@ TEST(NothingLost, TheDecodeBudgetBoundsEveryImageRead) {
   const fs::path dir = TempDir("nl-budget");
   Image8 img(1200, 1000, 4, 255);  // 1.2 megapixels
   WriteImage8((dir / "big.png").string(), img);
-  ExpectFail(RunCommand("AALAB_DECODE_BUDGET_MP=1 " + std::string(AALAB_BINARY_DIR) + "/aalab apply --method fxaa1-p3 " +
-                        (dir / "big.png").string() + " " + (dir / "out.png").string() + " 2>&1"),
-             1, {"big.png' (1200000 pixels)", "past the budget of 1000000", "AALAB_DECODE_BUDGET_MP"}, "budget");
+  ExpectFail(
+      RunCommand("AALAB_DECODE_BUDGET_MP=1 " + std::string(AALAB_BINARY_DIR) + "/aalab apply --method fxaa1-p3 " +
+                 (dir / "big.png").string() + " " + (dir / "out.png").string() + " 2>&1"),
+      1, {"big.png' (1200000 pixels)", "past the budget of 1000000", "AALAB_DECODE_BUDGET_MP"}, "budget");
   EXPECT_FALSE(fs::exists(dir / "out.png"));
   EXPECT_EQ(RunCommand("AALAB_DECODE_BUDGET_MP=2 " + std::string(AALAB_BINARY_DIR) + "/aalab apply --method fxaa1-p3 " +
                        (dir / "big.png").string() + " " + (dir / "out.png").string() + " 2>&1")
                 .code,
             0);
-  ExpectFail(RunCommand("AALAB_DECODE_BUDGET_MP=lots " + std::string(AALAB_BINARY_DIR) + "/aalab apply --method fxaa1-p3 " +
-                        (dir / "big.png").string() + " " + (dir / "o2.png").string() + " 2>&1"),
-             1, {"AALAB_DECODE_BUDGET_MP='lots' must be a whole number of megapixels"}, "bad budget");
+  ExpectFail(
+      RunCommand("AALAB_DECODE_BUDGET_MP=lots " + std::string(AALAB_BINARY_DIR) + "/aalab apply --method fxaa1-p3 " +
+                 (dir / "big.png").string() + " " + (dir / "o2.png").string() + " 2>&1"),
+      1, {"AALAB_DECODE_BUDGET_MP='lots' must be a whole number of megapixels"}, "bad budget");
   fs::remove_all(dir);
 }
 

@@ -51,7 +51,8 @@ std::vector<std::string> Leftovers(const fs::path& dir) {
 
 void ExpectFail(const CmdResult& r, int code, const std::vector<std::string>& parts, const std::string& what) {
   EXPECT_EQ(r.code, code) << what << "\n" << r.output;
-  for (const auto& p : parts) EXPECT_NE(r.output.find(p), std::string::npos) << what << "\nmissing: " << p << "\n" << r.output;
+  for (const auto& p : parts)
+    EXPECT_NE(r.output.find(p), std::string::npos) << what << "\nmissing: " << p << "\n" << r.output;
   EXPECT_EQ(r.output.find("Success"), std::string::npos) << r.output;
 }
 
@@ -64,13 +65,13 @@ TEST(Safety, OutputPathsAreNormalisedAndUsersFilesSurvive) {
   // The spellings shell completion and users type: all the same folder, all refused because of
   // the user's file, which survives with the report.
   for (const std::string& out : {res + "/", res + "/.", res + "/images/..", res + "//"}) {
-    ExpectFail(Aalab("run " + kSmall + " --out " + out), 1, {"cannot be replaced", "'notes.txt', which aalab did not write"},
-               out);
+    ExpectFail(Aalab("run " + kSmall + " --out " + out), 1,
+               {"cannot be replaced", "'notes.txt', which aalab did not write"}, out);
     EXPECT_EQ(Bytes(dir / "results" / "notes.txt"), "mine") << out;
     EXPECT_EQ(Bytes(dir / "results" / "report.json"), report) << out;
   }
-  const CmdResult cwd = RunCommand("cd " + res + " && " + std::string(AALAB_BINARY_DIR) + "/aalab run " + kSmall +
-                                   " --out . 2>&1");
+  const CmdResult cwd =
+      RunCommand("cd " + res + " && " + std::string(AALAB_BINARY_DIR) + "/aalab run " + kSmall + " --out . 2>&1");
   ExpectFail(cwd, 1, {"notes.txt"}, "--out .");
   EXPECT_TRUE(fs::exists(dir / "results" / "notes.txt"));
   // Without the user's file, an earlier run's folder is replaced through every spelling.
@@ -164,8 +165,8 @@ TEST(Safety, AFullDiskFailsNamingTheFileAndLeavesNothing) {
     EXPECT_EQ(r.output.find("wrote"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir / out)) << out;
   }
-  const CmdResult render = AalabWithFileLimit("render --scene checker-plane --size 200x150 --out " +
-                                                  (dir / "r.exr").string(), 512);
+  const CmdResult render =
+      AalabWithFileLimit("render --scene checker-plane --size 200x150 --out " + (dir / "r.exr").string(), 512);
   ExpectFail(render, 1, {"r.exr': File too large"}, "render");
   EXPECT_FALSE(fs::exists(dir / "r.exr"));
   // A run: nothing of it stays (no DIR, no DIR.partial), and an earlier result is kept.
@@ -184,11 +185,12 @@ TEST(Safety, SignalsStopPromptlyAndLeaveWhatWasThere) {
   for (const auto& [sig, code, word] : std::vector<std::tuple<int, int, std::string>>{
            {SIGINT, 130, "interrupted (SIGINT)"}, {SIGTERM, 143, "terminated (SIGTERM)"}}) {
     // A run long enough to be caught: several scenes at 320x240 with 256 samples per pixel.
-    const pid_t pid = SpawnAalab("run --suite quick --size 320x240 --ref-spp 256 --quiet --ref-cache " + cache + " --out " +
-                                res,
-                            dir / "log.txt");
+    const pid_t pid =
+        SpawnAalab("run --suite quick --size 320x240 --ref-spp 256 --quiet --ref-cache " + cache + " --out " + res,
+                   dir / "log.txt");
     // Wait until it has started writing (DIR.partial exists), then signal it.
-    for (int i = 0; i < 600 && !fs::exists(res + ".partial"); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    for (int i = 0; i < 600 && !fs::exists(res + ".partial"); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
     ASSERT_TRUE(fs::exists(res + ".partial"));
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     const auto t0 = std::chrono::steady_clock::now();
@@ -214,23 +216,26 @@ TEST(Safety, ASecondRunIntoTheSameFolderIsRefusedAtStart) {
   const fs::path dir = TempDir("safety-lock");
   const std::string res = (dir / "res").string();
   const pid_t pid = SpawnAalab("run --suite quick --size 320x240 --ref-spp 256 --quiet --out " + res, dir / "log.txt");
-  for (int i = 0; i < 600 && !fs::exists(res + ".partial"); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  for (int i = 0; i < 600 && !fs::exists(res + ".partial"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_TRUE(fs::exists(res + ".partial"));
   // The second run asks for work that would take minutes (1280x720 at 1024 spp: ~940 M reference
   // samples), so a refusal within 20 s, however loaded the machine, proves it came before any
   // rendering; a bar on a tiny run's wall time proved less and failed under load (5.2 s).
   const auto t0 = std::chrono::steady_clock::now();
-  ExpectFail(Aalab("run --scenes circle --methods none --size 1280x720 --ref-spp 1024 --repeat 1 --quiet --out " +
-                   res + "/"),
-             1, {"is being written by another aalab command right now (process " + std::to_string(pid)}, "second run");
+  ExpectFail(
+      Aalab("run --scenes circle --methods none --size 1280x720 --ref-spp 1024 --repeat 1 --quiet --out " + res + "/"),
+      1, {"is being written by another aalab command right now (process " + std::to_string(pid)}, "second run");
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 20.0);
   ::kill(pid, SIGTERM);
   int status = 0;
   ::waitpid(pid, &status, 0);
   EXPECT_FALSE(fs::exists(res + ".partial"));
   // A DIR.partial left by a killed command (SIGKILL: no clean-up) is taken over.
-  const pid_t killed = SpawnAalab("run --suite quick --size 320x240 --ref-spp 256 --quiet --out " + res, dir / "log.txt");
-  for (int i = 0; i < 600 && !fs::exists(res + ".partial"); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const pid_t killed =
+      SpawnAalab("run --suite quick --size 320x240 --ref-spp 256 --quiet --out " + res, dir / "log.txt");
+  for (int i = 0; i < 600 && !fs::exists(res + ".partial"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ::kill(killed, SIGKILL);
   ::waitpid(killed, &status, 0);
   ASSERT_TRUE(fs::exists(res + ".partial"));
@@ -245,10 +250,12 @@ void WriteNamed(const fs::path& p, int w, int h, const std::vector<std::string>&
   OIIO::ImageSpec spec(w, h, static_cast<int>(names.size()), type);
   spec.channelnames = names;
   spec.alpha_channel = -1;
-  for (size_t c = 0; c < names.size(); ++c) spec.alpha_channel = names[c] == "A" ? static_cast<int>(c) : spec.alpha_channel;
+  for (size_t c = 0; c < names.size(); ++c)
+    spec.alpha_channel = names[c] == "A" ? static_cast<int>(c) : spec.alpha_channel;
   spec.attribute("oiio:UnassociatedAlpha", 1);
   auto out = OIIO::ImageOutput::create(p.string());
-  ASSERT_TRUE(out && out->open(p.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, data.data()) && out->close());
+  ASSERT_TRUE(out && out->open(p.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, data.data()) &&
+              out->close());
 }
 
 TEST(Safety, ApplyReadsColourByNameAndNeverPremultiplies) {
@@ -284,9 +291,9 @@ TEST(Safety, ApplyReadsColourByNameAndNeverPremultiplies) {
   WriteNamed(dir / "bgr.exr", w, h, {"B", "G", "R"}, OIIO::TypeDesc::FLOAT, bgr);
   WriteNamed(dir / "rgbaz.exr", w, h, {"R", "G", "B", "A", "Z"}, OIIO::TypeDesc::FLOAT, rgbaz);
   for (const std::string n : {"rgb", "bgr", "rgbaz"}) {
-    ASSERT_EQ(Aalab("apply --method fxaa311-p39 " + (dir / (n + ".exr")).string() + " " + (dir / (n + ".png")).string())
-                  .code,
-              0)
+    ASSERT_EQ(
+        Aalab("apply --method fxaa311-p39 " + (dir / (n + ".exr")).string() + " " + (dir / (n + ".png")).string()).code,
+        0)
         << n;
   }
   EXPECT_EQ(ReadImage8((dir / "bgr.png").string()), ReadImage8((dir / "rgb.png").string()));

@@ -8,8 +8,7 @@ namespace aalab {
 namespace {
 
 std::vector<ParamDef> Defs() {
-  return {FloatParam("subpix", 0.75, 0.0, 1.0, "sub-pixel amount"),
-          IntParam("steps", 12, 1, 64, "search steps"),
+  return {FloatParam("subpix", 0.75, 0.0, 1.0, "sub-pixel amount"), IntParam("steps", 12, 1, 64, "search steps"),
           ChoiceParam("luma", "rec601", {"rec601", "green"}, "luma source")};
 }
 

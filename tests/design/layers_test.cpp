@@ -28,8 +28,8 @@ struct Layer {
 
 // Longest prefix first, so core/ wins over a plain harness/.
 const std::vector<Layer> kLayers = {
-    {"core/", 0}, {"io/", 1}, {"scenes/", 2}, {"methods/", 2}, {"metrics/", 2},
-    {"reports/", 3},      {"harness/run/", 4}, {"harness/cli/", 5}, {"gpu/", 5},
+    {"core/", 0},    {"io/", 1},          {"scenes/", 2},      {"methods/", 2}, {"metrics/", 2},
+    {"reports/", 3}, {"harness/run/", 4}, {"harness/cli/", 5}, {"gpu/", 5},
 };
 
 /// The layer a repository path belongs to, or nothing (bench/, tests/, third-party headers).
@@ -41,7 +41,7 @@ std::optional<Layer> LayerOf(const std::string& path) {
 }
 
 struct Include {
-  std::string file;    ///< repository path of the including file
+  std::string file;  ///< repository path of the including file
   int line = 0;
   std::string target;  ///< the quoted include, as written
 };
@@ -54,8 +54,8 @@ std::vector<std::string> Violations(const std::vector<Include>& includes) {
     if (!from || !to || std::string(from->prefix) == to->prefix) continue;
     if (to->rank < from->rank) continue;
     out.push_back(inc.file + ":" + std::to_string(inc.line) + " includes " + inc.target + " (" + from->prefix +
-                  " is layer " + std::to_string(from->rank) + ", " + to->prefix + " layer " +
-                  std::to_string(to->rank) + (to->rank == from->rank ? ": siblings" : ": upward") + ")");
+                  " is layer " + std::to_string(from->rank) + ", " + to->prefix + " layer " + std::to_string(to->rank) +
+                  (to->rank == from->rank ? ": siblings" : ": upward") + ")");
   }
   return out;
 }
@@ -95,12 +95,12 @@ TEST(Layers, TheCheckSeesAnUpwardAndASidewaysArrow) {
   // A planted upward include (core reading run) and a sideways one (scenes reading methods) are
   // found; downward ones, same-folder ones and files outside the layers (tests/) are not.
   const std::vector<Include> planted = {
-      {"core/image.h", 3, "harness/run/runner.h"},   // upward
-      {"scenes/tracer.cpp", 9, "methods/registry.h"},        // siblings
-      {"harness/run/runner.cpp", 4, "core/image.h"}, // down: fine
-      {"reports/verdict.cpp", 5, "metrics/registry.h"},      // down: fine
-      {"methods/fxaa.cpp", 2, "methods/fxaa.h"},             // same folder: fine
-      {"tests/cli/cli_util.h", 7, "harness/cli/main.cpp"},   // outside the rule
+      {"core/image.h", 3, "harness/run/runner.h"},          // upward
+      {"scenes/tracer.cpp", 9, "methods/registry.h"},       // siblings
+      {"harness/run/runner.cpp", 4, "core/image.h"},        // down: fine
+      {"reports/verdict.cpp", 5, "metrics/registry.h"},     // down: fine
+      {"methods/fxaa.cpp", 2, "methods/fxaa.h"},            // same folder: fine
+      {"tests/cli/cli_util.h", 7, "harness/cli/main.cpp"},  // outside the rule
   };
   const auto v = Violations(planted);
   ASSERT_EQ(v.size(), 2u);

@@ -40,7 +40,8 @@ inline std::vector<NamedFrame> SyntheticFrames() {
     out.push_back({name + " " + std::to_string(w) + "x" + std::to_string(h), std::move(img)});
   };
   uint64_t seed = 12345;
-  for (auto [w, h] : std::vector<std::pair<int, int>>{{1, 1}, {1, 7}, {7, 1}, {2, 2}, {3, 3}, {5, 4}, {17, 9}, {64, 64}, {131, 77}}) {
+  for (auto [w, h] :
+       std::vector<std::pair<int, int>>{{1, 1}, {1, 7}, {7, 1}, {2, 2}, {3, 3}, {5, 4}, {17, 9}, {64, 64}, {131, 77}}) {
     make("noise", w, h, [&](int, int, uint8_t* p) {
       const uint64_t r = NextRandom(seed);
       for (int c = 0; c < 4; ++c) p[c] = static_cast<uint8_t>(r >> (8 * c));
@@ -95,8 +96,8 @@ inline std::vector<NamedFrame> SyntheticFrames() {
 inline const std::vector<NamedFrame>& SceneFrames() {
   static const std::vector<NamedFrame> frames = [] {
     std::vector<NamedFrame> out;
-    for (const char* name : {"wedges", "mesh", "checker-plane", "thin-wires", "detail-texture",
-                             "hard-near-horizontal", "hard-subpixel", "hard-dark"}) {
+    for (const char* name : {"wedges", "mesh", "checker-plane", "thin-wires", "detail-texture", "hard-near-horizontal",
+                             "hard-subpixel", "hard-dark"}) {
       const Scene scene = LoadScene(name);
       const Tracer tracer(scene);
       out.push_back({name, RenderFrame(tracer, 203, 117, RenderSpec{}, 1, nullptr)});

@@ -147,21 +147,24 @@ TEST(FastPath, Fxaa1EqualsReferenceOnEveryFrameAndSetting) {
 TEST(FastPath, Fxaa1DebugViewsStillComeFromTheReference) {
   const Image8& img = perf_test::SceneFrames()[0].img;
   for (const auto& view : Fxaa1DebugViews()) {
-    EXPECT_TRUE(Fxaa1(img, Fxaa1Preset(3), view, nullptr) == Fxaa1Reference(img, Fxaa1Preset(3), view, nullptr)) << view;
+    EXPECT_TRUE(Fxaa1(img, Fxaa1Preset(3), view, nullptr) == Fxaa1Reference(img, Fxaa1Preset(3), view, nullptr))
+        << view;
   }
 }
 
 TEST(FastPath, RescaleEqualsReferenceOnEveryFrameAndSize) {
   for (const auto& f : AllFrames()) {
     const int w = f.img.Width(), h = f.img.Height();
-    const std::vector<std::pair<int, int>> sizes = {{w, h}, {1, 1}, {std::max(1, w * 3 / 4), std::max(1, h * 3 / 4)},
-                                                    {w * 4 / 3 + 1, h * 4 / 3 + 1}, {w * 2, h * 2}, {7, 5}};
+    const std::vector<std::pair<int, int>> sizes = {
+        {w, h},         {1, 1}, {std::max(1, w * 3 / 4), std::max(1, h * 3 / 4)}, {w * 4 / 3 + 1, h * 4 / 3 + 1},
+        {w * 2, h * 2}, {7, 5}};
     for (auto [ow, oh] : sizes) {
       for (Rescale kind : {Rescale::kBilinear, Rescale::kBicubic}) {
         PostStats a, b;
         const Image8 fast = RescaleFrame(f.img, ow, oh, kind, &a);
         const Image8 ref = RescaleFrameReference(f.img, ow, oh, kind, &b);
-        EXPECT_EQ(FirstDifference(fast, ref), -1) << f.name << " -> " << ow << "x" << oh << " kind " << static_cast<int>(kind);
+        EXPECT_EQ(FirstDifference(fast, ref), -1)
+            << f.name << " -> " << ow << "x" << oh << " kind " << static_cast<int>(kind);
         EXPECT_EQ(a.taps, b.taps);
       }
     }

@@ -27,7 +27,8 @@ void ExpectSsimResultSame(const SsimResult& fast, const SsimResult& ref, const s
   ASSERT_EQ(fast.ssim.has_value(), ref.ssim.has_value()) << what;
   EXPECT_EQ(fast.null_reason, ref.null_reason) << what;
   if (fast.ssim) {
-    EXPECT_EQ(std::memcmp(&*fast.ssim, &*ref.ssim, sizeof(double)), 0) << what << " " << *fast.ssim << " vs " << *ref.ssim;
+    EXPECT_EQ(std::memcmp(&*fast.ssim, &*ref.ssim, sizeof(double)), 0)
+        << what << " " << *fast.ssim << " vs " << *ref.ssim;
   }
   for (int c = 0; c < 3; ++c) {
     EXPECT_EQ(std::memcmp(&fast.per_channel[c], &ref.per_channel[c], sizeof(double)), 0) << what << " channel " << c;
@@ -43,7 +44,8 @@ void ExpectSsimSame(const ImageF& a, const ImageF& b, const std::string& what) {
 }
 
 TEST(FastPath, SsimEqualsReferenceOnRandomAndRenderedImages) {
-  for (auto [w, h] : std::vector<std::pair<int, int>>{{11, 11}, {12, 30}, {31, 11}, {64, 64}, {203, 117}, {10, 40}, {300, 80}, {523, 11}}) {
+  for (auto [w, h] : std::vector<std::pair<int, int>>{
+           {11, 11}, {12, 30}, {31, 11}, {64, 64}, {203, 117}, {10, 40}, {300, 80}, {523, 11}}) {
     for (int channels : {3, 4}) {
       const ImageF a = RandomImage(w, h, channels, 7 + w, false);
       const ImageF b = RandomImage(w, h, channels, 99 + h, true);
@@ -133,7 +135,8 @@ TEST(FastPath, FlipPreparedReferenceEqualsDirectAtOneAndTwoThreads) {
       const std::vector<double> prepared2b = flip::ErrorValues(*side2, test);
       for (const auto* v : {&prepared1, &direct2, &prepared2, &prepared2b}) {
         ASSERT_EQ(v->size(), direct1.size());
-        EXPECT_EQ(std::memcmp(v->data(), direct1.data(), direct1.size() * sizeof(double)), 0) << frames[i].name << " ppd " << ppd;
+        EXPECT_EQ(std::memcmp(v->data(), direct1.data(), direct1.size() * sizeof(double)), 0)
+            << frames[i].name << " ppd " << ppd;
       }
     }
   }

@@ -52,8 +52,9 @@ void ExpectSame(const Image8& img, const SmaaParams& p, const std::string& view,
       break;
     }
   }
-  EXPECT_EQ(first, fast.Data().size()) << what << ": first differing byte at pixel " << (first / 4) % std::max(1, img.Width())
-                                       << "," << (first / 4) / std::max(1, img.Width());
+  EXPECT_EQ(first, fast.Data().size()) << what << ": first differing byte at pixel "
+                                       << (first / 4) % std::max(1, img.Width()) << ","
+                                       << (first / 4) / std::max(1, img.Width());
   EXPECT_EQ(fs.taps, rs.taps) << what;
 }
 

@@ -2,6 +2,4 @@
 // `make fuzz` (scripts/fuzz.sh).
 #include "fuzz_entries.h"
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  return aalab::fuzz::FuzzImage(data, size);
-}
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) { return aalab::fuzz::FuzzImage(data, size); }

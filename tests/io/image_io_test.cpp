@@ -41,8 +41,8 @@ std::string Bytes(const fs::path& p) {
 
 TEST(ImageIo, NonFinitePixelsAreRejectedWithTheirPosition) {
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-  for (const auto& [value, x, y, c] : std::vector<std::tuple<float, int, int, int>>{
-           {nan, 0, 0, 0}, {nan, 6, 4, 2}, {inf, 3, 1, 1}, {-inf, 2, 4, 0}}) {
+  for (const auto& [value, x, y, c] :
+       std::vector<std::tuple<float, int, int, int>>{{nan, 0, 0, 0}, {nan, 6, 4, 2}, {inf, 3, 1, 1}, {-inf, 2, 4, 0}}) {
     ImageF img(7, 5, 3, 0.5f);
     img.At(x, y, c) = value;
     const fs::path p = Dir() / "bad.exr";

@@ -130,8 +130,9 @@ TEST(ImageRead, ChannelsAreTakenByNameNotPosition) {
   }
   // NaN is refused even where Inf is allowed.
   WriteWithOiio(Dir() / "nanz.exr", 1, 1, {"Z"}, OIIO::TypeDesc::FLOAT, {std::nanf("")});
-  EXPECT_NE(ErrorOf([&] { ReadImageChannels((Dir() / "nanz.exr").string(), {"Z"}, kMaxImagePixels, true); })
-                .find("(NaN) at pixel (0, 0) channel 0 (Z); NaN pixels are rejected"),
+  EXPECT_NE(ErrorOf([&] {
+              ReadImageChannels((Dir() / "nanz.exr").string(), {"Z"}, kMaxImagePixels, true);
+            }).find("(NaN) at pixel (0, 0) channel 0 (Z); NaN pixels are rejected"),
             std::string::npos);
   // A renderer's usual R, G, B, A, Z: colour and alpha read, Z ignored.
   WriteWithOiio(Dir() / "rgbaz.exr", 1, 1, {"R", "G", "B", "A", "Z"}, OIIO::TypeDesc::HALF,
@@ -152,8 +153,9 @@ TEST(ImageRead, ChannelsAreTakenByNameNotPosition) {
   // No R, G, B: refused, naming what the file has.
   WriteWithOiio(Dir() / "xyz.exr", 1, 1, {"X", "Y", "Z"}, OIIO::TypeDesc::FLOAT, {1, 2, 3});
   const std::string e = ErrorOf([&] { ReadImage((Dir() / "xyz.exr").string()); });
-  EXPECT_NE(e.find("image '" + (Dir() / "xyz.exr").string() + "' has no channels named R, G and B (its channels: X, Y, Z)"),
-            std::string::npos)
+  EXPECT_NE(
+      e.find("image '" + (Dir() / "xyz.exr").string() + "' has no channels named R, G and B (its channels: X, Y, Z)"),
+      std::string::npos)
       << e;
   WriteWithOiio(Dir() / "uvw.exr", 1, 1, {"U", "V", "W"}, OIIO::TypeDesc::FLOAT, {1, 2, 3});
   const std::string u = ErrorOf([&] { ReadImage((Dir() / "uvw.exr").string()); });
@@ -175,8 +177,7 @@ TEST(ImageRead, MultiPartExrListsEveryPartsChannelsWithItsName) {
   ASSERT_TRUE(out->open(p.string(), specs[1], OIIO::ImageOutput::AppendSubimage));
   ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, z.data()));
   ASSERT_TRUE(out->close());
-  EXPECT_EQ(ListImageChannels(p.string()),
-            (std::vector<std::string>{"beauty.R", "beauty.G", "beauty.B", "depth.Z"}));
+  EXPECT_EQ(ListImageChannels(p.string()), (std::vector<std::string>{"beauty.R", "beauty.G", "beauty.B", "depth.Z"}));
   const ImageF read = ReadImageChannels(p.string(), {"depth.Z", "beauty.G"});
   ASSERT_EQ(read.Channels(), 2);
   EXPECT_EQ(read.At(1, 1, 0), 4.0f);
@@ -236,10 +237,9 @@ TEST(ImageRead, ATinyFileClaimingAHugeImageFailsWithoutTakingTheMemory) {
   EXPECT_NE(e.find("claims 16000x16000 pixels, which needs at least"), std::string::npos) << e;
   EXPECT_NE(e.find("but the file has 69"), std::string::npos) << e;
   EXPECT_LT(seconds, 1.0);
-  EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 64 * 1024) << "peak RSS grew by " << after.ru_maxrss - before.ru_maxrss
-                                                          << " KiB";
+  EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 64 * 1024)
+      << "peak RSS grew by " << after.ru_maxrss - before.ru_maxrss << " KiB";
 }
-
 
 std::string FileBytes(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
@@ -258,24 +258,25 @@ TEST(ImageRead, FromMemoryGoesThroughTheSameChecks) {
   ASSERT_EQ(b.pixels.Width(), 3);
   ASSERT_EQ(b.pixels.Height(), 2);
   EXPECT_EQ(b.pixels.Data(), a.pixels.Data());
-  EXPECT_EQ(b.pixels.At(1, 0, 3), 0.0f);                  // alpha as stored, never multiplied in
+  EXPECT_EQ(b.pixels.At(1, 0, 3), 0.0f);                     // alpha as stored, never multiplied in
   EXPECT_NEAR(b.pixels.At(1, 0, 0), 153.0f / 255.0f, 1e-7);  // colour of that transparent pixel kept
   EXPECT_EQ(b.format, "png");
   // The 69-byte PNG claiming 16000x16000, held in memory: refused by the same size check.
   const std::string huge = FileBytes(Dir() / "huge.png");
   if (!huge.empty()) {
-    const std::string e = ErrorOf([&] {
-      ReadImageFromMemory("texture.png", reinterpret_cast<const uint8_t*>(huge.data()), huge.size());
-    });
+    const std::string e = ErrorOf(
+        [&] { ReadImageFromMemory("texture.png", reinterpret_cast<const uint8_t*>(huge.data()), huge.size()); });
     EXPECT_NE(e.find("claims 16000x16000 pixels"), std::string::npos) << e;
   }
   // A PNG whose chunk claims more bytes than the buffer holds; a wrong extension; nothing.
   std::string cut = bytes.substr(0, 45);  // the chunk after IHDR claims more than the 4 bytes left
-  EXPECT_NE(ErrorOf([&] { ReadImageFromMemory("t.png", reinterpret_cast<const uint8_t*>(cut.data()), cut.size()); })
-                .find("not a valid PNG file"),
+  EXPECT_NE(ErrorOf([&] {
+              ReadImageFromMemory("t.png", reinterpret_cast<const uint8_t*>(cut.data()), cut.size());
+            }).find("not a valid PNG file"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { ReadImageFromMemory("t.gif", reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()); })
-                .find("unsupported file type '.gif'"),
+  EXPECT_NE(ErrorOf([&] {
+              ReadImageFromMemory("t.gif", reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+            }).find("unsupported file type '.gif'"),
             std::string::npos);
   EXPECT_NE(ErrorOf([&] { ReadImageFromMemory("t.png", nullptr, 0); }).find("is empty"), std::string::npos);
 }
@@ -286,9 +287,10 @@ TEST(ImageRead, TexturesKeepTheirCodesAndGoThroughTheSameChecks) {
   const std::vector<float> px = {0.0f, 1.0f, 0.2f, 1.0f, 0.6f, 0.4f, 1.0f, 0.0f, 0.8f, 0.0f, 0.0f, 1.0f,
                                  1.0f, 1.0f, 1.0f, 0.2f, 0.0f, 0.0f, 0.0f, 1.0f, 0.4f, 0.2f, 0.6f, 0.8f};
   // (Written unassociated: OpenImageIO's PNG writer would otherwise divide colour by alpha.)
-  WriteWithOiio(Dir() / "tex.png", 3, 2, {"R", "G", "B", "A"}, OIIO::TypeDesc::UINT8, px, {{"oiio:UnassociatedAlpha", 1}});
-  const std::vector<uint8_t> codes = {0, 255, 51, 255, 153, 102, 255, 0, 204, 0, 0, 255,
-                                      255, 255, 255, 51, 0, 0, 0, 255, 102, 51, 153, 204};
+  WriteWithOiio(Dir() / "tex.png", 3, 2, {"R", "G", "B", "A"}, OIIO::TypeDesc::UINT8, px,
+                {{"oiio:UnassociatedAlpha", 1}});
+  const std::vector<uint8_t> codes = {0,   255, 51,  255, 153, 102, 255, 0,   204, 0,  0,   255,
+                                      255, 255, 255, 51,  0,   0,   0,   255, 102, 51, 153, 204};
   const std::string bytes = FileBytes(Dir() / "tex.png");
   const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());
   const ImageSource file{(Dir() / "tex.png").string(), nullptr, 0, ""};
@@ -325,8 +327,13 @@ TEST(ImageRead, TexturesKeepTheirCodesAndGoThroughTheSameChecks) {
   });
   EXPECT_NE(e.find("image 'image 0 of h.glb'"), std::string::npos) << e;
   EXPECT_NE(e.find("claims 16000x16000 pixels"), std::string::npos) << e;
-  EXPECT_NE(ErrorOf([&] { ReadTexturePixels({"t", data, 45, ".png"}); }).find("not a valid PNG file"), std::string::npos);
-  EXPECT_NE(ErrorOf([&] { ReadTexturePixels({"t", data, bytes.size(), ".gif"}); }).find("unsupported file type '.gif'"),
+  EXPECT_NE(ErrorOf([&] {
+              ReadTexturePixels({"t", data, 45, ".png"});
+            }).find("not a valid PNG file"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] {
+              ReadTexturePixels({"t", data, bytes.size(), ".gif"});
+            }).find("unsupported file type '.gif'"),
             std::string::npos);
   EXPECT_NE(ErrorOf([&] { ReadTexturePixels({"t", data, 0, ".png"}); }).find("is empty"), std::string::npos);
 }
@@ -354,9 +361,9 @@ TEST(SafePath, OutputNamesArePlainAndReservedNamesRefused) {
   for (const std::string& ok : {std::string("circle"), std::string("fxaa311-p39_subpix-0.5"), std::string("a.b")}) {
     EXPECT_EQ(ErrorOf([&] { CheckOutputName(ok, "n"); }), "") << ok;
   }
-  for (const std::string& bad : {std::string(""), std::string(".."), std::string("."), std::string("a/b"),
-                                 std::string("/abs"), std::string("a\\b"), std::string(".aalab-output"),
-                                 std::string("tab\there"), std::string(201, 'x')}) {
+  for (const std::string& bad :
+       {std::string(""), std::string(".."), std::string("."), std::string("a/b"), std::string("/abs"),
+        std::string("a\\b"), std::string(".aalab-output"), std::string("tab\there"), std::string(201, 'x')}) {
     EXPECT_NE(ErrorOf([&] { CheckOutputName(bad, "scene name"); }).find("scene name: the name"), std::string::npos)
         << bad;
   }

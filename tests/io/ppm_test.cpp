@@ -89,8 +89,7 @@ uint32_t Bits(float f) {
 TEST(PreviousPositions, RoundTripKeepsEveryBitAndCentresCostNothing) {
   // 3 × 2 pixels: centres, small and large moves, off-screen, NaN (no history), -0.
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  const std::vector<float> prev = {0.5f, 0.5f,   1.25f, 0.375f,  -7.0f, 1e9f,
-                                   nan,  nan,    1.5f,  1.5f,    -0.0f, 2.0000002f};
+  const std::vector<float> prev = {0.5f, 0.5f, 1.25f, 0.375f, -7.0f, 1e9f, nan, nan, 1.5f, 1.5f, -0.0f, 2.0000002f};
   const fs::path p = Tmp("rt.prev");
   WritePreviousPositions(p.string(), 3, 2, prev);
   // Header "AALABPREV 1 3 2\n" (16 bytes) + 3·2·2 values of 4 bytes.

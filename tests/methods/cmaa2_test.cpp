@@ -88,7 +88,8 @@ Image8 Pattern(int w, int h) {
   Image8 img(w, h, 4);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
-      const bool a = y * 7 > x * 2 + 10, b = (x - 40) * (x - 40) + (y - 20) * (y - 20) < 150, g = x > 60 && (x + y) % 2 == 0;
+      const bool a = y * 7 > x * 2 + 10,
+                 b = (x - 40) * (x - 40) + (y - 20) * (y - 20)<150, g = x> 60 && (x + y) % 2 == 0;
       uint8_t* p = img.Pixel(x, y);
       p[0] = a ? 230 : 20;
       p[1] = b ? 40 : (g ? 250 : 120);

@@ -41,9 +41,9 @@ TEST(Fsr1, ApproximationsAreTheBitTricks) {
 TEST(Fsr1, EasuConstantsForA360x270To480x360Upscale) {
   const Fsr1EasuConst k = Fsr1EasuCon(360.0f, 270.0f, 480.0f, 360.0f);
   auto f = [](uint32_t u) { return std::bit_cast<float>(u); };
-  EXPECT_EQ(f(k.con0[0]), 360.0f * (1.0f / 480.0f));          // ~0.75
+  EXPECT_EQ(f(k.con0[0]), 360.0f * (1.0f / 480.0f));  // ~0.75
   EXPECT_NEAR(f(k.con0[0]), 0.75, 1e-7);
-  EXPECT_NEAR(f(k.con0[2]), 0.5 * 0.75 - 0.5, 1e-7);          // -0.125: output centre -> input texel
+  EXPECT_NEAR(f(k.con0[2]), 0.5 * 0.75 - 0.5, 1e-7);  // -0.125: output centre -> input texel
   EXPECT_NEAR(f(k.con0[3]), 0.5 * 0.75 - 0.5, 1e-7);
   EXPECT_EQ(f(k.con1[0]), 1.0f / 360.0f);
   EXPECT_EQ(f(k.con1[3]), -1.0f / 270.0f);
@@ -147,7 +147,8 @@ TEST(Fsr1, RcasNanOfABlackChannelPicksTheOtherOperand) {
   // green: mn4 = mx4 = 100/255, m = 150/255: hitMin = 0.25, hitMax = (1 − 150/255)/(4·100/255 − 4) = −0.1709;
   // blue: all 0: hitMin = NaN, hitMax = −0.25. lobe = max(−0.0539, −0.25, −0.1709) = −0.0539.
   const double lobe = (1 - 200.0 / 255) / -4;
-  const double red = (0 + 200.0 / 255) / (4 * lobe + 1), green = (lobe * 4 * 100.0 / 255 + 150.0 / 255) / (4 * lobe + 1);
+  const double red = (0 + 200.0 / 255) / (4 * lobe + 1),
+               green = (lobe * 4 * 100.0 / 255 + 150.0 / 255) / (4 * lobe + 1);
   EXPECT_NEAR(out.Pixel(2, 2)[0], std::lround(std::min(1.0, red) * 255), 1);
   EXPECT_NEAR(out.Pixel(2, 2)[1], std::lround(green * 255), 1);
   EXPECT_EQ(out.Pixel(2, 2)[2], 0);
@@ -163,7 +164,8 @@ TEST(Fsr1, RegistryRows) {
   const MethodPlan er = MakeMethod("scale43-easu-rcas:upscale=2,sharpness=1");
   EXPECT_DOUBLE_EQ(er.render.scale, 0.5);
   ASSERT_TRUE(er.sharpen);
-  const Image8 in = Fill(6, 5, [](int x, int y, int c) { return static_cast<uint8_t>((x * 40 + y * 17 + c * 60) % 256); });
+  const Image8 in =
+      Fill(6, 5, [](int x, int y, int c) { return static_cast<uint8_t>((x * 40 + y * 17 + c * 60) % 256); });
   EXPECT_EQ(er.sharpen(in, PostOptions{}, nullptr).Data(), Fsr1Rcas(in, 1.0f, nullptr).Data());
   const MethodPlan fx = MakeMethod("scale43-fxaa-high-easu-rcas");
   EXPECT_TRUE(fx.post);

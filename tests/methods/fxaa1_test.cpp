@@ -37,8 +37,7 @@ void SetGrey(Image8& img, int x, int y, uint8_t v) {
 }
 uint8_t G(const Image8& img, int x, int y) { return img.At(x, y, 0); }
 
-Image8 Apply(const Image8& in, const Fxaa1Params& p, const std::string& view = "",
-           PostStats* stats = nullptr) {
+Image8 Apply(const Image8& in, const Fxaa1Params& p, const std::string& view = "", PostStats* stats = nullptr) {
   return Fxaa1(in, p, view, stats);
 }
 
@@ -185,7 +184,7 @@ TEST(Fxaa1, StaircaseOffsetsFallLinearlyFromStepEndsToMiddle) {
   EXPECT_EQ(view.At(16, 3, 2), 255);
   EXPECT_EQ(view.At(24, 3, 0), 255);  // j = 8, white, no shift: grey 1
   EXPECT_EQ(view.At(24, 3, 2), 255);
-  EXPECT_EQ(view.At(20, 4, 0), 0);    // j = 4, black, no shift: grey 0
+  EXPECT_EQ(view.At(20, 4, 0), 0);  // j = 4, black, no shift: grey 0
 }
 
 TEST(Fxaa1, SearchStepsLimitTheReach) {
@@ -382,10 +381,8 @@ TEST(Fxaa1, EdgesTouchingTheBorderMatchTheClampExtendedImage) {
   SetGrey(rows, 7, 5, 250);
   for (int preset = 0; preset <= 5; ++preset) {
     const Fxaa1Params p = Fxaa1Preset(preset);
-    EXPECT_EQ(MaxDiffInCrop(Apply(stairs, p), Apply(ClampExtend(stairs, 40, 0), p), 40, 0), 0)
-        << "preset " << preset;
-    EXPECT_LE(MaxDiffInCrop(Apply(rows, p), Apply(ClampExtend(rows, 40, 1), p), 0, 40), 1)
-        << "preset " << preset;
+    EXPECT_EQ(MaxDiffInCrop(Apply(stairs, p), Apply(ClampExtend(stairs, 40, 0), p), 40, 0), 0) << "preset " << preset;
+    EXPECT_LE(MaxDiffInCrop(Apply(rows, p), Apply(ClampExtend(rows, 40, 1), p), 0, 40), 1) << "preset " << preset;
     // Sanity: the border pixels really were processed.
     EXPECT_NE(Apply(stairs, p), stairs) << "preset " << preset;
   }
@@ -547,8 +544,7 @@ TEST(Fxaa1, IdenticalAtOneAndTwoThreads) {
 using InsideFn = std::function<bool(double, double)>;
 
 // Point-sampled (pixel centres) 8-bit frame of a shape: colour `fg` inside, `bg` outside.
-Image8 PointSampled(int w, int h, const InsideFn& inside, std::array<uint8_t, 3> fg,
-                    std::array<uint8_t, 3> bg) {
+Image8 PointSampled(int w, int h, const InsideFn& inside, std::array<uint8_t, 3> fg, std::array<uint8_t, 3> bg) {
   Image8 img(w, h, 4, 255);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
@@ -561,8 +557,8 @@ Image8 PointSampled(int w, int h, const InsideFn& inside, std::array<uint8_t, 3>
 
 // Reference: coverage from a 32x32 grid per pixel, blended in linear light and sRGB-encoded
 // (the harness's reference resolve), as floats in [0, 1].
-std::vector<float> AnalyticReference(int w, int h, const InsideFn& inside,
-                                     std::array<uint8_t, 3> fg, std::array<uint8_t, 3> bg) {
+std::vector<float> AnalyticReference(int w, int h, const InsideFn& inside, std::array<uint8_t, 3> fg,
+                                     std::array<uint8_t, 3> bg) {
   constexpr int kN = 32;
   std::vector<float> ref(static_cast<size_t>(w) * h * 3);
   for (int y = 0; y < h; ++y) {
@@ -601,8 +597,7 @@ TEST(Fxaa1, EveryPresetLowersErrorOnARasterizedPolygon) {
     return (x1 - x0) * (y - y0) - (y1 - y0) * (x - x0);
   };
   const InsideFn tri = [&](double x, double y) {
-    return edge(ax, ay, bx, by, x, y) >= 0 && edge(bx, by, cx, cy, x, y) >= 0 &&
-           edge(cx, cy, ax, ay, x, y) >= 0;
+    return edge(ax, ay, bx, by, x, y) >= 0 && edge(bx, by, cx, cy, x, y) >= 0 && edge(cx, cy, ax, ay, x, y) >= 0;
   };
   const std::array<uint8_t, 3> fg{235, 220, 190}, bg{25, 40, 70};
   const Image8 aliased = PointSampled(64, 64, tri, fg, bg);
@@ -610,8 +605,8 @@ TEST(Fxaa1, EveryPresetLowersErrorOnARasterizedPolygon) {
   const double base = Rmse(aliased, ref);
   for (int preset = 0; preset <= 5; ++preset) {
     const double e = Rmse(Apply(aliased, Fxaa1Preset(preset)), ref);
-    std::printf("[ fxaa1    ] triangle rmse none %.5f  p%d %.5f  (%.1f%% lower)\n", base,
-                preset, e, 100.0 * (base - e) / base);
+    std::printf("[ fxaa1    ] triangle rmse none %.5f  p%d %.5f  (%.1f%% lower)\n", base, preset, e,
+                100.0 * (base - e) / base);
     EXPECT_LT(e, base) << "preset " << preset;
   }
 }
@@ -627,8 +622,8 @@ TEST(Fxaa1, LongSearchPresetsWinOnANearHorizontalEdge) {
   const double base = Rmse(aliased, ref);
   for (int preset = 0; preset <= 5; ++preset) {
     e[preset] = Rmse(Apply(aliased, Fxaa1Preset(preset)), ref);
-    std::printf("[ fxaa1    ] slope 1/40 rmse none %.5f  p%d %.5f  (%.1f%% lower)\n", base,
-                preset, e[preset], 100.0 * (base - e[preset]) / base);
+    std::printf("[ fxaa1    ] slope 1/40 rmse none %.5f  p%d %.5f  (%.1f%% lower)\n", base, preset, e[preset],
+                100.0 * (base - e[preset]) / base);
     EXPECT_LT(e[preset], base) << "preset " << preset;
   }
   for (int hi : {3, 4}) {

@@ -141,10 +141,9 @@ TEST(Fxaa311, TutorialLevelsEqualTheirPresets) {
       if (3 * x + 7 * y < 150) Set(img, x, y, 230, 220, 200);
     }
   }
-  const std::vector<std::pair<std::string, std::string>> pairs = {
-      {"fxaa-low", "fxaa311-p22:luma=sqrt-luminance"},
-      {"fxaa-medium", "fxaa311-p27:luma=sqrt-luminance"},
-      {"fxaa-high", "fxaa311-p39:luma=sqrt-luminance"}};
+  const std::vector<std::pair<std::string, std::string>> pairs = {{"fxaa-low", "fxaa311-p22:luma=sqrt-luminance"},
+                                                                  {"fxaa-medium", "fxaa311-p27:luma=sqrt-luminance"},
+                                                                  {"fxaa-high", "fxaa311-p39:luma=sqrt-luminance"}};
   for (const auto& [a, b] : pairs) {
     const Image8 oa = MakeMethod(a).post(img, {}, nullptr);
     const Image8 ob = MakeMethod(b).post(img, {}, nullptr);
@@ -298,9 +297,9 @@ TEST(Fxaa311, LongEdgeReachPerPreset) {
   // p14 12.5 → 12; p15 14.5 → 14; p20 3.5 → 3; p21 4.5 → 4; p22 6.5 → 6; p23 8.5 → 8;
   // p24 11.5 → 11; p25 14.5 → 14; p26 16.5 → 16; p27 18.5 → 18; p28 20.5 → 20;
   // p29 22.5 → 22; p39 18.5 → 18.
-  const std::vector<std::pair<int, int>> kmax = {
-      {10, 4},  {11, 5},  {12, 8},  {13, 10}, {14, 12}, {15, 14}, {20, 3},  {21, 4}, {22, 6},
-      {23, 8},  {24, 11}, {25, 14}, {26, 16}, {27, 18}, {28, 20}, {29, 22}, {39, 18}};
+  const std::vector<std::pair<int, int>> kmax = {{10, 4},  {11, 5},  {12, 8},  {13, 10}, {14, 12}, {15, 14},
+                                                 {20, 3},  {21, 4},  {22, 6},  {23, 8},  {24, 11}, {25, 14},
+                                                 {26, 16}, {27, 18}, {28, 20}, {29, 22}, {39, 18}};
   Image8 img = Solid(512, 16, 0, 0, 0);
   for (int y = 8; y < 16; ++y) {
     for (int x = 0; x < 512; ++x) {
@@ -424,7 +423,7 @@ TEST(Fxaa311, NearerEndTieGivesNoEdgeOffset) {
 
 TEST(Fxaa311, LumaModesForKnownColours) {
   Image8 img(6, 1, 4);
-  const uint8_t colours[6][3] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255},
+  const uint8_t colours[6][3] = {{255, 0, 0},     {0, 255, 0},     {0, 0, 255},
                                  {255, 255, 255}, {128, 128, 128}, {188, 188, 188}};
   for (int i = 0; i < 6; ++i) Set(img, i, 0, colours[i][0], colours[i][1], colours[i][2]);
   // rec601: dot(rgb, (0.299, 0.587, 0.114))·255 → 76.245, 149.685, 29.07, 255, 128, 188.
@@ -519,8 +518,10 @@ TEST(Fxaa311, Seed003OrderOnlyChangesRounding) {
       maxdiff = std::max(maxdiff, d);
     }
   }
-  std::printf("  noise 128x128: seed-003 order vs 3.11 order: %d pixels differ, %d by more "
-              "than 1/255, max %d/255\n", differ, big, maxdiff);
+  std::printf(
+      "  noise 128x128: seed-003 order vs 3.11 order: %d pixels differ, %d by more "
+      "than 1/255, max %d/255\n",
+      differ, big, maxdiff);
   EXPECT_LE(differ, 128 * 128 / 50);
 }
 
@@ -567,9 +568,8 @@ TEST(Fxaa311, Seed003EdgeSumOrderDecidesExactTies) {
     b.order = Fxaa311Params::Order::kSeed003Glsl;
     const int ga = Fxaa311(img, a, nullptr).At(1, 1, 1);
     const int gb = Fxaa311(img, b, nullptr).At(1, 1, 1);
-    std::printf("  exact tie H = V = %d/255 after %d tries: 3.11 order %s -> %d, seed-003 order %s -> %d\n",
-                iH, tries, horz311 ? "horizontal" : "vertical", ga,
-                horzGlsl ? "horizontal" : "vertical", gb);
+    std::printf("  exact tie H = V = %d/255 after %d tries: 3.11 order %s -> %d, seed-003 order %s -> %d\n", iH, tries,
+                horz311 ? "horizontal" : "vertical", ga, horzGlsl ? "horizontal" : "vertical", gb);
     EXPECT_NE(ga, gb);
     return;
   }
@@ -633,8 +633,7 @@ TEST(Fxaa311, EveryPresetLowersPolygonError) {
   for (const auto& e : MethodRegistry()) {
     if (!IsFxaaMethod(e)) continue;
     const double after = mse(MakeMethod(e.name).post(aliased, {}, nullptr));
-    std::printf("  polygon MSE %-14s %.6e -> %.6e (%.1f%%)\n", e.name.c_str(), base, after,
-                100.0 * after / base);
+    std::printf("  polygon MSE %-14s %.6e -> %.6e (%.1f%%)\n", e.name.c_str(), base, after, 100.0 * after / base);
     EXPECT_LT(after, base) << e.name;
   }
   // fxaa-iter12 differs from preset 39 with the same thresholds and luma only in float
@@ -649,8 +648,8 @@ TEST(Fxaa311, EveryPresetLowersPolygonError) {
   int differ = 0;
   for (int y = 0; y < n; ++y) {
     for (int x = 0; x < n; ++x) {
-      differ += oa.At(x, y, 0) != ob.At(x, y, 0) || oa.At(x, y, 1) != ob.At(x, y, 1) ||
-                oa.At(x, y, 2) != ob.At(x, y, 2);
+      differ +=
+          oa.At(x, y, 0) != ob.At(x, y, 0) || oa.At(x, y, 1) != ob.At(x, y, 1) || oa.At(x, y, 2) != ob.At(x, y, 2);
     }
   }
   std::printf("  iter12 GLSL order vs FXAA 3.11 order: %d of %d pixels differ\n", differ, n * n);

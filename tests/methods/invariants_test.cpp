@@ -177,8 +177,8 @@ TEST(FxaaInvariants, EveryPostFilterIsTheIdentityOnAConstantImage) {
   EXPECT_GE(per_family["fxaa311"], 21);  // 17 quality presets, tutorial low/medium/high, iter12
   EXPECT_EQ(per_family["smaa"], 4);      // smaa-low .. smaa-ultra
   EXPECT_EQ(per_family["cmaa2"], 4);     // cmaa2-low .. cmaa2-ultra: skipped below, see there
-  const std::vector<std::array<uint8_t, 3>> colours = {
-      {0, 0, 0}, {255, 255, 255}, {128, 128, 128}, {12, 200, 77}, {1, 254, 3}, {255, 0, 255}};
+  const std::vector<std::array<uint8_t, 3>> colours = {{0, 0, 0},     {255, 255, 255}, {128, 128, 128},
+                                                       {12, 200, 77}, {1, 254, 3},     {255, 0, 255}};
   const std::vector<std::pair<int, int>> sizes = {{1, 1}, {2, 2}, {1, 9}, {9, 1}, {3, 3}, {13, 7}};
   for (const auto& n : names) {
     // CMAA2 is not the identity on a flat frame, on purpose: its shader reads 0 outside the
@@ -197,8 +197,8 @@ TEST(FxaaInvariants, EveryPostFilterIsTheIdentityOnAConstantImage) {
         for (const auto& [w, h] : sizes) {
           const Image8 in = Solid(w, h, c[0], c[1], c[2]);
           const Image8 out = plan.post(in, PostOptions{}, nullptr);
-          EXPECT_TRUE(out == in) << spec << " " << w << "x" << h << " colour " << int(c[0]) << "," << int(c[1])
-                                 << "," << int(c[2]);
+          EXPECT_TRUE(out == in) << spec << " " << w << "x" << h << " colour " << int(c[0]) << "," << int(c[1]) << ","
+                                 << int(c[2]);
         }
       }
     }
@@ -305,9 +305,10 @@ TEST(FxaaInvariants, Fxaa1CommutesWithTransposeExceptAtOrientationTies) {
   // The rule is not vacuous on these images: ties happen and some of them do differ.
   EXPECT_GT(total.ties, 0);
   EXPECT_GT(total.differ_at_ties, 0);
-  std::printf("fxaa1 transpose: %d pixels, %d processed, %d orientation ties, %d differ (%d at ties, %d at "
-              "rounding boundaries)\n",
-              total.pixels, total.processed, total.ties, total.differ, total.differ_at_ties, total.differ_by_rounding);
+  std::printf(
+      "fxaa1 transpose: %d pixels, %d processed, %d orientation ties, %d differ (%d at ties, %d at "
+      "rounding boundaries)\n",
+      total.pixels, total.processed, total.ties, total.differ, total.differ_at_ties, total.differ_by_rounding);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -327,8 +328,8 @@ struct Fxaa311Model {
   // Ties that both orientations evaluate on bit-identical floats: no transposition effect,
   // but the float implementation may break them unlike the model.
   bool other_tie = false;
-  bool copied = false;           ///< early exit or zero range: the input pixel
-  double rgb[3] = {0, 0, 0};     ///< unquantised output (when !copied)
+  bool copied = false;        ///< early exit or zero range: the input pixel
+  double rgb[3] = {0, 0, 0};  ///< unquantised output (when !copied)
 };
 
 constexpr double kTieEpsilon = 1e-5;  // luma units; float rounding of the shader's sums is < 4e-6
@@ -421,9 +422,7 @@ class Fxaa311Oracle {
 
  private:
   size_t Index(int x, int y) const { return static_cast<size_t>(y) * w_ + x; }
-  double L(int x, int y) const {
-    return lumas_[Index(std::clamp(x, 0, w_ - 1), std::clamp(y, 0, h_ - 1))];
-  }
+  double L(int x, int y) const { return lumas_[Index(std::clamp(x, 0, w_ - 1), std::clamp(y, 0, h_ - 1))]; }
   /// Exact bilinear weights at texel-space (u, v), clamp-to-edge, as BilinearSampler.
   template <typename F>
   void Weights(double u, double v, F&& f) const {
@@ -520,11 +519,12 @@ TEST(FxaaInvariants, Fxaa311CommutesWithTransposeExceptAtTies) {
   EXPECT_GE(methods, 21);
   EXPECT_GT(n.differ_orientation, 0);
   EXPECT_GT(n.checked, n.pixels / 2);
-  std::printf("fxaa311 transpose: %d methods, %d pixels; ties: %d orientation, %d end-of-edge, %d span sign, "
-              "%d rounding; %d differ (%d at orientation ties, %d at search ties, %d at rounding ties); model "
-              "checked on %d tie-free pixels\n",
-              methods, n.pixels, n.orientation, n.end, n.span_sign, n.rounding, n.differ, n.differ_orientation,
-              n.differ_search, n.differ_rounding, n.checked);
+  std::printf(
+      "fxaa311 transpose: %d methods, %d pixels; ties: %d orientation, %d end-of-edge, %d span sign, "
+      "%d rounding; %d differ (%d at orientation ties, %d at search ties, %d at rounding ties); model "
+      "checked on %d tie-free pixels\n",
+      methods, n.pixels, n.orientation, n.end, n.span_sign, n.rounding, n.differ, n.differ_orientation, n.differ_search,
+      n.differ_rounding, n.checked);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -533,11 +533,12 @@ TEST(FxaaInvariants, Fxaa311CommutesWithTransposeExceptAtTies) {
 /// A frame-filling quad (orthographic camera: every ray is parallel) with `materials`,
 /// `effects` and optional lights.
 Scene FlatScene(const std::string& effects, const std::string& material, const std::string& extra) {
-  return ParseScene(R"({"name": "flat", "effects": )" + effects +
-                        R"(, "camera": {"type": "orthographic", "position": [0,0,10], "look_at": [0,0,0], "height": 4},)"
-                        R"( "materials": {"m": )" + material +
-                        R"(}, "objects": [{"shape": "quad", "size": [100,100], "material": "m"}])" + extra + "}",
-                    "flat.json", ".");
+  return ParseScene(
+      R"({"name": "flat", "effects": )" + effects +
+          R"(, "camera": {"type": "orthographic", "position": [0,0,10], "look_at": [0,0,0], "height": 4},)"
+          R"( "materials": {"m": )" +
+          material + R"(}, "objects": [{"shape": "quad", "size": [100,100], "material": "m"}])" + extra + "}",
+      "flat.json", ".");
 }
 
 std::vector<std::string> SupersamplingMethods() {
@@ -584,8 +585,9 @@ TEST(SsaaInvariants, EverySupersamplingMethodEqualsNoneWithoutEdgesOrTexture) {
       // A point light makes smooth shading: the box average over a pixel differs from the
       // centre sample by a second-order term, well below one 8-bit step.
       {"lit by a distant point light",
-       FlatScene(R"(["lambert"])", R"({"shading": "lambert", "color": [0.9, 0.9, 0.9]})",
-                 R"(, "light_units": "aalab-pi", "lights": [{"type": "point", "position": [3, 2, 40], "intensity": 1500}])"),
+       FlatScene(
+           R"(["lambert"])", R"({"shading": "lambert", "color": [0.9, 0.9, 0.9]})",
+           R"(, "light_units": "aalab-pi", "lights": [{"type": "point", "position": [3, 2, 40], "intensity": 1500}])"),
        1},
   };
   for (const auto& c : cases) {
@@ -624,9 +626,8 @@ TEST(MetricInvariants, SymmetricMetricsAreSymmetricBitForBit) {
   // Symmetric by definition: everything built on |a - b| or (a - b)^2 and SSIM. Not symmetric:
   // FLIP (reference and test play different roles) and edge_error_removed (relative to the
   // no-AA image).
-  const std::set<std::string> symmetric = {"psnr_db",      "mse",         "edge_psnr_db", "edge_rmse",
-                                           "interior_psnr_db", "ssim",   "abs_err_p50",  "abs_err_p95",
-                                           "abs_err_p99",  "abs_err_max"};
+  const std::set<std::string> symmetric = {"psnr_db", "mse",         "edge_psnr_db", "edge_rmse",   "interior_psnr_db",
+                                           "ssim",    "abs_err_p50", "abs_err_p95",  "abs_err_p99", "abs_err_max"};
   for (const auto& [w, h] : std::vector<std::pair<int, int>>{{37, 23}, {11, 11}, {64, 12}}) {
     const ImageF a = RandomImage(w, h, 5 + w);
     const ImageF b = RandomImage(w, h, 9 + w, &a, 0.2f);

@@ -30,10 +30,9 @@ std::vector<std::pair<double, double>> VulkanPositions(int n) {
       return {{0.5625, 0.3125}, {0.4375, 0.6875}, {0.8125, 0.5625}, {0.3125, 0.1875},
               {0.1875, 0.8125}, {0.0625, 0.4375}, {0.6875, 0.9375}, {0.9375, 0.0625}};
     case 16:
-      return {{0.5625, 0.5625}, {0.4375, 0.3125}, {0.3125, 0.625},  {0.75, 0.4375},
-              {0.1875, 0.375},  {0.625, 0.8125},  {0.8125, 0.6875}, {0.6875, 0.1875},
-              {0.375, 0.875},   {0.5, 0.0625},    {0.25, 0.125},    {0.125, 0.75},
-              {0.0, 0.5},       {0.9375, 0.25},   {0.875, 0.9375},  {0.0625, 0.0}};
+      return {{0.5625, 0.5625}, {0.4375, 0.3125}, {0.3125, 0.625}, {0.75, 0.4375}, {0.1875, 0.375}, {0.625, 0.8125},
+              {0.8125, 0.6875}, {0.6875, 0.1875}, {0.375, 0.875},  {0.5, 0.0625},  {0.25, 0.125},   {0.125, 0.75},
+              {0.0, 0.5},       {0.9375, 0.25},   {0.875, 0.9375}, {0.0625, 0.0}};
     default: return {};
   }
 }
@@ -44,9 +43,10 @@ Scene OrthoPixelScene(int w, int h, const std::string& effects, const std::strin
                       const std::string& objects, const std::string& tonemap = "none") {
   const std::string json = R"({"name": "t", "effects": )" + effects +
                            R"(, "camera": {"type": "orthographic", "position": [0,0,10], "look_at": [0,0,0],)"
-                           R"( "height": )" + std::to_string(h) + R"(}, "display": {"tonemap": ")" + tonemap +
-                           R"("}, "background": [0,0,0], "materials": )" + materials +
-                           R"(, "objects": )" + objects + "}";
+                           R"( "height": )" +
+                           std::to_string(h) + R"(}, "display": {"tonemap": ")" + tonemap +
+                           R"("}, "background": [0,0,0], "materials": )" + materials + R"(, "objects": )" + objects +
+                           "}";
   (void)w;
   return ParseScene(json, "msaa_test.json", ".");
 }
@@ -71,10 +71,10 @@ TEST(Msaa, StraightEdgeIsKOverNOfTheStandardPositions) {
     const auto pos = VulkanPositions(n);
     ASSERT_EQ(static_cast<int>(pos.size()), n);
     // White (display) and a 16x emitter under the clamp tonemap (hdr-linear) below the edge.
-    const Scene white = OrthoPixelScene(W, H, R"(["unlit"])", R"({"m": {"shading": "unlit", "color": [1,1,1]}})",
-                                        kEdgeTriangle);
-    const Scene hot = OrthoPixelScene(W, H, R"(["unlit"])", R"({"m": {"shading": "unlit", "color": [16,16,16]}})",
-                                      kEdgeTriangle);
+    const Scene white =
+        OrthoPixelScene(W, H, R"(["unlit"])", R"({"m": {"shading": "unlit", "color": [1,1,1]}})", kEdgeTriangle);
+    const Scene hot =
+        OrthoPixelScene(W, H, R"(["unlit"])", R"({"m": {"shading": "unlit", "color": [16,16,16]}})", kEdgeTriangle);
     const std::string m = "msaa-" + std::to_string(n) + "x";
     TraceCounters c;
     const Image8 img = Render(white, W, H, m, &c);
@@ -255,7 +255,8 @@ TEST(Msaa, CenterExtrapolatesAndCentroidTakesTheFirstCoveredSample) {
     const std::string mat = R"({"m": {"shading": "unlit", "texture": {"pattern": "stripes", "scale": 1, "duty": )" +
                             std::to_string(c.duty) + R"(, "color_a": [1,0,0], "color_b": [0,1,0]}}})";
     const std::string quad = R"([{"shape": "quad", "size": [2000, 100], "material": "m",)"
-                             R"( "transform": {"translate": [)" + std::to_string(1000 + c.e) + R"(, 0, 0]}}])";
+                             R"( "transform": {"translate": [)" +
+                             std::to_string(1000 + c.e) + R"(, 0, 0]}}])";
     const Scene scene = OrthoPixelScene(W, H, R"(["unlit", "textures"])", mat, quad);
     auto green = [&](double x_offset) {  // texture at x offset in pixel 4 (x_world = offset)
       const double d = x_offset - c.e;

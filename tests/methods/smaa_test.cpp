@@ -364,7 +364,8 @@ TEST(SmaaBlending, StraightEdgeIsLeftAlone) {
     for (const char* preset : {"low", "medium", "high", "ultra"}) {
       const Image8 out = Smaa(in, SmaaPreset(preset), "", nullptr);
       for (int y = 0; y < 9; ++y) {
-        for (int x = 0; x < w; ++x) ASSERT_EQ(out.Pixel(x, y)[0], in.Pixel(x, y)[0]) << preset << " w " << w << " " << x << "," << y;
+        for (int x = 0; x < w; ++x)
+          ASSERT_EQ(out.Pixel(x, y)[0], in.Pixel(x, y)[0]) << preset << " w " << w << " " << x << "," << y;
       }
     }
   }
@@ -434,7 +435,8 @@ TEST(SmaaSymmetry, CommutesWithTransposeButNotWithAVerticalFlip) {
   Image8 img = Gray(64, 32, 20);
   for (int y = 0; y < 32; ++y) {
     for (int x = 0; x < 64; ++x) {
-      const bool in = (x - 30) * (x - 30) + (y - 17) * (y - 17) < 150 || (3 * x + 7 * y) % 97 < 20 || (x > 50 && y > 20);
+      const bool in =
+          (x - 30) * (x - 30) + (y - 17) * (y - 17) < 150 || (3 * x + 7 * y) % 97 < 20 || (x > 50 && y > 20);
       SetGray(img, x, y, in ? 230 : 20);
     }
   }

@@ -7,9 +7,9 @@ namespace {
 
 TEST(Crops, PicksHottestWindowsWithoutOverlap) {
   ImageF s(40, 20, 1, 0.0f);
-  s.At(30, 5, 0) = 5.0f;   // hottest spot
-  s.At(5, 15, 0) = 2.0f;   // second, far away
-  s.At(31, 6, 0) = 1.0f;   // next to the hottest: must not produce an overlapping window
+  s.At(30, 5, 0) = 5.0f;  // hottest spot
+  s.At(5, 15, 0) = 2.0f;  // second, far away
+  s.At(31, 6, 0) = 1.0f;  // next to the hottest: must not produce an overlapping window
   const auto crops = PickCrops(s, 8, 3);
   ASSERT_EQ(crops.size(), 2u);  // only two windows have a non-zero sum once overlaps are excluded
   // First window holds both hot pixels (sum 6); the tie-break takes the first top-left corner

@@ -65,7 +65,7 @@ ImageF BlurTexture(ImageF img) {
 }
 
 std::vector<MetricValue> RunEdge(const ImageF& image, const ImageF& ref, const ImageF* mask,
-                             const ImageF* none = nullptr) {
+                                 const ImageF* none = nullptr) {
   MetricInput in;
   in.image = &image;
   in.reference = &ref;

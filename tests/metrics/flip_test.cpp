@@ -46,8 +46,7 @@ TEST(FlipColor, YCxCzOfKnownColours) {
   // = (0.41238656, 0.21263682, 0.01933062); divided by the white: (0.43389539, 0.21263682,
   // 0.01775242). Y = 116·0.21263682 − 16 = 8.6658713; Cx = 500·(0.43389539 − 0.21263682)
   // = 110.629284; Cz = 200·(0.21263682 − 0.01775242) = 38.976880.
-  ExpectColorNear(XyzToYCxCz(LinearRgbToXyz({1, 0, 0})), {8.6658713, 110.629284, 38.976880},
-                  2e-6, "red");
+  ExpectColorNear(XyzToYCxCz(LinearRgbToXyz({1, 0, 0})), {8.6658713, 110.629284, 38.976880}, 2e-6, "red");
   // Round trips.
   const Color o = {37.5, -12.25, 20.0};
   ExpectColorNear(XyzToYCxCz(flip::YCxCzToXyz(o)), o, 1e-12, "YCxCz round trip");
@@ -275,7 +274,8 @@ TEST(Flip, WeightedMedianEqualsTheSortBasedOneOnRandomAndAdversarialInputs) {
   cases.emplace_back("ties (16 levels)", LcgFloats(100000, 3, 16));
   {  // exponents from 2^-126 up: every 11-bit digit of the key varies
     auto v = LcgFloats(70000, 5);
-    for (size_t i = 0; i < v.size(); ++i) v[i] = std::ldexp(static_cast<double>(static_cast<float>(v[i])), -static_cast<int>(i % 120));
+    for (size_t i = 0; i < v.size(); ++i)
+      v[i] = std::ldexp(static_cast<double>(static_cast<float>(v[i])), -static_cast<int>(i % 120));
     cases.emplace_back("wide exponents", v);
   }
   cases.emplace_back("all equal", std::vector<double>(90000, 0.375));

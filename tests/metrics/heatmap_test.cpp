@@ -8,9 +8,7 @@
 namespace aalab {
 namespace {
 
-std::array<uint8_t, 3> Px(const Image8& img, int x) {
-  return {img.At(x, 0, 0), img.At(x, 0, 1), img.At(x, 0, 2)};
-}
+std::array<uint8_t, 3> Px(const Image8& img, int x) { return {img.At(x, 0, 0), img.At(x, 0, 1), img.At(x, 0, 2)}; }
 
 TEST(Heatmap, PublishedEndpoints) {
   // First/last entries of the published tables (matplotlib _cm_listed.py):

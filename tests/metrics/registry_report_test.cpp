@@ -28,7 +28,8 @@ ResultRow Row(const std::string& spec, double edge_psnr, double perceptual) {
   row.post.Summarize();
   row.resample = row.post;
   row.total = row.render;
-  row.metrics = {{"edge_psnr_db", edge_psnr, ""}, {"temporal_perceptual", perceptual, ""}, {"area_bias_px2", -0.25, ""}};
+  row.metrics = {
+      {"edge_psnr_db", edge_psnr, ""}, {"temporal_perceptual", perceptual, ""}, {"area_bias_px2", -0.25, ""}};
   row.output_hash = spec;
   return row;
 }

@@ -21,7 +21,8 @@ TEST(MetricRegistry, EveryOutputIsDescribedOnce) {
     EXPECT_TRUE(rows.insert(e.name).second) << "row twice: " << e.name;
     EXPECT_FALSE(e.help.empty()) << e.name;
     ASSERT_FALSE(e.outputs.empty()) << e.name;
-    EXPECT_EQ(e.inputs == MetricInputs::kImage, e.compute != nullptr) << e.name << ": image rows compute, sequence rows not";
+    EXPECT_EQ(e.inputs == MetricInputs::kImage, e.compute != nullptr)
+        << e.name << ": image rows compute, sequence rows not";
     EXPECT_EQ(e.source.empty(), defined_here.count(e.name) == 1) << e.name << " source '" << e.source << "'";
     for (const MetricOutput& o : e.outputs) {
       EXPECT_TRUE(keys.insert(o.key).second) << "key twice: " << o.key;
@@ -30,7 +31,8 @@ TEST(MetricRegistry, EveryOutputIsDescribedOnce) {
       EXPECT_NE(o.label, o.key) << o.key << ": a label, not the key again";
       EXPECT_GE(o.help.size(), 20u) << o.key << ": a sentence saying what it is";
       EXPECT_TRUE(o.unit.empty() || o.unit == "dB" || o.unit == "px²") << o.key << " unit " << o.unit;
-      EXPECT_TRUE(o.better == Improves::kHigher || o.better == Improves::kLower || o.better == Improves::kTowardZero) << o.key;
+      EXPECT_TRUE(o.better == Improves::kHigher || o.better == Improves::kLower || o.better == Improves::kTowardZero)
+          << o.key;
       EXPECT_TRUE(o.decimals == kSignificantDigits || (o.decimals >= 0 && o.decimals <= 6)) << o.key;
       // dB values are printed with 2 decimals (and only they: the others span decades).
       EXPECT_EQ(o.unit == "dB", o.decimals == 2) << o.key;
@@ -70,7 +72,8 @@ TEST(MetricRegistry, TemporalMetricsAreSequenceRows) {
   EXPECT_EQ(FindMetricEntry("temporal_perceptual")->inputs, MetricInputs::kSequence);
   EXPECT_EQ(FindMetricEntry("temporal_perceptual")->source, "andersson2020flip,watson1986temporal");
   // The accumulators' values are the rows' outputs, in order.
-  EXPECT_EQ(TemporalMetricNames(), (std::vector<std::string>{"temporal_rmse", "temporal_psnr_db", "temporal_edge_rmse"}));
+  EXPECT_EQ(TemporalMetricNames(),
+            (std::vector<std::string>{"temporal_rmse", "temporal_psnr_db", "temporal_edge_rmse"}));
   EXPECT_EQ(PerceptualTemporalNames(), (std::vector<std::string>{"temporal_perceptual", "temporal_csf_rmse"}));
   EXPECT_EQ(OutputKeys(*FindMetricEntry("temporal_rmse")), TemporalMetricNames());
   EXPECT_EQ(OutputKeys(*FindMetricEntry("temporal_csf_rmse")), PerceptualTemporalNames());
@@ -84,11 +87,13 @@ TEST(MetricRegistry, MarkdownTablesListEveryOutput) {
   for (const MetricEntry& e : MetricRegistry()) {
     for (const MetricOutput& o : e.outputs) {
       size_t n = 0;
-      for (size_t p = md.find("| `" + o.key + "` |"); p != std::string::npos; p = md.find("| `" + o.key + "` |", p + 1)) ++n;
+      for (size_t p = md.find("| `" + o.key + "` |"); p != std::string::npos; p = md.find("| `" + o.key + "` |", p + 1))
+        ++n;
       EXPECT_EQ(n, 2u) << o.key << ": once in the summary, once in the texts";
     }
   }
-  EXPECT_NE(md.find("| `mse` | psnr | MSE | — | lower | significant digits | image | aalab (METRICS.md) |"), std::string::npos)
+  EXPECT_NE(md.find("| `mse` | psnr | MSE | — | lower | significant digits | image | aalab (METRICS.md) |"),
+            std::string::npos)
       << md;
   EXPECT_NE(md.find("| `area_bias_px2` | coverage_bias | Area bias | px² | closer to 0 |"), std::string::npos) << md;
 }

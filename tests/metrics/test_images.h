@@ -35,11 +35,8 @@ inline std::pair<ImageF, ImageF> MakePair(int w, int h, uint32_t seed) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c) {
-        const int s = ref.At(std::max(x - 1, 0), y, c) + ref.At(x, y, c) +
-                      ref.At(std::min(x + 1, w - 1), y, c);
-        int v = (s + 1) / 3 +
-                static_cast<int>(Hash32(seed * 1000003u + 12345u + x + 1000u * y + 7919u * c) % 9u) -
-                4;
+        const int s = ref.At(std::max(x - 1, 0), y, c) + ref.At(x, y, c) + ref.At(std::min(x + 1, w - 1), y, c);
+        int v = (s + 1) / 3 + static_cast<int>(Hash32(seed * 1000003u + 12345u + x + 1000u * y + 7919u * c) % 9u) - 4;
         v = std::clamp(v, 0, 255);
         a.At(x, y, c) = static_cast<float>(ref.At(x, y, c) / 255.0);
         b.At(x, y, c) = static_cast<float>(v / 255.0);

@@ -29,8 +29,10 @@ nlohmann::json Row(const nlohmann::json& report, const std::string& scene, const
 
 TEST(MotionCli, TemporalErrorOfStillAndMovingEdges) {
   const fs::path dir = clitest::TempDir("motion-run");
-  const auto r = Aalab("run --scenes motion-pan,wedges --methods none,ssaa-4x4,fxaa311-p39,ssaa-jitter,taa "
-                       "--frames 6 --size 96x54 --ref-spp 16 --repeat 1 --quiet --out " + (dir / "out").string());
+  const auto r = Aalab(
+      "run --scenes motion-pan,wedges --methods none,ssaa-4x4,fxaa311-p39,ssaa-jitter,taa "
+      "--frames 6 --size 96x54 --ref-spp 16 --repeat 1 --quiet --out " +
+      (dir / "out").string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream f(dir / "out" / "report.json");
   const nlohmann::json rep = nlohmann::json::parse(f);
@@ -79,8 +81,10 @@ TEST(MotionCli, TemporalErrorOfStillAndMovingEdges) {
   const auto same = Aalab("compare " + report + " " + report);
   EXPECT_EQ(same.code, 0) << same.output;
   EXPECT_NE(same.output.find("temporal_rmse"), std::string::npos) << same.output;
-  const auto shorter = Aalab("run --scenes motion-pan --methods none --frames 2 --size 96x54 --ref-spp 16 --repeat 1 "
-                             "--quiet --out " + (dir / "short").string());
+  const auto shorter = Aalab(
+      "run --scenes motion-pan --methods none --frames 2 --size 96x54 --ref-spp 16 --repeat 1 "
+      "--quiet --out " +
+      (dir / "short").string());
   ASSERT_EQ(shorter.code, 0) << shorter.output;
   const auto mixed = Aalab("compare " + report + " " + (dir / "short" / "report.json").string());
   EXPECT_EQ(mixed.code, 2) << mixed.output;
@@ -95,7 +99,8 @@ TEST(MotionCli, ViewingConditionChangesFlipAndTheTemporalScores) {
   // but its feature detector widens with ppd too, so the total need not fall);
   // temporal_rmse and PSNR, which have no viewing condition, stay bit-identical.
   const fs::path dir = clitest::TempDir("motion-viewing");
-  const std::string common = "run --scenes motion-pan --methods none --frames 4 --size 96x54 --ref-spp 16 --repeat 1 --quiet ";
+  const std::string common =
+      "run --scenes motion-pan --methods none --frames 4 --size 96x54 --ref-spp 16 --repeat 1 --quiet ";
   const auto near = Aalab(common + "--out " + (dir / "near").string());
   const auto far = Aalab(common + "--viewing default:ppd=134 --out " + (dir / "far").string());
   ASSERT_EQ(near.code, 0) << near.output;
@@ -131,8 +136,10 @@ TEST(MotionCli, FrameExrAndExportedSequences) {
   // --frame-exr writes each frame's reference as display-linear float; export-sequences lays
   // the run out as numbered frame folders with the viewing condition.
   const fs::path dir = clitest::TempDir("motion-export");
-  const auto r = Aalab("run --scenes motion-pan,wedges --methods none,fxaa311-p39:subpix=0.5 --frames 3 --size 48x27 "
-                       "--ref-spp 4 --repeat 1 --quiet --frame-exr --viewing tv-1080p-2m --out " + (dir / "run").string());
+  const auto r = Aalab(
+      "run --scenes motion-pan,wedges --methods none,fxaa311-p39:subpix=0.5 --frames 3 --size 48x27 "
+      "--ref-spp 4 --repeat 1 --quiet --frame-exr --viewing tv-1080p-2m --out " +
+      (dir / "run").string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream f(dir / "run" / "report.json");
   const nlohmann::json rep = nlohmann::json::parse(f);
@@ -177,8 +184,8 @@ TEST(MotionCli, FrameExrAndExportedSequences) {
   EXPECT_EQ(bad.code, 1);
   EXPECT_NE(bad.output.find("is not a motion run"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(dir / "seq2"));
-  const auto exr_still = Aalab("run --scenes wedges --methods none --size 32x18 --frame-exr --quiet --out " +
-                               (dir / "still2").string());
+  const auto exr_still =
+      Aalab("run --scenes wedges --methods none --size 32x18 --frame-exr --quiet --out " + (dir / "still2").string());
   EXPECT_EQ(exr_still.code, 1);
   EXPECT_NE(exr_still.output.find("--frame-exr"), std::string::npos) << exr_still.output;
   fs::remove_all(dir);
@@ -191,8 +198,10 @@ TEST(MotionCli, SameBitsAtAnyThreadCount) {
   nlohmann::json reps[2];
   for (int t = 1; t <= 2; ++t) {
     const std::string out = (dir / std::string("t").append(std::to_string(t))).string();
-    const auto r = Aalab("run --scenes motion-orbit --methods none,taa,taa-prod,taau-50 --frames 3 --size 64x36 --ref-spp 4 --repeat 1 "
-                         "--quiet --threads " + std::to_string(t) + " --out " + out);
+    const auto r = Aalab(
+        "run --scenes motion-orbit --methods none,taa,taa-prod,taau-50 --frames 3 --size 64x36 --ref-spp 4 --repeat 1 "
+        "--quiet --threads " +
+        std::to_string(t) + " --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
     std::ifstream f(fs::path(out) / "report.json");
     reps[t - 1] = nlohmann::json::parse(f);
@@ -218,8 +227,8 @@ TEST(MotionCli, BadFramesLeaveNothingBehind) {
                                          {"--frames 100001", "out of range"},
                                          {"--frames 65", "/animation/frames = 64"},
                                          {"--frames x", "--frames"}}) {
-    const auto r = Aalab("run --scenes motion-pan --methods none --size 32x18 --ref-spp 4 --repeat 1 --quiet " + c.args +
-                         " --out " + out);
+    const auto r = Aalab("run --scenes motion-pan --methods none --size 32x18 --ref-spp 4 --repeat 1 --quiet " +
+                         c.args + " --out " + out);
     EXPECT_NE(r.code, 0) << c.args;
     EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << " -> " << r.output;
     EXPECT_FALSE(fs::exists(out)) << c.args;

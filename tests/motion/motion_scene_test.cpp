@@ -92,7 +92,8 @@ TEST(MotionScene, SequenceLengthIsChecked) {
   EXPECT_NO_THROW(CheckSequenceLength(s, 11));
   EXPECT_THROW(CheckSequenceLength(s, 12), UserError);
   EXPECT_THROW(CheckSequenceLength(s, 0), UserError);
-  const Scene still = ParseText(MakeScene(R"(["unlit"])", kMat, R"([{"shape": "sphere", "radius": 0.5, "material": "m"}])"));
+  const Scene still =
+      ParseText(MakeScene(R"(["unlit"])", kMat, R"([{"shape": "sphere", "radius": 0.5, "material": "m"}])"));
   EXPECT_NO_THROW(CheckSequenceLength(still, 500));
 }
 

@@ -138,17 +138,20 @@ TEST(TaaProd, DilationTakesTheForegroundVector) {
   }
   const std::vector<float> prev = Shifted(W, H, {0, 0, 0, 0, -2, -2, -2, -2});
   for (const bool dilate : {true, false}) {
-    const std::string spec = std::string(":feedback=fixed,alpha=0.5,clip=none,history=bilinear,disocclusion=off,dilate=") +
-                             (dilate ? "on" : "off");
+    const std::string spec =
+        std::string(":feedback=fixed,alpha=0.5,clip=none,history=bilinear,disocclusion=off,dilate=") +
+        (dilate ? "on" : "off");
     auto st = MakeTaaProdState(TaaProdParamsFrom(Params(spec)));
     const Image8 a = Ramp(W, H, f0), b = Ramp(W, H, f1);
     const Image8 out = Feed(*st, {{&a, nullptr, &depth}, {&b, &prev, &depth}});
     // Pixel (3, 1): background, its right neighbour is foreground. Dilated: history at x = 1.
     const int hist_x = dilate ? 1 : 3;
-    const float expect = 0.5f * (SrgbDecode8(static_cast<uint8_t>(f0[hist_x] + 7)) + SrgbDecode8(static_cast<uint8_t>(f1[3] + 7)));
+    const float expect =
+        0.5f * (SrgbDecode8(static_cast<uint8_t>(f0[hist_x] + 7)) + SrgbDecode8(static_cast<uint8_t>(f1[3] + 7)));
     EXPECT_EQ(out.Pixel(3, 1)[0], EncodeSrgb8(expect)) << "dilate " << dilate;
     // Pixel (1, 1): far from the edge, still either way.
-    const float still = 0.5f * (SrgbDecode8(static_cast<uint8_t>(f0[1] + 7)) + SrgbDecode8(static_cast<uint8_t>(f1[1] + 7)));
+    const float still =
+        0.5f * (SrgbDecode8(static_cast<uint8_t>(f0[1] + 7)) + SrgbDecode8(static_cast<uint8_t>(f1[1] + 7)));
     EXPECT_EQ(out.Pixel(1, 1)[0], EncodeSrgb8(still));
   }
 }
@@ -161,8 +164,8 @@ TEST(TaaProd, DisocclusionDropsHistory) {
   std::vector<float> near(W * H, 1.0f), far(W * H, 10.0f);
   const std::vector<float> still = Shifted(W, H, std::vector<float>(W, 0.0f));
   for (const bool on : {true, false}) {
-    auto st = MakeTaaProdState(
-        TaaProdParamsFrom(Params(std::string(":clip=none,disocclusion=") + (on ? "on" : "off"))));
+    auto st =
+        MakeTaaProdState(TaaProdParamsFrom(Params(std::string(":clip=none,disocclusion=") + (on ? "on" : "off"))));
     const Image8 out = Feed(*st, {{&a, nullptr, &near}, {&b, &still, &far}});
     if (on) {
       EXPECT_EQ(out.Data(), b.Data());
@@ -211,8 +214,8 @@ TEST(TaaProd, DilatedBackgroundBesideAMovingObjectIsDropped) {
     prev.push_back(Shifted(W, H, shift));
   }
   for (const bool on : {true, false}) {
-    auto st = MakeTaaProdState(
-        TaaProdParamsFrom(Params(std::string(":clip=none,feedback=fixed,alpha=0.5,disocclusion=") + (on ? "on" : "off"))));
+    auto st = MakeTaaProdState(TaaProdParamsFrom(
+        Params(std::string(":clip=none,feedback=fixed,alpha=0.5,disocclusion=") + (on ? "on" : "off"))));
     const Image8 out =
         Feed(*st, {{&img[0], nullptr, &depth[0]}, {&img[1], &prev[1], &depth[1]}, {&img[2], &prev[2], &depth[2]}});
     if (on) {
@@ -235,7 +238,8 @@ StillResult RunStillEdge(const std::string& method, int frames, int W, int H, Im
   const MethodPlan plan = MakeMethod(method);
   auto state = plan.make_state();
   Image8 out;
-  const int rw = static_cast<int>(std::lround(plan.render.scale * W)), rh = static_cast<int>(std::lround(plan.render.scale * H));
+  const int rw = static_cast<int>(std::lround(plan.render.scale * W)),
+            rh = static_cast<int>(std::lround(plan.render.scale * H));
   for (int k = 0; k < frames; ++k) {
     const testing::TaaFrame f = testing::RenderTaaFrame(edge.scene, edge.tracer, plan.render.jitter, k, rw, rh);
     const std::vector<float> depth = SurfaceDepth(CameraAtFrame(edge.scene, k), f.sf);
@@ -329,7 +333,7 @@ TEST(SpeedSweep, PointsCsvAndSectionFromSceneNames) {
   rep.rows.push_back(SweepRow("motion-speed-zoom-2", "taa-prod", 0.5, 0.25));
   rep.rows.push_back(SweepRow("motion-speed-zoom-0p25", "taa-prod", 0.125, 0.75));
   rep.rows.push_back(SweepRow("motion-speed-rotate-8", "none", 1.5, 0.0625));
-  rep.rows.push_back(SweepRow("wedges", "none", 1.0, 1.0));                 // not in the family
+  rep.rows.push_back(SweepRow("wedges", "none", 1.0, 1.0));                  // not in the family
   rep.rows.push_back(SweepRow("motion-speed-zoom-fast", "none", 1.0, 1.0));  // no speed
   ResultRow null_row = SweepRow("motion-speed-zoom-1", "taa", 0.0, 0.0);
   null_row.metrics[1].value.reset();  // a null measure: left out

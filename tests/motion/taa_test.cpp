@@ -138,7 +138,8 @@ MotionResult RunMoving(const std::string& method, double px_per_frame) {
     "materials": {"w": {"shading": "unlit", "color": [1, 1, 1]}},
     "objects": [{"shape": "quad", "size": [1, 2], "material": "w",
                  "transform": {"translate": [-1.2, 0, 0], "rotate": [0, 0, 7]},
-                 "motion": {"keys": [{"frame": 0}, {"frame": 31, "translate": [)" + travel + R"(, 0, 0]}]}}],
+                 "motion": {"keys": [{"frame": 0}, {"frame": 31, "translate": [)" +
+                                     travel + R"(, 0, 0]}]}}],
     "animation": {"frames": 32}})");
   const int W = 64, H = 48, F = 32;
   const MethodPlan plan = MakeMethod(method);
@@ -187,10 +188,10 @@ MotionResult RunMoving(const std::string& method, double px_per_frame) {
 
 TEST(Taa, SlowMotionFlickersLessThanNoneAndLeavesNoTrail) {
   const MotionResult r = RunMoving("taa", 0.37);
-  std::printf("taa, quad moving 0.37 px/frame: temporal_rmse %.5f (none %.5f), temporal_edge_rmse %.5f (none %.5f); "
-              "%d trail pixels, %d ghosts\n",
-              r.temporal_rmse, r.none_temporal_rmse, r.temporal_edge_rmse, r.none_temporal_edge_rmse, r.trail_pixels,
-              r.ghosts);
+  std::printf(
+      "taa, quad moving 0.37 px/frame: temporal_rmse %.5f (none %.5f), temporal_edge_rmse %.5f (none %.5f); "
+      "%d trail pixels, %d ghosts\n",
+      r.temporal_rmse, r.none_temporal_rmse, r.temporal_edge_rmse, r.none_temporal_edge_rmse, r.trail_pixels, r.ghosts);
   EXPECT_LT(r.temporal_rmse, r.none_temporal_rmse);
   EXPECT_LT(r.temporal_edge_rmse, r.none_temporal_edge_rmse);
   // 16 frames × a strip ~2.5 px wide (15 frames · 0.37 px less the 5×5 margin) × ~20 px tall.
@@ -230,7 +231,8 @@ TEST(Taa, FastEncodeIsTheDirectEncodeBitForBit) {
   for (int k = 1; k < 256; ++k) {
     float v = SrgbDecode((static_cast<float>(k) - 0.5f) / 255.0f);  // near the boundary of code k
     for (int d = 0; d < 32; ++d) v = std::nextafter(v, 0.0f);
-    for (int d = 0; d < 64; ++d, v = std::nextafter(v, 1.0f)) ASSERT_EQ(EncodeSrgb8(v), QuantizeUnorm8(SrgbEncode(v))) << v;
+    for (int d = 0; d < 64; ++d, v = std::nextafter(v, 1.0f))
+      ASSERT_EQ(EncodeSrgb8(v), QuantizeUnorm8(SrgbEncode(v))) << v;
   }
 }
 
@@ -268,7 +270,7 @@ TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
             switch (r & 7) {
               case 0: prev[i] = std::nanf(""); break;
               case 1: prev[i] = (r & 8) ? -0.25f : extent + 0.25f; break;  // outside
-              case 2: prev[i] = (r & 8) ? 0.0f : extent; break;             // on the border
+              case 2: prev[i] = (r & 8) ? 0.0f : extent; break;            // on the border
               case 3: prev[i] = std::floor(static_cast<float>((r >> 8) % 1000) / 1000.0f * extent) + 0.5f; break;
               default: prev[i] = static_cast<float>((r >> 8) % 100000) / 100000.0f * extent; break;
             }

@@ -59,8 +59,8 @@ TEST(TemporalError, OneFrameIsNull) {
 }
 
 TEST(PoolFrames, MeanOverFramesAndNullNamesTheFrame) {
-  const std::vector<std::vector<MetricValue>> frames = {
-      {{"a", 1.0, ""}, {"b", 2.0, ""}}, {{"a", 4.0, ""}, {"b", std::nullopt, "identical"}}};
+  const std::vector<std::vector<MetricValue>> frames = {{{"a", 1.0, ""}, {"b", 2.0, ""}},
+                                                        {{"a", 4.0, ""}, {"b", std::nullopt, "identical"}}};
   const auto pooled = PoolFrames(frames);
   EXPECT_DOUBLE_EQ(*pooled[0].value, 2.5);
   EXPECT_FALSE(pooled[1].value.has_value());

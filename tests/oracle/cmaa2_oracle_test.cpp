@@ -32,8 +32,8 @@ std::vector<float> Linear(const Image8& img) {
   for (int y = 0; y < img.Height(); ++y) {
     for (int x = 0; x < img.Width(); ++x) {
       for (int c = 0; c < 3; ++c) {
-        rgb[(static_cast<size_t>(y) * static_cast<size_t>(img.Width()) + static_cast<size_t>(x)) * 3 + static_cast<size_t>(c)] =
-            Cmaa2SrgbToLinear(img.Pixel(x, y)[c]);
+        rgb[(static_cast<size_t>(y) * static_cast<size_t>(img.Width()) + static_cast<size_t>(x)) * 3 +
+            static_cast<size_t>(c)] = Cmaa2SrgbToLinear(img.Pixel(x, y)[c]);
       }
     }
   }
@@ -87,9 +87,12 @@ TEST_F(Cmaa2Oracle, EveryPresetAndOptionMatchesTheShader) {
     int preset;
     bool sharp, color;
   };
-  const Config configs[] = {{"LOW", 0, false, false},   {"MEDIUM", 1, false, false},
-                            {"HIGH", 2, false, false},  {"ULTRA", 3, false, false},
-                            {"HIGH extra sharpness", 2, true, false}, {"HIGH colour edges", 2, false, true}};
+  const Config configs[] = {{"LOW", 0, false, false},
+                            {"MEDIUM", 1, false, false},
+                            {"HIGH", 2, false, false},
+                            {"ULTRA", 3, false, false},
+                            {"HIGH extra sharpness", 2, true, false},
+                            {"HIGH colour edges", 2, false, true}};
   std::printf("lavapipe device: %s\n", oracle::VkCompute::DeviceName().c_str());
   for (const Config& cfg : configs) {
     Tally t;
@@ -106,12 +109,13 @@ TEST_F(Cmaa2Oracle, EveryPresetAndOptionMatchesTheShader) {
       const std::vector<float> theirs = oracle::RunCmaa2Shader(in, w, h, cfg.preset, cfg.sharp, cfg.color);
       t.Add(ours, in, theirs.data(), w, h, f.name);
     }
-    std::printf("CMAA2 %-22s pixels %ld changed %ld (%lu candidates, %lu items, %lu Z, %lu SLM fallbacks, %lu quads > 32) "
-                "floats differing %ld, bytes differing %ld\n",
-                cfg.name, t.pixels, t.changed, static_cast<unsigned long>(stats.candidates),
-                static_cast<unsigned long>(stats.blend_items), static_cast<unsigned long>(stats.z_shapes),
-                static_cast<unsigned long>(stats.slm_fallbacks), static_cast<unsigned long>(stats.truncated_quads),
-                t.float_differing, t.byte_differing);
+    std::printf(
+        "CMAA2 %-22s pixels %ld changed %ld (%lu candidates, %lu items, %lu Z, %lu SLM fallbacks, %lu quads > 32) "
+        "floats differing %ld, bytes differing %ld\n",
+        cfg.name, t.pixels, t.changed, static_cast<unsigned long>(stats.candidates),
+        static_cast<unsigned long>(stats.blend_items), static_cast<unsigned long>(stats.z_shapes),
+        static_cast<unsigned long>(stats.slm_fallbacks), static_cast<unsigned long>(stats.truncated_quads),
+        t.float_differing, t.byte_differing);
     // Measured (docs/cmaa2.md): at most 60 pixels of 162 531 with any float different (0.037 %),
     // at most 11 with a different byte (0.007 %); each such pixel has a sample one packing
     // step (R11G11B10) apart. The bounds leave no room for a systematic error.
@@ -134,7 +138,8 @@ TEST_F(Cmaa2Oracle, OrderOfTheAtomicsChangesLastBitsOnly) {
     b.lanes = 32;
     r.lanes = 8;
     r.reverse_sum = true;
-    const std::vector<float> oa = Cmaa2Linear(in, w, h, a), ob = Cmaa2Linear(in, w, h, b), orv = Cmaa2Linear(in, w, h, r);
+    const std::vector<float> oa = Cmaa2Linear(in, w, h, a), ob = Cmaa2Linear(in, w, h, b),
+                             orv = Cmaa2Linear(in, w, h, r);
     for (int i = 0; i < w * h; ++i) {
       bool fl = false, bl = false, fr = false, br = false;
       for (int c = 0; c < 3; ++c) {
@@ -151,8 +156,10 @@ TEST_F(Cmaa2Oracle, OrderOfTheAtomicsChangesLastBitsOnly) {
       bytes_rev += br;
     }
   }
-  std::printf("order: %ld pixels; lanes 8 vs 32: %ld differ in floats, %ld in bytes; summed in reverse: %ld floats, %ld bytes\n",
-              pixels, floats_lanes, bytes_lanes, floats_rev, bytes_rev);
+  std::printf(
+      "order: %ld pixels; lanes 8 vs 32: %ld differ in floats, %ld in bytes; summed in reverse: %ld floats, %ld "
+      "bytes\n",
+      pixels, floats_lanes, bytes_lanes, floats_rev, bytes_rev);
   EXPECT_GT(floats_rev, 0);  // the sum is order dependent: the shader's result is not fully determined
   EXPECT_LE(bytes_lanes * 10000, pixels);
   EXPECT_LE(bytes_rev * 10000, pixels);

@@ -34,10 +34,12 @@ const std::vector<std::vector<uint32_t>>& Modules(int preset, bool sharp, bool c
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
   const std::string text = WorkingCopy();
-  const std::vector<std::string> defines = {
-      "CMAA2_UAV_STORE_TYPED=1", "CMAA2_UAV_STORE_TYPED_UNORM_FLOAT=0", "CMAA2_UAV_STORE_CONVERT_TO_SRGB=0",
-      "CMAA2_STATIC_QUALITY_PRESET=" + std::to_string(preset), "CMAA2_EXTRA_SHARPNESS=" + std::string(sharp ? "1" : "0"),
-      "CMAA2_EDGE_DETECTION_LUMA_PATH=" + std::string(color ? "0" : "1")};
+  const std::vector<std::string> defines = {"CMAA2_UAV_STORE_TYPED=1",
+                                            "CMAA2_UAV_STORE_TYPED_UNORM_FLOAT=0",
+                                            "CMAA2_UAV_STORE_CONVERT_TO_SRGB=0",
+                                            "CMAA2_STATIC_QUALITY_PRESET=" + std::to_string(preset),
+                                            "CMAA2_EXTRA_SHARPNESS=" + std::string(sharp ? "1" : "0"),
+                                            "CMAA2_EDGE_DETECTION_LUMA_PATH=" + std::string(color ? "0" : "1")};
   std::vector<std::vector<uint32_t>> m;
   for (const char* e : {"EdgesColor2x2CS", "ComputeDispatchArgsCS", "ProcessCandidatesCS", "DeferredColorApply2x2CS"}) {
     m.push_back(CompileHlsl(text, e, defines));

@@ -44,7 +44,8 @@ void Tallies(Tally& t, const std::vector<float>& gl, int w, int h, const std::st
       int bdiff = 0;
       for (int c = 0; c < 3; ++c) {
         if (std::memcmp(&ours[static_cast<size_t>(c)], &theirs[c], 4) != 0) fdiff = true;
-        t.max_float_diff = std::max(t.max_float_diff, std::fabs(static_cast<double>(ours[static_cast<size_t>(c)]) - theirs[c]));
+        t.max_float_diff =
+            std::max(t.max_float_diff, std::fabs(static_cast<double>(ours[static_cast<size_t>(c)]) - theirs[c]));
         bdiff = std::max(bdiff, std::abs(StoreUnorm8(ours[static_cast<size_t>(c)]) - StoreUnorm8(theirs[c])));
       }
       ++t.pixels;
@@ -64,14 +65,16 @@ void Tallies(Tally& t, const std::vector<float>& gl, int w, int h, const std::st
 
 void Print(const std::string& what, const Tally& t) {
   std::printf("[oracle] %-26s %ld px, floats identical %.4f%%, bytes identical %.4f%%, max diff %d levels (%.3g)\n",
-              what.c_str(), t.pixels, 100.0 * static_cast<double>(t.pixels - t.float_differing) / static_cast<double>(t.pixels),
+              what.c_str(), t.pixels,
+              100.0 * static_cast<double>(t.pixels - t.float_differing) / static_cast<double>(t.pixels),
               100.0 * static_cast<double>(t.pixels - t.byte_differing) / static_cast<double>(t.pixels), t.max_byte_diff,
               t.max_float_diff);
 }
 
 void Report(const std::string& what, const Tally& t) {
   Print(what, t);
-  EXPECT_EQ(t.byte_differing, 0) << what << ": " << t.byte_differing << " of " << t.pixels << " pixels differ as stored";
+  EXPECT_EQ(t.byte_differing, 0) << what << ": " << t.byte_differing << " of " << t.pixels
+                                 << " pixels differ as stored";
   EXPECT_EQ(t.float_differing, 0) << what << ": " << t.float_differing << " of " << t.pixels
                                   << " pixels differ in a float bit:" << t.examples;
 }
@@ -80,9 +83,9 @@ class Fsr1Oracle : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!oracle::ThirdPartyHas("fidelityfx-fsr1/ffx_fsr1.h") || !oracle::ThirdPartyHas("fidelityfx-fsr1/ffx_a.h")) {
-      AALAB_SKIP_OR_FAIL_UNDER_CI("the FSR 1 oracle needs the original ffx_a.h and ffx_fsr1.h in " +
-                                  oracle::ThirdPartyDir() +
-                                  "/fidelityfx-fsr1 (../shared/third_party beside the clone, or set AALAB_THIRD_PARTY_DIR)");
+      AALAB_SKIP_OR_FAIL_UNDER_CI(
+          "the FSR 1 oracle needs the original ffx_a.h and ffx_fsr1.h in " + oracle::ThirdPartyDir() +
+          "/fidelityfx-fsr1 (../shared/third_party beside the clone, or set AALAB_THIRD_PARTY_DIR)");
     }
     const std::string err = oracle::StartGl(oracle::GlMode{});
     ASSERT_EQ(err, "") << "the FSR 1 oracle cannot start OpenGL: " << err;
@@ -136,7 +139,8 @@ TEST_F(Fsr1Oracle, CompilerRewritesMoveAtMostOneLevel) {
     const Fsr1Planes planes = Fsr1PlanesOf(f.img, SamplerArithmetic::kGl);
     const uint32_t con = Fsr1RcasCon(0.2f);
     const std::vector<float> gl = oracle::RunFsr1RcasShader(f.img, con, false);
-    Tallies(t, gl, f.img.Width(), f.img.Height(), f.name, [&](int x, int y) { return Fsr1RcasPixel(planes, con, x, y); });
+    Tallies(t, gl, f.img.Width(), f.img.Height(), f.name,
+            [&](int x, int y) { return Fsr1RcasPixel(planes, con, x, y); });
   }
   Print("rcas 0.2 (not precise)", t);
   EXPECT_LE(t.max_byte_diff, 1);
@@ -152,7 +156,8 @@ TEST_F(Fsr1Oracle, RcasIsTheShader) {
         const Fsr1Planes planes = Fsr1PlanesOf(*img, SamplerArithmetic::kGl);
         const uint32_t con = Fsr1RcasCon(stops);
         const std::vector<float> gl = oracle::RunFsr1RcasShader(*img, con);
-        Tallies(t, gl, img->Width(), img->Height(), f.name, [&](int x, int y) { return Fsr1RcasPixel(planes, con, x, y); });
+        Tallies(t, gl, img->Width(), img->Height(), f.name,
+                [&](int x, int y) { return Fsr1RcasPixel(planes, con, x, y); });
       }
     }
     char what[64];

@@ -56,7 +56,8 @@ GLuint ComputeProgram(bool easu, bool precise) {
   std::vector<char> log(16384);
   if (!ok) {
     glGetShaderInfoLog(sh, static_cast<GLsizei>(log.size()), nullptr, log.data());
-    throw std::runtime_error(std::string("compiling ffx_fsr1.h (") + (easu ? "EASU" : "RCAS") + ") failed: " + log.data());
+    throw std::runtime_error(std::string("compiling ffx_fsr1.h (") + (easu ? "EASU" : "RCAS") +
+                             ") failed: " + log.data());
   }
   GLuint prog = glCreateProgram();
   glAttachShader(prog, sh);
@@ -115,7 +116,8 @@ std::vector<float> RunFsr1EasuShader(const Image8& frame, int out_w, int out_h,
 }
 
 std::vector<float> RunFsr1RcasShader(const Image8& frame, uint32_t con_x, bool precise) {
-  return Dispatch(ComputeProgram(false, precise), frame, frame.Width(), frame.Height(), {{{con_x, 0u, 0u, 0u}, {}, {}, {}}});
+  return Dispatch(ComputeProgram(false, precise), frame, frame.Width(), frame.Height(),
+                  {{{con_x, 0u, 0u, 0u}, {}, {}, {}}});
 }
 
 }  // namespace aalab::oracle

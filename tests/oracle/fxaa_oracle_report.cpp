@@ -38,8 +38,8 @@ struct Tally {
     }
   }
   void Print(const std::string& name) const {
-    std::printf("%-14s %9ld px  differ %7.3f%%  differ by >1 level %7.3f%%  max %3d levels\n", name.c_str(),
-                pixels, 100.0 * differing / pixels, 100.0 * over1 / pixels, max_diff);
+    std::printf("%-14s %9ld px  differ %7.3f%%  differ by >1 level %7.3f%%  max %3d levels\n", name.c_str(), pixels,
+                100.0 * differing / pixels, 100.0 * over1 / pixels, max_diff);
   }
 };
 
@@ -81,8 +81,8 @@ int Run(int argc, char** argv) {
     for (size_t i = 0; i < frames.size(); ++i) {
       const Image8& img = frames[i].img;
       const Image8 ours = Fxaa311(img, p, nullptr);
-      const Image8 gl = oracle::RunFxaa311Shader(Fxaa311LumaFrame(img, p.luma), id, false, p.subpix,
-                                                 p.edge_threshold, p.edge_threshold_min);
+      const Image8 gl = oracle::RunFxaa311Shader(Fxaa311LumaFrame(img, p.luma), id, false, p.subpix, p.edge_threshold,
+                                                 p.edge_threshold_min);
       t.Add(ours, gl);
       all.Add(ours, gl);
       if (i >= first_scene) scenes.Add(ours, gl);

@@ -41,8 +41,9 @@ Diff Compare(const Image8& ours, const Image8& gl, const std::string& name) {
       if (m == 0) continue;
       if (d.differing < 3) {
         std::ostringstream os;
-        os << " " << name << " (" << x << "," << y << ") ours " << int(ours.Pixel(x, y)[0]) << "," << int(ours.Pixel(x, y)[1]) << ","
-           << int(ours.Pixel(x, y)[2]) << " gl " << int(gl.Pixel(x, y)[0]) << "," << int(gl.Pixel(x, y)[1]) << "," << int(gl.Pixel(x, y)[2]) << ";";
+        os << " " << name << " (" << x << "," << y << ") ours " << int(ours.Pixel(x, y)[0]) << ","
+           << int(ours.Pixel(x, y)[1]) << "," << int(ours.Pixel(x, y)[2]) << " gl " << int(gl.Pixel(x, y)[0]) << ","
+           << int(gl.Pixel(x, y)[1]) << "," << int(gl.Pixel(x, y)[2]) << ";";
         d.first += os.str();
       }
       ++d.differing;
@@ -84,16 +85,16 @@ void ExpectIdentical(const std::string& what, Ours ours, Theirs theirs) {
   }
   std::printf("[oracle] %-22s %ld px, identical %.4f%%, max diff %d\n", what.c_str(), pixels,
               100.0 * static_cast<double>(pixels - differing) / static_cast<double>(pixels), max_diff);
-  EXPECT_EQ(differing, 0) << what << ": " << differing << " of " << pixels << " pixels differ (max "
-                          << max_diff << " levels):" << examples;
+  EXPECT_EQ(differing, 0) << what << ": " << differing << " of " << pixels << " pixels differ (max " << max_diff
+                          << " levels):" << examples;
 }
 
 void ExpectPresetIdentical(const std::string& what, const Fxaa311Params& p, int preset) {
   ExpectIdentical(
       what, [&](const Image8& img) { return Fxaa311(img, p, nullptr); },
       [&](const Image8& img) {
-        return oracle::RunFxaa311Shader(Fxaa311LumaFrame(img, p.luma), preset, false, p.subpix,
-                                        p.edge_threshold, p.edge_threshold_min);
+        return oracle::RunFxaa311Shader(Fxaa311LumaFrame(img, p.luma), preset, false, p.subpix, p.edge_threshold,
+                                        p.edge_threshold_min);
       });
 }
 

@@ -51,11 +51,10 @@ std::string StartOnce(const GlMode& mode) {
   }
   const char* exts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (!exts || std::string(exts).find("EGL_MESA_platform_surfaceless") == std::string::npos) {
-    return "EGL has no EGL_MESA_platform_surfaceless (client extensions: " +
-           std::string(exts ? exts : "none") + "); needs Mesa's EGL: " + kPackages;
+    return "EGL has no EGL_MESA_platform_surfaceless (client extensions: " + std::string(exts ? exts : "none") +
+           "); needs Mesa's EGL: " + kPackages;
   }
-  auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-      eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (!get_display) return std::string("eglGetPlatformDisplayEXT is missing; needs ") + kPackages;
   EGLDisplay dpy = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
   EGLint major = 0, minor = 0;
@@ -64,9 +63,9 @@ std::string StartOnce(const GlMode& mode) {
            "); needs Mesa's EGL and llvmpipe: " + kPackages;
   }
   if (!eglBindAPI(EGL_OPENGL_API)) return "eglBindAPI(EGL_OPENGL_API) failed: no desktop OpenGL";
-  const EGLint attrs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
-                          EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                          EGL_NONE};
+  const EGLint attrs[] = {
+      EGL_CONTEXT_MAJOR_VERSION,           4,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
   EGLContext ctx = eglCreateContext(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attrs);
   if (ctx == EGL_NO_CONTEXT) {
     return "eglCreateContext(OpenGL 4.3 core, no config) failed (EGL error " + Hex(eglGetError()) +
@@ -204,19 +203,18 @@ std::string StartGl(const GlMode& mode) {
 
 std::string GlRenderer() { return State().renderer; }
 
-Image8 RunFxaa311Shader(const Image8& frame, int preset, bool green_luma, float subpix,
-                        float edge_threshold, float edge_threshold_min) {
+Image8 RunFxaa311Shader(const Image8& frame, int preset, bool green_luma, float subpix, float edge_threshold,
+                        float edge_threshold_min) {
   Require();
   // GLSL ES 1.00, as the article's WebGL 1 page compiles it, with the defines its JS prepends.
-  const std::string defs = "#define FXAA_QUALITY_PRESET " + std::to_string(preset) +
-                           "\n#define FXAA_GREEN_AS_LUMA " + (green_luma ? "1" : "0") +
-                           "\n#define FXAA_ENABLE 1\n#define FXAA_LUMA 0\n";
+  const std::string defs = "#define FXAA_QUALITY_PRESET " + std::to_string(preset) + "\n#define FXAA_GREEN_AS_LUMA " +
+                           (green_luma ? "1" : "0") + "\n#define FXAA_ENABLE 1\n#define FXAA_LUMA 0\n";
   const std::string vs =
       "#version 100\nattribute vec2 a_pix;\nattribute vec2 a_pos;\nvarying vec2 uv;\n"
       "void main() { uv = a_pos; gl_Position = vec4(a_pix, 0.0, 1.0); gl_PointSize = 1.0; }\n";
   const std::string fs = "#version 100\n" + defs + Fxaa311InteractiveShader();
-  const GLuint prog = Program("FXAA-interactive.fs preset " + std::to_string(preset) +
-                                  (green_luma ? " green" : ""), vs, fs);
+  const GLuint prog =
+      Program("FXAA-interactive.fs preset " + std::to_string(preset) + (green_luma ? " green" : ""), vs, fs);
   glUseProgram(prog);
   glUniform1i(glGetUniformLocation(prog, "texture"), 0);
   glUniform2f(glGetUniformLocation(prog, "RcpFrame"), 1.0f / static_cast<float>(frame.Width()),

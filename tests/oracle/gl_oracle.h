@@ -34,8 +34,8 @@ std::string StartGl(const GlMode& mode);
 /// Runs seed 004's FXAA-interactive.fs with FXAA_QUALITY_PRESET `preset`, FXAA_GREEN_AS_LUMA
 /// `green_luma`, on `frame` (RGBA8; alpha holds the luma unless green_luma) with the given
 /// uniforms. Throws std::runtime_error (with the GL info log) on any failure.
-Image8 RunFxaa311Shader(const Image8& frame, int preset, bool green_luma, float subpix,
-                        float edge_threshold, float edge_threshold_min);
+Image8 RunFxaa311Shader(const Image8& frame, int preset, bool green_luma, float subpix, float edge_threshold,
+                        float edge_threshold_min);
 
 /// Runs seed 003's 12-iteration GLSL FXAA on `frame` (its thresholds are #defines in the text).
 Image8 RunIter12Shader(const Image8& frame);

@@ -63,8 +63,8 @@ inline std::vector<NamedFrame> OracleFrames() {
   std::vector<NamedFrame> f = perf_test::SyntheticFrames();
   for (auto& s : SlopeFrames()) f.push_back(std::move(s));
   f.push_back(ThresholdFrame());
-  for (const char* name : {"wedges", "mesh", "checker-plane", "thin-wires", "detail-texture",
-                           "hard-near-horizontal", "hard-subpixel", "hard-dark"}) {
+  for (const char* name : {"wedges", "mesh", "checker-plane", "thin-wires", "detail-texture", "hard-near-horizontal",
+                           "hard-subpixel", "hard-dark"}) {
     const Scene scene = LoadScene(name);
     const Tracer tracer(scene);
     f.push_back({name, RenderFrame(tracer, 101, 67, RenderSpec{}, 1, nullptr)});

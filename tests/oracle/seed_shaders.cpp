@@ -38,8 +38,8 @@ std::vector<std::pair<std::string, std::string>> SeedTexts() {
 
 // The text between the line holding `begin` (exclusive) and the next line holding `end`
 // (exclusive), from the first seed file that has both and every `must` string inside.
-std::string Between(const std::string& begin, const std::string& end,
-                    const std::vector<std::string>& must, const std::string& what) {
+std::string Between(const std::string& begin, const std::string& end, const std::vector<std::string>& must,
+                    const std::string& what) {
   for (const auto& [path, text] : SeedTexts()) {
     const size_t b = text.find(begin);
     if (b == std::string::npos) continue;
@@ -51,16 +51,16 @@ std::string Between(const std::string& begin, const std::string& end,
     for (const auto& m : must) ok = ok && body.find(m) != std::string::npos;
     if (ok) return body;
   }
-  throw std::runtime_error("no seed file in " + SeedsDir() + " holds " + what + " (looked for a line '" +
-                           begin + "' followed by '" + end + "')");
+  throw std::runtime_error("no seed file in " + SeedsDir() + " holds " + what + " (looked for a line '" + begin +
+                           "' followed by '" + end + "')");
 }
 
 }  // namespace
 
 std::string Fxaa311InteractiveShader() {
   return Between("WebGL Fragment Shader FXAA-interactive.fs", "WebGL Javascript FXAA-interactive.js",
-                 {"vec4 FxaaPixelShader(", "#if (FXAA_QUALITY_PRESET == 39)", "void main(",
-                  "uniform vec2 RcpFrame;", "varying vec2 uv;"},
+                 {"vec4 FxaaPixelShader(", "#if (FXAA_QUALITY_PRESET == 39)", "void main(", "uniform vec2 RcpFrame;",
+                  "varying vec2 uv;"},
                  "the FXAA 3.11 shader FXAA-interactive.fs (seed 004)");
 }
 
@@ -73,8 +73,7 @@ std::string Iter12Shader() {
     const size_t close = text.find('}', m);
     if (close == std::string::npos) continue;
     std::string body = text.substr(b, close + 1 - b);
-    if (body.find("#define ITERATIONS 12") != std::string::npos &&
-        body.find("vec3 fxaa()") != std::string::npos) {
+    if (body.find("#define ITERATIONS 12") != std::string::npos && body.find("vec3 fxaa()") != std::string::npos) {
       return body + "\n";
     }
   }

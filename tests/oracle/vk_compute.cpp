@@ -171,7 +171,8 @@ HostBuffer MakeHostBuffer(uint64_t bytes, VkBufferUsageFlags usage) {
   vkGetBufferMemoryRequirements(dev, b.buffer, &req);
   VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   mai.allocationSize = req.size;
-  mai.memoryTypeIndex = MemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  mai.memoryTypeIndex =
+      MemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   Check(vkAllocateMemory(dev, &mai, nullptr, &b.memory), "vkAllocateMemory");
   Check(vkBindBufferMemory(dev, b.buffer, b.memory, 0), "vkBindBufferMemory");
   Check(vkMapMemory(dev, b.memory, 0, bytes, 0, &b.ptr), "vkMapMemory");
@@ -200,7 +201,8 @@ std::string EntryName(const std::vector<uint32_t>& words) {
 
 }  // namespace
 
-std::vector<uint32_t> CompileHlsl(const std::string& text, const std::string& entry, const std::vector<std::string>& defines) {
+std::vector<uint32_t> CompileHlsl(const std::string& text, const std::string& entry,
+                                  const std::vector<std::string>& defines) {
   char dir_template[] = "/tmp/aalab-hlsl-XXXXXX";
   const char* dir = mkdtemp(dir_template);
   if (!dir) throw std::runtime_error("mkdtemp failed");
@@ -414,9 +416,9 @@ VkCompute::~VkCompute() {
 int VkCompute::AddPipeline(const std::vector<uint32_t>& spirv, const std::string& entry) {
   (void)entry;
   VkDevice dev = Ctx().device;
-  const std::string key =
-      impl_->signature + "#" +
-      std::to_string(std::hash<std::string>{}(std::string(reinterpret_cast<const char*>(spirv.data()), spirv.size() * 4)));
+  const std::string key = impl_->signature + "#" +
+                          std::to_string(std::hash<std::string>{}(
+                              std::string(reinterpret_cast<const char*>(spirv.data()), spirv.size() * 4)));
   auto& cached = Ctx().pipelines[key];
   if (!cached.second) {
     VkShaderModuleCreateInfo smci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
@@ -454,8 +456,8 @@ void VkCompute::Run(const std::vector<VkStep>& steps) {
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkBeginCommandBuffer(cb, &begin);
-  auto transition = [&](VkImage img, VkImageLayout from, VkImageLayout to, VkAccessFlags src_access, VkAccessFlags dst_access,
-                        VkPipelineStageFlags src, VkPipelineStageFlags dst) {
+  auto transition = [&](VkImage img, VkImageLayout from, VkImageLayout to, VkAccessFlags src_access,
+                        VkAccessFlags dst_access, VkPipelineStageFlags src, VkPipelineStageFlags dst) {
     VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
     b.srcAccessMask = src_access;
     b.dstAccessMask = dst_access;
@@ -468,10 +470,11 @@ void VkCompute::Run(const std::vector<VkStep>& steps) {
   };
   for (auto& [k, r] : impl_->res) {
     if (!r.image) continue;
-    transition(r.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT,
-               VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-    const VkBufferImageCopy region{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0},
-                                   {static_cast<uint32_t>(r.b.width), static_cast<uint32_t>(r.b.height), 1}};
+    transition(r.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+               VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    const VkBufferImageCopy region{0,         0,
+                                   0,         {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                   {0, 0, 0}, {static_cast<uint32_t>(r.b.width), static_cast<uint32_t>(r.b.height), 1}};
     vkCmdCopyBufferToImage(cb, r.host.buffer, r.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     transition(r.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL, VK_ACCESS_TRANSFER_WRITE_BIT,
                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -479,9 +482,11 @@ void VkCompute::Run(const std::vector<VkStep>& steps) {
   }
   VkMemoryBarrier host_to_shader{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   host_to_shader.srcAccessMask = VK_ACCESS_HOST_WRITE_BIT;
-  host_to_shader.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
-  vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_HOST_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                       0, 1, &host_to_shader, 0, nullptr, 0, nullptr);
+  host_to_shader.dstAccessMask =
+      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
+  vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_HOST_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1,
+                       &host_to_shader, 0, nullptr, 0, nullptr);
   vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, impl_->layout, 0,
                           static_cast<uint32_t>(impl_->sets.size()), impl_->sets.data(), 0, nullptr);
   const VkPipelineStageFlags stages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;
@@ -501,15 +506,16 @@ void VkCompute::Run(const std::vector<VkStep>& steps) {
     if (!r.image) continue;
     transition(r.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_SHADER_WRITE_BIT,
                VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-    const VkBufferImageCopy region{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0},
-                                   {static_cast<uint32_t>(r.b.width), static_cast<uint32_t>(r.b.height), 1}};
+    const VkBufferImageCopy region{0,         0,
+                                   0,         {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                   {0, 0, 0}, {static_cast<uint32_t>(r.b.width), static_cast<uint32_t>(r.b.height), 1}};
     vkCmdCopyImageToBuffer(cb, r.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.host.buffer, 1, &region);
   }
   VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
   to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
-                       &to_host, 0, nullptr, 0, nullptr);
+  vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr, 0, nullptr);
   Check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   VkFence fence;

@@ -5,8 +5,9 @@
 // VK_ICD_FILENAMES = lavapipe's ICD only; GALLIUM_OVERRIDE_CPU_CAPS=avx (at most 256-bit
 // vectors, 8 lanes, on any machine with AVX; the CPU's FMA stays available, and lavapipe
 // fuses some multiply-adds with it: docs/cmaa2.md. "sse4.1", which the GL oracles use to rule
-// out FMA, makes lavapipe's LLVM 15 abort compiling CMAA2's f16 conversions); LP_NUM_THREADS=1 (workgroups run one after another, in dispatch order, so atomics happen in
-// a fixed order). robustImageAccess is enabled where offered (image reads outside return 0).
+// out FMA, makes lavapipe's LLVM 15 abort compiling CMAA2's f16 conversions); LP_NUM_THREADS=1 (workgroups run one
+// after another, in dispatch order, so atomics happen in a fixed order). robustImageAccess is enabled where offered
+// (image reads outside return 0).
 #pragma once
 #include <cstdint>
 #include <memory>

@@ -61,8 +61,8 @@ inline std::string PageFacts(const fs::path& work, const std::string& name, cons
                              const std::string& flags, const std::string& pre) {
   const fs::path dom = work / (name + ".html"), log = work / (name + ".log");
   const clitest::CmdResult r = clitest::RunCommand(
-      Chromium(work / ("profile-" + name), flags + " --virtual-time-budget=20000 --window-size=1400,1600 --dump-dom " +
-                                               Quote(url)) +
+      Chromium(work / ("profile-" + name),
+               flags + " --virtual-time-budget=20000 --window-size=1400,1600 --dump-dom " + Quote(url)) +
       " > " + Quote(dom.string()) + " 2> " + Quote(log.string()));
   EXPECT_EQ(r.code, 0) << ReadFile(log);
   std::smatch m;
@@ -108,7 +108,8 @@ inline void ExpectReadout(const std::string& facts, const std::array<int, 4>& wi
       << facts;
   const int x = std::stoi(m[1]), y = std::stoi(m[2]);
   EXPECT_TRUE(x >= window[0] && x < window[0] + window[2] && y >= window[1] && y < window[1] + window[3]) << facts;
-  const std::string a = PngPixel(a_png, x - origin[0], y - origin[1]), b = PngPixel(b_png, x - origin[0], y - origin[1]);
+  const std::string a = PngPixel(a_png, x - origin[0], y - origin[1]),
+                    b = PngPixel(b_png, x - origin[0], y - origin[1]);
   EXPECT_EQ(m[3].str(), a) << facts << " vs " << a_png;
   EXPECT_EQ(m[4].str(), b) << facts << " vs " << b_png;
   int va[3], vb[3];

@@ -59,7 +59,8 @@ CompareOptions NoTime() {
   return o;
 }
 
-const CompareLine* Find(const CompareResult& r, const std::string& scene, const std::string& spec, const std::string& q) {
+const CompareLine* Find(const CompareResult& r, const std::string& scene, const std::string& spec,
+                        const std::string& q) {
   for (const auto& l : r.lines) {
     if (l.scene == scene && l.spec == spec && l.quantity == q) return &l;
   }
@@ -68,13 +69,15 @@ const CompareLine* Find(const CompareResult& r, const std::string& scene, const 
 
 // Directions come from the metric registry (metrics/metric.h): exact keys only, no patterns.
 TEST(Compare, DirectionTableIsExplicit) {
-  for (const char* m : {"psnr_db", "edge_psnr_db", "interior_psnr_db", "temporal_psnr_db", "ssim", "edge_error_removed"}) {
+  for (const char* m :
+       {"psnr_db", "edge_psnr_db", "interior_psnr_db", "temporal_psnr_db", "ssim", "edge_error_removed"}) {
     EXPECT_EQ(MetricDirection(m), Better::kHigher) << m;
   }
   for (const char* m : {"mse", "edge_rmse", "flip_mean", "flip_max", "abs_err_p95", "abs_err_max"}) {
     EXPECT_EQ(MetricDirection(m), Better::kLower) << m;
   }
-  for (const char* m : {"psnr", "_psnr_db", "foo_psnr_db", "flip_", "flip_foo", "ssim2", "time_ms", "area_bias_px2", ""}) {
+  for (const char* m :
+       {"psnr", "_psnr_db", "foo_psnr_db", "flip_", "flip_foo", "ssim2", "time_ms", "area_bias_px2", ""}) {
     EXPECT_FALSE(MetricDirection(m)) << m;
   }
   EXPECT_TRUE(IsDbMetric("edge_psnr_db"));
@@ -200,20 +203,22 @@ TEST(Compare, ChangedParametersOrDuplicateRowsCannotBeCompared) {
 TEST(Compare, NullIdenticalPsnrIsBetterThanAnyNumber) {
   const auto none = std::nullopt;
   // number -> identical: improved.
-  CompareResult r = CompareReports(Rep({Row("wedges", "ssaa-4x4", 60.0, "h1")}), Rep({Row("wedges", "ssaa-4x4", none, "h2")}),
-                                   NoTime());
+  CompareResult r = CompareReports(Rep({Row("wedges", "ssaa-4x4", 60.0, "h1")}),
+                                   Rep({Row("wedges", "ssaa-4x4", none, "h2")}), NoTime());
   const CompareLine* l = Find(r, "wedges", "ssaa-4x4", "psnr_db");
   EXPECT_EQ(l->verdict, Verdict::kImproved);
   EXPECT_TRUE(std::isinf(*l->current));
   EXPECT_EQ(r.ExitCode(), 0);
   // identical -> any number, however high: regression.
-  r = CompareReports(Rep({Row("wedges", "ssaa-4x4", none, "h1")}), Rep({Row("wedges", "ssaa-4x4", 99.0, "h2")}), NoTime());
+  r = CompareReports(Rep({Row("wedges", "ssaa-4x4", none, "h1")}), Rep({Row("wedges", "ssaa-4x4", 99.0, "h2")}),
+                     NoTime());
   l = Find(r, "wedges", "ssaa-4x4", "psnr_db");
   EXPECT_EQ(l->verdict, Verdict::kRegression);
   EXPECT_NE(l->note.find("identical"), std::string::npos);
   EXPECT_EQ(r.ExitCode(), 1);
   // identical -> identical (different hashes cannot both be identical in practice, but the rule holds).
-  r = CompareReports(Rep({Row("wedges", "ssaa-4x4", none, "h1")}), Rep({Row("wedges", "ssaa-4x4", none, "h2")}), NoTime());
+  r = CompareReports(Rep({Row("wedges", "ssaa-4x4", none, "h1")}), Rep({Row("wedges", "ssaa-4x4", none, "h2")}),
+                     NoTime());
   EXPECT_EQ(Find(r, "wedges", "ssaa-4x4", "psnr_db")->verdict, Verdict::kUnchanged);
 }
 
@@ -438,16 +443,22 @@ TEST(Compare, MapComparesRenamedRows) {
   EXPECT_EQ(l->base_spec, "fxaa311-p39");
   EXPECT_DOUBLE_EQ(*l->delta, -0.5);
   bool noted = false;
-  for (const auto& n : r.notes) noted = noted || n.find("mapped fxaa311-p39 (baseline) -> fxaa311-p39:subpix=0 (current): parameters subpix (absent) -> 0") != std::string::npos;
+  for (const auto& n : r.notes)
+    noted =
+        noted ||
+        n.find("mapped fxaa311-p39 (baseline) -> fxaa311-p39:subpix=0 (current): parameters subpix (absent) -> 0") !=
+            std::string::npos;
   EXPECT_TRUE(noted);
-  EXPECT_NE(FormatCompareText(r, base, cur, "a", "b", false).find("fxaa311-p39 -> fxaa311-p39:subpix=0"), std::string::npos);
+  EXPECT_NE(FormatCompareText(r, base, cur, "a", "b", false).find("fxaa311-p39 -> fxaa311-p39:subpix=0"),
+            std::string::npos);
   // A map naming a row that is not there cannot compare, and lists the specs there are.
   o.map = {{"fxaa311-p39", "fxaa311-p39:subpix=1"}};
   r = CompareReports(base, cur, o);
   EXPECT_EQ(r.ExitCode(), 2);
   ASSERT_FALSE(r.cannot_compare.empty());
   EXPECT_NE(r.cannot_compare[0].find("no row of spec 'fxaa311-p39:subpix=1' (its specs: fxaa311-p39:subpix=0, none)"),
-            std::string::npos) << r.cannot_compare[0];
+            std::string::npos)
+      << r.cannot_compare[0];
 }
 
 TEST(Compare, StrictFailsOnCaptureWarningsAndMachineReadableResults) {
@@ -471,18 +482,23 @@ TEST(Compare, StrictFailsOnCaptureWarningsAndMachineReadableResults) {
   EXPECT_DOUBLE_EQ(j["lines"][0]["delta"].get<double>(), -0.5);
   EXPECT_EQ(j["lines"][0]["verdict"], "warning");  // -0.5 dB: beyond 0.02 dB, within 1 dB
   const std::string x = CompareToJUnit(r, "base.json", "cur.json");
-  EXPECT_NE(x.find("<testsuite name=\"aalab compare\" tests=\"3\" failures=\"1\" errors=\"0\""), std::string::npos) << x;
+  EXPECT_NE(x.find("<testsuite name=\"aalab compare\" tests=\"3\" failures=\"1\" errors=\"0\""), std::string::npos)
+      << x;
   EXPECT_NE(x.find("<testcase classname=\"wedges\" name=\"fxaa1-p3\">"), std::string::npos) << x;
-  EXPECT_NE(x.find("<failure type=\"capture warning\" message=\"wedges: mean interior bias 0.03\"/>"), std::string::npos);
+  EXPECT_NE(x.find("<failure type=\"capture warning\" message=\"wedges: mean interior bias 0.03\"/>"),
+            std::string::npos);
   // A gated regression is a <failure> of its row; could-not-compare items are <error>s.
   o.max_drop_db = 0.1;
   o.strict = false;
   r = CompareReports(a, Rep({Row("wedges", "fxaa1-p3", 29.5, "h2"), Row("circle", "none", 1.0, "z")}), o);
   const std::string y = CompareToJUnit(r, "a", "b");
-  EXPECT_NE(y.find("<failure type=\"regression\" message=\"psnr_db 30.000 -&gt; 29.500 (-0.500), threshold -0.100 dB\"/>"),
-            std::string::npos) << y;
+  EXPECT_NE(
+      y.find("<failure type=\"regression\" message=\"psnr_db 30.000 -&gt; 29.500 (-0.500), threshold -0.100 dB\"/>"),
+      std::string::npos)
+      << y;
   EXPECT_NE(y.find("<error type=\"could not compare\" message=\"row not in the baseline: circle / none\"/>"),
-            std::string::npos) << y;
+            std::string::npos)
+      << y;
   EXPECT_EQ(CompareToJson(r, "a", "b")["exit_code"], 2);
 }
 

@@ -19,8 +19,7 @@
 namespace aalab {
 namespace {
 
-ResultRow Row(const std::string& scene, const std::string& spec, std::optional<double> edge, double flip,
-              double ms) {
+ResultRow Row(const std::string& scene, const std::string& spec, std::optional<double> edge, double flip, double ms) {
   ResultRow r;
   r.scene = scene;
   r.method = spec;
@@ -52,9 +51,9 @@ ExportSource Source() {
     sc.images = {{"reference_png", std::string("images/") + name + "/reference.png"}};
     r.scenes.push_back(sc);
   }
-  r.rows = {Row("a", "none", 20, 0.2, 1), Row("a", "fast", 25, 0.1, 1.5), Row("a", "slow", 30, 0.05, 4),
-            Row("b", "none", 22, 0.3, 3), Row("b", "fast", 21, 0.2, 2.5), Row("b", "slow", 34, 0.04, 6),
-            Row("c", "none", std::nullopt, 0.1, 1), Row("c", "fast", 10, 0.1, 1), Row("c", "slow", 12, 0.1, 1)};
+  r.rows = {Row("a", "none", 20, 0.2, 1),           Row("a", "fast", 25, 0.1, 1.5), Row("a", "slow", 30, 0.05, 4),
+            Row("b", "none", 22, 0.3, 3),           Row("b", "fast", 21, 0.2, 2.5), Row("b", "slow", 34, 0.04, 6),
+            Row("c", "none", std::nullopt, 0.1, 1), Row("c", "fast", 10, 0.1, 1),   Row("c", "slow", 12, 0.1, 1)};
   return s;
 }
 
@@ -129,8 +128,8 @@ TEST(ExportTables, MetricTableValuesMeansAndBest) {
 
   // Lower is better for FLIP: the smallest value is marked; the viewing condition is stated.
   const ExportTable f = MetricTable(src, Sel(src, "flip_mean"));
-  EXPECT_TRUE(f.cells[2][0].best);   // 0.05 on a
-  EXPECT_TRUE(f.cells[2][1].best);   // 0.04 on b
+  EXPECT_TRUE(f.cells[2][0].best);                                              // 0.05 on a
+  EXPECT_TRUE(f.cells[2][1].best);                                              // 0.04 on b
   EXPECT_TRUE(f.cells[0][2].best && f.cells[1][2].best && f.cells[2][2].best);  // ties on c
   EXPECT_NE(f.caption.find("67 pixels per degree"), std::string::npos);
 }
@@ -177,7 +176,8 @@ TEST(ExportTables, CsvAndLatexParseBackToTheValues) {
   EXPECT_EQ(tex.rfind("% prov line\n", 0), 0u);
   EXPECT_NE(tex.find("\\toprule"), std::string::npos);
   EXPECT_NE(tex.find("\\label{tab:aalab-metric}"), std::string::npos);
-  const std::regex row(R"(slow & \\textbf\{([0-9.]+)\} & \\textbf\{([0-9.]+)\} & \\textbf\{([0-9.]+)\} & \\textbf\{([0-9.]+)\} \\\\)");
+  const std::regex row(
+      R"(slow & \\textbf\{([0-9.]+)\} & \\textbf\{([0-9.]+)\} & \\textbf\{([0-9.]+)\} & \\textbf\{([0-9.]+)\} \\\\)");
   std::smatch m;
   ASSERT_TRUE(std::regex_search(tex, m, row)) << tex;
   EXPECT_EQ(m[1].str(), "30.00");
@@ -194,10 +194,10 @@ TEST(ExportTables, CostOfAccuracyByHand) {
   const auto& fast = t.cells[1];
   const auto& slow = t.cells[2];
   EXPECT_DOUBLE_EQ(*fast[0].value, 23.0);
-  EXPECT_DOUBLE_EQ(*fast[1].value, 2.0);   // gain over none
-  EXPECT_DOUBLE_EQ(*fast[2].value, 2.0);   // time
-  EXPECT_DOUBLE_EQ(*fast[3].value, 0.0);   // added
-  EXPECT_FALSE(fast[4].value);             // gain per ms undefined: added <= 0
+  EXPECT_DOUBLE_EQ(*fast[1].value, 2.0);  // gain over none
+  EXPECT_DOUBLE_EQ(*fast[2].value, 2.0);  // time
+  EXPECT_DOUBLE_EQ(*fast[3].value, 0.0);  // added
+  EXPECT_FALSE(fast[4].value);            // gain per ms undefined: added <= 0
   EXPECT_DOUBLE_EQ(*slow[1].value, 11.0);
   EXPECT_DOUBLE_EQ(*slow[3].value, 3.0);
   EXPECT_DOUBLE_EQ(*slow[4].value, 11.0 / 3.0);
@@ -256,8 +256,8 @@ TEST(ExportCrops, PixelsAndHeatmapAtTheCropRectangles) {
   asked.methods = {"none", "fast"};
   asked.heatmap = true;
   const CropFigureOptions o = DefaultCropFigure(src, sel, asked);
-  EXPECT_EQ(o.crops.size(), 2u);     // the scene's first two windows
-  EXPECT_EQ(o.zoom, 32);  // tiles of about 128 px for the widest crop (3 px: 42x), at most 32x
+  EXPECT_EQ(o.crops.size(), 2u);  // the scene's first two windows
+  EXPECT_EQ(o.zoom, 32);          // tiles of about 128 px for the widest crop (3 px: 42x), at most 32x
   std::map<std::string, Image8> files;
   files["images/a/reference.png"] = Pattern(1);
   files["images/a/none.png"] = Pattern(2);
@@ -296,7 +296,8 @@ TEST(ExportCrops, PixelsAndHeatmapAtTheCropRectangles) {
   // The SVG draws the same pixels: parse each image tile's paths back.
   const std::string svg = CropFigureToSvg(fig, {"prov"});
   EXPECT_NE(svg.find("<metadata>prov\n</metadata>"), std::string::npos);
-  const std::regex group(R"re(<g transform="translate\((\d+) (\d+)\) scale\((\d+)\)"[^>]*data-crop="(\d+) (\d+) (\d+) (\d+)" data-kind="image" data-image="([^"]+)">\n((?:<path[^\n]*\n)*)</g>)re");
+  const std::regex group(
+      R"re(<g transform="translate\((\d+) (\d+)\) scale\((\d+)\)"[^>]*data-crop="(\d+) (\d+) (\d+) (\d+)" data-kind="image" data-image="([^"]+)">\n((?:<path[^\n]*\n)*)</g>)re");
   const std::regex path(R"re(<path fill="#([0-9a-f]{6})" d="([^"]+)"/>)re");
   const std::regex seg(R"(M(\d+) (\d+)h(\d+)v1h-\d+z)");
   int parsed = 0;
@@ -362,9 +363,8 @@ TEST(ExportBibliography, EveryRegistrySourceHasAnEntry) {
   EXPECT_EQ(source_of("smaa-high"), "jimenez2012smaa");
   EXPECT_EQ(source_of("taa"), "karis2014taa,salvi2016taa");
   EXPECT_EQ(source_of("none"), "");
-  const std::string bib = BibtexFile({{"method fxaa-high", source_of("fxaa-high")}, {"method none", ""},
-                                      {"metric ssim", "wang2004ssim"}},
-                                     {"prov"});
+  const std::string bib = BibtexFile(
+      {{"method fxaa-high", source_of("fxaa-high")}, {"method none", ""}, {"metric ssim", "wang2004ssim"}}, {"prov"});
   EXPECT_EQ(bib.rfind("% prov\n", 0), 0u);
   EXPECT_NE(bib.find("%   method none: no published source"), std::string::npos);
   EXPECT_NE(bib.find("@misc{lottes2011fxaa311,"), std::string::npos);

@@ -19,8 +19,9 @@ Timing T(std::vector<double> s) {
 Report Rep(double psnr, const std::string& hash, const std::string& size = "48x27") {
   Report r;
   r.context = {{"git_commit", "c0ffee"}, {"cpu", "Test CPU"}, {"build_type", "Release"}};
-  r.settings = {{"suite", "(custom)"}, {"scenes", "wedges"}, {"methods", "none, fxaa1-p3"}, {"size", size},
-                {"ref_spp", "16"},     {"seed", "1"},        {"threads", "2"}};
+  r.settings = {{"suite", "(custom)"}, {"scenes", "wedges"}, {"methods", "none, fxaa1-p3"},
+                {"size", size},        {"ref_spp", "16"},    {"seed", "1"},
+                {"threads", "2"}};
   for (const char* spec : {"none", "fxaa1-p3"}) {
     ResultRow row;
     row.scene = "wedges";
@@ -75,7 +76,8 @@ TEST(History, RoundTripsTwoEntries) {
 }
 
 TEST(History, MalformedLinesAreErrorsNamingTheLine) {
-  const std::string good = HistoryLine(HistoryEntryFromReport(Rep(30.0, "a"), "default", "c0ffee", "2026-01-02", "a.json"));
+  const std::string good =
+      HistoryLine(HistoryEntryFromReport(Rep(30.0, "a"), "default", "c0ffee", "2026-01-02", "a.json"));
   auto expect_error = [](const std::string& text, const std::string& part) {
     try {
       ParseHistory(text, "history database 'h.jsonl'");
@@ -129,8 +131,8 @@ TEST(History, TrendPageMarksThresholdCrossings) {
   EXPECT_EQ(page.improvements, 0);
   // Per series: 2 rows x (edge_psnr_db, psnr_db, time).
   EXPECT_EQ(page.charts, 12);
-  for (const char* s : {"<svg", "series default", "series small", "wedges / fxaa1-p3", "#d00020", "REGRESSION vs previous",
-                        "c3 2026-01-03", "&#8734;"}) {
+  for (const char* s : {"<svg", "series default", "series small", "wedges / fxaa1-p3", "#d00020",
+                        "REGRESSION vs previous", "c3 2026-01-03", "&#8734;"}) {
     EXPECT_NE(page.html.find(s), std::string::npos) << s;
   }
   // fxaa1-p3's line and markers in its colour and marker, as on every page (html_method_style.h:

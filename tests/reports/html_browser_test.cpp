@@ -40,16 +40,17 @@ TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
   }
   const fs::path work = FreshWorkDir("html_browser_test");
   const fs::path out = work / "run";
-  RunAalabInto(out, "run --scenes wedges,circle --methods none,ssaa-2x2,fxaa1-p3 --size 64x36 --ref-spp 4 --repeat 1 "
-                    "--debug-views");
+  RunAalabInto(out,
+               "run --scenes wedges,circle --methods none,ssaa-2x2,fxaa1-p3 --size 64x36 --ref-spp 4 --repeat 1 "
+               "--debug-views");
   ASSERT_TRUE(fs::exists(out / "index.html"));
   const std::string url = "file://" + fs::absolute(out / "index.html").string();
 
   // 1. The self-test: every view, every row, every chart point, every gallery entry, every image.
   const fs::path dom_path = work / "dom.html", log_path = work / "chromium.log";
-  const CmdResult dump = RunCommand(Chromium(work / "profile-selftest", "--virtual-time-budget=30000 --dump-dom " +
-                                                                     Quote(url + "#selftest")) +
-                             " > " + Quote(dom_path.string()) + " 2> " + Quote(log_path.string()));
+  const CmdResult dump = RunCommand(
+      Chromium(work / "profile-selftest", "--virtual-time-budget=30000 --dump-dom " + Quote(url + "#selftest")) +
+      " > " + Quote(dom_path.string()) + " 2> " + Quote(log_path.string()));
   ASSERT_EQ(dump.code, 0) << "chromium failed; log: " << log_path << "\n" << ReadFile(log_path);
   const std::string dom = ReadFile(dom_path);
   std::smatch m;
@@ -57,15 +58,16 @@ TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
       << "no self-test verdict in the page (script did not run?); DOM in " << dom_path;
   const std::string verdict = m[1];
   EXPECT_EQ(verdict.rfind("OK scenes=2 rows=6 points=6 galleries=6 ", 0), 0u) << verdict;
-  for (const char* zero : {" failed=0", " errors=0", " problems=0"}) EXPECT_NE(verdict.find(zero), std::string::npos) << verdict;
+  for (const char* zero : {" failed=0", " errors=0", " problems=0"})
+    EXPECT_NE(verdict.find(zero), std::string::npos) << verdict;
   EXPECT_EQ(verdict.find("images=0 "), std::string::npos) << verdict;
 
   // 2. Every scene and method of report.json is in the page (the tables are static HTML).
   const auto report = nlohmann::json::parse(ReadFile(out / "report.json"));
   ASSERT_EQ(report["rows"].size(), 6u);
   for (const auto& row : report["rows"]) {
-    const std::string key = "data-scene=\"" + row["scene"].get<std::string>() + "\" data-spec=\"" +
-                            row["spec"].get<std::string>() + "\"";
+    const std::string key =
+        "data-scene=\"" + row["scene"].get<std::string>() + "\" data-spec=\"" + row["spec"].get<std::string>() + "\"";
     EXPECT_NE(dom.find(key), std::string::npos) << key;
   }
   for (const auto& s : report["scenes"]) {
@@ -82,10 +84,11 @@ TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
   // 4. Screenshots of the suite overview and of a scene (charts, tables, gallery) for a human.
   for (const std::string view : {"suite", "scene-wedges"}) {
     const fs::path shot = work / ("screenshot-" + view + ".png");
-    const CmdResult r = RunCommand(Chromium(work / ("profile-" + view), "--virtual-time-budget=10000 --window-size=1400,2000 "
-                                                                 "--screenshot=" + Quote(shot.string()) + " " +
-                                                                 Quote(url + "#" + view)) +
-                            " 2>&1");
+    const CmdResult r = RunCommand(Chromium(work / ("profile-" + view),
+                                            "--virtual-time-budget=10000 --window-size=1400,2000 "
+                                            "--screenshot=" +
+                                                Quote(shot.string()) + " " + Quote(url + "#" + view)) +
+                                   " 2>&1");
     EXPECT_EQ(r.code, 0) << r.output;
     ASSERT_TRUE(fs::exists(shot)) << r.output;
     EXPECT_GT(fs::file_size(shot), 20000u) << shot << " looks empty";
@@ -100,16 +103,20 @@ TEST(HtmlBrowser, PageShowsEverythingWithoutErrors) {
 // its own images' pixels); without it the page says so instead of counting.
 TEST(HtmlBrowser, AnyTwoRowsSideBySideWithFlipAndDifference) {
   if (!fs::exists(kChromium)) {
-    AALAB_SKIP_OR_FAIL_UNDER_CI(std::string(kChromium) + " is not installed, so the A/B page was NOT tested in a browser.");
+    AALAB_SKIP_OR_FAIL_UNDER_CI(std::string(kChromium) +
+                                " is not installed, so the A/B page was NOT tested in a browser.");
   }
   const fs::path work = FreshWorkDir("html_browser_pair_test");
   const fs::path out = work / "run";
-  const std::string printed = RunAalabInto(out, "run --scenes wedges --methods none,ssaa-2x2,fxaa1-p3 --size 64x36 "
-                                                "--ref-spp 4 --repeat 1");
+  const std::string printed = RunAalabInto(out,
+                                           "run --scenes wedges --methods none,ssaa-2x2,fxaa1-p3 --size 64x36 "
+                                           "--ref-spp 4 --repeat 1");
   // The terminal states the verdict too.
   EXPECT_NE(printed.find("  wedges: edge PSNR → "), std::string::npos) << printed;
   const std::string url = "file://" + fs::absolute(out / "index.html").string() + "#pairtest";
-  auto facts = [&](const std::string& name, const std::string& flags) { return PageFacts(work, name, url, flags, "pairtest"); };
+  auto facts = [&](const std::string& name, const std::string& flags) {
+    return PageFacts(work, name, url, flags, "pairtest");
+  };
   const std::string png = "images/wedges/";
   const std::string read = facts("read", "--allow-file-access-from-files");
   EXPECT_NE(read.find("options=reference,none,ssaa-2x2,fxaa1-p3 "), std::string::npos) << read;
@@ -136,9 +143,10 @@ TEST(HtmlBrowser, AnyTwoRowsSideBySideWithFlipAndDifference) {
   const auto report = nlohmann::json::parse(ReadFile(out / "report.json"));
   const auto& c = report["scenes"][0]["crops"][0];
   const std::array<int, 4> crop{c[0].get<int>(), c[1].get<int>(), c[2].get<int>(), c[3].get<int>()};
-  EXPECT_NE(read.find(" zoom1=" + std::to_string(crop[0]) + "," + std::to_string(crop[1]) + "," + std::to_string(crop[2]) +
-                      "," + std::to_string(crop[3]) + ":x32:"),
-            std::string::npos) << read;
+  EXPECT_NE(read.find(" zoom1=" + std::to_string(crop[0]) + "," + std::to_string(crop[1]) + "," +
+                      std::to_string(crop[2]) + "," + std::to_string(crop[3]) + ":x32:"),
+            std::string::npos)
+      << read;
   ExpectReadout(read, crop, out / png / "ssaa-2x2.png", out / png / "fxaa1-p3.png", {0, 0});
   EXPECT_NE(read.find(" zoom0=0,0,64,36 "), std::string::npos) << read;
   EXPECT_NE(read.find(" errors=0"), std::string::npos) << read;
@@ -192,8 +200,9 @@ TEST(HtmlBrowser, DefaultSuiteOverviewHasOnePointPerMethod) {
   EXPECT_EQ(plotted, specs) << "the suite chart should have one point per method";
   // Every point of every chart on the page (suite and scenes, both axes) and every legend
   // swatch: the method's one colour and marker (html_method_style.h).
-  const std::regex marked("data-spec=\"([^\"]+)\"[^>]*>(?:<title>[^<]*</title>)?(?:<svg[^>]*>)?<path class=\"mk\"[^>]* fill=\"([^\"]+)\" "
-                          "stroke=\"([^\"]+)\"[^>]* data-marker=\"([a-z-]+)\"");
+  const std::regex marked(
+      "data-spec=\"([^\"]+)\"[^>]*>(?:<title>[^<]*</title>)?(?:<svg[^>]*>)?<path class=\"mk\"[^>]* fill=\"([^\"]+)\" "
+      "stroke=\"([^\"]+)\"[^>]* data-marker=\"([a-z-]+)\"");
   int marks = 0;
   for (auto it = std::sregex_iterator(dom.begin(), dom.end(), marked); it != std::sregex_iterator(); ++it, ++marks) {
     const aalab::html::MethodStyle st = aalab::html::StyleOfMethod((*it)[1]);
@@ -203,7 +212,8 @@ TEST(HtmlBrowser, DefaultSuiteOverviewHasOnePointPerMethod) {
   EXPECT_GE(marks, static_cast<int>(2 * specs.size())) << "chart points and legend swatches; DOM in " << dom_path;
   EXPECT_EQ(suite.find("No method has a value"), std::string::npos);
   // The means leave out detail-texture (no edge pixels, so no Edge PSNR) and say so.
-  const std::string note = "Suite means over " + std::to_string(scenes.size() - 1) + " of " + std::to_string(scenes.size()) +
+  const std::string note = "Suite means over " + std::to_string(scenes.size() - 1) + " of " +
+                           std::to_string(scenes.size()) +
                            " scenes — left out (not every method has a value there): detail-texture: ";
   EXPECT_NE(suite.find(note), std::string::npos) << "no note naming the scene left out; DOM in " << dom_path;
 }

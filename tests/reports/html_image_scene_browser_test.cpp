@@ -35,12 +35,13 @@ std::string Aalab(const std::string& args) { return std::string(AALAB_BINARY_DIR
 /// Loads `url` in headless Chromium and returns the DOM after the scripts ran.
 std::string Dom(const fs::path& work, const std::string& name, const std::string& url) {
   const fs::path dom = work / (name + ".html"), log = work / (name + ".log");
-  const CmdResult r = RunCommand("timeout 180 " + std::string(kChromium) +
-                                 " --headless --no-sandbox --disable-gpu --disable-dev-shm-usage"
-                                 " --disable-background-networking --disable-component-update --disable-sync"
-                                 " --no-first-run --user-data-dir=" + Quote((work / ("profile-" + name)).string()) +
-                                 " --virtual-time-budget=20000 --dump-dom " + Quote(url) + " > " +
-                                 Quote(dom.string()) + " 2> " + Quote(log.string()));
+  const CmdResult r =
+      RunCommand("timeout 180 " + std::string(kChromium) +
+                 " --headless --no-sandbox --disable-gpu --disable-dev-shm-usage"
+                 " --disable-background-networking --disable-component-update --disable-sync"
+                 " --no-first-run --user-data-dir=" +
+                 Quote((work / ("profile-" + name)).string()) + " --virtual-time-budget=20000 --dump-dom " +
+                 Quote(url) + " > " + Quote(dom.string()) + " 2> " + Quote(log.string()));
   EXPECT_EQ(r.code, 0) << ReadFile(log);
   return ReadFile(dom);
 }
@@ -50,14 +51,16 @@ TEST(HtmlBrowserImageScene, NotApplicableRowsAndSuiteMeans) {
   const fs::path work = fs::path(AALAB_BINARY_DIR) / "html_image_scene_browser_test";
   fs::remove_all(work);
   fs::create_directories(work / "frames");
-  CmdResult r = RunCommand(Aalab("run --scenes circle --methods none --size 48x32 --ref-spp 16 --repeat 1 --quiet --out " +
-                                 Quote((work / "direct").string())));
+  CmdResult r =
+      RunCommand(Aalab("run --scenes circle --methods none --size 48x32 --ref-spp 16 --repeat 1 --quiet --out " +
+                       Quote((work / "direct").string())));
   ASSERT_EQ(r.code, 0) << r.output;
   fs::copy_file(work / "direct/images/circle/none.png", work / "frames/frame.png");
   fs::copy_file(work / "direct/images/circle/reference.exr", work / "frames/ref.exr");
   std::ofstream(work / "frames/m.json") << R"({"aalab_image_scene": 1, "views": [
     {"name": "mine", "frame": "frame.png", "reference": "ref.exr"}]})";
-  const std::string methods = " --methods none,ssaa-2x2,fxaa1-p3,fxaa311-p12 --size 48x32 --ref-spp 4 --repeat 1 --quiet";
+  const std::string methods =
+      " --methods none,ssaa-2x2,fxaa1-p3,fxaa311-p12 --size 48x32 --ref-spp 4 --repeat 1 --quiet";
 
   // A library scene and an image scene in one run: the self-test walks every row.
   r = RunCommand(Aalab("run --scenes wedges," + (work / "frames/m.json").string() + methods + " --out " +

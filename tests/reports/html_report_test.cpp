@@ -44,8 +44,8 @@ ResultRow Row(const std::string& scene, const std::string& spec, double psnr, do
 
 Report Sample() {
   Report r;
-  r.context = {{"tool", "aalab"}, {"tool_version", "0.1.0"}, {"git_commit", "abc123"}, {"cpu", "Test CPU"},
-               {"threads", "2"}, {"hardware_threads", "4"}};
+  r.context = {{"tool", "aalab"},   {"tool_version", "0.1.0"}, {"git_commit", "abc123"},
+               {"cpu", "Test CPU"}, {"threads", "2"},          {"hardware_threads", "4"}};
   r.settings = {{"suite", "quick"}, {"size", "16x9"}, {"ref_spp", "16"}, {"repeat", "3"}, {"warmup", "1"}};
   for (const std::string& name : {std::string("wedges"), kEvilScene}) {
     SceneResult s;
@@ -57,7 +57,8 @@ Report Sample() {
     s.ref_spp = 16;
     s.ref_halves_psnr_db = 33.98;
     s.ref_floor_psnr_db = 40.0;
-    s.images = {{"reference_png", "images/" + name + "/reference.png"}, {"edge_mask", "images/" + name + "/edge_mask.png"}};
+    s.images = {{"reference_png", "images/" + name + "/reference.png"},
+                {"edge_mask", "images/" + name + "/edge_mask.png"}};
     s.crops = {{0, 0, 8, 8}};
     r.scenes.push_back(s);
     r.rows.push_back(Row(name, "none", 30.0, 25.0, 2.0));
@@ -72,7 +73,8 @@ Report Sample() {
 
 /// The `<tr>` of one scene × method in the metrics tables.
 std::string RowHtml(const std::string& page, const std::string& scene, const std::string& spec) {
-  const std::string key = "<tr class=\"row\" data-scene=\"" + HtmlEscape(scene) + "\" data-spec=\"" + HtmlEscape(spec) + "\">";
+  const std::string key =
+      "<tr class=\"row\" data-scene=\"" + HtmlEscape(scene) + "\" data-spec=\"" + HtmlEscape(spec) + "\">";
   const size_t a = page.find(key);
   if (a == std::string::npos) return "";
   EXPECT_EQ(page.find(key, a + 1), std::string::npos) << "row twice: " << key;
@@ -99,9 +101,11 @@ TEST(HtmlReport, HasEverySceneMethodRow) {
   const Report r = Sample();
   const std::string page = RenderHtmlReport(r);
   size_t rows = 0;
-  for (size_t p = page.find("<tr class=\"row\""); p != std::string::npos; p = page.find("<tr class=\"row\"", p + 1)) ++rows;
+  for (size_t p = page.find("<tr class=\"row\""); p != std::string::npos; p = page.find("<tr class=\"row\"", p + 1))
+    ++rows;
   EXPECT_EQ(rows, r.rows.size());
-  for (const auto& row : r.rows) EXPECT_FALSE(RowHtml(page, row.scene, row.spec).empty()) << row.scene << " × " << row.spec;
+  for (const auto& row : r.rows)
+    EXPECT_FALSE(RowHtml(page, row.scene, row.spec).empty()) << row.scene << " × " << row.spec;
   for (const auto& s : r.scenes) {
     EXPECT_NE(page.find("data-view=\"scene-" + HtmlEscape(s.name) + "\""), std::string::npos) << s.name;
   }
@@ -229,7 +233,8 @@ TEST(HtmlReport, HidesMetricsNullOnEveryRowOfAScene) {
   EXPECT_GT(page.find(head), evil);
   EXPECT_EQ(page.find(head, page.find(head) + 1), std::string::npos);
   const std::string caption = page.substr(wedges, page.find("</caption>", wedges) - wedges);
-  EXPECT_NE(caption.find("Not shown, null on every row: temporal_flicker (a still run)."), std::string::npos) << caption;
+  EXPECT_NE(caption.find("Not shown, null on every row: temporal_flicker (a still run)."), std::string::npos)
+      << caption;
   EXPECT_TRUE(CellHtml(RowHtml(page, "wedges", "none"), "temporal_flicker").empty());
   EXPECT_FALSE(CellHtml(RowHtml(page, kEvilScene, "ssaa-2x2"), "temporal_flicker").empty());
 }
@@ -248,7 +253,6 @@ TEST(HtmlReport, Helpers) {
   EXPECT_TRUE(html::IsPsnrMetric("interior_psnr_db"));
   EXPECT_FALSE(html::IsPsnrMetric("mse"));
 }
-
 
 TEST(HtmlStability, CountsFiniteAndNullValuesWithReasons) {
   Report r;
@@ -288,8 +292,9 @@ TEST(HtmlStability, CountsFiniteAndNullValuesWithReasons) {
   h.clear();
   AppendStabilitySection(h, r);
   EXPECT_NE(h.find("1 invalid"), std::string::npos);
-  EXPECT_NE(h.find("<span class=\"bad\">✗</span> <b>wedges</b>: 1 rows, 1 finite, 1 null (1 reason), <strong>1 invalid"),
-            std::string::npos)
+  EXPECT_NE(
+      h.find("<span class=\"bad\">✗</span> <b>wedges</b>: 1 rows, 1 finite, 1 null (1 reason), <strong>1 invalid"),
+      std::string::npos)
       << h;
 }
 
@@ -322,5 +327,6 @@ TEST(MethodStyle, OneColourPerFamilyAndAStableMarkerPerSpec) {
   const std::string m = aalab::html::MarkerSvg("ssaa-2x2", 10, 20, 4);
   EXPECT_NE(m.find("translate(10.0 20.0) scale(4.00)"), std::string::npos) << m;
   EXPECT_NE(m.find("fill=\"#0072b2\" stroke=\"#0072b2\""), std::string::npos) << m;
-  EXPECT_NE(aalab::html::MarkerSvg("ssaa-2x2", 0, 0, 4, "#d00020").find("fill=\"#d00020\" stroke=\"#0072b2\""), std::string::npos);
+  EXPECT_NE(aalab::html::MarkerSvg("ssaa-2x2", 0, 0, 4, "#d00020").find("fill=\"#d00020\" stroke=\"#0072b2\""),
+            std::string::npos);
 }

@@ -47,14 +47,15 @@ TEST(ReportJson, HasDocumentedFieldsAndNullNotNan) {
   EXPECT_EQ(j["schema_version"], kSchemaVersion);
   for (const char* k : {"context", "settings", "scenes", "rows"}) EXPECT_TRUE(j.contains(k)) << k;
   const auto& row = j["rows"][0];
-  for (const char* k : {"scene", "method", "spec", "params", "render_size", "samples_per_pixel", "metrics", "null_reasons",
-                        "timing", "cost", "output_hash", "images"}) {
+  for (const char* k : {"scene", "method", "spec", "params", "render_size", "samples_per_pixel", "metrics",
+                        "null_reasons", "timing", "cost", "output_hash", "images"}) {
     EXPECT_TRUE(row.contains(k)) << k;
   }
   EXPECT_TRUE(row["metrics"]["psnr_db"].is_null());
   EXPECT_EQ(row["null_reasons"]["psnr_db"], "identical");
   for (const char* k : {"render", "post", "resample", "total"}) {
-    for (const char* f : {"median_ms", "min_ms", "max_ms", "samples_ms"}) EXPECT_TRUE(row["timing"][k].contains(f)) << k << f;
+    for (const char* f : {"median_ms", "min_ms", "max_ms", "samples_ms"})
+      EXPECT_TRUE(row["timing"][k].contains(f)) << k << f;
   }
   const auto& ref = j["scenes"][0]["reference"];
   for (const char* k : {"spp", "time_ms", "halves_psnr_db", "noise_floor_psnr_db", "primary_rays_per_px"}) {

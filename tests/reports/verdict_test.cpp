@@ -11,8 +11,8 @@
 namespace aalab {
 namespace {
 
-ResultRow Row(const std::string& scene, const std::string& spec, std::optional<double> edge,
-              std::optional<double> flip, double ms) {
+ResultRow Row(const std::string& scene, const std::string& spec, std::optional<double> edge, std::optional<double> flip,
+              double ms) {
   ResultRow r;
   r.scene = scene;
   r.method = r.spec = spec;
@@ -82,7 +82,8 @@ TEST(Verdict, NullMetricsAndNotApplicableRows) {
             "the axes disagree: edge PSNR picks smaa, FLIP picks none (look at both images)");
 
   // No FLIP anywhere, and no none row.
-  const std::vector<ResultRow> nf = {Row("f", "fxaa", 31.0, std::nullopt, 1.25), Row("f", "smaa", 32.0, std::nullopt, 2.0)};
+  const std::vector<ResultRow> nf = {Row("f", "fxaa", 31.0, std::nullopt, 1.25),
+                                     Row("f", "smaa", 32.0, std::nullopt, 2.0)};
   const SceneVerdict w = VerdictForScene(nf, "f");
   EXPECT_FALSE(w.flip);
   EXPECT_FALSE(w.disagree);

@@ -127,7 +127,6 @@ TEST(CaptureChecks, ExposureLinearValuesAndAViewTransformAreWarnedAbout) {
   EXPECT_NE(f.warnings[0].find("Filmic"), std::string::npos) << f.warnings[0];
 }
 
-
 std::string ReadAll(const fs::path& p) {
   std::ifstream f(p);
   std::stringstream ss;
@@ -145,7 +144,7 @@ TEST(CaptureChecks, TheRunReportsAndShowsTheWarningAndTheViewsSize) {
     }
   }
   WriteImage8((dir / "frame.png").string(), frame);
-  WriteImageF((dir / "ref.exr").string(), Linear(16));  // display-linear: correct
+  WriteImageF((dir / "ref.exr").string(), Linear(16));               // display-linear: correct
   WriteImage16((dir / "ref-linear16.png").string(), Linear(16), 3);  // the trap: linear in a display file
   WriteText(dir / "good.json", R"({"aalab_image_scene": 1, "views": [{"name": "v", "frame": "frame.png",
     "reference": "ref.exr", "reference_info": {"renderer": "test", "samples_per_pixel": 256}}]})");
@@ -233,7 +232,7 @@ TEST(CaptureChecks, SubsampledIdsAndDepthFindASubPixelWire) {
   const ImageF centre_mask = EdgesFromIds(centre);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
-      EXPECT_EQ(blocks.At(x, y, 0), x == 2 ? 1.0f : 0.0f) << x << "," << y;   // the wire's pixel only
+      EXPECT_EQ(blocks.At(x, y, 0), x == 2 ? 1.0f : 0.0f) << x << "," << y;  // the wire's pixel only
       EXPECT_EQ(dblocks.At(x, y, 0), x == 2 ? 1.0f : 0.0f) << x << "," << y;
       EXPECT_EQ(centre_mask.At(x, y, 0), x == 3 || x == 4 ? 1.0f : 0.0f) << x << "," << y;
     }

@@ -403,7 +403,8 @@ TEST(ImageScene, BadManifestsFailWithOneClearMessageAndNoOutput) {
        {"missing \"aalab_image_scene\": 1"}},
       {R"({"aalab_image_scene": 2, "views": []})", {"/aalab_image_scene"}},
       {R"({"aalab_image_scene": 1, "views": []})", {"/views", "no views"}},
-      {head + R"("frame": "frame.png", "reference": "ref.exr"}, {"name": "v", "frame": "frame.png", "reference": "ref.exr"}]})",
+      {head +
+           R"("frame": "frame.png", "reference": "ref.exr"}, {"name": "v", "frame": "frame.png", "reference": "ref.exr"}]})",
        {"/views/1/name", "'v' is listed twice"}},
       {R"({"aalab_image_scene": 1, "views": [{"name": "V 1", "frame": "frame.png", "reference": "ref.exr"}]})",
        {"/views/0/name", "lowercase-kebab"}},

@@ -28,9 +28,17 @@ TEST(Limits, FrameSizes) {
   EXPECT_EQ(h, 4096);
   ParseSize("1x1", &w, &h);
   EXPECT_EQ(w * h, 1);
-  for (const std::string bad : {"16384x4097", "16385x16", "16x16385", "100000x100000", "16384x16384", "0x0", "0x5",
-                                "-5x5", "5x", "x5", "x", "", "1e3x5", "64x36x2", "64 x36", " 64x36", "64x36 ",
-                                "99999999999999x1", "0x10", "+5x5", "5x5.0", "５x5"}) {
+  for (const std::string bad : {"16384x4097",  "16385x16",
+                                "16x16385",    "100000x100000",
+                                "16384x16384", "0x0",
+                                "0x5",         "-5x5",
+                                "5x",          "x5",
+                                "x",           "",
+                                "1e3x5",       "64x36x2",
+                                "64 x36",      " 64x36",
+                                "64x36 ",      "99999999999999x1",
+                                "0x10",        "+5x5",
+                                "5x5.0",       "５x5"}) {
     const std::string e = SizeError(bad);
     EXPECT_NE(e.find("--size '" + bad + "'"), std::string::npos) << "'" << bad << "': " << e;
     EXPECT_NE(e.find("W, H <= 16384 and W*H <= 64 Mpx"), std::string::npos) << bad;

@@ -56,8 +56,9 @@ TEST(ScoreRows, ConcurrentScoresEqualOneAtATimeAtAnyThreadCount) {
         const auto got = RunAndScoreRows(*prepared, plans, MethodRunSettings{1, 1}, &states, true);
         ASSERT_EQ(got.size(), plans.size());
         for (size_t m = 0; m < plans.size(); ++m) {
-          ExpectSameRow(*got[m], want[m], std::string(name) + " " + plans[m].spec + ", " + std::to_string(threads) +
-                                              " threads, call " + std::to_string(call));
+          ExpectSameRow(*got[m], want[m],
+                        std::string(name) + " " + plans[m].spec + ", " + std::to_string(threads) + " threads, call " +
+                            std::to_string(call));
         }
       }
       EXPECT_EQ(prepared->scored_by_hash.size(), hashes.size()) << name;
@@ -71,8 +72,7 @@ TEST(ScoreRows, InputsKeptOnlyWhenAsked) {
   const auto plans = ResolveMethods({"fxaa311-p39"});
   auto prepared = PrepareScene(std::make_unique<Scene>(LoadScene("wedges")), 40, 24, 2, 1, 1);
   std::vector<std::unique_ptr<TemporalState>> states(plans.size());
-  EXPECT_TRUE(RunAndScoreRows(*prepared, plans, MethodRunSettings{1, 1}, &states, true)[0]->input ==
-              prepared->frame1x);
+  EXPECT_TRUE(RunAndScoreRows(*prepared, plans, MethodRunSettings{1, 1}, &states, true)[0]->input == prepared->frame1x);
   EXPECT_TRUE(RunAndScoreRows(*prepared, plans, MethodRunSettings{1, 1}, &states, false)[0]->input.Empty());
 }
 

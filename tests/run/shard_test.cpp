@@ -59,7 +59,8 @@ TEST(Shard, ParsesKOverNAndRefusesEverythingElse) {
   EXPECT_TRUE(s.Active());
   EXPECT_EQ(ParseShard("0/1").count, 1);
   EXPECT_FALSE(ShardSpec{}.Active());
-  for (const char* bad : {"", "3", "/3", "3/", "1/0", "5/5", "6/5", "-1/5", "1/-5", "a/b", "1/2/3", "1 /2", "0/100001"}) {
+  for (const char* bad :
+       {"", "3", "/3", "3/", "1/0", "5/5", "6/5", "-1/5", "1/-5", "a/b", "1/2/3", "1 /2", "0/100001"}) {
     const std::string m = MessageOf([&] { ParseShard(bad); });
     EXPECT_NE(m.find("--shard '" + std::string(bad) + "'"), std::string::npos) << m;
     EXPECT_NE(m.find("0 <= K < N"), std::string::npos) << m;
@@ -154,11 +155,13 @@ TEST(ReferenceCache, StoresAndReadsBackBitForBitAndChecksWhatItReads) {
   EXPECT_LT(size, 37u * 23u * 20u + 1024u);
   // Every input of the key changes it.
   const std::string key = ReferenceCache::Key(scene, 37, 23, 4, 7, false);
-  std::set<std::string> keys = {key, ReferenceCache::Key(scene, 38, 23, 4, 7, false),
+  std::set<std::string> keys = {key,
+                                ReferenceCache::Key(scene, 38, 23, 4, 7, false),
                                 ReferenceCache::Key(scene, 37, 24, 4, 7, false),
                                 ReferenceCache::Key(scene, 37, 23, 2, 7, false),
                                 ReferenceCache::Key(scene, 37, 23, 4, 8, false),
-                                ReferenceCache::Key(scene, 37, 23, 4, 7, true), ReferenceCache::Key(LoadScene("circle"), 37, 23, 4, 7, false)};
+                                ReferenceCache::Key(scene, 37, 23, 4, 7, true),
+                                ReferenceCache::Key(LoadScene("circle"), 37, 23, 4, 7, false)};
   EXPECT_EQ(keys.size(), 7u);
   // A damaged entry is refused with its file named, not read.
   const std::string path = cache.PathOf(key);
@@ -248,7 +251,7 @@ TEST(ShardedRun, MergedEqualsSingleWithDefaultMethodsAnEdgelessSceneAndAnEmptySh
   RunSuite(Small(scenes, dir / "single"));
   for (int n : {3, 5}) {  // 5 > 4 scenes: shard 4 holds nothing
     std::vector<std::string> shard_dirs;
-    for (int k = n - 1; k >= 0; --k) {  // any order
+    for (int k = n - 1; k >= 0; --k) {                                       // any order
       const std::string name = std::to_string(n) + "-" + std::to_string(k);  // ("n" + ... trips GCC 12's -Wrestrict)
       RunSettings s = Small(scenes, dir / name);
       s.shard = {k, n};

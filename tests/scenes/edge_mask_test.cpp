@@ -38,8 +38,8 @@ TEST(EdgeMask, WedgesMaskHoldsEveryPolygonEdgeAndNoInterior) {
     for (int k = 0; k < 4; ++k) {
       const auto& a = shape.positions[k];
       const auto& b = shape.positions[(k + 1) % 4];
-      segs.push_back({(a.x - cx) / s + W / 2.0, H / 2.0 - (a.y - cy) / s, (b.x - cx) / s + W / 2.0,
-                      H / 2.0 - (b.y - cy) / s});
+      segs.push_back(
+          {(a.x - cx) / s + W / 2.0, H / 2.0 - (a.y - cy) / s, (b.x - cx) / s + W / 2.0, H / 2.0 - (b.y - cy) / s});
     }
   }
   // 1. Every point of every edge inside the frame lies in a mask pixel.

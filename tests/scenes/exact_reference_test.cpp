@@ -63,8 +63,9 @@ constexpr int kW = 97, kH = 61;
 constexpr double kPxPerUnit = 61.0 / 4.0;
 
 TEST(ExactReference, DiskCoveragesSumToPiRSquared) {
-  const Scene sc = ParseText(MakeScene(R"(["unlit"])", R"({"m": {"shading": "unlit", "color": [1,1,1]}})",
-                                       R"([{"shape": "disk", "radius": 1.23, "transform": {"translate": [0.311, -0.17, 0]},
+  const Scene sc =
+      ParseText(MakeScene(R"(["unlit"])", R"({"m": {"shading": "unlit", "color": [1,1,1]}})",
+                          R"([{"shape": "disk", "radius": 1.23, "transform": {"translate": [0.311, -0.17, 0]},
                                             "material": "m"}])"));
   const std::vector<double> a = ExactVisibleAreas(sc, kW, kH);
   const double r = 1.23f * kPxPerUnit;  // the scene stores the radius as float
@@ -75,11 +76,11 @@ TEST(ExactReference, DiskCoveragesSumToPiRSquared) {
 TEST(ExactReference, PolygonCoveragesSumToItsAreaAndOcclusionIsExact) {
   // A triangle (area 1.5 world units²) in front of a capsule; a quad behind everything whose
   // left edge passes through a disk's centre, the disk in front of it.
-  const Scene sc = ParseText(MakeScene(
-      R"(["unlit"])",
-      R"({"a": {"shading": "unlit", "color": [1,0,0]}, "b": {"shading": "unlit", "color": [0,1,0]},
+  const Scene sc =
+      ParseText(MakeScene(R"(["unlit"])",
+                          R"({"a": {"shading": "unlit", "color": [1,0,0]}, "b": {"shading": "unlit", "color": [0,1,0]},
           "c": {"shading": "unlit", "color": [0,0,1]}, "d": {"shading": "unlit", "color": [1,1,0]}})",
-      R"([{"shape": "polygon", "points": [[-2.5,-1.5,1],[-0.5,-1.5,1],[-2.5,0,1]], "material": "a"},
+                          R"([{"shape": "polygon", "points": [[-2.5,-1.5,1],[-0.5,-1.5,1],[-2.5,0,1]], "material": "a"},
           {"shape": "capsule", "from": [-2.6,-1.0,0], "to": [-1.0,-1.0,0], "radius": 0.25, "material": "b"},
           {"shape": "disk", "radius": 0.5, "transform": {"translate": [1.5,1.0,0]}, "material": "c"},
           {"shape": "quad", "size": [1.0, 3.0], "transform": {"translate": [2.0,0,-1]}, "material": "d"}])"));
@@ -109,27 +110,28 @@ TEST(ExactReference, RefusesWhatItCannotComputeNamingTheField) {
   persp.replace(persp.find("orthographic"), 12, "perspective");
   persp.replace(persp.find("\"height\": 4"), 11, "\"fov_y\": 40");
   EXPECT_NE(RefusalOf(persp).find("/camera/type"), std::string::npos);
-  EXPECT_NE(RefusalOf(MakeScene(R"(["lambert"])", R"({"m": {"shading": "lambert", "color": [1,1,1]}})",
-                                R"([{"shape": "disk", "radius": 1, "material": "m"}])",
-                                R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1]}])"))
-                .find("/effects declares 'lambert'"),
-            std::string::npos);
-  EXPECT_NE(RefusalOf(MakeScene(R"(["unlit"])", mat,
-                                R"([{"shape": "cylinder", "from": [0,0,0], "to": [1,0,0], "radius": 0.1, "material": "m"}])"))
-                .find("/objects/0 is a cylinder"),
-            std::string::npos);
-  EXPECT_NE(RefusalOf(MakeScene(R"(["unlit"])", mat,
-                                R"([{"shape": "disk", "radius": 1, "transform": {"rotate": [30,0,0]}, "material": "m"}])"))
-                .find("/objects/0 is a disk whose normal"),
-            std::string::npos);
-  const std::string two = RefusalOf(MakeScene(
-      R"(["unlit"])", mat,
-      R"([{"shape": "disk", "radius": 1, "material": "m"},
+  EXPECT_NE(
+      RefusalOf(MakeScene(R"(["lambert"])", R"({"m": {"shading": "lambert", "color": [1,1,1]}})",
+                          R"([{"shape": "disk", "radius": 1, "material": "m"}])",
+                          R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1]}])"))
+          .find("/effects declares 'lambert'"),
+      std::string::npos);
+  EXPECT_NE(
+      RefusalOf(MakeScene(R"(["unlit"])", mat,
+                          R"([{"shape": "cylinder", "from": [0,0,0], "to": [1,0,0], "radius": 0.1, "material": "m"}])"))
+          .find("/objects/0 is a cylinder"),
+      std::string::npos);
+  EXPECT_NE(
+      RefusalOf(MakeScene(R"(["unlit"])", mat,
+                          R"([{"shape": "disk", "radius": 1, "transform": {"rotate": [30,0,0]}, "material": "m"}])"))
+          .find("/objects/0 is a disk whose normal"),
+      std::string::npos);
+  const std::string two = RefusalOf(MakeScene(R"(["unlit"])", mat,
+                                              R"([{"shape": "disk", "radius": 1, "material": "m"},
           {"shape": "sphere", "radius": 1, "transform": {"translate": [1.5,0,-3]}, "material": "m"}])"));
   EXPECT_NE(two.find("/objects/0 and /objects/1 are curved shapes that overlap"), std::string::npos) << two;
-  const std::string tilted = RefusalOf(MakeScene(
-      R"(["unlit"])", mat,
-      R"([{"shape": "disk", "radius": 0.5, "material": "m"},
+  const std::string tilted = RefusalOf(MakeScene(R"(["unlit"])", mat,
+                                                 R"([{"shape": "disk", "radius": 0.5, "material": "m"},
           {"shape": "quad", "size": [3,3], "transform": {"rotate": [0,60,0]}, "material": "m"}])"));
   EXPECT_NE(tilted.find("depth ranges overlap"), std::string::npos) << tilted;
 }

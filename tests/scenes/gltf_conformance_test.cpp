@@ -56,7 +56,8 @@ const std::map<std::string, std::string>& Expected() {
 }
 
 TEST(GltfConformance, EveryTestModelLoadsOrIsRefusedWithItsRule) {
-  if (!fs::is_directory(kModels)) AALAB_SKIP_OR_FAIL_UNDER_CI("assimp-testmodels is not installed (apt-get install assimp-testmodels)");
+  if (!fs::is_directory(kModels))
+    AALAB_SKIP_OR_FAIL_UNDER_CI("assimp-testmodels is not installed (apt-get install assimp-testmodels)");
   int seen = 0;
   for (const auto& e : fs::recursive_directory_iterator(kModels)) {
     const std::string ext = e.path().extension().string();

@@ -150,7 +150,8 @@ TEST(GltfLoad, SamplerWrapModes) {
   for (const Material& m : g.materials) {
     if (!m.gltf || !m.gltf->base_tex.Has()) continue;
     if (m.name.find("sign") != std::string::npos) {
-      saw_clamp = m.gltf->base_tex.wrap_s == WrapMode::kClampToEdge && m.gltf->base_tex.wrap_t == WrapMode::kClampToEdge;
+      saw_clamp =
+          m.gltf->base_tex.wrap_s == WrapMode::kClampToEdge && m.gltf->base_tex.wrap_t == WrapMode::kClampToEdge;
       EXPECT_TRUE(m.gltf->emissive_tex.Has());
     } else {
       saw_repeat |= m.gltf->base_tex.wrap_s == WrapMode::kRepeat;
@@ -180,7 +181,8 @@ TEST(GltfBadFiles, OneClearMessageEachWithJsonPathAndRule) {
     const fs::path p = f.Write(d, name);
     const std::string e = LoadError(p);
     EXPECT_NE(e.find("glTF file '" + p.string() + "'"), std::string::npos) << e;
-    for (const std::string& part : parts) EXPECT_NE(e.find(part), std::string::npos) << "want '" << part << "' in: " << e;
+    for (const std::string& part : parts)
+      EXPECT_NE(e.find(part), std::string::npos) << "want '" << part << "' in: " << e;
   };
   {  // a missing buffer
     TriangleFile f;
@@ -190,7 +192,8 @@ TEST(GltfBadFiles, OneClearMessageEachWithJsonPathAndRule) {
   {  // an accessor beyond its buffer view
     TriangleFile f;
     f.doc["accessors"][0]["count"] = 4;
-    refused(f, "range", {"at /accessors/0:", "reads 4 elements beyond bufferView 0 (36 bytes)", "rule: accessor bounds"});
+    refused(f, "range",
+            {"at /accessors/0:", "reads 4 elements beyond bufferView 0 (36 bytes)", "rule: accessor bounds"});
   }
   {  // a huge declared count
     TriangleFile f;
@@ -223,8 +226,9 @@ TEST(GltfBadFiles, OneClearMessageEachWithJsonPathAndRule) {
   {  // an index beyond the vertices: refused, never a triangle silently dropped
     TriangleFile f;
     f.idx[2] = 7;
-    refused(f, "index", {"at /meshes/0/primitives/0/indices: element 2 is index 7, beyond the primitive's 3 vertices",
-                         "rule: index out of range"});
+    refused(f, "index",
+            {"at /meshes/0/primitives/0/indices: element 2 is index 7, beyond the primitive's 3 vertices",
+             "rule: index out of range"});
   }
   {  // a material index out of range
     TriangleFile f;
@@ -286,7 +290,8 @@ TEST(GltfLoad, UsedExtensionsBlendAnimationsLoadWithOneNoteEach) {
   const GltfContent g = LoadGltf(f.Write(d, "used").string());
   EXPECT_EQ(g.materials[0].gltf->alpha_mode, AlphaMode::kBlend);
   ASSERT_EQ(g.notes.size(), 2u);
-  EXPECT_EQ(g.notes[0], "extensions used but not drawn (ignored, as glTF allows): KHR_materials_ior, KHR_materials_specular");
+  EXPECT_EQ(g.notes[0],
+            "extensions used but not drawn (ignored, as glTF allows): KHR_materials_ior, KHR_materials_specular");
   EXPECT_NE(g.notes[1].find("animations: drawn at the static pose"), std::string::npos) << g.notes[1];
 }
 
@@ -321,7 +326,8 @@ TEST(GltfLoad, UrisArePercentDecoded) {
   }
   f.doc["buffers"][0]["uri"] = "p%g3t.bin";
   std::ofstream(written) << f.doc.dump();
-  EXPECT_NE(LoadError(written).find("at /buffers/0/uri: has a bad percent escape '%g3' at character 1"), std::string::npos)
+  EXPECT_NE(LoadError(written).find("at /buffers/0/uri: has a bad percent escape '%g3' at character 1"),
+            std::string::npos)
       << LoadError(written);
 }
 
@@ -394,7 +400,8 @@ TEST(GltfLoad, NestedNodesComposeParentTimesChildAndTrsInThatOrder) {
 
 TEST(GltfLoad, KhronosEngineFromAssimpTestmodels) {
   const std::string p = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
-  if (!fs::exists(p)) AALAB_SKIP_OR_FAIL_UNDER_CI("assimp-testmodels is not installed (apt-get install assimp-testmodels)");
+  if (!fs::exists(p))
+    AALAB_SKIP_OR_FAIL_UNDER_CI("assimp-testmodels is not installed (apt-get install assimp-testmodels)");
   const GltfContent g = LoadGltf(p);
   EXPECT_GT(g.shapes.size(), 50u);  // hundreds of parts: one shape per primitive instance
   EXPECT_GT(g.triangles, 50000u);
@@ -412,7 +419,7 @@ TEST(GltfSampler, FiltersAsOpenGlDefinesThem) {
   c.levels.push_back(l0);
   c.levels.push_back({2, 1, TexelFormat::kFloat, {glm::vec4(100.0f), glm::vec4(100.0f)}, {}, {}});
   c.levels.push_back({1, 1, TexelFormat::kFloat, {glm::vec4(200.0f)}, {}, {}});
-  const glm::vec2 uv(0.3f, 0.6f);  // texel (⌊1.2⌋, ⌊1.2⌋) = (1, 1) → 11
+  const glm::vec2 uv(0.3f, 0.6f);        // texel (⌊1.2⌋, ⌊1.2⌋) = (1, 1) → 11
   auto with_lambda = [](float lambda) {  // ρ = 2^λ texels per step along x (W = 4)
     UvDerivs d;
     d.dx = glm::vec2(std::exp2(lambda) / 4.0f, 0.0f);
@@ -430,7 +437,8 @@ TEST(GltfSampler, FiltersAsOpenGlDefinesThem) {
   EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(1.4f), r, r, SamplerFilterOf(9729, 9984), gpu).x, 100.0f);
   EXPECT_EQ(SampleTextureFiltered(c, uv, with_lambda(1.6f), r, r, SamplerFilterOf(9729, 9984), gpu).x, 200.0f);
   // NEAREST_MIPMAP_LINEAR (9986, COLLADA2GLTF's default): λ = 0.25 → ¾ · texel 11 + ¼ · 100.
-  EXPECT_NEAR(SampleTextureFiltered(c, uv, with_lambda(0.25f), r, r, SamplerFilterOf(9729, 9986), gpu).x, 0.75f * 11 + 25, 1e-4f);
+  EXPECT_NEAR(SampleTextureFiltered(c, uv, with_lambda(0.25f), r, r, SamplerFilterOf(9729, 9986), gpu).x,
+              0.75f * 11 + 25, 1e-4f);
   // The reference (level 0 at every sub-sample) honours the magnification filter.
   TextureFilter truth;
   truth.level0_only = true;
@@ -465,7 +473,8 @@ TEST(GltfLoad, PunctualLightsComeFromTheLoadersDocumentBeforeAnyTextureIsDecoded
   f.doc["extensionsUsed"] = {"KHR_lights_punctual"};
   f.doc["extensions"]["KHR_lights_punctual"]["lights"] = Json::parse(R"([{"type": "point", "intensity": 10}])");
   f.doc["nodes"][0]["children"] = {1};
-  f.doc["nodes"].push_back(Json::parse(R"({"translation": [1, 2, 3], "extensions": {"KHR_lights_punctual": {"light": 0}}})"));
+  f.doc["nodes"].push_back(
+      Json::parse(R"({"translation": [1, 2, 3], "extensions": {"KHR_lights_punctual": {"light": 0}}})"));
   const GltfContent g = LoadGltf(f.Write(d, "light").string());
   ASSERT_EQ(g.lights.size(), 1u);
   EXPECT_EQ(g.lights[0].type, LightType::kPoint);

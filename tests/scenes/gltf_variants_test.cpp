@@ -39,8 +39,8 @@ const fs::path& Dir() {
 /// k/65535 (exact for normalized uint16), shared vertices, 72 triangles.
 struct Grid {
   static constexpr int kN = 6;
-  std::vector<int16_t> q;     // xyz per vertex, in sixteenths
-  std::vector<uint16_t> uq;   // uv per vertex, in 1/65535
+  std::vector<int16_t> q;    // xyz per vertex, in sixteenths
+  std::vector<uint16_t> uq;  // uv per vertex, in 1/65535
   std::vector<uint32_t> idx;
   Grid() {
     for (int j = 0; j <= kN; ++j) {
@@ -90,8 +90,9 @@ Json Doc(const Json& prim, const Json& views, const Json& accessors, size_t bin_
             {"scene", 0},
             {"scenes", {{{"nodes", {0}}}}},
             {"meshes", {{{"primitives", {prim}}}}},
-            {"materials", {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
-                            {"extensions", {{"KHR_materials_unlit", Json::object()}}}}}},
+            {"materials",
+             {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+               {"extensions", {{"KHR_materials_unlit", Json::object()}}}}}},
             {"textures", {{{"source", 0}, {"sampler", 0}}}},
             {"samplers", {{{"magFilter", 9728}, {"minFilter", 9728}}}},
             {"images", {{{"uri", "tex.png"}}}},
@@ -131,9 +132,10 @@ fs::path Quantized(const Grid& g) {
   const Json views = {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", p.size()}, {"byteStride", 8}},
                       {{"buffer", 0}, {"byteOffset", p.size()}, {"byteLength", u.size()}},
                       {{"buffer", 0}, {"byteOffset", p.size() + u.size()}, {"byteLength", i.size()}}};
-  const Json acc = {{{"bufferView", 0}, {"componentType", 5122}, {"count", g.Vertices()}, {"type", "VEC3"}},
-                    {{"bufferView", 1}, {"componentType", 5123}, {"normalized", true}, {"count", g.Vertices()}, {"type", "VEC2"}},
-                    {{"bufferView", 2}, {"componentType", 5125}, {"count", g.idx.size()}, {"type", "SCALAR"}}};
+  const Json acc = {
+      {{"bufferView", 0}, {"componentType", 5122}, {"count", g.Vertices()}, {"type", "VEC3"}},
+      {{"bufferView", 1}, {"componentType", 5123}, {"normalized", true}, {"count", g.Vertices()}, {"type", "VEC2"}},
+      {{"bufferView", 2}, {"componentType", 5125}, {"count", g.idx.size()}, {"type", "SCALAR"}}};
   const Json prim = {{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"material", 0}};
   Json d = Doc(prim, views, acc, p.size() + u.size() + i.size(), "quant.bin", {{"scale", {0.0625, 0.0625, 0.0625}}});
   d["extensionsUsed"].push_back("KHR_mesh_quantization");
@@ -156,9 +158,16 @@ fs::path Meshopt(const Grid& g) {
   const std::string i0(ib.begin(), ib.end());
   const std::string p = Pad4(p0), u = Pad4(u0), i = Pad4(i0);
   auto view = [](size_t off, size_t len, size_t raw_len, size_t stride, size_t count, const char* mode, bool vertex) {
-    Json v = {{"buffer", 1}, {"byteLength", raw_len},
-              {"extensions", {{"EXT_meshopt_compression", {{"buffer", 0}, {"byteOffset", off}, {"byteLength", len},
-                                                           {"byteStride", stride}, {"count", count}, {"mode", mode}}}}}};
+    Json v = {{"buffer", 1},
+              {"byteLength", raw_len},
+              {"extensions",
+               {{"EXT_meshopt_compression",
+                 {{"buffer", 0},
+                  {"byteOffset", off},
+                  {"byteLength", len},
+                  {"byteStride", stride},
+                  {"count", count},
+                  {"mode", mode}}}}}};
     if (vertex) v["byteStride"] = stride;
     return v;
   };
@@ -201,10 +210,15 @@ fs::path Draco(const Grid& g) {
   const Json acc = {{{"componentType", 5126}, {"count", np}, {"type", "VEC3"}},
                     {{"componentType", 5126}, {"count", np}, {"type", "VEC2"}},
                     {{"componentType", 5125}, {"count", g.idx.size()}, {"type", "SCALAR"}}};
-  const Json prim = {{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"material", 0},
-                     {"extensions", {{"KHR_draco_mesh_compression", {{"bufferView", 0},
-                                                                      {"attributes", {{"POSITION", mesh->attribute(pa)->unique_id()},
-                                                                                      {"TEXCOORD_0", mesh->attribute(ta)->unique_id()}}}}}}}};
+  const Json prim = {
+      {"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}},
+      {"indices", 2},
+      {"material", 0},
+      {"extensions",
+       {{"KHR_draco_mesh_compression",
+         {{"bufferView", 0},
+          {"attributes",
+           {{"POSITION", mesh->attribute(pa)->unique_id()}, {"TEXCOORD_0", mesh->attribute(ta)->unique_id()}}}}}}}};
   Json d = Doc(prim, views, acc, bytes.size(), "draco.bin");
   d["extensionsUsed"].push_back("KHR_draco_mesh_compression");
   d["extensionsRequired"] = {"KHR_draco_mesh_compression"};
@@ -212,11 +226,12 @@ fs::path Draco(const Grid& g) {
 }
 
 Image8 RenderModel(const fs::path& model) {
-  const Json scene = {{"name", "variant"},
-                      {"effects", {"unlit", "textures"}},
-                      {"camera", {{"type", "perspective"}, {"position", {0.3, -0.4, 9}}, {"look_at", {0, 0, 0}}, {"fov_y", 40}}},
-                      {"materials", Json::object()},
-                      {"objects", {{{"shape", "gltf"}, {"file", model.filename().string()}}}}};
+  const Json scene = {
+      {"name", "variant"},
+      {"effects", {"unlit", "textures"}},
+      {"camera", {{"type", "perspective"}, {"position", {0.3, -0.4, 9}}, {"look_at", {0, 0, 0}}, {"fov_y", 40}}},
+      {"materials", Json::object()},
+      {"objects", {{{"shape", "gltf"}, {"file", model.filename().string()}}}}};
   const Scene sc = ParseScene(scene.dump(), "variant", Dir().string());
   Tracer tracer(sc);
   RenderSpec spec;
@@ -270,8 +285,8 @@ TEST(GltfBlend, HalfTransparentOverOpaqueOverBackgroundIsTheHandOverComposite) {
   // whole frame's left half, at z = 0 an opaque blue (0, 0, 1) covering the top half; the
   // background is green (0, 1, 0). In linear light: top-left 0.25·red + 0.75·blue; bottom-left
   // 0.25·red + 0.75·green; top-right blue; bottom-right green.
-  std::vector<float> pos = {-10, -10, 1, 0, -10, 1, 0, 10, 1, -10, 10, 1,   // left half, z = 1
-                            -10, 0, 0,  10, 0, 0,  10, 10, 0, -10, 10, 0};  // top half, z = 0
+  std::vector<float> pos = {-10, -10, 1, 0,  -10, 1, 0,  10, 1, -10, 10, 1,   // left half, z = 1
+                            -10, 0,   0, 10, 0,   0, 10, 10, 0, -10, 10, 0};  // top half, z = 0
   std::vector<uint32_t> idx = {0, 1, 2, 0, 2, 3};
   const std::string p = Bytes(pos), i = Bytes(idx);
   const Json views = {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
@@ -283,23 +298,27 @@ TEST(GltfBlend, HalfTransparentOverOpaqueOverBackgroundIsTheHandOverComposite) {
   Json d = {{"asset", {{"version", "2.0"}}},
             {"scenes", {{{"nodes", {0, 1}}}}},
             {"nodes", {{{"mesh", 0}}, {{"mesh", 1}}}},
-            {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 2}, {"material", 0}}}}},
-                        {{"primitives", {{{"attributes", {{"POSITION", 1}}}, {"indices", 2}, {"material", 1}}}}}}},
-            {"materials", {{{"pbrMetallicRoughness", {{"baseColorFactor", {1, 0, 0, 0.25}}}}, {"alphaMode", "BLEND"},
-                            {"extensions", {{"KHR_materials_unlit", Json::object()}}}},
-                           {{"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 1, 1}}}},
-                            {"extensions", {{"KHR_materials_unlit", Json::object()}}}}}},
+            {"meshes",
+             {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 2}, {"material", 0}}}}},
+              {{"primitives", {{{"attributes", {{"POSITION", 1}}}, {"indices", 2}, {"material", 1}}}}}}},
+            {"materials",
+             {{{"pbrMetallicRoughness", {{"baseColorFactor", {1, 0, 0, 0.25}}}},
+               {"alphaMode", "BLEND"},
+               {"extensions", {{"KHR_materials_unlit", Json::object()}}}},
+              {{"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 1, 1}}}},
+               {"extensions", {{"KHR_materials_unlit", Json::object()}}}}}},
             {"bufferViews", views},
             {"accessors", acc},
             {"buffers", {{{"byteLength", 120}, {"uri", "blend.bin"}}}},
             {"extensionsUsed", {"KHR_materials_unlit"}}};
   const fs::path model = Write("blend", d, p + i);
-  const Json scene = {{"name", "blend"},
-                      {"effects", {"unlit", "alpha_blend"}},
-                      {"camera", {{"type", "orthographic"}, {"position", {0, 0, 5}}, {"look_at", {0, 0, 0}}, {"height", 4}}},
-                      {"background", {0, 1, 0}},
-                      {"materials", Json::object()},
-                      {"objects", {{{"shape", "gltf"}, {"file", "blend.gltf"}}}}};
+  const Json scene = {
+      {"name", "blend"},
+      {"effects", {"unlit", "alpha_blend"}},
+      {"camera", {{"type", "orthographic"}, {"position", {0, 0, 5}}, {"look_at", {0, 0, 0}}, {"height", 4}}},
+      {"background", {0, 1, 0}},
+      {"materials", Json::object()},
+      {"objects", {{{"shape", "gltf"}, {"file", "blend.gltf"}}}}};
   const Scene sc = ParseScene(scene.dump(), "blend", Dir().string());
   Tracer tracer(sc);
   const ImageF img = RenderFrameLinear(tracer, 8, 8, RenderSpec{}, 1, nullptr);
@@ -314,7 +333,8 @@ TEST(GltfBlend, HalfTransparentOverOpaqueOverBackgroundIsTheHandOverComposite) {
   RenderSpec msaa;
   msaa.msaa.samples = 4;
   const ImageF m = RenderFrameLinear(tracer, 8, 8, msaa, 1, nullptr);
-  EXPECT_NEAR(glm::length(glm::vec3(m.At(1, 1, 0), m.At(1, 1, 1), m.At(1, 1, 2)) - glm::vec3(a, 0, 1 - a)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(glm::vec3(m.At(1, 1, 0), m.At(1, 1, 1), m.At(1, 1, 2)) - glm::vec3(a, 0, 1 - a)), 0.0f,
+              1e-6f);
 }
 
 }  // namespace

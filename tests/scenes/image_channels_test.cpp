@@ -66,16 +66,16 @@ TEST(ImageChannels, ChoiceByName) {
   EXPECT_EQ(Pick({"Z"}, ChannelRole::kDepth), "Z");
   EXPECT_EQ(Pick({"R", "G"}, ChannelRole::kMotion), "R,G");
   // Blender/Cycles multilayer EXR: the Combined layer among other colour passes.
-  const Names blender = {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B",
-                         "ViewLayer.Combined.A", "ViewLayer.DiffCol.R", "ViewLayer.DiffCol.G",
-                         "ViewLayer.DiffCol.B",  "ViewLayer.Depth.Z",   "ViewLayer.IndexOB.X",
-                         "ViewLayer.IndexMA.X",  "ViewLayer.Vector.X",  "ViewLayer.Vector.Y",
+  const Names blender = {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B", "ViewLayer.Combined.A",
+                         "ViewLayer.DiffCol.R",  "ViewLayer.DiffCol.G",  "ViewLayer.DiffCol.B",  "ViewLayer.Depth.Z",
+                         "ViewLayer.IndexOB.X",  "ViewLayer.IndexMA.X",  "ViewLayer.Vector.X",   "ViewLayer.Vector.Y",
                          "ViewLayer.Vector.Z",   "ViewLayer.Vector.W"};
   EXPECT_EQ(Pick(blender, ChannelRole::kColour), "ViewLayer.Combined.R,ViewLayer.Combined.G,ViewLayer.Combined.B");
   EXPECT_EQ(Pick(blender, ChannelRole::kDepth), "ViewLayer.Depth.Z");
   EXPECT_EQ(Pick(blender, ChannelRole::kIds), "ViewLayer.IndexOB.X");
   EXPECT_EQ(Pick(blender, ChannelRole::kMotion), "ViewLayer.Vector.X,ViewLayer.Vector.Y");
-  EXPECT_EQ(Pick(blender, ChannelRole::kColour, "ViewLayer.DiffCol"), "ViewLayer.DiffCol.R,ViewLayer.DiffCol.G,ViewLayer.DiffCol.B");
+  EXPECT_EQ(Pick(blender, ChannelRole::kColour, "ViewLayer.DiffCol"),
+            "ViewLayer.DiffCol.R,ViewLayer.DiffCol.G,ViewLayer.DiffCol.B");
   EXPECT_EQ(Pick(blender, ChannelRole::kMotion, "", {"ViewLayer.Vector.Z", "ViewLayer.Vector.W"}),
             "ViewLayer.Vector.Z,ViewLayer.Vector.W");
   // A multi-part file as the reader lists it (PART.NAME).
@@ -129,7 +129,6 @@ Capture MakeCapture() {
   }
   return c;
 }
-
 
 TEST(ImageChannels, BlenderMultilayerExrScoresLikePlainFiles) {
   const fs::path dir = TempDir("blender");
@@ -214,14 +213,15 @@ TEST(ImageChannels, AmbiguousOrMissingChannelsAreRefusedNamingThem) {
        {"/views/0/depth", "which channels hold the depth", "\"specular.B\""}},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
-    WriteText(dir / "m.json", R"({"aalab_image_scene": 1, "views": [{"name": "v", "frame": "frame.png", )" +
-                                  cases[i].first + "}]}");
+    WriteText(dir / "m.json",
+              R"({"aalab_image_scene": 1, "views": [{"name": "v", "frame": "frame.png", )" + cases[i].first + "}]}");
     const fs::path out = dir / ("out" + std::to_string(i));
     try {
       RunSuite(testing_util::ImageSceneSettings(dir / "m.json", out));
       ADD_FAILURE() << "accepted case " << i;
     } catch (const UserError& e) {
-      for (const auto& want : cases[i].second) EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+      for (const auto& want : cases[i].second)
+        EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
     }
     EXPECT_FALSE(fs::exists(out));
   }

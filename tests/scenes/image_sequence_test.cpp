@@ -35,7 +35,8 @@ void WriteText(const fs::path& p, const std::string& text) { std::ofstream(p) <<
 
 /// A texture with detail at every pixel (no two neighbours alike), as 8-bit values.
 uint8_t Texture(int x, int y, int c) {
-  const unsigned h = (static_cast<unsigned>(x) * 73856093u) ^ (static_cast<unsigned>(y) * 19349663u) ^ (static_cast<unsigned>(c) * 83492791u);
+  const unsigned h = (static_cast<unsigned>(x) * 73856093u) ^ (static_cast<unsigned>(y) * 19349663u) ^
+                     (static_cast<unsigned>(c) * 83492791u);
   return static_cast<uint8_t>(40 + (h % 177));
 }
 
@@ -76,7 +77,8 @@ void WriteCapture(const fs::path& dir) {
 
 void WriteMotion(const fs::path& dir, const std::string& tag, float mx, float my, int channels) {
   for (int t = 0; t < kFrames; ++t) {
-    WriteImageF((dir / ("mv_" + tag + "_" + std::to_string(t + 1) + ".exr")).string(), ConstantMotion(mx, my, channels));
+    WriteImageF((dir / ("mv_" + tag + "_" + std::to_string(t + 1) + ".exr")).string(),
+                ConstantMotion(mx, my, channels));
   }
 }
 
@@ -215,8 +217,8 @@ TEST(ImageSequence, TaaOnACapturedSequenceFollowsTheMotionVectors) {
     // 3x3 neighbourhood's mean (common in this noise-like texture) even when the history is right.
     // The production TAA on the same captured frames (no depth given: no dilation, the
     // motion-vector disocclusion test; Catmull-Rom at texel centres is the texel itself).
-    const Report r = RunSuite(Settings(dir / ("m_" + tag + ".json"), dir / ("out_" + tag),
-                                       {"none", "taa:clip=none", "taa-prod:clip=none"}));
+    const Report r = RunSuite(
+        Settings(dir / ("m_" + tag + ".json"), dir / ("out_" + tag), {"none", "taa:clip=none", "taa-prod:clip=none"}));
     const ResultRow& taa = Row(r, "taa:clip=none");
     ASSERT_TRUE(taa.not_applicable.empty()) << taa.not_applicable;
     taa_hash[tag] = taa.output_hash;
@@ -290,8 +292,7 @@ TEST(ImageSequence, BadSequenceManifestsFailWithOneMessageAndNoOutput) {
        "frame-number placeholders"},
       {R"("sequence": {"frames": 6, "first": 1}, "frame": ["f_0001.png", "f_0002.png"], "reference": "f_%04d.png"}]})",
        "lists 2 file(s) but the view has 6 frame(s)"},
-      {R"("sequence": {"frames": 7, "first": 1}, "frame": "f_%04d.png", "reference": "f_%04d.png"}]})",
-       "f_0007.png"},
+      {R"("sequence": {"frames": 7, "first": 1}, "frame": "f_%04d.png", "reference": "f_%04d.png"}]})", "f_0007.png"},
       {R"("frame": "f_0001.png", "reference": "f_0001.png", "outputs": [{"name": "fxaa-high", "frame": "f_0001.png"}]}]})",
        "name of one of aalab's methods"},
       {R"("frame": "f_0001.png", "reference": "f_0001.png", "outputs": [{"name": "Engine TAA", "frame": "f_0001.png"}]}]})",
@@ -320,7 +321,8 @@ TEST(ImageSequence, BadSequenceManifestsFailWithOneMessageAndNoOutput) {
     EXPECT_FALSE(fs::exists(out.string() + ".partial"));
   }
   // --frames beyond the sequence.
-  WriteText(dir / "m.json", head + R"("sequence": {"frames": 6, "first": 1}, "frame": "f_%04d.png", "reference": "f_%04d.png"}]})");
+  WriteText(dir / "m.json",
+            head + R"("sequence": {"frames": 6, "first": 1}, "frame": "f_%04d.png", "reference": "f_%04d.png"}]})");
   RunSettings s = Settings(dir / "m.json", dir / "outf", {"none"});
   s.frames = 7;
   EXPECT_THROW(RunSuite(s), UserError);

@@ -59,9 +59,10 @@ TEST(Lighting, WhiteFurnaceLambertSphereShadesToTheEnvironment) {
     EXPECT_NEAR(c.z, 2.0f, 4e-4f);
   }
   // intensity scales it; outside the sphere the background stays.
-  const Scene s2 = ParseText(MakeScene(R"(["lambert"])", R"({"w": {"shading": "lambert", "color": [0.5, 0.5, 0.5]}})",
-                                       R"([{"shape": "sphere", "radius": 1.5, "material": "w"}])",
-                                       R"(, "background": [0.1, 0.2, 0.3], "environment": {"map": [1, 1, 1], "intensity": 3})"));
+  const Scene s2 =
+      ParseText(MakeScene(R"(["lambert"])", R"({"w": {"shading": "lambert", "color": [0.5, 0.5, 0.5]}})",
+                          R"([{"shape": "sphere", "radius": 1.5, "material": "w"}])",
+                          R"(, "background": [0.1, 0.2, 0.3], "environment": {"map": [1, 1, 1], "intensity": 3})"));
   EXPECT_NEAR(RadianceAt(s2, 2.0f, 2.0f).x, 1.5f, 2e-4f);
   EXPECT_FLOAT_EQ(RadianceAt(s2, 0.1f, 0.1f).z, 0.3f);
 }
@@ -117,7 +118,8 @@ TEST(Lighting, Sh9IrradianceMatchesClosedForms) {
   // L(d) = 1 + 0.5·d.y: E(n) = ∫ L (n·l)+ dl = π + (2π/3)·0.5·n.y (the constant's π and the
   // linear term's Â_1 = 2π/3, both exact in bands 0-1).
   const auto grad = ProjectSh9(MapOf(256, 128, [](glm::vec3 d) { return glm::vec3(1.0f + 0.5f * d.y); }));
-  for (glm::vec3 n : {glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), glm::normalize(glm::vec3(1, 1, -2)), glm::vec3(1, 0, 0)}) {
+  for (glm::vec3 n :
+       {glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), glm::normalize(glm::vec3(1, 1, -2)), glm::vec3(1, 0, 0)}) {
     EXPECT_NEAR(Sh9Irradiance(grad, n).x, kPi + (2.0 * kPi / 3.0) * 0.5 * n.y, 2e-3) << n.x << " " << n.y;
   }
   // The upper hemisphere uniformly bright (a sky of radiance 1 above black ground): exact
@@ -140,13 +142,15 @@ const std::string kLambert = R"({"w": {"shading": "lambert", "color": [0.5, 0.5,
 TEST(Lighting, PointLightFallsOffWithTheInverseSquare) {
   // 100 cd at height 2 over a white (ρ = 0.5) plane: directly below E = 100/4 lux and L = ρE/π;
   // at x = 1.5, d² = 6.25 and cos θ = 2/2.5, so E = 100/6.25 · 0.8.
-  const Scene s = ParseText(MakeScene(R"(["lambert"])", kLambert, kQuad,
-                                      R"(, "light_units": "gltf", "lights": [{"type": "point", "position": [0, 0, 2], "intensity": 100}])"));
+  const Scene s = ParseText(
+      MakeScene(R"(["lambert"])", kLambert, kQuad,
+                R"(, "light_units": "gltf", "lights": [{"type": "point", "position": [0, 0, 2], "intensity": 100}])"));
   EXPECT_NEAR(RadianceAt(s, 2.0f, 2.0f).x, 0.5 * 25.0 / kPi, 1e-4);
   EXPECT_NEAR(RadianceAt(s, 3.5f, 2.0f).x, 0.5 * (100.0 / 6.25 * 0.8) / kPi, 1e-4);
   // range 3: the specification's window clamp(1 − (d/range)⁴, 0, 1) on top of 1/d².
-  const Scene r = ParseText(MakeScene(R"(["lambert"])", kLambert, kQuad,
-                                      R"(, "light_units": "gltf", "lights": [{"type": "point", "position": [0, 0, 2], "intensity": 100, "range": 3}])"));
+  const Scene r = ParseText(MakeScene(
+      R"(["lambert"])", kLambert, kQuad,
+      R"(, "light_units": "gltf", "lights": [{"type": "point", "position": [0, 0, 2], "intensity": 100, "range": 3}])"));
   const double win = 1.0 - std::pow(2.5 / 3.0, 4.0);
   EXPECT_NEAR(RadianceAt(r, 3.5f, 2.0f).x, 0.5 * (100.0 / 6.25 * 0.8) / kPi * win, 1e-4);
 }
@@ -165,7 +169,7 @@ TEST(Lighting, SpotConeFollowsTheSpecificationsSmoothFalloff) {
     return 0.5 * (10.0 / d2 * cosphi) / kPi * t * t;
   };
   EXPECT_NEAR(RadianceAt(s, 2.0f, 2.0f).x, 0.5 * 10.0 / kPi, 1e-4);  // on the axis
-  const double x20 = std::tan(20.0 * kPi / 180.0);                       // 20° off-axis
+  const double x20 = std::tan(20.0 * kPi / 180.0);                   // 20° off-axis
   EXPECT_NEAR(RadianceAt(s, 2.0f + static_cast<float>(x20), 2.0f).x, expected(x20), 1e-4);
   EXPECT_GT(expected(x20), 0.05);
   EXPECT_LT(expected(x20), 0.5 * 10.0 / kPi * 0.9);
@@ -193,8 +197,9 @@ TEST(Lighting, LightUnitsAreRequiredAndMigrateWithPi) {
   EXPECT_NE(ParseError(MakeScene(R"(["lambert"])", kLambert, kQuad, R"(, "ambient": [1,1,1], "light_units": "gltf")"))
                 .find("light_units without lights"),
             std::string::npos);
-  EXPECT_NE(ParseError(MakeScene(R"(["lambert"])", kLambert, kQuad, R"(, "light_units": "watts", )" + light)).find("gltf"),
-            std::string::npos);
+  EXPECT_NE(
+      ParseError(MakeScene(R"(["lambert"])", kLambert, kQuad, R"(, "light_units": "watts", )" + light)).find("gltf"),
+      std::string::npos);
   // The library's migrated scenes keep their pre-migration intensities exactly.
   const Scene glossy = LoadSceneFile(SceneLibraryDir() + "/real-glossy.json");
   EXPECT_EQ(glossy.lights[0].intensity, 6.0f);
@@ -226,8 +231,8 @@ TEST(Lighting, EnvironmentMapsAreReadThroughIo) {
   // A 4 × 2 map, asymmetric in x and y, as EXR (float: exact) and Radiance HDR (RGBE: one
   // shared 8-bit exponent; these values, a mantissa of at most 8 bits under the largest
   // channel, are exact too: 2 = 128·2^-6, 0.5 = 32·2^-6).
-  const std::vector<float> px = {1, 2, 0.5f,  0, 0, 0,  4, 4, 4,  0.25f, 0.5f, 1,
-                                 8, 1, 0.5f,  2, 2, 0,  1, 0.5f, 0.25f,  16, 8, 4};
+  const std::vector<float> px = {1, 2, 0.5f, 0, 0, 0, 4, 4,    4,     0.25f, 0.5f, 1,
+                                 8, 1, 0.5f, 2, 2, 0, 1, 0.5f, 0.25f, 16,    8,    4};
   const fs::path dir = testenv::ScratchDir("envmap");
   for (const char* ext : {".exr", ".hdr"}) {
     const std::string path = (dir / (std::string("env") + ext)).string();
@@ -246,7 +251,8 @@ TEST(Lighting, EnvironmentMapsAreReadThroughIo) {
     ReadEquirect(square);
     ADD_FAILURE() << "a 2 x 2 map was read";
   } catch (const UserError& e) {
-    EXPECT_NE(std::string(e.what()).find("is 2 x 2: an equirectangular map is twice as wide as high"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("is 2 x 2: an equirectangular map is twice as wide as high"),
+              std::string::npos)
         << e.what();
   }
   // A negative texel at (1, 0), and a file that is not an image (io's message, prefixed).
@@ -282,9 +288,10 @@ TEST(GltfLights, NodeWorldMatricesComposeParentsIteratively) {
   // in its parent's frame: world position (1, 2, 3) + R_y(90°)·(0, 0, −2) = (1 − 2, 2, 3).
   const double h = std::sqrt(0.5);
   nlohmann::json g = {{"scenes", {{{"nodes", {0}}}}},
-                      {"nodes", {{{"translation", {1, 2, 3}}, {"rotation", {0, h, 0, h}}, {"children", {1}}},
-                                 {{"translation", {0, 0, -2}}},
-                                 {{"translation", {9, 9, 9}}}}}};
+                      {"nodes",
+                       {{{"translation", {1, 2, 3}}, {"rotation", {0, h, 0, h}}, {"children", {1}}},
+                        {{"translation", {0, 0, -2}}},
+                        {{"translation", {9, 9, 9}}}}}};
   const auto w = GltfNodeWorldMatrices(g);
   ASSERT_EQ(w.size(), 3u);
   ASSERT_TRUE(w[0] && w[1]);

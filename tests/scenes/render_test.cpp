@@ -39,7 +39,8 @@ TEST(Effects, UnlitCostsOnePrimaryRayAndNothingElse) {
 }
 
 TEST(Effects, LightsWithoutShadowsTraceNoShadowRays) {
-  const std::string light = R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1]}])";
+  const std::string light =
+      R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1]}])";
   const Scene s = ParseText(MakeScene(R"(["lambert"])", R"({"w": {"shading": "lambert"}})", kQuadBig, light));
   const TraceCounters c = CountFrame(s, 16, 8, 1);
   EXPECT_EQ(c.shadow_rays, 0u);
@@ -48,8 +49,10 @@ TEST(Effects, LightsWithoutShadowsTraceNoShadowRays) {
 
 TEST(Effects, ShadowsCostOneRayPerLitSampleAndLight) {
   // The quad fills the view and faces the light: every sample sends exactly one shadow ray.
-  const std::string light = R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1], "shadows": true}])";
-  const Scene s = ParseText(MakeScene(R"(["lambert", "shadows"])", R"({"w": {"shading": "lambert"}})", kQuadBig, light));
+  const std::string light =
+      R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1], "shadows": true}])";
+  const Scene s =
+      ParseText(MakeScene(R"(["lambert", "shadows"])", R"({"w": {"shading": "lambert"}})", kQuadBig, light));
   const TraceCounters c = CountFrame(s, 16, 8, 2);
   EXPECT_EQ(c.shadow_rays, 16u * 8u * 4u);
   EXPECT_EQ(c.texture_lookups, 0u);
@@ -68,11 +71,11 @@ TEST(Effects, TexturesCostOneLookupPerTexturedSample) {
 
 TEST(Effects, AlphaCutoutsShowWhatIsBehind) {
   // Stripes along x with duty 0.5 and scale 1: u in [k, k+0.5) kept. A red quad behind.
-  const Scene s = ParseText(MakeScene(
-      R"(["unlit", "alpha_test"])",
-      R"({"front": {"shading": "unlit", "color": [1,1,1], "alpha": {"pattern": "stripes", "scale": 1}},
+  const Scene s = ParseText(
+      MakeScene(R"(["unlit", "alpha_test"])",
+                R"({"front": {"shading": "unlit", "color": [1,1,1], "alpha": {"pattern": "stripes", "scale": 1}},
           "back": {"shading": "unlit", "color": [1,0,0]}})",
-      R"([{"shape": "quad", "size": [100,100], "material": "front"},
+                R"([{"shape": "quad", "size": [100,100], "material": "front"},
           {"shape": "quad", "size": [100,100], "material": "back", "transform": {"translate": [0,0,-1]}}])"));
   Tracer tracer(s);
   TraceCounters c;
@@ -156,7 +159,8 @@ TEST(Reference, MatchesAnalyticCoverageOfAHalfPlane) {
   const Scene s = ParseText(
       R"({"name": "t", "effects": ["unlit"], "camera": {"type": "orthographic", "position": [0,0,10],
           "look_at": [0,0,0], "height": 16}, "materials": {"w": {"shading": "unlit", "color": [1,1,1]}},
-          "objects": [{"shape": "polygon", "material": "w", "points": )" + poly + "}]}");
+          "objects": [{"shape": "polygon", "material": "w", "points": )" +
+      poly + "}]}");
   Tracer tracer(s);
   const Reference ref = RenderReference(tracer, W, H, 16, 3, nullptr);
   double max_err = 0, sum_err = 0;
@@ -208,8 +212,8 @@ TEST(Reference, GridValidation) {
 }
 
 TEST(Ssaa, FourByFourBeatsNoneOnEveryEdgeScene) {
-  for (const char* name : {"wedges", "circle", "thin-wires", "checker-plane", "specular-spheres", "shadow-stipple",
-                           "hdr-edges", "mesh"}) {
+  for (const char* name :
+       {"wedges", "circle", "thin-wires", "checker-plane", "specular-spheres", "shadow-stipple", "hdr-edges", "mesh"}) {
     const Scene scene = LoadScene(name);
     Tracer t(scene);
     const int W = 96, H = 54;
@@ -227,7 +231,8 @@ TEST(Ssaa, FourByFourBeatsNoneOnEveryEdgeScene) {
 
 TEST(Ssaa, NoEdgesMeansSsaaEqualsNoneUpToQuantization) {
   // A constant unlit colour filling the frame: every sample is identical.
-  const Scene s = ParseText(MakeScene(R"(["unlit"])", R"({"w": {"shading": "unlit", "color": [0.3,0.5,0.7]}})", kQuadBig));
+  const Scene s =
+      ParseText(MakeScene(R"(["unlit"])", R"({"w": {"shading": "unlit", "color": [0.3,0.5,0.7]}})", kQuadBig));
   Tracer t(s);
   RenderSpec ss;
   ss.pattern = SamplePattern::kOrderedGrid;
@@ -241,9 +246,9 @@ TEST(Display, ExtremeRadianceSaturatesToWhiteNotBlack) {
   // same for infinite radiance, e.g. a point light almost on a surface: tests/core/color_test).
   const std::string lit = R"({"w": {"shading": "lambert", "color": [1e7, 1e7, 1e7]}})";
   for (const char* tonemap : {"none", "reinhard", "aces"}) {
-    const Scene s = ParseText(MakeScene(R"(["lambert"])", lit, kQuadBig,
-                                        std::string(R"(, "ambient": [1e7, 1e7, 1e7], "display": {"exposure": 1e9, "tonemap": ")") +
-                                            tonemap + R"("})"));
+    const Scene s = ParseText(MakeScene(
+        R"(["lambert"])", lit, kQuadBig,
+        std::string(R"(, "ambient": [1e7, 1e7, 1e7], "display": {"exposure": 1e9, "tonemap": ")") + tonemap + R"("})"));
     Tracer t(s);
     const Reference ref = RenderReference(t, 4, 3, 2, 1, nullptr);
     const Image8 frame = RenderFrame(t, 4, 3, RenderSpec{}, 1, nullptr);

@@ -82,26 +82,31 @@ TEST(SceneParse, SyntaxAndTypeErrorsNameThePath) {
 }
 
 TEST(SceneParse, CameraErrors) {
-  ExpectError(R"({"name": "t", "effects": ["unlit"], "camera": {"type": "fisheye", "position": [0,0,1], "look_at": [0,0,0]},
+  ExpectError(
+      R"({"name": "t", "effects": ["unlit"], "camera": {"type": "fisheye", "position": [0,0,1], "look_at": [0,0,0]},
                  "materials": {"w": {"shading": "unlit"}}, "objects": [{"shape": "quad", "size": [1,1], "material": "w"}]})",
-              {"/camera/type", "perspective, orthographic"});
-  ExpectError(R"({"name": "t", "effects": ["unlit"], "camera": {"type": "perspective", "position": [0,0,1], "look_at": [0,0,1], "fov_y": 40},
+      {"/camera/type", "perspective, orthographic"});
+  ExpectError(
+      R"({"name": "t", "effects": ["unlit"], "camera": {"type": "perspective", "position": [0,0,1], "look_at": [0,0,1], "fov_y": 40},
                  "materials": {"w": {"shading": "unlit"}}, "objects": [{"shape": "quad", "size": [1,1], "material": "w"}]})",
-              {"/camera/look_at", "equals position"});
-  ExpectError(R"({"name": "t", "effects": ["unlit"], "camera": {"type": "perspective", "position": [0,0,1], "look_at": [0,0,0], "fov_y": 180},
+      {"/camera/look_at", "equals position"});
+  ExpectError(
+      R"({"name": "t", "effects": ["unlit"], "camera": {"type": "perspective", "position": [0,0,1], "look_at": [0,0,0], "fov_y": 180},
                  "materials": {"w": {"shading": "unlit"}}, "objects": [{"shape": "quad", "size": [1,1], "material": "w"}]})",
-              {"/camera/fov_y", "180", "out of range"});
+      {"/camera/fov_y", "180", "out of range"});
 }
 
 TEST(SceneParse, UndeclaredEffectsAreErrorsNotDowngrades) {
   const std::string textured = R"({"w": {"shading": "unlit", "texture": {"pattern": "checker"}}})";
   ExpectError(MakeScene(R"(["unlit"])", textured, kQuad), {"/materials/w/texture", "needs effect 'textures'"});
   const std::string lit = R"({"w": {"shading": "lambert"}})";
-  const std::string shadow_light = R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1], "shadows": true}])";
+  const std::string shadow_light =
+      R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1], "shadows": true}])";
   ExpectError(MakeScene(R"(["lambert"])", lit, kQuad, shadow_light), {"/lights/0/shadows", "needs effect 'shadows'"});
   ExpectError(MakeScene(R"(["unlit"])", lit, kQuad, shadow_light), {"needs effect 'lambert'"});
   const std::string spec = R"({"w": {"shading": "lambert", "specular": [1,1,1], "shininess": 50}})";
-  const std::string light = R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1]}])";
+  const std::string light =
+      R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0,0,-1]}])";
   ExpectError(MakeScene(R"(["lambert"])", spec, kQuad, light), {"needs effect 'specular'"});
   const std::string cut = R"({"w": {"shading": "unlit", "alpha": {"pattern": "stripes"}}})";
   ExpectError(MakeScene(R"(["unlit"])", cut, kQuad), {"needs effect 'alpha_test'"});
@@ -110,7 +115,8 @@ TEST(SceneParse, UndeclaredEffectsAreErrorsNotDowngrades) {
 TEST(SceneParse, DeclaredButUnusedEffectIsAnError) {
   ExpectError(MakeScene(R"(["unlit", "textures"])", kWhite, kQuad), {"/effects", "'textures' is declared but nothing"});
   ExpectError(MakeScene(R"(["unlit", "unlit"])", kWhite, kQuad), {"declared twice"});
-  ExpectError(MakeScene(R"(["unlit", "raytraced-gi"])", kWhite, kQuad), {"'raytraced-gi' is not allowed", "alpha_test"});
+  ExpectError(MakeScene(R"(["unlit", "raytraced-gi"])", kWhite, kQuad),
+              {"'raytraced-gi' is not allowed", "alpha_test"});
 }
 
 TEST(SceneParse, TransformsApply) {
@@ -151,9 +157,10 @@ std::string Replace(std::string s, const std::string& from, const std::string& t
 const std::string kOrtho = MakeScene(R"(["unlit"])", kWhite, kQuad);
 
 TEST(SceneBadInput, SyntaxErrorsSayWhereAndNeverThrowAnythingElse) {
-  for (const std::string& text : {std::string(""), std::string("   "), std::string("{"), std::string("{\"name\": \"t\",}"),
-                                  kOrtho.substr(0, kOrtho.size() / 2), std::string("\x89PNG\r\n\x1a\n", 8),
-                                  std::string("\0\0\0", 3), std::string("[1, 2, 3]"), std::string("null")}) {
+  for (const std::string& text :
+       {std::string(""), std::string("   "), std::string("{"), std::string("{\"name\": \"t\",}"),
+        kOrtho.substr(0, kOrtho.size() / 2), std::string("\x89PNG\r\n\x1a\n", 8), std::string("\0\0\0", 3),
+        std::string("[1, 2, 3]"), std::string("null")}) {
     const std::string e = ParseError(text);
     EXPECT_NE(e.find("test.json"), std::string::npos) << "input: " << text << "\nmessage: " << e;
   }
@@ -170,7 +177,8 @@ TEST(SceneBadInput, NonFiniteNumbersAreRejected) {
   ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": -Infinity"), {"test.json", "not valid JSON"});
   ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": 1e999"), {"test.json", "1e999", "must be finite"});
   ExpectError(Replace(kOrtho, "\"size\": [2,2]", "\"size\": [-1e999,2]"), {"test.json", "-1e999", "must be finite"});
-  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": \"nan\""), {"/camera/height", "expected a number", "\"nan\""});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": \"nan\""),
+              {"/camera/height", "expected a number", "\"nan\""});
   ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": \"Infinity\""), {"/camera/height", "expected a number"});
   ExpectError(Replace(kOrtho, "\"size\": [2,2]", "\"size\": [2,\"inf\"]"), {"/objects/0/size/1", "expected a number"});
   // 1e-999 underflows to 0 (a finite number) and then meets the range check.
@@ -187,9 +195,11 @@ TEST(SceneBadInput, WrongTypesNameThePath) {
   ExpectError(MakeScene(R"(["unlit"])", "[]", kQuad), {"/materials", "named materials"});
   ExpectError(MakeScene(R"(["unlit"])", kWhite, R"({"shape": "quad"})"), {"/objects", "expected an array"});
   ExpectError(MakeScene(R"(["unlit"])", kWhite, R"([7])"), {"/objects/0", "expected an object"});
-  ExpectError(MakeScene(R"(["unlit"])", kWhite,
-                        R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,2.5]], "material": "w"}])"),
-              {"/objects/0/indices/0/2", "expected an integer"});
+  ExpectError(
+      MakeScene(
+          R"(["unlit"])", kWhite,
+          R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,2.5]], "material": "w"}])"),
+      {"/objects/0/indices/0/2", "expected an integer"});
 }
 
 TEST(SceneBadInput, OutOfRangeAndAbsurdValuesAreRefusedWithTheLimit) {
@@ -197,23 +207,28 @@ TEST(SceneBadInput, OutOfRangeAndAbsurdValuesAreRefusedWithTheLimit) {
   ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": -4"), {"/camera/height", "> 0"});
   ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": 1e300"), {"/camera/height", "1e+300", "<= 1e+09"});
   ExpectError(Replace(kOrtho, "\"size\": [2,2]", "\"size\": [1e10,2]"), {"/objects/0/size/0", "<= 1e+09"});
-  ExpectError(Replace(kOrtho, "\"position\": [0,0,10]", "\"position\": [0,0,1e9]"),
-              {"/camera/position/2", "<= 1e+08"});
+  ExpectError(Replace(kOrtho, "\"position\": [0,0,10]", "\"position\": [0,0,1e9]"), {"/camera/position/2", "<= 1e+08"});
   ExpectError(MakeScene(R"(["unlit"])", R"({"w": {"shading": "unlit", "color": [1e8, 1, 1]}})", kQuad),
               {"/materials/w/color/0", "<= 1e+07"});
   ExpectError(MakeScene(R"(["unlit"])", R"({"w": {"shading": "unlit", "color": [-1, 1, 1]}})", kQuad),
               {"/materials/w/color/0", ">= 0"});
-  ExpectError(MakeScene(R"(["unlit"])", kWhite,
-                        R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,3]], "material": "w"}])"),
-              {"/objects/0/indices/0/2", "out of range", "0..2"});
-  ExpectError(MakeScene(R"(["unlit"])", kWhite,
-                        R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,18446744073709551616]], "material": "w"}])"),
-              {"/objects/0/indices/0/2", "expected an integer"});
-  ExpectError(MakeScene(R"(["unlit"])", kWhite,
-                        R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,-1]], "material": "w"}])"),
-              {"/objects/0/indices/0/2", "out of range"});
-  ExpectError(MakeScene(R"(["unlit", "textures"])", R"({"w": {"shading": "unlit", "texture": {"pattern": "noise", "seed": 4294967296}}})",
-                        kQuad),
+  ExpectError(
+      MakeScene(
+          R"(["unlit"])", kWhite,
+          R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,3]], "material": "w"}])"),
+      {"/objects/0/indices/0/2", "out of range", "0..2"});
+  ExpectError(
+      MakeScene(
+          R"(["unlit"])", kWhite,
+          R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,18446744073709551616]], "material": "w"}])"),
+      {"/objects/0/indices/0/2", "expected an integer"});
+  ExpectError(
+      MakeScene(
+          R"(["unlit"])", kWhite,
+          R"([{"shape": "triangles", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,-1]], "material": "w"}])"),
+      {"/objects/0/indices/0/2", "out of range"});
+  ExpectError(MakeScene(R"(["unlit", "textures"])",
+                        R"({"w": {"shading": "unlit", "texture": {"pattern": "noise", "seed": 4294967296}}})", kQuad),
               {"/materials/w/texture/seed", "out of range"});
   // Values above 0 that round to 0 as floats (every scene value is stored as a float).
   ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": 1e-300"), {"/camera/height", "rounds to 0"});
@@ -231,13 +246,15 @@ TEST(SceneBadInput, ExtremeButValidVectorsStayFinite) {
   // Large direction/up components used to overflow float arithmetic: the light direction
   // normalised to zero (light silently gone) and up = [1e30, 0, 0] was called "parallel".
   const std::string lit = R"({"w": {"shading": "lambert"}})";
-  const Scene s = ParseText(MakeScene(R"(["lambert"])", lit, kQuad,
-                                      R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [1e30, 1e30, -1e30]}])"));
+  const Scene s = ParseText(MakeScene(
+      R"(["lambert"])", lit, kQuad,
+      R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [1e30, 1e30, -1e30]}])"));
   ASSERT_EQ(s.lights.size(), 1u);
   EXPECT_NEAR(glm::length(s.lights[0].direction), 1.0f, 1e-6f);
   EXPECT_NEAR(s.lights[0].direction.x, 1.0f / std::sqrt(3.0f), 1e-6f);
-  const Scene tiny = ParseText(MakeScene(R"(["lambert"])", lit, kQuad,
-                                         R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0, 0, -1e-30]}])"));
+  const Scene tiny = ParseText(
+      MakeScene(R"(["lambert"])", lit, kQuad,
+                R"(, "light_units": "aalab-pi", "lights": [{"type": "directional", "direction": [0, 0, -1e-30]}])"));
   EXPECT_NEAR(tiny.lights[0].direction.z, -1.0f, 1e-6f);
   const Scene up = ParseText(Replace(kOrtho, "\"look_at\": [0,0,0]", "\"look_at\": [0,0,0], \"up\": [0,1e30,0]"));
   EXPECT_NEAR(glm::length(up.camera.up), 1.0f, 1e-6f);
@@ -252,16 +269,21 @@ TEST(SceneBadInput, DeepNestingIsAnErrorNotAStackOverflow) {
   const int depth = 1000000;
   const std::string nested = std::string(depth, '[') + std::string(depth, ']');
   ExpectError(Replace(kOrtho, "\"name\": \"t\"", "\"name\": " + nested), {"/name", "expected a string", "[[[[...]]]]"});
-  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": {\"a\": " + nested + "}"), {"/camera/height", "{\"a\":[[[["});
+  ExpectError(Replace(kOrtho, "\"height\": 4", "\"height\": {\"a\": " + nested + "}"),
+              {"/camera/height", "{\"a\":[[[["});
 }
 
 TEST(SceneBadInput, MeshFilesThatAreMissingUnreadableOrBroken) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("aalab-mesh-" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("aalab-mesh-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir / "adir.obj");
   std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv 1e999 1 0\nf 1 2 3\n";
   std::ofstream(dir / "index.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
   std::ofstream(dir / "empty.obj") << "# nothing\n";
-  std::ofstream(dir / "garbage.obj") << std::string("\x7f" "ELF\x02\x01\x01\0\0\0", 10);
+  std::ofstream(dir / "garbage.obj") << std::string(
+      "\x7f"
+      "ELF\x02\x01\x01\0\0\0",
+      10);
   auto scene = [](const std::string& file) {
     return MakeScene(R"(["unlit"])", kWhite, R"([{"shape": "mesh", "file": ")" + file + R"(", "material": "w"}])");
   };
@@ -273,13 +295,12 @@ TEST(SceneBadInput, MeshFilesThatAreMissingUnreadableOrBroken) {
     }
     return std::string();
   };
-  for (const auto& [file, want] : std::vector<std::pair<std::string, std::string>>{
-           {"missing.obj", "does not exist"},
-           {"adir.obj", "is a folder"},
-           {"nan.obj", "non-finite vertex"},
-           {"index.obj", "out of range"},
-           {"empty.obj", "no triangles"},
-           {"garbage.obj", "no triangles"}}) {
+  for (const auto& [file, want] : std::vector<std::pair<std::string, std::string>>{{"missing.obj", "does not exist"},
+                                                                                   {"adir.obj", "is a folder"},
+                                                                                   {"nan.obj", "non-finite vertex"},
+                                                                                   {"index.obj", "out of range"},
+                                                                                   {"empty.obj", "no triangles"},
+                                                                                   {"garbage.obj", "no triangles"}}) {
     const std::string e = parse(file);
     EXPECT_NE(e.find("/objects/0/file"), std::string::npos) << file << ": " << e;
     EXPECT_NE(e.find(want), std::string::npos) << file << ": " << e;

@@ -27,7 +27,8 @@ inline std::string MakeScene(const std::string& effects, const std::string& mate
                              const std::string& extra = "") {
   return R"({"name": "t", "effects": )" + effects +
          R"(, "camera": {"type": "orthographic", "position": [0,0,10], "look_at": [0,0,0], "height": 4},)"
-         R"( "materials": )" + materials + R"(, "objects": )" + objects + extra + "}";
+         R"( "materials": )" +
+         materials + R"(, "objects": )" + objects + extra + "}";
 }
 
 }  // namespace aalab::testing

@@ -93,8 +93,8 @@ TEST(TextureStorage, AlphaIsStraightAsGltfDefinesIt) {
   // 3 × 2 RGBA, asymmetric in x and y; texel (1, 1) is (200, 40, 120) at alpha 128 (0.502),
   // texel (2, 1) keeps its colour (60, 180, 90) at alpha 0. Premultiplied, they would read
   // back (100, 20, 60) and (0, 0, 0).
-  const std::vector<uint8_t> px = {255, 0, 0, 255,  0, 255, 0, 255,  0, 0, 255, 255,
-                                   10, 20, 30, 255,  200, 40, 120, 128,  60, 180, 90, 0};
+  const std::vector<uint8_t> px = {255, 0,  0,  255, 0,   255, 0,   255, 0,  0,   255, 255,
+                                   10,  20, 30, 255, 200, 40,  120, 128, 60, 180, 90,  0};
   const std::string path = WritePng("straight", 3, 2, 4, px);
   std::ifstream f(path, std::ios::binary);
   const std::vector<uint8_t> file((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());

@@ -83,11 +83,11 @@ TEST(TextureBilinear, TheTAxisWrapsByItsOwnModeOnANonSquareTexture) {
   EXPECT_FLOAT_EQ(SampleBilinear(l, {5.0f / 6.0f, 7.0f / 8.0f}, rep, rep).x, 32.0f);
   // v = 0: halfway between row -1 and row 0, at column 1 (u = 0.5 -> x = 1 exactly).
   EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 0.0f}, rep, rep).x, 0.5f * 31.0f + 0.5f * 1.0f);  // row -1 = row 3
-  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 0.0f}, rep, clamp).x, 1.0f);                        // row -1 = row 0
-  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 0.0f}, rep, mirror).x, 1.0f);                       // row -1 = row 0
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 0.0f}, rep, clamp).x, 1.0f);                      // row -1 = row 0
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 0.0f}, rep, mirror).x, 1.0f);                     // row -1 = row 0
   // v = 1: halfway between row 3 and row 4.
-  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 1.0f}, rep, rep).x, 0.5f * 31.0f + 0.5f * 1.0f);    // row 4 = row 0
-  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 1.0f}, rep, mirror).x, 31.0f);                      // row 4 = row 3
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 1.0f}, rep, rep).x, 0.5f * 31.0f + 0.5f * 1.0f);  // row 4 = row 0
+  EXPECT_FLOAT_EQ(SampleBilinear(l, {0.5f, 1.0f}, rep, mirror).x, 31.0f);                    // row 4 = row 3
   // Different modes on the two axes, at the corner (0, 0): s clamps (columns -1, 0 -> 0),
   // t repeats (rows 3 and 0): 0.5·30 + 0.5·0 = 15. With the modes swapped: s repeats
   // (columns 2 and 0: 1 on average), t clamps (row 0): 1.
@@ -97,7 +97,7 @@ TEST(TextureBilinear, TheTAxisWrapsByItsOwnModeOnANonSquareTexture) {
 
 TEST(TextureLod, LambdaIsLog2OfTheLongerFootprintEdgeInTexels) {
   UvDerivs d;
-  d.dx = {1.0f / 64.0f, 0.0f};  // 4 texels of a 256 texture per step
+  d.dx = {1.0f / 64.0f, 0.0f};   // 4 texels of a 256 texture per step
   d.dy = {0.0f, 1.0f / 128.0f};  // 2 texels
   EXPECT_FLOAT_EQ(MipLambda(d, 256, 256), 2.0f);
   d.dx = {3.0f / 256.0f, 4.0f / 256.0f};  // length 5 texels
@@ -176,9 +176,9 @@ TEST(TextureFootprint, OneXFramePicksTheLevelOfTheHandDerivedDerivative) {
   cam.look_at = {0, h, -1};
   cam.fov_y_deg = fov;
   const float big = 1000.0f;
-  const Scene sc = TexturedQuadScene({{-big, 0, 0}, {big, 0, 0}, {big, 0, -big}, {-big, 0, -big}},
-                                     {{-big * s, 0}, {big * s, 0}, {big * s, big * s}, {-big * s, big * s}},
-                                     std::move(c), cam);
+  const Scene sc =
+      TexturedQuadScene({{-big, 0, 0}, {big, 0, 0}, {big, 0, -big}, {-big, 0, -big}},
+                        {{-big * s, 0}, {big * s, 0}, {big * s, big * s}, {-big * s, big * s}}, std::move(c), cam);
   Tracer tracer(sc);
   const ImageF img = RenderFrameLinear(tracer, W, H, RenderSpec{}, 1, nullptr);
   const double t = std::tan(fov * 0.5 * 3.14159265358979 / 180.0);
@@ -238,7 +238,8 @@ TEST(TextureReference, GrazingCheckerConvergesToItsBoxIntegral) {
       const double wx0 = -hc / 2 + x * hc / W, wx1 = wx0 + hc / W;
       const double wy0 = hc / 2 - y * hc / H, wy1 = wy0 - hc / H;  // world y' at the pixel's top and bottom
       const double X0 = (wx0 + 1) / 2 * K * N - 0.5, X1 = (wx1 + 1) / 2 * K * N - 0.5;
-      const double Y0 = (1 - wy0 / std::cos(theta)) / 2 * K * N - 0.5, Y1 = (1 - wy1 / std::cos(theta)) / 2 * K * N - 0.5;
+      const double Y0 = (1 - wy0 / std::cos(theta)) / 2 * K * N - 0.5,
+                   Y1 = (1 - wy1 / std::cos(theta)) / 2 * K * N - 0.5;
       const double gx = (TriangleWaveIntegral(X1) - TriangleWaveIntegral(X0)) / (X1 - X0);
       const double gy = (TriangleWaveIntegral(Y1) - TriangleWaveIntegral(Y0)) / (Y1 - Y0);
       const double exact = 0.5 - 0.5 * gx * gy;
@@ -329,7 +330,8 @@ TEST(AlphaToCoverage, EachPixelTakesItsOwnBayerThreshold) {
   EXPECT_EQ(AlphaToCoverageMask(0.3f, 4, 6, 7), 0x3u);
   EXPECT_EQ(AlphaToCoverageMask(0.3f, 4, 10, 5), 0x3u);
   EXPECT_EQ(AlphaToCoverageMask(0.3f, 4, 4, 3), 0x3u);
-  EXPECT_EQ(AlphaToCoverageMask(0.3f, 4, 7, 6), 0x1u);  // (6, 7) transposed: index 9 (a transposed matrix reads 13 there)
+  EXPECT_EQ(AlphaToCoverageMask(0.3f, 4, 7, 6),
+            0x1u);  // (6, 7) transposed: index 9 (a transposed matrix reads 13 there)
 }
 
 TEST(AlphaToCoverage, MsaaCoverageFollowsAlphaWhileTheAlphaTestIsAllOrNothing) {
