@@ -7,7 +7,7 @@ RUN_ARGS  ?=
 CMAKE_FLAGS ?=
 BENCH_ARGS ?=
 
-.PHONY: all deps configure build run test bench clean test-asan fuzz test-gpu test-slurm test-latex
+.PHONY: all deps configure build run test bench clean test-asan fuzz test-gpu test-slurm test-latex format
 
 all: build
 
@@ -27,6 +27,12 @@ run: configure
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# Rewrites every C++/CUDA source with the repository's .clang-format (clang-format 14, as
+# Debian 12 ships it; scripts/debian-packages.txt). `make test` checks it (Format.* in
+# tests/design/format_test.cpp), so CI fails on a line that is not formatted.
+format: deps
+	@git ls-files '*.cpp' '*.h' '*.cu' '*.cuh' | xargs clang-format-14 -i --style=file
 
 bench: configure
 	@bash scripts/install-deps.sh scripts/debian-packages-bench.txt
