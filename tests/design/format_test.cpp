@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -61,12 +62,21 @@ std::vector<std::string> Sources(const fs::path& root) {
   return files;
 }
 
-/// The files of `files` that `clang_format` would change (--dry-run --Werror), in batches.
+/// The files of `files` that `clang_format` would change (--dry-run --Werror): one call per
+/// batch of 64 files, and file by file only inside a batch that fails.
 std::vector<std::string> Unformatted(const std::string& clang_format, const std::vector<std::string>& files) {
+  auto check = [&](size_t from, size_t to) {
+    std::string cmd = clang_format + " --style=file --dry-run --Werror";
+    for (size_t i = from; i < to; ++i) cmd += " '" + files[i] + "'";
+    return Shell(cmd).status == 0;
+  };
   std::vector<std::string> bad;
-  for (const auto& f : files) {
-    const Run r = Shell(clang_format + " --style=file --dry-run --Werror '" + f + "'");
-    if (r.status != 0) bad.push_back(f);
+  for (size_t from = 0; from < files.size(); from += 64) {
+    const size_t to = std::min(files.size(), from + 64);
+    if (check(from, to)) continue;
+    for (size_t i = from; i < to; ++i) {
+      if (!check(i, i + 1)) bad.push_back(files[i]);
+    }
   }
   return bad;
 }
