@@ -27,7 +27,7 @@ std::vector<std::shared_ptr<MethodOutput>> RunAndScoreRows(const PreparedScene& 
   }
   if (clock) clock->Enter("metrics");
   // The distinct outputs still to score, in row order (the first row with each hash).
-  std::vector<size_t> todo;
+  std::vector<size_t> to_score;
   std::map<std::string, size_t> first_of_hash;
   for (size_t m = 0; m < rows.size(); ++m) {
     const MethodOutput& mo = *rows[m];
@@ -35,18 +35,18 @@ std::vector<std::shared_ptr<MethodOutput>> RunAndScoreRows(const PreparedScene& 
     const std::string& hash = mo.row.output_hash;
     if (prepared.scored_by_hash.count(hash) || first_of_hash.count(hash)) continue;
     first_of_hash.emplace(hash, m);
-    todo.push_back(m);
+    to_score.push_back(m);
   }
-  std::vector<PreparedScene::Scored> scores(todo.size());
+  std::vector<PreparedScene::Scored> scores(to_score.size());
   // Each score runs isolated: while its own parallel loops wait, a thread takes no other
   // row's score, so at most one score per thread is in flight (each holds ~50 MB of planes
   // at 960x540).
-  ParallelFor(static_cast<int>(todo.size()), [&](int i) {
+  ParallelFor(static_cast<int>(to_score.size()), [&](int i) {
     tbb::this_task_arena::isolate(
-        [&] { scores[static_cast<size_t>(i)] = ScoreFrame(prepared, rows[todo[static_cast<size_t>(i)]]->output); });
+        [&] { scores[static_cast<size_t>(i)] = ScoreFrame(prepared, rows[to_score[static_cast<size_t>(i)]]->output); });
   });
-  for (size_t i = 0; i < todo.size(); ++i) {
-    prepared.scored_by_hash.emplace(rows[todo[i]]->row.output_hash, std::move(scores[i]));
+  for (size_t i = 0; i < to_score.size(); ++i) {
+    prepared.scored_by_hash.emplace(rows[to_score[i]]->row.output_hash, std::move(scores[i]));
   }
   for (auto& mo : rows) {
     if (!mo->row.not_applicable.empty()) continue;

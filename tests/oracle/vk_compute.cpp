@@ -201,53 +201,58 @@ std::string EntryName(const std::vector<uint32_t>& words) {
 
 }  // namespace
 
-std::vector<uint32_t> CompileHlsl(const std::string& text, const std::string& entry,
-                                  const std::vector<std::string>& defines) {
-  char dir_template[] = "/tmp/aalab-hlsl-XXXXXX";
-  const char* dir = mkdtemp(dir_template);
-  if (!dir) throw std::runtime_error("mkdtemp failed");
-  const std::string src = std::string(dir) + "/shader.hlsl", spv = std::string(dir) + "/shader.spv",
-                    log = std::string(dir) + "/log.txt";
-  std::ofstream(src) << text;
-  std::string cmd = "glslangValidator -D -V -S comp --hlsl-iomap --shift-UAV-binding comp 10 -e " + entry;
-  for (const auto& d : defines) cmd += " -D" + d;
-  cmd += " -o '" + spv + "' '" + src + "' > '" + log + "' 2>&1";
+namespace {
+
+/// A folder made by mkdtemp from `pattern`, removed with everything in it at scope exit.
+struct TempDir {
+  std::string path;
+  explicit TempDir(std::string pattern) {
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+    path = pattern;
+  }
+  ~TempDir() { std::filesystem::remove_all(path); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+};
+
+/// Runs `glslangValidator ARGS -o DIR/shader.spv INPUT` and returns the SPIR-V words; throws
+/// with glslang's log (naming `what`) when it fails or writes no whole words.
+std::vector<uint32_t> RunGlslang(const std::string& args, const std::string& input, const std::string& dir,
+                                 const std::string& what) {
+  const std::string spv = dir + "/shader.spv", log = dir + "/log.txt";
+  const std::string cmd = "glslangValidator " + args + " -o '" + spv + "' '" + input + "' > '" + log + "' 2>&1";
   const int rc = std::system(cmd.c_str());
   std::ifstream in(spv, std::ios::binary);
   std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::stringstream out;
-  out << std::ifstream(log).rdbuf();
-  std::filesystem::remove_all(dir);
   if (rc != 0 || bytes.empty() || bytes.size() % 4 != 0) {
-    throw std::runtime_error("glslangValidator (" + entry + ") failed (rc " + std::to_string(rc) + "): " + out.str());
+    std::stringstream out;
+    out << std::ifstream(log).rdbuf();
+    throw std::runtime_error("glslangValidator (" + what + ") failed (rc " + std::to_string(rc) + "): " + out.str());
   }
   std::vector<uint32_t> words(bytes.size() / 4);
   std::memcpy(words.data(), bytes.data(), bytes.size());
   return words;
 }
 
+}  // namespace
+
+std::vector<uint32_t> CompileHlsl(const std::string& text, const std::string& entry,
+                                  const std::vector<std::string>& defines) {
+  TempDir tmp("/tmp/aalab-hlsl-XXXXXX");
+  const std::string src = tmp.path + "/shader.hlsl";
+  std::ofstream(src) << text;
+  std::string args = "-D -V -S comp --hlsl-iomap --shift-UAV-binding comp 10 -e " + entry;
+  for (const auto& d : defines) args += " -D" + d;
+  return RunGlslang(args, src, tmp.path, entry);
+}
+
 std::vector<uint32_t> CompileGlslFile(const std::string& path, const std::vector<std::string>& include_dirs,
                                       const std::vector<std::string>& defines) {
-  char dir_template[] = "/tmp/aalab-glsl-XXXXXX";
-  const char* dir = mkdtemp(dir_template);
-  if (!dir) throw std::runtime_error("mkdtemp failed");
-  const std::string spv = std::string(dir) + "/shader.spv", log = std::string(dir) + "/log.txt";
-  std::string cmd = "glslangValidator -V -S comp";
-  for (const auto& i : include_dirs) cmd += " '-I" + i + "'";
-  for (const auto& d : defines) cmd += " -D" + d;
-  cmd += " -o '" + spv + "' '" + path + "' > '" + log + "' 2>&1";
-  const int rc = std::system(cmd.c_str());
-  std::ifstream in(spv, std::ios::binary);
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::stringstream out;
-  out << std::ifstream(log).rdbuf();
-  std::filesystem::remove_all(dir);
-  if (rc != 0 || bytes.empty() || bytes.size() % 4 != 0) {
-    throw std::runtime_error("glslangValidator (" + path + ") failed (rc " + std::to_string(rc) + "): " + out.str());
-  }
-  std::vector<uint32_t> words(bytes.size() / 4);
-  std::memcpy(words.data(), bytes.data(), bytes.size());
-  return words;
+  TempDir tmp("/tmp/aalab-glsl-XXXXXX");
+  std::string args = "-V -S comp";
+  for (const auto& i : include_dirs) args += " '-I" + i + "'";
+  for (const auto& d : defines) args += " -D" + d;
+  return RunGlslang(args, path, tmp.path, path);
 }
 
 std::string VkCompute::Start() { return Ctx().error; }
