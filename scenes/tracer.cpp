@@ -145,6 +145,7 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
   im.forward = basis.forward;
   im.right = basis.right;
   im.up = basis.up;
+  im.half_h = c.type == CameraType::kPerspective ? std::tan(glm::radians(c.fov_y_deg) * 0.5f) : c.height * 0.5f;
 }
 
 Tracer::~Tracer() = default;

@@ -30,6 +30,7 @@ struct Tracer::Impl {
   ToksvigChains toksvig;  // unit-normal chains of the normal maps, built when specular AA asks
   // camera basis
   glm::vec3 origin{0.0f}, forward{0.0f}, right{0.0f}, up{0.0f};
+  float half_h = 0.0f;  // tan(fov_y / 2) (perspective) or height / 2 (orthographic)
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
