@@ -242,16 +242,28 @@ float CutoutAlpha(const Tracer::Impl& im, const Scene& sc, const Material& m, co
 }
 
 bool CutoutKeeps(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
-                 glm::vec3 org, glm::vec3 dir, const Footprint& fp) {
+                 glm::vec3 org, glm::vec3 dir, const Footprint& fp, KeptTexel* fetched) {
   if (m.alpha) return EvaluatePattern(*m.alpha, srf.uv) >= m.alpha_cutoff;
   const GltfMaterial& g = *m.gltf;
   float a = g.base_factor.w;
-  if (g.base_tex.Has()) a *= HitTextures(im, sc, h, srf, org, dir, fp).Fetch(g.base_tex).w;
+  if (g.base_tex.Has()) {
+    HitTextures tex(im, sc, h, srf, org, dir, fp);
+    const glm::vec4 texel = tex.Fetch(g.base_tex);
+    a *= texel.w;
+    if (fetched) {
+      const int set = g.base_tex.texcoord == 1 ? 1 : 0;
+      fetched->valid = true;
+      fetched->set = set;
+      fetched->d = tex.d[set];
+      fetched->base = texel;
+    }
+  }
   return a >= m.alpha_cutoff;
 }
 
 glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
-                    glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& local) {
+                    glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& local,
+                    const KeptTexel* kept) {
   const GltfMaterial& g = *m.gltf;
   const bool textures = sc.Has(Effect::kTextures);
   const bool any_tex = textures && (g.base_tex.Has() || g.mr_tex.Has() || g.emissive_tex.Has() ||
@@ -261,8 +273,20 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
     ++local.texture_lookups;
     return tex.Fetch(t);
   };
+  // The alpha test fetched the base texel with the footprint on (HitTextures' default), as
+  // this fetch does whenever textures are on: the same derivatives and texel.
+  const bool reuse = kept && kept->valid && textures && g.base_tex.Has();
+  if (reuse) {
+    tex.derivs[kept->set] = true;
+    tex.d[kept->set] = kept->d;
+  }
   glm::vec4 base = g.base_factor;
-  if (textures && g.base_tex.Has()) base *= fetch(g.base_tex);
+  if (reuse) {
+    ++local.texture_lookups;
+    base *= kept->base;
+  } else if (textures && g.base_tex.Has()) {
+    base *= fetch(g.base_tex);
+  }
   if (m.shading == Shading::kUnlit) return glm::vec3(base);
 
   float metallic = g.metallic, roughness = g.roughness, occlusion = 1.0f;
