@@ -162,7 +162,7 @@ TEST(HtmlBrowser, AnyTwoRowsSideBySideWithFlipAndDifference) {
 // issue #41; every default method, a scene without edges among them: the default suite now
 // holds none), tiny. The suite chart must plot one point per method for the default quality
 // axis, and say which scene its means leave out and why.
-TEST(HtmlBrowser, DefaultSuiteOverviewHasOnePointPerMethod) {
+TEST(HtmlBrowser, SuiteOverviewHasOnePointPerMethod) {
   if (!fs::exists(kChromium)) AALAB_SKIP_OR_FAIL_UNDER_CI(std::string(kChromium) + " is not installed.");
   const fs::path work = fs::path(AALAB_BINARY_DIR) / "html_browser_suite_test";
   const fs::path out = work / "run";
