@@ -322,6 +322,30 @@ double FoldCoord(double x, int n, WrapMode mode) {
 
 }  // namespace
 
+namespace {
+
+/// WrapIndex of x0 and x0 + 1: an in-range pair maps to itself in every wrap mode, so the
+/// common case needs no integer division.
+inline void WrapPair(int x0, int n, WrapMode mode, int* i0, int* i1) {
+  if (x0 >= 0 && x0 < n - 1) {
+    *i0 = x0;
+    *i1 = x0 + 1;
+    return;
+  }
+  *i0 = WrapIndex(x0, n, mode);
+  *i1 = WrapIndex(x0 + 1, n, mode);
+}
+
+/// The bilinear blend of the four taps `at(i, j)`, in the one order every format shares.
+template <typename At>
+inline glm::vec4 Blend4(const At& at, int i0, int i1, int j0, int j1, float ax, float ay) {
+  const glm::vec4 top = at(i0, j0) * (1.0f - ax) + at(i1, j0) * ax;
+  const glm::vec4 bot = at(i0, j1) * (1.0f - ax) + at(i1, j1) * ax;
+  return top * (1.0f - ay) + bot * ay;
+}
+
+}  // namespace
+
 glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t) {
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return level.Fetch(0);
   const double x = FoldCoord(static_cast<double>(uv.x) * level.width - 0.5, level.width, wrap_s);
@@ -329,12 +353,38 @@ glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, W
   const double fx = std::floor(x), fy = std::floor(y);
   const float ax = static_cast<float>(x - fx), ay = static_cast<float>(y - fy);
   const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
-  const int i0 = WrapIndex(x0, level.width, wrap_s), i1 = WrapIndex(x0 + 1, level.width, wrap_s);
-  const int j0 = WrapIndex(y0, level.height, wrap_t), j1 = WrapIndex(y0 + 1, level.height, wrap_t);
-  auto at = [&](int i, int j) { return level.Fetch(static_cast<size_t>(j) * level.width + i); };
-  const glm::vec4 top = at(i0, j0) * (1.0f - ax) + at(i1, j0) * ax;
-  const glm::vec4 bot = at(i0, j1) * (1.0f - ax) + at(i1, j1) * ax;
-  return top * (1.0f - ay) + bot * ay;
+  int i0, i1, j0, j1;
+  WrapPair(x0, level.width, wrap_s, &i0, &i1);
+  WrapPair(y0, level.height, wrap_t, &j0, &j1);
+  const size_t w = static_cast<size_t>(level.width);
+  // The 8-bit formats decode by table with the tables and the format looked up once per
+  // tap group, not per texel (MipLevel::Fetch's values, the same blend: the same bits).
+  switch (level.format) {
+    case TexelFormat::kSrgb8: {
+      const uint8_t* b = level.bytes.data();
+      const float* s = Srgb8Table();
+      const float* u = Unorm8Table();
+      return Blend4(
+          [&](int i, int j) {
+            const uint8_t* p = b + 4 * (static_cast<size_t>(j) * w + static_cast<size_t>(i));
+            return glm::vec4(s[p[0]], s[p[1]], s[p[2]], u[p[3]]);
+          },
+          i0, i1, j0, j1, ax, ay);
+    }
+    case TexelFormat::kUnorm8: {
+      const uint8_t* b = level.bytes.data();
+      const float* u = Unorm8Table();
+      return Blend4(
+          [&](int i, int j) {
+            const uint8_t* p = b + 4 * (static_cast<size_t>(j) * w + static_cast<size_t>(i));
+            return glm::vec4(u[p[0]], u[p[1]], u[p[2]], u[p[3]]);
+          },
+          i0, i1, j0, j1, ax, ay);
+    }
+    default:
+      return Blend4([&](int i, int j) { return level.Fetch(static_cast<size_t>(j) * w + static_cast<size_t>(i)); }, i0,
+                    i1, j0, j1, ax, ay);
+  }
 }
 
 namespace {

@@ -145,6 +145,7 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
   im.forward = basis.forward;
   im.right = basis.right;
   im.up = basis.up;
+  im.half_h = c.type == CameraType::kPerspective ? std::tan(glm::radians(c.fov_y_deg) * 0.5f) : c.height * 0.5f;
 }
 
 Tracer::~Tracer() = default;
@@ -336,12 +337,13 @@ void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const 
 
 void tracer_detail::ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org,
                                        const glm::vec3* dir, int count, float* tnear, float* tfar, Hit* hits,
-                                       LayerScratch& ls, TraceCounters& local, const Footprint& fp) {
+                                       LayerScratch& ls, TraceCounters& local, const Footprint& fp, KeptTexel* kept) {
   // Layer 0 holds every ray in order: trace straight into `hits` (same packets as a copy).
   IntersectRays(im.scene, org, dir, tnear, tfar, nullptr, count, hits, true);
   local.primary_rays += static_cast<uint64_t>(count);
   local.coverage_rays += static_cast<uint64_t>(count);
   if (!alpha && !im.any_cull) return;
+  if (kept) std::fill(kept, kept + count, KeptTexel{});
   std::vector<int>& active = ls.active;
   std::vector<int>& next = ls.next;
   active.clear();
@@ -357,9 +359,13 @@ void tracer_detail::ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, 
       const bool culled = im.any_cull && BackFaceCulled(sc, m, hk, dir[i]);
       if (!culled) {
         if (!alpha || !m.CutOut()) continue;
-        const Surface srf = SurfaceAt(sc, hk, org[i], dir[i]);
+        const Surface srf = SurfaceAt(sc, hk, org[i], dir[i], true, false);  // the test reads uv only
         ++local.texture_lookups;
-        if (CutoutKeeps(im, sc, m, hk, srf, org[i], dir[i], fp)) continue;
+        KeptTexel fetched;
+        if (CutoutKeeps(im, sc, m, hk, srf, org[i], dir[i], fp, kept ? &fetched : nullptr)) {
+          if (kept) kept[i] = fetched;
+          continue;
+        }
       }
       // Rejected: continue just past this hit.
       hits[i] = Hit{};
@@ -387,6 +393,7 @@ struct TraceScratch {
   std::vector<glm::vec3> org, dir;
   std::vector<float> tnear, tfar;
   std::vector<Hit> hits;
+  std::vector<KeptTexel> kept;
   LayerScratch layers;
   ShadeScratch shade;
 };
@@ -420,10 +427,12 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
   Hit* hits = Sized(S.hits, n_all);
   const bool alpha = sc.Has(Effect::kAlphaTest) && im.any_alpha;
   const Footprint fp{width, height, footprint};
-  ClosestVisibleHits(im, sc, alpha, org, dir, count, tnear, tfar, hits, S.layers, local, fp);
+  // With glTF cut-outs, the alpha test's base texel and footprint go on to the shading.
+  KeptTexel* kept = alpha && im.any_gltf ? Sized(S.kept, n_all) : nullptr;
+  ClosestVisibleHits(im, sc, alpha, org, dir, count, tnear, tfar, hits, S.layers, local, fp, kept);
 
   // 3. One shading per sample.
-  ShadeHits(im, sc, alpha, hits, org, dir, count, S.shade, out, local, fp);
+  ShadeHits(im, sc, alpha, hits, org, dir, count, S.shade, out, local, fp, kept);
   CompositeBlended(im, sc, alpha, hits, org, dir, count, out, local, fp);
   if (counters) *counters += local;
 }

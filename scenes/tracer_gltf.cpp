@@ -40,7 +40,7 @@ bool OffsetRays(const Tracer::Impl& im, const Camera& cam, glm::vec3 org, glm::v
                 Ray* ry) {
   const bool persp = cam.type == CameraType::kPerspective;
   const float aspect = static_cast<float>(fp.width) / static_cast<float>(fp.height);
-  const float half_h = persp ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  const float half_h = im.half_h;  // the camera's, computed once (Tracer::Impl)
   const float sx = 2.0f * fp.tex.px / static_cast<float>(fp.width) * half_h * aspect;
   const float sy = 2.0f * fp.tex.px / static_cast<float>(fp.height) * half_h;
   if (!persp) {
@@ -56,31 +56,50 @@ bool OffsetRays(const Tracer::Impl& im, const Camera& cam, glm::vec3 org, glm::v
   return true;
 }
 
-/// The barycentric weights (of vertices 1 and 2) where ray r meets the plane of triangle
-/// `prim`, extrapolated outside the triangle as a GPU's helper lanes do, in double.
-bool BaryOnPlane(const Shape& s, unsigned prim, const Ray& r, double* w1, double* w2) {
+/// The plane of triangle `prim` in double, with the Gram terms every ray's barycentrics
+/// share (computed once for the camera ray and its two offset rays).
+struct TrianglePlane {
+  glm::dvec3 p0, e1, e2, n;
+  double d00, d01, d11, den;
+};
+
+TrianglePlane PlaneOf(const Shape& s, unsigned prim) {
   const glm::uvec3 tri = s.triangles[prim];
-  const glm::dvec3 p0(s.positions[tri.x]), e1 = glm::dvec3(s.positions[tri.y]) - p0,
-                                           e2 = glm::dvec3(s.positions[tri.z]) - p0;
-  const glm::dvec3 n = glm::cross(e1, e2);
-  const double denom = glm::dot(n, glm::dvec3(r.d));
+  TrianglePlane tp;
+  tp.p0 = glm::dvec3(s.positions[tri.x]);
+  tp.e1 = glm::dvec3(s.positions[tri.y]) - tp.p0;
+  tp.e2 = glm::dvec3(s.positions[tri.z]) - tp.p0;
+  tp.n = glm::cross(tp.e1, tp.e2);
+  tp.d00 = glm::dot(tp.e1, tp.e1);
+  tp.d01 = glm::dot(tp.e1, tp.e2);
+  tp.d11 = glm::dot(tp.e2, tp.e2);
+  tp.den = tp.d00 * tp.d11 - tp.d01 * tp.d01;
+  return tp;
+}
+
+/// The barycentric weights (of vertices 1 and 2) where ray r meets the triangle's plane,
+/// extrapolated outside the triangle as a GPU's helper lanes do, in double.
+bool BaryOnPlane(const TrianglePlane& tp, const Ray& r, double* w1, double* w2) {
+  const double denom = glm::dot(tp.n, glm::dvec3(r.d));
   if (!(std::fabs(denom) > 1e-300)) return false;
-  const double t = glm::dot(n, p0 - glm::dvec3(r.o)) / denom;
+  const double t = glm::dot(tp.n, tp.p0 - glm::dvec3(r.o)) / denom;
   if (!(t > 0.0) || !std::isfinite(t)) return false;
-  const glm::dvec3 q = glm::dvec3(r.o) + glm::dvec3(r.d) * t - p0;
-  const double d00 = glm::dot(e1, e1), d01 = glm::dot(e1, e2), d11 = glm::dot(e2, e2);
-  const double d20 = glm::dot(q, e1), d21 = glm::dot(q, e2);
-  const double den = d00 * d11 - d01 * d01;
-  if (!(den > 0.0)) return false;
-  *w1 = (d11 * d20 - d01 * d21) / den;
-  *w2 = (d00 * d21 - d01 * d20) / den;
+  const glm::dvec3 q = glm::dvec3(r.o) + glm::dvec3(r.d) * t - tp.p0;
+  const double d20 = glm::dot(q, tp.e1), d21 = glm::dot(q, tp.e2);
+  if (!(tp.den > 0.0)) return false;
+  *w1 = (tp.d11 * d20 - tp.d01 * d21) / tp.den;
+  *w2 = (tp.d00 * d21 - tp.d01 * d20) / tp.den;
   return std::isfinite(*w1) && std::isfinite(*w2);
 }
 
+bool BaryOnPlane(const Shape& s, unsigned prim, const Ray& r, double* w1, double* w2) {
+  return BaryOnPlane(PlaneOf(s, prim), r, w1, w2);
+}
+
 /// The texture coordinate where ray r meets the plane of triangle `prim` (BaryOnPlane).
-bool UvOnPlane(const Shape& s, unsigned prim, const Ray& r, glm::dvec2* uv, int set = 0) {
+bool UvOnPlane(const Shape& s, unsigned prim, const TrianglePlane& tp, const Ray& r, glm::dvec2* uv, int set = 0) {
   double b1, b2;
-  if (!BaryOnPlane(s, prim, r, &b1, &b2)) return false;
+  if (!BaryOnPlane(tp, r, &b1, &b2)) return false;
   const glm::uvec3 tri = s.triangles[prim];
   const std::vector<glm::vec2>& uvs = set == 1 ? s.uvs1 : s.uvs;
   const glm::dvec2 uv0(uvs[tri.x]);
@@ -166,12 +185,17 @@ UvDerivs HitUvDerivs(const Tracer::Impl& im, const Scene& sc, const Hit& h, glm:
   Ray rx, ry;
   glm::dvec2 uv, ux, uy;
   constexpr float kHuge = 1e30f;  // an offset ray beyond the plane: the coarsest level
-  if (!OffsetRays(im, sc.camera, org, dir, fp, &rx, &ry) || !UvOnPlane(s, h.prim, {org, dir}, &uv, set)) {
+  if (!OffsetRays(im, sc.camera, org, dir, fp, &rx, &ry)) {
     d.dx = d.dy = glm::vec2(kHuge, 0.0f);
     return d;
   }
-  d.dx = UvOnPlane(s, h.prim, rx, &ux, set) ? glm::vec2(ux - uv) : glm::vec2(kHuge, 0.0f);
-  d.dy = UvOnPlane(s, h.prim, ry, &uy, set) ? glm::vec2(uy - uv) : glm::vec2(kHuge, 0.0f);
+  const TrianglePlane tp = PlaneOf(s, h.prim);
+  if (!UvOnPlane(s, h.prim, tp, {org, dir}, &uv, set)) {
+    d.dx = d.dy = glm::vec2(kHuge, 0.0f);
+    return d;
+  }
+  d.dx = UvOnPlane(s, h.prim, tp, rx, &ux, set) ? glm::vec2(ux - uv) : glm::vec2(kHuge, 0.0f);
+  d.dy = UvOnPlane(s, h.prim, tp, ry, &uy, set) ? glm::vec2(uy - uv) : glm::vec2(kHuge, 0.0f);
   return d;
 }
 
@@ -218,16 +242,28 @@ float CutoutAlpha(const Tracer::Impl& im, const Scene& sc, const Material& m, co
 }
 
 bool CutoutKeeps(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
-                 glm::vec3 org, glm::vec3 dir, const Footprint& fp) {
+                 glm::vec3 org, glm::vec3 dir, const Footprint& fp, KeptTexel* fetched) {
   if (m.alpha) return EvaluatePattern(*m.alpha, srf.uv) >= m.alpha_cutoff;
   const GltfMaterial& g = *m.gltf;
   float a = g.base_factor.w;
-  if (g.base_tex.Has()) a *= HitTextures(im, sc, h, srf, org, dir, fp).Fetch(g.base_tex).w;
+  if (g.base_tex.Has()) {
+    HitTextures tex(im, sc, h, srf, org, dir, fp);
+    const glm::vec4 texel = tex.Fetch(g.base_tex);
+    a *= texel.w;
+    if (fetched) {
+      const int set = g.base_tex.texcoord == 1 ? 1 : 0;
+      fetched->valid = true;
+      fetched->set = set;
+      fetched->d = tex.d[set];
+      fetched->base = texel;
+    }
+  }
   return a >= m.alpha_cutoff;
 }
 
 glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
-                    glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& local) {
+                    glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& local,
+                    const KeptTexel* kept) {
   const GltfMaterial& g = *m.gltf;
   const bool textures = sc.Has(Effect::kTextures);
   const bool any_tex = textures && (g.base_tex.Has() || g.mr_tex.Has() || g.emissive_tex.Has() ||
@@ -237,8 +273,20 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
     ++local.texture_lookups;
     return tex.Fetch(t);
   };
+  // The alpha test fetched the base texel with the footprint on (HitTextures' default), as
+  // this fetch does whenever textures are on: the same derivatives and texel.
+  const bool reuse = kept && kept->valid && textures && g.base_tex.Has();
+  if (reuse) {
+    tex.derivs[kept->set] = true;
+    tex.d[kept->set] = kept->d;
+  }
   glm::vec4 base = g.base_factor;
-  if (textures && g.base_tex.Has()) base *= fetch(g.base_tex);
+  if (reuse) {
+    ++local.texture_lookups;
+    base *= kept->base;
+  } else if (textures && g.base_tex.Has()) {
+    base *= fetch(g.base_tex);
+  }
   if (m.shading == Shading::kUnlit) return glm::vec3(base);
 
   float metallic = g.metallic, roughness = g.roughness, occlusion = 1.0f;

@@ -30,6 +30,7 @@ struct Tracer::Impl {
   ToksvigChains toksvig;  // unit-normal chains of the normal maps, built when specular AA asks
   // camera basis
   glm::vec3 origin{0.0f}, forward{0.0f}, right{0.0f}, up{0.0f};
+  float half_h = 0.0f;  // tan(fov_y / 2) (perspective) or height / 2 (orthographic)
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -93,6 +94,16 @@ void OccludedRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, co
 void CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width, int height,
                 glm::vec3* org, glm::vec3* dir);
 
+/// What the alpha test of a kept glTF cut-out fetched at a camera ray's final hit: the base
+/// texel and the UV derivatives of its coordinate set. The shading of the same hit fetches
+/// exactly these (the same hit, ray and footprint), so it reuses them instead.
+struct KeptTexel {
+  bool valid = false;
+  int set = 0;
+  UvDerivs d;
+  glm::vec4 base{0.0f};
+};
+
 /// Working memory of the continuation loops, reused from call to call.
 struct LayerScratch {
   std::vector<Hit> layer_hits;
@@ -103,15 +114,18 @@ struct LayerScratch {
 /// own position: with `alpha`, a ray whose hit is cut out continues just past it (a new packet
 /// round) up to kMaxAlphaLayers rounds; so does a ray that meets the back of a single-sided
 /// glTF material (always: a rasterizer culls at coverage). Adds the rays to counters.primary_rays and
-/// counters.coverage_rays, the alpha lookups to counters.texture_lookups.
+/// counters.coverage_rays, the alpha lookups to counters.texture_lookups. With `kept` (count
+/// entries), kept[i] receives the texel of ray i's final hit's alpha test (valid only where
+/// a glTF cut-out with a base texture was tested and kept).
 void ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org, const glm::vec3* dir,
                         int count, float* tnear, float* tfar, Hit* hits, LayerScratch& ls, TraceCounters& counters,
-                        const Footprint& fp);
+                        const Footprint& fp, KeptTexel* kept = nullptr);
 
 /// True when the cut-out material `m` keeps the hit h (procedural pattern t >= cutoff, or glTF
-/// MASK alpha >= alphaCutoff, the alpha filtered with the ray's footprint).
+/// MASK alpha >= alphaCutoff, the alpha filtered with the ray's footprint). Reads srf.uv only.
+/// With `fetched`, a glTF base-texture fetch is recorded there (valid set true).
 bool CutoutKeeps(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
-                 glm::vec3 org, glm::vec3 dir, const Footprint& fp);
+                 glm::vec3 org, glm::vec3 dir, const Footprint& fp, KeptTexel* fetched = nullptr);
 
 /// The continuous alpha of a cut-out material at a hit (procedural: the pattern value t; glTF
 /// MASK: baseColorFactor.a × the filtered texture alpha), for alpha-to-coverage.
@@ -154,9 +168,11 @@ struct HitTextures {
 };
 
 /// Radiance of a glTF material (unlit or the metallic-roughness BRDF) at a camera-ray hit,
-/// with `blocked` the shadowed-light bits. Adds its texture fetches to counters.
+/// with `blocked` the shadowed-light bits. Adds its texture fetches to counters. `kept` (may be
+/// null): the alpha test's fetch at this very hit (ClosestVisibleHits), reused when valid.
 glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
-                    glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& counters);
+                    glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& counters,
+                    const KeptTexel* kept = nullptr);
 
 /// Deepest chain of blended (glTF BLEND) surfaces composited along one ray; the last one
 /// is drawn opaque.
@@ -195,9 +211,10 @@ struct ShadeScratch {
 /// surface attributes, shadow rays (alpha-tested when `alpha`), lambert, specular and
 /// textures. out[i] receives radiance, the surface index and the shadowed-light bits;
 /// hits with shape < 0 get the background. Adds shadow rays and colour lookups to counters.
+/// `kept` (n entries, may be null): ClosestVisibleHits' record of the same hits.
 void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* hits, const glm::vec3* org,
                const glm::vec3* dir, int n, ShadeScratch& scratch, SampleResult* out, TraceCounters& counters,
-               const Footprint& fp);
+               const Footprint& fp, const KeptTexel* kept = nullptr);
 
 }  // namespace tracer_detail
 }  // namespace aalab

@@ -92,7 +92,7 @@ void ShadowRays(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* 
       if (h[k].shape < 0) continue;
       const Material& mat = sc.materials[sc.shapes[h[k].shape].material];
       if (alpha && mat.CutOut()) {
-        const Surface srf = SurfaceAt(sc, h[k], so[r], sd[r]);
+        const Surface srf = SurfaceAt(sc, h[k], so[r], sd[r], true, false);  // the test reads uv only
         ++local.texture_lookups;
         if (!CutoutKeeps(im, sc, mat, h[k], srf, so[r], sd[r], Footprint{1, 1, {0.0f, 1}})) {
           stn[r] = ContinuePast(h[k].t);
@@ -185,7 +185,7 @@ Surface SurfaceAt(const Scene& scene, const Hit& h, const glm::vec3& org, const 
 
 void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* hits, const glm::vec3* org,
                const glm::vec3* dir, int n, ShadeScratch& S, SampleResult* out, TraceCounters& local,
-               const Footprint& fp) {
+               const Footprint& fp, const KeptTexel* kept) {
   const bool lambert = sc.Has(Effect::kLambert);
   const bool shadows = sc.Has(Effect::kShadows);
   const bool specular = sc.Has(Effect::kSpecular);
@@ -223,7 +223,7 @@ void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* h
       ++local.shading_evals;
       const Material& m = sc.materials[sc.shapes[hits[i].shape].material];
       if (m.gltf) {
-        c = ShadeGltf(im, sc, m, hits[i], surf[i], org[i], dir[i], blocked[i], fp, local);
+        c = ShadeGltf(im, sc, m, hits[i], surf[i], org[i], dir[i], blocked[i], fp, local, kept ? kept + i : nullptr);
         r.rgb[0] = c.x;
         r.rgb[1] = c.y;
         r.rgb[2] = c.z;

@@ -58,8 +58,8 @@ TEST(RasterCli, ExportGeometryRefusesWhatTheRasterPathCannotDraw) {
   EXPECT_NE(r.output.find("analytic shape"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "geo"));
   EXPECT_FALSE(fs::exists(dir / "geo.partial"));
-  // --skip-unsupported takes the default suite's triangle scenes and names the others.
-  const CmdResult s = Aalab("export-geometry --suite default --skip-unsupported --out " + (dir / "all").string());
+  // --skip-unsupported takes the synthetic suite's triangle scenes and names the others.
+  const CmdResult s = Aalab("export-geometry --suite synthetic --skip-unsupported --out " + (dir / "all").string());
   ASSERT_EQ(s.code, 0) << s.output;
   EXPECT_TRUE(fs::exists(dir / "all" / "wedges.geom"));
   EXPECT_TRUE(fs::exists(dir / "all" / "mesh.geom"));
