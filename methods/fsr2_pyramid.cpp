@@ -32,7 +32,8 @@
 // and the tail's reset leave it there) any order gives the same bits.
 //
 // Arithmetic as Mesa evaluates the shader: log(x) is log2(x)·0.6931472 (float(1/log2 e)) and
-// exp(x) is exp2(x·1.442695) (float(log2 e)), pow(2, y) is exp2(y); log2 and exp2 are the C
+// exp(x) is exp2(x·1.442695) (float(log2 e)), and the exposure's pow(2, log2(y)) is y (Mesa
+// folds it: ExposureFromLavg); log2 and exp2 are the C
 // library's by default (lavapipe's are polynomials a few ulps away: docs/fsr2.md measures what
 // that changes; Fsr2Transcendentals lets the oracle put lavapipe's in). min/max are
 // std::fmin/fmax (IEEE minNum/maxNum). The colour is sampled with FSR2's LINEAR CLAMP sampler
@@ -186,11 +187,12 @@ class Pass {
   }
 
  private:
-  // ComputeAutoExposureFromLavg.
+  // ComputeAutoExposureFromLavg: Lmax = 78/(0.65·100) · pow(2, log2(Lavg·100/12.5)), 1/Lmax.
+  // pow(2, log2(y)) is y: Mesa folds it so (pow → exp2(log2(2)·…) → exp2(log2(y)) → y), and the
+  // port computes y, the exact value, with no transcendental in between.
   float ExposureFromLavg(float lavg_log) const {
     const float lavg = m_.Exp(lavg_log);
-    const float exposure_iso100 = m_.Log2((lavg * 100.0f) / 12.5f);
-    const float lmax = (78.0f / (0.65f * 100.0f)) * m_.Exp2(exposure_iso100);
+    const float lmax = (78.0f / (0.65f * 100.0f)) * ((lavg * 100.0f) / 12.5f);
     return 1.0f / lmax;
   }
 

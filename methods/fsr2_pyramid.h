@@ -42,7 +42,7 @@ struct Fsr2PyramidState {
 Fsr2PyramidState Fsr2PyramidReset(const Fsr2Constants& k);
 
 /// The transcendental functions the pass uses, as Mesa lowers GLSL's: log(x) = log2(x)·(1/log2 e),
-/// exp(x) = exp2(x·log2 e), pow(2, y) = exp2(y·log2 2). Empty: the C library's log2f/exp2f.
+/// exp(x) = exp2(x·log2 e) (the exposure's pow(2, log2(y)) is y). Empty: the C library's log2f/exp2f.
 /// (A test may put the oracle's own implementation's values here to separate those few ulps from
 /// the rest of the arithmetic: tests/oracle/fsr2_pyramid_oracle_test.cpp.)
 struct Fsr2Transcendentals {
