@@ -37,8 +37,11 @@
 // library's by default (lavapipe's are polynomials a few ulps away: docs/fsr2.md measures what
 // that changes; Fsr2Transcendentals lets the oracle put lavapipe's in). min/max are
 // std::fmin/fmax (IEEE minNum/maxNum). The colour is sampled with FSR2's LINEAR CLAMP sampler
-// as lavapipe filters float textures (fractions in float, a + f·(b − a) per axis), the same
-// model as the depth-clip pass's (methods/fsr2.cpp).
+// as lavapipe filters float textures: fractions in float and each lerp a + f·(b − a) as ONE
+// fused multiply-add (lavapipe's LLVM fuses them with the CPU's FMA). Measured: with unfused
+// lerps (the depth-clip pass's model in methods/fsr2.cpp, where an 8-bit store hides the
+// difference) 2 of 370 outputs differ when the colour texture is larger than the render; with
+// fused lerps none. A GPU's texture unit filters with 8-bit fractions instead (core/sampler.h).
 #include "methods/fsr2_pyramid.h"
 
 #include <algorithm>
@@ -67,7 +70,9 @@ struct Math {
 
 float Reduce4(float v0, float v1, float v2, float v3) { return (((v0 + v1) + v2) + v3) * 0.25f; }
 
-// A bilinear sample of channel c at uv, LINEAR filtering, CLAMP_TO_EDGE.
+// A bilinear sample of channel c at uv, LINEAR filtering, CLAMP_TO_EDGE, as lavapipe filters a
+// float texture: texel coordinate uv·size − 0.5 (two roundings), fraction u − floor(u), and
+// lerp(lerp(a, b, fx), lerp(c, d, fx), fy) with each lerp a + f·(b − a) FUSED (one rounding).
 float SampleLinear(const Fsr2Plane& t, float uv_x, float uv_y, int c) {
   const float u = uv_x * static_cast<float>(t.w) - 0.5f, v = uv_y * static_cast<float>(t.h) - 0.5f;
   const float x0f = std::floor(u), y0f = std::floor(v);
@@ -75,8 +80,9 @@ float SampleLinear(const Fsr2Plane& t, float uv_x, float uv_y, int c) {
   auto at = [&](int x, int y) { return t.Fetch(std::clamp(x, 0, t.w - 1), std::clamp(y, 0, t.h - 1), c); };
   const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
   const float a = at(x0, y0), b = at(x0 + 1, y0), cc = at(x0, y0 + 1), d = at(x0 + 1, y0 + 1);
-  const float top = a + fx * (b - a), bottom = cc + fx * (d - cc);
-  return top + fy * (bottom - top);
+  // Each lerp one fused multiply-add, as lavapipe's filter runs (the difference b − a rounded first).
+  const float top = std::fma(fx, b - a, a), bottom = std::fma(fx, d - cc, cc);
+  return std::fma(fy, bottom - top, top);
 }
 
 // SpdLoadSourceImage: the log luma of render pixel (x, y) (0 past the render size).

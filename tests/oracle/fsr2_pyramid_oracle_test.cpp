@@ -98,15 +98,23 @@ Fsr2Plane MakeColor(Content c, int w, int h, int frame) {
   return p;
 }
 
-Fsr2Constants MakeConstants(int w, int h) {
+// A render of w × h in a max render size (and colour texture) of mw × mh.
+struct Size {
+  int w, h, mw, mh;
+};
+
+Fsr2Constants MakeConstants(const Size& z) {
+  const int w = z.w, h = z.h;
   Fsr2Constants k;
-  k.render_size[0] = k.max_render_size[0] = k.input_color_size[0] = w;
-  k.render_size[1] = k.max_render_size[1] = k.input_color_size[1] = h;
+  k.render_size[0] = w;
+  k.render_size[1] = h;
+  k.max_render_size[0] = k.input_color_size[0] = z.mw;
+  k.max_render_size[1] = k.input_color_size[1] = z.mh;
   k.display_size[0] = w * 3 / 2;
   k.display_size[1] = h * 3 / 2;
   k.luma_mip_level = 4;  // FFX_FSR2_SHADING_CHANGE_MIP_LEVEL, as the API sets it
-  k.luma_mip_size[0] = static_cast<int>(static_cast<float>(w) / 32.0f);
-  k.luma_mip_size[1] = static_cast<int>(static_cast<float>(h) / 32.0f);
+  k.luma_mip_size[0] = static_cast<int>(static_cast<float>(z.mw) / 32.0f);  // max render size / (2 << 4)
+  k.luma_mip_size[1] = static_cast<int>(static_cast<float>(z.mh) / 32.0f);
   const Fsr2Jitter j = Fsr2JitterOffset(3, Fsr2JitterPhaseCount(w, k.display_size[0]));
   k.jitter[0] = j.x;  // (−0.375, −0.0556): a bilinear sample between four texels
   k.jitter[1] = j.y;
@@ -212,14 +220,15 @@ struct Totals {
 
 // Two frames of one size and content through the shader and both ports; returns the outputs
 // compared (mip texels + 2 exposure floats + the counter, per frame) for each port.
-void RunCase(int w, int h, Content c, Totals* libm, Totals* lavapipe) {
-  const Fsr2Constants k = MakeConstants(w, h);
+void RunCase(const Size& z, Content c, Totals* libm, Totals* lavapipe) {
+  const int w = z.w, h = z.h;
+  const Fsr2Constants k = MakeConstants(z);
   const Fsr2SpdDispatch spd = Fsr2SpdSetup(w, h);
   Fsr2Options o;
   o.half_toward_zero = true;  // lavapipe's r16f stores
   Fsr2PyramidState shader = Fsr2PyramidReset(k), port = shader, exact = shader;
   for (int frame = 0; frame < 2; ++frame) {
-    const Fsr2Plane color = MakeColor(c, w, h, frame);
+    const Fsr2Plane color = MakeColor(c, z.mw, z.mh, frame);
     oracle::RunFsr2PyramidShader(k, spd, color, &shader);
     Fsr2LuminancePyramid(k, spd, color, &port, o);
     // The port again with lavapipe's log2/exp2, repeated until it asks for no new argument.
@@ -247,12 +256,13 @@ void RunCase(int w, int h, Content c, Totals* libm, Totals* lavapipe) {
     const Diff dl = Compare(port, shader), de = Compare(exact, shader);
     const int n = dl.luma_n + dl.mip5_n + 3;
     std::printf(
-        "  %dx%d %-8s frame %d (mips %u, %u groups): exposure %.6g, log avg %.6g | C library log2/exp2: luma mip "
+        "  %dx%d (of %dx%d) %-8s frame %d (mips %u, %u groups): exposure %.6g, log avg %.6g | C library log2/exp2: "
+        "luma mip "
         "%d/%d, mip 5 %d/%d, exposure %s, log avg %s (rel %.2g), max %d half step(s) | lavapipe's: %d/%d identical\n",
-        w, h, Name(c), frame, spd.c.mips, spd.c.num_work_groups, shader.auto_exposure[0], shader.auto_exposure[1],
-        dl.luma_n - dl.luma, dl.luma_n, dl.mip5_n - dl.mip5, dl.mip5_n, dl.exposure_differs ? "differs" : "same",
-        dl.lavg_differs ? "differs" : "same", dl.exposure_rel, dl.max_half_steps,
-        n - (de.luma + de.mip5 + de.exposure + de.counter), n);
+        w, h, z.mw, z.mh, Name(c), frame, spd.c.mips, spd.c.num_work_groups, shader.auto_exposure[0],
+        shader.auto_exposure[1], dl.luma_n - dl.luma, dl.luma_n, dl.mip5_n - dl.mip5, dl.mip5_n,
+        dl.exposure_differs ? "differs" : "same", dl.lavg_differs ? "differs" : "same", dl.exposure_rel,
+        dl.max_half_steps, n - (de.luma + de.mip5 + de.exposure + de.counter), n);
     libm->total += n;
     libm->identical += n - (dl.luma + dl.mip5 + dl.exposure + dl.counter);
     lavapipe->total += n;
@@ -267,11 +277,11 @@ void RunCase(int w, int h, Content c, Totals* libm, Totals* lavapipe) {
   }
 }
 
-void RunSizes(const std::vector<std::pair<int, int>>& sizes) {
+void RunSizes(const std::vector<Size>& sizes) {
   Totals libm, lavapipe;
-  for (const auto& [w, h] : sizes) {
+  for (const Size& z : sizes) {
     for (Content c : {Content::kFlat, Content::kGradient, Content::kHdr, Content::kStripes, Content::kBlack}) {
-      RunCase(w, h, c, &libm, &lavapipe);
+      RunCase(z, c, &libm, &lavapipe);
     }
   }
   std::printf("  identical outputs: %ld/%ld with the C library's log2/exp2, %ld/%ld with lavapipe's\n", libm.identical,
@@ -282,11 +292,17 @@ void RunSizes(const std::vector<std::pair<int, int>>& sizes) {
 
 // One workgroup (40×24: 5 mips, the exposure from mip 4) and two without the atomic (100×60:
 // 6 mips, the exposure from workgroup (0,0)'s mip 5 alone).
-TEST_F(Fsr2PyramidOracle, SmallRendersWithoutTheAtomicTail) { RunSizes({{40, 24}, {100, 60}}); }
+TEST_F(Fsr2PyramidOracle, SmallRendersWithoutTheAtomicTail) { RunSizes({{40, 24, 40, 24}, {100, 60, 100, 60}}); }
 
 // 150×90 (7 mips, 6 groups), 300×170 (8 mips, 15 groups), 530×290 (9 mips, 45 groups): the last
 // workgroup reads mip 5 back and reduces on to the exposure.
-TEST_F(Fsr2PyramidOracle, LargerRendersThroughTheGlobalAtomic) { RunSizes({{150, 90}, {300, 170}, {530, 290}}); }
+TEST_F(Fsr2PyramidOracle, LargerRendersThroughTheGlobalAtomic) {
+  RunSizes({{150, 90, 150, 90}, {300, 170, 300, 170}, {530, 290, 530, 290}});
+}
+
+// Dynamic resolution: a 150×90 render in a 200×120 colour texture and max render size (the
+// colour's UV clamped to the render, mip views of the larger chain: mip 4 6×3, mip 5 3×1).
+TEST_F(Fsr2PyramidOracle, RenderBelowTheMaxRenderSize) { RunSizes({{150, 90, 200, 120}, {100, 60, 130, 70}}); }
 
 // The maximum-bias table of methods/fsr2_tables.cpp against all 256 numbers of the pinned
 // api/ffx_fsr2_maximum_bias.h (parsed here, as text).
