@@ -16,6 +16,10 @@
 //     negative frame index, which the API would map to a Halton index ≤ 0 (jitter −0.5).
 //   - R16_SNORM to float: max(code / 32767, −1), the division correctly rounded. Vulkan and
 //     D3D define the conversion by that formula; hardware may differ in the last bit.
+//   - Fsr2NextFrameConstants is ffxFsr2ContextDispatch's constant update. Where the dispatch's
+//     render size is 0 the API takes the colour's size for cbFSR2 but still divides by the 0
+//     for the field of view, the depth parameters and the phase count; aalab uses the colour's
+//     size there too. The float math functions (tan, atan, sinf, cosf) are the C library's.
 // Where the 2.2.1 shaders read these textures: the Lanczos LUT only with
 // FFX_FSR2_OPTION_UPSAMPLE_USE_LANCZOS_TYPE=1 (the default is 2, the polynomial
 // approximation; reprojection uses 0, the reference sinc), and SampleUpsampleMaximumBias is
@@ -25,6 +29,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
@@ -134,6 +140,101 @@ std::array<float, kFsr2MaximumBiasSize * kFsr2MaximumBiasSize> Fsr2MaximumBiasLu
   std::array<float, kFsr2MaximumBiasSize * kFsr2MaximumBiasSize> out{};
   for (size_t i = 0; i < codes.size(); ++i) out[i] = Fsr2Snorm16ToFloat(codes[i]);
   return out;
+}
+
+namespace {
+
+// setupDeviceDepthToViewSpaceDepthParams.
+void DeviceToViewDepth(const Fsr2ContextParams& ctx, const Fsr2DispatchParams& p, int render_w, int render_h,
+                       float out[4]) {
+  float lo = std::min(p.camera_near, p.camera_far), hi = std::max(p.camera_near, p.camera_far);
+  if (ctx.inverted_depth) std::swap(lo, hi);
+  const float q = hi / (lo - hi);
+  const float eps = std::numeric_limits<float>::epsilon();  // FLT_EPSILON
+  const float c = ctx.infinite_depth ? (ctx.inverted_depth ? 0.0f + eps : -1.0f - eps) : q;
+  const float e = ctx.infinite_depth ? (ctx.inverted_depth ? hi : -lo - eps) : q * lo;
+  out[0] = -1.0f * c;
+  out[1] = e;
+  const float aspect = static_cast<float>(render_w) / static_cast<float>(render_h);
+  const float cot_half_fov_y = std::cos(0.5f * p.camera_fov_vertical) / std::sin(0.5f * p.camera_fov_vertical);
+  const float a = cot_half_fov_y / aspect, b = cot_half_fov_y;
+  out[2] = 1.0f / a;
+  out[3] = 1.0f / b;
+}
+
+}  // namespace
+
+Fsr2FrameSetup Fsr2NextFrameConstants(const Fsr2ContextParams& ctx, const Fsr2DispatchParams& params,
+                                      Fsr2ContextState* state) {
+  Fsr2Constants& k = state->constants;
+  const int rw = params.render_size[0] ? params.render_size[0] : params.input_color_size[0];
+  const int rh = params.render_size[1] ? params.render_size[1] : params.input_color_size[1];
+  if (rw <= 0 || rh <= 0 || ctx.max_render_size[0] <= 0 || ctx.max_render_size[1] <= 0 || ctx.display_size[0] <= 0 ||
+      ctx.display_size[1] <= 0) {
+    throw std::invalid_argument(
+        "FSR2 frame constants: the render, max render and display sizes must be positive (render " +
+        std::to_string(rw) + "x" + std::to_string(rh) + ")");
+  }
+  Fsr2FrameSetup setup;
+  setup.odd = (state->resource_frame_index & 1u) != 0;
+  setup.reset = params.reset || state->first_execution;
+  state->first_execution = false;
+
+  k.display_size[0] = ctx.display_size[0];
+  k.display_size[1] = ctx.display_size[1];
+  k.jitter[0] = params.jitter[0];
+  k.jitter[1] = params.jitter[1];
+  k.render_size[0] = rw;
+  k.render_size[1] = rh;
+  k.max_render_size[0] = ctx.max_render_size[0];
+  k.max_render_size[1] = ctx.max_render_size[1];
+  k.input_color_size[0] = params.input_color_size[0];
+  k.input_color_size[1] = params.input_color_size[1];
+
+  // The horizontal field of view from the vertical one.
+  const float aspect = static_cast<float>(rw) / static_cast<float>(rh);
+  const float angle_h = std::atan(std::tan(params.camera_fov_vertical / 2.0f) * aspect) * 2.0f;
+  k.tan_half_fov = std::tan(angle_h * 0.5f);
+  k.view_space_to_meters = params.view_space_to_meters > 0.0f ? params.view_space_to_meters : 1.0f;
+  DeviceToViewDepth(ctx, params, rw, rh, k.device_to_view_depth);
+
+  k.downscale_factor[0] = static_cast<float>(rw) / static_cast<float>(ctx.display_size[0]);
+  k.downscale_factor[1] = static_cast<float>(rh) / static_cast<float>(ctx.display_size[1]);
+  k.previous_pre_exposure = k.pre_exposure;
+  k.pre_exposure = params.pre_exposure != 0.0f ? params.pre_exposure : 1.0f;
+
+  const int mv_w = ctx.display_resolution_motion_vectors ? k.display_size[0] : rw;
+  const int mv_h = ctx.display_resolution_motion_vectors ? k.display_size[1] : rh;
+  k.motion_vector_scale[0] = params.motion_vector_scale[0] / static_cast<float>(mv_w);
+  k.motion_vector_scale[1] = params.motion_vector_scale[1] / static_cast<float>(mv_h);
+  if (ctx.motion_vector_jitter_cancellation) {
+    k.motion_vector_jitter_cancellation[0] = (state->previous_jitter[0] - k.jitter[0]) / static_cast<float>(mv_w);
+    k.motion_vector_jitter_cancellation[1] = (state->previous_jitter[1] - k.jitter[1]) / static_cast<float>(mv_h);
+    state->previous_jitter[0] = k.jitter[0];
+    state->previous_jitter[1] = k.jitter[1];
+  }
+
+  const int phase_count = Fsr2JitterPhaseCount(rw, ctx.display_size[0]);
+  if (setup.reset || k.jitter_sequence_length == 0.0f) {
+    k.jitter_sequence_length = static_cast<float>(phase_count);
+  } else {
+    const int delta = static_cast<int32_t>(static_cast<float>(phase_count) - k.jitter_sequence_length);
+    if (delta > 0) {
+      k.jitter_sequence_length = k.jitter_sequence_length + 1.0f;
+    } else if (delta < 0) {
+      k.jitter_sequence_length = k.jitter_sequence_length - 1.0f;
+    }
+  }
+  k.delta_time = std::max(0.0f, std::min(1.0f, params.frame_time_delta_ms / 1000.0f));
+  k.frame_index = setup.reset ? 0 : k.frame_index + 1;
+
+  k.luma_mip_level = 4;  // FFX_FSR2_SHADING_CHANGE_MIP_LEVEL
+  const float mip_div = static_cast<float>(2 << k.luma_mip_level);
+  k.luma_mip_size[0] = static_cast<int32_t>(static_cast<float>(k.max_render_size[0]) / mip_div);
+  k.luma_mip_size[1] = static_cast<int32_t>(static_cast<float>(k.max_render_size[1]) / mip_div);
+
+  state->resource_frame_index = (state->resource_frame_index + 1u) % 16u;
+  return setup;
 }
 
 }  // namespace aalab

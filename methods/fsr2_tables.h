@@ -7,6 +7,8 @@
 #include <array>
 #include <cstdint>
 
+#include "methods/fsr2.h"
+
 namespace aalab {
 
 /// ffxFsr2GetJitterPhaseCount: int32(8 · (display_width / render_width)²) in float arithmetic
@@ -52,5 +54,60 @@ const std::array<float, kFsr2MaximumBiasSize * kFsr2MaximumBiasSize>& Fsr2Maximu
 std::array<int16_t, kFsr2MaximumBiasSize * kFsr2MaximumBiasSize> Fsr2MaximumBiasCodes();
 /// The texels as a shader reads them (Fsr2Snorm16ToFloat of each code; multiply by 2 for the bias).
 std::array<float, kFsr2MaximumBiasSize * kFsr2MaximumBiasSize> Fsr2MaximumBiasLut();
+
+/// The context creation parameters the per-frame constants depend on (FfxFsr2ContextDescription
+/// and its flags).
+struct Fsr2ContextParams {
+  int max_render_size[2] = {0, 0};
+  int display_size[2] = {0, 0};
+  bool display_resolution_motion_vectors = false;  ///< FFX_FSR2_ENABLE_DISPLAY_RESOLUTION_MOTION_VECTORS
+  bool motion_vector_jitter_cancellation = false;  ///< FFX_FSR2_ENABLE_MOTION_VECTORS_JITTER_CANCELLATION
+  bool inverted_depth = false;                     ///< FFX_FSR2_ENABLE_DEPTH_INVERTED
+  bool infinite_depth = false;                     ///< FFX_FSR2_ENABLE_DEPTH_INFINITE
+};
+
+/// The part of FfxFsr2DispatchDescription the constants depend on.
+struct Fsr2DispatchParams {
+  float jitter[2] = {0, 0};               ///< render pixels (Fsr2JitterOffset)
+  float motion_vector_scale[2] = {0, 0};  ///< the app's scale from its motion vectors to pixels of their size
+  int render_size[2] = {0, 0};            ///< 0: the colour texture's size
+  int input_color_size[2] = {0, 0};       ///< the colour texture's size
+  float frame_time_delta_ms = 0.0f;
+  float pre_exposure = 0.0f;  ///< 0 reads as 1
+  bool reset = false;
+  float camera_near = 0.1f, camera_far = 100.0f;
+  float camera_fov_vertical = 1.0471976f;  ///< radians
+  float view_space_to_meters = 0.0f;       ///< ≤ 0 reads as 1
+};
+
+/// The context state ffxFsr2ContextDispatch carries from frame to frame.
+struct Fsr2ContextState {
+  Fsr2Constants constants;            ///< cbFSR2, updated in place each frame
+  bool first_execution = true;        ///< a fresh context resets on its first dispatch
+  uint32_t resource_frame_index = 0;  ///< 0..15 (FSR2_MAX_QUEUED_FRAMES); its parity picks the ping-pong side
+  float previous_jitter[2] = {0, 0};  ///< for the jitter cancellation
+};
+
+/// What one dispatch decides besides cbFSR2: whether it resets the accumulation (params.reset or
+/// the first dispatch: the API then clears the history it reads: lock status, upscaled colour,
+/// the luminance mips, the auto exposure to (−1, 1e8)), and which side of the ping-pong it uses.
+/// `odd`: the frame reads LOCK_STATUS_2, INTERNAL_UPSCALED_COLOR_2, LUMA_HISTORY_2 and writes the
+/// _1 resources, writes INTERNAL_DILATED_MOTION_VECTORS_2 and reads _1 as the previous frame's;
+/// an even frame the other way round.
+struct Fsr2FrameSetup {
+  bool reset = false;
+  bool odd = false;
+};
+
+/// ffxFsr2ContextDispatch's update of cbFSR2 for one frame, float for float: jitter, render,
+/// display and colour sizes, the device-to-view-depth parameters, the horizontal tan(fov/2),
+/// downscale factor, pre-exposure (and the previous one), motion-vector scale (divided by the
+/// motion vectors' size) and jitter cancellation (previous − current jitter, divided alike, with
+/// the flag), the jitter phase count (set on reset, else moved one step toward the new ratio's),
+/// Δt in seconds clamped to [0, 1], the frame index (0 on reset), the luma mip level 4 and its
+/// size. Advances `state` to the next frame. Throws std::invalid_argument for a render size that
+/// is not positive (after the colour-size fallback) or a max render or display size ≤ 0.
+Fsr2FrameSetup Fsr2NextFrameConstants(const Fsr2ContextParams& ctx, const Fsr2DispatchParams& params,
+                                      Fsr2ContextState* state);
 
 }  // namespace aalab

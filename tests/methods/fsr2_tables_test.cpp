@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "methods/fsr2_tables.h"
@@ -135,6 +136,148 @@ TEST(Fsr2Tables, MaximumBiasCornersAndEntriesFromTheApiFile) {
   EXPECT_EQ(codes[4 * 16 + 13], 25591);  // 1.562: 25591.03
   EXPECT_EQ(lut[0], 1.0f);
   EXPECT_EQ(2.0f * lut[255], 2.0f * (21610.0f / 32767.0f));  // what SampleUpsampleMaximumBias returns there
+}
+
+Fsr2ContextParams Context1080p() {
+  Fsr2ContextParams c;
+  c.max_render_size[0] = 1280;
+  c.max_render_size[1] = 720;
+  c.display_size[0] = 1920;
+  c.display_size[1] = 1080;
+  c.motion_vector_jitter_cancellation = true;
+  return c;
+}
+
+Fsr2DispatchParams Frame(int render_w, int render_h, float jx, float jy) {
+  Fsr2DispatchParams p;
+  p.render_size[0] = p.input_color_size[0] = render_w;
+  p.render_size[1] = p.input_color_size[1] = render_h;
+  p.jitter[0] = jx;
+  p.jitter[1] = jy;
+  p.motion_vector_scale[0] = -640.0f;  // the app's vectors are in units of −2 and 2 pixels
+  p.motion_vector_scale[1] = 360.0f;
+  p.frame_time_delta_ms = 16.0f;
+  return p;
+}
+
+TEST(Fsr2FrameConstants, FirstFrameResetsThenFramesCountAndPingPong) {
+  const Fsr2ContextParams ctx = Context1080p();
+  Fsr2ContextState st;
+  Fsr2FrameSetup f = Fsr2NextFrameConstants(ctx, Frame(1280, 720, 0.25f, -0.125f), &st);
+  const Fsr2Constants& k = st.constants;
+  EXPECT_TRUE(f.reset);  // a fresh context
+  EXPECT_FALSE(f.odd);
+  EXPECT_EQ(k.frame_index, 0);
+  EXPECT_EQ(k.jitter_sequence_length, 18.0f);  // 1920 / 1280 = 1.5: 8 · 2.25
+  EXPECT_EQ(k.render_size[0], 1280);
+  EXPECT_EQ(k.display_size[1], 1080);
+  EXPECT_EQ(k.luma_mip_level, 4);
+  EXPECT_EQ(k.luma_mip_size[0], 40);  // 1280 / 32
+  EXPECT_EQ(k.luma_mip_size[1], 22);  // 720 / 32 = 22.5, truncated
+  EXPECT_EQ(k.downscale_factor[0], 1280.0f / 1920.0f);
+  EXPECT_EQ(k.motion_vector_scale[0], -0.5f);                           // −640 / 1280
+  EXPECT_EQ(k.motion_vector_scale[1], 0.5f);                            // 360 / 720
+  EXPECT_EQ(k.motion_vector_jitter_cancellation[0], -0.25f / 1280.0f);  // (0 − 0.25) / 1280
+  EXPECT_EQ(k.motion_vector_jitter_cancellation[1], 0.125f / 720.0f);
+  EXPECT_EQ(k.pre_exposure, 1.0f);  // 0 reads as 1
+  EXPECT_EQ(k.delta_time, 0.016f);
+  EXPECT_EQ(k.view_space_to_meters, 1.0f);
+  EXPECT_EQ(k.jitter[0], 0.25f);
+
+  Fsr2DispatchParams p2 = Frame(1280, 720, -0.25f, 0.375f);
+  p2.pre_exposure = 1.5f;
+  f = Fsr2NextFrameConstants(ctx, p2, &st);
+  EXPECT_FALSE(f.reset);
+  EXPECT_TRUE(f.odd);
+  EXPECT_EQ(k.frame_index, 1);
+  EXPECT_EQ(k.pre_exposure, 1.5f);
+  EXPECT_EQ(k.previous_pre_exposure, 1.0f);
+  EXPECT_EQ(k.motion_vector_jitter_cancellation[0], 0.5f / 1280.0f);  // (0.25 − (−0.25)) / 1280
+  EXPECT_EQ(k.motion_vector_jitter_cancellation[1], -0.5f / 720.0f);  // (−0.125 − 0.375) / 720
+
+  Fsr2DispatchParams p3 = Frame(1280, 720, 0, 0);
+  p3.reset = true;
+  f = Fsr2NextFrameConstants(ctx, p3, &st);
+  EXPECT_TRUE(f.reset);
+  EXPECT_FALSE(f.odd);
+  EXPECT_EQ(k.frame_index, 0);
+  EXPECT_EQ(k.previous_pre_exposure, 1.5f);
+  // Sixteen queued frames: the index wraps at 16, an even number, so the sides keep alternating.
+  for (int i = 3; i < 40; ++i) {
+    f = Fsr2NextFrameConstants(ctx, Frame(1280, 720, 0, 0), &st);
+    EXPECT_EQ(f.odd, (i % 2) == 1) << "frame " << i;
+    EXPECT_EQ(k.frame_index, i - 2);
+  }
+  EXPECT_EQ(st.resource_frame_index, 40u % 16u);
+}
+
+TEST(Fsr2FrameConstants, PhaseCountMovesOneStepPerFrameUnlessReset) {
+  const Fsr2ContextParams ctx = Context1080p();
+  Fsr2ContextState st;
+  Fsr2NextFrameConstants(ctx, Frame(1280, 720, 0, 0), &st);
+  EXPECT_EQ(st.constants.jitter_sequence_length, 18.0f);
+  for (float want : {19.0f, 20.0f, 21.0f}) {  // render 960: the target is 32
+    Fsr2NextFrameConstants(ctx, Frame(960, 540, 0, 0), &st);
+    EXPECT_EQ(st.constants.jitter_sequence_length, want);
+  }
+  Fsr2NextFrameConstants(ctx, Frame(1280, 720, 0, 0), &st);  // back toward 18
+  EXPECT_EQ(st.constants.jitter_sequence_length, 20.0f);
+  Fsr2DispatchParams p = Frame(960, 540, 0, 0);
+  p.reset = true;
+  Fsr2NextFrameConstants(ctx, p, &st);
+  EXPECT_EQ(st.constants.jitter_sequence_length, 32.0f);
+}
+
+TEST(Fsr2FrameConstants, DepthParametersFieldOfViewAndClamps) {
+  Fsr2ContextParams ctx = Context1080p();
+  Fsr2DispatchParams p = Frame(1280, 720, 0, 0);
+  p.camera_near = 0.1f;
+  p.camera_far = 100.0f;
+  p.camera_fov_vertical = 1.0471976f;  // 60°
+  const double t30 = std::tan(M_PI / 6), aspect = 16.0 / 9.0;
+  auto run = [&](bool inverted, bool infinite, bool swap) {
+    ctx.inverted_depth = inverted;
+    ctx.infinite_depth = infinite;
+    Fsr2DispatchParams q = p;
+    if (swap) std::swap(q.camera_near, q.camera_far);
+    Fsr2ContextState st;
+    Fsr2NextFrameConstants(ctx, q, &st);
+    return st.constants;
+  };
+  // view depth = d1 / (depth − d0) from the projection's c and e (c = f/(n − f), e = c·n).
+  Fsr2Constants k = run(false, false, false);
+  EXPECT_NEAR(k.device_to_view_depth[0], 100.0 / 99.9, 1e-6);
+  EXPECT_NEAR(k.device_to_view_depth[1], -100.0 / 99.9 * 0.1, 1e-7);
+  EXPECT_NEAR(k.device_to_view_depth[2], t30 * aspect, 1e-6);  // 1/a = aspect · tan(fov/2)
+  EXPECT_NEAR(k.device_to_view_depth[3], t30, 1e-6);
+  EXPECT_NEAR(k.tan_half_fov, t30 * aspect, 1e-6);        // horizontal: tan(atan(tan 30° · 16/9))
+  const Fsr2Constants swapped = run(false, false, true);  // near and far given the other way round
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(swapped.device_to_view_depth[i], k.device_to_view_depth[i]);
+  k = run(true, false, false);  // inverted: near 100, far 0.1 in the formula
+  EXPECT_NEAR(k.device_to_view_depth[0], -0.1 / 99.9, 1e-9);
+  EXPECT_NEAR(k.device_to_view_depth[1], 0.1 / 99.9 * 100.0, 1e-7);
+  const float eps = std::numeric_limits<float>::epsilon();
+  k = run(false, true, false);  // infinite far plane
+  EXPECT_EQ(k.device_to_view_depth[0], 1.0f + eps);
+  EXPECT_EQ(k.device_to_view_depth[1], -0.1f - eps);
+  k = run(true, true, false);  // inverted and infinite
+  EXPECT_EQ(k.device_to_view_depth[0], -eps);
+  EXPECT_EQ(k.device_to_view_depth[1], 0.1f);
+
+  ctx = Context1080p();
+  ctx.display_resolution_motion_vectors = true;  // scale divided by the display size
+  Fsr2ContextState st;
+  Fsr2DispatchParams q = Frame(1280, 720, 0.5f, 0);
+  q.frame_time_delta_ms = 2500.0f;
+  Fsr2NextFrameConstants(ctx, q, &st);
+  EXPECT_EQ(st.constants.motion_vector_scale[0], -640.0f / 1920.0f);
+  EXPECT_EQ(st.constants.motion_vector_jitter_cancellation[0], -0.5f / 1920.0f);
+  EXPECT_EQ(st.constants.delta_time, 1.0f);  // clamped to 1 s
+  q.frame_time_delta_ms = -3.0f;
+  Fsr2NextFrameConstants(ctx, q, &st);
+  EXPECT_EQ(st.constants.delta_time, 0.0f);
+  ctx.display_size[0] = 0;
+  EXPECT_THROW(Fsr2NextFrameConstants(ctx, q, &st), std::invalid_argument);
 }
 
 }  // namespace
