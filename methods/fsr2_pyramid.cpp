@@ -31,11 +31,12 @@
 // fastest), as lavapipe does with one thread; with the counter at 0 on entry (the API's clear
 // and the tail's reset leave it there) any order gives the same bits.
 //
-// Arithmetic as Mesa evaluates the shader: log(x) is log2(x)·0.6931472 (float(1/log2 e)) and
+// Arithmetic as Mesa evaluates the shader: log(x) is log2(x)·0.6931472 (float(1/log2 e)),
 // exp(x) is exp2(x·1.442695) (float(log2 e)), and the exposure's pow(2, log2(y)) is y (Mesa
-// folds it: ExposureFromLavg); log2 and exp2 are the C
-// library's by default (lavapipe's are polynomials a few ulps away: docs/fsr2.md measures what
-// that changes; Fsr2Transcendentals lets the oracle put lavapipe's in). min/max are
+// folds it: ExposureFromLavg). log2 and exp2 are the C library's by default (lavapipe's are
+// polynomials a few ulps away: docs/fsr2.md measures what that changes; Fsr2Transcendentals
+// lets the oracle put lavapipe's in). Reads outside an image return 0 and stores outside are
+// dropped (robust image access, as Vulkan and D3D give the shader). min/max are
 // std::fmin/fmax (IEEE minNum/maxNum). The colour is sampled with FSR2's LINEAR CLAMP sampler
 // as lavapipe filters float textures: fractions in float and each lerp a + f·(b − a) as ONE
 // fused multiply-add (lavapipe's LLVM fuses them with the CPU's FMA). Measured: with unfused
