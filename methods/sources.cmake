@@ -16,6 +16,8 @@ set(AALAB_METHOD_SOURCES
   render_scale.cpp
   fsr1.cpp
   fsr2.cpp
+  fsr2_pyramid.cpp
+  fsr2_tables.cpp
   aaa.cpp
   taa.cpp
   taa_production.cpp

@@ -261,4 +261,62 @@ std::vector<float> RunFsr2RcasShader(const Fsr2Constants& k, const Fsr2Plane& up
   return out;
 }
 
+void RunFsr2PyramidShader(const Fsr2Constants& k, const Fsr2SpdDispatch& spd, const Fsr2Plane& color,
+                          Fsr2PyramidState* state) {
+  const Fsr2Plane &luma = state->luma_mip, &mip5 = state->mip5;
+  VkBinding cb_spd = Cb(6);
+  // FSR2_BIND_* of ffx_fsr2_compute_luminance_pyramid_pass.glsl.
+  VkCompute vk(WithSamplers({Tex(0, color.w, color.h, VK_FORMAT_R32G32B32A32_SFLOAT), Img(1, 1, 1, VK_FORMAT_R32_UINT),
+                             Img(2, luma.w, luma.h, VK_FORMAT_R16_SFLOAT), Img(3, mip5.w, mip5.h, VK_FORMAT_R16_SFLOAT),
+                             Img(4, 1, 1, VK_FORMAT_R32G32_SFLOAT), Cb(5), cb_spd}));
+  Upload(vk, 0, Padded(color, 4));
+  vk.Fill(VkKey(1, 1), &state->atomic_counter, 4);
+  const auto l16 = ToHalves(luma), m16 = ToHalves(mip5);
+  vk.Fill(VkKey(1, 2), l16.data(), l16.size() * 2);
+  vk.Fill(VkKey(1, 3), m16.data(), m16.size() * 2);
+  vk.Fill(VkKey(1, 4), state->auto_exposure, 8);
+  vk.Fill(VkKey(1, 5), &k, sizeof(k));
+  vk.Fill(VkKey(1, 6), &spd.c, sizeof(spd.c));
+  // SPD's subgroupQuadSwap* need SPIR-V 1.3 (--target-env vulkan1.1); made precise as the others.
+  static const std::vector<uint32_t> module =
+      PreciseSpirv(CompileGlslFileWith(ThirdPartyDir() + "/" + kDir + "/ffx_fsr2_compute_luminance_pyramid_pass.glsl",
+                                       Defines(Fsr2Options{}), "--target-env vulkan1.1"));
+  const int p = vk.AddPipeline(module, "main");
+  vk.Run({{p, static_cast<uint32_t>(spd.groups_x), static_cast<uint32_t>(spd.groups_y), 1}});
+  const std::vector<uint8_t> counter = vk.Read(VkKey(1, 1)), exposure = vk.Read(VkKey(1, 4));
+  std::memcpy(&state->atomic_counter, counter.data(), 4);
+  std::memcpy(state->auto_exposure, exposure.data(), 8);
+  state->luma_mip = FromHalves(vk.Read(VkKey(1, 2)), luma.w, luma.h, 1);
+  state->mip5 = FromHalves(vk.Read(VkKey(1, 3)), mip5.w, mip5.h, 1);
+}
+
+std::vector<float> RunLavapipeLog2Exp2(const std::vector<float>& x) {
+  static const char* kText = R"(#version 450
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0, std430) readonly buffer Args { float arg[]; };
+layout(set = 0, binding = 1, std430) writeonly buffer Results { float result[]; };
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  result[2u * i] = log2(arg[i]);
+  result[2u * i + 1u] = exp2(arg[i]);
+}
+)";
+  static const std::vector<uint32_t> module = CompileGlslText(kText, {});
+  const size_t n = (x.size() + 63) / 64 * 64;
+  if (n == 0) return {};
+  std::vector<float> args(x);
+  args.resize(n, 1.0f);
+  VkBinding in{VkBinding::kStorageBuffer, 0}, out{VkBinding::kStorageBuffer, 1};
+  in.bytes = n * 4;
+  out.bytes = n * 8;
+  VkCompute vk({in, out});
+  vk.Fill(0, args.data(), n * 4);
+  const int p = vk.AddPipeline(module, "main");
+  vk.Run({{p, static_cast<uint32_t>(n / 64), 1, 1}});
+  const std::vector<uint8_t> bytes = vk.Read(1);
+  std::vector<float> r(x.size() * 2);
+  std::memcpy(r.data(), bytes.data(), r.size() * 4);
+  return r;
+}
+
 }  // namespace aalab::oracle

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "methods/fsr2.h"
+#include "methods/fsr2_pyramid.h"
 
 namespace aalab::oracle {
 
@@ -48,5 +49,16 @@ void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const 
 /// `precise` false: the module as glslang wrote it (Mesa may fuse and reassociate).
 std::vector<float> RunFsr2RcasShader(const Fsr2Constants& k, const Fsr2Plane& upscaled, float exposure, uint32_t con_x,
                                      bool precise = true);
+
+/// ffx_fsr2_compute_luminance_pyramid_pass.glsl over spd's dispatch (256-thread groups over
+/// 64×64 tiles, cbSPD = spd.c): `color` as rgba32f (k.input_color_size), the global atomic as
+/// r32ui 1×1, the shading-change mip and mip 5 as r16f images of `state`'s plane sizes (their
+/// values must be halves), the auto exposure as rg32f 1×1; all four come back updated.
+void RunFsr2PyramidShader(const Fsr2Constants& k, const Fsr2SpdDispatch& spd, const Fsr2Plane& color,
+                          Fsr2PyramidState* state);
+
+/// lavapipe's own log2 and exp2 of each value of `x` (a compute shader of aalab's, not AMD's):
+/// {log2(x[i]), exp2(x[i])} at [2i], [2i + 1], the values the pass's log/exp/pow come from.
+std::vector<float> RunLavapipeLog2Exp2(const std::vector<float>& x);
 
 }  // namespace aalab::oracle

@@ -255,6 +255,23 @@ std::vector<uint32_t> CompileGlslFile(const std::string& path, const std::vector
   return RunGlslang(args, path, tmp.path, path);
 }
 
+std::vector<uint32_t> CompileGlslText(const std::string& text, const std::vector<std::string>& defines) {
+  TempDir tmp("/tmp/aalab-glsl-XXXXXX");
+  const std::string src = tmp.path + "/shader.comp";
+  std::ofstream(src) << text;
+  std::string args = "-V -S comp";
+  for (const auto& d : defines) args += " -D" + d;
+  return RunGlslang(args, src, tmp.path, "GLSL text");
+}
+
+std::vector<uint32_t> CompileGlslFileWith(const std::string& path, const std::vector<std::string>& defines,
+                                          const std::string& options) {
+  TempDir tmp("/tmp/aalab-glsl-XXXXXX");
+  std::string args = "-V -S comp " + options;
+  for (const auto& d : defines) args += " -D" + d;
+  return RunGlslang(args, path, tmp.path, path);
+}
+
 std::string VkCompute::Start() { return Ctx().error; }
 std::string VkCompute::DeviceName() { return Ctx().name; }
 int VkCompute::Lanes() {

@@ -29,6 +29,15 @@ std::vector<uint32_t> CompileHlsl(const std::string& text, const std::string& en
 std::vector<uint32_t> CompileGlslFile(const std::string& path, const std::vector<std::string>& include_dirs,
                                       const std::vector<std::string>& defines);
 
+/// Compiles GLSL compute text (no #includes) to SPIR-V as CompileGlslFile does, through a
+/// temporary file. Throws with the compiler's output on failure.
+std::vector<uint32_t> CompileGlslText(const std::string& text, const std::vector<std::string>& defines);
+
+/// CompileGlslFile with more glslangValidator `options` (e.g. "--target-env vulkan1.1", which
+/// subgroup operations need: SPIR-V 1.3). Throws with the compiler's output on failure.
+std::vector<uint32_t> CompileGlslFileWith(const std::string& path, const std::vector<std::string>& defines,
+                                          const std::string& options);
+
 /// One binding of the descriptor sets (set `set`, binding `binding`).
 struct VkBinding {
   enum Kind { kSampledImage, kStorageImage, kStorageBuffer, kUniformBuffer, kSampler } kind;
