@@ -15,7 +15,11 @@ set(AALAB_METHOD_SOURCES
   rescale.cpp
   render_scale.cpp
   fsr1.cpp
-  fsr2.cpp
+  fsr2_common.cpp
+  fsr2_reconstruct.cpp
+  fsr2_lock.cpp
+  fsr2_depth_clip.cpp
+  fsr2_rcas.cpp
   aaa.cpp
   taa.cpp
   taa_production.cpp
