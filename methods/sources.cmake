@@ -20,6 +20,7 @@ set(AALAB_METHOD_SOURCES
   fsr2_lock.cpp
   fsr2_depth_clip.cpp
   fsr2_rcas.cpp
+  fsr2_accumulate.cpp
   aaa.cpp
   taa.cpp
   taa_production.cpp

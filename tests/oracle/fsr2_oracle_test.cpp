@@ -18,6 +18,7 @@
 #include <tuple>
 
 #include "methods/fsr2.h"
+#include "tests/oracle/fsr2_oracle_fixture.h"
 #include "tests/oracle/fsr2_shader.h"
 #include "tests/oracle/vk_compute.h"
 #include "tests/skip_or_fail.h"
@@ -26,15 +27,6 @@ namespace aalab {
 namespace {
 
 constexpr int kRw = 64, kRh = 36, kDw = 96, kDh = 54;
-
-// A small deterministic generator (no std:: distributions: their output is library-defined).
-struct Lcg {
-  uint32_t s;
-  float Next() {
-    s = s * 1664525u + 1013904223u;
-    return static_cast<float>(s >> 8) / 16777216.0f;
-  }
-};
 
 struct Inputs {
   Fsr2Constants k;
@@ -127,14 +119,6 @@ struct Count {
       os << " " << what << "(" << x << "," << y << ") ours " << ours << " shader " << theirs << ";";
       examples += os.str();
     }
-  }
-};
-
-class Fsr2Oracle : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const std::string why = oracle::Fsr2ShaderAvailable();
-    if (!why.empty()) AALAB_SKIP_OR_FAIL_UNDER_CI("FSR2 oracle unavailable: " + why);
   }
 };
 
