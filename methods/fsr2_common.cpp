@@ -15,12 +15,13 @@
 //   - ReconstructAndDilate (ffx_fsr2_reconstruct_previous_depth_pass.glsl);
 //   - ComputeLock (ffx_fsr2_lock_pass.glsl);
 //   - DepthClip (ffx_fsr2_depth_clip_pass.glsl);
-//   - RCAS (ffx_fsr2_rcas_pass.glsl: FsrRcasF of FSR 2's ffx_fsr1.h, FSR_RCAS_DENOISE).
-// Not yet: the luminance pyramid (SPD) and accumulate; so no registry rows.
+//   - RCAS (ffx_fsr2_rcas_pass.glsl: FsrRcasF of FSR 2's ffx_fsr1.h, FSR_RCAS_DENOISE);
+//   - Accumulate (ffx_fsr2_accumulate_pass.glsl; fsr2_accumulate.cpp's doc block).
+// Not yet: the luminance pyramid (SPD) and the frame sequence; so no registry rows.
 //
 // The passes are split by family: fsr2_common.cpp (this file: planes, the 16-bit and 8-bit
 // store conversions, lock luma), fsr2_reconstruct.cpp, fsr2_lock.cpp, fsr2_depth_clip.cpp,
-// fsr2_rcas.cpp; their shared helpers are in fsr2_internal.h.
+// fsr2_rcas.cpp, fsr2_accumulate.cpp; their shared helpers are in fsr2_internal.h.
 // In RCAS, min/max are std::fmin/fmax (IEEE minNum/maxNum, the non-NaN operand), as lavapipe
 // evaluates GLSL's min/max: RCAS's limiter makes 0·∞ = NaN on a black ring.
 //
