@@ -21,7 +21,7 @@
 //     coordinates clamped to [0, size] (not size − 1), ClampCoord on the offset's side only.
 //   - LINEAR CLAMP_TO_EDGE samples (depth clip, reactive masks, luma history, the luma mip,
 //     the Lanczos table): SampleLinear (fsr2_internal.h), the float model of Mesa's filter
-//     (fractions in float32, a + f·(b − a)); a GPU's texture unit uses 8-bit fractions.
+//     (fractions in float32, fused a + f·(b − a)); a GPU's texture unit uses 8-bit fractions.
 // The shader's transcendental builtins are evaluated as Mesa lowers them: exp(x) =
 // exp2(x·log2 e), pow(x, y) = exp2(log2(x)·y), sin; exp2, log2 and sin are the C library's
 // unless Fsr2Options::math supplies others (the oracle supplies lavapipe's own values: its

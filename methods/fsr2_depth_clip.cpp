@@ -5,10 +5,9 @@
 // its 3×3 to the render size (it passes RenderSize() as the motion-vector size); DepthClip
 // computes the input depth's view depth and does not use it (no effect).
 // The previous dilated motion is sampled with a LINEAR CLAMP_TO_EDGE sampler: SampleLinear
-// (fsr2_internal.h) filters as lavapipe does for float textures, fractions in float32 and
-// lerp(lerp(a, b, fx), lerp(c, d, fx), fy) with a + f·(b − a) (core/sampler.h's kGl model). A
-// GPU's texture unit uses 8-bit fractions instead; the value only feeds a ratio that ends in
-// an 8-bit store.
+// (fsr2_internal.h) filters as lavapipe does, fractions in float32 and
+// lerp(lerp(a, b, fx), lerp(c, d, fx), fy) with fused a + f·(b − a). A GPU's texture unit uses
+// 8-bit fractions instead; the value only feeds a ratio that ends in an 8-bit store.
 #include <algorithm>
 #include <cmath>
 #include <cstring>

@@ -349,6 +349,39 @@ std::vector<float> RunGlslExp2Log2Sin(const std::vector<float>& exp2_of, const s
   return y;
 }
 
+std::vector<float> ReadR16SnormTexels(const std::vector<int16_t>& codes) {
+  char pattern[] = "/tmp/aalab-snorm-XXXXXX";
+  if (!mkdtemp(pattern)) throw std::runtime_error("ReadR16SnormTexels: mkdtemp failed");
+  const std::string dir = pattern, path = dir + "/fetch.comp";
+  {
+    std::ofstream f(path);
+    f << "#version 450\n#extension GL_EXT_samplerless_texture_functions : require\n"
+         "layout(local_size_x = 64) in;\nlayout(set = 0, binding = 0) uniform texture2D t;\n"
+         "layout(std430, set = 0, binding = 1) buffer Out { float y[]; };\n"
+         "void main() {\n  uint i = gl_GlobalInvocationID.x;\n"
+         "  if (i < uint(y.length())) y[i] = texelFetch(t, ivec2(int(i), 0), 0).x;\n}\n";
+  }
+  std::vector<uint32_t> spirv;
+  try {
+    spirv = CompileGlslFile(path, {}, {});
+  } catch (...) {
+    std::filesystem::remove_all(dir);
+    throw;
+  }
+  std::filesystem::remove_all(dir);
+  const int w = static_cast<int>(codes.size());
+  VkBinding tex{VkBinding::kSampledImage, 0, w, 1, VK_FORMAT_R16_SNORM}, out{VkBinding::kStorageBuffer, 1};
+  out.bytes = codes.size() * 4;
+  VkCompute vk({tex, out});
+  vk.Fill(0, codes.data(), codes.size() * 2);
+  const int p = vk.AddPipeline(spirv, "main");
+  vk.Run({{p, static_cast<uint32_t>((w + 63) / 64), 1, 1}});
+  const std::vector<uint8_t> bytes = vk.Read(1);
+  std::vector<float> y(codes.size());
+  std::memcpy(y.data(), bytes.data(), y.size() * 4);
+  return y;
+}
+
 std::vector<float> RunFsr2RcasShader(const Fsr2Constants& k, const Fsr2Plane& upscaled, float exposure, uint32_t con_x,
                                      bool precise) {
   const int w = upscaled.w, h = upscaled.h;

@@ -58,6 +58,9 @@ void RunFsr2AccumulateShader(const Fsr2Constants& k, const Fsr2Options& o, const
 std::vector<float> RunGlslExp2Log2Sin(const std::vector<float>& exp2_of, const std::vector<float>& log2_of,
                                       const std::vector<float>& sin_of);
 
+/// The float values lavapipe reads (texelFetch) from an r16 snorm texture of `codes`, one row.
+std::vector<float> ReadR16SnormTexels(const std::vector<int16_t>& codes);
+
 /// ffx_fsr2_rcas_pass.glsl over upscaled's size (64-thread groups over 16×16 tiles):
 /// `upscaled` as rgba32f, the output as rgba32f (the app-controlled format: floats before any
 /// rounding); rgb floats, 3 per pixel.
