@@ -34,6 +34,15 @@ struct Fsr2Constants {
   float view_space_to_meters = 1.0f;
 };
 
+/// The transcendental builtins a GPU evaluates its own way (exp2, log2, sin: each driver has
+/// its own approximation, a few float ulps from the correctly rounded value).
+struct Fsr2Math {
+  virtual ~Fsr2Math() = default;
+  virtual float Exp2(float x) const = 0;
+  virtual float Log2(float x) const = 0;
+  virtual float Sin(float x) const = 0;
+};
+
 /// The shaders' compile-time options (FFX_FSR2_OPTION_*).
 struct Fsr2Options {
   bool hdr_color_input = false;        ///< HDR_COLOR_INPUT
@@ -44,6 +53,15 @@ struct Fsr2Options {
   /// round to nearest even or toward zero). false: nearest even (what D3D requires of GPUs and
   /// aalab's default); true: toward zero, as Mesa's lavapipe stores (the oracle's setting).
   bool half_toward_zero = false;
+  /// REPROJECT_USE_LANCZOS_TYPE: false (0) the history is reprojected with the reference
+  /// Lanczos 2 (sin); true (1) with the Lanczos look-up table (Fsr2AccumulateIn::lanczos_lut).
+  /// FSR2's backends build both and pick the table on GPUs whose wave size is 32 to 64.
+  bool reproject_lanczos_lut = false;
+  /// APPLY_SHARPENING: accumulate then leaves the output to RCAS (no upscaled output).
+  bool apply_sharpening = false;
+  /// The accumulate pass's exp2 / log2 / sin (pow and exp go through them as Mesa lowers
+  /// them); null: the C library's. Not owned.
+  const Fsr2Math* math = nullptr;
 };
 
 /// A float image of `c` channels, row-major, texel (x, y) channel k at v[(y·w + x)·c + k].
@@ -132,6 +150,39 @@ std::vector<float> Fsr2Rcas(const Fsr2Constants& k, const Fsr2Plane& upscaled, f
 
 /// The API's RCAS constant for sharpness s in [0, 1]: the bits of exp2(−((−2·s) + 2)).
 uint32_t Fsr2RcasCon(float sharpness);
+
+/// What the accumulate pass (ffx_fsr2_accumulate_pass.glsl) reads. Planes are the textures'
+/// texel values (16-bit float images as halves, 8-bit UNORM ones as k/255); the textures at the
+/// render size may be larger (FSR2 allocates them at the maximum render size).
+struct Fsr2AccumulateIn {
+  float exposure = 0.0f;                              ///< the exposure texel (0 reads as 1)
+  const Fsr2Plane* dilated_reactive_masks = nullptr;  ///< depth clip's rg8 output (render size)
+  const Fsr2Plane* dilated_motion = nullptr;          ///< low_res_motion_vectors: reconstruct's rg16f output
+  const Fsr2Plane* motion = nullptr;                  ///< otherwise: the app's display-size motion vectors
+  const Fsr2Plane* history = nullptr;                 ///< last frame's internal upscaled colour (rgba16f, display size)
+  const Fsr2Plane* lock_status = nullptr;             ///< last frame's lock status (rg16f: lifetime, temporal luma)
+  const Fsr2Plane* prepared_color = nullptr;          ///< depth clip's rgba16f output (YCoCg, depth clip)
+  const Fsr2Plane* lanczos_lut = nullptr;  ///< the r16 snorm Lanczos 2 table (128×1), with reproject_lanczos_lut
+  /// The luminance pyramid's level luma_mip_level (log luma, r16f, luma_mip_size), sampled
+  /// bilinearly for the lock's shading change.
+  const Fsr2Plane* luma_mip = nullptr;
+  const Fsr2Plane* luma_history = nullptr;  ///< last frame's luma history (rgba8 unorm, display size)
+  Fsr2Plane* new_locks = nullptr;           ///< this frame's new locks (r8, display size): read, then cleared
+};
+/// Its outputs, display size: the internal upscaled colour (rgba16f: rgb, temporal reactive
+/// factor, negative when the pixel moves), the lock status (rg16f), the luma history (rgba8
+/// unorm, as k/255) and the upscaled output (rgb floats before the app's store; empty with
+/// apply_sharpening).
+struct Fsr2AccumulateOut {
+  Fsr2Plane internal_upscaled, lock_status, luma_history, output;
+};
+/// The accumulate pass (ffx_fsr2_accumulate.h, Accumulate) over the display size: reprojects
+/// the history (Lanczos 2 or its table, with deringing) and the lock status (bilinear),
+/// updates the locks with the shading change of the luma mip, upsamples the jittered prepared
+/// colour with the approximate Lanczos 2 kernel and builds the rectification box, rectifies and
+/// accumulates; clears `in.new_locks`. `lanczos_lut` and the maximum-bias table: only the first
+/// is read (2.2.1's accumulate declares the second and does not sample it).
+void Fsr2Accumulate(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2AccumulateIn& in, Fsr2AccumulateOut* out);
 
 /// ffx's 8-bit UNORM store: clamp to [0, 1], ·255, round to nearest even, as a float code/255.
 float Fsr2Unorm8(float v);

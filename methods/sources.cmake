@@ -15,7 +15,12 @@ set(AALAB_METHOD_SOURCES
   rescale.cpp
   render_scale.cpp
   fsr1.cpp
-  fsr2.cpp
+  fsr2_common.cpp
+  fsr2_reconstruct.cpp
+  fsr2_lock.cpp
+  fsr2_depth_clip.cpp
+  fsr2_rcas.cpp
+  fsr2_accumulate.cpp
   fsr2_pyramid.cpp
   fsr2_tables.cpp
   aaa.cpp

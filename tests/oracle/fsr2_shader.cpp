@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <stdexcept>
 
@@ -26,7 +28,9 @@ std::vector<std::string> Defines(const Fsr2Options& o) {
           "FFX_FSR2_OPTION_LOW_RESOLUTION_MOTION_VECTORS=" + b(o.low_res_motion_vectors),
           "FFX_FSR2_OPTION_JITTERED_MOTION_VECTORS=" + b(o.jittered_motion_vectors),
           "FFX_FSR2_OPTION_INVERTED_DEPTH=" + b(o.inverted_depth),
-          "FFX_FSR2_OPTION_APPLY_SHARPENING=0"};
+          "FFX_FSR2_OPTION_APPLY_SHARPENING=" + b(o.apply_sharpening),
+          "FFX_FSR2_OPTION_REPROJECT_USE_LANCZOS_TYPE=" + std::string(o.reproject_lanczos_lut ? "1" : "0"),
+          "FFX_FSR2_OPTION_UPSAMPLE_USE_LANCZOS_TYPE=2"};
 }
 
 }  // namespace
@@ -238,6 +242,144 @@ void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const 
   out->reactive_masks = Fsr2Plane(rw, rh, 2);
   for (size_t i = 0; i < out->reactive_masks.v.size(); ++i)
     out->reactive_masks.v[i] = static_cast<float>(masks[i]) / 255.0f;
+}
+
+void RunFsr2AccumulateShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2AccumulateIn& in,
+                             const std::vector<int16_t>& lanczos_lut, Fsr2AccumulateOut* out) {
+  const int dw = k.display_size[0], dh = k.display_size[1];
+  const Fsr2Plane& masks = *in.dilated_reactive_masks;
+  const Fsr2Plane& prepared = *in.prepared_color;
+  const Fsr2Plane& mip = *in.luma_mip;
+  const Fsr2Plane& mv = o.low_res_motion_vectors ? *in.dilated_motion : *in.motion;
+  // FSR2_BIND_* of ffx_fsr2_accumulate_pass.glsl; the maximum-bias table (9) is declared, not read.
+  VkCompute vk(WithSamplers(
+      {Tex(0, 1, 1, VK_FORMAT_R32G32_SFLOAT), Tex(1, masks.w, masks.h, VK_FORMAT_R8G8_UNORM),
+       Tex(2, mv.w, mv.h, o.low_res_motion_vectors ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R32G32_SFLOAT),
+       Tex(3, dw, dh, VK_FORMAT_R16G16B16A16_SFLOAT), Tex(4, dw, dh, VK_FORMAT_R16G16_SFLOAT),
+       Tex(6, prepared.w, prepared.h, VK_FORMAT_R16G16B16A16_SFLOAT),
+       Tex(8, static_cast<int>(lanczos_lut.size()), 1, VK_FORMAT_R16_SNORM), Tex(9, 16, 16, VK_FORMAT_R16_SNORM),
+       Tex(10, mip.w, mip.h, VK_FORMAT_R16_SFLOAT), Tex(11, 1, 1, VK_FORMAT_R32G32_SFLOAT),
+       Tex(12, dw, dh, VK_FORMAT_R8G8B8A8_UNORM), Img(13, dw, dh, VK_FORMAT_R16G16B16A16_SFLOAT),
+       Img(14, dw, dh, VK_FORMAT_R16G16_SFLOAT), Img(15, dw, dh, VK_FORMAT_R32G32B32A32_SFLOAT),
+       Img(16, dw, dh, VK_FORMAT_R8_UNORM), Img(17, dw, dh, VK_FORMAT_R8G8B8A8_UNORM), Cb(18)}));
+  Upload(vk, 0, {in.exposure, 0.0f});
+  const auto m8 = ToUnorm8(masks);
+  vk.Fill(VkKey(1, 1), m8.data(), m8.size());
+  if (o.low_res_motion_vectors) {
+    const auto h = ToHalves(mv);
+    vk.Fill(VkKey(1, 2), h.data(), h.size() * 2);
+  } else {
+    Upload(vk, 2, Padded(mv, 2));
+  }
+  const auto hist = ToHalves(*in.history), lock = ToHalves(*in.lock_status), prep = ToHalves(prepared),
+             mip16 = ToHalves(mip);
+  vk.Fill(VkKey(1, 3), hist.data(), hist.size() * 2);
+  vk.Fill(VkKey(1, 4), lock.data(), lock.size() * 2);
+  vk.Fill(VkKey(1, 6), prep.data(), prep.size() * 2);
+  vk.Fill(VkKey(1, 8), lanczos_lut.data(), lanczos_lut.size() * 2);
+  vk.Fill(VkKey(1, 10), mip16.data(), mip16.size() * 2);
+  Upload(vk, 11, {in.exposure, 0.0f});
+  const auto luma8 = ToUnorm8(*in.luma_history), locks8 = ToUnorm8(*in.new_locks);
+  vk.Fill(VkKey(1, 12), luma8.data(), luma8.size());
+  vk.Fill(VkKey(1, 16), locks8.data(), locks8.size());
+  vk.Fill(VkKey(1, 18), &k, sizeof(k));
+  const int p = vk.AddPipeline(Module("ffx_fsr2_accumulate_pass.glsl", o), "main");
+  vk.Run({{p, static_cast<uint32_t>((dw + 7) / 8), static_cast<uint32_t>((dh + 7) / 8), 1}});
+  out->internal_upscaled = FromHalves(vk.Read(VkKey(1, 13)), dw, dh, 4);
+  out->lock_status = FromHalves(vk.Read(VkKey(1, 14)), dw, dh, 2);
+  auto unorm = [](const std::vector<uint8_t>& bytes, int w, int h, int c) {
+    Fsr2Plane q(w, h, c);
+    for (size_t i = 0; i < q.v.size(); ++i) q.v[i] = static_cast<float>(bytes[i]) / 255.0f;
+    return q;
+  };
+  out->luma_history = unorm(vk.Read(VkKey(1, 17)), dw, dh, 4);
+  *in.new_locks = unorm(vk.Read(VkKey(1, 16)), dw, dh, 1);
+  out->output = Fsr2Plane();
+  if (!o.apply_sharpening) {
+    const std::vector<uint8_t> bytes = vk.Read(VkKey(1, 15));
+    out->output = Fsr2Plane(dw, dh, 3);
+    for (size_t i = 0; i < static_cast<size_t>(dw) * static_cast<size_t>(dh); ++i)
+      std::memcpy(&out->output.v[i * 3], bytes.data() + i * 16, 12);
+  }
+}
+
+std::vector<float> RunGlslExp2Log2Sin(const std::vector<float>& exp2_of, const std::vector<float>& log2_of,
+                                      const std::vector<float>& sin_of) {
+  const uint32_t n = static_cast<uint32_t>(exp2_of.size() + log2_of.size() + sin_of.size());
+  if (n == 0) return {};
+  static std::vector<uint32_t> spirv;  // compiled once per process
+  if (spirv.empty()) {
+    char pattern[] = "/tmp/aalab-builtin-XXXXXX";
+    if (!mkdtemp(pattern)) throw std::runtime_error("RunGlslExp2Log2Sin: mkdtemp failed");
+    const std::string dir = pattern, path = dir + "/builtins.comp";
+    {
+      std::ofstream f(path);
+      f << "#version 450\nlayout(local_size_x = 64) in;\n"
+           "layout(std430, set = 0, binding = 0) buffer In { uint n[2]; float x[]; };\n"
+           "layout(std430, set = 0, binding = 1) buffer Out { float y[]; };\n"
+           "void main() {\n  uint i = gl_GlobalInvocationID.x;\n  if (i >= uint(x.length())) return;\n"
+           "  y[i] = i < n[0] ? exp2(x[i]) : i < n[1] ? log2(x[i]) : sin(x[i]);\n}\n";
+    }
+    try {
+      spirv = PreciseSpirv(CompileGlslFile(path, {}, {}));
+    } catch (...) {
+      std::filesystem::remove_all(dir);
+      throw;
+    }
+    std::filesystem::remove_all(dir);
+  }
+  std::vector<uint32_t> in(2 + n);
+  in[0] = static_cast<uint32_t>(exp2_of.size());
+  in[1] = static_cast<uint32_t>(exp2_of.size() + log2_of.size());
+  size_t at = 2;
+  for (const auto* v : {&exp2_of, &log2_of, &sin_of}) {
+    std::memcpy(in.data() + at, v->data(), v->size() * 4);
+    at += v->size();
+  }
+  VkBinding ib{VkBinding::kStorageBuffer, 0}, ob{VkBinding::kStorageBuffer, 1};
+  ib.bytes = in.size() * 4;
+  ob.bytes = static_cast<uint64_t>(n) * 4;
+  VkCompute vk({ib, ob});
+  vk.Fill(0, in.data(), in.size() * 4);
+  const int p = vk.AddPipeline(spirv, "main");
+  vk.Run({{p, (n + 63) / 64, 1, 1}});
+  const std::vector<uint8_t> bytes = vk.Read(1);
+  std::vector<float> y(n);
+  std::memcpy(y.data(), bytes.data(), static_cast<size_t>(n) * 4);
+  return y;
+}
+
+std::vector<float> ReadR16SnormTexels(const std::vector<int16_t>& codes) {
+  char pattern[] = "/tmp/aalab-snorm-XXXXXX";
+  if (!mkdtemp(pattern)) throw std::runtime_error("ReadR16SnormTexels: mkdtemp failed");
+  const std::string dir = pattern, path = dir + "/fetch.comp";
+  {
+    std::ofstream f(path);
+    f << "#version 450\n#extension GL_EXT_samplerless_texture_functions : require\n"
+         "layout(local_size_x = 64) in;\nlayout(set = 0, binding = 0) uniform texture2D t;\n"
+         "layout(std430, set = 0, binding = 1) buffer Out { float y[]; };\n"
+         "void main() {\n  uint i = gl_GlobalInvocationID.x;\n"
+         "  if (i < uint(y.length())) y[i] = texelFetch(t, ivec2(int(i), 0), 0).x;\n}\n";
+  }
+  std::vector<uint32_t> spirv;
+  try {
+    spirv = CompileGlslFile(path, {}, {});
+  } catch (...) {
+    std::filesystem::remove_all(dir);
+    throw;
+  }
+  std::filesystem::remove_all(dir);
+  const int w = static_cast<int>(codes.size());
+  VkBinding tex{VkBinding::kSampledImage, 0, w, 1, VK_FORMAT_R16_SNORM}, out{VkBinding::kStorageBuffer, 1};
+  out.bytes = codes.size() * 4;
+  VkCompute vk({tex, out});
+  vk.Fill(0, codes.data(), codes.size() * 2);
+  const int p = vk.AddPipeline(spirv, "main");
+  vk.Run({{p, static_cast<uint32_t>((w + 63) / 64), 1, 1}});
+  const std::vector<uint8_t> bytes = vk.Read(1);
+  std::vector<float> y(codes.size());
+  std::memcpy(y.data(), bytes.data(), y.size() * 4);
+  return y;
 }
 
 std::vector<float> RunFsr2RcasShader(const Fsr2Constants& k, const Fsr2Plane& upscaled, float exposure, uint32_t con_x,

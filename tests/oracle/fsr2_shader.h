@@ -8,7 +8,9 @@
 // app-provided inputs are float (colour rgba32f, depth r32f, motion rg32f, exposure rg32f 1×1).
 // Every pass is compiled, then made precise (PreciseSpirv) before lavapipe compiles it.
 #pragma once
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "methods/fsr2.h"
 #include "methods/fsr2_pyramid.h"
@@ -42,6 +44,23 @@ void RunFsr2LockShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2P
 /// as the API binds when the app gives none).
 void RunFsr2DepthClipShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2DepthClipIn& in,
                             Fsr2DepthClipOut* out);
+
+/// ffx_fsr2_accumulate_pass.glsl over the display size (8×8 groups): every input texture in
+/// the format FSR2 gives it (planes of halves for the 16-bit float ones, k/255 for the UNORM
+/// ones; the app's display-size motion as rg32f), the Lanczos table as its r16 snorm codes
+/// (`lanczos_lut`, 128), the luma mip as a one-level r16f texture (textureLod of level
+/// luma_mip_level reads level 0: the port is handed that level); the upscaled output as
+/// rgba32f (floats before any rounding). `in.new_locks` comes back cleared as the pass leaves it.
+void RunFsr2AccumulateShader(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2AccumulateIn& in,
+                             const std::vector<int16_t>& lanczos_lut, Fsr2AccumulateOut* out);
+
+/// GLSL's exp2 of every value of `exp2_of`, log2 of `log2_of`, sin of `sin_of`, as lavapipe
+/// evaluates them (one compute dispatch over a storage buffer): the three results concatenated.
+std::vector<float> RunGlslExp2Log2Sin(const std::vector<float>& exp2_of, const std::vector<float>& log2_of,
+                                      const std::vector<float>& sin_of);
+
+/// The float values lavapipe reads (texelFetch) from an r16 snorm texture of `codes`, one row.
+std::vector<float> ReadR16SnormTexels(const std::vector<int16_t>& codes);
 
 /// ffx_fsr2_rcas_pass.glsl over upscaled's size (64-thread groups over 16×16 tiles):
 /// `upscaled` as rgba32f, the output as rgba32f (the app-controlled format: floats before any

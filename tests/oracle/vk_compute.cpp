@@ -146,6 +146,7 @@ uint32_t TexelBytes(int format) {
     case VK_FORMAT_R8G8B8A8_UNORM:
     case VK_FORMAT_R8G8B8A8_SRGB: return 4;
     case VK_FORMAT_R16_SFLOAT:
+    case VK_FORMAT_R16_SNORM:
     case VK_FORMAT_R8G8_UNORM: return 2;
     case VK_FORMAT_R8_UNORM: return 1;
     default: throw std::runtime_error("vk_compute: unsupported image format " + std::to_string(format));
