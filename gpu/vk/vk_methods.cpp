@@ -12,8 +12,9 @@
 //   next frame itself, so the chain repeats as a game's frames do. The working buffers are
 //   sized so that no count is clamped (candidates and blend locations: one per pixel; blend
 //   items: eight per pixel), more than the shader needs on any frame measured.
-// - FSR 1 (ffx_fsr1.h): EASU from the `scaled` frame (the render-size frame aalab's
-//   scale43-* methods render) to the output size into an R8G8B8A8_UNORM image (the sample's
+// - FSR 1 (ffx_fsr1.h): EASU from the render-size frame of scale43-easu (round(3W/4) x
+//   round(3H/4), one centre sample: `aalab export-frames --render-methods scale43-easu`, role
+//   `scale43-easu`) to the output size into an R8G8B8A8_UNORM image (the sample's
 //   intermediate), RCAS (sharpness 0.2 stops, aalab's and the sample's default) from an
 //   R8G8B8A8_UNORM texture to an R8G8B8A8_UNORM image; 64-thread groups over 16x16 tiles.
 // - copy: gpu/vk/shaders/copy.comp, the floor.
@@ -146,8 +147,8 @@ const std::vector<MethodInfo>& Methods() {
     }
     for (const char* p : {"low", "medium", "high", "ultra"}) v.push_back({std::string("cmaa2-") + p, "1x", chain});
     v.push_back({"rcas", "1x", "FsrRcasF"});
-    v.push_back({"scale43-easu", "scaled", "FsrEasuF"});
-    v.push_back({"scale43-easu-rcas", "scaled", "FsrEasuF + FsrRcasF"});
+    v.push_back({"scale43-easu", "scale43-easu", "FsrEasuF"});
+    v.push_back({"scale43-easu-rcas", "scale43-easu", "FsrEasuF + FsrRcasF"});
     return v;
   }();
   return m;

@@ -20,7 +20,8 @@ struct Frame {
 /// One row of the method table.
 struct MethodInfo {
   std::string spec;     ///< the report's method spec (`cmaa2-high`, `scale43-easu`, ...)
-  std::string input;    ///< the export-frames role it reads: "1x" or "scaled"
+  std::string input;    ///< the export-frames role it reads: "1x", or "scale43-easu" (the render-size frame
+                        ///< `aalab export-frames --render-methods scale43-easu` writes)
   std::string kernels;  ///< the passes in dispatch order, as the JSON names them
 };
 
