@@ -6,6 +6,7 @@
 // gpu_timings.h). --frames DIR writes each output frame as PPM, for comparison with aalab's
 // CPU ports. Exit codes: 0 done, 1 bad arguments or input (one message), 2 Vulkan failed.
 #include <algorithm>
+#include <cstdlib>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -34,13 +35,15 @@ const char* const kUsage =
     "  --input DIR      frames written by `aalab export-frames` (DIR/frames.tsv + PPM)\n"
     "  --json FILE      write the timings (schema aalab-gpu-timings 1, for `aalab merge-gpu`)\n"
     "  --frames DIR     write each output frame as DIR/<scene>-<W>x<H>-<method>.ppm\n"
+    "  --compare DIR    compare each output with DIR/<scene>-<W>x<H>-<method>.ppm where that exists (aalab's\n"
+    "                   CPU output: gpu/vk/pack.sh); the JSON gets a fidelity block per compared result\n"
     "  --methods LIST   comma-separated, default all: copy is always run first (the floor)\n"
     "  --warmup N       untimed runs of each method's chain before timing (default 200)\n"
     "  --repeat N       timed runs (default 200)\n"
     "  --device NAME    the first Vulkan device whose name contains NAME (default: a discrete GPU, else the first)\n";
 
 struct Options {
-  std::string shaders, input, json, frames, device;
+  std::string shaders, input, json, frames, compare, device;
   std::vector<std::string> methods;
   int warmup = 200, repeat = 200;
 };
@@ -88,6 +91,8 @@ Options Parse(int argc, char** argv) {
       o.json = v;
     } else if (a == "--frames") {
       o.frames = v;
+    } else if (a == "--compare") {
+      o.compare = v;
     } else if (a == "--methods") {
       methods = v;
     } else if (a == "--device") {
@@ -232,9 +237,42 @@ std::string StatsJson(const Stats& s) {
   return "{\"median_ms\": " + Num(s.median) + ", \"min_ms\": " + Num(s.min) + ", \"max_ms\": " + Num(s.max) + "}";
 }
 
+// How far an output is from the CPU port's: the share of pixels whose three bytes are equal,
+// the largest difference of a byte, and the pixels that differ.
+struct Fidelity {
+  bool has = false;
+  double identical_share = 0;
+  int max_diff = 0;
+  long differing = 0;
+};
+
+Fidelity Compare(const Frame& out, const fs::path& reference) {
+  Fidelity f;
+  if (reference.empty() || !fs::exists(reference)) return f;
+  const Frame ref = ReadPpm(reference);
+  if (ref.width != out.width || ref.height != out.height) {
+    throw BadInput("reference '" + reference.string() + "' is " + std::to_string(ref.width) + "x" +
+                   std::to_string(ref.height) + ", the output " + std::to_string(out.width) + "x" +
+                   std::to_string(out.height));
+  }
+  const size_t n = static_cast<size_t>(out.width) * static_cast<size_t>(out.height);
+  for (size_t i = 0; i < n; ++i) {
+    bool same = true;
+    for (size_t c = 0; c < 3; ++c) {
+      const int d = std::abs(int(out.rgba[i * 4 + c]) - int(ref.rgba[i * 4 + c]));
+      f.max_diff = std::max(f.max_diff, d);
+      same = same && d == 0;
+    }
+    f.differing += same ? 0 : 1;
+  }
+  f.has = true;
+  f.identical_share = 1.0 - static_cast<double>(f.differing) / static_cast<double>(n);
+  return f;
+}
+
 // One result line of the JSON.
 std::string ResultJson(const FrameSet& fs, const std::string& method, const std::string& kernels, const MethodResult& r,
-                       double copy_ms) {
+                       double copy_ms, const Fidelity& fid) {
   const Stats whole = Summarise(r.timings.whole);
   std::string j =
       "{\"scene\": " + Q(fs.scene) + ", \"size\": " + Q(std::to_string(fs.width) + "x" + std::to_string(fs.height)) +
@@ -249,6 +287,12 @@ std::string ResultJson(const FrameSet& fs, const std::string& method, const std:
       j += (k ? ", " : "") + Q(std::to_string(k + 1) + " " + r.pass_names[k]) + ": " + StatsJson(Summarise(v));
     }
     j += "}";
+  }
+  if (fid.has) {
+    j += ", \"fidelity\": {\"identical_share\": " + Num(fid.identical_share) +
+         ", \"max_diff\": " + std::to_string(fid.max_diff) +
+         ", \"differing_pixels\": " + std::to_string(fid.differing) +
+         ", \"against\": \"aalab's CPU port (the --compare folder)\"}";
   }
   return j + "}";
 }
@@ -272,6 +316,8 @@ int Run(const Options& o) {
       }
     }
   }
+  if (!o.compare.empty() && !fs::is_directory(o.compare))
+    throw BadInput("--compare '" + o.compare + "' is not a folder");
   if (!o.frames.empty()) fs::create_directories(o.frames);
   Device device(o.device);
   const DeviceFacts& facts = device.Facts();
@@ -292,13 +338,18 @@ int Run(const Options& o) {
       const MethodResult r = RunMethod(device, o.shaders, spec, in, set.width, set.height, o.warmup, o.repeat);
       const double median = Summarise(r.timings.whole).median;
       if (label == "copy") copy_ms = median;
-      results.push_back(ResultJson(set, label, m->kernels, r, copy_ms));
-      std::fprintf(stderr, "  %s %dx%d %-20s %.4f ms (%.2f x copy)\n", set.scene.c_str(), set.width, set.height,
+      const std::string stem =
+          set.scene + "-" + std::to_string(set.width) + "x" + std::to_string(set.height) + "-" + spec;
+      const Fidelity fid = Compare(
+          r.output, o.compare.empty() || label == "copy-after" ? fs::path() : fs::path(o.compare) / (stem + ".ppm"));
+      results.push_back(ResultJson(set, label, m->kernels, r, copy_ms, fid));
+      std::fprintf(stderr, "  %s %dx%d %-20s %.4f ms (%.2f x copy)", set.scene.c_str(), set.width, set.height,
                    label.c_str(), median, copy_ms > 0 ? median / copy_ms : 1.0);
+      if (fid.has)
+        std::fprintf(stderr, "  %.4f %% identical to the CPU, max diff %d", 100 * fid.identical_share, fid.max_diff);
+      std::fprintf(stderr, "\n");
       if (!o.frames.empty() && label != "copy-after") {
-        WritePpm(fs::path(o.frames) / (set.scene + "-" + std::to_string(set.width) + "x" + std::to_string(set.height) +
-                                       "-" + spec + ".ppm"),
-                 r.output);
+        WritePpm(fs::path(o.frames) / (stem + ".ppm"), r.output);
       }
     };
     for (const std::string& spec : o.methods) run(spec, spec);
