@@ -11,6 +11,7 @@
 // tests skip, and fail under CI.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -226,6 +227,57 @@ TEST_F(VkTool, OutputFramesEqualTheCpuPorts) {
       EXPECT_EQ(easu, 1.0) << scene << " " << m << " max diff " << diff;
     }
   }
+}
+
+// `img` as RGBA (alpha 255), what WritePpm takes.
+Image8 Rgba(const Image8& img) {
+  Image8 out(img.Width(), img.Height(), 4, 255);
+  for (int y = 0; y < img.Height(); ++y) {
+    for (int x = 0; x < img.Width(); ++x) {
+      for (int c = 0; c < 3; ++c) out.Pixel(x, y)[c] = img.Pixel(x, y)[c];
+    }
+  }
+  return out;
+}
+
+// --compare: the fidelity block of each result whose reference exists (here the run's CPU
+// outputs as PPM, as gpu/vk/pack.sh makes them with `aalab apply`), counted as the test counts.
+TEST_F(VkTool, CompareWritesTheFidelityBlockMergeGpuReads) {
+  const fs::path refs = Dir() / "refs";
+  fs::create_directories(refs);
+  for (const std::string scene : {"wedges", "mesh"}) {
+    for (const std::string m : {"cmaa2-high", "rcas"}) {
+      WritePpm((refs / (scene + "-96x54-" + m + ".ppm")).string(),
+               Rgba(ReadImage8((Dir() / "run" / "images" / scene / (m + ".png")).string())));
+    }
+  }
+  const fs::path json = Dir() / "compared.json";
+  const std::string d = Dir().string();
+  const CmdResult r = Vk("--shaders " + d + "/spv --input " + d + "/frames --methods cmaa2-high,rcas --compare " +
+                         refs.string() + " --json " + json.string() + " --warmup 0 --repeat 1");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json j = ReadJson(json);
+  int compared = 0;
+  for (const auto& row : j.at("results")) {
+    const std::string m = row.at("method");
+    ASSERT_EQ(row.contains("fidelity"), m == "cmaa2-high" || m == "rcas") << row.dump();
+    if (!row.contains("fidelity")) continue;
+    ++compared;
+    const std::string scene = row.at("scene");
+    int diff = 0;
+    const double share = Identical(ReadPpm((Dir() / "out" / (scene + "-96x54-" + m + ".ppm")).string()),
+                                   ReadPpm((refs / (scene + "-96x54-" + m + ".ppm")).string()), &diff);
+    EXPECT_NEAR(row.at("fidelity").at("identical_share").get<double>(), share, 1e-6) << row.dump();
+    EXPECT_EQ(row.at("fidelity").at("max_diff"), diff) << row.dump();
+    EXPECT_EQ(row.at("fidelity").at("differing_pixels").get<long>(), std::lround((1 - share) * 96 * 54)) << row.dump();
+  }
+  EXPECT_EQ(compared, 4);
+  // A reference of another size is refused, naming it.
+  WritePpm((refs / "mesh-96x54-rcas.ppm").string(), Image8(10, 10, 4, 255));
+  const CmdResult bad = Vk("--shaders " + d + "/spv --input " + d + "/frames --methods rcas --compare " +
+                           refs.string() + " --warmup 0 --repeat 1");
+  EXPECT_EQ(bad.code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("mesh-96x54-rcas.ppm' is 10x10, the output 96x54"), std::string::npos) << bad.output;
 }
 
 TEST_F(VkTool, RefusesBadInputWithOneMessage) {
