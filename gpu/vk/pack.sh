@@ -44,3 +44,7 @@ o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64'
 # shellcheck disable=SC2086
 (cd "$carry/debs" && apt-get $o download libvulkan1 libvulkan-dev > /dev/null)
 echo "pack.sh: $(du -sh "$carry" | cut -f1) in $carry (frames.tgz $(du -h "$carry/frames.tgz" | cut -f1))"
+if [ "$(du -sm "$carry" | cut -f1)" -gt 48 ]; then
+  echo "pack.sh: warning: over 48 MiB: with the working tree it may not fit the device's 64 MiB; pack fewer" \
+    "scenes per batch (gpu/vk/pack.sh CARRY scene1,scene2,...), run each, merge each JSON" >&2
+fi
