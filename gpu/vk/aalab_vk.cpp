@@ -361,7 +361,8 @@ int Run(const Options& o) {
     j << "  \"generated_utc\": " << Q(NowUtc()) << ",\n";
     j << "  \"device\": {\"name\": " << Q(facts.name) << ", \"vulkan_api\": " << Q(facts.api)
       << ", \"timestamp_period_ns\": " << Num(facts.timestamp_period_ns)
-      << ", \"timestamp_valid_bits\": " << facts.timestamp_valid_bits << "},\n";
+      << ", \"timestamp_valid_bits\": " << facts.timestamp_valid_bits
+      << ", \"robust_image_access\": " << (facts.robust_image_access ? "true" : "false") << "},\n";
     j << "  \"driver\": " << Q(facts.driver) << ",\n";
     j << "  \"cuda_runtime\": " << Q("none (Vulkan " + facts.api + ")") << ",\n";
     j << "  \"timing\": {\"method\": \"vkCmdWriteTimestamp (BOTTOM_OF_PIPE) before the first pass and after each "

@@ -92,7 +92,7 @@ Device::Device(const std::string& name_filter) : impl_(std::make_unique<Impl>())
   Impl& d = *impl_;
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "aalab_vk";
-  app.apiVersion = VK_API_VERSION_1_2;
+  app.apiVersion = VK_API_VERSION_1_3;
   VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   ci.pApplicationInfo = &app;
   if (vkCreateInstance(&ci, nullptr, &d.instance) != VK_SUCCESS) {
@@ -150,7 +150,26 @@ Device::Device(const std::string& name_filter) : impl_(std::make_unique<Impl>())
   qi.queueFamilyIndex = d.family;
   qi.queueCount = 1;
   qi.pQueuePriorities = &prio;
+  // Features the modules use where the device offers them: textureGather with an offset
+  // (ImageGatherExtended: CMAA2, EASU) and robust image access (reads outside an image return
+  // 0, as D3D12 defines them for CMAA2's sample and as the oracles run lavapipe).
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  const bool v13 = p2.properties.apiVersion >= VK_API_VERSION_1_3;
+  if (v13) f2.pNext = &f13;
+  vkGetPhysicalDeviceFeatures2(d.phys, &f2);
+  VkPhysicalDeviceVulkan13Features want13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  want13.robustImageAccess = v13 ? f13.robustImageAccess : VK_FALSE;
+  d.facts.robust_image_access = want13.robustImageAccess == VK_TRUE;
+  VkPhysicalDeviceFeatures want{};
+  want.shaderImageGatherExtended = f2.features.shaderImageGatherExtended;
+  if (!want.shaderImageGatherExtended) {
+    throw std::runtime_error("Vulkan device '" + d.facts.name +
+                             "' lacks shaderImageGatherExtended (CMAA2's and EASU's gathers need it)");
+  }
   VkDeviceCreateInfo di{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  di.pNext = want13.robustImageAccess ? &want13 : nullptr;
+  di.pEnabledFeatures = &want;
   di.queueCreateInfoCount = 1;
   di.pQueueCreateInfos = &qi;
   Check(vkCreateDevice(d.phys, &di, nullptr, &d.device), "vkCreateDevice");

@@ -17,6 +17,7 @@ struct DeviceFacts {
   std::string api;     ///< the device's Vulkan version, e.g. "1.3.277"
   double timestamp_period_ns = 0;
   uint32_t timestamp_valid_bits = 0;
+  bool robust_image_access = false;  ///< enabled (Vulkan 1.3's robustImageAccess) where offered
 };
 
 /// An image of a method (one mip level, one layer). UNORM/UINT formats are sampled and storage

@@ -120,6 +120,7 @@ TEST_F(VkTool, WritesTheGpuTimingsSchemaWithPositiveTimesForEveryPass) {
   EXPECT_EQ(j.at("schema"), "aalab-gpu-timings");
   EXPECT_EQ(j.at("schema_version"), 1);
   EXPECT_NE(j.at("device").at("name").get<std::string>().find("llvmpipe"), std::string::npos);
+  EXPECT_EQ(j.at("device").at("robust_image_access"), true);  // lavapipe offers it, as the oracles use it
   EXPECT_EQ(j.at("timing").at("warmup"), 1);
   EXPECT_EQ(j.at("timing").at("repeat"), 2);
   const std::vector<std::string> methods = {"copy", "cmaa2-low",    "cmaa2-medium",      "cmaa2-high", "cmaa2-ultra",
