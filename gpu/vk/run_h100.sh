@@ -23,7 +23,9 @@ fi
 lib=$(ldconfig -p | sed -n 's/^[[:space:]]*libvulkan\.so\.1 (libc6,x86-64) => //p' | head -1)
 [ -n "$lib" ] || { echo "run_h100.sh: no libvulkan.so.1 after installing $carry/debs" >&2; exit 1; }
 dpkg -x "$carry"/debs/libvulkan-dev_*.deb "$work/dev"
-export VK_DRIVER_FILES="${VK_DRIVER_FILES:-/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json}"
+# NVIDIA's ICD where the device README puts it (unless VK_DRIVER_FILES is set already).
+icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+if [ -z "${VK_DRIVER_FILES:-}" ] && [ -f "$icd" ]; then export VK_DRIVER_FILES="$icd"; fi
 cmake -S gpu/vk -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DVulkan_INCLUDE_DIR="$work/dev/usr/include" \
   -DVulkan_LIBRARY="$lib" > "$work/cmake.log" 2>&1 || { cat "$work/cmake.log"; exit 1; }
 cmake --build "$work/build" -j 8 > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
