@@ -10,8 +10,9 @@
 //   shader does not write keep their bytes); the shader converts to sRGB itself
 //   (CMAA2_UAV_STORE_CONVERT_TO_SRGB). The shader resets its counters and list heads for the
 //   next frame itself, so the chain repeats as a game's frames do. The working buffers are
-//   sized so that no count is clamped (candidates and blend locations: one per pixel; blend
-//   items: eight per pixel), more than the shader needs on any frame measured.
+//   sized generously (candidates and blend locations: one per pixel; blend items: eight per
+//   pixel); the shader clamps a count that would overflow, which would show as a fidelity
+//   difference (not seen on the test's frames).
 // - FSR 1 (ffx_fsr1.h): EASU from the render-size frame of scale43-easu (round(3W/4) x
 //   round(3H/4), one centre sample: `aalab export-frames --render-methods scale43-easu`, role
 //   `scale43-easu`) to the output size into an R8G8B8A8_UNORM image (the sample's

@@ -150,8 +150,8 @@ Device::Device(const std::string& name_filter) : impl_(std::make_unique<Impl>())
   qi.queueFamilyIndex = d.family;
   qi.queueCount = 1;
   qi.pQueuePriorities = &prio;
-  // Features the modules use where the device offers them: textureGather with an offset
-  // (ImageGatherExtended: CMAA2, EASU) and robust image access (reads outside an image return
+  // Features the modules use: texel loads with offsets (ImageGatherExtended: CMAA2's edges
+  // and candidates passes), and where the device offers it robust image access (reads outside an image return
   // 0, as D3D12 defines them for CMAA2's sample and as the oracles run lavapipe).
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
@@ -165,7 +165,7 @@ Device::Device(const std::string& name_filter) : impl_(std::make_unique<Impl>())
   want.shaderImageGatherExtended = f2.features.shaderImageGatherExtended;
   if (!want.shaderImageGatherExtended) {
     throw std::runtime_error("Vulkan device '" + d.facts.name +
-                             "' lacks shaderImageGatherExtended (CMAA2's and EASU's gathers need it)");
+                             "' lacks shaderImageGatherExtended (CMAA2's texel loads with offsets need it)");
   }
   VkDeviceCreateInfo di{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   di.pNext = want13.robustImageAccess ? &want13 : nullptr;
