@@ -98,10 +98,13 @@ int ExportFrames(const ExportArgs& a) {
   if (!a.render_methods.empty()) {
     for (const auto& spec : SplitCommaList(a.render_methods, "--render-methods")) {
       const MethodPlan plan = MakeMethod(spec);
-      if (!plan.render.msaa.On() && plan.render.pattern != SamplePattern::kOrderedGrid) {
+      // Also the render-size frame of the FSR 1 rows (scale < 1): what aalab_vk's EASU reads.
+      const bool reduced = plan.rescale == Rescale::kEasu && plan.render.scale < 1.0;
+      if (!plan.render.msaa.On() && plan.render.pattern != SamplePattern::kOrderedGrid && !reduced) {
         throw UserError("--render-methods '" + spec +
-                        "' is not an MSAA or ordered-grid SSAA method (allowed: msaa-2x, "
-                        "msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4: what aalab_raster draws)");
+                        "' is not an MSAA or ordered-grid SSAA method nor an EASU upscale (allowed: msaa-2x, "
+                        "msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4: what aalab_raster draws; scale43-easu, "
+                        "scale43-easu-rcas: the render-size frame aalab_vk upscales)");
       }
       render_methods.emplace_back(spec, plan.render);
     }
@@ -140,7 +143,10 @@ int ExportFrames(const ExportArgs& a) {
       }
       if (a.taa_frames > 0) ExportTaaSequence(*scene, tracer, w, h, a.taa_frames, base, tmp, tsv);
       for (const auto& [spec, render] : render_methods) {
-        WritePpm((tmp / (base + "-" + spec + ".ppm")).string(), RenderFrame(tracer, w, h, render, a.seed, nullptr));
+        // At the method's render size, as the run renders it (harness/run/pipeline.cpp).
+        const int rw = std::max(1, static_cast<int>(std::lround(render.scale * w)));
+        const int rh = std::max(1, static_cast<int>(std::lround(render.scale * h)));
+        WritePpm((tmp / (base + "-" + spec + ".ppm")).string(), RenderFrame(tracer, rw, rh, render, a.seed, nullptr));
         tsv << scene->name << "\t" << spec << "\t" << w << "\t" << h << "\t" << base << "-" << spec << ".ppm\n";
       }
       std::fprintf(stderr, "exported %s\n", base.c_str());
@@ -261,7 +267,8 @@ void RegisterGpuCommands(CLI::App& app, Commands& commands) {
                  "also export taa's inputs for frames 0..N-1 (jittered renders + previous positions; 0 = none)")
       ->capture_default_str();
   ex->add_option("--render-methods", ea->render_methods,
-                 "also write these MSAA / SSAA methods' frames (<base>-<spec>.ppm), for aalab_raster --compare")
+                 "also write these MSAA / SSAA methods' frames (<base>-<spec>.ppm), for aalab_raster --compare, "
+                 "or scale43-easu's render-size frame, for aalab_vk")
       ->capture_default_str();
   ex->add_option("--out", ea->out, "output folder (frames.tsv + PPM files)")->required();
   ex->callback([&commands, ea] { commands.action = [ea] { return ExportFrames(*ea); }; });

@@ -1,0 +1,44 @@
+#!/bin/sh
+# Times CMAA2 and FSR 1 as their original shaders on the GPU machine (docs/gpu.md "Original
+# shaders through Vulkan"). Run there, in the repository root, with the folder gpu/vk/pack.sh
+# made here carried along:
+#
+#   gpu/vk/run_h100.sh CARRY [OUT]       # OUT: default $OUT (the device tool's), else CARRY
+#
+# Installs the Vulkan loader from CARRY/debs where none is installed (dpkg -x into /, as the
+# device's README says), unpacks libvulkan-dev's headers beside it (not into /), builds
+# gpu/vk stand-alone with CMake, and runs aalab_vk on NVIDIA's ICD over every frame with
+# --compare against the CPU outputs. Writes OUT/vk-timings.json (for `aalab merge-gpu`) and
+# OUT/vk-log.txt. WARMUP / REPEAT (default 200 / 200), VK_DRIVER_FILES and METHODS override.
+set -eu
+carry=${1:?usage: gpu/vk/run_h100.sh CARRY [OUT]}
+out=${2:-${OUT:-$carry}}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$out"
+if ! ldconfig -p | grep -q 'libvulkan\.so\.1 '; then
+  for f in "$carry"/debs/libvulkan1_*.deb; do dpkg -x "$f" /; done
+  ldconfig
+fi
+lib=$(ldconfig -p | sed -n 's/^[[:space:]]*libvulkan\.so\.1 (libc6,x86-64) => //p' | head -1)
+[ -n "$lib" ] || { echo "run_h100.sh: no libvulkan.so.1 after installing $carry/debs" >&2; exit 1; }
+dpkg -x "$carry"/debs/libvulkan-dev_*.deb "$work/dev"
+# NVIDIA's ICD where the device README puts it (unless VK_DRIVER_FILES is set already).
+icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+if [ -z "${VK_DRIVER_FILES:-}" ] && [ -f "$icd" ]; then export VK_DRIVER_FILES="$icd"; fi
+cmake -S gpu/vk -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DVulkan_INCLUDE_DIR="$work/dev/usr/include" \
+  -DVulkan_LIBRARY="$lib" > "$work/cmake.log" 2>&1 || { cat "$work/cmake.log"; exit 1; }
+cmake --build "$work/build" -j 8 > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
+tar xzf "$carry/frames.tgz" -C "$work"
+methods=${METHODS:+--methods $METHODS}
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,clocks.mem,temperature.gpu,power.draw \
+  --format=csv > "$out/vk-smi.txt" 2>&1 || true
+status=0
+# shellcheck disable=SC2086
+"$work/build/aalab_vk" --shaders "$carry/spv" --input "$work/frames" --compare "$work/refs" \
+  --json "$out/vk-timings.json" --warmup "${WARMUP:-200}" --repeat "${REPEAT:-200}" $methods \
+  > "$out/vk-log.txt" 2>&1 || status=$?
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,clocks.mem,temperature.gpu,power.draw \
+  --format=csv,noheader >> "$out/vk-smi.txt" 2>&1 || true
+cat "$out/vk-log.txt"
+exit $status
