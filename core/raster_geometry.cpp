@@ -10,7 +10,7 @@ namespace aalab {
 
 namespace {
 
-constexpr char kMagic[8] = {'A', 'A', 'L', 'A', 'B', 'R', 'G', '1'};
+constexpr char kMagic[8] = {'A', 'A', 'L', 'A', 'B', 'R', 'G', '2'};
 
 class Writer {
  public:
@@ -18,6 +18,9 @@ class Writer {
   void I32(int32_t v) { Raw(&v, 4); }
   void F32(float v) { Raw(&v, 4); }
   void F3(const std::array<float, 3>& v) {
+    for (float f : v) F32(f);
+  }
+  void F2(const std::array<float, 2>& v) {
     for (float f : v) F32(f);
   }
   void Raw(const void* p, size_t n) {
@@ -56,6 +59,7 @@ class Reader {
     return v;
   }
   std::array<float, 3> F3(const char* what) { return {F32(what), F32(what), F32(what)}; }
+  std::array<float, 2> F2(const char* what) { return {F32(what), F32(what)}; }
   int Choice(const char* what, int lo, int hi) {
     const int32_t v = I32(what);
     if (v < lo || v > hi) {
@@ -118,6 +122,15 @@ std::string RasterSceneBytes(const RasterScene& s) {
   for (const auto& m : s.materials) {
     w.I32(m.lit ? 1 : 0);
     w.F3(m.color);
+    const RasterTexture& t = m.texture;
+    w.I32(t.pattern);
+    w.F32(t.scale);
+    w.F32(t.cos_angle);
+    w.F32(t.sin_angle);
+    w.F32(t.duty);
+    w.U32(t.seed);
+    w.F3(t.color_a);
+    w.F3(t.color_b);
   }
   w.U32(static_cast<uint32_t>(s.triangles.size()));
   for (const auto& t : s.triangles) {
@@ -127,6 +140,7 @@ std::string RasterSceneBytes(const RasterScene& s) {
     for (const auto& c : t.corners) {
       w.F3(c.position);
       w.F3(c.normal);
+      w.F2(c.uv);
     }
   }
   return w.Take();
@@ -137,7 +151,7 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
   r.Need(8, "the magic");
   if (std::memcmp(bytes.data(), kMagic, 8) != 0) {
     throw UserError("'" + origin +
-                    "' is not a raster scene file (it does not start with AALABRG1; write one with "
+                    "' is not a raster scene file (it does not start with AALABRG2; write one with "
                     "aalab export-geometry)");
   }
   r.Str(8, "the magic");
@@ -160,12 +174,21 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
     l.color = r.F3("a light colour");
     l.intensity = r.F32("a light intensity");
   }
-  s.materials.resize(r.Count("the material count", 16));
+  s.materials.resize(r.Count("the material count", 64));
   for (auto& m : s.materials) {
     m.lit = r.Choice("a material's lit flag", 0, 1) == 1;
     m.color = r.F3("a material colour");
+    RasterTexture& t = m.texture;
+    t.pattern = r.Choice("a material's texture pattern", -1, 2);
+    t.scale = r.F32("a texture scale");
+    t.cos_angle = r.F32("a texture's stripe cosine");
+    t.sin_angle = r.F32("a texture's stripe sine");
+    t.duty = r.F32("a texture's stripe duty");
+    t.seed = r.U32("a texture seed");
+    t.color_a = r.F3("a texture's color_a");
+    t.color_b = r.F3("a texture's color_b");
   }
-  s.triangles.resize(r.Count("the triangle count", 84));
+  s.triangles.resize(r.Count("the triangle count", 108));
   const int n_mat = static_cast<int>(s.materials.size());
   for (auto& t : s.triangles) {
     t.shape = r.Choice("a triangle's shape", 0, 0x7fffffff);
@@ -174,6 +197,7 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
     for (auto& c : t.corners) {
       c.position = r.F3("a corner position");
       c.normal = r.F3("a corner normal");
+      c.uv = r.F2("a corner uv");
     }
   }
   if (r.Pos() != r.Size())

@@ -3,19 +3,23 @@
 /// and read by the stand-alone raster tool (gpu/raster/), which links neither Embree nor OIIO.
 ///
 /// Binary, little-endian, in this order (i32 / u32 / f32 are 4 bytes):
-///   "AALABRG1" (8 bytes)
+///   "AALABRG2" (8 bytes; version 2 added the procedural textures and the corners' uv)
 ///   u32 name length, name bytes (UTF-8, no terminator)
 ///   camera:   i32 type (0 perspective, 1 orthographic); f32 position[3], look_at[3], up[3],
 ///             fov_y_deg, height
 ///   display:  f32 exposure; i32 tonemap (0 none, 1 reinhard, 2 aces)
 ///   shading:  f32 background[3], ambient[3]; i32 lambert (the scene declares `lambert`)
 ///   u32 light count; per light (directional only): f32 direction[3], color[3], intensity
-///   u32 material count; per material: i32 lit (1: lambert, 0: unlit); f32 color[3]
+///   u32 material count; per material: i32 lit (1: lambert, 0: unlit); f32 color[3];
+///             i32 pattern (−1: no texture, 0 checker, 1 stripes, 2 noise; the scene's
+///             procedural texture, scenes/scene.h Texture, only when it declares `textures`);
+///             f32 scale, cos, sin (stripes: the tracer's cos/sin of its angle, as the
+///             tracer computes them), duty; u32 seed; f32 color_a[3], color_b[3]
 ///   u32 triangle count; per triangle: i32 shape (index in Scene::shapes), i32 material,
 ///             i32 smooth (1: the corner normals are the mesh's, 0: flat); then three
 ///             corners of f32 position[3], normal[3] (flat: the face normal
 ///             (p1 − p0) × (p2 − p0), unnormalised, in all three, which the tracer's
-///             geometric normal equals up to sign and length)
+///             geometric normal equals up to sign and length), uv[2] (Shape::uvs)
 /// Values are the Scene's own floats (world space, after transforms), so nothing is rounded
 /// on the way.
 #pragma once
@@ -32,14 +36,26 @@ struct RasterLight {
   float intensity = 1.0f;  ///< aalab's internal unit (Light::intensity)
 };
 
+/// A procedural texture (scenes/scene.h Texture) as the raster path evaluates it.
+struct RasterTexture {
+  int32_t pattern = -1;  ///< −1 none, 0 checker, 1 stripes, 2 noise (TexturePattern order)
+  float scale = 1.0f;
+  float cos_angle = 1.0f, sin_angle = 0.0f;  ///< stripes: the tracer's std::cos/std::sin of the angle
+  float duty = 0.5f;
+  uint32_t seed = 0;
+  std::array<float, 3> color_a{0, 0, 0}, color_b{1, 1, 1};
+};
+
 struct RasterMaterial {
   bool lit = false;  ///< lambert shading (else unlit: the colour as radiance)
   std::array<float, 3> color{1, 1, 1};
+  RasterTexture texture;  ///< replaces `color` when pattern ≥ 0
 };
 
 struct RasterCorner {
   std::array<float, 3> position{0, 0, 0};
   std::array<float, 3> normal{0, 0, 0};
+  std::array<float, 2> uv{0, 0};
 };
 
 struct RasterTriangle {

@@ -2,6 +2,8 @@
 // of what it cannot draw yet.
 #include "scenes/raster_export.h"
 
+#include <cmath>
+
 #include "core/error.h"
 
 namespace aalab {
@@ -21,11 +23,26 @@ const char* ShapeKindName(ShapeKind k) {
   return "?";
 }
 
+/// The pattern's parameters; stripes carry the cosine and sine of their angle as
+/// EvaluatePattern (scenes/tracer.cpp) computes them, so the GPU needs no trigonometry.
+RasterTexture RasterTextureOf(const Texture& t) {
+  RasterTexture r;
+  r.pattern = static_cast<int32_t>(t.pattern);
+  r.scale = t.scale;
+  const float ang = glm::radians(t.angle_deg);
+  r.cos_angle = std::cos(ang);
+  r.sin_angle = std::sin(ang);
+  r.duty = t.duty;
+  r.seed = t.seed;
+  r.color_a = A3(t.color_a);
+  r.color_b = A3(t.color_b);
+  return r;
+}
+
 }  // namespace
 
 std::string RasterUnsupported(const Scene& sc) {
-  for (Effect e : {Effect::kShadows, Effect::kSpecular, Effect::kTextures, Effect::kAlphaTest, Effect::kAlphaBlend,
-                   Effect::kNormalMap}) {
+  for (Effect e : {Effect::kShadows, Effect::kSpecular, Effect::kAlphaTest, Effect::kAlphaBlend, Effect::kNormalMap}) {
     if (sc.Has(e)) return std::string("it declares the effect '") + EffectName(e) + "'";
   }
   if (sc.environment) return "it has an environment (image-based lighting)";
@@ -48,8 +65,9 @@ std::string RasterUnsupported(const Scene& sc) {
 RasterScene RasterSceneOf(const Scene& sc) {
   if (const std::string why = RasterUnsupported(sc); !why.empty()) {
     throw UserError("the raster path cannot draw scene '" + sc.name + "' yet: " + why +
-                    " (it draws still triangle scenes, unlit or lambert solid colours, directional lights "
-                    "without shadows; of the library: wedges, mesh)");
+                    " (it draws still triangle scenes, unlit or lambert, solid colours or procedural "
+                    "textures, directional lights without shadows; of the default suite: wedges, mesh, "
+                    "checker-plane, detail-texture)");
   }
   RasterScene r;
   r.name = sc.name;
@@ -65,7 +83,13 @@ RasterScene RasterSceneOf(const Scene& sc) {
   r.ambient = A3(sc.ambient);
   r.lambert = sc.Has(Effect::kLambert);
   for (const auto& l : sc.lights) r.lights.push_back({A3(l.direction), A3(l.color), l.intensity});
-  for (const auto& m : sc.materials) r.materials.push_back({m.shading == Shading::kLambert, A3(m.color)});
+  const bool textures = sc.Has(Effect::kTextures);
+  for (const auto& m : sc.materials) {
+    RasterMaterial rm{m.shading == Shading::kLambert, A3(m.color), {}};
+    // The tracer reads a material's texture only when the scene declares `textures`.
+    if (textures && m.texture) rm.texture = RasterTextureOf(*m.texture);
+    r.materials.push_back(rm);
+  }
   for (size_t si = 0; si < sc.shapes.size(); ++si) {
     const Shape& s = sc.shapes[si];
     const bool smooth = !s.normals.empty();
@@ -80,6 +104,7 @@ RasterScene RasterSceneOf(const Scene& sc) {
       for (int k = 0; k < 3; ++k) {
         tri.corners[k].position = A3(p[k]);
         tri.corners[k].normal = A3(smooth ? s.normals[idx[k]] : face);
+        if (idx[k] < s.uvs.size()) tri.corners[k].uv = {s.uvs[idx[k]].x, s.uvs[idx[k]].y};
       }
       r.triangles.push_back(tri);
     }

@@ -10,9 +10,10 @@
 namespace aalab {
 
 /// Why the raster path cannot draw `scene` yet ("" when it can): it draws still scenes of
-/// triangles (quads, boxes, planes, meshes) with unlit or lambert materials (solid colours)
-/// under directional lights without shadows, and any display transform. Refused: analytic
-/// shapes (sphere, disk, capsule, cylinder), the effects textures, shadows, specular,
+/// triangles (quads, boxes, planes, meshes) with unlit or lambert materials (solid colours
+/// or the procedural textures checker, stripes, noise) under directional lights without
+/// shadows, and any display transform. Refused: analytic shapes (sphere, disk, capsule,
+/// cylinder), the effects shadows, specular,
 /// alpha_test, alpha_blend and normal_map, glTF materials, environments, point and spot
 /// lights, animation.
 std::string RasterUnsupported(const Scene& scene);

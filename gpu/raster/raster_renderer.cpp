@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "gpu/raster/raster_shaders.h"
@@ -332,10 +333,12 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
   g.resolve_grid_prog = Link({{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kResolveGridFragment}});
   g.encode_prog = Link({{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kEncodeFragment}});
   g.unpack_prog = Link({{GL_COMPUTE_SHADER, kUnpackIdsCompute}});
-  // Interleaved vertices: position (3 floats), normal (3 floats), shape and material (2 ints).
+  // Interleaved vertices: position (3 floats), normal (3 floats), shape and material (2 ints),
+  // uv (2 floats).
   struct Vertex {
     float p[3], n[3];
     int32_t ids[2];
+    float uv[2];
   };
   std::vector<Vertex> v;
   v.reserve(scene.triangles.size() * 3);
@@ -343,7 +346,8 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
     for (const auto& c : t.corners) {
       v.push_back({{c.position[0], c.position[1], c.position[2]},
                    {c.normal[0], c.normal[1], c.normal[2]},
-                   {t.shape, t.material}});
+                   {t.shape, t.material},
+                   {c.uv[0], c.uv[1]}});
     }
   }
   g.vertices = static_cast<GLsizei>(v.size());
@@ -355,18 +359,34 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
   glEnableVertexArrayAttrib(g.vao, 0);
   glEnableVertexArrayAttrib(g.vao, 1);
   glEnableVertexArrayAttrib(g.vao, 2);
+  glEnableVertexArrayAttrib(g.vao, 3);
   glVertexArrayAttribFormat(g.vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, p));
   glVertexArrayAttribFormat(g.vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, n));
   glVertexArrayAttribIFormat(g.vao, 2, 2, GL_INT, offsetof(Vertex, ids));
-  for (GLuint a = 0; a < 3; ++a) glVertexArrayAttribBinding(g.vao, a, 0);
+  glVertexArrayAttribFormat(g.vao, 3, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
+  for (GLuint a = 0; a < 4; ++a) glVertexArrayAttribBinding(g.vao, a, 0);
   glCreateVertexArrays(1, &g.empty_vao);
-  std::vector<float> mats;
+  // The shader's std430 Material: colour + lit, texture scale/cos/sin/duty, pattern + seed
+  // (ints), color_a, color_b; 5 × 16 bytes.
+  struct GpuMaterial {
+    float color[4], tex[4];
+    int32_t kind[4];
+    float a[4], b[4];
+  };
+  std::vector<GpuMaterial> mats;
   for (const auto& m : scene.materials) {
-    mats.insert(mats.end(), {m.color[0], m.color[1], m.color[2], m.lit ? 1.0f : 0.0f});
+    const RasterTexture& t = m.texture;
+    int32_t seed = 0;
+    std::memcpy(&seed, &t.seed, 4);
+    mats.push_back({{m.color[0], m.color[1], m.color[2], m.lit ? 1.0f : 0.0f},
+                    {t.scale, t.cos_angle, t.sin_angle, t.duty},
+                    {t.pattern, seed, 0, 0},
+                    {t.color_a[0], t.color_a[1], t.color_a[2], 0.0f},
+                    {t.color_b[0], t.color_b[1], t.color_b[2], 0.0f}});
   }
-  if (mats.empty()) mats.assign(4, 0.0f);
+  if (mats.empty()) mats.push_back({});
   glCreateBuffers(1, &g.materials);
-  glNamedBufferStorage(g.materials, static_cast<GLsizeiptr>(mats.size() * sizeof(float)), mats.data(), 0);
+  glNamedBufferStorage(g.materials, static_cast<GLsizeiptr>(mats.size() * sizeof(GpuMaterial)), mats.data(), 0);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.materials);
   Check("uploading the raster scene");
 }

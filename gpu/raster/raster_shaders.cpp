@@ -9,13 +9,16 @@ const char* const kSceneVertex = R"(#version 450 core
 layout(location = 0) in vec3 a_pos;
 layout(location = 1) in vec3 a_nrm;
 layout(location = 2) in ivec2 a_ids;
+layout(location = 3) in vec2 a_uv;
 uniform mat4 u_view_proj;
 out vec3 v_pos;
 out vec3 v_nrm;
+out vec2 v_uv;
 flat out ivec2 v_ids;
 void main() {
   v_pos = a_pos;
   v_nrm = a_nrm;
+  v_uv = a_uv;
   v_ids = a_ids;
   gl_Position = u_view_proj * vec4(a_pos, 1.0);
 }
@@ -24,9 +27,16 @@ void main() {
 const char* const kSceneFragment = R"(#version 450 core
 in vec3 v_pos;
 in vec3 v_nrm;
+in vec2 v_uv;
 flat in ivec2 v_ids;
 layout(location = 0) out vec4 o_color;
-layout(std430, binding = 0) readonly buffer Materials { vec4 mat[]; };  // rgb colour, w = lit
+struct Material {
+  vec4 color;  // rgb, w = lit
+  vec4 tex;    // scale, cos, sin, duty
+  ivec4 kind;  // pattern (-1 none, 0 checker, 1 stripes, 2 noise), seed's bits
+  vec4 a, b;   // color_a, color_b
+};
+layout(std430, binding = 0) readonly buffer Materials { Material mat[]; };
 uniform vec3 u_cam_pos;
 uniform vec3 u_forward;
 uniform int u_ortho;
@@ -54,11 +64,63 @@ float Display(float v) {
   return clamp(Tonemap(v * u_exposure), 0.0, 1.0);
 }
 
+// 64-bit unsigned arithmetic on (low, high) words, for the noise hash (scenes/tracer.cpp
+// EvaluatePattern), without GL_ARB_gpu_shader_int64.
+uvec2 Mul64(uvec2 a, uvec2 b) {
+  uint hi, lo;
+  umulExtended(a.x, b.x, hi, lo);
+  return uvec2(lo, hi + a.x * b.y + a.y * b.x);
+}
+uvec2 Add64(uvec2 a, uvec2 b) {
+  uint carry;
+  uint lo = uaddCarry(a.x, b.x, carry);
+  return uvec2(lo, a.y + b.y + carry);
+}
+uvec2 Shr64(uvec2 a, int n) { return uvec2((a.x >> n) | (a.y << (32 - n)), a.y >> n); }  // 0 < n < 32
+// static_cast<int64_t> of an integer-valued float, as x86-64 converts it (out of range,
+// inf or NaN: 0x8000000000000000), as two's-complement words.
+uvec2 Int64Of(float f) {
+  if (abs(f) < 2147483648.0) {
+    int i = int(f);
+    return uvec2(uint(i), i < 0 ? 0xffffffffu : 0u);
+  }
+  if (!(abs(f) < 9223372036854775808.0)) return uvec2(0u, 0x80000000u);
+  float hi = floor(f / 4294967296.0);  // exact: a power of two, and f's low bits are 0
+  float lo = f - hi * 4294967296.0;    // exact: the bits of f below 2^32
+  return uvec2(uint(lo), uint(int(hi)));
+}
+
+// The tracer's EvaluatePattern, operation for operation (point sampling at uv).
+float Pattern(Material m, vec2 uv) {
+  if (m.kind.x == 0) {
+    precise float a = abs(floor(uv.x * m.tex.x) + floor(uv.y * m.tex.x));
+    return (a < 16777216.0 && (int(a) & 1) != 0) ? 1.0 : 0.0;
+  }
+  if (m.kind.x == 1) {
+    precise float d = (uv.x * m.tex.y + uv.y * m.tex.z) * m.tex.x;
+    precise float f = d - floor(d);
+    return f < m.tex.w ? 1.0 : 0.0;
+  }
+  precise float fx = floor(uv.x * m.tex.x);
+  precise float fy = floor(uv.y * m.tex.x);
+  uvec2 h = Mul64(Int64Of(fx), uvec2(0x7f4a7c15u, 0x9e3779b9u)) ^
+            Mul64(Add64(Int64Of(fy), uvec2(0xd9b4e019u, 0x632be59bu)), uvec2(0x1ce4e5b9u, 0xbf58476du)) ^
+            uvec2(0u, uint(m.kind.y));
+  h ^= Shr64(h, 31);
+  h = Mul64(h, uvec2(0x133111ebu, 0x94d049bbu));
+  h ^= Shr64(h, 29);
+  return float(h.y >> 8) * (1.0 / 16777216.0);
+}
+
 void main() {
-  vec4 m = mat[v_ids.y];
-  vec3 base = m.rgb;
+  Material m = mat[v_ids.y];
+  precise vec3 base = m.color.rgb;
+  if (m.kind.x >= 0) {
+    float t = Pattern(m, v_uv);
+    base = m.a.rgb + (m.b.rgb - m.a.rgb) * t;
+  }
   precise vec3 c;
-  if (m.w < 0.5 || u_lambert == 0) {
+  if (m.color.w < 0.5 || u_lambert == 0) {
     c = base;
   } else {
     vec3 dir = u_ortho == 1 ? u_forward : v_pos - u_cam_pos;
@@ -81,6 +143,7 @@ const char* const kIdFragment = R"(#version 450 core
 flat in ivec2 v_ids;
 in vec3 v_pos;
 in vec3 v_nrm;
+in vec2 v_uv;
 layout(location = 0) out uint o_id;
 void main() { o_id = uint(v_ids.x + 1); }
 )";
