@@ -114,9 +114,14 @@ std::string RasterSceneBytes(const RasterScene& s) {
   w.I32(s.lambert ? 1 : 0);
   w.U32(static_cast<uint32_t>(s.lights.size()));
   for (const auto& l : s.lights) {
+    w.I32(l.type);
     w.F3(l.direction);
     w.F3(l.color);
     w.F32(l.intensity);
+    w.F3(l.position);
+    w.F32(l.range);
+    w.F32(l.cos_inner);
+    w.F32(l.cos_outer);
   }
   w.U32(static_cast<uint32_t>(s.materials.size()));
   for (const auto& m : s.materials) {
@@ -137,6 +142,9 @@ std::string RasterSceneBytes(const RasterScene& s) {
     w.I32(t.shape);
     w.I32(t.material);
     w.I32(t.smooth ? 1 : 0);
+    w.I32(t.disk ? 1 : 0);
+    w.F3(t.center);
+    w.F32(t.radius);
     for (const auto& c : t.corners) {
       w.F3(c.position);
       w.F3(c.normal);
@@ -168,11 +176,16 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
   s.background = r.F3("the background");
   s.ambient = r.F3("the ambient");
   s.lambert = r.Choice("the lambert flag", 0, 1) == 1;
-  s.lights.resize(r.Count("the light count", 28));
+  s.lights.resize(r.Count("the light count", 56));
   for (auto& l : s.lights) {
+    l.type = r.Choice("a light type", 0, 2);
     l.direction = r.F3("a light direction");
     l.color = r.F3("a light colour");
     l.intensity = r.F32("a light intensity");
+    l.position = r.F3("a light position");
+    l.range = r.F32("a light range");
+    l.cos_inner = r.F32("a light's cos_inner");
+    l.cos_outer = r.F32("a light's cos_outer");
   }
   s.materials.resize(r.Count("the material count", 64));
   for (auto& m : s.materials) {
@@ -188,12 +201,15 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
     t.color_a = r.F3("a texture's color_a");
     t.color_b = r.F3("a texture's color_b");
   }
-  s.triangles.resize(r.Count("the triangle count", 108));
+  s.triangles.resize(r.Count("the triangle count", 128));
   const int n_mat = static_cast<int>(s.materials.size());
   for (auto& t : s.triangles) {
     t.shape = r.Choice("a triangle's shape", 0, 0x7fffffff);
     t.material = r.Choice("a triangle's material", 0, n_mat - 1);
     t.smooth = r.Choice("a triangle's smooth flag", 0, 1) == 1;
+    t.disk = r.Choice("a triangle's disk flag", 0, 1) == 1;
+    t.center = r.F3("a disk centre");
+    t.radius = r.F32("a disk radius");
     for (auto& c : t.corners) {
       c.position = r.F3("a corner position");
       c.normal = r.F3("a corner normal");

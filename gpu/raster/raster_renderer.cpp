@@ -150,12 +150,21 @@ struct RasterRenderer::Gl {
     for (int l = 0; l < n; ++l) {
       const RasterLight& li = s.lights[static_cast<size_t>(l)];
       const V3 L = {-li.direction[0], -li.direction[1], -li.direction[2]};
-      const V3 e = {li.color[0] * li.intensity, li.color[1] * li.intensity, li.color[2] * li.intensity};
-      glUniform3fv(glGetUniformLocation(scene_prog, ("u_light_l[" + std::to_string(l) + "]").c_str()), 1, L.data());
-      glUniform3fv(glGetUniformLocation(scene_prog, ("u_light_e[" + std::to_string(l) + "]").c_str()), 1, e.data());
+      const V3 cone = {li.range, li.cos_inner, li.cos_outer};
+      auto at = [&](const char* name) {
+        return glGetUniformLocation(scene_prog, (std::string(name) + "[" + std::to_string(l) + "]").c_str());
+      };
+      glUniform1i(at("u_light_type"), li.type);
+      glUniform3fv(at("u_light_l"), 1, L.data());
+      glUniform3fv(at("u_light_c"), 1, li.color.data());
+      glUniform1f(at("u_light_i"), li.intensity);
+      glUniform3fv(at("u_light_p"), 1, li.position.data());
+      glUniform3fv(at("u_light_cone"), 1, cone.data());
     }
+    glUniform1i(loc("u_samples"), draw.samples);
     glUseProgram(id_prog);
     glUniformMatrix4fv(glGetUniformLocation(id_prog, "u_view_proj"), 1, GL_FALSE, view_proj.data());
+    glUniform1i(glGetUniformLocation(id_prog, "u_samples"), draw.samples);
   }
 
   /// The matrix that puts every world point where the tracer's camera ray through it
@@ -339,6 +348,7 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
     float p[3], n[3];
     int32_t ids[2];
     float uv[2];
+    float disk[4];  // centre, radius; radius −1: not a disk
   };
   std::vector<Vertex> v;
   v.reserve(scene.triangles.size() * 3);
@@ -347,7 +357,8 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
       v.push_back({{c.position[0], c.position[1], c.position[2]},
                    {c.normal[0], c.normal[1], c.normal[2]},
                    {t.shape, t.material},
-                   {c.uv[0], c.uv[1]}});
+                   {c.uv[0], c.uv[1]},
+                   {t.center[0], t.center[1], t.center[2], t.disk ? t.radius : -1.0f}});
     }
   }
   g.vertices = static_cast<GLsizei>(v.size());
@@ -360,11 +371,13 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
   glEnableVertexArrayAttrib(g.vao, 1);
   glEnableVertexArrayAttrib(g.vao, 2);
   glEnableVertexArrayAttrib(g.vao, 3);
+  glEnableVertexArrayAttrib(g.vao, 4);
   glVertexArrayAttribFormat(g.vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, p));
   glVertexArrayAttribFormat(g.vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, n));
   glVertexArrayAttribIFormat(g.vao, 2, 2, GL_INT, offsetof(Vertex, ids));
   glVertexArrayAttribFormat(g.vao, 3, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
-  for (GLuint a = 0; a < 4; ++a) glVertexArrayAttribBinding(g.vao, a, 0);
+  glVertexArrayAttribFormat(g.vao, 4, 4, GL_FLOAT, GL_FALSE, offsetof(Vertex, disk));
+  for (GLuint a = 0; a < 5; ++a) glVertexArrayAttribBinding(g.vao, a, 0);
   glCreateVertexArrays(1, &g.empty_vao);
   // The shader's std430 Material: colour + lit, texture scale/cos/sin/duty, pattern + seed
   // (ints), color_a, color_b; 5 × 16 bytes.

@@ -3,20 +3,61 @@
 // (-ffp-contract=off).
 #include "gpu/raster/raster_shaders.h"
 
+#include <string>
+
 namespace aalab::raster {
+
+// A disk impostor's coverage (shared by the colour and ID passes): the interpolated world
+// position on the bounding square (the disk's plane) within the radius, the tracer's
+// |p − c|² ≤ r². 1 sample: the fragment's centre, discarded outside. MSAA: the test at each
+// sample's position (interpolateAtSample) into gl_SampleMask, the shader still run once per
+// pixel (no sample-rate shading).
+namespace {
+
+const char* const kDiskCoverage = R"(
+flat in vec4 v_disk;  // centre, radius (< 0: not a disk)
+uniform int u_samples;
+bool InDisk(vec3 p) {
+  precise vec3 d = p - v_disk.xyz;
+  precise float d2 = dot(d, d);
+  precise float r2 = v_disk.w * v_disk.w;
+  return d2 <= r2;
+}
+// gl_SampleMask is written on every path (a path that leaves it unwritten leaves it
+// undefined, GLSL 4.50 §7.1.2); the GL ANDs it with the raster coverage.
+void DiskCoverage() {
+  gl_SampleMask[0] = -1;
+  if (v_disk.w < 0.0) return;
+  if (u_samples <= 1) {
+    if (!InDisk(v_pos)) discard;
+    return;
+  }
+  int mask = 0;
+  for (int s = 0; s < u_samples; ++s) {
+    if (InDisk(interpolateAtSample(v_pos, s))) mask |= 1 << s;
+  }
+  if (mask == 0) discard;
+  gl_SampleMask[0] = mask;
+}
+)";
+
+}  // namespace
 
 const char* const kSceneVertex = R"(#version 450 core
 layout(location = 0) in vec3 a_pos;
 layout(location = 1) in vec3 a_nrm;
 layout(location = 2) in ivec2 a_ids;
 layout(location = 3) in vec2 a_uv;
+layout(location = 4) in vec4 a_disk;
 uniform mat4 u_view_proj;
 out vec3 v_pos;
 out vec3 v_nrm;
 out vec2 v_uv;
 flat out ivec2 v_ids;
+flat out vec4 v_disk;
 void main() {
   v_pos = a_pos;
+  v_disk = a_disk;
   v_nrm = a_nrm;
   v_uv = a_uv;
   v_ids = a_ids;
@@ -24,7 +65,7 @@ void main() {
 }
 )";
 
-const char* const kSceneFragment = R"(#version 450 core
+static const std::string kSceneFragmentText = std::string(R"(#version 450 core
 in vec3 v_pos;
 in vec3 v_nrm;
 in vec2 v_uv;
@@ -45,8 +86,40 @@ uniform vec3 u_ambient;
 uniform float u_exposure;
 uniform int u_tonemap;
 uniform int u_lights;
-uniform vec3 u_light_l[16];  // -direction
-uniform vec3 u_light_e[16];  // colour * intensity
+uniform int u_light_type[16];   // 0 directional, 1 point, 2 spot
+uniform vec3 u_light_l[16];     // -direction
+uniform vec3 u_light_c[16];     // colour
+uniform float u_light_i[16];    // intensity
+uniform vec3 u_light_p[16];     // position
+uniform vec3 u_light_cone[16];  // range, cos_inner, cos_outer
+)") + kDiskCoverage + R"(
+// scenes/light_eval.h LightIncidence, operation for operation.
+bool Incidence(int l, vec3 p, out vec3 L, out float falloff) {
+  L = u_light_l[l];
+  falloff = 1.0;
+  if (u_light_type[l] == 0) return true;
+  precise vec3 v = u_light_p[l] - p;
+  precise float d2 = dot(v, v);
+  if (!(d2 > 0.0)) return false;
+  precise vec3 vn = v / sqrt(d2);
+  precise float f = 1.0 / d2;
+  float range = u_light_cone[l].x;
+  if (range > 0.0) {
+    precise float q = d2 / (range * range);
+    f *= clamp(1.0 - q * q, 0.0, 1.0);
+  }
+  if (u_light_type[l] == 2) {
+    precise float scale = 1.0 / max(0.001, u_light_cone[l].y - u_light_cone[l].z);
+    precise float offset = -u_light_cone[l].z * scale;
+    precise float cd = dot(-u_light_l[l], -vn);
+    precise float s = clamp(cd * scale + offset, 0.0, 1.0);
+    s *= s;
+    f *= s;
+  }
+  L = vn;
+  falloff = f;
+  return true;
+}
 
 float Tonemap(float v) {
   if (u_tonemap == 1) return isinf(v) ? 1.0 : v / (1.0 + v);
@@ -113,6 +186,7 @@ float Pattern(Material m, vec2 uv) {
 }
 
 void main() {
+  DiskCoverage();
   Material m = mat[v_ids.y];
   precise vec3 base = m.color.rgb;
   if (m.kind.x >= 0) {
@@ -130,23 +204,33 @@ void main() {
     if (dot(n, dir) > 0.0) n = -n;
     c = u_ambient * base;
     for (int l = 0; l < u_lights; ++l) {
-      float ndotl = dot(n, u_light_l[l]);
+      vec3 L;
+      float falloff;
+      if (!Incidence(l, v_pos, L, falloff)) continue;
+      precise float ndotl = dot(n, L);
       if (ndotl <= 0.0) continue;
-      c += base * u_light_e[l] * ndotl;
+      precise vec3 e = u_light_c[l] * (u_light_i[l] * falloff);
+      c += base * e * ndotl;
     }
   }
   o_color = vec4(Display(c.r), Display(c.g), Display(c.b), 1.0);
 }
 )";
+const char* const kSceneFragment = kSceneFragmentText.c_str();
 
-const char* const kIdFragment = R"(#version 450 core
+static const std::string kIdFragmentText = std::string(R"(#version 450 core
 flat in ivec2 v_ids;
 in vec3 v_pos;
 in vec3 v_nrm;
 in vec2 v_uv;
 layout(location = 0) out uint o_id;
-void main() { o_id = uint(v_ids.x + 1); }
+)") + kDiskCoverage + R"(
+void main() {
+  DiskCoverage();
+  o_id = uint(v_ids.x + 1);
+}
 )";
+const char* const kIdFragment = kIdFragmentText.c_str();
 
 const char* const kFullscreenVertex = R"(#version 450 core
 void main() {

@@ -52,9 +52,9 @@ std::string RasterUnavailable(const CmdResult& r) {
 
 TEST(RasterCli, ExportGeometryRefusesWhatTheRasterPathCannotDraw) {
   const fs::path dir = clitest::TempDir("raster-cli-refuse");
-  const CmdResult r = Aalab("export-geometry --scenes wedges,circle --out " + (dir / "geo").string());
+  const CmdResult r = Aalab("export-geometry --scenes wedges,thin-wires --out " + (dir / "geo").string());
   EXPECT_EQ(r.code, 1) << r.output;
-  EXPECT_NE(r.output.find("cannot draw scene 'circle'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cannot draw scene 'thin-wires'"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("analytic shape"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "geo"));
   EXPECT_FALSE(fs::exists(dir / "geo.partial"));
@@ -65,9 +65,10 @@ TEST(RasterCli, ExportGeometryRefusesWhatTheRasterPathCannotDraw) {
   EXPECT_TRUE(fs::exists(dir / "all" / "mesh.geom"));
   EXPECT_TRUE(fs::exists(dir / "all" / "checker-plane.geom"));
   EXPECT_TRUE(fs::exists(dir / "all" / "detail-texture.geom"));
-  EXPECT_FALSE(fs::exists(dir / "all" / "circle.geom"));
+  EXPECT_TRUE(fs::exists(dir / "all" / "sdf-circles.geom"));
+  EXPECT_FALSE(fs::exists(dir / "all" / "thin-wires.geom"));
   const std::string tsv = Slurp(dir / "all" / "geometry.tsv");
-  EXPECT_NE(tsv.find("# skipped circle: it has an analytic shape"), std::string::npos) << tsv;
+  EXPECT_NE(tsv.find("# skipped thin-wires: it has an analytic shape"), std::string::npos) << tsv;
   EXPECT_NE(tsv.find("# skipped shadow-stipple: it declares the effect 'shadows'"), std::string::npos) << tsv;
   EXPECT_NE(tsv.find("mesh\t3200\tmesh.geom"), std::string::npos) << tsv;
 }
@@ -178,15 +179,17 @@ TEST(RasterCli, CompareAgainstExportedFrames) {
   EXPECT_LE(c.at("rows")[2].at("fidelity").at("max_diff").get<int>(), 1);
 }
 
-// The procedural-texture scenes on the user's path: export-geometry → aalab_raster
-// --compare against export-frames' 1× frames. detail-texture (noise, texel centres on pixel
-// centres) within 1 code everywhere; checker-plane identical except where a pixel centre's
-// uv lies at a checker boundary near the horizon (raster_test's rule; measured 9 pixels of
-// 57 600 on llvmpipe).
-TEST(RasterCli, TexturedScenesMatchExportedFrames) {
+// The procedural-texture scenes and a disk on the user's path: export-geometry →
+// aalab_raster --compare against export-frames' 1× frames. detail-texture (noise, texel
+// centres on pixel centres) and circle (a lambert disk under a point light; no pixel centre
+// within the float slack of its outline at this size) within 1 code everywhere; checker-plane identical except where a
+// pixel centre's uv lies at a checker boundary near the horizon (raster_test's rule; measured 9 pixels of 57 600 on
+// llvmpipe).
+TEST(RasterCli, TexturedAndDiskScenesMatchExportedFrames) {
   const fs::path dir = clitest::TempDir("raster-cli-textures");
-  ASSERT_EQ(Aalab("export-geometry --scenes detail-texture,checker-plane --out " + (dir / "geo").string()).code, 0);
-  ASSERT_EQ(Aalab("export-frames --scenes detail-texture,checker-plane --sizes 320x180 --no-scaled --out " +
+  ASSERT_EQ(Aalab("export-geometry --scenes detail-texture,checker-plane,circle --out " + (dir / "geo").string()).code,
+            0);
+  ASSERT_EQ(Aalab("export-frames --scenes detail-texture,checker-plane,circle --sizes 320x180 --no-scaled --out " +
                   (dir / "ef").string())
                 .code,
             0);
@@ -195,10 +198,10 @@ TEST(RasterCli, TexturedScenesMatchExportedFrames) {
   if (const std::string why = RasterUnavailable(r); !why.empty()) AALAB_SKIP_OR_FAIL_UNDER_CI(why);
   ASSERT_EQ(r.code, 0) << r.output;
   const nlohmann::json c = nlohmann::json::parse(Slurp(dir / "c.json"));
-  ASSERT_EQ(c.at("rows").size(), 2u);
+  ASSERT_EQ(c.at("rows").size(), 3u);
   for (const auto& row : c.at("rows")) {
     const auto& f = row.at("fidelity");
-    if (row.at("scene") == "detail-texture") {
+    if (row.at("scene") == "detail-texture" || row.at("scene") == "circle") {
       EXPECT_LE(f.at("max_diff").get<int>(), 1) << row;
     } else {
       EXPECT_EQ(row.at("scene"), "checker-plane");

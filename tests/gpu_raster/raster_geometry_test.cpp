@@ -111,9 +111,36 @@ TEST(RasterGeometry, ProceduralTexturesSurviveTheBytes) {
   }
 }
 
+// circle.json: one disk of radius 3.6 at the origin facing +z, under a point light at
+// (0, −5.5, 2) of intensity 125.66371 / π: the two triangles of its bounding square, 1/16
+// larger, carry the disk; the light keeps its type and position.
+TEST(RasterGeometry, DiskBecomesAnImpostorAndThePointLightSurvives) {
+  const RasterScene s = ParseRasterScene(RasterSceneBytes(RasterSceneOf(LoadScene("circle"))), "test");
+  ASSERT_EQ(s.triangles.size(), 2u);
+  for (const auto& t : s.triangles) {
+    EXPECT_TRUE(t.disk);
+    EXPECT_FLOAT_EQ(t.radius, 3.6f);
+    EXPECT_FLOAT_EQ(t.center[0], 0.0f);
+    for (const auto& c : t.corners) {
+      EXPECT_FLOAT_EQ(std::fabs(c.position[0]), 3.6f * 1.0625f);
+      EXPECT_FLOAT_EQ(std::fabs(c.position[1]), 3.6f * 1.0625f);
+      EXPECT_FLOAT_EQ(c.normal[2], 1.0f);
+      EXPECT_FLOAT_EQ(c.uv[0], c.position[0]);  // the disk's uv: d·tangent, d·(normal × tangent)
+      EXPECT_FLOAT_EQ(c.uv[1], c.position[1]);
+    }
+  }
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].type, 1);  // point
+  EXPECT_FLOAT_EQ(s.lights[0].position[1], -5.5f);
+  EXPECT_FLOAT_EQ(s.lights[0].position[2], 2.0f);
+  EXPECT_NEAR(s.lights[0].intensity, 125.66371 / M_PI, 1e-4);
+  EXPECT_FLOAT_EQ(s.lights[0].range, 0.0f);
+  EXPECT_FALSE(RasterSceneOf(LoadScene("wedges")).triangles[0].disk);
+}
+
 TEST(RasterGeometry, RefusalsNameTheSceneAndTheReason) {
   for (const auto& [name, reason] : std::vector<std::pair<std::string, std::string>>{
-           {"circle", "analytic shape"}, {"shadow-stipple", "'shadows'"}, {"specular-spheres", "'specular'"}}) {
+           {"thin-wires", "analytic shape"}, {"shadow-stipple", "'shadows'"}, {"specular-spheres", "'specular'"}}) {
     try {
       RasterSceneOf(LoadScene(name));
       ADD_FAILURE() << name << " was not refused";
