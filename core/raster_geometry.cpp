@@ -112,6 +112,7 @@ std::string RasterSceneBytes(const RasterScene& s) {
   w.F3(s.background);
   w.F3(s.ambient);
   w.I32(s.lambert ? 1 : 0);
+  w.I32(s.shadows ? 1 : 0);
   w.U32(static_cast<uint32_t>(s.lights.size()));
   for (const auto& l : s.lights) {
     w.I32(l.type);
@@ -122,6 +123,7 @@ std::string RasterSceneBytes(const RasterScene& s) {
     w.F32(l.range);
     w.F32(l.cos_inner);
     w.F32(l.cos_outer);
+    w.I32(l.shadows ? 1 : 0);
   }
   w.U32(static_cast<uint32_t>(s.materials.size()));
   for (const auto& m : s.materials) {
@@ -176,7 +178,8 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
   s.background = r.F3("the background");
   s.ambient = r.F3("the ambient");
   s.lambert = r.Choice("the lambert flag", 0, 1) == 1;
-  s.lights.resize(r.Count("the light count", 56));
+  s.shadows = r.Choice("the shadows flag", 0, 1) == 1;
+  s.lights.resize(r.Count("the light count", 60));
   for (auto& l : s.lights) {
     l.type = r.Choice("a light type", 0, 2);
     l.direction = r.F3("a light direction");
@@ -186,6 +189,7 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
     l.range = r.F32("a light range");
     l.cos_inner = r.F32("a light's cos_inner");
     l.cos_outer = r.F32("a light's cos_outer");
+    l.shadows = r.Choice("a light's shadows flag", 0, 1) == 1;
   }
   s.materials.resize(r.Count("the material count", 64));
   for (auto& m : s.materials) {

@@ -8,9 +8,11 @@
 ///   camera:   i32 type (0 perspective, 1 orthographic); f32 position[3], look_at[3], up[3],
 ///             fov_y_deg, height
 ///   display:  f32 exposure; i32 tonemap (0 none, 1 reinhard, 2 aces)
-///   shading:  f32 background[3], ambient[3]; i32 lambert (the scene declares `lambert`)
+///   shading:  f32 background[3], ambient[3]; i32 lambert (the scene declares `lambert`);
+///             i32 shadows (the scene declares `shadows`)
 ///   u32 light count; per light: i32 type (0 directional, 1 point, 2 spot); f32 direction[3],
-///             color[3], intensity, position[3], range, cos_inner, cos_outer (scenes/scene.h Light)
+///             color[3], intensity, position[3], range, cos_inner, cos_outer; i32 shadows
+///             (the light casts shadows) (scenes/scene.h Light)
 ///   u32 material count; per material: i32 lit (1: lambert, 0: unlit); f32 color[3];
 ///             i32 pattern (−1: no texture, 0 checker, 1 stripes, 2 noise; the scene's
 ///             procedural texture, scenes/scene.h Texture, only when it declares `textures`);
@@ -41,6 +43,7 @@ struct RasterLight {
   std::array<float, 3> position{0, 0, 0};
   float range = 0.0f;  ///< 0: infinite
   float cos_inner = 1.0f, cos_outer = 0.70710678f;
+  bool shadows = false;  ///< casts shadows (when the scene declares `shadows`)
 };
 
 /// A procedural texture (scenes/scene.h Texture) as the raster path evaluates it.
@@ -85,6 +88,7 @@ struct RasterScene {
   int tonemap = 0;  ///< 0 none, 1 reinhard, 2 aces (core/color.h Tonemap order)
   std::array<float, 3> background{0, 0, 0}, ambient{0, 0, 0};
   bool lambert = false;
+  bool shadows = false;  ///< shadow rays to the shadow-casting lights, against every triangle and disk
   std::vector<RasterLight> lights;
   std::vector<RasterMaterial> materials;
   std::vector<RasterTriangle> triangles;

@@ -67,7 +67,7 @@ void AddDiskImpostor(const Shape& s, int32_t index, std::vector<RasterTriangle>&
 }  // namespace
 
 std::string RasterUnsupported(const Scene& sc) {
-  for (Effect e : {Effect::kShadows, Effect::kSpecular, Effect::kAlphaTest, Effect::kAlphaBlend, Effect::kNormalMap}) {
+  for (Effect e : {Effect::kSpecular, Effect::kAlphaTest, Effect::kAlphaBlend, Effect::kNormalMap}) {
     if (sc.Has(e)) return std::string("it declares the effect '") + EffectName(e) + "'";
   }
   if (sc.environment) return "it has an environment (image-based lighting)";
@@ -88,8 +88,8 @@ RasterScene RasterSceneOf(const Scene& sc) {
   if (const std::string why = RasterUnsupported(sc); !why.empty()) {
     throw UserError("the raster path cannot draw scene '" + sc.name + "' yet: " + why +
                     " (it draws still triangle scenes, unlit or lambert, solid colours or procedural "
-                    "textures, disks, lights without shadows; of the default suite: wedges, mesh, "
-                    "checker-plane, detail-texture, circle, hdr-edges, sdf-circles)");
+                    "textures, disks, lights and shadows; of the default suite: wedges, mesh, checker-plane, "
+                    "detail-texture, circle, hdr-edges, sdf-circles, shadow-stipple)");
   }
   RasterScene r;
   r.name = sc.name;
@@ -104,9 +104,10 @@ RasterScene RasterSceneOf(const Scene& sc) {
   r.background = A3(sc.background);
   r.ambient = A3(sc.ambient);
   r.lambert = sc.Has(Effect::kLambert);
+  r.shadows = sc.Has(Effect::kShadows);
   for (const auto& l : sc.lights) {
     r.lights.push_back({static_cast<int32_t>(l.type), A3(l.direction), A3(l.color), l.intensity, A3(l.position),
-                        l.range, l.cos_inner, l.cos_outer});
+                        l.range, l.cos_inner, l.cos_outer, l.shadows});
   }
   const bool textures = sc.Has(Effect::kTextures);
   for (const auto& m : sc.materials) {

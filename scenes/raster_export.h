@@ -13,8 +13,8 @@ namespace aalab {
 /// triangles (quads, boxes, planes, meshes) and disks (as impostors: their bounding square,
 /// the disk kept by the fragment shader) with unlit or lambert materials (solid colours or
 /// the procedural textures checker, stripes, noise) under directional, point and spot
-/// lights without shadows, and any display transform. Refused: the analytic shapes sphere,
-/// capsule and cylinder, the effects shadows, specular,
+/// lights, with shadows (rays against every triangle and disk), and any display transform.
+/// Refused: the analytic shapes sphere, capsule and cylinder, the effects specular,
 /// alpha_test, alpha_blend and normal_map, glTF materials, environments, animation.
 std::string RasterUnsupported(const Scene& scene);
 

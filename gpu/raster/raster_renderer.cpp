@@ -122,7 +122,7 @@ struct Target {
 
 struct RasterRenderer::Gl {
   RasterScene scene;
-  GLuint vao = 0, vbo = 0, materials = 0, empty_vao = 0;
+  GLuint vao = 0, vbo = 0, materials = 0, occluders = 0, empty_vao = 0;
   GLuint scene_prog = 0, id_prog = 0, resolve_ms_prog = 0, resolve_grid_prog = 0, encode_prog = 0, unpack_prog = 0;
   GLsizei vertices = 0;
   RasterMethod method;
@@ -160,7 +160,10 @@ struct RasterRenderer::Gl {
       glUniform1f(at("u_light_i"), li.intensity);
       glUniform3fv(at("u_light_p"), 1, li.position.data());
       glUniform3fv(at("u_light_cone"), 1, cone.data());
+      glUniform1i(at("u_light_shadow"), li.shadows ? 1 : 0);
     }
+    glUniform1i(loc("u_shadows"), s.shadows ? 1 : 0);
+    glUniform1i(loc("u_occluders"), static_cast<GLint>(s.triangles.size()));
     glUniform1i(loc("u_samples"), draw.samples);
     glUseProgram(id_prog);
     glUniformMatrix4fv(glGetUniformLocation(id_prog, "u_view_proj"), 1, GL_FALSE, view_proj.data());
@@ -255,6 +258,8 @@ struct RasterRenderer::Gl {
     const float one = 1.0f;
     glClearBufferfv(GL_DEPTH, 0, &one);
     glUseProgram(prog);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, materials);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, occluders);  // SampleShapes borrows binding 1
     glBindVertexArray(vao);
     glDrawArrays(GL_TRIANGLES, 0, vertices);
   }
@@ -401,6 +406,20 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
   glCreateBuffers(1, &g.materials);
   glNamedBufferStorage(g.materials, static_cast<GLsizeiptr>(mats.size() * sizeof(GpuMaterial)), mats.data(), 0);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.materials);
+  // Shadow rays' occluders: every triangle in draw order (gl_PrimitiveID), 3 vec4 each.
+  std::vector<float> occ;
+  for (const auto& t : scene.triangles) {
+    if (t.disk) {
+      const auto& n = t.corners[0].normal;
+      occ.insert(occ.end(), {t.center[0], t.center[1], t.center[2], t.radius, n[0], n[1], n[2], 0, 0, 0, 0, 0});
+    } else {
+      for (const auto& c : t.corners) occ.insert(occ.end(), {c.position[0], c.position[1], c.position[2], -1.0f});
+    }
+  }
+  if (occ.empty()) occ.assign(12, 0.0f);
+  glCreateBuffers(1, &g.occluders);
+  glNamedBufferStorage(g.occluders, static_cast<GLsizeiptr>(occ.size() * sizeof(float)), occ.data(), 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.occluders);
   Check("uploading the raster scene");
 }
 
@@ -412,6 +431,7 @@ RasterRenderer::~RasterRenderer() {
   g.ids.Free();
   glDeleteBuffers(1, &g.vbo);
   glDeleteBuffers(1, &g.materials);
+  glDeleteBuffers(1, &g.occluders);
   glDeleteVertexArrays(1, &g.vao);
   glDeleteVertexArrays(1, &g.empty_vao);
   for (GLuint p : {g.scene_prog, g.id_prog, g.resolve_ms_prog, g.resolve_grid_prog, g.encode_prog, g.unpack_prog}) {

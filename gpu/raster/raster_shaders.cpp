@@ -92,7 +92,74 @@ uniform vec3 u_light_c[16];     // colour
 uniform float u_light_i[16];    // intensity
 uniform vec3 u_light_p[16];     // position
 uniform vec3 u_light_cone[16];  // range, cos_inner, cos_outer
+uniform int u_light_shadow[16];  // casts shadows
+uniform int u_shadows;           // the scene declares shadows
+uniform int u_occluders;
+// Every triangle of the draw, in gl_PrimitiveID order, 3 vec4 each: a triangle's corners
+// (a.w < 0), or a disk impostor's disk (a = centre, radius; b = normal).
+layout(std430, binding = 1) readonly buffer Occluders { vec4 occ[]; };
 )") + kDiskCoverage + R"(
+// A shadow ray (origin o, direction d, t in (0, tfar)) against every triangle and disk:
+// Möller–Trumbore and the disk's plane + radius, the first hit ends it (any hit blocks).
+bool Occluded(vec3 o, vec3 d, float tfar) {
+  for (int i = 0; i < u_occluders; ++i) {
+    vec4 a = occ[3 * i], b = occ[3 * i + 1], c = occ[3 * i + 2];
+    if (a.w >= 0.0) {
+      precise float dn = dot(d, b.xyz);
+      if (dn == 0.0) continue;
+      precise float t = dot(a.xyz - o, b.xyz) / dn;
+      if (!(t > 0.0 && t < tfar)) continue;
+      precise vec3 q = o + d * t - a.xyz;
+      precise float q2 = dot(q, q);
+      precise float r2 = a.w * a.w;
+      if (q2 <= r2) return true;
+      continue;
+    }
+    precise vec3 e1 = b.xyz - a.xyz;
+    precise vec3 e2 = c.xyz - a.xyz;
+    precise vec3 pv = cross(d, e2);
+    precise float det = dot(e1, pv);
+    if (det == 0.0) continue;
+    precise vec3 tv = o - a.xyz;
+    precise float u = dot(tv, pv) / det;
+    if (u < 0.0 || u > 1.0) continue;
+    precise vec3 qv = cross(tv, e1);
+    precise float v = dot(d, qv) / det;
+    if (v < 0.0 || u + v > 1.0) continue;
+    precise float t = dot(e2, qv) / det;
+    if (t > 0.0 && t < tfar) return true;
+  }
+  return false;
+}
+
+// The tracer's ShadowRays (scenes/tracer_shade.cpp) for one light at the surface point p:
+// the geometric normal ng (the primitive's, facing the viewer), the ray from p offset by
+// RayEpsilon(p) = 1e-4 + max|p|·1e-6 to ng's side of the light, towards the light.
+bool Shadowed(int l, vec3 p, vec3 dir, vec3 n) {
+  if (u_shadows == 0 || l >= 32 || u_light_shadow[l] == 0) return false;
+  int i = gl_PrimitiveID;
+  vec4 a = occ[3 * i], b = occ[3 * i + 1], c = occ[3 * i + 2];
+  vec3 ng = a.w >= 0.0 ? b.xyz : cross(b.xyz - a.xyz, c.xyz - a.xyz);
+  float len = length(ng);
+  ng = len > 0.0 ? ng / len : -dir;
+  if (dot(ng, dir) > 0.0) ng = -ng;
+  vec3 L;
+  float tfar = uintBitsToFloat(0x7f800000u);  // +inf
+  if (u_light_type[l] == 0) {
+    L = u_light_l[l];
+  } else {
+    precise vec3 v = u_light_p[l] - p;
+    precise float dist = length(v);
+    if (!(dist > 0.0)) return false;
+    L = v / dist;
+    tfar = dist * (1.0 - 1e-5);
+  }
+  if (dot(ng, L) <= 0.0 && dot(n, L) <= 0.0) return false;
+  precise float eps = 1e-4 + max(abs(p.x), max(abs(p.y), abs(p.z))) * 1e-6;
+  vec3 side = dot(ng, L) > 0.0 ? ng : -ng;
+  precise vec3 o = p + side * eps;
+  return Occluded(o, L, tfar);
+}
 // scenes/light_eval.h LightIncidence, operation for operation.
 bool Incidence(int l, vec3 p, out vec3 L, out float falloff) {
   L = u_light_l[l];
@@ -209,6 +276,7 @@ void main() {
       if (!Incidence(l, v_pos, L, falloff)) continue;
       precise float ndotl = dot(n, L);
       if (ndotl <= 0.0) continue;
+      if (Shadowed(l, v_pos, dir, n)) continue;
       precise vec3 e = u_light_c[l] * (u_light_i[l] * falloff);
       c += base * e * ndotl;
     }

@@ -66,10 +66,14 @@ TEST(RasterCli, ExportGeometryRefusesWhatTheRasterPathCannotDraw) {
   EXPECT_TRUE(fs::exists(dir / "all" / "checker-plane.geom"));
   EXPECT_TRUE(fs::exists(dir / "all" / "detail-texture.geom"));
   EXPECT_TRUE(fs::exists(dir / "all" / "sdf-circles.geom"));
+  EXPECT_TRUE(fs::exists(dir / "all" / "circle.geom"));
+  EXPECT_TRUE(fs::exists(dir / "all" / "hdr-edges.geom"));
   EXPECT_FALSE(fs::exists(dir / "all" / "thin-wires.geom"));
   const std::string tsv = Slurp(dir / "all" / "geometry.tsv");
   EXPECT_NE(tsv.find("# skipped thin-wires: it has an analytic shape"), std::string::npos) << tsv;
-  EXPECT_NE(tsv.find("# skipped shadow-stipple: it declares the effect 'shadows'"), std::string::npos) << tsv;
+  EXPECT_NE(tsv.find("# skipped specular-spheres: it"), std::string::npos) << tsv;
+  EXPECT_NE(tsv.find("# skipped sdf-wires: it has an analytic shape"), std::string::npos) << tsv;
+  EXPECT_TRUE(fs::exists(dir / "all" / "shadow-stipple.geom"));
   EXPECT_NE(tsv.find("mesh\t3200\tmesh.geom"), std::string::npos) << tsv;
 }
 
@@ -182,14 +186,19 @@ TEST(RasterCli, CompareAgainstExportedFrames) {
 // The procedural-texture scenes and a disk on the user's path: export-geometry →
 // aalab_raster --compare against export-frames' 1× frames. detail-texture (noise, texel
 // centres on pixel centres) and circle (a lambert disk under a point light; no pixel centre
-// within the float slack of its outline at this size) within 1 code everywhere; checker-plane identical except where a
+// within the float slack of its outline at this size) within 1 code everywhere;
+// shadow-stipple (shadow rays in the fragment shader) identical but for 2 pixels on a box's
+// edge (raster_test's rule); checker-plane identical except where a
 // pixel centre's uv lies at a checker boundary near the horizon (raster_test's rule; measured 9 pixels of 57 600 on
 // llvmpipe).
-TEST(RasterCli, TexturedAndDiskScenesMatchExportedFrames) {
-  const fs::path dir = clitest::TempDir("raster-cli-textures");
-  ASSERT_EQ(Aalab("export-geometry --scenes detail-texture,checker-plane,circle --out " + (dir / "geo").string()).code,
+TEST(RasterCli, TexturedDiskAndShadowScenesMatchExportedFrames) {
+  const fs::path dir = clitest::TempDir("raster-cli-surfaces");
+  ASSERT_EQ(Aalab("export-geometry --scenes detail-texture,checker-plane,circle,shadow-stipple --out " +
+                  (dir / "geo").string())
+                .code,
             0);
-  ASSERT_EQ(Aalab("export-frames --scenes detail-texture,checker-plane,circle --sizes 320x180 --no-scaled --out " +
+  ASSERT_EQ(Aalab("export-frames --scenes detail-texture,checker-plane,circle,shadow-stipple --sizes 320x180 "
+                  "--no-scaled --out " +
                   (dir / "ef").string())
                 .code,
             0);
@@ -198,13 +207,13 @@ TEST(RasterCli, TexturedAndDiskScenesMatchExportedFrames) {
   if (const std::string why = RasterUnavailable(r); !why.empty()) AALAB_SKIP_OR_FAIL_UNDER_CI(why);
   ASSERT_EQ(r.code, 0) << r.output;
   const nlohmann::json c = nlohmann::json::parse(Slurp(dir / "c.json"));
-  ASSERT_EQ(c.at("rows").size(), 3u);
+  ASSERT_EQ(c.at("rows").size(), 4u);
   for (const auto& row : c.at("rows")) {
     const auto& f = row.at("fidelity");
     if (row.at("scene") == "detail-texture" || row.at("scene") == "circle") {
       EXPECT_LE(f.at("max_diff").get<int>(), 1) << row;
     } else {
-      EXPECT_EQ(row.at("scene"), "checker-plane");
+      EXPECT_TRUE(row.at("scene") == "checker-plane" || row.at("scene") == "shadow-stipple") << row;
       EXPECT_GE(f.at("within_1_share").get<double>(), 0.999) << row;
       EXPECT_GE(f.at("identical_share").get<double>(), 0.999) << row;
     }
