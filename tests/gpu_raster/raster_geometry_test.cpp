@@ -140,7 +140,7 @@ TEST(RasterGeometry, DiskBecomesAnImpostorAndThePointLightSurvives) {
 
 TEST(RasterGeometry, RefusalsNameTheSceneAndTheReason) {
   for (const auto& [name, reason] : std::vector<std::pair<std::string, std::string>>{
-           {"thin-wires", "analytic shape"}, {"shadow-stipple", "'shadows'"}, {"specular-spheres", "'specular'"}}) {
+           {"thin-wires", "analytic shape"}, {"sdf-wires", "analytic shape"}, {"specular-spheres", "'specular'"}}) {
     try {
       RasterSceneOf(LoadScene(name));
       ADD_FAILURE() << name << " was not refused";
