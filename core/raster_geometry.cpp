@@ -10,7 +10,7 @@ namespace aalab {
 
 namespace {
 
-constexpr char kMagic[8] = {'A', 'A', 'L', 'A', 'B', 'R', 'G', '1'};
+constexpr char kMagic[8] = {'A', 'A', 'L', 'A', 'B', 'R', 'G', '2'};
 
 class Writer {
  public:
@@ -18,6 +18,9 @@ class Writer {
   void I32(int32_t v) { Raw(&v, 4); }
   void F32(float v) { Raw(&v, 4); }
   void F3(const std::array<float, 3>& v) {
+    for (float f : v) F32(f);
+  }
+  void F2(const std::array<float, 2>& v) {
     for (float f : v) F32(f);
   }
   void Raw(const void* p, size_t n) {
@@ -56,6 +59,7 @@ class Reader {
     return v;
   }
   std::array<float, 3> F3(const char* what) { return {F32(what), F32(what), F32(what)}; }
+  std::array<float, 2> F2(const char* what) { return {F32(what), F32(what)}; }
   int Choice(const char* what, int lo, int hi) {
     const int32_t v = I32(what);
     if (v < lo || v > hi) {
@@ -108,25 +112,45 @@ std::string RasterSceneBytes(const RasterScene& s) {
   w.F3(s.background);
   w.F3(s.ambient);
   w.I32(s.lambert ? 1 : 0);
+  w.I32(s.shadows ? 1 : 0);
   w.U32(static_cast<uint32_t>(s.lights.size()));
   for (const auto& l : s.lights) {
+    w.I32(l.type);
     w.F3(l.direction);
     w.F3(l.color);
     w.F32(l.intensity);
+    w.F3(l.position);
+    w.F32(l.range);
+    w.F32(l.cos_inner);
+    w.F32(l.cos_outer);
+    w.I32(l.shadows ? 1 : 0);
   }
   w.U32(static_cast<uint32_t>(s.materials.size()));
   for (const auto& m : s.materials) {
     w.I32(m.lit ? 1 : 0);
     w.F3(m.color);
+    const RasterTexture& t = m.texture;
+    w.I32(t.pattern);
+    w.F32(t.scale);
+    w.F32(t.cos_angle);
+    w.F32(t.sin_angle);
+    w.F32(t.duty);
+    w.U32(t.seed);
+    w.F3(t.color_a);
+    w.F3(t.color_b);
   }
   w.U32(static_cast<uint32_t>(s.triangles.size()));
   for (const auto& t : s.triangles) {
     w.I32(t.shape);
     w.I32(t.material);
     w.I32(t.smooth ? 1 : 0);
+    w.I32(t.disk ? 1 : 0);
+    w.F3(t.center);
+    w.F32(t.radius);
     for (const auto& c : t.corners) {
       w.F3(c.position);
       w.F3(c.normal);
+      w.F2(c.uv);
     }
   }
   return w.Take();
@@ -137,7 +161,7 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
   r.Need(8, "the magic");
   if (std::memcmp(bytes.data(), kMagic, 8) != 0) {
     throw UserError("'" + origin +
-                    "' is not a raster scene file (it does not start with AALABRG1; write one with "
+                    "' is not a raster scene file (it does not start with AALABRG2; write one with "
                     "aalab export-geometry)");
   }
   r.Str(8, "the magic");
@@ -154,26 +178,46 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
   s.background = r.F3("the background");
   s.ambient = r.F3("the ambient");
   s.lambert = r.Choice("the lambert flag", 0, 1) == 1;
-  s.lights.resize(r.Count("the light count", 28));
+  s.shadows = r.Choice("the shadows flag", 0, 1) == 1;
+  s.lights.resize(r.Count("the light count", 60));
   for (auto& l : s.lights) {
+    l.type = r.Choice("a light type", 0, 2);
     l.direction = r.F3("a light direction");
     l.color = r.F3("a light colour");
     l.intensity = r.F32("a light intensity");
+    l.position = r.F3("a light position");
+    l.range = r.F32("a light range");
+    l.cos_inner = r.F32("a light's cos_inner");
+    l.cos_outer = r.F32("a light's cos_outer");
+    l.shadows = r.Choice("a light's shadows flag", 0, 1) == 1;
   }
-  s.materials.resize(r.Count("the material count", 16));
+  s.materials.resize(r.Count("the material count", 64));
   for (auto& m : s.materials) {
     m.lit = r.Choice("a material's lit flag", 0, 1) == 1;
     m.color = r.F3("a material colour");
+    RasterTexture& t = m.texture;
+    t.pattern = r.Choice("a material's texture pattern", -1, 2);
+    t.scale = r.F32("a texture scale");
+    t.cos_angle = r.F32("a texture's stripe cosine");
+    t.sin_angle = r.F32("a texture's stripe sine");
+    t.duty = r.F32("a texture's stripe duty");
+    t.seed = r.U32("a texture seed");
+    t.color_a = r.F3("a texture's color_a");
+    t.color_b = r.F3("a texture's color_b");
   }
-  s.triangles.resize(r.Count("the triangle count", 84));
+  s.triangles.resize(r.Count("the triangle count", 128));
   const int n_mat = static_cast<int>(s.materials.size());
   for (auto& t : s.triangles) {
     t.shape = r.Choice("a triangle's shape", 0, 0x7fffffff);
     t.material = r.Choice("a triangle's material", 0, n_mat - 1);
     t.smooth = r.Choice("a triangle's smooth flag", 0, 1) == 1;
+    t.disk = r.Choice("a triangle's disk flag", 0, 1) == 1;
+    t.center = r.F3("a disk centre");
+    t.radius = r.F32("a disk radius");
     for (auto& c : t.corners) {
       c.position = r.F3("a corner position");
       c.normal = r.F3("a corner normal");
+      c.uv = r.F2("a corner uv");
     }
   }
   if (r.Pos() != r.Size())

@@ -2,6 +2,8 @@
 // of what it cannot draw yet.
 #include "scenes/raster_export.h"
 
+#include <cmath>
+
 #include "core/error.h"
 
 namespace aalab {
@@ -21,17 +23,57 @@ const char* ShapeKindName(ShapeKind k) {
   return "?";
 }
 
+/// The pattern's parameters; stripes carry the cosine and sine of their angle as
+/// EvaluatePattern (scenes/tracer.cpp) computes them, so the GPU needs no trigonometry.
+RasterTexture RasterTextureOf(const Texture& t) {
+  RasterTexture r;
+  r.pattern = static_cast<int32_t>(t.pattern);
+  r.scale = t.scale;
+  const float ang = glm::radians(t.angle_deg);
+  r.cos_angle = std::cos(ang);
+  r.sin_angle = std::sin(ang);
+  r.duty = t.duty;
+  r.seed = t.seed;
+  r.color_a = A3(t.color_a);
+  r.color_b = A3(t.color_b);
+  return r;
+}
+
+/// A disk as the two triangles of its bounding square in its own plane, 1/16 larger than
+/// the disk (so that vertex snapping cannot cut a covered sample off), each corner with
+/// the disk's normal and the uv the tracer gives a disk's points (d·tangent, d·bitangent).
+void AddDiskImpostor(const Shape& s, int32_t index, std::vector<RasterTriangle>& out) {
+  const glm::vec3 b = glm::cross(s.normal, s.tangent);
+  const float e = s.radius * 1.0625f;
+  const float su[4] = {-e, e, e, -e}, sv[4] = {-e, -e, e, e};
+  RasterCorner c[4];
+  for (int k = 0; k < 4; ++k) {
+    c[k].position = A3(s.center + s.tangent * su[k] + b * sv[k]);
+    c[k].normal = A3(s.normal);
+    c[k].uv = {su[k], sv[k]};
+  }
+  for (const auto& idx : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}}) {
+    RasterTriangle t;
+    t.shape = index;
+    t.material = s.material;
+    t.disk = true;
+    t.center = A3(s.center);
+    t.radius = s.radius;
+    for (int k = 0; k < 3; ++k) t.corners[k] = c[idx[k]];
+    out.push_back(t);
+  }
+}
+
 }  // namespace
 
 std::string RasterUnsupported(const Scene& sc) {
-  for (Effect e : {Effect::kShadows, Effect::kSpecular, Effect::kTextures, Effect::kAlphaTest, Effect::kAlphaBlend,
-                   Effect::kNormalMap}) {
+  for (Effect e : {Effect::kSpecular, Effect::kAlphaTest, Effect::kAlphaBlend, Effect::kNormalMap}) {
     if (sc.Has(e)) return std::string("it declares the effect '") + EffectName(e) + "'";
   }
   if (sc.environment) return "it has an environment (image-based lighting)";
   if (sc.animation.Moves()) return "it moves (animation)";
   for (const auto& s : sc.shapes) {
-    if (s.kind != ShapeKind::kTriangles) {
+    if (s.kind != ShapeKind::kTriangles && s.kind != ShapeKind::kDisk) {
       return "it has an analytic shape ('" + s.source + "': " + ShapeKindName(s.kind) + ")";
     }
   }
@@ -39,17 +81,15 @@ std::string RasterUnsupported(const Scene& sc) {
     if (m.gltf) return "material '" + m.name + "' is a glTF material";
     if (m.shading == Shading::kPbr) return "material '" + m.name + "' uses PBR shading";
   }
-  for (const auto& l : sc.lights) {
-    if (l.type != LightType::kDirectional) return "it has a point or spot light (only directional lights are drawn)";
-  }
   return "";
 }
 
 RasterScene RasterSceneOf(const Scene& sc) {
   if (const std::string why = RasterUnsupported(sc); !why.empty()) {
     throw UserError("the raster path cannot draw scene '" + sc.name + "' yet: " + why +
-                    " (it draws still triangle scenes, unlit or lambert solid colours, directional lights "
-                    "without shadows; of the library: wedges, mesh)");
+                    " (it draws still triangle scenes, unlit or lambert, solid colours or procedural "
+                    "textures, disks, lights and shadows; of the default suite: wedges, mesh, checker-plane, "
+                    "detail-texture, circle, hdr-edges, sdf-circles, shadow-stipple)");
   }
   RasterScene r;
   r.name = sc.name;
@@ -64,10 +104,24 @@ RasterScene RasterSceneOf(const Scene& sc) {
   r.background = A3(sc.background);
   r.ambient = A3(sc.ambient);
   r.lambert = sc.Has(Effect::kLambert);
-  for (const auto& l : sc.lights) r.lights.push_back({A3(l.direction), A3(l.color), l.intensity});
-  for (const auto& m : sc.materials) r.materials.push_back({m.shading == Shading::kLambert, A3(m.color)});
+  r.shadows = sc.Has(Effect::kShadows);
+  for (const auto& l : sc.lights) {
+    r.lights.push_back({static_cast<int32_t>(l.type), A3(l.direction), A3(l.color), l.intensity, A3(l.position),
+                        l.range, l.cos_inner, l.cos_outer, l.shadows});
+  }
+  const bool textures = sc.Has(Effect::kTextures);
+  for (const auto& m : sc.materials) {
+    RasterMaterial rm{m.shading == Shading::kLambert, A3(m.color), {}};
+    // The tracer reads a material's texture only when the scene declares `textures`.
+    if (textures && m.texture) rm.texture = RasterTextureOf(*m.texture);
+    r.materials.push_back(rm);
+  }
   for (size_t si = 0; si < sc.shapes.size(); ++si) {
     const Shape& s = sc.shapes[si];
+    if (s.kind == ShapeKind::kDisk) {
+      AddDiskImpostor(s, static_cast<int32_t>(si), r.triangles);
+      continue;
+    }
     const bool smooth = !s.normals.empty();
     for (const glm::uvec3& t : s.triangles) {
       RasterTriangle tri;
@@ -80,6 +134,7 @@ RasterScene RasterSceneOf(const Scene& sc) {
       for (int k = 0; k < 3; ++k) {
         tri.corners[k].position = A3(p[k]);
         tri.corners[k].normal = A3(smooth ? s.normals[idx[k]] : face);
+        if (idx[k] < s.uvs.size()) tri.corners[k].uv = {s.uvs[idx[k]].x, s.uvs[idx[k]].y};
       }
       r.triangles.push_back(tri);
     }

@@ -10,11 +10,12 @@
 namespace aalab {
 
 /// Why the raster path cannot draw `scene` yet ("" when it can): it draws still scenes of
-/// triangles (quads, boxes, planes, meshes) with unlit or lambert materials (solid colours)
-/// under directional lights without shadows, and any display transform. Refused: analytic
-/// shapes (sphere, disk, capsule, cylinder), the effects textures, shadows, specular,
-/// alpha_test, alpha_blend and normal_map, glTF materials, environments, point and spot
-/// lights, animation.
+/// triangles (quads, boxes, planes, meshes) and disks (as impostors: their bounding square,
+/// the disk kept by the fragment shader) with unlit or lambert materials (solid colours or
+/// the procedural textures checker, stripes, noise) under directional, point and spot
+/// lights, with shadows (rays against every triangle and disk), and any display transform.
+/// Refused: the analytic shapes sphere, capsule and cylinder, the effects specular,
+/// alpha_test, alpha_blend and normal_map, glTF materials, environments, animation.
 std::string RasterUnsupported(const Scene& scene);
 
 /// The scene as raster data, the Scene's floats unchanged. Throws UserError with

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "gpu/raster/raster_shaders.h"
@@ -121,7 +122,7 @@ struct Target {
 
 struct RasterRenderer::Gl {
   RasterScene scene;
-  GLuint vao = 0, vbo = 0, materials = 0, empty_vao = 0;
+  GLuint vao = 0, vbo = 0, materials = 0, occluders = 0, empty_vao = 0;
   GLuint scene_prog = 0, id_prog = 0, resolve_ms_prog = 0, resolve_grid_prog = 0, encode_prog = 0, unpack_prog = 0;
   GLsizei vertices = 0;
   RasterMethod method;
@@ -149,12 +150,24 @@ struct RasterRenderer::Gl {
     for (int l = 0; l < n; ++l) {
       const RasterLight& li = s.lights[static_cast<size_t>(l)];
       const V3 L = {-li.direction[0], -li.direction[1], -li.direction[2]};
-      const V3 e = {li.color[0] * li.intensity, li.color[1] * li.intensity, li.color[2] * li.intensity};
-      glUniform3fv(glGetUniformLocation(scene_prog, ("u_light_l[" + std::to_string(l) + "]").c_str()), 1, L.data());
-      glUniform3fv(glGetUniformLocation(scene_prog, ("u_light_e[" + std::to_string(l) + "]").c_str()), 1, e.data());
+      const V3 cone = {li.range, li.cos_inner, li.cos_outer};
+      auto at = [&](const char* name) {
+        return glGetUniformLocation(scene_prog, (std::string(name) + "[" + std::to_string(l) + "]").c_str());
+      };
+      glUniform1i(at("u_light_type"), li.type);
+      glUniform3fv(at("u_light_l"), 1, L.data());
+      glUniform3fv(at("u_light_c"), 1, li.color.data());
+      glUniform1f(at("u_light_i"), li.intensity);
+      glUniform3fv(at("u_light_p"), 1, li.position.data());
+      glUniform3fv(at("u_light_cone"), 1, cone.data());
+      glUniform1i(at("u_light_shadow"), li.shadows ? 1 : 0);
     }
+    glUniform1i(loc("u_shadows"), s.shadows ? 1 : 0);
+    glUniform1i(loc("u_occluders"), static_cast<GLint>(s.triangles.size()));
+    glUniform1i(loc("u_samples"), draw.samples);
     glUseProgram(id_prog);
     glUniformMatrix4fv(glGetUniformLocation(id_prog, "u_view_proj"), 1, GL_FALSE, view_proj.data());
+    glUniform1i(glGetUniformLocation(id_prog, "u_samples"), draw.samples);
   }
 
   /// The matrix that puts every world point where the tracer's camera ray through it
@@ -245,6 +258,8 @@ struct RasterRenderer::Gl {
     const float one = 1.0f;
     glClearBufferfv(GL_DEPTH, 0, &one);
     glUseProgram(prog);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, materials);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, occluders);  // SampleShapes borrows binding 1
     glBindVertexArray(vao);
     glDrawArrays(GL_TRIANGLES, 0, vertices);
   }
@@ -332,10 +347,13 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
   g.resolve_grid_prog = Link({{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kResolveGridFragment}});
   g.encode_prog = Link({{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kEncodeFragment}});
   g.unpack_prog = Link({{GL_COMPUTE_SHADER, kUnpackIdsCompute}});
-  // Interleaved vertices: position (3 floats), normal (3 floats), shape and material (2 ints).
+  // Interleaved vertices: position (3 floats), normal (3 floats), shape and material (2 ints),
+  // uv (2 floats).
   struct Vertex {
     float p[3], n[3];
     int32_t ids[2];
+    float uv[2];
+    float disk[4];  // centre, radius; radius −1: not a disk
   };
   std::vector<Vertex> v;
   v.reserve(scene.triangles.size() * 3);
@@ -343,7 +361,9 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
     for (const auto& c : t.corners) {
       v.push_back({{c.position[0], c.position[1], c.position[2]},
                    {c.normal[0], c.normal[1], c.normal[2]},
-                   {t.shape, t.material}});
+                   {t.shape, t.material},
+                   {c.uv[0], c.uv[1]},
+                   {t.center[0], t.center[1], t.center[2], t.disk ? t.radius : -1.0f}});
     }
   }
   g.vertices = static_cast<GLsizei>(v.size());
@@ -355,19 +375,51 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
   glEnableVertexArrayAttrib(g.vao, 0);
   glEnableVertexArrayAttrib(g.vao, 1);
   glEnableVertexArrayAttrib(g.vao, 2);
+  glEnableVertexArrayAttrib(g.vao, 3);
+  glEnableVertexArrayAttrib(g.vao, 4);
   glVertexArrayAttribFormat(g.vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, p));
   glVertexArrayAttribFormat(g.vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, n));
   glVertexArrayAttribIFormat(g.vao, 2, 2, GL_INT, offsetof(Vertex, ids));
-  for (GLuint a = 0; a < 3; ++a) glVertexArrayAttribBinding(g.vao, a, 0);
+  glVertexArrayAttribFormat(g.vao, 3, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
+  glVertexArrayAttribFormat(g.vao, 4, 4, GL_FLOAT, GL_FALSE, offsetof(Vertex, disk));
+  for (GLuint a = 0; a < 5; ++a) glVertexArrayAttribBinding(g.vao, a, 0);
   glCreateVertexArrays(1, &g.empty_vao);
-  std::vector<float> mats;
+  // The shader's std430 Material: colour + lit, texture scale/cos/sin/duty, pattern + seed
+  // (ints), color_a, color_b; 5 × 16 bytes.
+  struct GpuMaterial {
+    float color[4], tex[4];
+    int32_t kind[4];
+    float a[4], b[4];
+  };
+  std::vector<GpuMaterial> mats;
   for (const auto& m : scene.materials) {
-    mats.insert(mats.end(), {m.color[0], m.color[1], m.color[2], m.lit ? 1.0f : 0.0f});
+    const RasterTexture& t = m.texture;
+    int32_t seed = 0;
+    std::memcpy(&seed, &t.seed, 4);
+    mats.push_back({{m.color[0], m.color[1], m.color[2], m.lit ? 1.0f : 0.0f},
+                    {t.scale, t.cos_angle, t.sin_angle, t.duty},
+                    {t.pattern, seed, 0, 0},
+                    {t.color_a[0], t.color_a[1], t.color_a[2], 0.0f},
+                    {t.color_b[0], t.color_b[1], t.color_b[2], 0.0f}});
   }
-  if (mats.empty()) mats.assign(4, 0.0f);
+  if (mats.empty()) mats.push_back({});
   glCreateBuffers(1, &g.materials);
-  glNamedBufferStorage(g.materials, static_cast<GLsizeiptr>(mats.size() * sizeof(float)), mats.data(), 0);
+  glNamedBufferStorage(g.materials, static_cast<GLsizeiptr>(mats.size() * sizeof(GpuMaterial)), mats.data(), 0);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.materials);
+  // Shadow rays' occluders: every triangle in draw order (gl_PrimitiveID), 3 vec4 each.
+  std::vector<float> occ;
+  for (const auto& t : scene.triangles) {
+    if (t.disk) {
+      const auto& n = t.corners[0].normal;
+      occ.insert(occ.end(), {t.center[0], t.center[1], t.center[2], t.radius, n[0], n[1], n[2], 0, 0, 0, 0, 0});
+    } else {
+      for (const auto& c : t.corners) occ.insert(occ.end(), {c.position[0], c.position[1], c.position[2], -1.0f});
+    }
+  }
+  if (occ.empty()) occ.assign(12, 0.0f);
+  glCreateBuffers(1, &g.occluders);
+  glNamedBufferStorage(g.occluders, static_cast<GLsizeiptr>(occ.size() * sizeof(float)), occ.data(), 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.occluders);
   Check("uploading the raster scene");
 }
 
@@ -379,6 +431,7 @@ RasterRenderer::~RasterRenderer() {
   g.ids.Free();
   glDeleteBuffers(1, &g.vbo);
   glDeleteBuffers(1, &g.materials);
+  glDeleteBuffers(1, &g.occluders);
   glDeleteVertexArrays(1, &g.vao);
   glDeleteVertexArrays(1, &g.empty_vao);
   for (GLuint p : {g.scene_prog, g.id_prog, g.resolve_ms_prog, g.resolve_grid_prog, g.encode_prog, g.unpack_prog}) {

@@ -61,12 +61,86 @@ TEST(RasterGeometry, MeshKeepsItsLightAndLambert) {
   EXPECT_TRUE(s.materials[0].lit);
 }
 
+// The procedural textures as checker-plane.json and detail-texture.json state them: the
+// plane's corners at (±2000, 0, ±2000) with uv = (x, z) (scenes/shapes.cpp MakePlane), the
+// quad's at (±10, ±6, 0) with uv = (x, y); the patterns' parameters through the bytes.
+TEST(RasterGeometry, ProceduralTexturesSurviveTheBytes) {
+  const RasterScene c = ParseRasterScene(RasterSceneBytes(RasterSceneOf(LoadScene("checker-plane"))), "test");
+  ASSERT_EQ(c.materials.size(), 1u);
+  const RasterTexture& ct = c.materials[0].texture;
+  EXPECT_EQ(ct.pattern, 0);  // checker
+  EXPECT_FLOAT_EQ(ct.scale, 1.0f);
+  EXPECT_FLOAT_EQ(ct.color_a[1], 0.05f);
+  EXPECT_FLOAT_EQ(ct.color_b[2], 0.85f);
+  EXPECT_FALSE(c.materials[0].lit);
+  ASSERT_EQ(c.triangles.size(), 2u);
+  for (const auto& t : c.triangles) {
+    for (const auto& k : t.corners) {
+      EXPECT_FLOAT_EQ(std::fabs(k.position[0]), 2000.0f);
+      EXPECT_FLOAT_EQ(k.position[1], 0.0f);
+      EXPECT_FLOAT_EQ(std::fabs(k.position[2]), 2000.0f);
+      EXPECT_FLOAT_EQ(k.uv[0], k.position[0]);
+      EXPECT_FLOAT_EQ(k.uv[1], k.position[2]);
+    }
+  }
+  const RasterScene d = ParseRasterScene(RasterSceneBytes(RasterSceneOf(LoadScene("detail-texture"))), "test");
+  ASSERT_EQ(d.materials.size(), 1u);
+  const RasterTexture& dt = d.materials[0].texture;
+  EXPECT_EQ(dt.pattern, 2);  // noise
+  EXPECT_FLOAT_EQ(dt.scale, 60.0f);
+  EXPECT_EQ(dt.seed, 7u);
+  EXPECT_FLOAT_EQ(dt.color_a[0], 0.08f);
+  EXPECT_FLOAT_EQ(dt.color_b[1], 0.75f);
+  for (const auto& t : d.triangles) {
+    for (const auto& k : t.corners) {
+      EXPECT_FLOAT_EQ(std::fabs(k.uv[0]), 10.0f);
+      EXPECT_FLOAT_EQ(std::fabs(k.uv[1]), 6.0f);
+      EXPECT_FLOAT_EQ(k.uv[1], k.position[1]);
+    }
+  }
+  // A scene without textures carries none; a bad pattern number is refused.
+  EXPECT_EQ(RasterSceneOf(LoadScene("wedges")).materials[0].texture.pattern, -1);
+  RasterScene bad;
+  bad.materials.resize(1);
+  bad.materials[0].texture.pattern = 3;
+  try {
+    ParseRasterScene(RasterSceneBytes(bad), "bad.geom");
+    ADD_FAILURE() << "pattern 3 was not refused";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("texture pattern is 3 (allowed: -1..2)"), std::string::npos) << e.what();
+  }
+}
+
+// circle.json: one disk of radius 3.6 at the origin facing +z, under a point light at
+// (0, −5.5, 2) of intensity 125.66371 / π: the two triangles of its bounding square, 1/16
+// larger, carry the disk; the light keeps its type and position.
+TEST(RasterGeometry, DiskBecomesAnImpostorAndThePointLightSurvives) {
+  const RasterScene s = ParseRasterScene(RasterSceneBytes(RasterSceneOf(LoadScene("circle"))), "test");
+  ASSERT_EQ(s.triangles.size(), 2u);
+  for (const auto& t : s.triangles) {
+    EXPECT_TRUE(t.disk);
+    EXPECT_FLOAT_EQ(t.radius, 3.6f);
+    EXPECT_FLOAT_EQ(t.center[0], 0.0f);
+    for (const auto& c : t.corners) {
+      EXPECT_FLOAT_EQ(std::fabs(c.position[0]), 3.6f * 1.0625f);
+      EXPECT_FLOAT_EQ(std::fabs(c.position[1]), 3.6f * 1.0625f);
+      EXPECT_FLOAT_EQ(c.normal[2], 1.0f);
+      EXPECT_FLOAT_EQ(c.uv[0], c.position[0]);  // the disk's uv: d·tangent, d·(normal × tangent)
+      EXPECT_FLOAT_EQ(c.uv[1], c.position[1]);
+    }
+  }
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].type, 1);  // point
+  EXPECT_FLOAT_EQ(s.lights[0].position[1], -5.5f);
+  EXPECT_FLOAT_EQ(s.lights[0].position[2], 2.0f);
+  EXPECT_NEAR(s.lights[0].intensity, 125.66371 / M_PI, 1e-4);
+  EXPECT_FLOAT_EQ(s.lights[0].range, 0.0f);
+  EXPECT_FALSE(RasterSceneOf(LoadScene("wedges")).triangles[0].disk);
+}
+
 TEST(RasterGeometry, RefusalsNameTheSceneAndTheReason) {
-  for (const auto& [name, reason] :
-       std::vector<std::pair<std::string, std::string>>{{"circle", "analytic shape"},
-                                                        {"checker-plane", "'textures'"},
-                                                        {"shadow-stipple", "'shadows'"},
-                                                        {"specular-spheres", "'specular'"}}) {
+  for (const auto& [name, reason] : std::vector<std::pair<std::string, std::string>>{
+           {"thin-wires", "analytic shape"}, {"sdf-wires", "analytic shape"}, {"specular-spheres", "'specular'"}}) {
     try {
       RasterSceneOf(LoadScene(name));
       ADD_FAILURE() << name << " was not refused";
@@ -75,7 +149,7 @@ TEST(RasterGeometry, RefusalsNameTheSceneAndTheReason) {
       EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
     }
   }
-  EXPECT_THROW(ParseRasterScene("AALABRG1", "x"), UserError);      // truncated after the magic
+  EXPECT_THROW(ParseRasterScene("AALABRG2", "x"), UserError);      // truncated after the magic
   EXPECT_THROW(ParseRasterScene("NOTAFILE1234", "x"), UserError);  // wrong magic
   std::string bytes = RasterSceneBytes(RasterSceneOf(LoadScene("wedges")));
   EXPECT_THROW(ParseRasterScene(bytes + "x", "x"), UserError);  // trailing bytes

@@ -27,13 +27,13 @@
 #include "scenes/raster_export.h"
 #include "scenes/render.h"
 #include "scenes/tracer.h"
+#include "tests/gpu_raster/raster_rule.h"
 #include "tests/skip_or_fail.h"
 
 namespace aalab {
 namespace {
 
 using raster::RasterMethod;
-using raster::RasterRenderer;
 
 /// One context for the whole test program ("" when made, else why not).
 const std::string& ContextError() {
@@ -52,96 +52,6 @@ const std::string& ContextError() {
   do {                                                                                                                \
     if (!ContextError().empty()) AALAB_SKIP_OR_FAIL_UNDER_CI("no OpenGL 4.5 context through EGL: " + ContextError()); \
   } while (0)
-
-/// The scene's projected triangle edges in image pixel coordinates (y down), as the
-/// tracer's camera rays define them: nx = 2x/W − 1, ny = 1 − 2y/H (scenes/tracer.cpp).
-/// Worked out here from the camera alone, independently of the raster tool's matrix.
-struct Edges {
-  std::vector<std::array<double, 4>> seg;  // x0, y0, x1, y1
-  /// Distance from (x, y) to the nearest edge, px.
-  double Nearest(double x, double y) const {
-    double best = 1e30;
-    for (const auto& s : seg) {
-      const double dx = s[2] - s[0], dy = s[3] - s[1];
-      const double len2 = dx * dx + dy * dy;
-      double t = len2 > 0 ? ((x - s[0]) * dx + (y - s[1]) * dy) / len2 : 0.0;
-      t = std::clamp(t, 0.0, 1.0);
-      best = std::min(best, std::hypot(x - (s[0] + t * dx), y - (s[1] + t * dy)));
-    }
-    return best;
-  }
-};
-
-Edges ProjectEdges(const RasterScene& s, int w, int h) {
-  const glm::dvec3 pos(s.position[0], s.position[1], s.position[2]);
-  const glm::dvec3 fwd = glm::normalize(glm::dvec3(s.look_at[0], s.look_at[1], s.look_at[2]) - pos);
-  const glm::dvec3 right = glm::normalize(glm::cross(fwd, glm::dvec3(s.up[0], s.up[1], s.up[2])));
-  const glm::dvec3 up = glm::cross(right, fwd);
-  const double aspect = static_cast<double>(w) / h;
-  const double half_h = s.orthographic ? s.height * 0.5 : std::tan(s.fov_y_deg * M_PI / 180.0 * 0.5);
-  Edges e;
-  for (const auto& t : s.triangles) {
-    std::array<glm::dvec2, 3> p;
-    bool front = true;
-    for (int k = 0; k < 3; ++k) {
-      const auto& c = t.corners[static_cast<size_t>(k)].position;
-      const glm::dvec3 v = glm::dvec3(c[0], c[1], c[2]) - pos;
-      const double z = s.orthographic ? 1.0 : glm::dot(v, fwd);
-      if (z <= 0) front = false;
-      const double nx = glm::dot(v, right) / (z * half_h * aspect), ny = glm::dot(v, up) / (z * half_h);
-      p[static_cast<size_t>(k)] = {(nx + 1.0) * 0.5 * w, (1.0 - ny) * 0.5 * h};
-    }
-    if (!front) continue;
-    for (int k = 0; k < 3; ++k) {
-      const auto& a = p[static_cast<size_t>(k)];
-      const auto& b = p[static_cast<size_t>((k + 1) % 3)];
-      e.seg.push_back({a.x, a.y, b.x, b.y});
-    }
-  }
-  return e;
-}
-
-/// How far coverage may legitimately move: the rasteriser snaps each vertex to
-/// 2^−bits px, i.e. by at most 2^−(bits+1) per axis, √2·2^−(bits+1) in distance, and an edge
-/// between two snapped vertices moves no further; 1e−4 px more for float rounding of the
-/// projection (a few ulps of coordinates below 10^3 px).
-double SnapDistance(const RasterRenderer& r) {
-  return std::sqrt(2.0) * std::ldexp(1.0, -(r.SubpixelBits() + 1)) + 1e-4;
-}
-
-struct FrameDiff {
-  int max_off_edge = 0;     ///< largest channel difference at pixels away from every edge
-  int near_edge_flips = 0;  ///< pixels over 1 code apart whose centre lies within the snap distance
-  int unexplained = 0;      ///< pixels over 1 code apart whose centre does not
-  double worst_distance = 0;
-  int one_code = 0;  ///< pixels exactly 1 code apart (rounding of the last bit)
-  int max_any = 0;   ///< largest channel difference anywhere
-};
-
-FrameDiff Compare(const Image8& aalab, const std::vector<uint8_t>& gl, const Edges& edges, double snap, int w, int h) {
-  FrameDiff d;
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      int m = 0;
-      for (int c = 0; c < 3; ++c) {
-        m = std::max(m, std::abs(int(aalab.At(x, y, c)) - int(gl[(static_cast<size_t>(y) * w + x) * 3 + c])));
-      }
-      d.max_any = std::max(d.max_any, m);
-      d.one_code += m == 1;
-      if (m <= 1) continue;
-      const double dist = edges.Nearest(x + 0.5, y + 0.5);
-      if (dist <= snap) {
-        ++d.near_edge_flips;
-        d.worst_distance = std::max(d.worst_distance, dist);
-      } else {
-        ++d.unexplained;
-        d.max_off_edge = std::max(d.max_off_edge, m);
-        if (d.unexplained <= 5) std::printf("  pixel (%d, %d): %d codes apart, %.5f px from an edge\n", x, y, m, dist);
-      }
-    }
-  }
-  return d;
-}
 
 struct Loaded {
   Scene scene;
@@ -252,61 +162,68 @@ TEST(RasterPath, MsaaSamplePositionsAreTheStandardOnes) {
   }
 }
 
-// Coverage sample for sample on wedges (edges at 0.5° to 89.6°): the shape each hardware
+// Coverage sample for sample on wedges (edges at 0.5° to 89.6°) and sdf-circles (85 disk
+// impostors, their coverage per sample from gl_SampleMask): the shape each hardware
 // sample sees (an ID pass into an R32UI multisample target) against the shape aalab's MSAA
 // simulation traces at that sample (Tracer::TraceMsaa with the standard positions, as
 // RenderFrame builds them). Differences only within the snapping distance of an edge.
 TEST(RasterPath, MsaaCoverageMatchesAalabSampleForSample) {
   REQUIRE_GL();
-  auto l = Load("wedges");
-  const int w = 320, h = 180;
-  RasterRenderer r(l->raster);
-  const Edges edges = ProjectEdges(l->raster, w, h);
-  for (int want : {2, 4, 8, 16}) {
-    if (want > MaxSamples()) continue;
-    r.Configure(Method("msaa-" + std::to_string(want) + "x"), w, h, raster::TargetFormat::kRgba16f,
-                raster::ResolveKind::kShader);
-    const int n = r.Samples();  // what the GL allocated (≥ want), compared with aalab's n-sample MSAA
-    const std::vector<int32_t> gl = r.SampleShapes();
-    const auto& table = StandardSamplePositions(n);
-    std::vector<SamplePos> pos, centres;
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
-        centres.push_back({x + 0.5f, y + 0.5f});
-        for (const auto& o : table) {
-          pos.push_back({static_cast<float>(x) + static_cast<float>(8 + o.x) / 16.0f,
-                         static_cast<float>(y) + static_cast<float>(8 + o.y) / 16.0f});
+  for (const std::string name : {"wedges", "sdf-circles"}) {
+    auto l = Load(name);
+    const int w = 320, h = 180;
+    RasterRenderer r(l->raster);
+    const Edges edges = ProjectEdges(l->raster, w, h);
+    const SurfaceCells cells{l->raster, Cam(l->raster, w, h)};
+    int disk_exempt = 0;
+    for (int want : {2, 4, 8, 16}) {
+      if (want > MaxSamples()) continue;
+      r.Configure(Method("msaa-" + std::to_string(want) + "x"), w, h, raster::TargetFormat::kRgba16f,
+                  raster::ResolveKind::kShader);
+      const int n = r.Samples();  // what the GL allocated (≥ want), compared with aalab's n-sample MSAA
+      const std::vector<int32_t> gl = r.SampleShapes();
+      const auto& table = StandardSamplePositions(n);
+      std::vector<SamplePos> pos, centres;
+      for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+          centres.push_back({x + 0.5f, y + 0.5f});
+          for (const auto& o : table) {
+            pos.push_back({static_cast<float>(x) + static_cast<float>(8 + o.x) / 16.0f,
+                           static_cast<float>(y) + static_cast<float>(8 + o.y) / 16.0f});
+          }
         }
       }
-    }
-    MsaaSpec spec;
-    spec.samples = n;
-    std::vector<SampleResult> out(pos.size());
-    TraceCounters counters;
-    l->tracer->TraceMsaa(pos.data(), centres.data(), w * h, spec, w, h, out.data(), nullptr, &counters);
-    ASSERT_EQ(gl.size(), out.size());
-    int covered = 0, near_edge = 0, unexplained = 0;
-    double worst = 0;
-    for (size_t i = 0; i < out.size(); ++i) {
-      covered += out[i].surface >= 0;
-      if (gl[i] == out[i].surface) continue;
-      const double dist = edges.Nearest(pos[i].x, pos[i].y);
-      if (dist <= SnapDistance(r)) {
-        ++near_edge;
-        worst = std::max(worst, dist);
-      } else if (++unexplained <= 5) {
-        ADD_FAILURE() << n << "x: sample " << i % n << " of pixel " << i / n << " at (" << pos[i].x << ", " << pos[i].y
-                      << "): GL sees shape " << gl[i] << ", aalab " << out[i].surface << ", " << dist
-                      << " px from the nearest edge";
+      MsaaSpec spec;
+      spec.samples = n;
+      std::vector<SampleResult> out(pos.size());
+      TraceCounters counters;
+      l->tracer->TraceMsaa(pos.data(), centres.data(), w * h, spec, w, h, out.data(), nullptr, &counters);
+      ASSERT_EQ(gl.size(), out.size());
+      int covered = 0, near_edge = 0, unexplained = 0;
+      double worst = 0;
+      for (size_t i = 0; i < out.size(); ++i) {
+        covered += out[i].surface >= 0;
+        if (gl[i] == out[i].surface) continue;
+        const double dist = edges.Nearest(pos[i].x, pos[i].y);
+        if (dist <= SnapDistance(r)) {
+          ++near_edge;
+          worst = std::max(worst, dist);
+        } else if (cells.NearBoundary(pos[i].x, pos[i].y, SnapDistance(r))) {
+          ++disk_exempt;  // within the float slack of a disk's outline (SurfaceCells)
+        } else if (++unexplained <= 5) {
+          ADD_FAILURE() << n << "x: sample " << i % n << " of pixel " << i / n << " at (" << pos[i].x << ", "
+                        << pos[i].y << "): GL sees shape " << gl[i] << ", aalab " << out[i].surface << ", " << dist
+                        << " px from the nearest edge";
+        }
       }
+      std::printf(
+          "%s msaa-%dx (%d samples allocated): %zu samples (%d on a shape), %d differ within %.5f px of "
+          "an edge (snap %.5f), %d at a disk's outline\n",
+          name.c_str(), want, n, out.size(), covered, near_edge, worst, SnapDistance(r), disk_exempt);
+      EXPECT_EQ(unexplained, 0) << name;
+      EXPECT_GT(covered, static_cast<int>(out.size() / 10));  // the fixture has real coverage
+      EXPECT_LE(near_edge + disk_exempt, static_cast<int>(out.size() / 2000)) << name;
     }
-    std::printf(
-        "wedges msaa-%dx (%d samples allocated): %zu samples (%d on a quad), %d differ, all within %.5f px of "
-        "an edge (snap %.5f)\n",
-        want, n, out.size(), covered, near_edge, worst, SnapDistance(r));
-    EXPECT_EQ(unexplained, 0);
-    EXPECT_GT(covered, static_cast<int>(out.size() / 10));  // the fixture has real coverage
-    EXPECT_LE(near_edge, static_cast<int>(out.size() / 2000));
   }
 }
 
@@ -335,6 +252,115 @@ TEST(RasterPath, ResolvedFramesMatchAalab) {
         EXPECT_EQ(d.unexplained, 0) << name << " " << spec;
         EXPECT_LE(d.near_edge_flips, 24) << name << " " << spec;
       }
+    }
+  }
+}
+
+// Procedural textures (checker-plane: a checker ground plane to the horizon, perspective,
+// clipped by the near plane; detail-texture: hashed noise, one texel per pixel at 960×540,
+// orthographic): the pattern functions ported to GLSL operation for operation, point-sampled
+// at the perspective-correct uv. 1× (both formats), TAA's jittered frame 2 (frame 1's jitter
+// (0, −1/6) px puts every sample of detail-texture at 320×180 exactly on a texel boundary,
+// 3 texels to a pixel: a tie on every pixel, which the rule exempts and so checks nothing),
+// MSAA 4× (one
+// texture lookup per primitive and pixel, at the centre, on both sides) and SSAA 2×2 against
+// aalab's frames; pixels over 1 code apart only near a geometric edge or where the exact uv
+// lies within the stated slack of a cell boundary (SurfaceCells).
+TEST(RasterPath, ProceduralTexturesMatchAalab) {
+  REQUIRE_GL();
+  for (const std::string name : {"checker-plane", "detail-texture"}) {
+    auto l = Load(name);
+    const int w = 320, h = 180;
+    RasterRenderer r(l->raster);
+    const Edges edges = ProjectEdges(l->raster, w, h);
+    for (const std::string spec : {"none", "taa@2", "msaa-4x", "ssaa-2x2"}) {
+      const RasterMethod m = Method(spec);
+      Image8 ref;
+      if (spec == "taa@2") {
+        const FrameJitter j = FrameJitterAt(MakeMethod("taa").render.jitter, 2);
+        EXPECT_FLOAT_EQ(m.jx, j.x);
+        EXPECT_FLOAT_EQ(m.jy, j.y);
+        ref = RenderSurfaceFrame(*l->tracer, w, h, j, nullptr).image;
+      } else {
+        ref = RenderFrame(*l->tracer, w, h, MakeMethod(spec).render, 1, nullptr);
+      }
+      const int grid = m.kind == RasterMethod::Kind::kSsaa ? m.grid : 1;
+      for (auto fmt : {raster::TargetFormat::kRgba16f, raster::TargetFormat::kRgba32f}) {
+        if (spec != "none" && fmt == raster::TargetFormat::kRgba32f) continue;
+        r.Configure(m, w, h, fmt, raster::ResolveKind::kShader);
+        r.RenderFrame();
+        Edges moved = edges;
+        for (auto& sg : moved.seg) {
+          sg[0] -= m.jx, sg[2] -= m.jx;
+          sg[1] -= m.jy, sg[3] -= m.jy;
+        }
+        const SurfaceCells cells{l->raster, Cam(l->raster, w, h)};
+        // Resolved frames: a flipped sample anywhere in the pixel's footprint counts.
+        const double reach = m.kind == RasterMethod::Kind::kMsaa || grid > 1 ? 0.7072 : 0.0;
+        const FrameDiff d = Compare(ref, r.ReadRgb8(), moved, reach + SnapDistance(r), w, h, &cells, grid, m.jx, m.jy);
+        std::printf(
+            "%s %s %s: %d pixel(s) identical, %d 1 code apart, %d >1 code apart near an edge, %d near a texture "
+            "cell boundary (max %d)\n",
+            name.c_str(), spec.c_str(), fmt == raster::TargetFormat::kRgba16f ? "rgba16f" : "rgba32f",
+            w * h - d.one_code - d.near_edge_flips - d.texture_flips - d.unexplained, d.one_code, d.near_edge_flips,
+            d.texture_flips, d.max_any);
+        EXPECT_EQ(d.unexplained, 0) << name << " " << spec << ": pixels differ by up to " << d.max_off_edge;
+        // The fixture has structure: the checker reaches the horizon, the noise is non-constant.
+        EXPECT_LE(d.near_edge_flips + d.texture_flips, w * h / 50) << name << " " << spec;
+      }
+    }
+  }
+}
+
+// Disks as impostors (circle: one lambert disk under a point light; hdr-edges: quads and a
+// disk through ACES; sdf-circles: 85 disks over two quads) and shadow rays in the fragment
+// shader (shadow-stipple: 18 thin boxes casting a stipple of shadows on a lambert plane):
+// 1×, TAA's frame 1, MSAA 4× and SSAA 2×2 against aalab's frames, under the same rule
+// (triangle edges, disk outlines, shadow boundaries).
+TEST(RasterPath, DiskAndShadowScenesMatchAalab) {
+  REQUIRE_GL();
+  for (const std::string name : {"circle", "hdr-edges", "sdf-circles", "shadow-stipple"}) {
+    auto l = Load(name);
+    const int w = 320, h = 180;
+    RasterRenderer r(l->raster);
+    const Edges edges = ProjectEdges(l->raster, w, h);
+    for (const std::string spec : {"none", "taa", "msaa-4x", "ssaa-2x2"}) {
+      const RasterMethod m = Method(spec);
+      const Image8 ref =
+          spec == "taa"
+              ? RenderSurfaceFrame(*l->tracer, w, h, FrameJitterAt(MakeMethod("taa").render.jitter, 1), nullptr).image
+              : RenderFrame(*l->tracer, w, h, MakeMethod(spec).render, 1, nullptr);
+      const int grid = m.kind == RasterMethod::Kind::kSsaa ? m.grid : 1;
+      r.Configure(m, w, h, raster::TargetFormat::kRgba16f, raster::ResolveKind::kShader);
+      r.RenderFrame();
+      Edges moved = edges;
+      for (auto& sg : moved.seg) {
+        sg[0] -= m.jx, sg[2] -= m.jx;
+        sg[1] -= m.jy, sg[3] -= m.jy;
+      }
+      const SurfaceCells cells{l->raster, Cam(l->raster, w, h)};
+      const double reach = m.kind == RasterMethod::Kind::kMsaa ? 0.7072 : 0.0;
+      const FrameDiff d = Compare(ref, r.ReadRgb8(), moved, reach + SnapDistance(r), w, h, &cells,
+                                  m.kind == RasterMethod::Kind::kMsaa ? -r.Samples() : grid, m.jx, m.jy);
+      std::printf(
+          "%s %s: %d pixel(s) identical, %d 1 code apart, %d >1 code apart near an edge, %d at a disk's outline "
+          "or shadow boundary (max %d)\n",
+          name.c_str(), spec.c_str(), w * h - d.one_code - d.near_edge_flips - d.texture_flips - d.unexplained,
+          d.one_code, d.near_edge_flips, d.texture_flips, d.max_any);
+      EXPECT_EQ(d.unexplained, 0) << name << " " << spec << ": pixels differ by up to " << d.max_off_edge;
+      EXPECT_LE(d.near_edge_flips + d.texture_flips, w * h / 200) << name << " " << spec;
+    }
+    if (l->raster.shadows) {
+      // The fixture's shadows matter: without the shadow rays the frame is another one.
+      RasterScene unshadowed = l->raster;
+      unshadowed.shadows = false;
+      RasterRenderer u(unshadowed);
+      u.Configure(Method("none"), w, h, raster::TargetFormat::kRgba16f, raster::ResolveKind::kShader);
+      u.RenderFrame();
+      const FrameDiff d =
+          Compare(RenderFrame(*l->tracer, w, h, RenderSpec{}, 1, nullptr), u.ReadRgb8(), edges, SnapDistance(r), w, h);
+      std::printf("%s without shadow rays: %d pixel(s) over 1 code apart\n", name.c_str(), d.unexplained);
+      EXPECT_GT(d.unexplained, w * h / 20) << name;
     }
   }
 }
