@@ -397,7 +397,8 @@ Image8 BlendFast(const Image8& in, const BlendTex& blend, const SmaaParams& p, u
   const Frame f(w, h);
   const bool shortcut = w <= kMaxShortcutSize && h <= kMaxShortcutSize;
   const bool precise = shortcut && p.subtexel == SubTexel::kFixed8;
-  Image8 out(w, h, 4);
+  // Every pixel written: copied first (shortcut) or blended (flags all 1 otherwise), 4 bytes.
+  Image8 out(w, h, 4, kUninitialized);
   std::vector<uint64_t> t(static_cast<size_t>((h + kGrain - 1) / kGrain), 0);
   ParallelForChunks(h, kGrain, [&](int y0, int y1) {
     InlineSampler bs(blend.Tex(), p.subtexel), cs(Tex8(in), p.subtexel);

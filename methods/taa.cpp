@@ -281,7 +281,7 @@ class TaaState : public TemporalState {
       });
     }
     next_.resize(3 * n);
-    Image8 result(W, H, 4, 255);
+    Image8 result(W, H, 4, kUninitialized);  // every byte written below (alpha 255)
     const Encode8& encode = Encoder();
     ParallelForChunks(H, 8, [&](int y0, int y1) {
       std::vector<float> buf(static_cast<size_t>(W) * 13);
@@ -304,6 +304,7 @@ class TaaState : public TemporalState {
           std::copy(cur.begin(), cur.end(), next);
           for (int x = 0; x < W; ++x) {
             for (int c = 0; c < 3; ++c) row[4 * x + c] = encode(cur[3 * static_cast<size_t>(x) + c]);
+            row[4 * x + 3] = 255;
           }
           continue;
         }
@@ -352,6 +353,7 @@ class TaaState : public TemporalState {
         }
         for (int x = 0; x < W; ++x) {
           for (int c = 0; c < 3; ++c) row[4 * x + c] = encode(outc[c][x]);
+          row[4 * x + 3] = 255;
         }
       }
     });
