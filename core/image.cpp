@@ -1,12 +1,25 @@
 #include "core/image.h"
 
+#include <atomic>
+
 #include "core/color.h"
 
 namespace aalab {
 
+namespace {
+std::atomic<int> g_poison{-1};
+}  // namespace
+
+void SetUninitializedPoison(int byte) {
+  AALAB_CHECK(byte >= -1 && byte <= 255, "uninitialised-image poison must be -1 (off) or a byte 0..255");
+  g_poison.store(byte, std::memory_order_relaxed);
+}
+
+int UninitializedPoison() { return g_poison.load(std::memory_order_relaxed); }
+
 ImageF ToFloat(const Image8& img, int channels) {
   AALAB_CHECK(channels >= 1 && channels <= img.Channels(), "channel count");
-  ImageF out(img.Width(), img.Height(), channels);
+  ImageF out(img.Width(), img.Height(), channels, kUninitialized);  // every value written below
   for (int y = 0; y < img.Height(); ++y) {
     const uint8_t* src = img.Row(y);
     float* dst = out.Row(y);

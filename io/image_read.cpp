@@ -367,7 +367,8 @@ ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<s
     const int th = f.parts[c.part].tile_width > 0 ? std::max(1, f.parts[c.part].tile_height) : 1;
     band = std::max(th, band / th * th);
   }
-  std::vector<float> pixels, scratch;
+  ImageF::Storage pixels;  // every value is written below: no zero-fill
+  std::vector<float> scratch;
   for (int y = 0; y < h; y += band) {
     const int yend = std::min(h, y + band);
     const size_t rows = static_cast<size_t>(yend - y);

@@ -47,6 +47,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <tuple>
 
 #include "core/error.h"
@@ -567,25 +568,34 @@ Image8 Cmaa2(const Image8& in, const Cmaa2Params& p, Cmaa2Stats* stats) {
   AALAB_CHECK(in.Channels() == 4 && !in.Empty(), "CMAA2 needs a non-empty RGBA8 frame");
   const int w = in.Width(), h = in.Height();
   std::vector<float> rgb(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      for (int ch = 0; ch < 3; ++ch) {
-        rgb[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 3 + static_cast<size_t>(ch)] =
-            Cmaa2SrgbToLinear(in.Pixel(x, y)[ch]);
+  ParallelForChunks(h, 16, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      for (int x = 0; x < w; ++x) {
+        for (int ch = 0; ch < 3; ++ch) {
+          rgb[(static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 3 +
+              static_cast<size_t>(ch)] = Cmaa2SrgbToLinear(in.Pixel(x, y)[ch]);
+        }
       }
     }
-  }
+  });
   std::vector<uint8_t> written;
   const std::vector<float> lin = Cmaa2Linear(rgb, w, h, p, &written, stats);
-  Image8 out = in;
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const size_t pi = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
-      if (!written[pi]) continue;
-      for (int ch = 0; ch < 3; ++ch)
-        out.Pixel(x, y)[ch] = StoreUnorm8(Cmaa2LinearToSrgb(lin[pi * 3 + static_cast<size_t>(ch)]));
+  // Untouched pixels keep the input's bytes; written ones get the stored colour and keep the
+  // input's alpha: every byte written once, rows in parallel, no copy of the frame first.
+  Image8 out(w, h, 4, kUninitialized);
+  ParallelForChunks(h, 16, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const uint8_t* src = in.Row(y);
+      uint8_t* dst = out.Row(y);
+      std::memcpy(dst, src, static_cast<size_t>(w) * 4);
+      for (int x = 0; x < w; ++x) {
+        const size_t pi = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+        if (!written[pi]) continue;
+        for (int ch = 0; ch < 3; ++ch)
+          dst[4 * x + ch] = StoreUnorm8(Cmaa2LinearToSrgb(lin[pi * 3 + static_cast<size_t>(ch)]));
+      }
     }
-  }
+  });
   return out;
 }
 

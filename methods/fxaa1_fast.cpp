@@ -5,6 +5,7 @@
 // debug views and deviations are documented at the top of methods/fxaa1.cpp.
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "core/color.h"
@@ -29,7 +30,7 @@ Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_vi
   if (!debug_view.empty() || p.sampler != SamplerArithmetic::kGl) return Fxaa1Reference(in, p, debug_view, stats);
   Fxaa1CheckParams(p);
   AALAB_CHECK(in.Channels() == 4, "fxaa1 needs an RGBA8 frame");
-  Image8 out(in.Width(), in.Height(), 4, 255);
+  Image8 out(in.Width(), in.Height(), 4, kUninitialized);  // every row written whole (CopyRowOpaque)
   if (in.Empty()) return out;
   const int height = in.Height();
   const int width = in.Width();
@@ -43,11 +44,12 @@ Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_vi
     }
     return t;
   }();
-  std::vector<float> luma(static_cast<size_t>(width) * height);
+  // Every value written by the parallel pass below: no serial zero-fill first.
+  std::unique_ptr<float[]> luma(new float[static_cast<size_t>(width) * height]);
   ParallelForChunks(height, 16, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       const uint8_t* s = in.Row(y);
-      float* l = luma.data() + static_cast<size_t>(y) * width;
+      float* l = luma.get() + static_cast<size_t>(y) * width;
       for (int x = 0; x < width; ++x) l[x] = tables[1][s[4 * x + 1]] + tables[0][s[4 * x]];
     }
   });
@@ -61,9 +63,9 @@ Image8 Fxaa1(const Image8& in, const Fxaa1Params& p, const std::string& debug_vi
     for (int y = y0; y < y1; ++y) {
       uint8_t* orow = out.Row(y);
       CopyRowOpaque(in.Row(y), orow, width);
-      const float* ln = luma.data() + static_cast<size_t>(std::max(y - 1, 0)) * width;
-      const float* lm = luma.data() + static_cast<size_t>(y) * width;
-      const float* ls = luma.data() + static_cast<size_t>(std::min(y + 1, height - 1)) * width;
+      const float* ln = luma.get() + static_cast<size_t>(std::max(y - 1, 0)) * width;
+      const float* lm = luma.get() + static_cast<size_t>(y) * width;
+      const float* ls = luma.get() + static_cast<size_t>(std::min(y + 1, height - 1)) * width;
       // Step 2, LocalContrastExit: max/min are exact, so their nesting does not matter.
       auto test = [&](float n, float w, float m, float e, float s) -> uint8_t {
         const float rmax = std::max(std::max(n, w), std::max(m, std::max(e, s)));

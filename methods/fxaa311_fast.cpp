@@ -421,7 +421,7 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
   }
   const float rcpX = 1.0f / static_cast<float>(w);
   const float rcpY = 1.0f / static_cast<float>(h);
-  Image8 out(w, h, 4);
+  Image8 out(w, h, 4, kUninitialized);  // every row written whole by pass 1 (CopyRowOpaque)
   constexpr int kGrain = 8;
   // Step 2's marks (kExit / kEdge / kTie) for every pixel, and the non-kExit count per row.
   std::unique_ptr<uint8_t[]> marks(new uint8_t[static_cast<size_t>(w) * h]);  // all written by pass 1

@@ -3,12 +3,16 @@
 // Same shader as SmaaReference in methods/smaa.cpp — same float operations in the same
 // order, same fetches, same 8-bit textures — organised for a CPU. Parameters, sources and
 // deviations are documented at the top of methods/smaa.cpp.
-//   Pass 1: a vectorised byte prefilter settles most pixels: when every rgb byte differs
-//     from the left and top neighbour by at most m, with m/255 + 1e-5 < threshold, both
-//     deltas are below the threshold (lumas and colour deltas are within 2e-6 of the exact
-//     byte arithmetic) and the shader discards the pixel. The others run EdgePixel's
-//     expressions with lumas from per-channel product tables. The edge texture is one byte
-//     per pixel (bit 0 = r, bit 1 = g) plus a flag per row.
+//   Pass 1, luma detection (the presets): whole rows in loops the compiler vectorises
+//     (AVX2 and baseline clones): a padded luma row per input row (the tables' values,
+//     computed: UnormToFloat(k)·weight, summed (r + g) + b), then every pixel's six deltas
+//     and EdgeBits; a pixel the shader discards gets 0. The edge texture is one byte per pixel
+//     (bit 0 = r, bit 1 = g) plus a flag per row.
+//   Pass 1, colour detection: a vectorised byte prefilter settles most pixels: when every
+//     rgb byte differs from the left and top neighbour by at most m, with m/255 + 1e-5 <
+//     threshold, both deltas are below the threshold (colour deltas are within 2e-6 of the
+//     exact byte arithmetic) and the shader discards the pixel. The others run EdgePixel's
+//     expressions. Same edge bytes.
 //   Pass 2: only candidate pixels run the shader (the one definition in smaa_shader.h,
 //     reading the edge bytes through PlaneEdges: BilinearSampler's footprint, clamp and
 //     weighted sums, texel values 0 or 1, for r and g). A non-candidate's first fetch (the
@@ -130,10 +134,88 @@ void CandidateRow(const uint8_t* __restrict row, const uint8_t* __restrict top, 
   for (int x = 0; x < w; ++x) cand[x] = (tmp[4 * x] | tmp[4 * x + 1] | tmp[4 * x + 2]) != 0 || safe < 0;
 }
 
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_SMAA_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define AALAB_SMAA_CLONES
+#endif
+
+// std::max of floats as a select the compiler vectorises (std::max(a, b) is a < b ? b : a).
+inline float MaxF(float a, float b) { return a < b ? b : a; }
+
+// Luma detection, pass 1 in whole rows. The lumas of one row, every pixel at once, as
+// Lumas()' tables give them ((r + g) + b of UnormToFloat(k)·weight), padded for the clamped
+// neighbours: l[0] = l[1] = L(0) (x − 2 and x − 1 of column 0), l[x + 2] = L(x),
+// l[w + 2] = L(w − 1).
+AALAB_SMAA_CLONES void LumaRow(const uint8_t* __restrict src, int w, float* __restrict l) {
+  float* __restrict o = l + 2;
+  for (int x = 0; x < w; ++x) {
+    const float r = static_cast<float>(src[4 * x]) * (1.0f / 255.0f) * 0.2126f;
+    const float g = static_cast<float>(src[4 * x + 1]) * (1.0f / 255.0f) * 0.7152f;
+    const float b = static_cast<float>(src[4 * x + 2]) * (1.0f / 255.0f) * 0.0722f;
+    o[x] = (r + g) + b;
+  }
+  l[0] = l[1] = o[0];
+  l[w + 2] = o[w - 1];
+}
+
+// EdgePixel's luma deltas and EdgeBits for every pixel of a row (padded luma rows of LumaRow:
+// centre, top, top-top, bottom), in a loop the compiler vectorises; a pixel the shader
+// discards gets 0, as the prefilter's settled pixels do. Returns the number of pixels the
+// shader does not discard (dx or dy ≥ threshold) and ORs the edge bytes into *any.
+AALAB_SMAA_CLONES int EdgeRowLuma(const float* __restrict lc, const float* __restrict lt, const float* __restrict ltt,
+                                  const float* __restrict lb, int w, float thr, float lcf, uint8_t* __restrict out,
+                                  uint8_t* any) {
+  int kept = 0;
+  uint8_t seen = 0;
+  for (int x = 0; x < w; ++x) {
+    const float c = lc[x + 2], l = lc[x + 1], t = lt[x + 2];
+    const float dx = std::fabs(c - l), dy = std::fabs(c - t), dr = std::fabs(c - lc[x + 3]);
+    const float db = std::fabs(c - lb[x + 2]), dll = std::fabs(l - lc[x]), dtt = std::fabs(t - ltt[x + 2]);
+    const int ex = dx >= thr, ey = dy >= thr;
+    const float final_delta = MaxF(MaxF(MaxF(dx, dr), dll), MaxF(MaxF(dy, db), dtt));
+    const int bx = ex & (lcf * dx >= final_delta), by = ey & (lcf * dy >= final_delta);
+    const uint8_t bits = static_cast<uint8_t>(bx * kLeft | by * kTop);
+    out[x] = bits;
+    seen |= bits;
+    kept += ex | ey;
+  }
+  *any = seen;
+  return kept;
+}
+
+// Pass 1, luma detection: each chunk of kLumaRows rows computes the luma rows it reads (its
+// rows, two above, one below: 35 per 32) once, then every pixel's edge bits. Same bits and
+// taps as the prefilter path.
+constexpr int kLumaRows = 32;
+void EdgesLumaRows(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t* taps) {
+  const int w = in.Width(), h = in.Height();
+  const size_t stride = static_cast<size_t>(w) + 3;
+  std::vector<uint64_t> t(static_cast<size_t>((h + kLumaRows - 1) / kLumaRows), 0);
+  ParallelForChunks(h, kLumaRows, [&](int y0, int y1) {
+    const int base = std::max(y0 - 2, 0), last = std::min(y1, h - 1);
+    std::vector<float> buf(static_cast<size_t>(last - base + 1) * stride);
+    for (int y = base; y <= last; ++y) LumaRow(in.Row(y), w, buf.data() + static_cast<size_t>(y - base) * stride);
+    auto row = [&](int y) { return buf.data() + static_cast<size_t>(y - base) * stride; };
+    uint64_t n = 0;
+    for (int y = y0; y < y1; ++y) {
+      uint8_t any = 0;
+      const int kept =
+          EdgeRowLuma(row(y), row(std::max(y - 1, 0)), row(std::max(y - 2, 0)), row(std::min(y + 1, h - 1)), w,
+                      p.threshold, p.local_contrast_factor, plane->Row(y), &any);
+      n += 3 * static_cast<uint64_t>(w) + 4 * static_cast<uint64_t>(kept);
+      plane->row_any[static_cast<size_t>(y)] = any != 0;
+    }
+    t[static_cast<size_t>(y0 / kLumaRows)] = n;
+  });
+  for (uint64_t v : t) *taps += v;
+}
+
 // Pass 1 (both detections): the prefilter settles most pixels (3 fetches, no edge); the
 // others run EdgePixel's expressions with values from the tables. Taps: 3 per pixel, 4 more
 // where the shader does not discard.
 void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t* taps) {
+  if (p.detection == SmaaParams::Detection::kLuma) return EdgesLumaRows(in, p, plane, taps);
   const int w = in.Width(), h = in.Height();
   std::vector<uint64_t> t(static_cast<size_t>((h + kGrain - 1) / kGrain), 0);
   const float thr = p.threshold, lcf = p.local_contrast_factor;
@@ -397,7 +479,8 @@ Image8 BlendFast(const Image8& in, const BlendTex& blend, const SmaaParams& p, u
   const Frame f(w, h);
   const bool shortcut = w <= kMaxShortcutSize && h <= kMaxShortcutSize;
   const bool precise = shortcut && p.subtexel == SubTexel::kFixed8;
-  Image8 out(w, h, 4);
+  // Every pixel written: copied first (shortcut) or blended (flags all 1 otherwise), 4 bytes.
+  Image8 out(w, h, 4, kUninitialized);
   std::vector<uint64_t> t(static_cast<size_t>((h + kGrain - 1) / kGrain), 0);
   ParallelForChunks(h, kGrain, [&](int y0, int y1) {
     InlineSampler bs(blend.Tex(), p.subtexel), cs(Tex8(in), p.subtexel);

@@ -44,6 +44,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include "core/color.h"
@@ -174,6 +175,67 @@ AALAB_TAA_CLONES void BoxRow(const float* __restrict r0, const float* __restrict
   }
 }
 
+/// The history fetch's footprint for one row, every pixel at once: FetchHistory's values
+/// (fractions tx, ty; offsets of the four clamped texels into the interleaved history) from
+/// the previous positions (prev: x, y per pixel). The position is first clamped into
+/// [0, w] × [0, h], which leaves every position that has history (StepFast's `valid`)
+/// unchanged (-0 becomes +0: the same fx) and gives the others (NaN, off-screen) a footprint
+/// inside the history whose fetch is discarded. floor(f) as truncation minus (f < trunc(f)):
+/// f lies in [-0.5, w - 0.5], where both are the same integer; written so the loop
+/// vectorises (std::floor does not without -fno-trapping-math).
+AALAB_TAA_CLONES void FootprintRow(const float* __restrict prev, int w, int hw, int hh, float* __restrict tx,
+                                   float* __restrict ty, int32_t* __restrict off) {
+  const float fw = static_cast<float>(hw), fh = static_cast<float>(hh);
+  for (int x = 0; x < w; ++x) {
+    const float px = Min(fw, Max(0.0f, prev[2 * x])), py = Min(fh, Max(0.0f, prev[2 * x + 1]));
+    const float fx = px - 0.5f, fy = py - 0.5f;
+    const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
+    const int x0 = ix - (fx < static_cast<float>(ix) ? 1 : 0), y0 = iy - (fy < static_cast<float>(iy) ? 1 : 0);
+    tx[x] = fx - static_cast<float>(x0);
+    ty[x] = fy - static_cast<float>(y0);
+    const int xa = std::clamp(x0, 0, hw - 1), xb = std::clamp(x0 + 1, 0, hw - 1);
+    const int ya = std::clamp(y0, 0, hh - 1), yb = std::clamp(y0 + 1, 0, hh - 1);
+    off[4 * x] = 3 * (ya * hw + xa);
+    off[4 * x + 1] = 3 * (ya * hw + xb);
+    off[4 * x + 2] = 3 * (yb * hw + xa);
+    off[4 * x + 3] = 3 * (yb * hw + xb);
+  }
+}
+
+/// FetchHistory's lerps for one row at the footprints of FootprintRow (a gather: scalar),
+/// planar RGB out.
+void LerpRow(const float* __restrict hist, const float* __restrict tx, const float* __restrict ty,
+             const int32_t* __restrict off, int w, float* __restrict r, float* __restrict g, float* __restrict b) {
+  for (int x = 0; x < w; ++x) {
+    const float *a = hist + off[4 * x], *bb = hist + off[4 * x + 1], *c0 = hist + off[4 * x + 2],
+                *d = hist + off[4 * x + 3];
+    float h[3];
+    for (int c = 0; c < 3; ++c) {
+      const float top = a[c] + tx[x] * (bb[c] - a[c]);
+      const float bot = c0[c] + tx[x] * (d[c] - c0[c]);
+      h[c] = top + ty[x] * (bot - top);
+    }
+    r[x] = h[0];
+    g[x] = h[1];
+    b[x] = h[2];
+  }
+}
+
+/// ToYCoCg of the fetched history, in place over the planar row, every pixel at once. Pixels
+/// without history (StepFast's valid[x] = 0) get the YCoCg of FootprintRow's safe fetch,
+/// which BlendRow discards (it takes the current colour there), instead of StepReference's
+/// 0: no select, so the loop vectorises (a select after float arithmetic does not, with
+/// trapping math).
+AALAB_TAA_CLONES void HistoryYccRow(int w, float* __restrict r, float* __restrict g, float* __restrict b) {
+  for (int x = 0; x < w; ++x) {
+    const float rgb[3] = {r[x], g[x], b[x]};
+    const Ycc v = ToYCoCg(rgb);
+    r[x] = v.y;
+    g[x] = v.co;
+    b[x] = v.cg;
+  }
+}
+
 /// The rest of a row's step, every pixel at once: ClipToBox of the history (when `clip`),
 /// the blend with the current YCoCg (cy, cco, ccg: the padded plane rows, texel x at x + 1),
 /// FromYCoCg and the clamp, exactly as StepReference; pixels without history (valid[x] = 0)
@@ -248,12 +310,14 @@ class TaaState : public TemporalState {
   /// The production step: the same values as StepReference, bit for bit, organised for a
   /// CPU. The current frame's YCoCg goes into three padded planes (one replicated texel on
   /// each side, so the clamped 3×3 neighbourhood is plain reads); each row then computes the
-  /// boxes of all its pixels (BoxRow), fetches the history (scalar: a gather), clips, blends
-  /// and converts (BlendRow) and encodes. tests/motion/taa_test.cpp compares the two.
+  /// boxes of all its pixels (BoxRow), fetches the history (FootprintRow and HistoryYccRow
+  /// vectorised, LerpRow a scalar gather), clips, blends and converts (BlendRow) and
+  /// encodes. tests/motion/taa_test.cpp compares the two.
   Image8 StepFast(const TemporalInput& in, PostStats* stats) {
     const Image8& f = *in.frame;
     const int W = f.Width(), H = f.Height();
     const size_t n = static_cast<size_t>(W) * static_cast<size_t>(H);
+    if (3 * n > static_cast<size_t>(INT32_MAX)) return StepReference(in, stats);  // FootprintRow's int offsets
     const size_t pw = static_cast<size_t>(W) + 2;
     const bool have_history = HaveHistory(in, W, H);
     const bool clip = p_.clip != Clip::kNone;
@@ -281,11 +345,13 @@ class TaaState : public TemporalState {
       });
     }
     next_.resize(3 * n);
-    Image8 result(W, H, 4, 255);
+    Image8 result(W, H, 4, kUninitialized);  // every byte written below (alpha 255)
     const Encode8& encode = Encoder();
     ParallelForChunks(H, 8, [&](int y0, int y1) {
       std::vector<float> buf(static_cast<size_t>(W) * 13);
       std::vector<uint8_t> valid(static_cast<size_t>(W));
+      std::vector<float> tx(static_cast<size_t>(W)), ty(static_cast<size_t>(W));
+      std::vector<int32_t> off(4 * static_cast<size_t>(W));
       float* hy = buf.data();
       float* hco = hy + W;
       float* hcg = hco + W;
@@ -304,25 +370,21 @@ class TaaState : public TemporalState {
           std::copy(cur.begin(), cur.end(), next);
           for (int x = 0; x < W; ++x) {
             for (int c = 0; c < 3; ++c) row[4 * x + c] = encode(cur[3 * static_cast<size_t>(x) + c]);
+            row[4 * x + 3] = 255;
           }
           continue;
         }
         const float* prev = &(*in.previous)[2 * static_cast<size_t>(y) * W];
         for (int x = 0; x < W; ++x) {
           const float px = prev[2 * x], py = prev[2 * x + 1];
-          const bool ok = px >= 0.0f && px <= static_cast<float>(W) && py >= 0.0f && py <= static_cast<float>(H);
-          valid[static_cast<size_t>(x)] = ok;
-          if (!ok) {
-            hy[x] = hco[x] = hcg[x] = 0.0f;
-            continue;
-          }
-          float h[3];
-          FetchHistory(px, py, h);
-          const Ycc v = ToYCoCg(h);
-          hy[x] = v.y;
-          hco[x] = v.co;
-          hcg[x] = v.cg;
+          valid[static_cast<size_t>(x)] =
+              px >= 0.0f && px <= static_cast<float>(W) && py >= 0.0f && py <= static_cast<float>(H);
         }
+        // FetchHistory and ToYCoCg for the whole row: footprints (vectorised), the gather and
+        // lerps (scalar), YCoCg (vectorised). history_ is W × H here (HaveHistory).
+        FootprintRow(prev, W, W, H, tx.data(), ty.data(), off.data());
+        LerpRow(history_.data(), tx.data(), ty.data(), off.data(), W, hy, hco, hcg);
+        HistoryYccRow(W, hy, hco, hcg);
         const size_t rm = static_cast<size_t>(std::max(y - 1, 0)) * pw, rc = static_cast<size_t>(y) * pw,
                      rp = static_cast<size_t>(std::min(y + 1, H - 1)) * pw;
         if (clip) {
@@ -352,6 +414,7 @@ class TaaState : public TemporalState {
         }
         for (int x = 0; x < W; ++x) {
           for (int c = 0; c < 3; ++c) row[4 * x + c] = encode(outc[c][x]);
+          row[4 * x + 3] = 255;
         }
       }
     });

@@ -181,7 +181,7 @@ class TaaProdState : public TemporalState {
         next_[4 * o + 3] = res[3];
       }
     });
-    Image8 result(W, H, 4, 255);
+    Image8 result(W, H, 4, kUninitialized);  // every byte written below (alpha 255)
     const bool sharpen = p_.sharpen > 0.0f;
     ParallelFor(H, [&](int y) {
       uint8_t* row = result.Pixel(0, y);
@@ -198,6 +198,7 @@ class TaaProdState : public TemporalState {
           }
           row[4 * x + c] = EncodeSrgb8(v);
         }
+        row[4 * x + 3] = 255;
       }
     });
     history_.swap(next_);

@@ -269,8 +269,8 @@ TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
             const float extent = static_cast<float>(i % 2 == 0 ? W : H);
             switch (r & 7) {
               case 0: prev[i] = std::nanf(""); break;
-              case 1: prev[i] = (r & 8) ? -0.25f : extent + 0.25f; break;  // outside
-              case 2: prev[i] = (r & 8) ? 0.0f : extent; break;            // on the border
+              case 1: prev[i] = (r & 8) ? -0.25f : extent + 0.25f; break;             // outside
+              case 2: prev[i] = (r & 8) ? ((r & 16) ? -0.0f : 0.0f) : extent; break;  // on the border
               case 3: prev[i] = std::floor(static_cast<float>((r >> 8) % 1000) / 1000.0f * extent) + 0.5f; break;
               default: prev[i] = static_cast<float>((r >> 8) % 100000) / 100000.0f * extent; break;
             }
