@@ -139,7 +139,7 @@ TEST(ImageChannels, BlenderMultilayerExrScoresLikePlainFiles) {
     for (int k = 0; k < 3; ++k) rgb.push_back(c.frame_rgba[4 * i + static_cast<size_t>(k)]);
     zero_bg.push_back(std::isinf(c.depth[i]) ? 0.0f : c.depth[i]);
   }
-  WriteImageF((dir / "frame-rgb.png").string(), ImageF(kW, kH, 3, rgb));
+  WriteImageF((dir / "frame-rgb.png").string(), ImageF(kW, kH, 3, ImageF::Storage(rgb.begin(), rgb.end())));
   WriteExr(dir / "ref.exr", {"R", "G", "B"}, OIIO::TypeDesc::HALF, c.ref);
   WriteExr(dir / "depth.exr", {"Z"}, OIIO::TypeDesc::HALF, zero_bg);
   WriteExr(dir / "ids.exr", {"R"}, OIIO::TypeDesc::FLOAT, c.ids);
@@ -199,7 +199,7 @@ TEST(ImageChannels, AmbiguousOrMissingChannelsAreRefusedNamingThem) {
   for (size_t i = 0; i < c.depth.size(); ++i) {
     for (int k = 0; k < 3; ++k) rgb.push_back(c.frame_rgba[4 * i + static_cast<size_t>(k)]);
   }
-  WriteImageF((dir / "frame.png").string(), ImageF(kW, kH, 3, rgb));
+  WriteImageF((dir / "frame.png").string(), ImageF(kW, kH, 3, ImageF::Storage(rgb.begin(), rgb.end())));
   std::vector<float> six;
   for (size_t i = 0; i < c.depth.size(); ++i) {
     for (int k = 0; k < 6; ++k) six.push_back(c.ref[3 * i + static_cast<size_t>(k % 3)]);
