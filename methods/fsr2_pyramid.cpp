@@ -45,6 +45,8 @@
 // fused lerps none. A GPU's texture unit filters with 8-bit fractions instead (core/sampler.h).
 #include "methods/fsr2_pyramid.h"
 
+#include "methods/fsr2_internal.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -71,19 +73,10 @@ struct Math {
 
 float Reduce4(float v0, float v1, float v2, float v3) { return (((v0 + v1) + v2) + v3) * 0.25f; }
 
-// A bilinear sample of channel c at uv, LINEAR filtering, CLAMP_TO_EDGE, as lavapipe filters a
-// float texture: texel coordinate uv·size − 0.5 (two roundings), fraction u − floor(u), and
-// lerp(lerp(a, b, fx), lerp(c, d, fx), fy) with each lerp a + f·(b − a) FUSED (one rounding).
+// A bilinear sample as lavapipe filters a float texture (fused lerps): fsr2_detail::SampleLinear,
+// shared with the other passes.
 float SampleLinear(const Fsr2Plane& t, float uv_x, float uv_y, int c) {
-  const float u = uv_x * static_cast<float>(t.w) - 0.5f, v = uv_y * static_cast<float>(t.h) - 0.5f;
-  const float x0f = std::floor(u), y0f = std::floor(v);
-  const float fx = u - x0f, fy = v - y0f;
-  auto at = [&](int x, int y) { return t.Fetch(std::clamp(x, 0, t.w - 1), std::clamp(y, 0, t.h - 1), c); };
-  const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
-  const float a = at(x0, y0), b = at(x0 + 1, y0), cc = at(x0, y0 + 1), d = at(x0 + 1, y0 + 1);
-  // Each lerp one fused multiply-add, as lavapipe's filter runs (the difference b − a rounded first).
-  const float top = std::fma(fx, b - a, a), bottom = std::fma(fx, d - cc, cc);
-  return std::fma(fy, bottom - top, top);
+  return fsr2_detail::SampleLinear(t, {uv_x, uv_y}, c);
 }
 
 // SpdLoadSourceImage: the log luma of render pixel (x, y) (0 past the render size).
