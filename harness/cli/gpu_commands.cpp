@@ -186,7 +186,7 @@ int ExportGeometry(const GeometryArgs& a) {
   if (drawn.empty()) {
     throw UserError(
         "the raster path can draw none of the scenes given (it draws still triangle scenes with unlit or "
-        "lambert solid colours or procedural textures, disks, lights and shadows; of the default suite: "
+        "lambert solid colours or procedural textures, disks, lights and shadows; of the synthetic suite: "
         "wedges, mesh, checker-plane, detail-texture, circle, hdr-edges, sdf-circles, shadow-stipple)");
   }
   std::vector<std::string> inputs = names;
