@@ -2,9 +2,11 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "bench/bench_memory.h"
 #include "bench/bench_bigmesh.h"
 
 int main(int argc, char** argv) {
+  std::fprintf(stderr, "%s\n", aalab::bench::ApplyBenchMemoryPolicy());
   const int n = argc > 2 ? std::atoi(argv[1]) : 1024, m = argc > 2 ? std::atoi(argv[2]) : 512;
   int w = 960, h = 540;
   if (argc > 3) std::sscanf(argv[3], "%dx%d", &w, &h);

@@ -1,6 +1,7 @@
 // FLIP against NVIDIA's FLIP tool (see bench_flip_peer.h). The tool reads 8-bit PNGs and
 // prints "Mean: m" (6 decimals) and "Evaluation time: t seconds" (FLIP::evaluate alone, no
 // file I/O or pooling) per test image; OMP_NUM_THREADS sets its threads.
+#include "bench/bench_memory.h"
 #include "bench/bench_flip_peer.h"
 #include "bench/run_capture.h"
 
@@ -42,8 +43,8 @@ NvidiaFlipRun RunNvidiaFlip(const Image8& reference, const Image8& test, int rep
   const std::vector<double> v = flip::ErrorValues(ref_f, test_f, kFlipDefaultPpd);
   r.aalab_mean = PoolFlip(v).mean;
   for (int threads : {1, 2}) {
-    std::string cmd = "cd " + tmp_dir + " && OMP_NUM_THREADS=" + std::to_string(threads) + " " + r.path +
-                      " -nerm -v 2 -ppd 67 -r " + ref_png + " -t";
+    std::string cmd = "cd " + tmp_dir + " && " + PeerEnvPrefix() + "OMP_NUM_THREADS=" + std::to_string(threads) + " " +
+                      r.path + " -nerm -v 2 -ppd 67 -r " + ref_png + " -t";
     for (int i = 0; i < reps + 1; ++i) cmd += " " + test_png;
     const std::string out = RunCapture(cmd + " 2>&1");
     std::istringstream in(out);

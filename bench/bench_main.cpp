@@ -30,6 +30,7 @@
 #include <fstream>
 #include <string>
 
+#include "bench/bench_memory.h"
 #include "bench/bench_aaa.h"
 #include "bench/bench_common.h"
 #include "bench/bench_metrics.h"
@@ -201,6 +202,7 @@ int Main(int argc, char** argv) {
 }  // namespace aalab::bench
 
 int main(int argc, char** argv) {
+  std::fprintf(stderr, "aalab_bench: %s\n", aalab::bench::ApplyBenchMemoryPolicy());
   try {
     return aalab::bench::Main(argc, argv);
   } catch (const std::exception& e) {

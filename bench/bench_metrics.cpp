@@ -1,4 +1,5 @@
 // The metric figures of `make bench`; see bench/bench_metrics.h.
+#include "bench/bench_memory.h"
 #include "bench/bench_metrics.h"
 
 #include <benchmark/benchmark.h>
@@ -106,9 +107,9 @@ void RunExternalTools(const Settings& cfg, MetricsBench& mb) {
   mb.nvidia_flip =
       RunNvidiaFlip(ToUnorm8(mb.ref->image), ToUnorm8(*mb.img), std::max(3, cfg.reps / 2 + 1), tmp.string());
   {
-    const std::string cmd = cfg.python + " " + cfg.script_dir + "/external_metrics.py " + (tmp / "a.f32").string() +
-                            " " + (tmp / "b.f32").string() + " " + std::to_string(kFrameW) + " " +
-                            std::to_string(kFrameH) + " " + std::to_string(std::max(3, cfg.reps / 2 + 1)) +
+    const std::string cmd = PeerEnvPrefix() + cfg.python + " " + cfg.script_dir + "/external_metrics.py " +
+                            (tmp / "a.f32").string() + " " + (tmp / "b.f32").string() + " " + std::to_string(kFrameW) +
+                            " " + std::to_string(kFrameH) + " " + std::to_string(std::max(3, cfg.reps / 2 + 1)) +
                             " 2>/dev/null";
     const std::string out = RunCapture(cmd);
     try {

@@ -12,6 +12,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "bench/bench_memory.h"
 #include "bench/bench_flip_peer.h"
 #include "core/parallel.h"
 #include "methods/fxaa311.h"
@@ -39,6 +40,7 @@ double MedianMs(int reps, const F& body) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::fprintf(stderr, "%s\n", aalab::bench::ApplyBenchMemoryPolicy());
   using namespace aalab;
   const int reps = argc > 1 ? std::stoi(argv[1]) : 7;
   constexpr int W = 1920, H = 1080;

@@ -6,11 +6,13 @@
 #include <exception>
 #include <string>
 
+#include "bench/bench_memory.h"
 #include "bench/bench_msaa.h"
 #include "core/params.h"
 #include "scenes/library.h"
 
 int main(int argc, char** argv) {
+  std::fprintf(stderr, "%s\n", aalab::bench::ApplyBenchMemoryPolicy());
   int w = 480, h = 270, reps = 5;
   if (argc > 4 || (argc > 1 && std::sscanf(argv[1], "%dx%d", &w, &h) != 2) ||
       (argc > 2 && (reps = std::atoi(argv[2])) < 1) || w < 1 || h < 1) {

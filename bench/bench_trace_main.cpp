@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_memory.h"
 #include "core/parallel.h"
 #include "methods/registry.h"
 #include "scenes/library.h"
@@ -43,6 +44,7 @@ double MinCpuMs(int reps, const std::function<void()>& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::fprintf(stderr, "%s\n", aalab::bench::ApplyBenchMemoryPolicy());
   using namespace aalab;
   int w = 320, h = 180;
   if (argc > 1) std::sscanf(argv[1], "%dx%d", &w, &h);

@@ -14,4 +14,5 @@ set(AALAB_CORE_SOURCES
   input_files.cpp
   raster_geometry.cpp
   format.cpp
+  memory_policy.cpp
 )

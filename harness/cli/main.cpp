@@ -25,6 +25,7 @@
 #include "core/exit_code.h"
 #include "core/cleanup.h"
 #include "core/error.h"
+#include "core/memory_policy.h"
 
 namespace aalab {
 namespace {
@@ -165,6 +166,7 @@ void ReportClosedStdout() {
 
 int main(int argc, char** argv) {
   using namespace aalab;
+  KeepFreedMemory();  // core/memory_policy.h: freed buffers reused, not faulted in again
   HandleSignals();
   CLI::App app{"aalab: measures anti-aliasing methods against a supersampled ground truth"};
   app.set_version_flag("--version", std::string("aalab ") + AALAB_VERSION + " (" + AALAB_GIT_COMMIT + ")");
