@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <tuple>
 
 #include <fcntl.h>
 #include <sys/resource.h>
@@ -26,15 +28,84 @@ const std::string kSuiteMethods = "none,ssaa-2x2,fxaa1-p3,fxaa311-p12,fxaa311-p3
 const std::string kSuiteName = "quick";
 const int kSuiteSpp = 16;
 
+double ChildCpu(const rusage& u) {
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
+}
+
+// report.json's time_breakdown (stage, wall_ms, cpu_ms) in seconds; empty when unreadable.
+std::vector<std::tuple<std::string, double, double>> ReadStages(const fs::path& report) {
+  std::vector<std::tuple<std::string, double, double>> v;
+  try {
+    std::ifstream f(report);
+    const Json j = Json::parse(f);
+    for (const auto& s : j.at("time_breakdown"))
+      v.emplace_back(s.at("stage").get<std::string>(), s.at("wall_ms").get<double>() / 1e3,
+                     s.at("cpu_ms").get<double>() / 1e3);
+  } catch (const std::exception&) {
+    v.clear();
+  }
+  return v;
+}
+
+Json StagesJson(const std::vector<std::tuple<std::string, double, double>>& stages) {
+  Json j = Json::array();
+  for (const auto& [name, wall, cpu] : stages) j.push_back({{"stage", name}, {"wall_s", wall}, {"cpu_s", cpu}});
+  return j;
+}
+
+// The stage table: per configuration, each stage's wall and CPU seconds, then the process's
+// time outside the stages (start, exit) and `aalab --version` alone.
+void StageTable(const SuiteBench& sb, BenchOutput& out) {
+  std::string head = "| stage (report.json time_breakdown, last repetition) |", rule = "|---|";
+  for (const auto& s : sb.runs) {
+    head.append(" ").append(s.size).append(", ").append(std::to_string(s.threads)).append(" thr.: wall s / CPU s |");
+    rule += "---|";
+  }
+  out.Line("");
+  out.Line(
+      "Where a suite run's time goes (fixed per-process costs weigh most at small sizes; a stage whose wall "
+      "time does not halve from 1 to 2 threads is serial):");
+  out.Line("");
+  out.Line(head);
+  out.Line(rule);
+  if (sb.runs.empty() || sb.runs[0].stages.empty()) return;
+  for (size_t k = 0; k < sb.runs[0].stages.size(); ++k) {
+    std::string line = "| ";
+    line.append(std::get<0>(sb.runs[0].stages[k])).append(" |");
+    for (const auto& s : sb.runs) {
+      if (k >= s.stages.size()) {
+        line += " |";
+        continue;
+      }
+      line.append(" ").append(FormatDouble("%.2f", std::get<1>(s.stages[k]))).append(" / ");
+      line.append(FormatDouble("%.2f", std::get<2>(s.stages[k]))).append(" |");
+    }
+    out.Line(line);
+  }
+  std::string outside = "| outside the stages (process start and exit: run's wall − stages' total) |";
+  for (const auto& s : sb.runs) {
+    const double total = s.stages.empty() ? 0.0 : std::get<1>(s.stages.back());
+    const double cpu_total = s.stages.empty() ? 0.0 : std::get<2>(s.stages.back());
+    outside.append(" ").append(FormatDouble("%.2f", s.secs.back() - total)).append(" / ");
+    outside.append(FormatDouble("%.2f", s.cpu.back() - cpu_total)).append(" |");
+  }
+  out.Line(outside);
+  if (sb.start_wall_s > 0) {
+    out.Line("");
+    out.Line("`aalab --version` alone (start and exit, loading its shared libraries; minimum of 3): " +
+             FormatDouble("%.2f s", sb.start_wall_s) + " wall, " + FormatDouble("%.2f", sb.start_cpu_s) + " CPU s.");
+  }
+}
+
 }  // namespace
 
 bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
   std::vector<SuiteRun>& suite = sb.runs;
-  suite = {{"480x270", 480, 270, 2, {}, {}},
-           {"960x540", 960, 540, 2, {}, {}},
-           {"1920x1080", 1920, 1080, 2, {}, {}},
-           {"960x540", 960, 540, 1, {}, {}}};
-  if (cfg.quick) suite = {{"480x270", 480, 270, 2, {}, {}}, {"960x540", 960, 540, 2, {}, {}}};
+  suite = {{"480x270", 480, 270, 2, {}, {}, {}},
+           {"960x540", 960, 540, 2, {}, {}, {}},
+           {"1920x1080", 1920, 1080, 2, {}, {}, {}},
+           {"960x540", 960, 540, 1, {}, {}, {}}};
+  if (cfg.quick) suite = {{"480x270", 480, 270, 2, {}, {}, {}}, {"960x540", 960, 540, 2, {}, {}, {}}};
   const fs::path suite_out = fs::temp_directory_path() / ("aalab_bench_suite_" + std::to_string(getpid()));
   for (auto& s : suite) {
     const int reps = s.w >= 1920 ? 1 : cfg.suite_reps;  // 1080p: one run (keeps make bench under 10 min)
@@ -51,19 +122,31 @@ bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
       const int rc = std::system(cmd.c_str());
       const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       getrusage(RUSAGE_CHILDREN, &c1);
-      auto secs = [](const rusage& u) {
-        return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-               (u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
-      };
-      s.cpu.push_back(secs(c1) - secs(c0));
+      s.cpu.push_back(ChildCpu(c1) - ChildCpu(c0));
       if (rc != 0) {
         std::fprintf(stderr, "suite run failed (%d): %s\n", rc, cmd.c_str());
         return false;
       }
       s.secs.push_back(sec);
+      s.stages = ReadStages(suite_out / "report.json");
     }
   }
   fs::remove_all(suite_out);
+  {  // the process's fixed cost: start (loading its shared libraries) and exit, nothing else
+    double best_wall = 1e300, best_cpu = 1e300;
+    for (int r = 0; r < 3; ++r) {
+      rusage c0{}, c1{};
+      getrusage(RUSAGE_CHILDREN, &c0);
+      const auto t0 = std::chrono::steady_clock::now();
+      const int rc = std::system((cfg.aalab_bin + " --version >/dev/null").c_str());
+      const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      getrusage(RUSAGE_CHILDREN, &c1);
+      if (rc != 0) break;
+      best_wall = std::min(best_wall, sec);
+      best_cpu = std::min(best_cpu, ChildCpu(c1) - ChildCpu(c0));
+    }
+    if (best_wall < 1e300) sb.start_wall_s = best_wall, sb.start_cpu_s = best_cpu;
+  }
 
   // The default run, as `make run` does it with the binary prebuilt (not in --quick): wall,
   // CPU and peak memory of that one process. The peak comes from /usr/bin/time (GNU time,
@@ -154,8 +237,10 @@ void SuiteTable(SuiteBench& sb, BenchOutput& out) {
                            {"cpu_s_per_mpix", cper},
                            {"suite", kSuiteName},
                            {"methods", kSuiteMethods},
-                           {"ref_spp", kSuiteSpp}});
+                           {"ref_spp", kSuiteSpp},
+                           {"stages_last_repetition", StagesJson(s.stages)}});
   }
+  StageTable(sb, out);
   const DefaultRun& d = sb.default_run;
   if (d.ok) {
     out.Line("");

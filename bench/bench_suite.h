@@ -3,6 +3,7 @@
 /// repetition), and the default run (`aalab run` with its defaults: wall, CPU, peak memory).
 #pragma once
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bench/bench_common.h"
@@ -15,6 +16,9 @@ struct SuiteRun {
   int w, h, threads;
   std::vector<double> secs;
   std::vector<double> cpu;  ///< child CPU seconds (user + system)
+  /// The last repetition's report.json time_breakdown: stage name, wall s, CPU s (in stage
+  /// order; "total" last), so that the table shows which stages do not scale.
+  std::vector<std::tuple<std::string, double, double>> stages;
 };
 
 /// The default run, as `make run` does it with the binary prebuilt (not in --quick).
@@ -27,6 +31,8 @@ struct DefaultRun {
 struct SuiteBench {
   std::vector<SuiteRun> runs;
   DefaultRun default_run;
+  /// `aalab --version`: the process's start and exit alone (dynamic loading), minimum of 3.
+  double start_wall_s = 0, start_cpu_s = 0;
   // Filled by SuiteTable:
   double per_mpix_1080 = 0.0;                         ///< wall s per Mpix at 1080p, 2 threads
   double linear_worst = 0.0, linear_worst_cpu = 0.0;  ///< worst deviation from per_mpix_1080 (wall, CPU)
