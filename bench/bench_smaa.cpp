@@ -1,6 +1,8 @@
 // SMAA figures for aalab_bench; see bench/bench_smaa.h.
 #include "bench/bench_smaa.h"
 
+#include "bench/bench_post.h"
+
 #include <algorithm>
 #include <cstdio>
 
@@ -24,8 +26,9 @@ void SmaaGoals(const std::function<double(const std::string&)>& median,
     }
     char head[96];
     std::snprintf(head, sizeof head, "worst %s %.2f×; ", worst_name.c_str(), worst);
-    goal("SMAA presets within 2× of fxaa311-p39's time, same 1080p frames (" + std::to_string(threads) + " thread" +
-             (threads > 1 ? "s" : "") + ")",
+    goal(std::string("SMAA presets within 2× of fxaa311-p39's time, same 1080p frames (real = ") + kRealFrameScene +
+             ", dense = " + kDenseFrameScene + "; " + std::to_string(threads) + " thread" + (threads > 1 ? "s" : "") +
+             ")",
          head + all, worst <= 2.0);
   }
 }
