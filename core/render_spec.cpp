@@ -78,6 +78,7 @@ double RadicalInverse(int base, int index) {
 FrameJitter FrameJitterAt(const JitterSpec& spec, int frame) {
   if (spec.samples <= 0) return {};
   AALAB_CHECK(frame >= 0, "frame index must be >= 0");
+  if (spec.sequence) return spec.sequence(frame, spec.samples);
   const int index = frame % spec.samples + 1;
   return {static_cast<float>(RadicalInverse(2, index) - 0.5), static_cast<float>(RadicalInverse(3, index) - 0.5)};
 }

@@ -17,18 +17,23 @@ enum class SamplePattern {
 /// Per-frame sub-pixel jitter of a one-sample-per-pixel render (TAA). Off when `samples` is
 /// 0. The method states the sequence; the offset of a given frame is per-frame data the
 /// runner computes (FrameJitterAt) and passes to the renderer.
-struct JitterSpec {
-  int samples = 0;  ///< Halton(2,3) points cycled through (0: no jitter)
-};
-
 /// The sub-pixel offset of one frame's sample from the pixel centre, in pixels, in [−0.5, 0.5).
 struct FrameJitter {
   float x = 0.0f, y = 0.0f;
 };
 
+struct JitterSpec {
+  int samples = 0;  ///< Halton(2,3) points cycled through (0: no jitter)
+  /// A method's own sequence instead of the Halton points below: the offset of frame `frame`
+  /// given `samples` (FSR 2: the negated ffxFsr2GetJitterOffset, methods/fsr2_sequence.h).
+  /// Null: FrameJitterAt's Halton(2,3).
+  FrameJitter (*sequence)(int frame, int samples) = nullptr;
+};
+
 /// Halton(2,3) jitter of frame `frame` (≥ 0): the points of indices 1..samples cycled
 /// ((frame mod samples) + 1; index 0 is the degenerate (0, 0)), minus 0.5 — the convention of
-/// Playdead's FrustumJitter and Unity URP. Zero offset when spec.samples == 0.
+/// Playdead's FrustumJitter and Unity URP; spec.sequence(frame, samples) when it is set. Zero
+/// offset when spec.samples == 0.
 FrameJitter FrameJitterAt(const JitterSpec& spec, int frame);
 
 /// The radical inverse of `index` in `base` (the Halton sequence's coordinate), exact in double.

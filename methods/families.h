@@ -49,6 +49,9 @@ std::vector<MethodEntry> TaaProdMethods();
 std::vector<MethodEntry> TaauMethods();
 /// Jitter phases of temporal upscaling at output/render `ratio`: ⌊8·ratio²⌋ (FSR 2).
 int TaauJitterPhases(double ratio);
+/// `fsr2-native`, `fsr2-quality`, `fsr2-balanced`, `fsr2-performance`, `fsr2-ultra-performance`:
+/// AMD FSR 2.2.1 on jittered renders at 1/1 .. 1/3 of the output size (methods/fsr2_methods.cpp).
+std::vector<MethodEntry> Fsr2Methods();
 /// `gsaa`: geometric specular AA of glTF materials (methods/specular_aa.cpp).
 std::vector<MethodEntry> SpecularAaMethods();
 

@@ -105,9 +105,16 @@ inline V2 InputMotion(const Fsr2Constants& k, const Fsr2Options& o, const Fsr2Pl
 // with FMA: fractions in float32, each lerp a + f·(b − a) with one fused multiply-add
 // (measured against lavapipe by tests/oracle/fsr2_accumulate_oracle_test.cpp, where the
 // unfused form left 1.4 % of output floats a few ulps off). A GPU's texture unit uses 8-bit
-// fractions instead.
+// fractions instead. The texel coordinate is first limited to [−1, size]: past that both taps
+// are the same edge texel, so every finite coordinate samples exactly as before, and an
+// infinite one (ClampUv divides by a luma mip size of 0 when the render is under 32 pixels on
+// a side: LumaMipDimensions = ⌊render / 32⌋) reads the edge texel, as lavapipe does (measured:
+// tests/oracle/fsr2_chain_oracle_test.cpp's 40×24 renders), instead of an undefined float-to-
+// int conversion. NaN reads the far edge (fmin's rule), also defined.
 inline float SampleLinear(const Fsr2Plane& t, V2 uv, int c) {
-  const float u = uv.x * static_cast<float>(t.w) - 0.5f, v = uv.y * static_cast<float>(t.h) - 0.5f;
+  const float tw = static_cast<float>(t.w), th = static_cast<float>(t.h);
+  const float u = std::fmax(-1.0f, std::fmin(uv.x * tw - 0.5f, tw));
+  const float v = std::fmax(-1.0f, std::fmin(uv.y * th - 0.5f, th));
   const float x0f = std::floor(u), y0f = std::floor(v);
   const float fx = u - x0f, fy = v - y0f;
   auto at = [&](int x, int y) { return t.Fetch(std::clamp(x, 0, t.w - 1), std::clamp(y, 0, t.h - 1), c); };

@@ -50,6 +50,9 @@ struct TemporalInput {
   /// This frame's sub-pixel jitter (render pixels), the offset of `frame`'s samples from the
   /// pixel centres.
   FrameJitter jitter;
+  /// The camera's vertical field of view at this frame (radians; 0 when unknown: captured
+  /// sequences, orthographic cameras). FSR 2's depth clip reads it (methods/fsr2_methods.cpp).
+  float fov_y_radians = 0.0f;
   /// The size the step must return (temporal upscaling renders `frame` smaller); 0 = the
   /// frame's own size.
   int output_width = 0, output_height = 0;

@@ -65,6 +65,12 @@ const std::vector<FamilyRow>& FamilyTable() {
        {"taau",
         "temporal upscaling: taa-prod rendering at 1/1.3 .. 1/2 of the output size, resolved at the output size",
         "methods/taau.cpp, methods/taa_production.cpp", "docs/motion.md", "karis2014taa,salvi2016taa", false}},
+      {Fsr2Methods,
+       {"fsr2",
+        "AMD FSR 2.2.1 (GLSL shaders, MIT): temporal upscaling at 1x, 1.5x, 1.7x, 2x, 3x with depth, motion and "
+        "RCAS (runs with `--frames`)",
+        "methods/fsr2_methods.cpp, methods/fsr2_sequence.cpp, methods/fsr2_*.cpp", "docs/fsr2.md", "amd2023fsr2",
+        false}},
       {SpecularAaMethods,
        {"specular-aa", "geometric specular AA: glTF GGX roughness widened by the shading normal's variance",
         "methods/specular_aa.cpp, scenes/tracer_gltf.cpp", "docs/real-content.md", "tokuyoshi2021gsaa", false}},

@@ -23,6 +23,8 @@ set(AALAB_METHOD_SOURCES
   fsr2_accumulate.cpp
   fsr2_pyramid.cpp
   fsr2_tables.cpp
+  fsr2_sequence.cpp
+  fsr2_methods.cpp
   aaa.cpp
   taa.cpp
   taa_production.cpp

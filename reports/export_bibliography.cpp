@@ -35,6 +35,13 @@ const Bib kBibliography[] = {
   year         = {2021},
   note         = {Version 1.0.2 (commit a21ffb8f), {MIT} licence; {EASU} and {RCAS}}
 })"},
+    {"amd2023fsr2", R"(@misc{amd2023fsr2,
+  author       = {{Advanced Micro Devices}},
+  title        = {{AMD} {FidelityFX} Super Resolution 2 ({FSR} 2.2.1: {\texttt{ffx\_fsr2\_*\_pass.glsl}}, {\texttt{ffx\_fsr2.cpp}})},
+  howpublished = {Advanced Micro Devices, shader and host source, \url{https://github.com/GPUOpen-Effects/FidelityFX-FSR2}},
+  year         = {2023},
+  note         = {Version 2.2.1 (commit 1680d1ed), {MIT} licence}
+})"},
     {"intel2018cmaa2", R"(@misc{intel2018cmaa2,
   author       = {Filip Strugar},
   title        = {Conservative Morphological Anti-Aliasing 2.0 ({CMAA2}, {\texttt{CMAA2.hlsl}})},

@@ -302,6 +302,9 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, const Met
     tin.frame_index = p.frame;
     tin.depth = depth.empty() ? nullptr : &depth;
     tin.jitter = jitter;
+    if (p.tracer && p.scene && p.scene->camera.type == CameraType::kPerspective) {               // FSR 2's depth clip
+      tin.fov_y_radians = static_cast<float>(p.scene->camera.fov_y_deg * 0.017453292519943295);  // the frame's
+    }
     tin.output_width = W;
     tin.output_height = H;
     Image8 filtered;

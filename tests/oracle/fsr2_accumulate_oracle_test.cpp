@@ -49,63 +49,6 @@ Fsr2Plane LanczosPlane(const std::vector<int16_t>& codes) {
   return p;
 }
 
-// exp2, log2 and sin as lavapipe evaluates them: each argument the port asks for is looked up;
-// those not known yet are answered by the C library and evaluated on lavapipe by Fill, so
-// that the port, rerun until it asks for nothing new, runs on lavapipe's values throughout.
-class LavapipeMath : public Fsr2Math {
- public:
-  float Exp2(float x) const override { return Look(0, x); }
-  float Log2(float x) const override { return Look(1, x); }
-  float Sin(float x) const override { return Look(2, x); }
-  /// Evaluates the pending arguments on lavapipe; false when there were none.
-  bool Fill() {
-    std::vector<float> x[3];
-    for (int f = 0; f < 3; ++f) {
-      for (uint32_t b : pending_[f]) {
-        float v;
-        std::memcpy(&v, &b, 4);
-        x[f].push_back(v);
-      }
-      pending_[f].clear();
-    }
-    if (x[0].empty() && x[1].empty() && x[2].empty()) return false;
-    const std::vector<float> y = oracle::RunGlslExp2Log2Sin(x[0], x[1], x[2]);
-    size_t at = 0;
-    for (int f = 0; f < 3; ++f)
-      for (float v : x[f]) known_[f][Bits(v)] = y[at++];
-    return true;
-  }
-  /// How many arguments evaluated on lavapipe differ from the C library's result.
-  long Differing() const {
-    long n = 0;
-    for (int f = 0; f < 3; ++f) {
-      for (const auto& [b, y] : known_[f]) {
-        float x;
-        std::memcpy(&x, &b, 4);
-        const float c = f == 0 ? std::exp2(x) : f == 1 ? std::log2(x) : std::sin(x);
-        n += std::memcmp(&c, &y, 4) != 0;
-      }
-    }
-    return n;
-  }
-  long Known() const { return static_cast<long>(known_[0].size() + known_[1].size() + known_[2].size()); }
-
- private:
-  static uint32_t Bits(float x) {
-    uint32_t b;
-    std::memcpy(&b, &x, 4);
-    return b;
-  }
-  float Look(int f, float x) const {
-    const auto it = known_[f].find(Bits(x));
-    if (it != known_[f].end()) return it->second;
-    pending_[f].insert(Bits(x));
-    return f == 0 ? std::exp2(x) : f == 1 ? std::log2(x) : std::sin(x);
-  }
-  std::map<uint32_t, float> known_[3];
-  mutable std::set<uint32_t> pending_[3];
-};
-
 float U8(float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f; }
 
 struct Frame {
