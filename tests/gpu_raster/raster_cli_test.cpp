@@ -87,6 +87,12 @@ TEST(RasterCli, RasterToolRefusesBadInput) {
   r = Raster("--geometry " + (dir / "geo").string() + " --sizes 320x");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.output.find("--sizes height"), std::string::npos) << r.output;
+  r = Raster("--geometry " + (dir / "geo").string() + " --budget-ms -5");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("--budget-ms '-5' is not an integer in 0..3600000"), std::string::npos) << r.output;
+  r = Raster("--geometry " + (dir / "geo").string() + " --min-repeat 0");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("--min-repeat '0' is not an integer in 1..100000"), std::string::npos) << r.output;
   // A truncated scene file: the reader names the file and where it ends.
   const std::string bytes = Slurp(dir / "geo" / "wedges.geom");
   std::ofstream(dir / "cut.geom", std::ios::binary) << bytes.substr(0, bytes.size() - 10);
@@ -126,6 +132,16 @@ TEST(RasterCli, FramesAndTimingsReachTheReport) {
   ASSERT_EQ(t.at("rows").size(), 3u);
   EXPECT_EQ(t.at("rows")[1].at("method"), "msaa-4x");
   EXPECT_GE(t.at("rows")[1].at("samples").get<int>(), 4);
+  // Every row says how many frames it timed (3 wedges frames at 320×180 fit the default
+  // 1000 ms budget many times over); nothing was refused.
+  EXPECT_EQ(t.at("budget_ms").get<double>(), 1000.0);
+  EXPECT_TRUE(t.at("refused").empty());
+  for (const auto& row : t.at("rows")) {
+    EXPECT_EQ(row.at("repeat").get<int>(), 3);
+    EXPECT_EQ(row.at("warmup").get<int>(), 1);
+    EXPECT_GT(row.at("draw").at("min_ms").get<double>(), 0.0);
+    EXPECT_GT(row.at("encode").at("min_ms").get<double>(), 0.0);
+  }
 
   // A bad timings file is refused before the run writes anything.
   std::ofstream(dir / "bad.json") << R"({"schema": "aalab-raster-timings", "schema_version": 2})";
