@@ -363,9 +363,9 @@ int Main(int argc, char** argv) {
         rows << (first ? "" : ",\n") << "    {\"scene\": " << JsonString(scene.name) << ", \"width\": " << w
              << ", \"height\": " << h << ", \"method\": " << JsonString(m.name) << ", \"samples\": " << r.Samples()
              << ", \"triangles\": " << scene.triangles.size() << ", \"warmup\": " << timed.warmup
-             << ", \"repeat\": " << t.size() << ",\n     \"total\": " << StatJson(tot)
-             << ",\n     \"draw\": " << StatJson(Stats(draw)) << ", \"resolve\": " << StatJson(Stats(resolve))
-             << ", \"encode\": " << StatJson(Stats(encode))
+             << ", \"repeat\": " << t.size() << ", \"probe_ms\": " << timed.probe_ms
+             << ",\n     \"total\": " << StatJson(tot) << ",\n     \"draw\": " << StatJson(Stats(draw))
+             << ", \"resolve\": " << StatJson(Stats(resolve)) << ", \"encode\": " << StatJson(Stats(encode))
              << (fidelity.empty() ? "" : ",\n     \"fidelity\": " + fidelity) << "}";
         first = false;
       }
