@@ -14,6 +14,8 @@
 // lost context: each named on stderr and under "refused" in the JSON, which holds only the
 // rows whose every frame was checked).
 #include <algorithm>
+#include <array>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -265,6 +267,18 @@ std::string StatJson(const Stat& s) {
   return b;
 }
 
+/// The refusal path's test hook: AALAB_RASTER_TEST_ZERO_STAGE=<method>:<draw|resolve|encode>
+/// makes that method's stage read as 0 ns (raster_cli_test); −1 without it.
+int TestZeroStage(const std::string& method) {
+  const char* env = std::getenv("AALAB_RASTER_TEST_ZERO_STAGE");
+  if (!env) return -1;
+  const std::string v = env;
+  for (int k = 0; k < 3; ++k) {
+    if (v == method + ":" + std::array<const char*, 3>{"draw", "resolve", "encode"}[static_cast<size_t>(k)]) return k;
+  }
+  return -1;
+}
+
 int Main(int argc, char** argv) {
   const Options o = ParseArgs(argc, argv);
   const std::vector<RasterScene> scenes = LoadGeometry(o.geometry);
@@ -334,6 +348,7 @@ int Main(int argc, char** argv) {
         plan.repeat = o.repeat;
         plan.min_repeat = o.min_repeat;
         plan.budget_ms = o.budget_ms;
+        plan.zero_stage = TestZeroStage(m.name);
         TimedFrames timed;
         try {
           timed = r.TimeFrames(plan);

@@ -570,7 +570,7 @@ TimedFrames RasterRenderer::TimeFrames(const TimingPlan& plan) {
       glGetQueryObjectui64v(s[k], GL_QUERY_RESULT, &v);  // waits for the result
       GLuint avail = GL_FALSE;
       glGetQueryObjectuiv(s[k], GL_QUERY_RESULT_AVAILABLE, &avail);
-      ns[k] = v;
+      ns[k] = k == plan.zero_stage ? 0 : v;
       available[k] = avail == GL_TRUE;
     }
     pending[static_cast<size_t>(slot)] = false;

@@ -69,6 +69,9 @@ struct TimingError : std::runtime_error {
 struct TimingPlan {
   int warmup = 50, repeat = 100, min_repeat = 5;
   double budget_ms = 0;
+  /// Tests of the refusal path only: the stage (0 draw, 1 resolve, 2 encode) whose results
+  /// are taken as 0 ns, as a driver that returned none would give (−1: none).
+  int zero_stage = -1;
 };
 /// The frame counts `plan` gives for a probe frame of `probe_ms` (the rule above; pure).
 struct FrameCounts {

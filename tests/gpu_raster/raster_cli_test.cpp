@@ -172,6 +172,32 @@ TEST(RasterCli, FramesAndTimingsReachTheReport) {
   EXPECT_NE(Slurp(dir / "r1" / "index.html").find("gpu_raster"), std::string::npos);
 }
 
+// A frame time the tool cannot trust is refused, not written: with msaa-4x's draw query
+// reading 0 ns (the H100 run's symptom, injected by the test hook), stderr names the row and
+// why, the JSON holds the other rows and lists msaa-4x under "refused", and the exit status
+// is 2 (the --json file is still whole: its rows are checked ones).
+TEST(RasterCli, ZeroFrameTimesAreRefusedNotReported) {
+  const fs::path dir = clitest::TempDir("raster-cli-refuse");
+  ASSERT_EQ(Aalab("export-geometry --scenes wedges --out " + (dir / "geo").string()).code, 0);
+  const CmdResult r = RunCommand("AALAB_RASTER_TEST_ZERO_STAGE=msaa-4x:draw " + std::string(AALAB_BINARY_DIR) +
+                                 "/aalab_raster --geometry " + (dir / "geo").string() +
+                                 " --sizes 160x90 --methods none,msaa-4x,ssaa-2x2 --warmup 1 --repeat 3 --json " +
+                                 (dir / "t.json").string() + " 2>&1");
+  if (const std::string why = RasterUnavailable(r); !why.empty()) AALAB_SKIP_OR_FAIL_UNDER_CI(why);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("timing of wedges 160x90 msaa-4x refused: the draw stage's GL_TIME_ELAPSED query "
+                          "returned 0 ns"),
+            std::string::npos)
+      << r.output;
+  const nlohmann::json t = nlohmann::json::parse(Slurp(dir / "t.json"));
+  ASSERT_EQ(t.at("rows").size(), 2u);
+  EXPECT_EQ(t.at("rows")[0].at("method"), "none");
+  EXPECT_EQ(t.at("rows")[1].at("method"), "ssaa-2x2");
+  ASSERT_EQ(t.at("refused").size(), 1u);
+  EXPECT_NE(t.at("refused")[0].get<std::string>().find("wedges 160x90 msaa-4x"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "t.json.partial"));
+}
+
 // The H100's check in miniature: export-frames --render-methods writes aalab's MSAA / SSAA
 // frames, aalab_raster --compare measures its own frames against them into the JSON.
 TEST(RasterCli, CompareAgainstExportedFrames) {
