@@ -88,7 +88,9 @@ const char* kUsage =
     "  --format F       colour target: rgba16f (default) or rgba32f\n"
     "  --resolve R      MSAA resolve: shader (box average, default) or blit (glBlitFramebuffer)\n"
     "  --egl E          auto (default: EGL_EXT_platform_device, then EGL_MESA_platform_surfaceless), device, "
-    "surfaceless\n";
+    "surfaceless\n"
+    "exit status: 0 done; 1 bad input or no OpenGL context; 2 some timings refused (named on stderr and under\n"
+    "\"refused\" in the JSON, which keeps the checked rows)\n";
 
 Options ParseArgs(int argc, char** argv) {
   Options o;
