@@ -88,8 +88,8 @@ RasterScene RasterSceneOf(const Scene& sc) {
   if (const std::string why = RasterUnsupported(sc); !why.empty()) {
     throw UserError("the raster path cannot draw scene '" + sc.name + "' yet: " + why +
                     " (it draws still triangle scenes, unlit or lambert, solid colours or procedural "
-                    "textures, disks, lights and shadows; of the default suite: wedges, mesh, checker-plane, "
-                    "detail-texture, circle, hdr-edges, sdf-circles, shadow-stipple)");
+                    "textures, disks, lights and shadows; of the synthetic suite: wedges, mesh, checker-plane, "
+                    "detail-texture, circle, hdr-edges, sdf-circles, shadow-stipple; no glTF material yet)");
   }
   RasterScene r;
   r.name = sc.name;

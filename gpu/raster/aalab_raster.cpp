@@ -5,11 +5,17 @@
 // `aalab run --gpu-timings` and `aalab merge-gpu` read.
 //
 //   aalab_raster --geometry DIR [--sizes 1920x1080,3840x2160] [--methods none,msaa-4x,...]
-//                [--warmup 50] [--repeat 100] [--json FILE] [--frames DIR]
+//                [--warmup 50] [--repeat 100] [--budget-ms 1000] [--min-repeat 5]
+//                [--json FILE] [--frames DIR]
 //                [--format rgba16f|rgba32f] [--resolve shader|blit] [--egl auto|device|surfaceless]
 //
-// Exit status: 0 done, 1 bad input or no OpenGL context (one message on stderr).
+// Exit status: 0 done, 1 bad input or no OpenGL context (one message on stderr), 2 some
+// timings refused (a query without a result, 0 ns for a stage that drew, a GL error or a
+// lost context: each named on stderr and under "refused" in the JSON, which holds only the
+// rows whose every frame was checked).
 #include <algorithm>
+#include <array>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -31,7 +37,8 @@ struct Options {
   std::string geometry, json, frames, compare;
   std::vector<std::pair<int, int>> sizes{{1920, 1080}, {3840, 2160}};
   std::vector<RasterMethod> methods;
-  int warmup = 50, repeat = 100;
+  int warmup = 50, repeat = 100, min_repeat = 5;
+  double budget_ms = 1000;
   TargetFormat format = TargetFormat::kRgba16f;
   ResolveKind resolve = ResolveKind::kShader;
   EglPlatform egl = EglPlatform::kAuto;
@@ -70,6 +77,10 @@ const char* kUsage =
     "                   (default none,msaa-2x,msaa-4x,msaa-8x,ssaa-2x2,ssaa-4x4,taa)\n"
     "  --warmup N       untimed frames before timing each method (default 50)\n"
     "  --repeat N       timed frames (default 100); 0: draw one frame, time nothing\n"
+    "  --budget-ms B    GPU time for each scene, size and method's timed frames (default 1000): one probe\n"
+    "                   frame sets repeat = clamp(B / probe, min-repeat, N) and warm-up = min(N, B / 2 / probe);\n"
+    "                   0: exactly --warmup and --repeat frames\n"
+    "  --min-repeat N   fewest timed frames under a budget (default 5)\n"
     "  --json FILE      write the timings (docs/gpu.md \"The raster path\")\n"
     "  --frames DIR     write each frame as DIR/<scene>-<W>x<H>-<method>.ppm\n"
     "  --compare DIR    compare each frame with aalab's in DIR (aalab export-frames [--render-methods ...]):\n"
@@ -77,7 +88,9 @@ const char* kUsage =
     "  --format F       colour target: rgba16f (default) or rgba32f\n"
     "  --resolve R      MSAA resolve: shader (box average, default) or blit (glBlitFramebuffer)\n"
     "  --egl E          auto (default: EGL_EXT_platform_device, then EGL_MESA_platform_surfaceless), device, "
-    "surfaceless\n";
+    "surfaceless\n"
+    "exit status: 0 done; 1 bad input or no OpenGL context; 2 some timings refused (named on stderr and under\n"
+    "\"refused\" in the JSON, which keeps the checked rows)\n";
 
 Options ParseArgs(int argc, char** argv) {
   Options o;
@@ -105,6 +118,10 @@ Options ParseArgs(int argc, char** argv) {
       o.warmup = ParseInt(v, a, 0, 100000);
     else if (a == "--repeat")
       o.repeat = ParseInt(v, a, 0, 100000);
+    else if (a == "--min-repeat")
+      o.min_repeat = ParseInt(v, a, 1, 100000);
+    else if (a == "--budget-ms")
+      o.budget_ms = ParseInt(v, a, 0, 3600000);
     else if (a == "--sizes") {
       o.sizes.clear();
       for (const auto& s : Split(v)) {
@@ -252,6 +269,18 @@ std::string StatJson(const Stat& s) {
   return b;
 }
 
+/// The refusal path's test hook: AALAB_RASTER_TEST_ZERO_STAGE=<method>:<draw|resolve|encode>
+/// makes that method's stage read as 0 ns (raster_cli_test); −1 without it.
+int TestZeroStage(const std::string& method) {
+  const char* env = std::getenv("AALAB_RASTER_TEST_ZERO_STAGE");
+  if (!env) return -1;
+  const std::string v = env;
+  for (int k = 0; k < 3; ++k) {
+    if (v == method + ":" + std::array<const char*, 3>{"draw", "resolve", "encode"}[static_cast<size_t>(k)]) return k;
+  }
+  return -1;
+}
+
 int Main(int argc, char** argv) {
   const Options o = ParseArgs(argc, argv);
   const std::vector<RasterScene> scenes = LoadGeometry(o.geometry);
@@ -263,11 +292,13 @@ int Main(int argc, char** argv) {
   }
   std::fprintf(stderr, "aalab_raster: %s (%s, %s) via %s\n", dev.renderer.c_str(), dev.vendor.c_str(),
                dev.version.c_str(), dev.platform.c_str());
-  std::ostringstream rows, not_drawn;
-  bool first = true;
+  std::ostringstream rows, not_drawn, refused;
+  bool first = true, lost = false;
   for (const auto& scene : scenes) {
+    if (lost) break;
     RasterRenderer r(scene);
     for (const auto& [w, h] : o.sizes) {
+      if (lost) break;
       for (const auto& m : o.methods) {
         // What this GL cannot allocate (more samples than GL_MAX_SAMPLES, a target past
         // GL_MAX_TEXTURE_SIZE) is skipped with a warning and listed in the JSON.
@@ -314,7 +345,27 @@ int Main(int argc, char** argv) {
           }
           continue;
         }
-        const std::vector<StageTimes> t = r.TimeFrames(o.warmup, o.repeat);
+        TimingPlan plan;
+        plan.warmup = o.warmup;
+        plan.repeat = o.repeat;
+        plan.min_repeat = o.min_repeat;
+        plan.budget_ms = o.budget_ms;
+        plan.zero_stage = TestZeroStage(m.name);
+        TimedFrames timed;
+        try {
+          timed = r.TimeFrames(plan);
+        } catch (const TimingError& e) {
+          // Refused, loudly: no time for this row rather than a wrong one.
+          const std::string what = scene.name + " " + std::to_string(w) + "x" + std::to_string(h) + " " + m.name;
+          std::fprintf(stderr, "aalab_raster: error: timing of %s refused: %s\n", what.c_str(), e.what());
+          refused << (refused.tellp() > 0 ? ",\n    " : "") << JsonString(what + ": " + e.what());
+          if (e.context_lost) {
+            lost = true;
+            break;
+          }
+          continue;
+        }
+        const std::vector<StageTimes>& t = timed.frames;
         std::vector<double> draw, resolve, encode, total;
         for (const auto& s : t) {
           draw.push_back(s.draw);
@@ -323,13 +374,15 @@ int Main(int argc, char** argv) {
           total.push_back(s.Total());
         }
         const Stat tot = Stats(total);
-        std::fprintf(stderr, "%s %dx%d %-9s %.4f ms (draw %.4f, resolve %.4f, encode %.4f)\n", scene.name.c_str(), w, h,
-                     m.name.c_str(), tot.median, Stats(draw).median, Stats(resolve).median, Stats(encode).median);
+        std::fprintf(stderr, "%s %dx%d %-9s %.4f ms (draw %.4f, resolve %.4f, encode %.4f; %d+%d frames)\n",
+                     scene.name.c_str(), w, h, m.name.c_str(), tot.median, Stats(draw).median, Stats(resolve).median,
+                     Stats(encode).median, timed.warmup, static_cast<int>(t.size()));
         rows << (first ? "" : ",\n") << "    {\"scene\": " << JsonString(scene.name) << ", \"width\": " << w
              << ", \"height\": " << h << ", \"method\": " << JsonString(m.name) << ", \"samples\": " << r.Samples()
-             << ", \"triangles\": " << scene.triangles.size() << ",\n     \"total\": " << StatJson(tot)
-             << ",\n     \"draw\": " << StatJson(Stats(draw)) << ", \"resolve\": " << StatJson(Stats(resolve))
-             << ", \"encode\": " << StatJson(Stats(encode))
+             << ", \"triangles\": " << scene.triangles.size() << ", \"warmup\": " << timed.warmup
+             << ", \"repeat\": " << t.size() << ", \"probe_ms\": " << timed.probe_ms
+             << ",\n     \"total\": " << StatJson(tot) << ",\n     \"draw\": " << StatJson(Stats(draw))
+             << ", \"resolve\": " << StatJson(Stats(resolve)) << ", \"encode\": " << StatJson(Stats(encode))
              << (fidelity.empty() ? "" : ",\n     \"fidelity\": " + fidelity) << "}";
         first = false;
       }
@@ -343,8 +396,10 @@ int Main(int argc, char** argv) {
       << ",\n  \"gl_version\": " << JsonString(dev.version) << ",\n  \"egl_platform\": " << JsonString(dev.platform)
       << ",\n  \"target_format\": \"" << (o.format == TargetFormat::kRgba32f ? "rgba32f" : "rgba16f")
       << "\",\n  \"msaa_resolve\": \"" << (o.resolve == ResolveKind::kBlit ? "blit" : "shader")
-      << "\",\n  \"warmup\": " << o.warmup << ",\n  \"repeat\": " << o.repeat << ",\n  \"not_drawn\": ["
-      << not_drawn.str() << "],\n  \"rows\": [\n"
+      << "\",\n  \"reset_notification\": " << (dev.reset_notification ? "true" : "false")
+      << ",\n  \"warmup\": " << o.warmup << ",\n  \"repeat\": " << o.repeat << ",\n  \"min_repeat\": " << o.min_repeat
+      << ",\n  \"budget_ms\": " << o.budget_ms << ",\n  \"not_drawn\": [" << not_drawn.str() << "],\n  \"refused\": ["
+      << refused.str() << "],\n  \"rows\": [\n"
       << rows.str() << "\n  ]\n}\n";
     const std::string tmp = o.json + ".partial";
     {
@@ -353,6 +408,12 @@ int Main(int argc, char** argv) {
       if (!f) throw std::runtime_error("cannot write '" + tmp + "'");
     }
     fs::rename(tmp, o.json);
+  }
+  if (refused.tellp() > 0) {
+    std::fprintf(stderr, "aalab_raster: error: some timings were refused (listed above%s)%s\n",
+                 o.json.empty() ? "" : " and under \"refused\" in the JSON",
+                 lost ? "; the GL context was lost, so the rows after it were not drawn" : "");
+    return 2;
   }
   return 0;
 }

@@ -9,9 +9,12 @@ namespace aalab::raster {
 /// Which EGL platform to try: auto = device first, then surfaceless.
 enum class EglPlatform { kAuto, kDevice, kSurfaceless };
 
-/// What the context runs on (GL_RENDERER, GL_VENDOR, GL_VERSION and the EGL platform used).
+/// What the context runs on (GL_RENDERER, GL_VENDOR, GL_VERSION and the EGL platform used),
+/// and whether it reports a lost context (GL_RESET_NOTIFICATION_STRATEGY is
+/// GL_LOSE_CONTEXT_ON_RESET, so glGetGraphicsResetStatus tells a reset while timing).
 struct GlDeviceInfo {
   std::string renderer, vendor, version, platform;
+  bool reset_notification = false;
 };
 
 /// Creates the context and makes it current on this thread (one per process; it lives until

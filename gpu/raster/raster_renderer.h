@@ -51,6 +51,46 @@ struct StageTimes {
   double Total() const { return draw + resolve + encode; }
 };
 
+/// A frame time that cannot be trusted, refused rather than reported: a query without a
+/// result, no time (0 ns) for a stage that did work, an implausible time, or a GL error while
+/// timing. `context_lost` when glGetGraphicsResetStatus reports a reset (nothing after it
+/// can be timed on this context).
+struct TimingError : std::runtime_error {
+  TimingError(const std::string& why, bool lost) : std::runtime_error(why), context_lost(lost) {}
+  bool context_lost = false;
+};
+
+/// How many frames to time per scene, size and method. With `budget_ms` > 0 the counts
+/// adapt to the frame's cost, measured by one probe frame (timed and checked like the
+/// others): repeat = clamp(⌊budget_ms / probe⌋, min(min_repeat, repeat), repeat) and
+/// warmup = clamp(⌊budget_ms / 2 / probe⌋, min(1, warmup), warmup), so the timed frames take
+/// about budget_ms of GPU time and the warm-up at most half of that, unless min_repeat
+/// frames alone take longer. budget_ms = 0: exactly `warmup` and `repeat` frames.
+struct TimingPlan {
+  int warmup = 50, repeat = 100, min_repeat = 5;
+  double budget_ms = 0;
+  /// Tests of the refusal path only: the stage (0 draw, 1 resolve, 2 encode) whose results
+  /// are taken as 0 ns, as a driver that returned none would give (−1: none).
+  int zero_stage = -1;
+};
+/// The frame counts `plan` gives for a probe frame of `probe_ms` (the rule above; pure).
+struct FrameCounts {
+  int warmup = 0, repeat = 0;
+};
+FrameCounts PlanFrames(const TimingPlan& plan, double probe_ms);
+
+/// One frame's three GL_TIME_ELAPSED results (ns) and whether each was available → its
+/// StageTimes, or TimingError naming the stage: unavailable, 0 ns for draw or encode (or for
+/// resolve when `has_resolve`), or over 100 s. Without a resolve its time is reported as 0.
+StageTimes CheckedStageTimes(const uint64_t ns[3], const bool available[3], bool has_resolve);
+
+/// What TimeFrames measured: the timed frames and how many untimed ones went before them.
+struct TimedFrames {
+  std::vector<StageTimes> frames;
+  int warmup = 0;
+  double probe_ms = 0;  ///< the probe frame's total (0 without a budget)
+};
+
 class RasterRenderer {
  public:
   /// Compiles the programs and uploads the scene's triangles.
@@ -64,8 +104,11 @@ class RasterRenderer {
   void Configure(const RasterMethod& method, int w, int h, TargetFormat format, ResolveKind resolve);
   /// Draws, resolves and encodes one frame (untimed).
   void RenderFrame();
-  /// `warmup` untimed frames, then `repeat` timed ones; the stage times of each timed frame.
-  std::vector<StageTimes> TimeFrames(int warmup, int repeat);
+  /// The plan's warm-up frames, then its timed ones; the stage times of each timed frame.
+  /// Every frame (warm-up included) runs inside its own three queries, at most 3 frames in
+  /// flight: a frame's results are read, checked (CheckedStageTimes, glGetGraphicsResetStatus,
+  /// glGetError) and its queries reused only after that. Throws TimingError.
+  TimedFrames TimeFrames(const TimingPlan& plan);
   /// The encoded frame, w·h·3 bytes, top row first (after RenderFrame).
   std::vector<uint8_t> ReadRgb8() const;
   /// MSAA coverage, sample for sample: draws the scene's shape indices into an R32UI target

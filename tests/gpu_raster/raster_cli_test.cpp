@@ -87,6 +87,12 @@ TEST(RasterCli, RasterToolRefusesBadInput) {
   r = Raster("--geometry " + (dir / "geo").string() + " --sizes 320x");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.output.find("--sizes height"), std::string::npos) << r.output;
+  r = Raster("--geometry " + (dir / "geo").string() + " --budget-ms -5");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("--budget-ms '-5' is not an integer in 0..3600000"), std::string::npos) << r.output;
+  r = Raster("--geometry " + (dir / "geo").string() + " --min-repeat 0");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("--min-repeat '0' is not an integer in 1..100000"), std::string::npos) << r.output;
   // A truncated scene file: the reader names the file and where it ends.
   const std::string bytes = Slurp(dir / "geo" / "wedges.geom");
   std::ofstream(dir / "cut.geom", std::ios::binary) << bytes.substr(0, bytes.size() - 10);
@@ -126,6 +132,16 @@ TEST(RasterCli, FramesAndTimingsReachTheReport) {
   ASSERT_EQ(t.at("rows").size(), 3u);
   EXPECT_EQ(t.at("rows")[1].at("method"), "msaa-4x");
   EXPECT_GE(t.at("rows")[1].at("samples").get<int>(), 4);
+  // Every row says how many frames it timed (3 wedges frames at 320×180 fit the default
+  // 1000 ms budget many times over); nothing was refused.
+  EXPECT_EQ(t.at("budget_ms").get<double>(), 1000.0);
+  EXPECT_TRUE(t.at("refused").empty());
+  for (const auto& row : t.at("rows")) {
+    EXPECT_EQ(row.at("repeat").get<int>(), 3);
+    EXPECT_EQ(row.at("warmup").get<int>(), 1);
+    EXPECT_GT(row.at("draw").at("min_ms").get<double>(), 0.0);
+    EXPECT_GT(row.at("encode").at("min_ms").get<double>(), 0.0);
+  }
 
   // A bad timings file is refused before the run writes anything.
   std::ofstream(dir / "bad.json") << R"({"schema": "aalab-raster-timings", "schema_version": 2})";
@@ -154,6 +170,32 @@ TEST(RasterCli, FramesAndTimingsReachTheReport) {
   }
   EXPECT_EQ(with, 2);
   EXPECT_NE(Slurp(dir / "r1" / "index.html").find("gpu_raster"), std::string::npos);
+}
+
+// A frame time the tool cannot trust is refused, not written: with msaa-4x's draw query
+// reading 0 ns (the H100 run's symptom, injected by the test hook), stderr names the row and
+// why, the JSON holds the other rows and lists msaa-4x under "refused", and the exit status
+// is 2 (the --json file is still whole: its rows are checked ones).
+TEST(RasterCli, ZeroFrameTimesAreRefusedNotReported) {
+  const fs::path dir = clitest::TempDir("raster-cli-refuse");
+  ASSERT_EQ(Aalab("export-geometry --scenes wedges --out " + (dir / "geo").string()).code, 0);
+  const CmdResult r = RunCommand("AALAB_RASTER_TEST_ZERO_STAGE=msaa-4x:draw " + std::string(AALAB_BINARY_DIR) +
+                                 "/aalab_raster --geometry " + (dir / "geo").string() +
+                                 " --sizes 160x90 --methods none,msaa-4x,ssaa-2x2 --warmup 1 --repeat 3 --json " +
+                                 (dir / "t.json").string() + " 2>&1");
+  if (const std::string why = RasterUnavailable(r); !why.empty()) AALAB_SKIP_OR_FAIL_UNDER_CI(why);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("timing of wedges 160x90 msaa-4x refused: the draw stage's GL_TIME_ELAPSED query "
+                          "returned 0 ns"),
+            std::string::npos)
+      << r.output;
+  const nlohmann::json t = nlohmann::json::parse(Slurp(dir / "t.json"));
+  ASSERT_EQ(t.at("rows").size(), 2u);
+  EXPECT_EQ(t.at("rows")[0].at("method"), "none");
+  EXPECT_EQ(t.at("rows")[1].at("method"), "ssaa-2x2");
+  ASSERT_EQ(t.at("refused").size(), 1u);
+  EXPECT_NE(t.at("refused")[0].get<std::string>().find("wedges 160x90 msaa-4x"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "t.json.partial"));
 }
 
 // The H100's check in miniature: export-frames --render-methods writes aalab's MSAA / SSAA

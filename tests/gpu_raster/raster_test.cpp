@@ -13,9 +13,11 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include "core/raster_geometry.h"
 #include "core/render_spec.h"
@@ -363,6 +365,112 @@ TEST(RasterPath, DiskAndShadowScenesMatchAalab) {
       EXPECT_GT(d.unexplained, w * h / 20) << name;
     }
   }
+}
+
+// Timing (issue #37's timing bug: on the H100 some frames came back as 0 ms, and medians of
+// frames with and without a result shuffled the stages). The frame counts under a GPU-time
+// budget, worked by hand from the rule in raster_renderer.h: budget 1000 ms, probe 4 ms →
+// ⌊1000/4⌋ = 250 timed frames, capped at repeat 200; warm-up ⌊500/4⌋ = 125 of 200. Probe
+// 30 ms → 33 timed, 16 warm-up. Probe 2500 ms (shadow-stipple's 4K ssaa-4x4 at its 1080p
+// cost × 64) → min_repeat 5 and 1 warm-up frame. No budget → exactly warmup / repeat.
+TEST(RasterTiming, FrameCountsFollowTheBudget) {
+  raster::TimingPlan plan;
+  plan.warmup = 200;
+  plan.repeat = 200;
+  plan.min_repeat = 5;
+  plan.budget_ms = 1000;
+  EXPECT_EQ(raster::PlanFrames(plan, 4.0).repeat, 200);
+  EXPECT_EQ(raster::PlanFrames(plan, 4.0).warmup, 125);
+  EXPECT_EQ(raster::PlanFrames(plan, 30.0).repeat, 33);
+  EXPECT_EQ(raster::PlanFrames(plan, 30.0).warmup, 16);
+  EXPECT_EQ(raster::PlanFrames(plan, 2500.0).repeat, 5);
+  EXPECT_EQ(raster::PlanFrames(plan, 2500.0).warmup, 1);
+  plan.repeat = 3;  // min_repeat never raises the count past --repeat
+  EXPECT_EQ(raster::PlanFrames(plan, 2500.0).repeat, 3);
+  plan.warmup = 0;
+  EXPECT_EQ(raster::PlanFrames(plan, 2500.0).warmup, 0);
+  plan.budget_ms = 0;
+  plan.warmup = 7;
+  EXPECT_EQ(raster::PlanFrames(plan, 2500.0).repeat, 3);
+  EXPECT_EQ(raster::PlanFrames(plan, 2500.0).warmup, 7);
+}
+
+// A frame's query results are checked before they become a time: 0 ns for a stage that
+// drew, a result not available, or more than 100 s is refused with the stage named; a
+// method without a resolve reports its resolve as 0 whatever its (empty) query says.
+TEST(RasterTiming, ZeroOrMissingResultsAreRefused) {
+  const bool all[3] = {true, true, true};
+  const uint64_t good[3] = {2000000, 500000, 250000};
+  const raster::StageTimes t = raster::CheckedStageTimes(good, all, true);
+  EXPECT_DOUBLE_EQ(t.draw, 2.0);
+  EXPECT_DOUBLE_EQ(t.resolve, 0.5);
+  EXPECT_DOUBLE_EQ(t.encode, 0.25);
+  const uint64_t no_resolve[3] = {2000000, 0, 250000};
+  EXPECT_DOUBLE_EQ(raster::CheckedStageTimes(no_resolve, all, false).resolve, 0.0);
+  const uint64_t stray[3] = {2000000, 3000, 250000};  // an empty stage's query overhead
+  EXPECT_DOUBLE_EQ(raster::CheckedStageTimes(stray, all, false).resolve, 0.0);
+  auto why = [](const uint64_t ns[3], const bool avail[3], bool resolve) -> std::string {
+    try {
+      raster::CheckedStageTimes(ns, avail, resolve);
+    } catch (const raster::TimingError& e) {
+      EXPECT_FALSE(e.context_lost);
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(why(no_resolve, all, true).find("resolve stage"), std::string::npos);
+  const uint64_t zero_draw[3] = {0, 500000, 250000};
+  EXPECT_NE(why(zero_draw, all, true).find("draw stage's GL_TIME_ELAPSED query returned 0 ns"), std::string::npos);
+  const uint64_t zero_encode[3] = {2000000, 0, 0};
+  EXPECT_NE(why(zero_encode, all, false).find("encode stage"), std::string::npos);
+  const bool encode_missing[3] = {true, true, false};
+  EXPECT_NE(why(good, encode_missing, true).find("encode stage's GL_TIME_ELAPSED query has no result"),
+            std::string::npos);
+  const uint64_t huge[3] = {200000000000ull, 500000, 250000};
+  EXPECT_NE(why(huge, all, true).find("not a plausible time"), std::string::npos);
+}
+
+// On the GL here: every timed frame has a draw and an encode time above 0, a resolve above 0
+// exactly when the method resolves and 0 otherwise, the frame counts the plan asked for, and
+// stages in their places: ssaa-4x4's draw fills 16× the encode's pixels with the scene's
+// shading, so its median is larger than the encode's (stages read from another frame's or
+// stage's query, as in the H100 run's shuffled row, would break that or the zeros).
+TEST(RasterTiming, EveryTimedFrameHasItsOwnStageTimes) {
+  REQUIRE_GL();
+  auto l = Load("wedges");
+  RasterRenderer r(l->raster);
+  raster::TimingPlan plan;
+  plan.warmup = 2;
+  plan.repeat = 7;  // more frames than the ring's 3 slots: every slot is reused
+  for (const std::string spec : {"none", "msaa-4x", "ssaa-4x4"}) {
+    r.Configure(Method(spec), 160, 90, raster::TargetFormat::kRgba16f, raster::ResolveKind::kShader);
+    const raster::TimedFrames t = r.TimeFrames(plan);
+    ASSERT_EQ(t.frames.size(), 7u) << spec;
+    EXPECT_EQ(t.warmup, 2);
+    std::vector<double> draw, encode;
+    for (const auto& f : t.frames) {
+      EXPECT_GT(f.draw, 0.0) << spec;
+      EXPECT_GT(f.encode, 0.0) << spec;
+      if (spec == "none")
+        EXPECT_EQ(f.resolve, 0.0);
+      else
+        EXPECT_GT(f.resolve, 0.0) << spec;
+      draw.push_back(f.draw);
+      encode.push_back(f.encode);
+    }
+    if (spec == "ssaa-4x4") {
+      std::sort(draw.begin(), draw.end());
+      std::sort(encode.begin(), encode.end());
+      EXPECT_GT(draw[3], encode[3]) << "ssaa-4x4's draw (640×360 shaded) vs its encode (160×90)";
+    }
+  }
+  // Under a budget far below one frame: one probe, then 1 warm-up and min_repeat frames.
+  plan.budget_ms = 1e-6;
+  plan.min_repeat = 4;
+  const raster::TimedFrames b = r.TimeFrames(plan);
+  EXPECT_EQ(b.frames.size(), 4u);
+  EXPECT_EQ(b.warmup, 1);
+  EXPECT_GT(b.probe_ms, 0.0);
 }
 
 }  // namespace
