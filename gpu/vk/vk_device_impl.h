@@ -3,7 +3,6 @@
 #pragma once
 #include <vulkan/vulkan.h>
 
-#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -88,8 +87,6 @@ struct Device::Impl {
     vkDestroyBuffer(device, s.first, nullptr);
     vkFreeMemory(device, s.second, nullptr);
   }
-  /// Run before the device is destroyed.
-  std::vector<std::function<void()>> on_destroy;
 };
 
 }  // namespace aalab::vk

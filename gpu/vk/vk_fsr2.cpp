@@ -803,7 +803,11 @@ Fsr2Cb Fsr2FrameConstants(int rw, int rh, int dw, int dh, const float jitter[2],
   c.jitter[0] = jitter[0];
   c.jitter[1] = jitter[1];
   // setupDeviceDepthToViewSpaceDepthParams, not inverted, not infinite.
-  const float near = 0.1f, far = 100.0f, fov = 1.0471976f;
+  // The camera is read at run time (volatile) so that tan, atan, sin and cos are the C
+  // library's, as the API's are: GCC would fold them for constants with correctly rounded
+  // MPFR, and glibc's tanf(π/6) is one ulp from that.
+  static volatile float camera[3] = {0.1f, 100.0f, 1.0471976f};
+  const float near = camera[0], far = camera[1], fov = camera[2];
   const float q = far / (near - far);
   c.device_to_view_depth[0] = -1.0f * q;
   c.device_to_view_depth[1] = q * near;

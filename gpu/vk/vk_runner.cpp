@@ -132,7 +132,6 @@ Device::Device(const std::string& name_filter) : impl_(std::make_unique<Impl>())
 Device::~Device() {
   if (impl_->device) {
     vkDeviceWaitIdle(impl_->device);
-    for (auto& f : impl_->on_destroy) f();
     vkDestroyCommandPool(impl_->device, impl_->pool, nullptr);
     vkDestroyDevice(impl_->device, nullptr);
   }
