@@ -83,7 +83,9 @@ uint16_t Half(float f) {
   return static_cast<uint16_t>(sign | h);
 }
 
-float FromHalf(uint16_t h) {
+}  // namespace
+
+float Fsr2HalfToFloat(uint16_t h) {
   const uint32_t sign = (h & 0x8000u) << 16, e = (h >> 10) & 0x1fu, m = h & 0x3ffu;
   float f;
   if (e == 0) {
@@ -95,6 +97,8 @@ float FromHalf(uint16_t h) {
   }
   return sign ? -f : f;
 }
+
+namespace {
 
 std::vector<uint32_t> LoadModule(const std::string& dir, const std::string& name) {
   const std::string path = dir + "/" + name + ".spv";
@@ -127,12 +131,6 @@ uint32_t TexelBytes(VkFormat f) {
   }
 }
 
-// One render-size frame of the sequence, as uploaded: colour rgba16f, depth r32f, motion rg16f.
-struct InputFrame {
-  std::vector<uint16_t> color, motion;
-  std::vector<float> depth;
-};
-
 // The synthetic scene (see the file's comment) at display-pixel position (px, py) of frame k:
 // rgb, depth and the motion vector in display pixels.
 struct Scene {
@@ -164,13 +162,16 @@ struct Scene {
   }
 };
 
-void Jitter(int slot, int phases, float out[2]) {
+}  // namespace
+
+void Fsr2SequenceJitter(int slot, int phases, float out[2]) {
   out[0] = Fsr2HaltonF((slot % phases) + 1, 2) - 0.5f;
   out[1] = Fsr2HaltonF((slot % phases) + 1, 3) - 0.5f;
 }
 
-InputFrame MakeInput(const Scene& s, int k, int rw, int rh, const float jitter[2]) {
-  InputFrame f;
+Fsr2InputFrame Fsr2MakeInput(const Frame& display, int k, int rw, int rh, const float jitter[2]) {
+  const Scene s{&display};
+  Fsr2InputFrame f;
   const size_t n = static_cast<size_t>(rw) * static_cast<size_t>(rh);
   f.color.resize(n * 4);
   f.motion.resize(n * 2);
@@ -192,6 +193,8 @@ InputFrame MakeInput(const Scene& s, int k, int rw, int rh, const float jitter[2
   }
   return f;
 }
+
+namespace {
 
 // The resources of one run (indices into Run::images).
 enum Res {
@@ -666,28 +669,28 @@ MethodResult Run::Go(const Frame& display, int warmup, int repeat) {
   // Inputs and cbFSR2 of each slot; the reset frame's constants after them.
   std::vector<uint8_t> cbs(static_cast<size_t>(cb_stride_) * (kSlots + 3), 0);
   // The 8 input frames are made on 8 threads (each independent: the same bytes at any count).
-  std::vector<InputFrame> inputs(kSlots);
+  std::vector<Fsr2InputFrame> inputs(kSlots);
   {
     std::vector<std::thread> threads;
     for (int k = 0; k < kSlots; ++k) {
       threads.emplace_back([&, k] {
         float j[2];
-        Jitter(k, phases, j);
-        inputs[static_cast<size_t>(k)] = MakeInput(scene, k, rw_, rh_, j);
+        Fsr2SequenceJitter(k, phases, j);
+        inputs[static_cast<size_t>(k)] = Fsr2MakeInput(display, k, rw_, rh_, j);
       });
     }
     for (std::thread& t : threads) t.join();
   }
   for (int k = 0; k < kSlots; ++k) {
     float j[2];
-    Jitter(k, phases, j);
-    InputFrame& in = inputs[static_cast<size_t>(k)];
+    Fsr2SequenceJitter(k, phases, j);
+    Fsr2InputFrame& in = inputs[static_cast<size_t>(k)];
     Upload(kInputs + 3 * k, in.color.data(), in.color.size() * 2);
     Upload(kInputs + 3 * k + 1, in.depth.data(), in.depth.size() * 4);
     Upload(kInputs + 3 * k + 2, in.motion.data(), in.motion.size() * 2);
     const Fsr2Cb c = Fsr2FrameConstants(rw_, rh_, dw_, dh_, j, k == 0 ? kSlots : k);
     std::memcpy(&cbs[static_cast<size_t>(cb_stride_) * static_cast<size_t>(k)], &c, sizeof c);
-    in = InputFrame();  // release the host copy
+    in = Fsr2InputFrame();  // release the host copy
     if (k == 0) {
       const Fsr2Cb r = Fsr2FrameConstants(rw_, rh_, dw_, dh_, j, 0);
       std::memcpy(&cbs[static_cast<size_t>(cb_stride_) * kSlots], &r, sizeof r);
@@ -736,10 +739,12 @@ MethodResult Run::Go(const Frame& display, int warmup, int repeat) {
 
   // The last frame's output against the same frame rendered at display size (no jitter).
   const std::vector<uint8_t> raw = Read(kOutput);
+  res.output_half.resize(raw.size() / 2);
+  std::memcpy(res.output_half.data(), raw.data(), raw.size());
   const int last = (warmup + repeat - 1) % kSlots;
   float lj[2];
-  Jitter(last, phases, lj);
-  const InputFrame low = MakeInput(scene, last, rw_, rh_, lj);
+  Fsr2SequenceJitter(last, phases, lj);
+  const Fsr2InputFrame low = Fsr2MakeInput(display, last, rw_, rh_, lj);
   res.output = {dw_, dh_, std::vector<uint8_t>(static_cast<size_t>(dw_) * static_cast<size_t>(dh_) * 4, 255)};
   OutputCheck& c = res.check;
   c.has = true;
@@ -756,7 +761,7 @@ MethodResult Run::Go(const Frame& display, int warmup, int repeat) {
       for (size_t k = 0; k < 3; ++k) {
         uint16_t h;
         std::memcpy(&h, &raw[(i * 4 + k) * 2], 2);
-        const float v = FromHalf(h);
+        const float v = Fsr2HalfToFloat(h);
         if (!std::isfinite(v)) {
           ++c.nonfinite;
           continue;
@@ -764,7 +769,7 @@ MethodResult Run::Go(const Frame& display, int warmup, int repeat) {
         c.min = std::min(c.min, static_cast<double>(v));
         c.max = std::max(c.max, static_cast<double>(v));
         err += std::fabs(static_cast<double>(v) - ref[k]);
-        err_nearest += std::fabs(static_cast<double>(FromHalf(low.color[li * 4 + k])) - ref[k]);
+        err_nearest += std::fabs(static_cast<double>(Fsr2HalfToFloat(low.color[li * 4 + k])) - ref[k]);
         res.output.rgba[i * 4 + k] = static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
       }
     }

@@ -67,6 +67,20 @@ uint32_t Fsr2RcasConstant(float sharpness);
 const std::vector<std::string>& Fsr2PassNames();
 std::vector<std::string> Fsr2Modules();
 
+/// One render-size frame of the sequence, as uploaded: colour rgba16f (4 halves a pixel),
+/// depth r32f, motion rg16f (render pixels, previous position − current).
+struct Fsr2InputFrame {
+  std::vector<uint16_t> color, motion;
+  std::vector<float> depth;
+};
+/// Frame k (0..7) of the synthetic sequence made from `display` at render size rw × rh with
+/// `jitter` (docs/gpu.md; gpu/vk/vk_fsr2.cpp).
+Fsr2InputFrame Fsr2MakeInput(const Frame& display, int k, int rw, int rh, const float jitter[2]);
+/// The jitter of the sequence's frame `slot`: ffxFsr2GetJitterOffset(slot, phases).
+void Fsr2SequenceJitter(int slot, int phases, float out[2]);
+/// IEEE binary16 bits to float.
+float Fsr2HalfToFloat(uint16_t h);
+
 /// Runs preset `spec` at `display`'s size: the synthetic sequence (docs/gpu.md) built from
 /// `display` (the scene's 1x frame), `warmup` frames untimed (the first one resets), then
 /// `repeat` frames timed one by one (timings.ms[r][k]: pass k of frame r; whole[r]: the frame).

@@ -46,7 +46,8 @@ struct MethodResult {
   Timings timings;
   Frame output;  ///< the output frame after the last repetition
   OutputCheck check;
-  std::string note;  ///< for the JSON: what the method ran on, where the input role does not say it
+  std::vector<uint16_t> output_half;  ///< FSR 2: the output image's rgba16f texels as they are
+  std::string note;                   ///< for the JSON: what the method ran on, where the input role does not say it
 };
 
 /// The SPIR-V modules (file names without .spv) `spec` needs.
