@@ -22,7 +22,8 @@
 # vectors, not jittered, depth not inverted, the reference Lanczos for the reprojection
 # (REPROJECT_USE_LANCZOS_TYPE 0), the upsample's Lanczos2ApproxSq (2); accumulate with
 # APPLY_SHARPENING=1 (the API's pipelineAccumulateSharpen, RCAS after it). The luminance
-# pyramid's subgroup quad ops need SPIR-V 1.3 (--target-env vulkan1.1).
+# pyramid's subgroup quad ops need SPIR-V 1.3 (--target-env vulkan1.1). No FFX_HALF=1 build:
+# the pyramid has none in GLSL, and the other passes' would hold no 16-bit float (docs/gpu.md).
 set -eu
 out=${1:?usage: scripts/vk_shaders.sh OUT}
 here=$(cd "$(dirname "$0")/.." && pwd)
