@@ -74,8 +74,10 @@ struct Fsr2InputFrame {
   std::vector<float> depth;
 };
 /// Frame k (0..7) of the synthetic sequence made from `display` at render size rw × rh with
-/// `jitter` (docs/gpu.md; gpu/vk/vk_fsr2.cpp).
+/// `jitter` (docs/gpu.md; gpu/vk/vk_fsr2_host.cpp).
 Fsr2InputFrame Fsr2MakeInput(const Frame& display, int k, int rw, int rh, const float jitter[2]);
+/// The colour of the sequence's frame k at display-pixel position (px, py), unjittered.
+void Fsr2SceneColor(const Frame& display, int k, float px, float py, float rgb[3]);
 /// The jitter of the sequence's frame `slot`: ffxFsr2GetJitterOffset(slot, phases).
 void Fsr2SequenceJitter(int slot, int phases, float out[2]);
 /// IEEE binary16 bits to float.

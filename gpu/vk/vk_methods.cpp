@@ -20,7 +20,7 @@
 //   R8G8B8A8_UNORM texture to an R8G8B8A8_UNORM image; 64-thread groups over 16x16 tiles.
 // - FSR 2 (ffx_fsr2_*_pass.glsl): fsr2-native, -quality, -balanced, -performance,
 //   -ultra-performance, the default pipeline's six passes per frame over a warm sequence of
-//   frames (gpu/vk/vk_fsr2.cpp says what the frames hold and which resources the passes get).
+//   frames (gpu/vk/vk_fsr2_host.cpp says what the frames hold, vk_fsr2.cpp and which resources the passes get).
 // - copy: gpu/vk/shaders/copy.comp, the floor.
 #include "gpu/vk/vk_methods.h"
 
