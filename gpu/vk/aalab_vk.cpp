@@ -1,10 +1,12 @@
-// aalab_vk: the GPU cost of CMAA2 and FSR 1 as their ORIGINAL shaders, through Vulkan
+// aalab_vk: the GPU cost of CMAA2, FSR 1 and FSR 2 as their ORIGINAL shaders, through Vulkan
 // (docs/gpu.md "Original shaders through Vulkan"). Reads the frames `aalab export-frames`
 // wrote and the SPIR-V modules scripts/vk_shaders.sh compiled, runs each method's pass chain
 // with vkCmdWriteTimestamp around every pass (warm-up, then timed repetitions back to back),
 // and writes the JSON `aalab merge-gpu` reads (schema aalab-gpu-timings 1; reports/
 // gpu_timings.h). --frames DIR writes each output frame as PPM, for comparison with aalab's
-// CPU ports. Exit codes: 0 done, 1 bad arguments or input (one message), 2 Vulkan failed.
+// CPU ports. FSR 2 (fsr2-*) runs a synthetic sequence built from the first scene's frame at
+// each size (gpu/vk/vk_fsr2.cpp), once per size. Exit codes: 0 done, 1 bad arguments or input (one message), 2 Vulkan
+// failed.
 #include <algorithm>
 #include <cstdlib>
 #include <cstdio>
@@ -12,11 +14,13 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "gpu/vk/vk_fsr2.h"
 #include "gpu/vk/vk_methods.h"
 #include "gpu/vk/vk_runner.h"
 
@@ -38,8 +42,8 @@ const char* const kUsage =
     "  --compare DIR    compare each output with DIR/<scene>-<W>x<H>-<method>.ppm where that exists (aalab's\n"
     "                   CPU output: gpu/vk/pack.sh); the JSON gets a fidelity block per compared result\n"
     "  --methods LIST   comma-separated, default all: copy is always run first (the floor)\n"
-    "  --warmup N       untimed runs of each method's chain before timing (default 200)\n"
-    "  --repeat N       timed runs (default 200)\n"
+    "  --warmup N       untimed runs of each method's chain before timing (default 200; FSR 2: frames)\n"
+    "  --repeat N       timed runs (default 200; FSR 2: frames, each timed)\n"
     "  --device NAME    the first Vulkan device whose name contains NAME (default: a discrete GPU, else the first)\n";
 
 struct Options {
@@ -288,6 +292,13 @@ std::string ResultJson(const FrameSet& fs, const std::string& method, const std:
     }
     j += "}";
   }
+  if (!r.note.empty()) j += ", \"input\": " + Q(r.note);
+  if (r.check.has) {
+    j += ", \"output_check\": {\"nonfinite\": " + std::to_string(r.check.nonfinite) + ", \"min\": " + Num(r.check.min) +
+         ", \"max\": " + Num(r.check.max) + ", \"mean_abs_error\": " + Num(r.check.mean_abs_error) +
+         ", \"mean_abs_error_nearest\": " + Num(r.check.mean_abs_error_nearest) +
+         ", \"against\": \"the last frame of the sequence rendered at display size (rgb, 0..1)\"}";
+  }
   if (fid.has) {
     j += ", \"fidelity\": {\"identical_share\": " + Num(fid.identical_share) +
          ", \"max_diff\": " + std::to_string(fid.max_diff) +
@@ -324,10 +335,14 @@ int Run(const Options& o) {
   std::fprintf(stderr, "aalab_vk: %s (%s, Vulkan %s), warm-up %d, repeat %d\n", facts.name.c_str(),
                facts.driver.c_str(), facts.api.c_str(), o.warmup, o.repeat);
   std::vector<std::string> results;
+  std::set<std::string> fsr2_sizes;  // sizes FSR 2 ran at (once per size: its sequence is synthetic)
   for (const FrameSet& set : sets) {
+    const std::string size = std::to_string(set.width) + "x" + std::to_string(set.height);
+    const bool fsr2_here = fsr2_sizes.insert(size).second;
     double copy_ms = 0;
     auto run = [&](const std::string& spec, const std::string& label) {
       const MethodInfo* m = FindMethod(spec);
+      if (FindFsr2Preset(spec) && !fsr2_here) return;
       const auto it = set.roles.find(m->input);
       if (it == set.roles.end()) {
         std::fprintf(stderr, "aalab_vk: %s %dx%d has no '%s' frame: %s not run\n", set.scene.c_str(), set.width,
@@ -370,7 +385,9 @@ int Run(const Options& o) {
          "barrier; the method's chain recorded warmup times in one command buffer (untimed), then repeat times in "
          "another, back to back; median/min/max over the timed runs\", \"warmup\": "
       << o.warmup << ", \"repeat\": " << o.repeat
-      << ", \"clocks\": \"not locked\", \"floor\": \"copy (texelFetch + imageStore, RGBA8)\"},\n";
+      << ", \"clocks\": \"not locked\", \"floor\": \"copy (texelFetch + imageStore, RGBA8)\", \"fsr2\": \"one "
+         "chain = one frame of the six passes; warmup frames (the first resets), then repeat frames each timed; "
+         "median/min/max over the timed frames; run at the first scene of each size only\"},\n";
     j << "  \"results\": [\n";
     for (size_t i = 0; i < results.size(); ++i)
       j << "    " << results[i] << (i + 1 < results.size() ? "," : "") << "\n";

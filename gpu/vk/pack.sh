@@ -4,7 +4,8 @@
 #
 #   gpu/vk/pack.sh CARRY [SCENES]        # SCENES: comma-separated; default: the default suite
 #
-# CARRY/spv         the SPIR-V modules (scripts/vk_shaders.sh: needs glslang-tools, spirv-tools)
+# CARRY/spv         the SPIR-V modules (scripts/vk_shaders.sh: needs glslang-tools, spirv-tools):
+#                   CMAA2, FSR 1, FSR 2's six passes, the copy
 # CARRY/frames.tgz  frames/: `aalab export-frames` at $SIZES (default 1920x1080,3840x2160) with
 #                   the render-size frame of scale43-easu; refs/: aalab's CPU outputs of
 #                   cmaa2-high and rcas on each 1x frame at the first size (`aalab apply

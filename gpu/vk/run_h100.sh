@@ -1,5 +1,5 @@
 #!/bin/sh
-# Times CMAA2 and FSR 1 as their original shaders on the GPU machine (docs/gpu.md "Original
+# Times CMAA2, FSR 1 and FSR 2 as their original shaders on the GPU machine (docs/gpu.md "Original
 # shaders through Vulkan"). Run there, in the repository root, with the folder gpu/vk/pack.sh
 # made here carried along:
 #
@@ -8,7 +8,8 @@
 # Installs the Vulkan loader from CARRY/debs where none is installed (dpkg -x into /, as the
 # device's README says), unpacks libvulkan-dev's headers beside it (not into /), builds
 # gpu/vk stand-alone with CMake, and runs aalab_vk on NVIDIA's ICD over every frame with
-# --compare against the CPU outputs. Writes OUT/vk-timings.json (for `aalab merge-gpu`) and
+# --compare against the CPU outputs (FSR 2: its synthetic sequence at the first scene of each
+# size, no reference). Writes OUT/vk-timings.json (for `aalab merge-gpu`) and
 # OUT/vk-log.txt. WARMUP / REPEAT (default 200 / 200), VK_DRIVER_FILES and METHODS override.
 set -eu
 carry=${1:?usage: gpu/vk/run_h100.sh CARRY [OUT]}
@@ -34,11 +35,13 @@ methods=${METHODS:+--methods $METHODS}
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,clocks.mem,temperature.gpu,power.draw \
   --format=csv > "$out/vk-smi.txt" 2>&1 || true
 status=0
+t0=$(date +%s)
 # shellcheck disable=SC2086
 "$work/build/aalab_vk" --shaders "$carry/spv" --input "$work/frames" --compare "$work/refs" \
   --json "$out/vk-timings.json" --warmup "${WARMUP:-200}" --repeat "${REPEAT:-200}" $methods \
   > "$out/vk-log.txt" 2>&1 || status=$?
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,clocks.mem,temperature.gpu,power.draw \
   --format=csv,noheader >> "$out/vk-smi.txt" 2>&1 || true
+echo "run_h100.sh: aalab_vk ran $(($(date +%s) - t0)) s" >> "$out/vk-log.txt"
 cat "$out/vk-log.txt"
 exit $status

@@ -18,6 +18,9 @@
 //   `scale43-easu`) to the output size into an R8G8B8A8_UNORM image (the sample's
 //   intermediate), RCAS (sharpness 0.2 stops, aalab's and the sample's default) from an
 //   R8G8B8A8_UNORM texture to an R8G8B8A8_UNORM image; 64-thread groups over 16x16 tiles.
+// - FSR 2 (ffx_fsr2_*_pass.glsl): fsr2-native, -quality, -balanced, -performance,
+//   -ultra-performance, the default pipeline's six passes per frame over a warm sequence of
+//   frames (gpu/vk/vk_fsr2_host.cpp says what the frames hold, vk_fsr2.cpp and which resources the passes get).
 // - copy: gpu/vk/shaders/copy.comp, the floor.
 #include "gpu/vk/vk_methods.h"
 
@@ -27,6 +30,8 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
+
+#include "gpu/vk/vk_fsr2.h"
 
 namespace aalab::vk {
 
@@ -150,6 +155,9 @@ const std::vector<MethodInfo>& Methods() {
     v.push_back({"rcas", "1x", "FsrRcasF"});
     v.push_back({"scale43-easu", "scale43-easu", "FsrEasuF"});
     v.push_back({"scale43-easu-rcas", "scale43-easu", "FsrEasuF + FsrRcasF"});
+    std::string fsr2;
+    for (const std::string& p : Fsr2PassNames()) fsr2 += (fsr2.empty() ? "" : " + ") + p;
+    for (const Fsr2Preset& p : Fsr2Presets()) v.push_back({p.spec, "1x", fsr2});
     return v;
   }();
   return m;
@@ -168,6 +176,7 @@ std::vector<std::string> ModulesOf(const std::string& spec) {
     for (const char* e : kCmaa2Entries) v.push_back(spec + "-" + e);
     return v;
   }
+  if (FindFsr2Preset(spec)) return Fsr2Modules();
   if (spec == "copy") return {"copy"};
   if (spec == "rcas") return {"fsr1-rcas"};
   if (spec == "scale43-easu") return {"fsr1-easu"};
@@ -201,6 +210,7 @@ uint32_t RcasConstant(float sharpness_stops) { return Bits(std::exp2f(-sharpness
 MethodResult RunMethod(Device& device, const std::string& spirv_dir, const std::string& spec, const Frame& in,
                        int out_w, int out_h, int warmup, int repeat) {
   if (spec.rfind("cmaa2-", 0) == 0) return RunCmaa2(device, spirv_dir, spec.substr(6), in, warmup, repeat);
+  if (FindFsr2Preset(spec)) return RunFsr2(device, spirv_dir, spec, in, warmup, repeat);
   if (spec == "copy") return RunFsr1(device, spirv_dir, false, false, in, in.width, in.height, warmup, repeat);
   if (spec == "rcas") return RunFsr1(device, spirv_dir, false, true, in, in.width, in.height, warmup, repeat);
   if (spec == "scale43-easu") return RunFsr1(device, spirv_dir, true, false, in, out_w, out_h, warmup, repeat);

@@ -30,11 +30,24 @@ const std::vector<MethodInfo>& Methods();
 /// The row for `spec`, or nullptr.
 const MethodInfo* FindMethod(const std::string& spec);
 
+/// Facts about a float output (FSR 2's RGBA16F output, before it becomes 8-bit).
+struct OutputCheck {
+  bool has = false;
+  long nonfinite = 0;       ///< NaN or infinite rgb values
+  double min = 0, max = 0;  ///< over the finite rgb values
+  /// Mean |output − the sequence's last frame rendered at display size| over rgb (0..1 units),
+  /// and the same for the render-size input of that frame scaled up by nearest neighbour.
+  double mean_abs_error = 0, mean_abs_error_nearest = 0;
+};
+
 /// One method timed on one frame.
 struct MethodResult {
   std::vector<std::string> pass_names;
   Timings timings;
   Frame output;  ///< the output frame after the last repetition
+  OutputCheck check;
+  std::vector<uint16_t> output_half;  ///< FSR 2: the output image's rgba16f texels as they are
+  std::string note;                   ///< for the JSON: what the method ran on, where the input role does not say it
 };
 
 /// The SPIR-V modules (file names without .spv) `spec` needs.

@@ -9,13 +9,11 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "gpu/vk/vk_device_impl.h"
+
 namespace aalab::vk {
 
 namespace {
-
-void Check(VkResult r, const char* what) {
-  if (r != VK_SUCCESS) throw std::runtime_error(std::string(what) + " failed (VkResult " + std::to_string(r) + ")");
-}
 
 uint32_t TexelBytes(int format) {
   switch (format) {
@@ -32,61 +30,6 @@ std::string VersionString(uint32_t v) {
 }
 
 }  // namespace
-
-struct Device::Impl {
-  VkInstance instance = VK_NULL_HANDLE;
-  VkPhysicalDevice phys = VK_NULL_HANDLE;
-  VkDevice device = VK_NULL_HANDLE;
-  VkQueue queue = VK_NULL_HANDLE;
-  uint32_t family = 0;
-  VkCommandPool pool = VK_NULL_HANDLE;
-  VkPhysicalDeviceMemoryProperties memory{};
-  DeviceFacts facts;
-
-  uint32_t MemoryType(uint32_t bits, VkMemoryPropertyFlags want) const {
-    for (uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
-      if ((bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & want) == want) return i;
-    }
-    throw std::runtime_error("aalab_vk: no Vulkan memory type with the needed properties");
-  }
-  VkDeviceMemory Allocate(VkMemoryRequirements req, VkMemoryPropertyFlags want) const {
-    VkMemoryAllocateInfo a{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    a.allocationSize = req.size;
-    a.memoryTypeIndex = MemoryType(req.memoryTypeBits, want);
-    VkDeviceMemory m = VK_NULL_HANDLE;
-    Check(vkAllocateMemory(device, &a, nullptr, &m), "vkAllocateMemory");
-    return m;
-  }
-  // Records `record` into a one-time command buffer, submits it and waits.
-  template <class F>
-  void Once(F record) const {
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = pool;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    VkCommandBuffer cb = VK_NULL_HANDLE;
-    Check(vkAllocateCommandBuffers(device, &ai, &cb), "vkAllocateCommandBuffers");
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vkBeginCommandBuffer(cb, &bi);
-    record(cb);
-    Check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
-    Submit(cb);
-    vkFreeCommandBuffers(device, pool, 1, &cb);
-  }
-  void Submit(VkCommandBuffer cb) const {
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cb;
-    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VkFence fence = VK_NULL_HANDLE;
-    Check(vkCreateFence(device, &fi, nullptr, &fence), "vkCreateFence");
-    Check(vkQueueSubmit(queue, 1, &si, fence), "vkQueueSubmit");
-    const VkResult r = vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
-    vkDestroyFence(device, fence, nullptr);
-    Check(r, "vkWaitForFences");
-  }
-};
 
 Device::Device(const std::string& name_filter) : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
@@ -163,6 +106,12 @@ Device::Device(const std::string& name_filter) : impl_(std::make_unique<Impl>())
   d.facts.robust_image_access = want13.robustImageAccess == VK_TRUE;
   VkPhysicalDeviceFeatures want{};
   want.shaderImageGatherExtended = f2.features.shaderImageGatherExtended;
+  // FSR 2's passes declare r16f, rg16f, r8, rg8, rgba16 storage images (extended formats), and
+  // its RCAS stores to the app's output declared without a format and loads formatted
+  // (GL_EXT_shader_image_load_formatted): enabled where offered.
+  want.shaderStorageImageExtendedFormats = f2.features.shaderStorageImageExtendedFormats;
+  want.shaderStorageImageWriteWithoutFormat = f2.features.shaderStorageImageWriteWithoutFormat;
+  want.shaderStorageImageReadWithoutFormat = f2.features.shaderStorageImageReadWithoutFormat;
   if (!want.shaderImageGatherExtended) {
     throw std::runtime_error("Vulkan device '" + d.facts.name +
                              "' lacks shaderImageGatherExtended (CMAA2's texel loads with offsets need it)");
@@ -219,23 +168,8 @@ struct Chain::Impl {
   std::vector<Pipe> pipes;
   VkQueryPool queries = VK_NULL_HANDLE;
 
-  // A host-visible buffer of `bytes`, mapped; the caller destroys it.
-  std::pair<VkBuffer, VkDeviceMemory> Staging(uint64_t bytes) const {
-    VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-    bi.size = bytes;
-    bi.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    VkBuffer b = VK_NULL_HANDLE;
-    Check(vkCreateBuffer(d->device, &bi, nullptr, &b), "vkCreateBuffer (staging)");
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(d->device, b, &req);
-    VkDeviceMemory m = d->Allocate(req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    Check(vkBindBufferMemory(d->device, b, m, 0), "vkBindBufferMemory");
-    return {b, m};
-  }
-  void Release(std::pair<VkBuffer, VkDeviceMemory> s) const {
-    vkDestroyBuffer(d->device, s.first, nullptr);
-    vkFreeMemory(d->device, s.second, nullptr);
-  }
+  std::pair<VkBuffer, VkDeviceMemory> Staging(uint64_t bytes) const { return d->Staging(bytes); }
+  void Release(std::pair<VkBuffer, VkDeviceMemory> s) const { d->Release(s); }
   static void FullBarrier(VkCommandBuffer cb) {
     VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;

@@ -6,7 +6,10 @@
 // scenes. The frames are checked against `aalab run`'s outputs of the same methods (the CPU
 // ports): copy must give back the frame, RCAS and EASU the CPU's bytes exactly, CMAA2 nearly
 // all of them (lavapipe's sRGB decode and pow, and the order its atomics run in, move some
-// pixels by a few levels: measured below). Times on lavapipe mean nothing; only that they
+// pixels by a few levels: measured below). FSR 2 (its six GLSL passes, the tool's synthetic
+// 8-frame sequence) is checked for what the JSON must hold, sizes, and an output that is finite,
+// in range and closer to the sequence's last frame rendered at display size than the render-size
+// frame scaled up by nearest neighbour. Times on lavapipe mean nothing; only that they
 // exist and are positive is checked. Without glslang, spirv-tools, the sources or lavapipe the
 // tests skip, and fail under CI.
 #include <gtest/gtest.h>
@@ -54,6 +57,8 @@ CmdResult Vk(const std::string& args) {
                     " 2>&1");
 }
 
+const char* const kFsr2Methods = "fsr2-quality,fsr2-balanced,fsr2-performance,fsr2-ultra-performance,fsr2-native";
+
 // Everything the tests read, made once: SPIR-V, frames, the CPU run, aalab_vk's JSON and frames.
 struct Workspace {
   std::string missing;  // why the tests cannot run here, or ""
@@ -94,8 +99,13 @@ const Workspace& Shared() {
       }
     }
     const CmdResult r = Vk("--shaders " + d + "/spv --input " + d + "/frames --json " + d + "/vk.json --frames " + d +
-                           "/out --warmup 1 --repeat 2");
+                           "/out --warmup 1 --repeat 2 --methods cmaa2-low,cmaa2-medium,cmaa2-high,cmaa2-ultra,rcas,"
+                           "scale43-easu,scale43-easu-rcas");
     if (r.code != 0) s.failure = "aalab_vk failed: " + r.output;
+    // FSR 2: the tool's whole 8-frame sequence (6 untimed frames, the first resetting, then 2 timed).
+    const CmdResult f = Vk("--shaders " + d + "/spv --input " + d + "/frames --json " + d + "/vk-fsr2.json --frames " +
+                           d + "/out-fsr2 --warmup 6 --repeat 2 --methods " + kFsr2Methods);
+    if (f.code != 0) s.failure += "aalab_vk (FSR 2) failed: " + f.output;
     return s;
   }();
   return w;
@@ -307,6 +317,81 @@ TEST_F(VkTool, RefusesBadInputWithOneMessage) {
     EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args << ": " << r.output;
     EXPECT_FALSE(fs::exists(json)) << c.args;
   }
+}
+
+// Render sizes by hand: (uint32)(96 / ratio) x (uint32)(54 / ratio) in float.
+struct Fsr2Case {
+  const char* method;
+  const char* render;
+};
+const Fsr2Case kFsr2Cases[] = {{"fsr2-quality", "64x36"},
+                               {"fsr2-balanced", "56x31"},  // 56.47, 31.76
+                               {"fsr2-performance", "48x27"},
+                               {"fsr2-ultra-performance", "32x18"},
+                               {"fsr2-native", "96x54"}};
+
+// One test (each VkTool test rebuilds the workspace in its own process: about 25 s here).
+TEST_F(VkTool, Fsr2TimesItsSixPassesPerFrameOnceForEachSizeWithAFiniteOutputBetterThanNearest) {
+  const nlohmann::json j = ReadJson(Dir() / "vk-fsr2.json");
+  EXPECT_EQ(j.at("timing").at("warmup"), 6);
+  EXPECT_EQ(j.at("timing").at("repeat"), 2);
+  EXPECT_TRUE(j.at("timing").contains("fsr2"));
+  // FSR 2 runs at the first scene of a size only: wedges gets copy, the five, copy-after; mesh
+  // its two copies.
+  const nlohmann::json& res = j.at("results");
+  ASSERT_EQ(res.size(), 9u);
+  EXPECT_EQ(res[0].at("method"), "copy");
+  EXPECT_EQ(res[6].at("method"), "copy-after");
+  EXPECT_EQ(res[7].at("scene"), "mesh");
+  EXPECT_EQ(res[7].at("method"), "copy");
+  EXPECT_EQ(res[8].at("method"), "copy-after");
+  const char* const passes[] = {"1 compute_luminance_pyramid",
+                                "2 reconstruct_previous_depth",
+                                "3 depth_clip",
+                                "4 lock",
+                                "5 accumulate",
+                                "6 rcas"};
+  for (size_t i = 0; i < 5; ++i) {
+    const nlohmann::json& r = res[i + 1];
+    const std::string what = r.dump();
+    EXPECT_EQ(r.at("scene"), "wedges") << what;
+    EXPECT_EQ(r.at("size"), "96x54") << what;
+    EXPECT_EQ(r.at("method"), kFsr2Cases[i].method) << what;
+    EXPECT_EQ(r.at("kernels"),
+              "compute_luminance_pyramid + reconstruct_previous_depth + depth_clip + lock + accumulate + rcas");
+    EXPECT_EQ(r.at("input").get<std::string>().rfind(std::string("render ") + kFsr2Cases[i].render + " ", 0), 0u)
+        << what;
+    const double med = r.at("median_ms"), lo = r.at("min_ms"), hi = r.at("max_ms");
+    EXPECT_GT(lo, 0) << what;
+    EXPECT_LE(lo, med) << what;
+    EXPECT_LE(med, hi) << what;
+    EXPECT_NEAR(r.at("ratio_to_copy").get<double>(), med / res[0].at("median_ms").get<double>(), 1e-4) << what;
+    ASSERT_EQ(r.at("passes").size(), 6u) << what;
+    double pass_min_sum = 0;
+    for (const char* p : passes) {
+      ASSERT_TRUE(r.at("passes").contains(p)) << p << " " << what;
+      EXPECT_GT(r.at("passes").at(p).at("min_ms").get<double>(), 0) << p;
+      pass_min_sum += r.at("passes").at(p).at("min_ms").get<double>();
+    }
+    EXPECT_LE(pass_min_sum, hi * (1 + 1e-9)) << what;  // a frame holds its six passes
+
+    // The output of the last frame: finite, in range, closer to the display-size rendering.
+    const nlohmann::json& c = r.at("output_check");
+    EXPECT_EQ(c.at("nonfinite"), 0) << what;
+    // The scene's values are 0..1; RCAS and the Lanczos upsample ring a little past them
+    // (measured: -0.015 .. 1.15).
+    EXPECT_GE(c.at("min").get<double>(), -0.1) << what;
+    EXPECT_LE(c.at("max").get<double>(), 1.3) << what;
+    EXPECT_LT(c.at("mean_abs_error").get<double>(), 0.06) << what;  // measured 0.028 .. 0.049
+    if (std::string(kFsr2Cases[i].method) != "fsr2-native") {
+      EXPECT_LT(c.at("mean_abs_error").get<double>(), c.at("mean_abs_error_nearest").get<double>()) << what;
+    }
+    const Image8 out =
+        ReadPpm((Dir() / "out-fsr2" / (std::string("wedges-96x54-") + kFsr2Cases[i].method + ".ppm")).string());
+    EXPECT_EQ(out.Width(), 96);
+    EXPECT_EQ(out.Height(), 54);
+  }
+  EXPECT_FALSE(fs::exists(Dir() / "out-fsr2" / "mesh-96x54-fsr2-quality.ppm"));
 }
 
 }  // namespace

@@ -1,0 +1,92 @@
+/// Internal to gpu/vk: the Vulkan instance and device behind aalab::vk::Device, shared by the
+/// generic pass chain (vk_runner.cpp) and FSR 2's frame sequence (vk_fsr2.cpp).
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gpu/vk/vk_runner.h"
+
+namespace aalab::vk {
+
+/// Throws std::runtime_error naming `what` unless `r` is VK_SUCCESS.
+inline void Check(VkResult r, const char* what) {
+  if (r != VK_SUCCESS) throw std::runtime_error(std::string(what) + " failed (VkResult " + std::to_string(r) + ")");
+}
+
+struct Device::Impl {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice phys = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t family = 0;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  VkPhysicalDeviceMemoryProperties memory{};
+  DeviceFacts facts;
+
+  uint32_t MemoryType(uint32_t bits, VkMemoryPropertyFlags want) const {
+    for (uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
+      if ((bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & want) == want) return i;
+    }
+    throw std::runtime_error("aalab_vk: no Vulkan memory type with the needed properties");
+  }
+  VkDeviceMemory Allocate(VkMemoryRequirements req, VkMemoryPropertyFlags want) const {
+    VkMemoryAllocateInfo a{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    a.allocationSize = req.size;
+    a.memoryTypeIndex = MemoryType(req.memoryTypeBits, want);
+    VkDeviceMemory m = VK_NULL_HANDLE;
+    Check(vkAllocateMemory(device, &a, nullptr, &m), "vkAllocateMemory");
+    return m;
+  }
+  // Records `record` into a one-time command buffer, submits it and waits.
+  template <class F>
+  void Once(F record) const {
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = pool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cb = VK_NULL_HANDLE;
+    Check(vkAllocateCommandBuffers(device, &ai, &cb), "vkAllocateCommandBuffers");
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkBeginCommandBuffer(cb, &bi);
+    record(cb);
+    Check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
+    Submit(cb);
+    vkFreeCommandBuffers(device, pool, 1, &cb);
+  }
+  void Submit(VkCommandBuffer cb) const {
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cb;
+    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence = VK_NULL_HANDLE;
+    Check(vkCreateFence(device, &fi, nullptr, &fence), "vkCreateFence");
+    Check(vkQueueSubmit(queue, 1, &si, fence), "vkQueueSubmit");
+    const VkResult r = vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
+    vkDestroyFence(device, fence, nullptr);
+    Check(r, "vkWaitForFences");
+  }
+  // A host-visible, coherent buffer of `bytes` for uploads and read-backs; Release destroys it.
+  std::pair<VkBuffer, VkDeviceMemory> Staging(uint64_t bytes) const {
+    VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bi.size = bytes;
+    bi.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    VkBuffer b = VK_NULL_HANDLE;
+    Check(vkCreateBuffer(device, &bi, nullptr, &b), "vkCreateBuffer (staging)");
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(device, b, &req);
+    VkDeviceMemory m = Allocate(req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    Check(vkBindBufferMemory(device, b, m, 0), "vkBindBufferMemory");
+    return {b, m};
+  }
+  void Release(std::pair<VkBuffer, VkDeviceMemory> s) const {
+    vkDestroyBuffer(device, s.first, nullptr);
+    vkFreeMemory(device, s.second, nullptr);
+  }
+};
+
+}  // namespace aalab::vk
