@@ -342,7 +342,14 @@ int Run(const Options& o) {
     double copy_ms = 0;
     auto run = [&](const std::string& spec, const std::string& label) {
       const MethodInfo* m = FindMethod(spec);
-      if (FindFsr2Preset(spec) && !fsr2_here) return;
+      if (const Fsr2Preset* f = FindFsr2Preset(spec)) {
+        if (!fsr2_here) return;
+        if (Fsr2RenderSide(set.width, f->ratio) < 1 || Fsr2RenderSide(set.height, f->ratio) < 1) {
+          std::fprintf(stderr, "aalab_vk: %s %dx%d is too small for %s (its render size would be empty): not run\n",
+                       set.scene.c_str(), set.width, set.height, spec.c_str());
+          return;
+        }
+      }
       const auto it = set.roles.find(m->input);
       if (it == set.roles.end()) {
         std::fprintf(stderr, "aalab_vk: %s %dx%d has no '%s' frame: %s not run\n", set.scene.c_str(), set.width,
