@@ -12,7 +12,9 @@
 #                   --sampler $SAMPLER`, default gpu-texture: the H100 texture unit's UNORM8
 #                   values), for aalab_vk --compare
 # CARRY/debs        libvulkan1 and libvulkan-dev (Debian 12, amd64): the loader, and the
-#                   headers CMake needs there (the GPU machine has neither)
+#                   headers CMake needs there (the GPU machine has neither); libglvnd0,
+#                   libglx0, libegl1: GLVND, without which NVIDIA's Vulkan ICD (libGLX_nvidia)
+#                   gives the loader no vkCreateInstance on a fresh GPU machine
 # CARRY must be a folder .git/info/exclude ignores (the device tool's `carry`); it must stay
 # under the device's 64 MiB with the working tree: give fewer SCENES if it does not.
 set -eu
@@ -43,7 +45,7 @@ done
 tar czf "$carry/frames.tgz" -C "$tmp" frames refs
 o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64'
 # shellcheck disable=SC2086
-(cd "$carry/debs" && apt-get $o download libvulkan1 libvulkan-dev > /dev/null)
+(cd "$carry/debs" && apt-get $o download libvulkan1 libvulkan-dev libglvnd0 libglx0 libegl1 > /dev/null)
 echo "pack.sh: $(du -sh "$carry" | cut -f1) in $carry (frames.tgz $(du -h "$carry/frames.tgz" | cut -f1))"
 if [ "$(du -sm "$carry" | cut -f1)" -gt 48 ]; then
   echo "pack.sh: warning: over 48 MiB: with the working tree it may not fit the device's 64 MiB; pack fewer" \

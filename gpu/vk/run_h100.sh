@@ -21,6 +21,16 @@ if ! ldconfig -p | grep -q 'libvulkan\.so\.1 '; then
   for f in "$carry"/debs/libvulkan1_*.deb; do dpkg -x "$f" /; done
   ldconfig
 fi
+# NVIDIA's Vulkan ICD is libGLX_nvidia.so.0; on a fresh GPU machine without GLVND its
+# vk_icdGetInstanceProcAddr returns no vkCreateInstance and the loader finds no driver. Measured
+# on the H100 (2026-11-27): with libvulkan1 and libglvnd0 alone still none; with libglx0 and
+# libegl1 unpacked too, vkCreateInstance is there.
+if ! ldconfig -p | grep -q 'libEGL\.so\.1 '; then
+  for p in libglvnd0 libglx0 libegl1; do
+    for f in "$carry"/debs/${p}_*.deb; do [ -f "$f" ] && dpkg -x "$f" /; done
+  done
+  ldconfig
+fi
 lib=$(ldconfig -p | sed -n 's/^[[:space:]]*libvulkan\.so\.1 (libc6,x86-64) => //p' | head -1)
 [ -n "$lib" ] || { echo "run_h100.sh: no libvulkan.so.1 after installing $carry/debs" >&2; exit 1; }
 dpkg -x "$carry"/debs/libvulkan-dev_*.deb "$work/dev"
