@@ -3,6 +3,8 @@
 #pragma once
 #include <vulkan/vulkan.h>
 
+#include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -86,6 +88,43 @@ struct Device::Impl {
   void Release(std::pair<VkBuffer, VkDeviceMemory> s) const {
     vkDestroyBuffer(device, s.first, nullptr);
     vkFreeMemory(device, s.second, nullptr);
+  }
+  // A staging buffer (Staging) holding a copy of `bytes` bytes of `data`; Release destroys it.
+  std::pair<VkBuffer, VkDeviceMemory> StagingFrom(const void* data, uint64_t bytes) const {
+    auto st = Staging(bytes);
+    void* p = nullptr;
+    Check(vkMapMemory(device, st.second, 0, bytes, 0, &p), "vkMapMemory");
+    std::memcpy(p, data, bytes);
+    vkUnmapMemory(device, st.second);
+    return st;
+  }
+  // The `bytes` bytes of a w x h image in VK_IMAGE_LAYOUT_GENERAL (mip 0, layer 0), read back to
+  // the host after every earlier shader and transfer write (untimed).
+  std::vector<uint8_t> ReadImage(VkImage image, uint32_t w, uint32_t h, uint64_t bytes) const {
+    auto st = Staging(bytes);
+    Once([&](VkCommandBuffer cb) {
+      VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+      before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+      before.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+      vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0, nullptr, 0, nullptr);
+      VkBufferImageCopy r{};
+      r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      r.imageExtent = {w, h, 1};
+      vkCmdCopyImageToBuffer(cb, image, VK_IMAGE_LAYOUT_GENERAL, st.first, 1, &r);
+      VkMemoryBarrier after{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+      after.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      after.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+      vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &after, 0, nullptr, 0,
+                           nullptr);
+    });
+    std::vector<uint8_t> out(bytes);
+    void* p = nullptr;
+    Check(vkMapMemory(device, st.second, 0, bytes, 0, &p), "vkMapMemory");
+    std::memcpy(out.data(), p, bytes);
+    vkUnmapMemory(device, st.second);
+    Release(st);
+    return out;
   }
 };
 

@@ -277,11 +277,7 @@ void Run::CreateResources() {
 }
 
 void Run::UploadBuffer(VkBuffer b, const void* data, uint64_t bytes) {
-  auto st = d_->Staging(bytes);
-  void* p = nullptr;
-  Check(vkMapMemory(d_->device, st.second, 0, bytes, 0, &p), "vkMapMemory");
-  std::memcpy(p, data, bytes);
-  vkUnmapMemory(d_->device, st.second);
+  auto st = d_->StagingFrom(data, bytes);
   d_->Once([&](VkCommandBuffer cb) {
     const VkBufferCopy r{0, 0, bytes};
     vkCmdCopyBuffer(cb, st.first, b, 1, &r);
@@ -293,11 +289,7 @@ void Run::Upload(int i, const void* data, uint64_t bytes) {
   const Image& im = images_.at(static_cast<size_t>(i));
   if (bytes != static_cast<uint64_t>(im.w) * static_cast<uint64_t>(im.h) * TexelBytes(im.format))
     throw std::runtime_error("vk_fsr2: upload size mismatch");
-  auto st = d_->Staging(bytes);
-  void* p = nullptr;
-  Check(vkMapMemory(d_->device, st.second, 0, bytes, 0, &p), "vkMapMemory");
-  std::memcpy(p, data, bytes);
-  vkUnmapMemory(d_->device, st.second);
+  auto st = d_->StagingFrom(data, bytes);
   d_->Once([&](VkCommandBuffer cb) {
     VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     mb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
@@ -498,26 +490,7 @@ void Run::Record(VkCommandBuffer cb, int frame, bool timed, uint32_t query_base)
 std::vector<uint8_t> Run::Read(int i) {
   const Image& im = images_.at(static_cast<size_t>(i));
   const uint64_t bytes = static_cast<uint64_t>(im.w) * static_cast<uint64_t>(im.h) * TexelBytes(im.format);
-  auto st = d_->Staging(bytes);
-  d_->Once([&](VkCommandBuffer cb) {
-    FullBarrier(cb);
-    VkBufferImageCopy r{};
-    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    r.imageExtent = {static_cast<uint32_t>(im.w), static_cast<uint32_t>(im.h), 1};
-    vkCmdCopyImageToBuffer(cb, im.image, VK_IMAGE_LAYOUT_GENERAL, st.first, 1, &r);
-    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    mb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    mb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &mb, 0, nullptr, 0,
-                         nullptr);
-  });
-  std::vector<uint8_t> out(bytes);
-  void* p = nullptr;
-  Check(vkMapMemory(d_->device, st.second, 0, bytes, 0, &p), "vkMapMemory");
-  std::memcpy(out.data(), p, bytes);
-  vkUnmapMemory(d_->device, st.second);
-  d_->Release(st);
-  return out;
+  return d_->ReadImage(im.image, static_cast<uint32_t>(im.w), static_cast<uint32_t>(im.h), bytes);
 }
 
 void Run::Destroy() {

@@ -394,11 +394,7 @@ void Chain::FillImage(int i, const void* data, uint64_t bytes) {
   if (bytes != need)
     throw std::runtime_error("aalab_vk: FillImage got " + std::to_string(bytes) + " bytes, needs " +
                              std::to_string(need));
-  auto st = c.Staging(bytes);
-  void* p = nullptr;
-  Check(vkMapMemory(c.d->device, st.second, 0, bytes, 0, &p), "vkMapMemory");
-  std::memcpy(p, data, bytes);
-  vkUnmapMemory(c.d->device, st.second);
+  auto st = c.d->StagingFrom(data, bytes);
   c.d->Once([&](VkCommandBuffer cb) {
     VkBufferImageCopy r{};
     r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -460,26 +456,7 @@ std::vector<uint8_t> Chain::ReadImage(int i) {
   const Impl::Image& im = c.images.at(static_cast<size_t>(i));
   const uint64_t bytes =
       static_cast<uint64_t>(im.spec.width) * static_cast<uint64_t>(im.spec.height) * TexelBytes(im.spec.format);
-  auto st = c.Staging(bytes);
-  c.d->Once([&](VkCommandBuffer cb) {
-    Impl::FullBarrier(cb);
-    VkBufferImageCopy r{};
-    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    r.imageExtent = {static_cast<uint32_t>(im.spec.width), static_cast<uint32_t>(im.spec.height), 1};
-    vkCmdCopyImageToBuffer(cb, im.image, VK_IMAGE_LAYOUT_GENERAL, st.first, 1, &r);
-    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    mb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    mb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &mb, 0, nullptr, 0,
-                         nullptr);
-  });
-  std::vector<uint8_t> out(bytes);
-  void* p = nullptr;
-  Check(vkMapMemory(c.d->device, st.second, 0, bytes, 0, &p), "vkMapMemory");
-  std::memcpy(out.data(), p, bytes);
-  vkUnmapMemory(c.d->device, st.second);
-  c.Release(st);
-  return out;
+  return c.d->ReadImage(im.image, static_cast<uint32_t>(im.spec.width), static_cast<uint32_t>(im.spec.height), bytes);
 }
 
 }  // namespace aalab::vk
