@@ -14,14 +14,14 @@ enum class SamplePattern {
   kStratified,   ///< n × n strata, one jittered sample in each (the reference's pattern)
 };
 
-/// Per-frame sub-pixel jitter of a one-sample-per-pixel render (TAA). Off when `samples` is
-/// 0. The method states the sequence; the offset of a given frame is per-frame data the
-/// runner computes (FrameJitterAt) and passes to the renderer.
 /// The sub-pixel offset of one frame's sample from the pixel centre, in pixels, in [−0.5, 0.5).
 struct FrameJitter {
   float x = 0.0f, y = 0.0f;
 };
 
+/// Per-frame sub-pixel jitter of a one-sample-per-pixel render (TAA). Off when `samples` is
+/// 0. The method states the sequence; the offset of a given frame is per-frame data the
+/// runner computes (FrameJitterAt) and passes to the renderer.
 struct JitterSpec {
   int samples = 0;  ///< Halton(2,3) points cycled through (0: no jitter)
   /// A method's own sequence instead of the Halton points below: the offset of frame `frame`
