@@ -89,6 +89,41 @@ struct Device::Impl {
     vkDestroyBuffer(device, s.first, nullptr);
     vkFreeMemory(device, s.second, nullptr);
   }
+  // A compute descriptor-set layout with one descriptor of each (binding, type).
+  VkDescriptorSetLayout ComputeSetLayout(const std::vector<std::pair<uint32_t, VkDescriptorType>>& bindings) const {
+    std::vector<VkDescriptorSetLayoutBinding> lb;
+    for (const auto& [binding, type] : bindings) {
+      VkDescriptorSetLayoutBinding x{};
+      x.binding = binding;
+      x.descriptorType = type;
+      x.descriptorCount = 1;
+      x.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+      lb.push_back(x);
+    }
+    VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    li.bindingCount = static_cast<uint32_t>(lb.size());
+    li.pBindings = lb.data();
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    Check(vkCreateDescriptorSetLayout(device, &li, nullptr, &layout), "vkCreateDescriptorSetLayout");
+    return layout;
+  }
+  // The shader module of `spirv` and its compute pipeline (entry "main") with `layout`; `name`
+  // names the module in the error.
+  void ComputePipeline(const std::vector<uint32_t>& spirv, VkPipelineLayout layout, const std::string& name,
+                       VkShaderModule* module, VkPipeline* pipeline) const {
+    VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    mi.codeSize = spirv.size() * 4;
+    mi.pCode = spirv.data();
+    Check(vkCreateShaderModule(device, &mi, nullptr, module), "vkCreateShaderModule");
+    VkComputePipelineCreateInfo cpi{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    cpi.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    cpi.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    cpi.stage.module = *module;
+    cpi.stage.pName = "main";
+    cpi.layout = layout;
+    Check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &cpi, nullptr, pipeline),
+          ("vkCreateComputePipelines (" + name + ")").c_str());
+  }
   // A staging buffer (Staging) holding a copy of `bytes` bytes of `data`; Release destroys it.
   std::pair<VkBuffer, VkDeviceMemory> StagingFrom(const void* data, uint64_t bytes) const {
     auto st = Staging(bytes);

@@ -397,36 +397,16 @@ void Run::CreatePasses() {
     q.gx = grid[p][0];
     q.gy = grid[p][1];
     q.own_cb_offset = cb_stride_ * static_cast<uint32_t>(p == 0 ? kSlots + 1 : kSlots + 2);
-    std::vector<VkDescriptorSetLayoutBinding> lb;
-    for (const Binding& b : Bindings(p, 0)) {
-      VkDescriptorSetLayoutBinding x{};
-      x.binding = b.binding;
-      x.descriptorType = b.type;
-      x.descriptorCount = 1;
-      x.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-      lb.push_back(x);
-    }
-    VkDescriptorSetLayoutCreateInfo l1{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    l1.bindingCount = static_cast<uint32_t>(lb.size());
-    l1.pBindings = lb.data();
-    Check(vkCreateDescriptorSetLayout(dev, &l1, nullptr, &q.layout), "vkCreateDescriptorSetLayout");
+    std::vector<std::pair<uint32_t, VkDescriptorType>> lb;
+    for (const Binding& b : Bindings(p, 0)) lb.emplace_back(b.binding, b.type);
+    q.layout = d_->ComputeSetLayout(lb);
     const VkDescriptorSetLayout both[2] = {set0_layout_, q.layout};
     VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     pli.setLayoutCount = 2;
     pli.pSetLayouts = both;
     Check(vkCreatePipelineLayout(dev, &pli, nullptr, &q.playout), "vkCreatePipelineLayout");
-    VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    mi.codeSize = spirv_[static_cast<size_t>(p)].size() * 4;
-    mi.pCode = spirv_[static_cast<size_t>(p)].data();
-    Check(vkCreateShaderModule(dev, &mi, nullptr, &q.module), "vkCreateShaderModule");
-    VkComputePipelineCreateInfo cpi{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    cpi.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    cpi.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    cpi.stage.module = q.module;
-    cpi.stage.pName = "main";
-    cpi.layout = q.playout;
-    Check(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &cpi, nullptr, &q.pipeline),
-          ("vkCreateComputePipelines (" + modules_[static_cast<size_t>(p)] + ")").c_str());
+    d_->ComputePipeline(spirv_[static_cast<size_t>(p)], q.playout, modules_[static_cast<size_t>(p)], &q.module,
+                        &q.pipeline);
     for (int slot = 0; slot < kSlots; ++slot) {
       VkDescriptorSetAllocateInfo a1{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
       a1.descriptorPool = pool_;

@@ -300,19 +300,9 @@ Chain::Chain(Device& device, std::vector<ImageSpec> images, std::vector<BufferSp
   };
   for (const PassSpec& p : c.passes) {
     Impl::Pipe q;
-    std::vector<VkDescriptorSetLayoutBinding> lb;
-    for (const PassBinding& b : p.bindings) {
-      VkDescriptorSetLayoutBinding x{};
-      x.binding = b.binding;
-      x.descriptorType = type_of(b.kind);
-      x.descriptorCount = 1;
-      x.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-      lb.push_back(x);
-    }
-    VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    li.bindingCount = static_cast<uint32_t>(lb.size());
-    li.pBindings = lb.data();
-    Check(vkCreateDescriptorSetLayout(dev, &li, nullptr, &q.layout), "vkCreateDescriptorSetLayout");
+    std::vector<std::pair<uint32_t, VkDescriptorType>> lb;
+    for (const PassBinding& b : p.bindings) lb.emplace_back(b.binding, type_of(b.kind));
+    q.layout = c.d->ComputeSetLayout(lb);
     VkPushConstantRange pr{VK_SHADER_STAGE_COMPUTE_BIT, 0, static_cast<uint32_t>(p.push.size() * 4)};
     VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     pli.setLayoutCount = 1;
@@ -320,18 +310,7 @@ Chain::Chain(Device& device, std::vector<ImageSpec> images, std::vector<BufferSp
     pli.pushConstantRangeCount = p.push.empty() ? 0 : 1;
     pli.pPushConstantRanges = &pr;
     Check(vkCreatePipelineLayout(dev, &pli, nullptr, &q.playout), "vkCreatePipelineLayout");
-    VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    mi.codeSize = p.spirv.size() * 4;
-    mi.pCode = p.spirv.data();
-    Check(vkCreateShaderModule(dev, &mi, nullptr, &q.module), "vkCreateShaderModule");
-    VkComputePipelineCreateInfo cpi{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    cpi.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    cpi.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    cpi.stage.module = q.module;
-    cpi.stage.pName = "main";
-    cpi.layout = q.playout;
-    Check(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &cpi, nullptr, &q.pipeline),
-          ("vkCreateComputePipelines (" + p.name + ")").c_str());
+    c.d->ComputePipeline(p.spirv, q.playout, p.name, &q.module, &q.pipeline);
     VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     ai.descriptorPool = c.dpool;
     ai.descriptorSetCount = 1;
