@@ -46,6 +46,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <memory>
 
 #include "core/color.h"
 #include "core/error.h"
@@ -53,6 +55,7 @@
 #include "methods/families.h"
 #include "methods/taa.h"
 #include "methods/taa_common.h"
+#include "methods/taa_sse2.h"
 
 namespace aalab {
 
@@ -73,8 +76,9 @@ using namespace taa_detail;  // Ycc, ToYCoCg, FromYCoCg, AddToBox, NarrowToVaria
 /// reached; those 255 thresholds are found by bisection over the float bit patterns of
 /// [0, 1] (ordered like the values). A lookup takes a first guess from the value's high 16
 /// bits (exponent and 8 mantissa bits: the code of the smallest float with those bits, a
-/// lower bound) and steps up past the thresholds the value reaches (at most one or two).
-/// tests/motion/taa_test.cpp checks it against the direct formula on a dense grid.
+/// lower bound) and steps up past the thresholds the value reaches (a fixed kSteps = 2 steps without a branch; the
+/// constructor checks that two suffice). tests/motion/taa_test.cpp checks it against the direct formula on a dense
+/// grid.
 class Encode8 {
  public:
   Encode8() {
@@ -96,7 +100,15 @@ class Encode8 {
     // far less below (the linear segment's 12.92·255 codes per unit meets ulps of 1e-10).
     for (uint32_t b = 0; b < kBuckets; ++b) {
       const float v = FromBits(b << kShift);
-      guess_[b] = static_cast<uint8_t>(std::upper_bound(start_.begin(), start_.end(), v) - start_.begin());
+      guess_[b] = static_cast<uint8_t>(std::upper_bound(start_.begin(), start_.begin() + 255, v) - start_.begin());
+    }
+    // The lookup's fixed number of steps (no data-dependent branch): enough for every bucket,
+    // checked here over each bucket's largest float (the code is non-decreasing in v).
+    start_[255] = std::numeric_limits<float>::infinity();  // code 255 never steps further
+    for (uint32_t b = 0; b < kBuckets; ++b) {
+      const float last = FromBits(std::min((b << kShift) | ((1u << kShift) - 1), 0x3f800000u));
+      const auto code = std::upper_bound(start_.begin(), start_.begin() + 255, last) - start_.begin();
+      AALAB_CHECK(code - guess_[b] <= kSteps, "Encode8: a bucket needs more than kSteps steps");
     }
   }
   /// v in [0, 1] (NaN excluded; -0 reads as 0); step up from the guess to the exact code.
@@ -104,8 +116,8 @@ class Encode8 {
     uint32_t bits;
     std::memcpy(&bits, &v, sizeof bits);
     bits &= 0x7fffffffu;  // -0 → +0 (every other input is non-negative)
-    int code = guess_[std::min(bits >> kShift, kBuckets - 1)];
-    while (code < 255 && v >= start_[static_cast<size_t>(code)]) ++code;
+    unsigned code = guess_[std::min(bits >> kShift, kBuckets - 1)];
+    for (int s = 0; s < kSteps; ++s) code += v >= start_[code] ? 1u : 0u;  // start_[255] = +inf
     return static_cast<uint8_t>(code);
   }
   static int Direct(float v) { return QuantizeUnorm8(SrgbEncode(v)); }
@@ -118,7 +130,8 @@ class Encode8 {
   }
   static constexpr uint32_t kShift = 16;
   static constexpr uint32_t kBuckets = (0x3f800000u >> kShift) + 1;  // up to 1.0f
-  std::array<float, 255> start_{};  ///< start_[k − 1]: smallest float whose code is ≥ k
+  static constexpr int kSteps = 2;  ///< steps from the guess (the constructor checks it suffices)
+  std::array<float, 256> start_{};  ///< start_[k − 1]: smallest float whose code is ≥ k; start_[255] = +inf
   std::array<uint8_t, kBuckets> guess_{};
 };
 
@@ -238,15 +251,18 @@ AALAB_TAA_CLONES void HistoryYccRow(int w, float* __restrict r, float* __restric
 
 /// The rest of a row's step, every pixel at once: ClipToBox of the history (when `clip`),
 /// the blend with the current YCoCg (cy, cco, ccg: the padded plane rows, texel x at x + 1),
-/// FromYCoCg and the clamp, exactly as StepReference; pixels without history (valid[x] = 0)
-/// take the current linear colour (cur, 3 floats per pixel). Writes the new history (3
-/// floats per pixel) and the planar output colour for the encode.
+/// FromYCoCg and the clamp, exactly as StepReference; pixels without history (previous
+/// position outside [0, fw] × [0, fh] or NaN) take the current linear colour (cr, cg, cb,
+/// planar). Writes the new history (3 floats per pixel) and the planar output colour for
+/// the encode. The scalar form of taa_sse2.h's HistoryBlendRow4 (with LerpRow and
+/// HistoryYccRow): builds without SSE2 and the last W mod 4 pixels of a row.
 struct RowIn {
   const float *hy, *hco, *hcg;  // history in YCoCg
   const float *lo[3], *hi[3];   // the box (when clip)
   const float *cy, *cco, *ccg;  // current YCoCg, padded
-  const float* cur;             // current linear RGB
-  const uint8_t* valid;
+  const float *cr, *cg, *cb;    // current linear RGB, planar
+  const float* prev;            // previous positions, x and y per pixel
+  float fw, fh;                 // the frame's size
 };
 // std::clamp(v, 0, 1) as selects: v < 0 ? 0 : (1 < v ? 1 : v).
 inline float Clamp01(float v) { return v < 0.0f ? 0.0f : (1.0f < v ? 1.0f : v); }
@@ -275,8 +291,9 @@ AALAB_TAA_CLONES void BlendRow(const RowIn& in, int w, float alpha, float* __res
     const float oco = h[1] + alpha * (in.cco[x + 1] - h[1]);
     const float ocg = h[2] + alpha * (in.ccg[x + 1] - h[2]);
     const float t = oy - ocg;
-    const bool ok = in.valid[x] != 0;
-    const float c0 = in.cur[3 * x], c1 = in.cur[3 * x + 1], c2 = in.cur[3 * x + 2];  // loaded always: a select
+    const float px = in.prev[2 * x], py = in.prev[2 * x + 1];
+    const bool ok = px >= 0.0f && px <= in.fw && py >= 0.0f && py <= in.fh;
+    const float c0 = in.cr[x], c1 = in.cg[x], c2 = in.cb[x];
     const float o[3] = {ok ? Clamp01(t + oco) : c0, ok ? Clamp01(oy + ocg) : c1, ok ? Clamp01(t - oco) : c2};
     for (int c = 0; c < 3; ++c) next[3 * x + c] = o[c];
     outr[x] = o[0];
@@ -344,47 +361,46 @@ class TaaState : public TemporalState {
         }
       });
     }
-    next_.resize(3 * n);
+    // One float past the pixels: taa_sse2.h loads a texel's RGB as 4 floats (the history
+    // becomes next_ on the next step; a history made by StepReference is padded here).
+    next_.resize(3 * n + 1);
+    if (have_history && history_.size() < 3 * n + 1) history_.resize(3 * n + 1);
     Image8 result(W, H, 4, kUninitialized);  // every byte written below (alpha 255)
     const Encode8& encode = Encoder();
     ParallelForChunks(H, 8, [&](int y0, int y1) {
-      std::vector<float> buf(static_cast<size_t>(W) * 13);
-      std::vector<uint8_t> valid(static_cast<size_t>(W));
-      std::vector<float> tx(static_cast<size_t>(W)), ty(static_cast<size_t>(W));
-      std::vector<int32_t> off(4 * static_cast<size_t>(W));
-      float* hy = buf.data();
-      float* hco = hy + W;
-      float* hcg = hco + W;
-      float* lo[3] = {hcg + W, hcg + 2 * W, hcg + 3 * W};
-      float* hi[3] = {hcg + 4 * W, hcg + 5 * W, hcg + 6 * W};
-      float* outc[3] = {hcg + 7 * W, hcg + 8 * W, hcg + 9 * W};
-      std::vector<float> cur(3 * static_cast<size_t>(W));
+      // Row buffers, written whole before they are read (no fill): the history in YCoCg, the
+      // box (3 + 3), the output colour (3), the current colour (3), the footprint.
+      const size_t w = static_cast<size_t>(W);
+      const auto buf = std::make_unique_for_overwrite<float[]>(17 * w);
+      const auto off = std::make_unique_for_overwrite<int32_t[]>(4 * w);
+      float* hy = buf.get();
+      float* hco = hy + w;
+      float* hcg = hco + w;
+      float* lo[3] = {hcg + w, hcg + 2 * w, hcg + 3 * w};
+      float* hi[3] = {hcg + 4 * w, hcg + 5 * w, hcg + 6 * w};
+      float* outc[3] = {hcg + 7 * w, hcg + 8 * w, hcg + 9 * w};
+      float* cur[3] = {hcg + 10 * w, hcg + 11 * w, hcg + 12 * w};
+      float* tx = hcg + 13 * w;
+      float* ty = hcg + 14 * w;
       for (int y = y0; y < y1; ++y) {
         const uint8_t* src = f.Row(y);
         for (int x = 0; x < W; ++x) {
-          for (int c = 0; c < 3; ++c) cur[3 * static_cast<size_t>(x) + c] = decode_[src[4 * x + c]];
+          for (int c = 0; c < 3; ++c) cur[c][x] = decode_[src[4 * x + c]];
         }
         float* next = &next_[3 * static_cast<size_t>(y) * W];
         uint8_t* row = result.Row(y);
         if (!have_history) {
-          std::copy(cur.begin(), cur.end(), next);
           for (int x = 0; x < W; ++x) {
-            for (int c = 0; c < 3; ++c) row[4 * x + c] = encode(cur[3 * static_cast<size_t>(x) + c]);
+            for (int c = 0; c < 3; ++c) {
+              next[3 * x + c] = cur[c][x];
+              row[4 * x + c] = encode(cur[c][x]);
+            }
             row[4 * x + 3] = 255;
           }
           continue;
         }
         const float* prev = &(*in.previous)[2 * static_cast<size_t>(y) * W];
-        for (int x = 0; x < W; ++x) {
-          const float px = prev[2 * x], py = prev[2 * x + 1];
-          valid[static_cast<size_t>(x)] =
-              px >= 0.0f && px <= static_cast<float>(W) && py >= 0.0f && py <= static_cast<float>(H);
-        }
-        // FetchHistory and ToYCoCg for the whole row: footprints (vectorised), the gather and
-        // lerps (scalar), YCoCg (vectorised). history_ is W × H here (HaveHistory).
-        FootprintRow(prev, W, W, H, tx.data(), ty.data(), off.data());
-        LerpRow(history_.data(), tx.data(), ty.data(), off.data(), W, hy, hco, hcg);
-        HistoryYccRow(W, hy, hco, hcg);
+        FootprintRow(prev, W, W, H, tx, ty, off.get());
         const size_t rm = static_cast<size_t>(std::max(y - 1, 0)) * pw, rc = static_cast<size_t>(y) * pw,
                      rp = static_cast<size_t>(std::min(y + 1, H - 1)) * pw;
         if (clip) {
@@ -397,20 +413,57 @@ class TaaState : public TemporalState {
             }
           }
         }
-        RowIn ri{hy,
-                 hco,
-                 hcg,
-                 {lo[0], lo[1], lo[2]},
-                 {hi[0], hi[1], hi[2]},
-                 planes_[0].data() + rc,
-                 planes_[1].data() + rc,
-                 planes_[2].data() + rc,
-                 cur.data(),
-                 valid.data()};
+        const float fw = static_cast<float>(W), fh = static_cast<float>(H);
+        int done = 0;  // pixels [0, done) finished by the SSE2 kernel
+#if defined(__SSE2__)
+        done = W - W % 4;
+        const Sse2RowIn si{history_.data(),
+                           tx,
+                           ty,
+                           off.get(),
+                           prev,
+                           fw,
+                           fh,
+                           {lo[0], lo[1], lo[2]},
+                           {hi[0], hi[1], hi[2]},
+                           planes_[0].data() + rc,
+                           planes_[1].data() + rc,
+                           planes_[2].data() + rc,
+                           cur[0],
+                           cur[1],
+                           cur[2]};
         if (clip) {
-          BlendRow<true>(ri, W, p_.alpha, next, outc[0], outc[1], outc[2]);
+          HistoryBlendRow4<true>(si, 0, done, p_.alpha, next, outc[0], outc[1], outc[2]);
         } else {
-          BlendRow<false>(ri, W, p_.alpha, next, outc[0], outc[1], outc[2]);
+          HistoryBlendRow4<false>(si, 0, done, p_.alpha, next, outc[0], outc[1], outc[2]);
+        }
+#endif
+        if (done < W) {
+          // FetchHistory and ToYCoCg for the rest of the row (all of it without SSE2): the
+          // gather and lerps (scalar), YCoCg (vectorised); then the clip and blend.
+          const int d = done, rest = W - done;
+          LerpRow(history_.data(), tx + d, ty + d, off.get() + 4 * d, rest, hy + d, hco + d, hcg + d);
+          HistoryYccRow(rest, hy + d, hco + d, hcg + d);
+          RowIn ri{hy + d,
+                   hco + d,
+                   hcg + d,
+                   {lo[0] + d, lo[1] + d, lo[2] + d},
+                   {hi[0] + d, hi[1] + d, hi[2] + d},
+                   planes_[0].data() + rc + d,
+                   planes_[1].data() + rc + d,
+                   planes_[2].data() + rc + d,
+                   cur[0] + d,
+                   cur[1] + d,
+                   cur[2] + d,
+                   prev + 2 * d,
+                   fw,
+                   fh};
+          float* nd = next + 3 * d;
+          if (clip) {
+            BlendRow<true>(ri, rest, p_.alpha, nd, outc[0] + d, outc[1] + d, outc[2] + d);
+          } else {
+            BlendRow<false>(ri, rest, p_.alpha, nd, outc[0] + d, outc[1] + d, outc[2] + d);
+          }
         }
         for (int x = 0; x < W; ++x) {
           for (int c = 0; c < 3; ++c) row[4 * x + c] = encode(outc[c][x]);
@@ -515,12 +568,15 @@ class TaaState : public TemporalState {
   TaaParams p_;
   bool reference_ = false;
   std::array<float, 256> decode_{};
-  std::vector<float> history_;  ///< linear display RGB, 3 floats per pixel
+  // Buffers every step writes whole before reading: resized without a fill.
+  using Floats = std::vector<float, DefaultInitAllocator<float>>;
+  Floats history_;  ///< linear display RGB, 3 floats per pixel (StepFast: + 1 float of padding)
   int hist_w_ = 0, hist_h_ = 0;
   // Per-frame working buffers (not state: reused only to avoid reallocating every frame).
-  std::vector<float> cur_, next_;
+  std::vector<float> cur_;
+  Floats next_;
   std::vector<Ycc> ycc_;
-  std::array<std::vector<float>, 3> planes_;  ///< StepFast: Y, Co, Cg, padded rows of W + 2
+  std::array<Floats, 3> planes_;  ///< StepFast: Y, Co, Cg, padded rows of W + 2
 };
 
 Clip ParseClip(const std::string& name) {
