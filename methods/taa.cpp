@@ -76,9 +76,9 @@ using namespace taa_detail;  // Ycc, ToYCoCg, FromYCoCg, AddToBox, NarrowToVaria
 /// reached; those 255 thresholds are found by bisection over the float bit patterns of
 /// [0, 1] (ordered like the values). A lookup takes a first guess from the value's high 16
 /// bits (exponent and 8 mantissa bits: the code of the smallest float with those bits, a
-/// lower bound) and steps up past the thresholds the value reaches (a fixed kSteps = 2 steps without a branch; the
-/// constructor checks that two suffice). tests/motion/taa_test.cpp checks it against the direct formula on a dense
-/// grid.
+/// lower bound) and adds the number of the next two thresholds the value reaches (no branch;
+/// the constructor checks that no bucket spans more than two). tests/motion/taa_test.cpp
+/// checks it against the direct formula on a dense grid.
 class Encode8 {
  public:
   Encode8() {
@@ -104,7 +104,7 @@ class Encode8 {
     }
     // The lookup's fixed number of steps (no data-dependent branch): enough for every bucket,
     // checked here over each bucket's largest float (the code is non-decreasing in v).
-    start_[255] = std::numeric_limits<float>::infinity();  // code 255 never steps further
+    start_[255] = start_[256] = std::numeric_limits<float>::infinity();  // code 255 never steps further
     for (uint32_t b = 0; b < kBuckets; ++b) {
       const float last = FromBits(std::min((b << kShift) | ((1u << kShift) - 1), 0x3f800000u));
       const auto code = std::upper_bound(start_.begin(), start_.begin() + 255, last) - start_.begin();
@@ -116,9 +116,17 @@ class Encode8 {
     uint32_t bits;
     std::memcpy(&bits, &v, sizeof bits);
     bits &= 0x7fffffffu;  // -0 → +0 (every other input is non-negative)
-    unsigned code = guess_[std::min(bits >> kShift, kBuckets - 1)];
-    for (int s = 0; s < kSteps; ++s) code += v >= start_[code] ? 1u : 0u;  // start_[255] = +inf
-    return static_cast<uint8_t>(code);
+    const unsigned g = guess_[std::min(bits >> kShift, kBuckets - 1)];
+    // start_ increases, so reaching start_[g + 1] implies reaching start_[g]: the two loads
+    // do not wait for each other's comparison.
+    return static_cast<uint8_t>(g + (v >= start_[g] ? 1u : 0u) + (v >= start_[g + 1] ? 1u : 0u));
+  }
+  /// w pixels of planar linear RGB (each in [0, 1]) to RGBA8 (alpha 255), 4 bytes per store.
+  void Rgba(const float* r, const float* g, const float* b, int w, uint8_t* out) const {
+    for (int x = 0; x < w; ++x) {
+      const uint8_t px[4] = {(*this)(r[x]), (*this)(g[x]), (*this)(b[x]), 255};
+      std::memcpy(out + 4 * x, px, 4);
+    }
   }
   static int Direct(float v) { return QuantizeUnorm8(SrgbEncode(v)); }
 
@@ -130,8 +138,9 @@ class Encode8 {
   }
   static constexpr uint32_t kShift = 16;
   static constexpr uint32_t kBuckets = (0x3f800000u >> kShift) + 1;  // up to 1.0f
-  static constexpr int kSteps = 2;  ///< steps from the guess (the constructor checks it suffices)
-  std::array<float, 256> start_{};  ///< start_[k − 1]: smallest float whose code is ≥ k; start_[255] = +inf
+  static constexpr int kSteps = 2;  ///< thresholds a bucket may span (operator() compares with two)
+  /// start_[k − 1]: the smallest float whose code is ≥ k; start_[255], start_[256] = +inf
+  std::array<float, 257> start_{};
   std::array<uint8_t, kBuckets> guess_{};
 };
 
@@ -384,19 +393,21 @@ class TaaState : public TemporalState {
       float* ty = hcg + 14 * w;
       for (int y = y0; y < y1; ++y) {
         const uint8_t* src = f.Row(y);
-        for (int x = 0; x < W; ++x) {
-          for (int c = 0; c < 3; ++c) cur[c][x] = decode_[src[4 * x + c]];
-        }
+        // The current linear colour of pixels [x0, W) into cur (the SSE2 kernel decodes its
+        // own, only where a pixel has no history).
+        auto decode_from = [&](int x0) {
+          for (int x = x0; x < W; ++x) {
+            for (int c = 0; c < 3; ++c) cur[c][x] = decode_[src[4 * x + c]];
+          }
+        };
         float* next = &next_[3 * static_cast<size_t>(y) * W];
         uint8_t* row = result.Row(y);
         if (!have_history) {
+          decode_from(0);
           for (int x = 0; x < W; ++x) {
-            for (int c = 0; c < 3; ++c) {
-              next[3 * x + c] = cur[c][x];
-              row[4 * x + c] = encode(cur[c][x]);
-            }
-            row[4 * x + 3] = 255;
+            for (int c = 0; c < 3; ++c) next[3 * x + c] = cur[c][x];
           }
+          encode.Rgba(cur[0], cur[1], cur[2], W, row);
           continue;
         }
         const float* prev = &(*in.previous)[2 * static_cast<size_t>(y) * W];
@@ -429,9 +440,8 @@ class TaaState : public TemporalState {
                            planes_[0].data() + rc,
                            planes_[1].data() + rc,
                            planes_[2].data() + rc,
-                           cur[0],
-                           cur[1],
-                           cur[2]};
+                           src,
+                           decode_.data()};
         if (clip) {
           HistoryBlendRow4<true>(si, 0, done, p_.alpha, next, outc[0], outc[1], outc[2]);
         } else {
@@ -442,6 +452,7 @@ class TaaState : public TemporalState {
           // FetchHistory and ToYCoCg for the rest of the row (all of it without SSE2): the
           // gather and lerps (scalar), YCoCg (vectorised); then the clip and blend.
           const int d = done, rest = W - done;
+          decode_from(d);
           LerpRow(history_.data(), tx + d, ty + d, off.get() + 4 * d, rest, hy + d, hco + d, hcg + d);
           HistoryYccRow(rest, hy + d, hco + d, hcg + d);
           RowIn ri{hy + d,
@@ -465,10 +476,7 @@ class TaaState : public TemporalState {
             BlendRow<false>(ri, rest, p_.alpha, nd, outc[0] + d, outc[1] + d, outc[2] + d);
           }
         }
-        for (int x = 0; x < W; ++x) {
-          for (int c = 0; c < 3; ++c) row[4 * x + c] = encode(outc[c][x]);
-          row[4 * x + 3] = 255;
-        }
+        encode.Rgba(outc[0], outc[1], outc[2], W, row);
       }
     });
     history_.swap(next_);

@@ -25,7 +25,8 @@ struct Sse2RowIn {
   float fw, fh;                 ///< the frame's size: a position inside [0, fw] × [0, fh] has history
   const float *lo[3], *hi[3];   ///< the box per YCoCg channel (read only when clipping)
   const float *cy, *cco, *ccg;  ///< current YCoCg planes, padded: texel x at x + 1
-  const float *cr, *cg, *cb;    ///< current linear RGB, planar
+  const uint8_t* src;           ///< the current frame's row, RGBA8
+  const float* decode;          ///< linear value of each 8-bit code
 };
 
 /// max(m, |q|) as Max(m, std::fabs(q)) = (m < |q| ? |q| : m).
@@ -66,17 +67,24 @@ inline void HistoryBlendRow4(const Sse2RowIn& in, int x0, int x1, float alpha, f
                    _mm_sub_ps(_mm_mul_ps(half, r), _mm_mul_ps(half, b)),
                    _mm_sub_ps(_mm_add_ps(_mm_mul_ps(mquarter, r), _mm_mul_ps(half, g)), _mm_mul_ps(quarter, b))};
     if constexpr (kClip) {
-      __m128 centre[3], v[3], m = zero;
+      __m128 centre[3], v[3], ext[3], near = _mm_castsi128_ps(_mm_set1_epi32(-1));
       for (int c = 0; c < 3; ++c) {
         const __m128 hi = _mm_loadu_ps(in.hi[c] + x), lo = _mm_loadu_ps(in.lo[c] + x);
         centre[c] = _mm_mul_ps(half, _mm_add_ps(hi, lo));
-        const __m128 ext = _mm_add_ps(_mm_mul_ps(half, _mm_sub_ps(hi, lo)), eps);
+        ext[c] = _mm_add_ps(_mm_mul_ps(half, _mm_sub_ps(hi, lo)), eps);
         v[c] = _mm_sub_ps(h[c], centre[c]);
-        m = MaxAbs(m, _mm_div_ps(v[c], ext));
+        near = _mm_and_ps(near, _mm_cmple_ps(_mm_andnot_ps(_mm_set1_ps(-0.0f), v[c]), ext[c]));
       }
-      const __m128 inside = _mm_cmple_ps(m, one);
-      const __m128 div = Select(inside, one, m);
-      for (int c = 0; c < 3; ++c) h[c] = Select(inside, h[c], _mm_add_ps(centre[c], _mm_div_ps(v[c], div)));
+      // |v| ≤ ext in every channel means |v / ext| ≤ 1 (the rounded quotient of an exact one
+      // ≤ 1 is ≤ 1; v = ext = 0 gives NaN, which Max ignores): inside, h stays. Only when a
+      // lane may be outside are the quotients formed, exactly as ClipToBox forms them.
+      if (_mm_movemask_ps(near) != 0xf) {
+        __m128 m = zero;
+        for (int c = 0; c < 3; ++c) m = MaxAbs(m, _mm_div_ps(v[c], ext[c]));
+        const __m128 inside = _mm_cmple_ps(m, one);
+        const __m128 div = Select(inside, one, m);
+        for (int c = 0; c < 3; ++c) h[c] = Select(inside, h[c], _mm_add_ps(centre[c], _mm_div_ps(v[c], div)));
+      }
     }
     const __m128 oy = Lerp(h[0], _mm_loadu_ps(in.cy + x + 1), va);
     const __m128 oco = Lerp(h[1], _mm_loadu_ps(in.cco + x + 1), va);
@@ -90,9 +98,14 @@ inline void HistoryBlendRow4(const Sse2RowIn& in, int x0, int x1, float alpha, f
                  qy = _mm_shuffle_ps(p0, p1, _MM_SHUFFLE(3, 1, 3, 1));
     const __m128 ok = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(qx, zero), _mm_cmple_ps(qx, fw)),
                                  _mm_and_ps(_mm_cmpge_ps(qy, zero), _mm_cmple_ps(qy, fh)));
-    __m128 o0 = Select(ok, clamp01(_mm_add_ps(t, oco)), _mm_loadu_ps(in.cr + x));
-    __m128 o1 = Select(ok, clamp01(_mm_add_ps(oy, ocg)), _mm_loadu_ps(in.cg + x));
-    __m128 o2 = Select(ok, clamp01(_mm_sub_ps(t, oco)), _mm_loadu_ps(in.cb + x));
+    __m128 o0 = clamp01(_mm_add_ps(t, oco)), o1 = clamp01(_mm_add_ps(oy, ocg)), o2 = clamp01(_mm_sub_ps(t, oco));
+    if (_mm_movemask_ps(ok) != 0xf) {  // a pixel without history takes the current colour
+      const uint8_t* s = in.src + 4 * x;
+      const float* dc = in.decode;
+      o0 = Select(ok, o0, _mm_setr_ps(dc[s[0]], dc[s[4]], dc[s[8]], dc[s[12]]));
+      o1 = Select(ok, o1, _mm_setr_ps(dc[s[1]], dc[s[5]], dc[s[9]], dc[s[13]]));
+      o2 = Select(ok, o2, _mm_setr_ps(dc[s[2]], dc[s[6]], dc[s[10]], dc[s[14]]));
+    }
     _mm_storeu_ps(outr + x, o0);
     _mm_storeu_ps(outg + x, o1);
     _mm_storeu_ps(outb + x, o2);
