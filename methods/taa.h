@@ -11,6 +11,10 @@ namespace aalab {
 /// thresholds instead of a pow per value: TAA's output encode.
 uint8_t EncodeSrgb8(float v);
 
+/// EncodeSrgb8 of w pixels of planar linear RGB (r, g, b; each value in [0, 1]) into RGBA8
+/// with alpha 255: the row encode TAA's step uses (four pixels at a time with SSE2).
+void EncodeSrgb8Rgba(const float* r, const float* g, const float* b, int w, uint8_t* rgba);
+
 /// A copy of a TAA state (one made by MakeMethod("taa...").make_state()) whose Step runs the
 /// simple implementation of the temporal step (one loop nest per pass, per pixel) instead of
 /// the production path: the reference tests/motion/taa_test.cpp compares the two with, bit

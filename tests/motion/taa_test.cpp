@@ -236,6 +236,37 @@ TEST(Taa, FastEncodeIsTheDirectEncodeBitForBit) {
   }
 }
 
+// The row encode (SSE2, four pixels at a time, and its scalar tail) against the direct
+// formula: around every code boundary and on a dense grid, each value in each channel
+// position, with -0, 0 and 1, in rows whose width is not a multiple of 4.
+TEST(Taa, RowEncodeIsTheDirectEncodeBitForBit) {
+  std::vector<float> values = {-0.0f, 0.0f, 1.0f, std::nextafter(1.0f, 0.0f), 1e-30f, 1e-7f};
+  for (int i = 0; i <= (1 << 18); ++i) values.push_back(static_cast<float>(i) / (1 << 18));
+  for (int k = 1; k < 256; ++k) {
+    float v = SrgbDecode((static_cast<float>(k) - 0.5f) / 255.0f);
+    for (int d = 0; d < 8; ++d) v = std::nextafter(v, 0.0f);
+    for (int d = 0; d < 16; ++d, v = std::nextafter(v, 1.0f)) values.push_back(v);
+  }
+  const int n = static_cast<int>(values.size());
+  for (int shift = 0; shift < 3; ++shift) {  // each value in R, G and B
+    for (int w : {n, n - 1, 7, 3}) {
+      std::vector<float> ch[3];
+      for (int c = 0; c < 3; ++c) {
+        for (int x = 0; x < w; ++x) ch[c].push_back(values[static_cast<size_t>((x + 5 * c + shift * 11) % n)]);
+      }
+      std::vector<uint8_t> rgba(4 * static_cast<size_t>(w), 0);
+      EncodeSrgb8Rgba(ch[0].data(), ch[1].data(), ch[2].data(), w, rgba.data());
+      for (int x = 0; x < w; ++x) {
+        for (int c = 0; c < 3; ++c) {
+          const float v = ch[c][static_cast<size_t>(x)];
+          ASSERT_EQ(rgba[4 * static_cast<size_t>(x) + c], QuantizeUnorm8(SrgbEncode(v))) << v << " x " << x;
+        }
+        ASSERT_EQ(rgba[4 * static_cast<size_t>(x) + 3], 255) << x;
+      }
+    }
+  }
+}
+
 // The production temporal step against the simple one (TaaReferenceCopy), bit for bit: every
 // output byte, the taps and (through the later frames) the history, over sequences of random
 // frames with random previous positions (inside, on the border, outside, NaN, exact texel
