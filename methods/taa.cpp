@@ -277,11 +277,11 @@ void LerpRow(const float* __restrict hist, const float* __restrict tx, const flo
   }
 }
 
-/// ToYCoCg of the fetched history, in place over the planar row, every pixel at once. Pixels
-/// without history (StepFast's valid[x] = 0) get the YCoCg of FootprintRow's safe fetch,
-/// which BlendRow discards (it takes the current colour there), instead of StepReference's
-/// 0: no select, so the loop vectorises (a select after float arithmetic does not, with
-/// trapping math).
+/// ToYCoCg in place over a planar row, every pixel at once: the current frame's planes, and
+/// the fetched history in the scalar tail. Pixels without history get the YCoCg of
+/// FootprintRow's safe fetch, which BlendRow discards (it takes the current colour there),
+/// instead of StepReference's 0: no select, so the loop vectorises (a select after float
+/// arithmetic does not, with trapping math).
 AALAB_TAA_CLONES void HistoryYccRow(int w, float* __restrict r, float* __restrict g, float* __restrict b) {
   for (int x = 0; x < w; ++x) {
     const float rgb[3] = {r[x], g[x], b[x]};
@@ -390,13 +390,13 @@ class TaaState : public TemporalState {
           float* pco = &planes_[1][static_cast<size_t>(y) * pw];
           float* pcg = &planes_[2][static_cast<size_t>(y) * pw];
           const uint8_t* src = f.Row(y);
+          // Linear RGB first (table reads), then YCoCg in place (a vectorised loop).
           for (int x = 0; x < W; ++x) {
-            const float rgb[3] = {decode_[src[4 * x]], decode_[src[4 * x + 1]], decode_[src[4 * x + 2]]};
-            const Ycc v = ToYCoCg(rgb);
-            py[x + 1] = v.y;
-            pco[x + 1] = v.co;
-            pcg[x + 1] = v.cg;
+            py[x + 1] = decode_[src[4 * x]];
+            pco[x + 1] = decode_[src[4 * x + 1]];
+            pcg[x + 1] = decode_[src[4 * x + 2]];
           }
+          HistoryYccRow(W, py + 1, pco + 1, pcg + 1);
           for (float* p : {py, pco, pcg}) {
             p[0] = p[1];
             p[W + 1] = p[W];
