@@ -368,11 +368,14 @@ class TaaState : public TemporalState {
   }
 
   /// The production step: the same values as StepReference, bit for bit, organised for a
-  /// CPU. The current frame's YCoCg goes into three padded planes (one replicated texel on
-  /// each side, so the clamped 3×3 neighbourhood is plain reads); each row then computes the
-  /// boxes of all its pixels (BoxRow), fetches the history (FootprintRow and HistoryYccRow
-  /// vectorised, LerpRow a scalar gather), clips, blends and converts (BlendRow) and
-  /// encodes. tests/motion/taa_test.cpp compares the two.
+  /// CPU. Per chunk of kChunkRows rows, the current frame's YCoCg goes into three padded
+  /// planes (one replicated texel on each side, so the clamped 3×3 neighbourhood is plain
+  /// reads); each row then computes the boxes of all its pixels (BoxRow), the history's
+  /// footprints (FootprintRow), and with SSE2 fetches, clips, blends and converts four
+  /// pixels at a time (taa_sse2.h; elsewhere and for the row's last W mod 4 pixels LerpRow,
+  /// HistoryYccRow and BlendRow), then encodes (Encode8::Rgba). tests/motion/taa_test.cpp
+  /// compares the two.
+  static constexpr int kChunkRows = 16;
   Image8 StepFast(const TemporalInput& in, PostStats* stats) {
     const Image8& f = *in.frame;
     const int W = f.Width(), H = f.Height();
@@ -381,39 +384,41 @@ class TaaState : public TemporalState {
     const size_t pw = static_cast<size_t>(W) + 2;
     const bool have_history = HaveHistory(in, W, H);
     const bool clip = p_.clip != Clip::kNone;
-    const bool need_planes = have_history;
-    if (need_planes) {
-      for (auto& pl : planes_) pl.resize(pw * static_cast<size_t>(H));
-      ParallelForChunks(H, 16, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y) {
-          float* py = &planes_[0][static_cast<size_t>(y) * pw];
-          float* pco = &planes_[1][static_cast<size_t>(y) * pw];
-          float* pcg = &planes_[2][static_cast<size_t>(y) * pw];
-          const uint8_t* src = f.Row(y);
-          // Linear RGB first (table reads), then YCoCg in place (a vectorised loop).
-          for (int x = 0; x < W; ++x) {
-            py[x + 1] = decode_[src[4 * x]];
-            pco[x + 1] = decode_[src[4 * x + 1]];
-            pcg[x + 1] = decode_[src[4 * x + 2]];
-          }
-          HistoryYccRow(W, py + 1, pco + 1, pcg + 1);
-          for (float* p : {py, pco, pcg}) {
-            p[0] = p[1];
-            p[W + 1] = p[W];
-          }
-        }
-      });
-    }
     // One float past the pixels: taa_sse2.h loads a texel's RGB as 4 floats (the history
     // becomes next_ on the next step; a history made by StepReference is padded here).
     next_.resize(3 * n + 1);
     if (have_history && history_.size() < 3 * n + 1) history_.resize(3 * n + 1);
     Image8 result(W, H, 4, kUninitialized);  // every byte written below (alpha 255)
     const Encode8& encode = Encoder();
-    ParallelForChunks(H, 8, [&](int y0, int y1) {
+    ParallelForChunks(H, kChunkRows, [&](int y0, int y1) {
       // Row buffers, written whole before they are read (no fill): the history in YCoCg, the
       // box (3 + 3), the output colour (3), the current colour (3), the footprint.
       const size_t w = static_cast<size_t>(W);
+      // The current frame's YCoCg for the chunk's rows and the one above and below it (when
+      // inside the frame): three padded planes, local row r = frame row ya + r. Made here
+      // rather than for the whole frame first, so that they are read back from the cache,
+      // not from memory (2 rows in kChunkRows made twice).
+      const int ya = std::max(y0 - 1, 0), yb = std::min(y1, H - 1);
+      const size_t prow = have_history ? static_cast<size_t>(yb - ya + 1) : 0;
+      const auto pbuf = std::make_unique_for_overwrite<float[]>(3 * prow * pw);
+      const float* plane[3] = {pbuf.get(), pbuf.get() + prow * pw, pbuf.get() + 2 * prow * pw};
+      for (size_t r = 0; r < prow; ++r) {
+        float* py = pbuf.get() + r * pw;
+        float* pco = py + prow * pw;
+        float* pcg = pco + prow * pw;
+        const uint8_t* src = f.Row(ya + static_cast<int>(r));
+        // Linear RGB first (table reads), then YCoCg in place (a vectorised loop).
+        for (int x = 0; x < W; ++x) {
+          py[x + 1] = decode_[src[4 * x]];
+          pco[x + 1] = decode_[src[4 * x + 1]];
+          pcg[x + 1] = decode_[src[4 * x + 2]];
+        }
+        HistoryYccRow(W, py + 1, pco + 1, pcg + 1);
+        for (float* p : {py, pco, pcg}) {
+          p[0] = p[1];
+          p[W + 1] = p[W];
+        }
+      }
       const auto buf = std::make_unique_for_overwrite<float[]>(17 * w);
       const auto off = std::make_unique_for_overwrite<int32_t[]>(4 * w);
       float* hy = buf.get();
@@ -446,11 +451,11 @@ class TaaState : public TemporalState {
         }
         const float* prev = &(*in.previous)[2 * static_cast<size_t>(y) * W];
         FootprintRow(prev, W, W, H, tx, ty, off.get());
-        const size_t rm = static_cast<size_t>(std::max(y - 1, 0)) * pw, rc = static_cast<size_t>(y) * pw,
-                     rp = static_cast<size_t>(std::min(y + 1, H - 1)) * pw;
+        const size_t rm = static_cast<size_t>(std::max(y - 1, 0) - ya) * pw, rc = static_cast<size_t>(y - ya) * pw,
+                     rp = static_cast<size_t>(std::min(y + 1, H - 1) - ya) * pw;
         if (clip) {
           for (int c = 0; c < 3; ++c) {
-            const float* pl = planes_[static_cast<size_t>(c)].data();
+            const float* pl = plane[c];
             if (p_.clip == Clip::kVariance) {
               BoxRow<true>(pl + rm, pl + rc, pl + rp, W, p_.gamma, lo[c], hi[c]);
             } else {
@@ -471,9 +476,9 @@ class TaaState : public TemporalState {
                            fh,
                            {lo[0], lo[1], lo[2]},
                            {hi[0], hi[1], hi[2]},
-                           planes_[0].data() + rc,
-                           planes_[1].data() + rc,
-                           planes_[2].data() + rc,
+                           plane[0] + rc,
+                           plane[1] + rc,
+                           plane[2] + rc,
                            src,
                            decode_.data()};
         if (clip) {
@@ -494,9 +499,9 @@ class TaaState : public TemporalState {
                    hcg + d,
                    {lo[0] + d, lo[1] + d, lo[2] + d},
                    {hi[0] + d, hi[1] + d, hi[2] + d},
-                   planes_[0].data() + rc + d,
-                   planes_[1].data() + rc + d,
-                   planes_[2].data() + rc + d,
+                   plane[0] + rc + d,
+                   plane[1] + rc + d,
+                   plane[2] + rc + d,
                    cur[0] + d,
                    cur[1] + d,
                    cur[2] + d,
@@ -618,7 +623,6 @@ class TaaState : public TemporalState {
   std::vector<float> cur_;
   Floats next_;
   std::vector<Ycc> ycc_;
-  std::array<Floats, 3> planes_;  ///< StepFast: Y, Co, Cg, padded rows of W + 2
 };
 
 Clip ParseClip(const std::string& name) {
