@@ -205,22 +205,31 @@ namespace {
 inline float Min(float a, float b) { return b < a ? b : a; }
 inline float Max(float a, float b) { return a < b ? b : a; }
 
+// The min/max are separable (each column's over the three rows, then three columns): the
+// planes hold no NaN and no −0 (YCoCg of decoded colours ≥ +0: sums of products of +0 or
+// more, and x − x is +0), so the minimum and maximum of the 9 values do not depend on the
+// order they are taken in, and 1e30 / −1e30 (Rectify's start values) lie outside the range.
+// The sums keep Rectify's order. cmn, cmx: scratch of w + 2 floats.
 template <bool kVariance>
 AALAB_TAA_CLONES void BoxRow(const float* __restrict r0, const float* __restrict r1, const float* __restrict r2, int w,
-                             float gamma, float* __restrict lo, float* __restrict hi) {
+                             float gamma, float* __restrict cmn, float* __restrict cmx, float* __restrict lo,
+                             float* __restrict hi) {
+  for (int x = 0; x < w + 2; ++x) {
+    cmn[x] = Min(Min(r0[x], r1[x]), r2[x]);
+    cmx[x] = Max(Max(r0[x], r1[x]), r2[x]);
+  }
   for (int x = 0; x < w; ++x) {
-    float mn = 1e30f, mx = -1e30f, m1 = 0.0f, m2 = 0.0f;
-    const float* rows[3] = {r0, r1, r2};
-    for (int k = 0; k < 3; ++k) {
-      for (int d = 0; d < 3; ++d) {
-        const float v = rows[k][x + d];
-        mn = Min(mn, v);
-        mx = Max(mx, v);
-        m1 += v;
-        m2 += v * v;
-      }
-    }
+    float mn = Min(Min(cmn[x], cmn[x + 1]), cmn[x + 2]), mx = Max(Max(cmx[x], cmx[x + 1]), cmx[x + 2]);
     if constexpr (kVariance) {
+      float m1 = 0.0f, m2 = 0.0f;
+      const float* rows[3] = {r0, r1, r2};
+      for (int k = 0; k < 3; ++k) {
+        for (int d = 0; d < 3; ++d) {
+          const float v = rows[k][x + d];
+          m1 += v;
+          m2 += v * v;
+        }
+      }
       const float mu = m1 / 9.0f;
       const float sigma = std::sqrt(std::fabs(m2 / 9.0f - mu * mu));  // -fno-math-errno: no branch
       mn = Max(mn, mu - gamma * sigma);
@@ -419,7 +428,7 @@ class TaaState : public TemporalState {
           p[W + 1] = p[W];
         }
       }
-      const auto buf = std::make_unique_for_overwrite<float[]>(17 * w);
+      const auto buf = std::make_unique_for_overwrite<float[]>(17 * w + 2 * (w + 2));
       const auto off = std::make_unique_for_overwrite<int32_t[]>(4 * w);
       float* hy = buf.get();
       float* hco = hy + w;
@@ -430,6 +439,8 @@ class TaaState : public TemporalState {
       float* cur[3] = {hcg + 10 * w, hcg + 11 * w, hcg + 12 * w};
       float* tx = hcg + 13 * w;
       float* ty = hcg + 14 * w;
+      float* cmn = hcg + 15 * w;  // BoxRow's scratch, w + 2 floats each
+      float* cmx = cmn + w + 2;
       for (int y = y0; y < y1; ++y) {
         const uint8_t* src = f.Row(y);
         // The current linear colour of pixels [x0, W) into cur (the SSE2 kernel decodes its
@@ -457,9 +468,9 @@ class TaaState : public TemporalState {
           for (int c = 0; c < 3; ++c) {
             const float* pl = plane[c];
             if (p_.clip == Clip::kVariance) {
-              BoxRow<true>(pl + rm, pl + rc, pl + rp, W, p_.gamma, lo[c], hi[c]);
+              BoxRow<true>(pl + rm, pl + rc, pl + rp, W, p_.gamma, cmn, cmx, lo[c], hi[c]);
             } else {
-              BoxRow<false>(pl + rm, pl + rc, pl + rp, W, p_.gamma, lo[c], hi[c]);
+              BoxRow<false>(pl + rm, pl + rc, pl + rp, W, p_.gamma, cmn, cmx, lo[c], hi[c]);
             }
           }
         }
