@@ -8,6 +8,7 @@
 #include "scenes/texture_image.h"
 
 #include <Imath/half.h>
+#include <emmintrin.h>
 
 #include <algorithm>
 #include <array>
@@ -384,6 +385,66 @@ glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, W
     default:
       return Blend4([&](int i, int j) { return level.Fetch(static_cast<size_t>(j) * w + static_cast<size_t>(i)); }, i0,
                     i1, j0, j1, ax, ay);
+  }
+}
+
+namespace {
+
+/// Blend4 in one SSE register per texel (lanes = the four channels): per channel the same
+/// products and sums in the same order as glm's vec4 operators, so the same bits.
+inline __m128 Blend4Sse(__m128 t00, __m128 t10, __m128 t01, __m128 t11, float ax, float ay) {
+  const __m128 wx = _mm_set1_ps(ax), wx1 = _mm_set1_ps(1.0f - ax);
+  const __m128 wy = _mm_set1_ps(ay), wy1 = _mm_set1_ps(1.0f - ay);
+  const __m128 top = _mm_add_ps(_mm_mul_ps(t00, wx1), _mm_mul_ps(t10, wx));
+  const __m128 bot = _mm_add_ps(_mm_mul_ps(t01, wx1), _mm_mul_ps(t11, wx));
+  return _mm_add_ps(_mm_mul_ps(top, wy1), _mm_mul_ps(bot, wy));
+}
+
+/// The four channels of texel i of an 8-bit level through its decode tables (rgb, alpha).
+inline __m128 Texel8(const uint8_t* bytes, size_t i, const float* rgb, const float* alpha) {
+  const uint8_t* p = bytes + 4 * i;
+  return _mm_setr_ps(rgb[p[0]], rgb[p[1]], rgb[p[2]], alpha[p[3]]);
+}
+
+}  // namespace
+
+void SampleBilinearBatch(const MipLevel& level, const glm::vec2* uv, int n, WrapMode wrap_s, WrapMode wrap_t,
+                         glm::vec4* out) {
+  static_assert(sizeof(glm::vec2) == 8 && sizeof(glm::vec4) == 16, "glm vectors must be packed floats");
+  const bool is8 = level.format == TexelFormat::kSrgb8 || level.format == TexelFormat::kUnorm8;
+  const float* rgb = level.format == TexelFormat::kSrgb8 ? Srgb8Table() : Unorm8Table();
+  const float* alpha = Unorm8Table();
+  const uint8_t* bytes = level.bytes.data();
+  const size_t w = static_cast<size_t>(level.width);
+  const __m128d size = _mm_setr_pd(static_cast<double>(level.width), static_cast<double>(level.height));
+  const __m128d half = _mm_set1_pd(0.5), one = _mm_set1_pd(1.0), limit = _mm_set1_pd(1e8);
+  const __m128d abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
+  for (int k = 0; k < n; ++k) {
+    // (x, y) of one sample in the two lanes of an SSE2 double register: x = u·W − ½ in
+    // double, floor by truncation (exact: |x| < 1e8 < 2^31) minus one where that rounded up,
+    // the fraction x − ⌊x⌋ (exact in double) rounded to float: SampleBilinear's arithmetic.
+    const __m128d c = _mm_sub_pd(
+        _mm_mul_pd(_mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&uv[k])))), size), half);
+    // Non-finite uv (NaN fails the compare) or a coordinate FoldCoord would fold: the scalar path.
+    if (_mm_movemask_pd(_mm_cmplt_pd(_mm_and_pd(c, abs_mask), limit)) != 3 || !is8) {
+      out[k] = SampleBilinear(level, uv[k], wrap_s, wrap_t);
+      continue;
+    }
+    const __m128d t = _mm_cvtepi32_pd(_mm_cvttpd_epi32(c));
+    const __m128d f = _mm_sub_pd(t, _mm_and_pd(_mm_cmpgt_pd(t, c), one));
+    const __m128i fi = _mm_cvttpd_epi32(f);
+    alignas(16) float a[4];
+    _mm_store_ps(a, _mm_cvtpd_ps(_mm_sub_pd(c, f)));
+    const int x0 = _mm_cvtsi128_si32(fi), y0 = _mm_cvtsi128_si32(_mm_shuffle_epi32(fi, 1));
+    int i0, i1, j0, j1;
+    WrapPair(x0, level.width, wrap_s, &i0, &i1);
+    WrapPair(y0, level.height, wrap_t, &j0, &j1);
+    const size_t r0 = static_cast<size_t>(j0) * w, r1 = static_cast<size_t>(j1) * w;
+    const __m128 v = Blend4Sse(Texel8(bytes, r0 + static_cast<size_t>(i0), rgb, alpha),
+                               Texel8(bytes, r0 + static_cast<size_t>(i1), rgb, alpha),
+                               Texel8(bytes, r1 + static_cast<size_t>(i0), rgb, alpha),
+                               Texel8(bytes, r1 + static_cast<size_t>(i1), rgb, alpha), a[0], a[1]);
+    _mm_storeu_ps(&out[k].x, v);
   }
 }
 

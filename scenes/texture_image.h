@@ -140,6 +140,14 @@ int WrapIndex(int i, int n, WrapMode mode);
 /// Bilinear tap of one level at (u, v): texel centres at ((i + 0.5)/W, (j + 0.5)/H).
 glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t);
 
+/// SampleBilinear of each uv[k] into out[k], k < n, with the same bits: the batch form the
+/// reference's level-0 texture fetches take over a packet of samples: the format and tables
+/// decided once per batch, a sample's texel x and y in the two lanes of an SSE2 double
+/// register, each texel's four channels decoded by table and blended in one SSE register,
+/// with the same operations in the same order as SampleBilinear.
+void SampleBilinearBatch(const MipLevel& level, const glm::vec2* uv, int n, WrapMode wrap_s, WrapMode wrap_t,
+                         glm::vec4* out);
+
 /// A glTF sampler's filters (OpenGL enums): magFilter NEAREST 9728 / LINEAR 9729; minFilter
 /// NEAREST 9728, LINEAR 9729, NEAREST_MIPMAP_NEAREST 9984, LINEAR_MIPMAP_NEAREST 9985,
 /// NEAREST_MIPMAP_LINEAR 9986, LINEAR_MIPMAP_LINEAR 9987 (the default when absent, as engines

@@ -263,14 +263,17 @@ bool CutoutKeeps(const Tracer::Impl& im, const Scene& sc, const Material& m, con
 
 glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
                     glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& local,
-                    const KeptTexel* kept) {
+                    const KeptTexel* kept, const PrefetchedTexels* pre) {
   const GltfMaterial& g = *m.gltf;
   const bool textures = sc.Has(Effect::kTextures);
   const bool any_tex = textures && (g.base_tex.Has() || g.mr_tex.Has() || g.emissive_tex.Has() ||
                                     g.occlusion_tex.Has() || g.normal_tex.Has());
   HitTextures tex(im, sc, h, srf, org, dir, fp, any_tex);
-  auto fetch = [&](const TextureRef& t) {
+  // A prefetched texel (PrefetchTexels, level 0 only: px == 0, where the derivatives and
+  // uv1 that tex.Fetch records are never read again) stands for the fetch itself.
+  auto fetch = [&](PrefetchSlot slot, const TextureRef& t) {
     ++local.texture_lookups;
+    if (pre && ((pre->mask >> slot) & 1u)) return pre->texel[slot];
     return tex.Fetch(t);
   };
   // The alpha test fetched the base texel with the footprint on (HitTextures' default), as
@@ -285,22 +288,23 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
     ++local.texture_lookups;
     base *= kept->base;
   } else if (textures && g.base_tex.Has()) {
-    base *= fetch(g.base_tex);
+    base *= fetch(kSlotBase, g.base_tex);
   }
   if (m.shading == Shading::kUnlit) return glm::vec3(base);
 
   float metallic = g.metallic, roughness = g.roughness, occlusion = 1.0f;
   if (textures && g.mr_tex.Has()) {
-    const glm::vec4 mr = fetch(g.mr_tex);
+    const glm::vec4 mr = fetch(kSlotMr, g.mr_tex);
     roughness *= mr.y;
     metallic *= mr.z;
   }
   metallic = std::clamp(metallic, 0.0f, 1.0f);
   roughness = std::clamp(roughness, 0.0f, 1.0f);
-  if (textures && g.occlusion_tex.Has()) occlusion = 1.0f + g.occlusion_strength * (fetch(g.occlusion_tex).x - 1.0f);
+  if (textures && g.occlusion_tex.Has())
+    occlusion = 1.0f + g.occlusion_strength * (fetch(kSlotOcclusion, g.occlusion_tex).x - 1.0f);
   glm::vec3 n = srf.n;
   if (sc.Has(Effect::kNormalMap) && g.normal_tex.Has()) {
-    n = NormalMapped(sc.shapes[h.shape], h, srf, glm::vec3(fetch(g.normal_tex)), g.normal_scale);
+    n = NormalMapped(sc.shapes[h.shape], h, srf, glm::vec3(fetch(kSlotNormal, g.normal_tex)), g.normal_scale);
   }
   // α = roughness², floored so that D stays finite in float at roughness 0 (a mirror).
   const float alpha = std::max(roughness * roughness, 1e-3f);
@@ -400,8 +404,107 @@ glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, 
     c += kPi * f * light.color * (light.intensity * falloff) * nl;
   }
   glm::vec3 emissive = g.emissive;
-  if (textures && g.emissive_tex.Has() && emissive != glm::vec3(0.0f)) emissive *= glm::vec3(fetch(g.emissive_tex));
+  if (textures && g.emissive_tex.Has() && emissive != glm::vec3(0.0f))
+    emissive *= glm::vec3(fetch(kSlotEmissive, g.emissive_tex));
   return c + emissive;
+}
+
+namespace {
+
+/// The texture ShadeGltf fetches in `slot` at a hit of material m (null: none), by its own
+/// conditions: the base colour unless the alpha test's texel is reused, and only the base
+/// colour for an unlit material.
+const TextureRef* SlotTexture(const Scene& sc, const Material& m, int slot, const KeptTexel* kept) {
+  const GltfMaterial& g = *m.gltf;
+  const bool textures = sc.Has(Effect::kTextures);
+  if (slot == kSlotBase) return textures && g.base_tex.Has() && !(kept && kept->valid) ? &g.base_tex : nullptr;
+  if (m.shading == Shading::kUnlit) return nullptr;
+  switch (slot) {
+    case kSlotMr: return textures && g.mr_tex.Has() ? &g.mr_tex : nullptr;
+    case kSlotOcclusion: return textures && g.occlusion_tex.Has() ? &g.occlusion_tex : nullptr;
+    case kSlotNormal: return sc.Has(Effect::kNormalMap) && g.normal_tex.Has() ? &g.normal_tex : nullptr;
+    case kSlotEmissive:
+      return textures && g.emissive_tex.Has() && g.emissive != glm::vec3(0.0f) ? &g.emissive_tex : nullptr;
+    default: return nullptr;
+  }
+}
+
+/// The coordinate HitTextures::Fetch and FetchTexture sample texture t at: its set's uv
+/// (uv1 interpolated as there), through its KHR_texture_transform.
+glm::vec2 SlotUv(const Scene& sc, const TextureRef& t, const Hit& h, const Surface& srf) {
+  glm::vec2 uv = srf.uv;
+  if (t.texcoord == 1) {
+    uv = glm::vec2(0.0f);
+    const Shape& s = sc.shapes[h.shape];
+    if (s.kind == ShapeKind::kTriangles && !s.uvs1.empty()) {
+      const glm::uvec3 tri = s.triangles[h.prim];
+      uv = s.uvs1[tri.x] * (1.0f - h.u - h.v) + s.uvs1[tri.y] * h.u + s.uvs1[tri.z] * h.v;
+    }
+  }
+  if (!t.transformed) return uv;
+  const glm::mat2 lin(t.uv_transform[0], t.uv_transform[1]);
+  return lin * uv + t.uv_transform[2];
+}
+
+}  // namespace
+
+void PrefetchTexels(const Scene& sc, const Hit* hits, const Surface* surf, int n, const KeptTexel* kept,
+                    ShadeScratch& S) {
+  const size_t n_all = static_cast<size_t>(n);
+  PrefetchedTexels* pre = Sized(S.pre, n_all);
+  // Which slots each material fetches (one material lookup a hit, not one a slot), and which
+  // slots each hit wants (in `want`, moved into pre[i].mask as the batches fill them).
+  unsigned* mat_slots = Sized(S.mat_slots, sc.materials.size());
+  for (size_t k = 0; k < sc.materials.size(); ++k) {
+    mat_slots[k] = 0;
+    if (!sc.materials[k].gltf) continue;
+    for (int slot = 0; slot < kSlots; ++slot) {
+      const TextureRef* t = SlotTexture(sc, sc.materials[k], slot, nullptr);
+      // level0_only: SampleTextureFiltered taps level 0 with the magnification filter.
+      if (t && !t->filter.mag_nearest) mat_slots[k] |= 1u << slot;
+    }
+  }
+  unsigned* want = Sized(S.want, n_all);
+  unsigned any = 0;
+  for (int i = 0; i < n; ++i) {
+    pre[i].mask = 0;
+    unsigned w = hits[i].shape < 0 ? 0u : mat_slots[static_cast<size_t>(sc.shapes[hits[i].shape].material)];
+    if (kept && kept[i].valid) w &= ~(1u << kSlotBase);  // ShadeGltf reuses the alpha test's texel
+    want[i] = w;
+    any |= w;
+  }
+  if (!any) return;
+  int* job_hit = Sized(S.job_hit, n_all);
+  glm::vec2* job_uv = Sized(S.job_uv, n_all);
+  glm::vec4* job_out = Sized(S.job_out, n_all);
+  for (int slot = 0; slot < kSlots; ++slot) {
+    if (!((any >> slot) & 1u)) continue;
+    // Runs of hits that sample the same level 0 with the same wrap modes: one batch each.
+    int m = 0;
+    const TextureRef* cur = nullptr;
+    auto flush = [&]() {
+      if (m == 0) return;
+      SampleBilinearBatch(sc.images[static_cast<size_t>(cur->image)]->levels[0], job_uv, m, cur->wrap_s, cur->wrap_t,
+                          job_out);
+      for (int k = 0; k < m; ++k) {
+        pre[job_hit[k]].texel[slot] = job_out[k];
+        pre[job_hit[k]].mask |= 1u << slot;
+      }
+      m = 0;
+    };
+    for (int i = 0; i < n; ++i) {
+      if (!((want[i] >> slot) & 1u)) continue;
+      const TextureRef* t = SlotTexture(sc, sc.materials[sc.shapes[hits[i].shape].material], slot, nullptr);
+      if (!cur || cur->image != t->image || cur->wrap_s != t->wrap_s || cur->wrap_t != t->wrap_t) {
+        flush();
+        cur = t;
+      }
+      job_uv[m] = SlotUv(sc, *t, hits[i], surf[i]);
+      job_hit[m] = i;
+      ++m;
+    }
+    flush();
+  }
 }
 
 void CompositeBlended(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* hits, const glm::vec3* org,

@@ -167,12 +167,22 @@ struct HitTextures {
   glm::vec4 Fetch(const TextureRef& t);
 };
 
+/// Texels of one hit fetched ahead of ShadeGltf (ShadeHits batches the reference's level-0
+/// fetches over the whole packet): slot k (PrefetchSlot) is valid when bit k of `mask` is set,
+/// and holds exactly what ShadeGltf's own fetch of that texture would return.
+enum PrefetchSlot { kSlotBase, kSlotMr, kSlotOcclusion, kSlotNormal, kSlotEmissive, kSlots };
+struct PrefetchedTexels {
+  unsigned mask = 0;
+  glm::vec4 texel[kSlots];
+};
+
 /// Radiance of a glTF material (unlit or the metallic-roughness BRDF) at a camera-ray hit,
 /// with `blocked` the shadowed-light bits. Adds its texture fetches to counters. `kept` (may be
-/// null): the alpha test's fetch at this very hit (ClosestVisibleHits), reused when valid.
+/// null): the alpha test's fetch at this very hit (ClosestVisibleHits), reused when valid;
+/// `pre` (may be null): texels fetched ahead (the same values), used where its mask says.
 glm::vec3 ShadeGltf(const Tracer::Impl& im, const Scene& sc, const Material& m, const Hit& h, const Surface& srf,
                     glm::vec3 org, glm::vec3 dir, uint32_t blocked, const Footprint& fp, TraceCounters& counters,
-                    const KeptTexel* kept = nullptr);
+                    const KeptTexel* kept = nullptr, const PrefetchedTexels* pre = nullptr);
 
 /// Deepest chain of blended (glTF BLEND) surfaces composited along one ray; the last one
 /// is drawn opaque.
@@ -205,7 +215,19 @@ struct ShadeScratch {
   std::vector<float> stn, stf;
   std::vector<uint8_t> occluded;
   LayerScratch layers;
+  std::vector<PrefetchedTexels> pre;  // the batched level-0 texels (PrefetchTexels)
+  std::vector<unsigned> mat_slots, want;
+  std::vector<int> job_hit;
+  std::vector<glm::vec2> job_uv;
+  std::vector<glm::vec4> job_out;
 };
+
+/// The level-0 texture fetches ShadeGltf would make for n hits of a reference render
+/// (fp.tex.px == 0), batched per slot and texture over the packet (SampleBilinearBatch) into
+/// S.pre: the same texels, fetched with the same uv, wrap and filter. Hits that are not glTF
+/// get an empty mask; so do slots whose sampler is NEAREST (fetched one by one as before).
+void PrefetchTexels(const Scene& sc, const Hit* hits, const Surface* surf, int n, const KeptTexel* kept,
+                    ShadeScratch& S);
 
 /// Shades n hits seen along the rays (org[i], dir[i]) with the scene's declared effects:
 /// surface attributes, shadow rays (alpha-tested when `alpha`), lambert, specular and

@@ -208,6 +208,13 @@ void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* h
   // Shadow rays only with `shadows`, only for shadow-casting lights.
   if (shadows) ShadowRays(im, sc, alpha, hits, n, S, local);
 
+  // The reference (level 0 only) fetches its glTF texels batched over the whole packet.
+  const PrefetchedTexels* pre = nullptr;
+  if (im.any_gltf && !(fp.tex.px > 0.0f)) {
+    PrefetchTexels(sc, hits, surf, n, kept, S);
+    pre = S.pre.data();
+  }
+
   for (int i = 0; i < n; ++i) {
     SampleResult& r = out[i];
     r.surface = hits[i].shape;
@@ -223,7 +230,8 @@ void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* h
       ++local.shading_evals;
       const Material& m = sc.materials[sc.shapes[hits[i].shape].material];
       if (m.gltf) {
-        c = ShadeGltf(im, sc, m, hits[i], surf[i], org[i], dir[i], blocked[i], fp, local, kept ? kept + i : nullptr);
+        c = ShadeGltf(im, sc, m, hits[i], surf[i], org[i], dir[i], blocked[i], fp, local, kept ? kept + i : nullptr,
+                      pre ? pre + i : nullptr);
         r.rgb[0] = c.x;
         r.rgb[1] = c.y;
         r.rgb[2] = c.z;

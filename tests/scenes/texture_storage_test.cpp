@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 
 #include "core/color.h"
 #include "scenes/texture_image.h"
@@ -182,6 +183,52 @@ TEST(TextureStorage, ChainBytesCountTheStoredFormat) {
   const MipLevel f = ToFloatLevel(c.levels[1]);
   EXPECT_EQ(f.format, TexelFormat::kFloat);
   EXPECT_NEAR(f.texels[3].x, SrgbDecode(77 / 255.0f), 1e-7f);
+}
+
+TEST(TextureStorage, BilinearBatchFetchesSampleBilinearsBitsInEveryWrapMode) {
+  // A 5 x 3 level (odd, asymmetric, both axes) of distinct codes in every channel.
+  std::vector<uint8_t> b(5 * 3 * 4);
+  for (size_t k = 0; k < b.size(); ++k) b[k] = static_cast<uint8_t>((k * 37 + 11) % 256);
+  std::vector<glm::vec2> uv;
+  for (int j = -9; j <= 9; ++j) {
+    for (int i = -13; i <= 13; ++i) uv.push_back({0.137f * static_cast<float>(i), 0.211f * static_cast<float>(j)});
+  }
+  // Texel centres, exact edges, and the cases the scalar path keeps (|x| >= 1e8, non-finite).
+  for (float v : {0.1f, 0.5f, 0.9f, 1.0f, 0.0f}) uv.push_back({v, 1.0f - v});
+  const float inf = std::numeric_limits<float>::infinity();
+  for (glm::vec2 e : {glm::vec2(3e7f, 0.2f), glm::vec2(0.3f, -5e8f), glm::vec2(inf, 0.5f),
+                      glm::vec2(0.5f, std::nanf("")), glm::vec2(-1e6f, 2.5e6f)}) {
+    uv.push_back(e);
+  }
+  for (TexelFormat f : {TexelFormat::kSrgb8, TexelFormat::kUnorm8}) {
+    const MipLevel l = Rgba8(5, 3, f, b);
+    const MipLevel half = ToFloatLevel(l);  // the float path falls back to SampleBilinear
+    for (WrapMode ws : {WrapMode::kRepeat, WrapMode::kClampToEdge, WrapMode::kMirroredRepeat}) {
+      for (WrapMode wt : {WrapMode::kRepeat, WrapMode::kClampToEdge, WrapMode::kMirroredRepeat}) {
+        std::vector<glm::vec4> got(uv.size()), got_f(uv.size());
+        SampleBilinearBatch(l, uv.data(), static_cast<int>(uv.size()), ws, wt, got.data());
+        SampleBilinearBatch(half, uv.data(), static_cast<int>(uv.size()), ws, wt, got_f.data());
+        for (size_t k = 0; k < uv.size(); ++k) {
+          const glm::vec4 want = SampleBilinear(l, uv[k], ws, wt);
+          EXPECT_EQ(std::memcmp(&got[k], &want, sizeof want), 0) << "uv " << uv[k].x << "," << uv[k].y;
+          const glm::vec4 want_f = SampleBilinear(half, uv[k], ws, wt);
+          EXPECT_EQ(std::memcmp(&got_f[k], &want_f, sizeof want_f), 0);
+        }
+      }
+    }
+  }
+  // By hand: the centre of texel (1, 2) is that texel's decoded codes (up to the float
+  // rounding of the uv); halfway between
+  // texels (1, 0) and (2, 0) (u = 2/5, v = 1/6) their mean, (a + b) · ½ in float.
+  const MipLevel l = Rgba8(5, 3, TexelFormat::kUnorm8, b);
+  const glm::vec2 pts[2] = {{1.5f / 5.0f, 2.5f / 3.0f}, {2.0f / 5.0f, 0.5f / 3.0f}};
+  glm::vec4 got[2];
+  SampleBilinearBatch(l, pts, 2, WrapMode::kRepeat, WrapMode::kRepeat, got);
+  const size_t t12 = 4 * (2 * 5 + 1), t10 = 4 * 1, t20 = 4 * 2;
+  for (int c = 0; c < 4; ++c) {
+    EXPECT_NEAR(got[0][c], static_cast<float>(b[t12 + c]) / 255.0f, 1e-6f) << c;
+    EXPECT_NEAR(got[1][c], (static_cast<float>(b[t10 + c]) + static_cast<float>(b[t20 + c])) / 510.0f, 1e-6f) << c;
+  }
 }
 
 }  // namespace
