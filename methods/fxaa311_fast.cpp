@@ -16,6 +16,7 @@
 #include "core/parallel.h"
 #include "methods/fxaa311.h"
 #include "methods/fxaa311_plane.h"
+#include "methods/fxaa311_rows.h"
 #include "methods/row_ops.h"
 
 namespace aalab {
@@ -54,63 +55,9 @@ using Order = Fxaa311Params::Order;
 namespace {
 using namespace fxaa311_internal;
 
-// Per-channel products of the luma dot, one table per weight: entry k is the product the
-// reference computes for channel value k (UnormToFloat(k)·w, or SrgbDecode8(k)·w), so the sums
-// add exactly the same floats in the same order.
-struct LumaTables {
-  float r[256], g[256], b[256];
-};
-const LumaTables& SqrtLuminanceTables() {
-  static const LumaTables t = [] {
-    LumaTables x{};
-    for (int k = 0; k < 256; ++k) {
-      x.r[k] = SrgbDecode8(static_cast<uint8_t>(k)) * 0.2126729f;
-      x.g[k] = SrgbDecode8(static_cast<uint8_t>(k)) * 0.7151522f;
-      x.b[k] = SrgbDecode8(static_cast<uint8_t>(k)) * 0.0721750f;
-    }
-    return x;
-  }();
-  return t;
-}
-
-const LumaTables& Rec601Tables() {
-  static const LumaTables t = [] {
-    LumaTables x{};
-    for (int k = 0; k < 256; ++k) {
-      const float u = Unorm(static_cast<uint8_t>(k));
-      x.r[k] = u * 0.299f;
-      x.g[k] = u * 0.587f;
-      x.b[k] = u * 0.114f;
-    }
-    return x;
-  }();
-  return t;
-}
-
 // One row of the luma plane for the mode (step 1): `p` is an input row, `o` receives w lumas.
-void PlaneRow(const uint8_t* p, int w, Luma luma, uint8_t* o) {
-  if (luma == Luma::kGreen) {
-    for (int x = 0; x < w; ++x) o[x] = p[4 * x + 1];
-  } else if (luma == Luma::kRec601) {
-    // Fxaa311LumaFrame: StoreUnorm8(r·0.299 + (g·0.587 + b·0.114)), r = UnormToFloat.
-    const LumaTables& rec = Rec601Tables();
-    for (int x = 0; x < w; ++x) {
-      o[x] = StoreUnorm8(rec.r[p[4 * x]] + (rec.g[p[4 * x + 1]] + rec.b[p[4 * x + 2]]));
-    }
-  } else {  // kSqrtLuminance: StoreUnorm8(sqrt((R·0.2126729 + G·0.7151522) + B·0.0721750))
-    const LumaTables& sq = SqrtLuminanceTables();
-    for (int x = 0; x < w; ++x) {
-      o[x] = StoreUnorm8(std::sqrt((sq.r[p[4 * x]] + sq.g[p[4 * x + 1]]) + sq.b[p[4 * x + 2]]));
-    }
-  }
-}
-
-void PlaneRow(const uint8_t* p, int w, Luma, float* o) {  // kRec601Rgb
-  for (int x = 0; x < w; ++x) {
-    const float r = Unorm(p[4 * x]), g = Unorm(p[4 * x + 1]), b = Unorm(p[4 * x + 2]);
-    o[x] = r * 0.299f + (g * 0.587f + b * 0.114f);  // Fxaa311TapLuma(kRec601Rgb)
-  }
-}
+inline void PlaneRow(const uint8_t* p, int w, Luma luma, uint8_t* o) { PlaneRow8(p, w, luma, o); }
+inline void PlaneRow(const uint8_t* p, int w, Luma, float* o) { PlaneRowF(p, w, o); }  // kRec601Rgb
 
 // Step 2: edge[x] = 1 where the pixel passes the early exit and has range > 0. max/min are
 // exact, so their nesting does not matter; k -> UnormToFloat(k) is increasing, so the max
