@@ -196,15 +196,29 @@ void ContrastRowBytes(RowTriple<uint8_t> r, int w, const TapGrid& g, int y, cons
   mark(w - 1);
 }
 
+// Pass 2 reads a candidate's input texels (the final tap, rows y − 1 .. y + 1) and plane rows
+// long after pass 1 streamed them: they are fetched kPrefetch candidates ahead.
+constexpr size_t kPrefetch = 8;
+template <typename P>
+inline void Prefetch(const Image8& in, const LumaPlane<P>& pl, const Candidate& c) {
+  const int ya = std::max(c.y - 1, 0), yb = std::min(c.y + 1, in.Height() - 1);
+  __builtin_prefetch(in.Row(ya) + 4 * c.x);
+  __builtin_prefetch(in.Row(c.y) + 4 * c.x);
+  __builtin_prefetch(in.Row(yb) + 4 * c.x);
+  __builtin_prefetch(pl.Row(ya) + c.x);
+  __builtin_prefetch(pl.Row(yb) + c.x);
+}
+
 // ShadePixel for a pixel that passed the early exit with range > 0, lumas from the plane.
 // Statement order and float expressions are ShadePixel's; returns the taps it took.
 template <typename P>
-uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler& tex, const Image8& src, int x, int y,
-                   const Fxaa311Params& prm, float rcpX, float rcpY, uint8_t* out) {
+[[gnu::always_inline]] inline uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler& tex,
+                                                 const Image8& src, int x, int y, const Fxaa311Params& prm, float rcpX,
+                                                 float rcpY, uint8_t* out) {
   const bool glsl = prm.order == Order::kSeed003Glsl;
   const bool rgb_taps = prm.luma == Luma::kRec601Rgb;  // bilinear lumas need filtered rgb
   const std::vector<float>& P_ = prm.steps;
-  auto tap = [&](float s, float t) {
+  auto tap = [&](float s, float t) __attribute__((always_inline)) {
     return rgb_taps ? Fxaa311TapLuma(tex.SampleNormalized(s, t), prm.luma) : pl.Bilinear(s, t);
   };
   uint64_t taps = 9;
@@ -213,7 +227,9 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler&
   float posMy = (static_cast<float>(y) + 0.5f) / static_cast<float>(H);
   const TapAxis& cx = grid.cols[x];
   const TapAxis& ry = grid.rows[y];
-  auto L = [&](int dx, int dy) { return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma); };
+  auto L = [&](int dx, int dy) __attribute__((always_inline)) {
+    return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma);
+  };
   const float lumaM = L(0, 0);
   float lumaS = L(0, 1);
   float lumaE = L(1, 0);
@@ -361,6 +377,33 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler&
   return taps;
 }
 
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_FXAA311_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define AALAB_FXAA311_CLONES
+#endif
+
+// Pass 2 over one chunk's candidates: near ties decided with the real taps, then EdgePixel
+// for the edge pixels. Returns the taps and adds the edge pixels to *edges. Built twice
+// (AVX2 and the baseline, chosen at run time): the AVX2 clone rounds floor() in one
+// instruction (roundss); both run the same IEEE operations (no FMA: -ffp-contract=off), so
+// the bits are the same.
+template <typename P>
+AALAB_FXAA311_CLONES uint64_t EdgeList(const std::vector<Candidate>& list, const LumaPlane<P>& plane,
+                                       const TapGrid& grid, BilinearSampler& tex, const Image8& in,
+                                       const Fxaa311Params& params, float rcpX, float rcpY, Image8& out,
+                                       uint64_t* edges) {
+  uint64_t taps = 0;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const Candidate& c = list[i];
+    if (i + kPrefetch < list.size()) Prefetch(in, plane, list[i + kPrefetch]);
+    if (c.mark == kTie && !EdgeByTaps(plane, in, grid, c.x, c.y, params)) continue;
+    ++*edges;
+    taps += EdgePixel(plane, grid, tex, in, c.x, c.y, params, rcpX, rcpY, out.Row(c.y) + 4 * c.x);
+  }
+  return taps;
+}
+
 template <typename P>
 Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* stats) {
   const int w = in.Width();
@@ -425,11 +468,8 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
   ParallelForChunks(h, kGrain, [&](int y0, int y1) {
     BilinearSampler tex(in);  // rgb taps: the prepared frame's rgb is the input's rgb
     uint64_t chunk_taps = 0, edges = 0;
-    for (const Candidate& c : candidates[static_cast<size_t>(y0 / kGrain)]) {
-      if (c.mark == kTie && !EdgeByTaps(plane, in, grid, c.x, c.y, params)) continue;
-      ++edges;
-      chunk_taps += EdgePixel(plane, grid, tex, in, c.x, c.y, params, rcpX, rcpY, out.Row(c.y) + 4 * c.x);
-    }
+    chunk_taps +=
+        EdgeList(candidates[static_cast<size_t>(y0 / kGrain)], plane, grid, tex, in, params, rcpX, rcpY, out, &edges);
     chunk_taps += 5 * (static_cast<uint64_t>(y1 - y0) * static_cast<uint64_t>(w) - edges);
     taps[static_cast<size_t>(y0 / kGrain)] = chunk_taps;
   });

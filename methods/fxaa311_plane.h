@@ -149,7 +149,9 @@ template <typename P>
 bool EdgeByTaps(const LumaPlane<P>& pl, const Image8& src, const TapGrid& g, int x, int y, const Fxaa311Params& prm) {
   const TapAxis& cx = g.cols[x];
   const TapAxis& ry = g.rows[y];
-  auto L = [&](int dx, int dy) { return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma); };
+  auto L = [&](int dx, int dy) __attribute__((always_inline)) {
+    return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma);
+  };
   const float lumaM = L(0, 0), lumaS = L(0, 1), lumaE = L(1, 0), lumaN = L(0, -1), lumaW = L(-1, 0);
   const float rangeMax = std::max(std::max(lumaN, lumaW), std::max(lumaE, std::max(lumaS, lumaM)));
   const float rangeMin = std::min(std::min(lumaN, lumaW), std::min(lumaE, std::min(lumaS, lumaM)));
