@@ -11,7 +11,8 @@ namespace aalab::fxaa311_internal {
 /// kGl arithmetic) stores for input pixel p[4x..4x+3], for x in [0, w). `luma` is kRec601
 /// (the stored alpha), kSqrtLuminance (the stored alpha) or kGreen (the green byte).
 /// Bit-identical to the scalar expressions of Fxaa311LumaFrame: the same IEEE float32
-/// operations in the same order, four pixels at a time (SSE2, the x86-64 baseline).
+/// operations in the same order, four pixels at a time (SSE2, the x86-64 baseline), eight
+/// with AVX2 where the CPU has it.
 void PlaneRow8(const uint8_t* p, int w, Fxaa311Params::Luma luma, uint8_t* o);
 
 /// The scalar form of PlaneRow8 (per-channel product tables), kept as its reference.

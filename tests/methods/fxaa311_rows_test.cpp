@@ -53,18 +53,21 @@ TEST(Fxaa311Rows, GreenPlaneIsTheGreenByte) { EXPECT_EQ(CountDifferences(Luma::k
 
 // Known values by hand: rec601 of (255, 0, 0) = 0.299·255 = 76.245 → 76; of (0, 255, 0) =
 // 149.685 → 150; of (0, 0, 255) = 29.07 → 29; white → 255, black → 0. sqrt-luminance of
-// mid grey 128: sqrt(SrgbDecode(128) ≈ 0.2158605) = 0.464608 → ·255 = 118.475 → 118.
+// mid grey 128: sqrt(SrgbDecode(128) ≈ 0.2158605) = 0.464608 → ·255 = 118.475 → 118. The
+// six pixels open a row of 16 (the SSE2 loop) and of 32 (the AVX2 loop where the CPU has it).
 TEST(Fxaa311Rows, KnownColoursByHand) {
-  const uint8_t px[] = {255, 0, 0, 9, 0, 255, 0, 9, 0, 0, 255, 9, 255, 255, 255, 9, 0, 0, 0, 9, 128, 128, 128, 9};
-  uint8_t o[6] = {};
-  fxaa311_internal::PlaneRow8(px, 6, Luma::kRec601, o);
-  EXPECT_EQ(o[0], 76);
-  EXPECT_EQ(o[1], 150);
-  EXPECT_EQ(o[2], 29);
-  EXPECT_EQ(o[3], 255);
-  EXPECT_EQ(o[4], 0);
-  fxaa311_internal::PlaneRow8(px, 16, Luma::kSqrtLuminance, o);
-  EXPECT_EQ(o[5], 118);
+  uint8_t px[32 * 4] = {255, 0, 0, 9, 0, 255, 0, 9, 0, 0, 255, 9, 255, 255, 255, 9, 0, 0, 0, 9, 128, 128, 128, 9};
+  for (int w : {16, 32}) {
+    uint8_t o[32] = {};
+    fxaa311_internal::PlaneRow8(px, w, Luma::kRec601, o);
+    EXPECT_EQ(o[0], 76) << w;
+    EXPECT_EQ(o[1], 150) << w;
+    EXPECT_EQ(o[2], 29) << w;
+    EXPECT_EQ(o[3], 255) << w;
+    EXPECT_EQ(o[4], 0) << w;
+    fxaa311_internal::PlaneRow8(px, w, Luma::kSqrtLuminance, o);
+    EXPECT_EQ(o[5], 118) << w;
+  }
 }
 
 }  // namespace
