@@ -34,14 +34,17 @@ struct LumaPlane {
     y = std::clamp(y, 0, h - 1);
     return LumaValue(v[static_cast<size_t>(y) * w + x]);
   }
+  // The 2×2 block of footprint `f` blended (BilinearBlend of the four clamped texels): two
+  // row and two column clamps for the four reads.
+  [[gnu::always_inline]] float Blend(const BilinearFootprint& f) const {
+    const int xa = std::clamp(f.x0, 0, w - 1), xb = std::clamp(f.x0 + 1, 0, w - 1);
+    const P* ra = Row(std::clamp(f.y0, 0, h - 1));
+    const P* rb = Row(std::clamp(f.y0 + 1, 0, h - 1));
+    return BilinearBlend(LumaValue(ra[xa]), LumaValue(ra[xb]), LumaValue(rb[xa]), LumaValue(rb[xb]), f);
+  }
   // The luma channel of BilinearSampler::SampleNormalized(s, t), operation for operation.
   [[gnu::always_inline]] float Bilinear(float s, float t) const {
-    const BilinearFootprint f = BilinearAt(s * static_cast<float>(w), t * static_cast<float>(h), w, h);
-    const float a = Texel(f.x0, f.y0);
-    const float b = Texel(f.x0 + 1, f.y0);
-    const float c = Texel(f.x0, f.y0 + 1);
-    const float d = Texel(f.x0 + 1, f.y0 + 1);
-    return BilinearBlend(a, b, c, d, f);
+    return Blend(BilinearAt(s * static_cast<float>(w), t * static_cast<float>(h), w, h));
   }
 };
 
@@ -51,10 +54,8 @@ inline void BlendRgb(const Image8& img, const BilinearFootprint& f, float rgb[3]
   const int W = img.Width(), H = img.Height();
   const int xa = std::clamp(f.x0, 0, W - 1), xb = std::clamp(f.x0 + 1, 0, W - 1);
   const int ya = std::clamp(f.y0, 0, H - 1), yb = std::clamp(f.y0 + 1, 0, H - 1);
-  const uint8_t* a = img.Pixel(xa, ya);
-  const uint8_t* b = img.Pixel(xb, ya);
-  const uint8_t* c = img.Pixel(xa, yb);
-  const uint8_t* d = img.Pixel(xb, yb);
+  const uint8_t *ra = img.Row(ya), *rb = img.Row(yb);
+  const uint8_t *a = ra + 4 * xa, *b = ra + 4 * xb, *c = rb + 4 * xa, *d = rb + 4 * xb;
   for (int k = 0; k < 3; ++k) rgb[k] = BilinearBlend(Unorm(a[k]), Unorm(b[k]), Unorm(c[k]), Unorm(d[k]), f);
 }
 
@@ -134,8 +135,7 @@ template <typename P>
     (void)luma;
     (void)x;
     (void)y;
-    return BilinearBlend(pl.Texel(f.x0, f.y0), pl.Texel(f.x0 + 1, f.y0), pl.Texel(f.x0, f.y0 + 1),
-                         pl.Texel(f.x0 + 1, f.y0 + 1), f);
+    return pl.Blend(f);
   }
   if (fx == 0.0f && fy == 0.0f) return pl.Texel(cx.i[dx + 1], ry.i[dy + 1]);
   BilinearFootprint f;
