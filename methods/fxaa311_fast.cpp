@@ -37,12 +37,17 @@ using Order = Fxaa311Params::Order;
 //      float for rec601-rgb (the per-tap dot of an exact texel read). Texel lumas are read
 //      from the plane; bilinear luma taps filter the plane (alpha-stored modes: exactly the
 //      alpha channel of the bilinear fetch; rec601-rgb filters rgb through the sampler).
-//   2. The early-exit contrast test over whole rows, in a loop the compiler vectorises (max
-//      and min of N, W, M, E, S, then the shader's float comparison). Pixels that exit
-//      (and the range = 0 pixels, see above) copy the input; the output row is first
-//      written as a copy, so only edge pixels are touched again.
-//   3. Only edge pixels run the rest of the shader (EdgePixel below: ShadePixel's
-//      statements from the corner fetches on, with the same luma values).
+//      The 8-bit rows are computed in SSE2 / AVX2 with the pre-pass's float operations
+//      (methods/fxaa311_rows.cpp).
+//   2. The early-exit contrast test over whole rows, 16 pixels at a time on 8-bit lumas
+//      (SSE2: max − min of N, W, M, E, S against the largest difference that always exits;
+//      only the pixels above it look up the shader's decision in a table), listing the
+//      candidates (edge pixels and near ties) per chunk of rows. Pixels that exit (and the
+//      range = 0 pixels, see above) copy the input; the output row is first written as a
+//      copy, so only edge pixels are touched again.
+//   3. Only the listed pixels run the rest of the shader (EdgePixel below: ShadePixel's
+//      statements from the corner fetches on, with the same luma values), in a function
+//      built for AVX2 and the baseline (EdgeList; the same IEEE operations, no FMA).
 // The 3x3 taps are fetched where the shader fetches them, a hair off the texel centres in
 // many columns and rows (methods/fxaa311_plane.h, TapGrid): step 2 decides those pixels from
 // texel lumas unless the test is within the taps' deviation of a tie, and then with the real
