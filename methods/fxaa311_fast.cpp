@@ -11,11 +11,16 @@
 #include <type_traits>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "core/color.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "methods/fxaa311.h"
 #include "methods/fxaa311_plane.h"
+#include "methods/fxaa311_rows.h"
 #include "methods/row_ops.h"
 
 namespace aalab {
@@ -32,12 +37,17 @@ using Order = Fxaa311Params::Order;
 //      float for rec601-rgb (the per-tap dot of an exact texel read). Texel lumas are read
 //      from the plane; bilinear luma taps filter the plane (alpha-stored modes: exactly the
 //      alpha channel of the bilinear fetch; rec601-rgb filters rgb through the sampler).
-//   2. The early-exit contrast test over whole rows, in a loop the compiler vectorises (max
-//      and min of N, W, M, E, S, then the shader's float comparison). Pixels that exit
-//      (and the range = 0 pixels, see above) copy the input; the output row is first
-//      written as a copy, so only edge pixels are touched again.
-//   3. Only edge pixels run the rest of the shader (EdgePixel below: ShadePixel's
-//      statements from the corner fetches on, with the same luma values).
+//      The 8-bit rows are computed in SSE2 / AVX2 with the pre-pass's float operations
+//      (methods/fxaa311_rows.cpp).
+//   2. The early-exit contrast test over whole rows, 16 pixels at a time on 8-bit lumas
+//      (SSE2: max − min of N, W, M, E, S against the largest difference that always exits;
+//      only the pixels above it look up the shader's decision in a table), listing the
+//      candidates (edge pixels and near ties) per chunk of rows. Pixels that exit (and the
+//      range = 0 pixels, see above) copy the input; the output row is first written as a
+//      copy, so only edge pixels are touched again.
+//   3. Only the listed pixels run the rest of the shader (EdgePixel below: ShadePixel's
+//      statements from the corner fetches on, with the same luma values), in a function
+//      built for AVX2 and the baseline (EdgeList; the same IEEE operations, no FMA).
 // The 3x3 taps are fetched where the shader fetches them, a hair off the texel centres in
 // many columns and rows (methods/fxaa311_plane.h, TapGrid): step 2 decides those pixels from
 // texel lumas unless the test is within the taps' deviation of a tie, and then with the real
@@ -54,63 +64,9 @@ using Order = Fxaa311Params::Order;
 namespace {
 using namespace fxaa311_internal;
 
-// Per-channel products of the luma dot, one table per weight: entry k is the product the
-// reference computes for channel value k (UnormToFloat(k)·w, or SrgbDecode8(k)·w), so the sums
-// add exactly the same floats in the same order.
-struct LumaTables {
-  float r[256], g[256], b[256];
-};
-const LumaTables& SqrtLuminanceTables() {
-  static const LumaTables t = [] {
-    LumaTables x{};
-    for (int k = 0; k < 256; ++k) {
-      x.r[k] = SrgbDecode8(static_cast<uint8_t>(k)) * 0.2126729f;
-      x.g[k] = SrgbDecode8(static_cast<uint8_t>(k)) * 0.7151522f;
-      x.b[k] = SrgbDecode8(static_cast<uint8_t>(k)) * 0.0721750f;
-    }
-    return x;
-  }();
-  return t;
-}
-
-const LumaTables& Rec601Tables() {
-  static const LumaTables t = [] {
-    LumaTables x{};
-    for (int k = 0; k < 256; ++k) {
-      const float u = Unorm(static_cast<uint8_t>(k));
-      x.r[k] = u * 0.299f;
-      x.g[k] = u * 0.587f;
-      x.b[k] = u * 0.114f;
-    }
-    return x;
-  }();
-  return t;
-}
-
 // One row of the luma plane for the mode (step 1): `p` is an input row, `o` receives w lumas.
-void PlaneRow(const uint8_t* p, int w, Luma luma, uint8_t* o) {
-  if (luma == Luma::kGreen) {
-    for (int x = 0; x < w; ++x) o[x] = p[4 * x + 1];
-  } else if (luma == Luma::kRec601) {
-    // Fxaa311LumaFrame: StoreUnorm8(r·0.299 + (g·0.587 + b·0.114)), r = UnormToFloat.
-    const LumaTables& rec = Rec601Tables();
-    for (int x = 0; x < w; ++x) {
-      o[x] = StoreUnorm8(rec.r[p[4 * x]] + (rec.g[p[4 * x + 1]] + rec.b[p[4 * x + 2]]));
-    }
-  } else {  // kSqrtLuminance: StoreUnorm8(sqrt((R·0.2126729 + G·0.7151522) + B·0.0721750))
-    const LumaTables& sq = SqrtLuminanceTables();
-    for (int x = 0; x < w; ++x) {
-      o[x] = StoreUnorm8(std::sqrt((sq.r[p[4 * x]] + sq.g[p[4 * x + 1]]) + sq.b[p[4 * x + 2]]));
-    }
-  }
-}
-
-void PlaneRow(const uint8_t* p, int w, Luma, float* o) {  // kRec601Rgb
-  for (int x = 0; x < w; ++x) {
-    const float r = Unorm(p[4 * x]), g = Unorm(p[4 * x + 1]), b = Unorm(p[4 * x + 2]);
-    o[x] = r * 0.299f + (g * 0.587f + b * 0.114f);  // Fxaa311TapLuma(kRec601Rgb)
-  }
-}
+inline void PlaneRow(const uint8_t* p, int w, Luma luma, uint8_t* o) { PlaneRow8(p, w, luma, o); }
+inline void PlaneRow(const uint8_t* p, int w, Luma, float* o) { PlaneRowF(p, w, o); }  // kRec601Rgb
 
 // Step 2: edge[x] = 1 where the pixel passes the early exit and has range > 0. max/min are
 // exact, so their nesting does not matter; k -> UnormToFloat(k) is increasing, so the max
@@ -127,6 +83,13 @@ inline bool NearTie(float range_max, float range, float thr, float thr_min, floa
 // the real taps (EdgeByTaps) once every plane row exists.
 constexpr uint8_t kExit = 0, kEdge = 1, kTie = 2;
 
+// A pixel step 2 did not mark kExit: its position and mark (kEdge or kTie). Pass 1 lists a
+// chunk's candidates in row order; pass 2 visits only them.
+struct Candidate {
+  int x, y;
+  uint8_t mark;
+};
+
 // The plane rows around row y: north, middle, south (clamped at the frame's border).
 template <typename P>
 struct RowTriple {
@@ -135,11 +98,11 @@ struct RowTriple {
   const P* s;
 };
 
-// Step 2 for one row of float lumas (rec601-rgb): returns the number of pixels not marked
-// kExit. Pixels whose taps are off the texel centres and whose texel-luma test is a near tie
+// Step 2 for one row of float lumas (rec601-rgb): appends the pixels not marked kExit to
+// `out`. Pixels whose taps are off the texel centres and whose texel-luma test is a near tie
 // (NearTie) are marked kTie.
-int ContrastRow(RowTriple<float> r, int w, const TapGrid& g, int y, const Fxaa311Params& prm, float margin,
-                uint8_t* edge) {
+void ContrastRow(RowTriple<float> r, int w, const TapGrid& g, int y, const Fxaa311Params& prm, float margin,
+                 std::vector<Candidate>& out) {
   const float thr = prm.edge_threshold, thr_min = prm.edge_threshold_min;
   const bool row_exact = g.rows[y].exact;
   const float *rn = r.n, *rm = r.m, *rs = r.s;
@@ -149,15 +112,14 @@ int ContrastRow(RowTriple<float> r, int w, const TapGrid& g, int y, const Fxaa31
     const float mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
     const float range = mx - mn;
     const float clamped = std::max(thr_min, mx * thr);
+    uint8_t mark = kExit;
     if (!(row_exact && g.cols[x].exact) && NearTie(mx, range, thr, thr_min, margin)) {
-      edge[x] = kTie;
+      mark = kTie;
     } else {
-      edge[x] = (range < clamped || range == 0.0f) ? kExit : kEdge;
+      mark = (range < clamped || range == 0.0f) ? kExit : kEdge;
     }
+    if (mark != kExit) out.push_back({x, y, mark});
   }
-  int count = 0;
-  for (int x = 0; x < w; ++x) count += edge[x] != kExit;
-  return count;
 }
 
 // The early-exit decision for 8-bit lumas depends only on the (max, min) byte pair: a
@@ -191,59 +153,77 @@ ExitTable MakeExitTable(float thr, float thr_min, float margin) {
   return t;
 }
 
-// Step 2 for one row of 8-bit lumas, through the table: returns the number of pixels not
-// marked kExit. Pixels whose taps are off the texel centres and whose byte pair is a near tie
-// are marked kTie; near-tie pairs are always candidates (ExitTable::safe).
-int ContrastRowBytes(RowTriple<uint8_t> r, int w, const TapGrid& g, int y, const ExitTable& tab, uint8_t* edge) {
+// Step 2 for one row of 8-bit lumas, through the table: appends the pixels not marked kExit
+// to `out`. Pixels whose taps are off the texel centres and whose byte pair is a near tie are
+// marked kTie; near-tie pairs are always candidates (ExitTable::safe). The interior goes 16
+// pixels at a time (SSE2): max − min of the five bytes against `safe`, and only the pixels
+// above it look up the table.
+void ContrastRowBytes(RowTriple<uint8_t> r, int w, const TapGrid& g, int y, const ExitTable& tab,
+                      std::vector<Candidate>& out) {
   const bool row_exact = g.rows[y].exact;
   const uint8_t *rn = r.n, *rm = r.m, *rs = r.s;
-  auto exact = [&](int x, uint8_t n, uint8_t wv, uint8_t m, uint8_t e, uint8_t s) -> uint8_t {
+  auto mark = [&](int x) {
+    const uint8_t n = rn[x], wv = rm[std::max(x - 1, 0)], m = rm[x], e = rm[std::min(x + 1, w - 1)], s = rs[x];
     const uint8_t mx = std::max(std::max(n, wv), std::max(m, std::max(e, s)));
     const uint8_t mn = std::min(std::min(n, wv), std::min(m, std::min(e, s)));
-    if (tab.near[mx * 256 + mn] && !(row_exact && g.cols[x].exact)) return kTie;
-    return tab.edge[mx * 256 + mn];
+    uint8_t k = tab.edge[mx * 256 + mn];
+    if (tab.near[mx * 256 + mn] && !(row_exact && g.cols[x].exact)) k = kTie;
+    if (k != kExit) out.push_back({x, y, k});
   };
-  if (w <= 2) {
-    for (int x = 0; x < w; ++x) {
-      edge[x] = exact(x, rn[x], rm[std::max(x - 1, 0)], rm[x], rm[std::min(x + 1, w - 1)], rs[x]);
-    }
-  } else {
-    edge[0] = exact(0, rn[0], rm[0], rm[0], rm[1], rs[0]);
-    edge[w - 1] = exact(w - 1, rn[w - 1], rm[w - 2], rm[w - 1], rm[w - 1], rs[w - 1]);
-    // Vectorisable: candidates where max − min exceeds the always-exit difference.
-    const uint8_t safe = static_cast<uint8_t>(std::max(tab.safe, 0));
-    const bool none_safe = tab.safe < 0;
-    for (int x = 1; x < w - 1; ++x) {
-      const uint8_t mx = std::max(std::max(rn[x], rm[x - 1]), std::max(rm[x], std::max(rm[x + 1], rs[x])));
-      const uint8_t mn = std::min(std::min(rn[x], rm[x - 1]), std::min(rm[x], std::min(rm[x + 1], rs[x])));
-      edge[x] = static_cast<uint8_t>(mx - mn) > safe || none_safe;
-    }
-    for (int x = 1; x < w - 1; ++x) {
-      if ((x & 7) == 0 && x + 8 <= w - 1) {  // skip 8 candidates at a time when none is set
-        uint64_t word;
-        std::memcpy(&word, edge + x, 8);
-        if (word == 0) {
-          x += 7;
-          continue;
-        }
-      }
-      if (edge[x]) edge[x] = exact(x, rn[x], rm[x - 1], rm[x], rm[x + 1], rs[x]);
+  if (tab.safe < 0 || w <= 2) {  // every pixel is a candidate
+    for (int x = 0; x < w; ++x) mark(x);
+    return;
+  }
+  mark(0);
+  int x = 1;
+#if defined(__SSE2__)
+  const __m128i safe = _mm_set1_epi8(static_cast<char>(tab.safe));
+  const __m128i zero = _mm_setzero_si128();
+  auto load = [](const uint8_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); };
+  for (; x + 16 <= w - 1; x += 16) {
+    const __m128i n = load(rn + x), s = load(rs + x), m = load(rm + x), l = load(rm + x - 1), e = load(rm + x + 1);
+    const __m128i mx = _mm_max_epu8(_mm_max_epu8(n, l), _mm_max_epu8(m, _mm_max_epu8(e, s)));
+    const __m128i mn = _mm_min_epu8(_mm_min_epu8(n, l), _mm_min_epu8(m, _mm_min_epu8(e, s)));
+    // max − min > safe  <=>  (max − min) −sat safe != 0
+    const __m128i over = _mm_subs_epu8(_mm_sub_epi8(mx, mn), safe);
+    unsigned bits = ~static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(over, zero))) & 0xFFFFu;
+    while (bits != 0) {
+      mark(x + std::countr_zero(bits));
+      bits &= bits - 1;
     }
   }
-  int count = 0;
-  for (int x = 0; x < w; ++x) count += edge[x] != kExit;
-  return count;
+#endif
+  for (; x < w - 1; ++x) {
+    const uint8_t mx = std::max(std::max(rn[x], rm[x - 1]), std::max(rm[x], std::max(rm[x + 1], rs[x])));
+    const uint8_t mn = std::min(std::min(rn[x], rm[x - 1]), std::min(rm[x], std::min(rm[x + 1], rs[x])));
+    if (mx - mn > tab.safe) mark(x);
+  }
+  mark(w - 1);
+}
+
+// Pass 2 reads a candidate's input texels (the final tap, rows y − 1 .. y + 1) and plane rows
+// long after pass 1 streamed them: they are fetched kPrefetch candidates ahead.
+constexpr size_t kPrefetch = 8;
+template <typename P>
+inline void Prefetch(const Image8& in, const LumaPlane<P>& pl, const Candidate& c) {
+  const int ya = std::max(c.y - 1, 0), yb = std::min(c.y + 1, in.Height() - 1);
+  __builtin_prefetch(in.Row(ya) + 4 * c.x);
+  __builtin_prefetch(in.Row(c.y) + 4 * c.x);
+  __builtin_prefetch(in.Row(yb) + 4 * c.x);
+  __builtin_prefetch(pl.Row(ya) + c.x);
+  __builtin_prefetch(pl.Row(yb) + c.x);
 }
 
 // ShadePixel for a pixel that passed the early exit with range > 0, lumas from the plane.
 // Statement order and float expressions are ShadePixel's; returns the taps it took.
 template <typename P>
-uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler& tex, const Image8& src, int x, int y,
-                   const Fxaa311Params& prm, float rcpX, float rcpY, uint8_t* out) {
+[[gnu::always_inline]] inline uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler& tex,
+                                                 const Image8& src, int x, int y, const Fxaa311Params& prm, float rcpX,
+                                                 float rcpY, uint8_t* out) {
   const bool glsl = prm.order == Order::kSeed003Glsl;
   const bool rgb_taps = prm.luma == Luma::kRec601Rgb;  // bilinear lumas need filtered rgb
   const std::vector<float>& P_ = prm.steps;
-  auto tap = [&](float s, float t) {
+  auto tap = [&](float s, float t) __attribute__((always_inline)) {
     return rgb_taps ? Fxaa311TapLuma(tex.SampleNormalized(s, t), prm.luma) : pl.Bilinear(s, t);
   };
   uint64_t taps = 9;
@@ -252,7 +232,9 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler&
   float posMy = (static_cast<float>(y) + 0.5f) / static_cast<float>(H);
   const TapAxis& cx = grid.cols[x];
   const TapAxis& ry = grid.rows[y];
-  auto L = [&](int dx, int dy) { return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma); };
+  auto L = [&](int dx, int dy) __attribute__((always_inline)) {
+    return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma);
+  };
   const float lumaM = L(0, 0);
   float lumaS = L(0, 1);
   float lumaE = L(1, 0);
@@ -400,6 +382,33 @@ uint64_t EdgePixel(const LumaPlane<P>& pl, const TapGrid& grid, BilinearSampler&
   return taps;
 }
 
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_FXAA311_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define AALAB_FXAA311_CLONES
+#endif
+
+// Pass 2 over one chunk's candidates: near ties decided with the real taps, then EdgePixel
+// for the edge pixels. Returns the taps and adds the edge pixels to *edges. Built twice
+// (AVX2 and the baseline, chosen at run time): the AVX2 clone rounds floor() in one
+// instruction (roundss); both run the same IEEE operations (no FMA: -ffp-contract=off), so
+// the bits are the same.
+template <typename P>
+AALAB_FXAA311_CLONES uint64_t EdgeList(const std::vector<Candidate>& list, const LumaPlane<P>& plane,
+                                       const TapGrid& grid, BilinearSampler& tex, const Image8& in,
+                                       const Fxaa311Params& params, float rcpX, float rcpY, Image8& out,
+                                       uint64_t* edges) {
+  uint64_t taps = 0;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const Candidate& c = list[i];
+    if (i + kPrefetch < list.size()) Prefetch(in, plane, list[i + kPrefetch]);
+    if (c.mark == kTie && !EdgeByTaps(plane, in, grid, c.x, c.y, params)) continue;
+    ++*edges;
+    taps += EdgePixel(plane, grid, tex, in, c.x, c.y, params, rcpX, rcpY, out.Row(c.y) + 4 * c.x);
+  }
+  return taps;
+}
+
 template <typename P>
 Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* stats) {
   const int w = in.Width();
@@ -423,9 +432,8 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
   const float rcpY = 1.0f / static_cast<float>(h);
   Image8 out(w, h, 4, kUninitialized);  // every row written whole by pass 1 (CopyRowOpaque)
   constexpr int kGrain = 8;
-  // Step 2's marks (kExit / kEdge / kTie) for every pixel, and the non-kExit count per row.
-  std::unique_ptr<uint8_t[]> marks(new uint8_t[static_cast<size_t>(w) * h]);  // all written by pass 1
-  std::vector<int> candidates(static_cast<size_t>(h), 0);
+  // Step 2's candidates (kEdge / kTie) per chunk of rows, in row order.
+  std::vector<std::vector<Candidate>> candidates(static_cast<size_t>((h + kGrain - 1) / kGrain));
   // Pass 1 (steps 1 and 2 fused): a chunk's plane rows, its contrast test and the early exit's
   // copy while the input rows are in cache. The rows just above and below the chunk belong to
   // other chunks that may not have written them yet: they are computed here too (same bytes).
@@ -446,48 +454,28 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
       PlaneRow(in.Row(y1), w, params.luma, below.data());
       row_below = below.data();
     }
+    std::vector<Candidate>& list = candidates[static_cast<size_t>(y0 / kGrain)];
     for (int y = y0; y < y1; ++y) {
       // Every pixel first as the early exit writes it: input rgb, alpha 255.
       CopyRowOpaque(in.Row(y), out.Row(y), w);
       const RowTriple<P> r{y == y0 ? row_above : prow(y - 1), prow(y), y == y1 - 1 ? row_below : prow(y + 1)};
-      uint8_t* edge = marks.get() + static_cast<size_t>(y) * w;
       if constexpr (std::is_same_v<P, uint8_t>) {
-        candidates[static_cast<size_t>(y)] = ContrastRowBytes(r, w, grid, y, exit_table, edge);
+        ContrastRowBytes(r, w, grid, y, exit_table, list);
       } else {
-        candidates[static_cast<size_t>(y)] = ContrastRow(r, w, grid, y, params, margin, edge);
+        ContrastRow(r, w, grid, y, params, margin, list);
       }
     }
   });
   // Pass 2 (step 3), with the whole plane: near ties decided with the real taps, then the
-  // edge pixels' search. Rows without candidates are skipped.
-  std::vector<uint64_t> taps(static_cast<size_t>((h + kGrain - 1) / kGrain), 0);
+  // edge pixels' search, for the listed candidates only. The shader takes 5 taps at every
+  // pixel that exits.
+  std::vector<uint64_t> taps(candidates.size(), 0);
   ParallelForChunks(h, kGrain, [&](int y0, int y1) {
     BilinearSampler tex(in);  // rgb taps: the prepared frame's rgb is the input's rgb
-    uint64_t chunk_taps = 0;
-    for (int y = y0; y < y1; ++y) {
-      uint8_t* edge = marks.get() + static_cast<size_t>(y) * w;
-      int edges = candidates[static_cast<size_t>(y)];
-      for (int x = 0; x < w && edges > 0; ++x) {
-        if (edge[x] != kTie) continue;
-        edge[x] = EdgeByTaps(plane, in, grid, x, y, params) ? kEdge : kExit;
-        edges -= edge[x] == kExit;
-      }
-      chunk_taps += 5 * static_cast<uint64_t>(w - edges);
-      if (edges == 0) continue;
-      uint8_t* orow = out.Row(y);
-      for (int x = 0; x < w; ++x) {
-        if ((x & 7) == 0 && x + 8 <= w) {  // skip 8 pixels at a time when none is an edge
-          uint64_t word;
-          std::memcpy(&word, edge + x, 8);
-          if (word == 0) {
-            x += 7;
-            continue;
-          }
-        }
-        if (edge[x] != kEdge) continue;
-        chunk_taps += EdgePixel(plane, grid, tex, in, x, y, params, rcpX, rcpY, orow + 4 * x);
-      }
-    }
+    uint64_t chunk_taps = 0, edges = 0;
+    chunk_taps +=
+        EdgeList(candidates[static_cast<size_t>(y0 / kGrain)], plane, grid, tex, in, params, rcpX, rcpY, out, &edges);
+    chunk_taps += 5 * (static_cast<uint64_t>(y1 - y0) * static_cast<uint64_t>(w) - edges);
     taps[static_cast<size_t>(y0 / kGrain)] = chunk_taps;
   });
   if (stats) {

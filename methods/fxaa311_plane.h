@@ -34,14 +34,17 @@ struct LumaPlane {
     y = std::clamp(y, 0, h - 1);
     return LumaValue(v[static_cast<size_t>(y) * w + x]);
   }
+  // The 2×2 block of footprint `f` blended (BilinearBlend of the four clamped texels): two
+  // row and two column clamps for the four reads.
+  [[gnu::always_inline]] float Blend(const BilinearFootprint& f) const {
+    const int xa = std::clamp(f.x0, 0, w - 1), xb = std::clamp(f.x0 + 1, 0, w - 1);
+    const P* ra = Row(std::clamp(f.y0, 0, h - 1));
+    const P* rb = Row(std::clamp(f.y0 + 1, 0, h - 1));
+    return BilinearBlend(LumaValue(ra[xa]), LumaValue(ra[xb]), LumaValue(rb[xa]), LumaValue(rb[xb]), f);
+  }
   // The luma channel of BilinearSampler::SampleNormalized(s, t), operation for operation.
   [[gnu::always_inline]] float Bilinear(float s, float t) const {
-    const BilinearFootprint f = BilinearAt(s * static_cast<float>(w), t * static_cast<float>(h), w, h);
-    const float a = Texel(f.x0, f.y0);
-    const float b = Texel(f.x0 + 1, f.y0);
-    const float c = Texel(f.x0, f.y0 + 1);
-    const float d = Texel(f.x0 + 1, f.y0 + 1);
-    return BilinearBlend(a, b, c, d, f);
+    return Blend(BilinearAt(s * static_cast<float>(w), t * static_cast<float>(h), w, h));
   }
 };
 
@@ -51,10 +54,8 @@ inline void BlendRgb(const Image8& img, const BilinearFootprint& f, float rgb[3]
   const int W = img.Width(), H = img.Height();
   const int xa = std::clamp(f.x0, 0, W - 1), xb = std::clamp(f.x0 + 1, 0, W - 1);
   const int ya = std::clamp(f.y0, 0, H - 1), yb = std::clamp(f.y0 + 1, 0, H - 1);
-  const uint8_t* a = img.Pixel(xa, ya);
-  const uint8_t* b = img.Pixel(xb, ya);
-  const uint8_t* c = img.Pixel(xa, yb);
-  const uint8_t* d = img.Pixel(xb, yb);
+  const uint8_t *ra = img.Row(ya), *rb = img.Row(yb);
+  const uint8_t *a = ra + 4 * xa, *b = ra + 4 * xb, *c = rb + 4 * xa, *d = rb + 4 * xb;
   for (int k = 0; k < 3; ++k) rgb[k] = BilinearBlend(Unorm(a[k]), Unorm(b[k]), Unorm(c[k]), Unorm(d[k]), f);
 }
 
@@ -122,6 +123,20 @@ template <typename P>
 [[gnu::always_inline]] inline float TapLuma(const LumaPlane<P>& pl, const Image8& src, const TapAxis& cx,
                                             const TapAxis& ry, int x, int y, int dx, int dy, Luma luma) {
   const float fx = cx.f[dx + 1], fy = ry.f[dy + 1];
+  if constexpr (std::is_same_v<P, uint8_t>) {
+    // Always the blend, without a branch on the column's and row's pattern (which a branch
+    // predictor misses): with fx = fy = 0 it returns the texel exactly (a + 0·(b − a) = a).
+    BilinearFootprint f;
+    f.x0 = cx.i[dx + 1];
+    f.y0 = ry.i[dy + 1];
+    f.fx = fx;
+    f.fy = fy;
+    (void)src;
+    (void)luma;
+    (void)x;
+    (void)y;
+    return pl.Blend(f);
+  }
   if (fx == 0.0f && fy == 0.0f) return pl.Texel(cx.i[dx + 1], ry.i[dy + 1]);
   BilinearFootprint f;
   f.x0 = cx.i[dx + 1];
@@ -130,16 +145,9 @@ template <typename P>
   f.fy = fy;
   (void)x;
   (void)y;
-  if constexpr (std::is_same_v<P, float>) {
-    float rgb[3];
-    BlendRgb(src, f, rgb);
-    return Fxaa311TapLuma(Float4{rgb[0], rgb[1], rgb[2], 0.0f}, luma);
-  } else {
-    (void)src;
-    (void)luma;
-    return BilinearBlend(pl.Texel(f.x0, f.y0), pl.Texel(f.x0 + 1, f.y0), pl.Texel(f.x0, f.y0 + 1),
-                         pl.Texel(f.x0 + 1, f.y0 + 1), f);
-  }
+  float rgb[3];  // float plane (rec601-rgb): the luma of the filtered rgb
+  BlendRgb(src, f, rgb);
+  return Fxaa311TapLuma(Float4{rgb[0], rgb[1], rgb[2], 0.0f}, luma);
 }
 
 // The shader's early-exit test with the real taps, for pixels whose taps are not all
@@ -149,7 +157,9 @@ template <typename P>
 bool EdgeByTaps(const LumaPlane<P>& pl, const Image8& src, const TapGrid& g, int x, int y, const Fxaa311Params& prm) {
   const TapAxis& cx = g.cols[x];
   const TapAxis& ry = g.rows[y];
-  auto L = [&](int dx, int dy) { return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma); };
+  auto L = [&](int dx, int dy) __attribute__((always_inline)) {
+    return TapLuma(pl, src, cx, ry, x, y, dx, dy, prm.luma);
+  };
   const float lumaM = L(0, 0), lumaS = L(0, 1), lumaE = L(1, 0), lumaN = L(0, -1), lumaW = L(-1, 0);
   const float rangeMax = std::max(std::max(lumaN, lumaW), std::max(lumaE, std::max(lumaS, lumaM)));
   const float rangeMin = std::min(std::min(lumaN, lumaW), std::min(lumaE, std::min(lumaS, lumaM)));

@@ -8,6 +8,7 @@ set(AALAB_METHOD_SOURCES
   fxaa1_fast.cpp
   fxaa311.cpp
   fxaa311_fast.cpp
+  fxaa311_rows.cpp
   smaa.cpp
   smaa_fast.cpp
   smaa_textures.cpp
