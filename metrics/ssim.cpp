@@ -35,7 +35,8 @@
 // window's second moment about its tile's centre), which the tests check on every test image.
 // Measured against the double definition: report values (the mean) moved by at most 3.7e-6
 // over the default run at 480x270 and 1e-7 on the bench's 1080p pair; single pixels of the
-// map by up to 2.8e-4, in flat windows far from their tile's centre. Both paths are
+// map by up to 5.7e-4 (the default run's frames), in flat windows far from their tile's
+// centre. Both paths are
 // bit-identical at any thread count; SSIM(x, x) = 1 and SSIM(x, y) = SSIM(y, x) exactly.
 #include "metrics/ssim.h"
 

@@ -46,7 +46,8 @@
 //    flat windows far from their tile's centre (Q ≈ (μ − c)² ≫ D ≈ C2), e.g. a flat 0.02 next
 //    to 0.98 in one tile, up to ~6·γ26·0.5/C2 ≈ 5e-3 at worst; measured there 2e-4 per
 //    pixel; on the bench's 1080p pair ≤ 2.8e-4 per pixel and 1e-7 on the mean; over the
-//    default run at 480x270 ≤ 3.7e-6 on any report value (docs/performance.md).
+//    default run at 480x270 ≤ 5.7e-4 per pixel and 3.7e-6 on any report value
+//    (docs/performance.md).
 //  - SSIM(x, x) = 1 exactly (the x and y sums are the same floats, so 2σxy = σx² + σy² and
 //    2μxμy = μx² + μy² bit for bit), and SSIM(x, y) = SSIM(y, x) exactly (every operation
 //    that meets both is commutative).
@@ -69,10 +70,14 @@ namespace {
 constexpr int kTaps = 11;
 constexpr int kR = 5;
 
+// (Defined on the command line to check one clone alone: -DAALAB_SIMD_CLONES= for the SSE2
+// baseline, as docs/performance.md's cross-check of the dispatch paths did.)
+#ifndef AALAB_SIMD_CLONES
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #define AALAB_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define AALAB_SIMD_CLONES
+#endif
 #endif
 
 #define AALAB_INLINE __attribute__((always_inline)) inline
