@@ -172,10 +172,9 @@ std::vector<MetricValue> ComputeSsimMetric(const MetricInput& in) {
 
 namespace {
 
-// The checks and the per-channel loop shared by every path; channel(c, w) is one
-// channel's mean SSIM.
-template <typename Channel>
-SsimResult ComputeSsimWith(const ImageF& a, const ImageF& b, Channel channel) {
+// The checks shared by every path; all(w) gives the three channels' mean SSIM.
+template <typename All>
+SsimResult ComputeSsimWith(const ImageF& a, const ImageF& b, All all) {
   RequireSameShape(a, b, "ssim");
   if (a.Channels() < 3) {
     throw UserError("ssim: needs RGB images (got " + std::to_string(a.Channels()) + " channels)");
@@ -185,8 +184,7 @@ SsimResult ComputeSsimWith(const ImageF& a, const ImageF& b, Channel channel) {
     out.null_reason = "image smaller than the 11x11 SSIM window";
     return out;
   }
-  const auto w = GaussianWindow();
-  for (int c = 0; c < 3; ++c) out.per_channel[c] = channel(c, w);
+  out.per_channel = all(GaussianWindow());
   out.ssim = (out.per_channel[0] + out.per_channel[1] + out.per_channel[2]) / 3.0;
   return out;
 }
@@ -194,11 +192,15 @@ SsimResult ComputeSsimWith(const ImageF& a, const ImageF& b, Channel channel) {
 }  // namespace
 
 SsimResult ComputeSsimReference(const ImageF& a, const ImageF& b) {
-  return ComputeSsimWith(a, b, [&](int c, const auto& w) { return ChannelSsimReference(a, b, c, w, nullptr); });
+  return ComputeSsimWith(a, b, [&](const auto& w) {
+    std::array<double, 3> out{};
+    for (int c = 0; c < 3; ++c) out[c] = ChannelSsimReference(a, b, c, w, nullptr);
+    return out;
+  });
 }
 
 SsimResult ComputeSsim(const ImageF& a, const ImageF& b) {
-  return ComputeSsimWith(a, b, [&](int c, const auto& w) { return ssim_float::ChannelSsim(a, b, c, w, nullptr); });
+  return ComputeSsimWith(a, b, [&](const auto& w) { return ssim_float::Ssim(a, b, w, -1, nullptr); });
 }
 
 std::shared_ptr<const SsimReferenceSide> PrepareSsimReference(const ImageF& reference) {
@@ -209,28 +211,27 @@ std::shared_ptr<const SsimReferenceSide> PrepareSsimReference(const ImageF& refe
   side->image = &reference;
   if (reference.Width() < 2 * kSsimRadius + 1 || reference.Height() < 2 * kSsimRadius + 1) return side;
   side->valid = true;
-  const auto w = GaussianWindow();
-  for (int c = 0; c < 3; ++c) side->channel[c] = ssim_float::PrepareChannel(reference, c, w);
+  side->channel = ssim_float::Prepare(reference, GaussianWindow());
   return side;
 }
 
 SsimResult ComputeSsim(const ImageF& image, const SsimReferenceSide& reference) {
-  return ComputeSsimWith(image, *reference.image, [&](int c, const auto& w) {
-    return ssim_float::ChannelSsimPrepared(image, *reference.image, reference.channel[c], c, w, nullptr);
+  return ComputeSsimWith(image, *reference.image, [&](const auto& w) {
+    return ssim_float::SsimPrepared(image, *reference.image, reference.channel, w);
   });
 }
 
 namespace {
 
-// The map of channel c by `channel(map)`, after ComputeSsim's checks; empty when undefined.
+// The map of channel c by `channel(w, map)`, after ComputeSsim's checks; empty when undefined.
 template <typename Channel>
 std::vector<double> MapWith(const ImageF& a, const ImageF& b, int c, Channel channel) {
   if (c < 0 || c > 2) throw UserError("ssim: map channel must be 0, 1 or 2 (got " + std::to_string(c) + ")");
   std::vector<double> map;
-  ComputeSsimWith(a, b, [&](int ch, const auto& w) {
-    if (ch != c) return 0.0;
+  ComputeSsimWith(a, b, [&](const auto& w) {
     map.resize(static_cast<size_t>(a.Width() - 2 * kSsimRadius) * (a.Height() - 2 * kSsimRadius));
-    return channel(w, map.data());
+    channel(w, map.data());
+    return std::array<double, 3>{};
   });
   return map;
 }
@@ -238,11 +239,11 @@ std::vector<double> MapWith(const ImageF& a, const ImageF& b, int c, Channel cha
 }  // namespace
 
 std::vector<double> SsimMap(const ImageF& a, const ImageF& b, int c) {
-  return MapWith(a, b, c, [&](const auto& w, double* m) { return ssim_float::ChannelSsim(a, b, c, w, m); });
+  return MapWith(a, b, c, [&](const auto& w, double* m) { ssim_float::Ssim(a, b, w, c, m); });
 }
 
 std::vector<double> SsimMapReference(const ImageF& a, const ImageF& b, int c) {
-  return MapWith(a, b, c, [&](const auto& w, double* m) { return ChannelSsimReference(a, b, c, w, m); });
+  return MapWith(a, b, c, [&](const auto& w, double* m) { ChannelSsimReference(a, b, c, w, m); });
 }
 
 std::vector<MetricEntry> SsimMetrics() {

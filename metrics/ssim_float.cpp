@@ -261,21 +261,6 @@ struct TileBuffers {
 
 int TilesX(int nx) { return (nx + kTileCols - 1) / kTileCols; }
 
-// Walks channel c of b's tiles: for each output row of each tile, calls row(r, x0, sx, centre,
-// s1, s2) with b's vertical sums of that row segment. `ring` must hold 2 planes from 0.
-template <typename Row>
-void ReferenceRows(const ImageF& b, int c, const std::array<float, kTaps>& wf, int r0, int r1, int x0, int sx,
-                   float centre, TileBuffers& buf, int first_plane, const Row& row) {
-  const int cb = b.Channels();
-  const int sw = sx + 2 * kR;
-  for (int yy = r0; yy < r1 + 2 * kR; ++yy) {
-    HorizontalRow(b.Row(yy) + static_cast<size_t>(x0) * cb + c, cb, sw, sx, wf.data(), centre, buf.db.data(),
-                  buf.daa.data(), buf.Slot(first_plane, yy), buf.Slot(first_plane + 1, yy));
-    const int r = yy - 2 * kR;
-    if (r >= r0) row(r, yy);
-  }
-}
-
 }  // namespace
 
 float TileCentre(const ImageF& img, int c, int x0, int y0, int sx, int sy) {
@@ -291,97 +276,136 @@ float TileCentre(const ImageF& img, int c, int x0, int y0, int sx, int sy) {
   return std::isfinite(mean) ? static_cast<float>(mean) : 0.0f;
 }
 
-double ChannelSsim(const ImageF& a, const ImageF& b, int c, const std::array<double, 11>& w, double* map_out) {
+namespace {
+
+// Row sums of the three channels' maps (per channel, ny each) → the channel means.
+std::array<double, 3> Means(const std::array<std::vector<double>, 3>& row_sums, int nx, int ny) {
+  std::array<double, 3> out{};
+  for (int c = 0; c < 3; ++c) {
+    double total = 0.0;
+    for (double v : row_sums[c]) total += v;
+    out[c] = total / (static_cast<double>(nx) * static_cast<double>(ny));
+  }
+  return out;
+}
+
+size_t TileIndex(int nx, int r0, int x0) { return static_cast<size_t>(r0 / kTileRows) * TilesX(nx) + x0 / kTileCols; }
+
+}  // namespace
+
+// Each tile is walked once, its three channels row by row (an input row is read from memory
+// once for all three); each channel's sums and map are exactly those of a channel alone.
+std::array<double, 3> Ssim(const ImageF& a, const ImageF& b, const std::array<double, 11>& w, int map_channel,
+                           double* map_out) {
   const int nx = a.Width() - 2 * kR, ny = a.Height() - 2 * kR;
   const auto wf = FloatWindow(w);
-  std::vector<double> row_sums(ny, 0.0);
+  std::array<std::vector<double>, 3> row_sums;
+  for (auto& v : row_sums) v.assign(ny, 0.0);
   const int ca = a.Channels(), cb = b.Channels();
   ParallelForChunks(ny, kTileRows, [&](int r0, int r1) {
-    TileBuffers buf(5);
+    std::array<TileBuffers, 3> bufs{TileBuffers(5), TileBuffers(5), TileBuffers(5)};
     for (int x0 = 0; x0 < nx; x0 += kTileCols) {
       const int sx = std::min(kTileCols, nx - x0), sw = sx + 2 * kR;
-      const float cx = TileCentre(a, c, x0, r0, sx, r1 - r0), cy = TileCentre(b, c, x0, r0, sx, r1 - r0);
+      float cx[3], cy[3];
+      for (int c = 0; c < 3; ++c) {
+        cx[c] = TileCentre(a, c, x0, r0, sx, r1 - r0);
+        cy[c] = TileCentre(b, c, x0, r0, sx, r1 - r0);
+      }
       for (int yy = r0; yy < r1 + 2 * kR; ++yy) {
-        HorizontalRow(a.Row(yy) + static_cast<size_t>(x0) * ca + c, ca, sw, sx, wf.data(), cx, buf.da.data(),
-                      buf.daa.data(), buf.Slot(0, yy), buf.Slot(1, yy));
-        HorizontalRow(b.Row(yy) + static_cast<size_t>(x0) * cb + c, cb, sw, sx, wf.data(), cy, buf.db.data(),
-                      buf.dab.data(), buf.Slot(3, yy), buf.Slot(4, yy));
-        HorizontalCross(buf.da.data(), buf.db.data(), sw, sx, wf.data(), buf.dab.data(), buf.Slot(2, yy));
         const int r = yy - 2 * kR;
-        if (r < r0) continue;
-        const float* p[5][kTaps];
-        for (int plane = 0; plane < 5; ++plane)
-          for (int j = 0; j < kTaps; ++j) p[plane][j] = buf.Slot(plane, r + j);
-        VerticalSums2(p[3], p[4], sx, wf.data(), buf.sum1.data(), buf.sum2.data());
-        row_sums[r] +=
-            VerticalAndMap(p[0], p[1], p[2], buf.sum1.data(), buf.sum2.data(), sx, wf.data(), cx, cy, buf.map.data());
-        if (map_out) std::copy_n(buf.map.data(), sx, map_out + static_cast<size_t>(r) * nx + x0);
+        for (int c = 0; c < 3; ++c) {
+          TileBuffers& buf = bufs[c];
+          HorizontalRow(a.Row(yy) + static_cast<size_t>(x0) * ca + c, ca, sw, sx, wf.data(), cx[c], buf.da.data(),
+                        buf.daa.data(), buf.Slot(0, yy), buf.Slot(1, yy));
+          HorizontalRow(b.Row(yy) + static_cast<size_t>(x0) * cb + c, cb, sw, sx, wf.data(), cy[c], buf.db.data(),
+                        buf.dab.data(), buf.Slot(3, yy), buf.Slot(4, yy));
+          HorizontalCross(buf.da.data(), buf.db.data(), sw, sx, wf.data(), buf.dab.data(), buf.Slot(2, yy));
+          if (r < r0) continue;
+          const float* p[5][kTaps];
+          for (int plane = 0; plane < 5; ++plane)
+            for (int j = 0; j < kTaps; ++j) p[plane][j] = buf.Slot(plane, r + j);
+          VerticalSums2(p[3], p[4], sx, wf.data(), buf.sum1.data(), buf.sum2.data());
+          row_sums[c][r] += VerticalAndMap(p[0], p[1], p[2], buf.sum1.data(), buf.sum2.data(), sx, wf.data(), cx[c],
+                                           cy[c], buf.map.data());
+          if (map_out && c == map_channel) std::copy_n(buf.map.data(), sx, map_out + static_cast<size_t>(r) * nx + x0);
+        }
       }
     }
   });
-  double total = 0.0;
-  for (double s : row_sums) total += s;
-  return total / (static_cast<double>(nx) * static_cast<double>(ny));
+  return Means(row_sums, nx, ny);
 }
 
-ReferencePlanes PrepareChannel(const ImageF& b, int c, const std::array<double, 11>& w) {
+std::array<ReferencePlanes, 3> Prepare(const ImageF& b, const std::array<double, 11>& w) {
   const int nx = b.Width() - 2 * kR, ny = b.Height() - 2 * kR;
   const auto wf = FloatWindow(w);
-  ReferencePlanes side;
-  side.s1.resize(static_cast<size_t>(nx) * ny);
-  side.s2.resize(static_cast<size_t>(nx) * ny);
-  side.centre.resize(static_cast<size_t>(TilesX(nx)) * ((ny + kTileRows - 1) / kTileRows));
+  std::array<ReferencePlanes, 3> side;
+  for (ReferencePlanes& p : side) {
+    p.s1.resize(static_cast<size_t>(nx) * ny);
+    p.s2.resize(static_cast<size_t>(nx) * ny);
+    p.centre.resize(static_cast<size_t>(TilesX(nx)) * ((ny + kTileRows - 1) / kTileRows));
+  }
+  const int cb = b.Channels();
   ParallelForChunks(ny, kTileRows, [&](int r0, int r1) {
-    TileBuffers buf(2);
+    std::array<TileBuffers, 3> bufs{TileBuffers(2), TileBuffers(2), TileBuffers(2)};
     for (int x0 = 0; x0 < nx; x0 += kTileCols) {
-      const int sx = std::min(kTileCols, nx - x0);
-      const float cy = TileCentre(b, c, x0, r0, sx, r1 - r0);
-      side.centre[static_cast<size_t>(r0 / kTileRows) * TilesX(nx) + x0 / kTileCols] = cy;
-      ReferenceRows(b, c, wf, r0, r1, x0, sx, cy, buf, 0, [&](int r, int) {
-        const float* pb[kTaps];
-        const float* pbb[kTaps];
-        for (int j = 0; j < kTaps; ++j) pb[j] = buf.Slot(0, r + j), pbb[j] = buf.Slot(1, r + j);
-        const size_t at = static_cast<size_t>(r) * nx + x0;
-        VerticalSums2(pb, pbb, sx, wf.data(), side.s1.data() + at, side.s2.data() + at);
-      });
+      const int sx = std::min(kTileCols, nx - x0), sw = sx + 2 * kR;
+      float cy[3];
+      for (int c = 0; c < 3; ++c) side[c].centre[TileIndex(nx, r0, x0)] = cy[c] = TileCentre(b, c, x0, r0, sx, r1 - r0);
+      for (int yy = r0; yy < r1 + 2 * kR; ++yy) {
+        const int r = yy - 2 * kR;
+        for (int c = 0; c < 3; ++c) {
+          TileBuffers& buf = bufs[c];
+          HorizontalRow(b.Row(yy) + static_cast<size_t>(x0) * cb + c, cb, sw, sx, wf.data(), cy[c], buf.db.data(),
+                        buf.daa.data(), buf.Slot(0, yy), buf.Slot(1, yy));
+          if (r < r0) continue;
+          const float* pb[kTaps];
+          const float* pbb[kTaps];
+          for (int j = 0; j < kTaps; ++j) pb[j] = buf.Slot(0, r + j), pbb[j] = buf.Slot(1, r + j);
+          const size_t at = static_cast<size_t>(r) * nx + x0;
+          VerticalSums2(pb, pbb, sx, wf.data(), side[c].s1.data() + at, side[c].s2.data() + at);
+        }
+      }
     }
   });
   return side;
 }
 
-double ChannelSsimPrepared(const ImageF& a, const ImageF& b, const ReferencePlanes& side, int c,
-                           const std::array<double, 11>& w, double* map_out) {
+std::array<double, 3> SsimPrepared(const ImageF& a, const ImageF& b, const std::array<ReferencePlanes, 3>& side,
+                                   const std::array<double, 11>& w) {
   const int nx = a.Width() - 2 * kR, ny = a.Height() - 2 * kR;
   const auto wf = FloatWindow(w);
-  std::vector<double> row_sums(ny, 0.0);
+  std::array<std::vector<double>, 3> row_sums;
+  for (auto& v : row_sums) v.assign(ny, 0.0);
   const int ca = a.Channels(), cb = b.Channels();
   ParallelForChunks(ny, kTileRows, [&](int r0, int r1) {
-    TileBuffers buf(3);
+    std::array<TileBuffers, 3> bufs{TileBuffers(3), TileBuffers(3), TileBuffers(3)};
     for (int x0 = 0; x0 < nx; x0 += kTileCols) {
       const int sx = std::min(kTileCols, nx - x0), sw = sx + 2 * kR;
-      const float cx = TileCentre(a, c, x0, r0, sx, r1 - r0);
-      const float cy = side.centre[static_cast<size_t>(r0 / kTileRows) * TilesX(nx) + x0 / kTileCols];
+      float cx[3], cy[3];
+      for (int c = 0; c < 3; ++c) {
+        cx[c] = TileCentre(a, c, x0, r0, sx, r1 - r0);
+        cy[c] = side[c].centre[TileIndex(nx, r0, x0)];
+      }
       for (int yy = r0; yy < r1 + 2 * kR; ++yy) {
-        HorizontalRow(a.Row(yy) + static_cast<size_t>(x0) * ca + c, ca, sw, sx, wf.data(), cx, buf.da.data(),
-                      buf.daa.data(), buf.Slot(0, yy), buf.Slot(1, yy));
-        const float* brow = b.Row(yy) + static_cast<size_t>(x0) * cb + c;
-        CentreRow(brow, cb, sw, cy, buf.db.data());
-        HorizontalCross(buf.da.data(), buf.db.data(), sw, sx, wf.data(), buf.dab.data(), buf.Slot(2, yy));
         const int r = yy - 2 * kR;
-        if (r < r0) continue;
-        const float* p[3][kTaps];
-        for (int plane = 0; plane < 3; ++plane)
-          for (int j = 0; j < kTaps; ++j) p[plane][j] = buf.Slot(plane, r + j);
-        const size_t at = static_cast<size_t>(r) * nx + x0;
-        row_sums[r] += VerticalAndMap(p[0], p[1], p[2], side.s1.data() + at, side.s2.data() + at, sx, wf.data(), cx, cy,
-                                      buf.map.data());
-        if (map_out) std::copy_n(buf.map.data(), sx, map_out + static_cast<size_t>(r) * nx + x0);
+        for (int c = 0; c < 3; ++c) {
+          TileBuffers& buf = bufs[c];
+          HorizontalRow(a.Row(yy) + static_cast<size_t>(x0) * ca + c, ca, sw, sx, wf.data(), cx[c], buf.da.data(),
+                        buf.daa.data(), buf.Slot(0, yy), buf.Slot(1, yy));
+          CentreRow(b.Row(yy) + static_cast<size_t>(x0) * cb + c, cb, sw, cy[c], buf.db.data());
+          HorizontalCross(buf.da.data(), buf.db.data(), sw, sx, wf.data(), buf.dab.data(), buf.Slot(2, yy));
+          if (r < r0) continue;
+          const float* p[3][kTaps];
+          for (int plane = 0; plane < 3; ++plane)
+            for (int j = 0; j < kTaps; ++j) p[plane][j] = buf.Slot(plane, r + j);
+          const size_t at = static_cast<size_t>(r) * nx + x0;
+          row_sums[c][r] += VerticalAndMap(p[0], p[1], p[2], side[c].s1.data() + at, side[c].s2.data() + at, sx,
+                                           wf.data(), cx[c], cy[c], buf.map.data());
+        }
       }
     }
   });
-  double total = 0.0;
-  for (double s : row_sums) total += s;
-  return total / (static_cast<double>(nx) * static_cast<double>(ny));
+  return Means(row_sums, nx, ny);
 }
 
 }  // namespace aalab::ssim_float

@@ -27,15 +27,17 @@ struct ReferencePlanes {
 /// that mean is not finite).
 float TileCentre(const ImageF& img, int c, int x0, int y0, int sx, int sy);
 
-/// Mean SSIM map of channel c over the valid region; `map_out`, when not null, receives the
-/// map (nx × ny, row-major). `w`: the normalised double window of metrics/ssim.cpp.
-double ChannelSsim(const ImageF& a, const ImageF& b, int c, const std::array<double, 11>& w, double* map_out);
+/// Mean SSIM map of channels 0, 1, 2 over the valid region; `map_out`, when not null,
+/// receives channel `map_channel`'s map (nx × ny, row-major). `w`: the normalised double
+/// window of metrics/ssim.cpp.
+std::array<double, 3> Ssim(const ImageF& a, const ImageF& b, const std::array<double, 11>& w, int map_channel,
+                           double* map_out);
 
-/// The reference's half of channel c (b's window sums and tile centres).
-ReferencePlanes PrepareChannel(const ImageF& b, int c, const std::array<double, 11>& w);
+/// The reference's half (b's window sums and tile centres), per channel.
+std::array<ReferencePlanes, 3> Prepare(const ImageF& b, const std::array<double, 11>& w);
 
-/// ChannelSsim(a, b, c) with b's half from PrepareChannel: the same bits.
-double ChannelSsimPrepared(const ImageF& a, const ImageF& b, const ReferencePlanes& side, int c,
-                           const std::array<double, 11>& w, double* map_out);
+/// Ssim(a, b) with b's half from Prepare: the same bits.
+std::array<double, 3> SsimPrepared(const ImageF& a, const ImageF& b, const std::array<ReferencePlanes, 3>& side,
+                                   const std::array<double, 11>& w);
 
 }  // namespace aalab::ssim_float
