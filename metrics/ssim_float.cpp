@@ -11,7 +11,9 @@
 // are formed in float32, separably (11 horizontal taps, then 11 vertical ones), each sum in
 // tap order. The map is evaluated in double from them: μx = cx + S1x, σx² = S2x − S1x²,
 // σxy = Sxy − S1x·S1y (the same for y), then Eq. (13) as in metrics/ssim.cpp. The map's mean is
-// summed in double row by row as the reference does.
+// summed in double in a fixed pattern: a row segment in 8 lanes (outputs ox ≡ k mod 8 of its
+// 16-wide blocks), the lanes in order, then its tail left to right; segments left to right;
+// rows in order. A tile's three channels are walked together (one read of each input row).
 //
 // Why a centre, and why per tile: σ² = E[x²] − E[x]² cancels. In float32 each window sum
 // carries a relative error of up to γ25 ≈ 1.5e-6 (below), so uncentred, a flat window at 0.8
