@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 
@@ -32,9 +33,10 @@ struct SsimResult {
 /// averaged over the "valid" region only: pixels at least 5 from every border, where the
 /// 11×11 window lies inside the image (matches scikit-image's default crop). Images narrower
 /// or shorter than 11 pixels give an empty `ssim` with reason "image smaller than the 11x11
-/// SSIM window". Double precision throughout; bit-identical at any thread count.
+/// SSIM window". Window sums in float32 over tile-centred values, the map in double
+/// (metrics/ssim_float.cpp): within the bound derived there of ComputeSsimReference's double
+/// value; bit-identical at any thread count and on every SIMD path.
 /// Throws UserError when the shapes differ or there are fewer than 3 channels.
-/// Production path (vectorised kernels); the same bits as ComputeSsimReference.
 SsimResult ComputeSsim(const ImageF& a, const ImageF& b);
 
 /// The reference's half of SSIM (its window means E_w[y] and E_w[y²] per channel over the
@@ -42,18 +44,25 @@ SsimResult ComputeSsim(const ImageF& a, const ImageF& b);
 /// run scores every method against one reference, so the runner prepares it once per scene.
 struct SsimReferenceSide;
 /// Prepares the reference side of ComputeSsim(image, reference) (same checks as ComputeSsim
-/// where they concern the reference alone). Memory: 48 bytes per valid pixel. The side keeps
+/// where they concern the reference alone). Memory: 24 bytes per valid pixel. The side keeps
 /// a pointer to `reference` (for the cross term): the reference must outlive it.
 std::shared_ptr<const SsimReferenceSide> PrepareSsimReference(const ImageF& reference);
 /// Refused: the side would point at a temporary.
 std::shared_ptr<const SsimReferenceSide> PrepareSsimReference(ImageF&& reference) = delete;
 /// ComputeSsim(image, reference) against a prepared reference: the same values bit for bit
-/// (the same sums in the same order; the reference's are formed once). UserError when the
+/// (the same float sums in the same order; the reference's are formed once). UserError when the
 /// image's size differs from the reference's or it has fewer than 3 channels.
 SsimResult ComputeSsim(const ImageF& image, const SsimReferenceSide& reference);
 
-/// The simple implementation of ComputeSsim (one loop nest per pass, exactly the sums of the
-/// definition above), kept as the reference the production path is tested against.
+/// The simple implementation of the definition in double precision (one loop nest per pass,
+/// every window sum in tap order): the reference the float32 production path is held to.
 SsimResult ComputeSsimReference(const ImageF& a, const ImageF& b);
+
+/// The per-pixel SSIM map of channel c (0, 1 or 2) over the valid region ((W − 10) × (H − 10),
+/// row-major), as ComputeSsim forms it; empty when the image is smaller than the window.
+/// Same checks as ComputeSsim; UserError for another channel. For precision checks.
+std::vector<double> SsimMap(const ImageF& a, const ImageF& b, int c);
+/// The same map by ComputeSsimReference's double-precision sums.
+std::vector<double> SsimMapReference(const ImageF& a, const ImageF& b, int c);
 
 }  // namespace aalab
