@@ -52,7 +52,7 @@ std::string Encode(const std::string& path, int w, int h, int nc, io_detail::Sam
     ok = io_detail::EncodePng(w, h, nc, type == io_detail::SampleType::kUint16, data, png_filter == PngFilter::kNone,
                               text, &bytes, &why);
   } else {
-    const auto& oiio = io_detail::OiioModule("writing '" + path + "'");
+    const auto& oiio = io_detail::OiioModule("writing '" + path + "' (" + LowerExt(path) + ")");
     ok = oiio.encode(path, w, h, nc, type, data, png_filter == PngFilter::kNone, text, &bytes, &why);
   }
   if (!ok || bytes.empty()) FailWrite(path, why.empty() ? "the image library failed without saying why" : why);
