@@ -18,6 +18,7 @@
 #include "core/cleanup.h"
 #include "core/color.h"
 #include "core/error.h"
+#include "io/exr_write.h"
 #include "io/image_decoder.h"
 #include "io/image_info.h"
 #include "io/oiio_loader.h"
@@ -40,14 +41,16 @@ std::string LowerExt(const std::string& path) {
 }
 
 /// Encodes an image in memory with the writer the extension names: PNG through libpng
-/// (io/png_codec.h: the bytes OpenImageIO 2.4's writer gave), the others through the
-/// OpenImageIO module (io/oiio_loader.h). Every error is checked; nothing touches the disk.
-/// `text` adds metadata (PNG text chunks), e.g. an export's provenance.
+/// (io/png_codec.h) and float EXR through OpenEXR (io/exr_write.h), both giving the bytes
+/// OpenImageIO 2.4's writers gave; the others through the OpenImageIO module (io/oiio_loader.h). Every error is
+/// checked; nothing touches the disk. `text` adds metadata (PNG text chunks), e.g. an export's provenance.
 std::string Encode(const std::string& path, int w, int h, int nc, io_detail::SampleType type, const void* data,
                    PngFilter png_filter, const ImageText* text) {
   std::string bytes, why;
   bool ok = false;
-  if (LowerExt(path) == ".png") {
+  if (LowerExt(path) == ".exr" && type == io_detail::SampleType::kFloat) {
+    ok = io_detail::EncodeExrFloat(w, h, nc, static_cast<const float*>(data), &bytes, &why);
+  } else if (LowerExt(path) == ".png") {
     AALAB_CHECK(type != io_detail::SampleType::kFloat, "PNG stores 8- or 16-bit integers");
     ok = io_detail::EncodePng(w, h, nc, type == io_detail::SampleType::kUint16, data, png_filter == PngFilter::kNone,
                               text, &bytes, &why);
