@@ -1,7 +1,5 @@
 #include "io/image_io.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -20,7 +18,11 @@
 #include "core/cleanup.h"
 #include "core/color.h"
 #include "core/error.h"
+#include "io/exr_write.h"
+#include "io/image_decoder.h"
 #include "io/image_info.h"
+#include "io/oiio_loader.h"
+#include "io/png_codec.h"
 
 namespace aalab {
 namespace fs = std::filesystem;
@@ -31,35 +33,36 @@ namespace {
   throw UserError("cannot write '" + path + "': " + why);
 }
 
-/// Encodes an image in memory with the OpenImageIO writer the extension names; every error
-/// of the library is checked, and nothing touches the disk. `text` adds metadata (PNG text
-/// chunks), e.g. an export's provenance.
-std::string Encode(const std::string& path, int w, int h, int nc, OIIO::TypeDesc type, const void* data,
-                   PngFilter png_filter, const ImageText* text) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) FailWrite(path, "unknown image format (use .png, .jpg, .tif or .exr)");
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput memory(bytes);
-  if (!out->set_ioproxy(&memory)) FailWrite(path, "the image library cannot encode this format in memory");
-  OIIO::ImageSpec spec(w, h, nc, type);
-  // OpenImageIO stamps EXR and TIFF files with the current time unless DateTime is set; an
-  // empty value writes none, so the same pixels always give the same bytes (determinism).
-  spec.attribute("DateTime", "");
-  // Alpha as given: without this, OpenImageIO's PNG writer divides colour by alpha.
-  if (nc == 2 || nc == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
-  // libpng's row filter choice: 0x08 is PNG_FILTER_NONE (png.h); unset, libpng picks per row.
-  if (png_filter == PngFilter::kNone) spec.attribute("png:filter", 0x08);
-  if (text) {
-    for (const auto& [key, value] : *text) spec.attribute(key, value);
-  }
-  if (!out->open(path, spec) || !out->write_image(type, data) || !out->close() || bytes.empty()) {
-    const std::string why = out->geterror();
-    FailWrite(path, why.empty() ? "the image library failed without saying why" : why);
-  }
-  return std::string(bytes.begin(), bytes.end());
+/// The file's extension, lower case ("" when none).
+std::string LowerExt(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
 }
 
-void WriteRaw(const std::string& path, int w, int h, int nc, OIIO::TypeDesc type, const void* data,
+/// Encodes an image in memory with the writer the extension names: PNG through libpng
+/// (io/png_codec.h) and float EXR through OpenEXR (io/exr_write.h), both giving the bytes
+/// OpenImageIO 2.4's writers gave; the others through the OpenImageIO module (io/oiio_loader.h). Every error is
+/// checked; nothing touches the disk. `text` adds metadata (PNG text chunks), e.g. an export's provenance.
+std::string Encode(const std::string& path, int w, int h, int nc, io_detail::SampleType type, const void* data,
+                   PngFilter png_filter, const ImageText* text) {
+  std::string bytes, why;
+  bool ok = false;
+  if (LowerExt(path) == ".exr" && type == io_detail::SampleType::kFloat) {
+    ok = io_detail::EncodeExrFloat(w, h, nc, static_cast<const float*>(data), &bytes, &why);
+  } else if (LowerExt(path) == ".png") {
+    AALAB_CHECK(type != io_detail::SampleType::kFloat, "PNG stores 8- or 16-bit integers");
+    ok = io_detail::EncodePng(w, h, nc, type == io_detail::SampleType::kUint16, data, png_filter == PngFilter::kNone,
+                              text, &bytes, &why);
+  } else {
+    const auto& oiio = io_detail::OiioModule("writing '" + path + "' (" + LowerExt(path) + ")");
+    ok = oiio.encode(path, w, h, nc, type, data, png_filter == PngFilter::kNone, text, &bytes, &why);
+  }
+  if (!ok || bytes.empty()) FailWrite(path, why.empty() ? "the image library failed without saying why" : why);
+  return bytes;
+}
+
+void WriteRaw(const std::string& path, int w, int h, int nc, io_detail::SampleType type, const void* data,
               PngFilter png_filter = PngFilter::kAdaptive, const ImageText* text = nullptr) {
   WriteTextFile(path, Encode(path, w, h, nc, type, data, png_filter, text));
 }
@@ -89,7 +92,7 @@ PngFilter ChoosePngFilter(const uint8_t* data, int w, int h, int nc) {
 void WriteImage8(const std::string& path, const Image8& img, bool keep_alpha) {
   AALAB_CHECK(img.Channels() == 4, "WriteImage8 expects RGBA8");
   if (keep_alpha) {
-    WriteRaw(path, img.Width(), img.Height(), 4, OIIO::TypeDesc::UINT8, img.Data().data(),
+    WriteRaw(path, img.Width(), img.Height(), 4, io_detail::SampleType::kUint8, img.Data().data(),
              ChoosePngFilter(img.Data().data(), img.Width(), img.Height(), 4));
     return;
   }
@@ -97,7 +100,7 @@ void WriteImage8(const std::string& path, const Image8& img, bool keep_alpha) {
   for (size_t i = 0; i < img.PixelCount(); ++i) {
     for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = img.Data()[i * 4 + c];
   }
-  WriteRaw(path, img.Width(), img.Height(), 3, OIIO::TypeDesc::UINT8, rgb.data(),
+  WriteRaw(path, img.Width(), img.Height(), 3, io_detail::SampleType::kUint8, rgb.data(),
            ChoosePngFilter(rgb.data(), img.Width(), img.Height(), 3));
 }
 
@@ -107,20 +110,21 @@ void WriteImage8WithText(const std::string& path, const Image8& img, const Image
   for (size_t i = 0; i < img.PixelCount(); ++i) {
     for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = img.Data()[i * 4 + c];
   }
-  WriteRaw(path, img.Width(), img.Height(), 3, OIIO::TypeDesc::UINT8, rgb.data(),
+  WriteRaw(path, img.Width(), img.Height(), 3, io_detail::SampleType::kUint8, rgb.data(),
            ChoosePngFilter(rgb.data(), img.Width(), img.Height(), 3), &text);
 }
 
 void WriteGrey8(const std::string& path, int width, int height, const std::vector<uint8_t>& data) {
   AALAB_CHECK(width > 0 && height > 0 && data.size() == static_cast<size_t>(width) * height,
               "WriteGrey8 expects width*height bytes");
-  WriteRaw(path, width, height, 1, OIIO::TypeDesc::UINT8, data.data(), ChoosePngFilter(data.data(), width, height, 1));
+  WriteRaw(path, width, height, 1, io_detail::SampleType::kUint8, data.data(),
+           ChoosePngFilter(data.data(), width, height, 1));
 }
 
 void WriteImageF(const std::string& path, const ImageF& img) {
   const std::string ext = fs::path(path).extension().string();
   if (ext == ".exr" || ext == ".EXR") {
-    WriteRaw(path, img.Width(), img.Height(), img.Channels(), OIIO::TypeDesc::FLOAT, img.Data().data());
+    WriteRaw(path, img.Width(), img.Height(), img.Channels(), io_detail::SampleType::kFloat, img.Data().data());
     return;
   }
   WriteImage8(path, ToUnorm8(img));
@@ -140,7 +144,7 @@ void WriteImage16(const std::string& path, const ImageF& img, int channels) {
       data[i * channels + c] = static_cast<uint16_t>(std::lround(static_cast<double>(v) * 65535.0));
     }
   }
-  WriteRaw(path, img.Width(), img.Height(), channels, OIIO::TypeDesc::UINT16, data.data());
+  WriteRaw(path, img.Width(), img.Height(), channels, io_detail::SampleType::kUint16, data.data());
 }
 
 void CopyFileChecked(const std::string& from, const std::string& to) {

@@ -1,6 +1,9 @@
-/// Image files through OpenImageIO. Reads: one reader (image_read.cpp). Writes are atomic and
-/// checked: a temporary file beside the target is renamed into place, so a failed write never
-/// leaves a half-written result and always says so.
+/// Image files. Reads: one reader (image_read.cpp). PNG is read and written through libpng and
+/// float EXR written through OpenEXR (the bytes and values OpenImageIO 2.4 gave); every other
+/// format through OpenImageIO, in a module loaded on first use (io/oiio_loader.h; a missing
+/// module is a UserError naming the file and its format). Writes are atomic and checked: a
+/// temporary file beside the target is renamed into place, so a failed write never leaves a
+/// half-written result and always says so.
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -7,9 +7,9 @@
 //    pixels are read in bands of at most kBandBytes, so a tiny file that claims a huge image
 //    fails after reading one band, never after allocating the whole image;
 //  - channels are taken by name, never by position; alpha is read as stored (OpenImageIO
-//    premultiplies PNG and unassociated-alpha TIFF on read unless told not to).
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+//    premultiplies PNG and unassociated-alpha TIFF on read unless told not to);
+//  - PNG is decoded by libpng here (io/png_codec.cpp); every other format by OpenImageIO in
+//    the module io/oiio_loader.h loads on first use (aalab starts without OpenImageIO).
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -28,10 +28,15 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "core/input_files.h"
+#include "io/image_decoder.h"
 #include "io/image_io.h"
+#include "io/oiio_loader.h"
+#include "io/png_codec.h"
 
 namespace aalab {
 namespace fs = std::filesystem;
+using io_detail::ImageDecoder;
+using io_detail::PartSpec;
 
 namespace {
 
@@ -171,9 +176,8 @@ struct ChannelRef {
 
 /// An open image file with its parts and their channels.
 struct OpenedImage {
-  std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;  // for ReadImageFromMemory; outlives `in`
-  std::unique_ptr<OIIO::ImageInput> in;
-  std::vector<OIIO::ImageSpec> parts;
+  std::unique_ptr<ImageDecoder> in;  // libpng's (PNG) or the OpenImageIO module's
+  std::vector<PartSpec> parts;
   std::vector<ChannelRef> channels;
   long long file_bytes = 0;
 };
@@ -184,52 +188,39 @@ struct OpenedImage {
 /// `path` can be a name for messages ("image 3 embedded in 'a.glb'").
 OpenedImage Open(const std::string& path, const uint8_t* data = nullptr, size_t size = 0, const std::string& ext = "") {
   OpenedImage f;
+  const std::string reader = ext.empty() || !data ? LowerExt(path) : ext;
   if (data) {
     std::istringstream bytes(std::string(reinterpret_cast<const char*>(data), size));
-    CheckContainer(path, ext.empty() ? LowerExt(path) : ext, bytes, static_cast<long long>(size));
+    CheckContainer(path, reader, bytes, static_cast<long long>(size));
     f.file_bytes = static_cast<long long>(size);
-    f.memory = std::make_unique<OIIO::Filesystem::IOMemReader>(data, size);
   } else {
     f.file_bytes = CheckInputFile(path);
     NoteInputFile(path);  // an input of the command: --out may not hold it (input_files.h)
   }
-  // Only the reader the extension names. By default OpenImageIO hands a file its reader
-  // rejects to every other format plugin (DICOM, FITS, OpenVDB, video, ...): found by
-  // fuzzing, a corrupt .exr then loaded ~2 GB of libraries and parsers aalab never needs.
-  static const bool kOnlyTheNamedReader = OIIO::attribute("try_all_readers", 0);
-  (void)kOnlyTheNamedReader;
-  // Values as stored: without this hint OpenImageIO 2.4 multiplies the alpha of PNG files and
-  // of TIFF files with unassociated alpha into their colour channels on read.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  if (f.memory) {
-    // OIIO 2.4's readers take the proxy from the open() config (they reset it otherwise).
-    void* proxy = f.memory.get();
-    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  std::string error;
+  if (reader == ".png") {
+    f.in = io_detail::OpenPng(path, data, size, &error);
+  } else {
+    // Only the reader the extension names (the module tells OpenImageIO so), alpha as stored.
+    const auto& oiio = io_detail::OiioModule("image '" + path + "' (" + reader + ")");
+    f.in = oiio.open(data && !ext.empty() ? "memory" + ext : path, data, size, &error);
   }
-  f.in = OIIO::ImageInput::open(f.memory && !ext.empty() ? "memory" + ext : path, &config, f.memory.get());
   if (!f.in) {
-    throw UserError("cannot read image '" + path + "': " + OIIO::geterror() + " (readable: PNG, JPEG, TIFF, EXR; " +
+    throw UserError("cannot read image '" + path + "': " + error + " (readable: PNG, JPEG, TIFF, EXR; " +
                     "the content must match the file's extension)");
   }
-  f.parts.push_back(f.in->spec());
-  // Several parts only for multi-part EXR (a TIFF's further pages are not parts of one image).
-  if (std::string(f.in->format_name()) == "openexr") {
-    for (int s = 1; s < 1024 && f.in->seek_subimage(s, 0); ++s) f.parts.push_back(f.in->spec());
-    f.in->seek_subimage(0, 0);
-    (void)f.in->geterror();  // seeking past the last part leaves a message
-  }
+  f.parts = f.in->Parts();
   const bool multipart = f.parts.size() > 1;
   for (int p = 0; p < static_cast<int>(f.parts.size()); ++p) {
-    const OIIO::ImageSpec& spec = f.parts[p];
+    const PartSpec& spec = f.parts[p];
     std::string prefix;
     if (multipart) {
-      std::string part = spec.get_string_attribute("oiio:subimagename");
+      std::string part = spec.subimage_name;
       if (part.empty()) part = "part" + std::to_string(p);
       prefix = part + ".";
     }
     for (int c = 0; c < spec.nchannels; ++c) {
-      std::string name = c < static_cast<int>(spec.channelnames.size()) ? spec.channelnames[c] : "";
+      std::string name = c < static_cast<int>(spec.channel_names.size()) ? spec.channel_names[c] : "";
       if (name.empty()) name = "channel" + std::to_string(c);
       if (!prefix.empty() && name.rfind(prefix, 0) != 0) name = prefix + name;
       f.channels.push_back({p, c, name});
@@ -245,16 +236,16 @@ std::vector<std::string> Names(const OpenedImage& f) {
 }
 
 /// A PNG's rows can not be smaller than their deflated size; "" when the file is big enough.
-std::string CheckPlausibleSize(const OpenedImage& f, const OIIO::ImageSpec& spec) {
-  const std::string format = f.in->format_name();
-  const double bits = spec.get_int_attribute("oiio:BitsPerSample", static_cast<int>(spec.format.size() * 8));
+std::string CheckPlausibleSize(const OpenedImage& f, const PartSpec& spec) {
+  const std::string format = f.in->FormatName();
+  const double bits = spec.bits;
   const double row_bytes = std::ceil(static_cast<double>(spec.width) * spec.nchannels * bits / 8.0);
   double min_bytes = 0;
   std::string why;
   if (format == "png") {
     min_bytes = static_cast<double>(spec.height) * (row_bytes + 1) / kDeflateMaxRatio;
     why = "deflate stores at most 1032 bytes per byte";
-  } else if (format == "tiff" && spec.get_string_attribute("compression", "none") == "none") {
+  } else if (format == "tiff" && spec.compression == "none") {
     min_bytes = static_cast<double>(spec.height) * row_bytes;
     why = "the file is uncompressed";
   }
@@ -264,31 +255,15 @@ std::string CheckPlausibleSize(const OpenedImage& f, const OIIO::ImageSpec& spec
          "), but the file has " + std::to_string(f.file_bytes) + " (truncated or corrupt)";
 }
 
-/// Reads rows [y0, y1) of channels [cb, ce) of the current part as `type` (float unless
-/// told) into `dst`.
-bool ReadRows(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, int part, int y0, int y1, int cb, int ce, void* dst,
-              OIIO::TypeDesc type = OIIO::TypeDesc::FLOAT) {
-  if (spec.tile_width > 0) {
-    return in.read_tiles(part, 0, spec.x, spec.x + spec.width, spec.y + y0, spec.y + y1, spec.z, spec.z + 1, cb, ce,
-                         type, dst);
-  }
-  return in.read_scanlines(part, 0, spec.y + y0, spec.y + y1, spec.z, cb, ce, type, dst);
-}
-
 /// The first message of a failed read (OpenImageIO may append one per row), at most 300
 /// characters, with how many more there were.
-std::string FirstReadError(OIIO::ImageInput& in) {
-  const std::string all = in.geterror();
+std::string FirstReadError(ImageDecoder& in) {
+  const std::string all = in.TakeErrors();
   std::string why = all.substr(0, all.find('\n'));
   if (why.size() > 300) why = why.substr(0, 300) + "...";
   const auto more = std::count(all.begin(), all.end(), '\n');
   if (more > 0) why += " (and " + std::to_string(more) + " more messages)";
   return why;
-}
-
-bool IsFloatType(OIIO::TypeDesc t) {
-  return t.basetype == OIIO::TypeDesc::FLOAT || t.basetype == OIIO::TypeDesc::HALF ||
-         t.basetype == OIIO::TypeDesc::DOUBLE;
 }
 
 std::atomic<size_t>& Decoded() {
@@ -324,9 +299,9 @@ ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<s
     }
     want.push_back(*it);
   }
-  const OIIO::ImageSpec& spec = f.parts[want[0].part];
+  const PartSpec& spec = f.parts[want[0].part];
   for (const auto& c : want) {
-    const OIIO::ImageSpec& s = f.parts[c.part];
+    const PartSpec& s = f.parts[c.part];
     if (s.x != spec.x || s.y != spec.y || s.width != spec.width || s.height != spec.height) {
       throw UserError("image '" + path + "': channels '" + want[0].name + "' and '" + c.name +
                       "' are in parts of different sizes (" + std::to_string(spec.width) + "x" +
@@ -352,7 +327,7 @@ ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<s
   }
   if (is_float) {
     *is_float = false;
-    for (const auto& c : want) *is_float = *is_float || IsFloatType(f.parts[c.part].channelformat(c.index));
+    for (const auto& c : want) *is_float = *is_float || f.parts[c.part].channel_float[c.index] != 0;
   }
   const int nc = static_cast<int>(want.size());
   // Bands of whole rows (whole rows of tiles for tiled files), at most kBandBytes each, read
@@ -382,7 +357,7 @@ ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<s
       }
       if (ce < 0) continue;
       scratch.resize(rows * w * (ce - cb));
-      if (!ReadRows(*f.in, f.parts[p], p, y, yend, cb, ce, scratch.data()) || f.in->has_error()) {
+      if (!f.in->ReadRows(p, y, yend, cb, ce, scratch.data(), false) || f.in->HasError()) {
         // Also an error when the call reported success: OIIO's multi-row TIFF reads return true
         // while appending an error for every row they failed to decode. First message only.
         throw UserError("cannot read image '" + path + "' (truncated or corrupt?) near row " + std::to_string(y) +
@@ -407,7 +382,7 @@ ImageF ReadChannels(OpenedImage& f, const std::string& path, const std::vector<s
                       (allow_inf ? "NaN pixels are rejected" : "NaN/Inf pixels are rejected"));
     }
   }
-  f.in->close();
+  f.in->Close();
   return ImageF(w, h, nc, std::move(pixels));
 }
 
@@ -429,7 +404,7 @@ std::string FindChannel(const std::vector<std::string>& names, const std::string
 
 std::vector<std::string> ListImageChannels(const std::string& path) {
   OpenedImage f = Open(path);
-  f.in->close();
+  f.in->Close();
   return Names(f);
 }
 
@@ -462,7 +437,7 @@ LoadedImage ReadOpened(OpenedImage& f, const std::string& path, size_t max_pixel
   }
   if (!a.empty() && names[0] != a) names.push_back(a);
   LoadedImage result;
-  result.format = f.in->format_name();
+  result.format = f.in->FormatName();
   const ImageF read = ReadChannels(f, path, names, max_pixels, false, &result.is_float, charged);
   result.file_channels = static_cast<int>(names.size());
   const bool alpha = names.size() == (grey ? 2u : 4u);
@@ -503,7 +478,7 @@ OpenedImage OpenSource(const ImageSource& src) {
 
 /// An 8-bit single-part image of 1..4 channels read as its codes into RGBA8, in bands.
 TexturePixels ReadCodes(OpenedImage& f, const std::string& path, size_t max_pixels, bool charged) {
-  const OIIO::ImageSpec& spec = f.parts[0];
+  const PartSpec& spec = f.parts[0];
   const int w = spec.width, h = spec.height, nc = spec.nchannels;
   if (w <= 0 || h <= 0) throw UserError("image '" + path + "' has zero size");
   if (static_cast<size_t>(w) * static_cast<size_t>(h) > max_pixels) {
@@ -532,7 +507,7 @@ TexturePixels ReadCodes(OpenedImage& f, const std::string& path, size_t max_pixe
     const int yend = std::min(h, y + band);
     const size_t count = static_cast<size_t>(yend - y) * static_cast<size_t>(w);
     rows.resize(count * static_cast<size_t>(nc));
-    if (!ReadRows(*f.in, spec, 0, y, yend, 0, nc, rows.data(), OIIO::TypeDesc::UINT8) || f.in->has_error()) {
+    if (!f.in->ReadRows(0, y, yend, 0, nc, rows.data(), true) || f.in->HasError()) {
       throw UserError("cannot read image '" + path + "' (truncated or corrupt?) near row " + std::to_string(y) + ": " +
                       FirstReadError(*f.in));
     }
@@ -547,7 +522,7 @@ TexturePixels ReadCodes(OpenedImage& f, const std::string& path, size_t max_pixe
       d[3] = nc == 2 || nc == 4 ? p[nc - 1] : 255;
     }
   }
-  f.in->close();
+  f.in->Close();
   return t;
 }
 
@@ -555,19 +530,19 @@ TexturePixels ReadCodes(OpenedImage& f, const std::string& path, size_t max_pixe
 
 ImageHeader ReadImageHeader(const ImageSource& src) {
   OpenedImage f = OpenSource(src);
-  const OIIO::ImageSpec& s = f.parts[0];
-  ImageHeader h{s.width, s.height, s.nchannels, s.format == OIIO::TypeDesc::UINT8};
-  f.in->close();
+  const PartSpec& s = f.parts[0];
+  ImageHeader h{s.width, s.height, s.nchannels, s.is_uint8};
+  f.in->Close();
   return h;
 }
 
 TexturePixels ReadTexturePixels(const ImageSource& src, size_t max_pixels, bool charged) {
   OpenedImage f = OpenSource(src);
-  const OIIO::ImageSpec& spec = f.parts[0];
+  const PartSpec& spec = f.parts[0];
   if (spec.nchannels < 1 || spec.nchannels > 4) {
     throw UserError("image '" + src.name + "' has " + std::to_string(spec.nchannels) + " channels (allowed: 1 to 4)");
   }
-  if (spec.format == OIIO::TypeDesc::UINT8) return ReadCodes(f, src.name, max_pixels, charged);
+  if (spec.is_uint8) return ReadCodes(f, src.name, max_pixels, charged);
   const LoadedImage img = ReadOpened(f, src.name, max_pixels, charged);
   TexturePixels t;
   t.width = img.pixels.Width();
@@ -584,10 +559,9 @@ TexturePixels ReadTexturePixels(const ImageSource& src, size_t max_pixels, bool 
 
 const float* Unorm8FloatTable() {
   static const std::array<float, 256> table = [] {
-    std::array<uint8_t, 256> codes{};
-    for (int i = 0; i < 256; ++i) codes[static_cast<size_t>(i)] = static_cast<uint8_t>(i);
+    // OpenImageIO's convert_type: k * (1/255.0f) (tests/io/png_oracle_test.cpp compares).
     std::array<float, 256> t{};
-    OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes.data(), OIIO::TypeDesc::FLOAT, t.data(), 256);
+    for (int i = 0; i < 256; ++i) t[static_cast<size_t>(i)] = static_cast<float>(i) * (1.0f / 255.0f);
     return t;
   }();
   return table.data();

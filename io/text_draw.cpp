@@ -3,10 +3,8 @@
 
 #include <filesystem>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include "core/error.h"
+#include "io/oiio_loader.h"
 
 namespace aalab {
 
@@ -27,11 +25,11 @@ std::string FontPath() {
 
 void DrawText(Image8& img, int x, int y, const std::string& text, int size_px) {
   AALAB_CHECK(img.Channels() == 4, "DrawText needs an RGBA8 image");
-  OIIO::ImageSpec spec(img.Width(), img.Height(), 4, OIIO::TypeDesc::UINT8);
-  OIIO::ImageBuf buf(spec, img.Data().data());
-  const float black[] = {0, 0, 0, 1};
-  if (!OIIO::ImageBufAlgo::render_text(buf, x, y, text, size_px, FontPath(), black)) {
-    throw UserError("cannot draw the label '" + text + "': " + buf.geterror());
+  const std::string font = FontPath();
+  std::string why;
+  const auto& oiio = io_detail::OiioModule("drawing the label '" + text + "'");
+  if (!oiio.draw_text(img.Data().data(), img.Width(), img.Height(), x, y, text, size_px, font, &why)) {
+    throw UserError("cannot draw the label '" + text + "': " + why);
   }
 }
 

@@ -1,5 +1,5 @@
-/// Text on an 8-bit image through OpenImageIO's text renderer (FreeType) with the DejaVu Sans
-/// font of Debian's fonts-dejavu-core: the labels of `aalab export`'s PNG figures.
+/// Text on an 8-bit image through OpenImageIO's text renderer (FreeType, in the module io/oiio_loader.h loads) with the
+/// DejaVu Sans font of Debian's fonts-dejavu-core: the labels of `aalab export`'s PNG figures.
 #pragma once
 #include <string>
 
