@@ -341,6 +341,10 @@ bool ParseRasterMethod(const std::string& spec, RasterMethod* out, std::string* 
 
 RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<Gl>()) {
   Gl& g = *gl_;
+  if (scene.AnyGltf()) {
+    throw std::runtime_error("scene '" + scene.name +
+                             "' has glTF materials, which this aalab_raster does not shade yet");
+  }
   g.scene = scene;
   g.scene_prog = Link({{GL_VERTEX_SHADER, kSceneVertex}, {GL_FRAGMENT_SHADER, kSceneFragment}});
   g.id_prog = Link({{GL_VERTEX_SHADER, kSceneVertex}, {GL_FRAGMENT_SHADER, kIdFragment}});
