@@ -191,6 +191,11 @@ struct RasterRenderer::Gl {
     glUniform1i(glGetUniformLocation(id_prog, "u_samples"), draw.samples);
   }
 
+  /// glTF scenes (whose cameras sit among the geometry) draw with reversed float depth:
+  /// glClipControl(GL_ZERO_TO_ONE), depth n / z, cleared to 0, GL_GREATER. The other scenes
+  /// keep the standard mapping, so their frames are unchanged.
+  bool ReversedZ() const { return gltf && !scene.orthographic; }
+
   /// The tracer's half height of the image plane (Tracer::Impl::half_h).
   float HalfH() const {
     return scene.orthographic ? scene.height * 0.5f : std::tan(scene.fov_y_deg * 3.14159265358979f / 180.0f * 0.5f);
@@ -245,6 +250,14 @@ struct RasterRenderer::Gl {
       m[1][3] = sy * uy;
       m[2][3] = (f + n) / (f - n) * fz - 2.0 * f * n / (f - n);
       m[3][3] = fz;
+      if (ReversedZ()) {
+        // Reversed Z (depth = n / z, no far plane): float depth then resolves z to about
+        // 2⁻²⁴·z everywhere, where the standard mapping near 1 resolves only z²/n·2⁻²⁴ (with
+        // n = 10⁻⁵ and z = 10 that is 0.6 scene units: real-foliage's crossing leaves, 0.014
+        // apart, came out in the wrong order).
+        for (int k = 0; k < 3; ++k) m[2][k] = 0.0;
+        m[2][3] = n;
+      }
     }
     // TAA: the sample sits at the centre + (jx, jy) px; moving the geometry by −(jx, jy) px
     // puts it under the rasteriser's centre sample (clip x += −2jx/W · w, y likewise).
@@ -271,7 +284,8 @@ struct RasterRenderer::Gl {
     glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
     glViewport(0, 0, t.w, t.h);
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glClipControl(GL_LOWER_LEFT, ReversedZ() ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+    glDepthFunc(ReversedZ() ? GL_GREATER : GL_LESS);
     if (ids) {
       const GLuint zero[4] = {0, 0, 0, 0};
       glClearBufferuiv(GL_COLOR, 0, zero);
@@ -281,8 +295,8 @@ struct RasterRenderer::Gl {
       for (int c = 0; c < 3; ++c) bg[c] = DisplayCpu(scene.background[static_cast<size_t>(c)]);
       glClearBufferfv(GL_COLOR, 0, bg);
     }
-    const float one = 1.0f;
-    glClearBufferfv(GL_DEPTH, 0, &one);
+    const float far_depth = ReversedZ() ? 0.0f : 1.0f;
+    glClearBufferfv(GL_DEPTH, 0, &far_depth);
     glUseProgram(prog);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, materials);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, occluders);  // SampleShapes borrows binding 1

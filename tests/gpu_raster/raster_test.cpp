@@ -29,6 +29,7 @@
 #include "scenes/raster_export.h"
 #include "scenes/render.h"
 #include "scenes/tracer.h"
+#include "tests/gpu_raster/raster_gltf_rule.h"
 #include "tests/gpu_raster/raster_rule.h"
 #include "tests/skip_or_fail.h"
 
@@ -364,6 +365,46 @@ TEST(RasterPath, DiskAndShadowScenesMatchAalab) {
       std::printf("%s without shadow rays: %d pixel(s) over 1 code apart\n", name.c_str(), d.unexplained);
       EXPECT_GT(d.unexplained, w * h / 20) << name;
     }
+  }
+}
+
+// The default suite's glTF scenes (docs/gpu.md "The default suite's glTF scenes"): their 1×
+// frame against aalab's at 320×180 under the rule of raster_gltf_rule.h (triangle edges within
+// the snap distance; alpha-test and shadow decisions within the worked-out slack). real-glossy:
+// a normal-mapped GGX floor at roughness 0.18 under the sun (no cut-outs: every pixel within
+// 1 code); real-fence: a single-sided MASK chain-link fence; real-foliage: MASK leaves casting
+// shadows through their cut-outs. Each fixture's feature matters: without it the frame is
+// another one (the normal map, the alpha test, the shadow rays).
+TEST(RasterPath, GltfScenesMatchAalab) {
+  REQUIRE_GL();
+  for (const std::string name : {"real-glossy", "real-fence", "real-foliage"}) {
+    auto l = Load(name);
+    const int w = 320, h = 180;
+    const Image8 ref = RenderFrame(*l->tracer, w, h, RenderSpec{}, 1, nullptr);
+    RasterRenderer r(l->raster);
+    r.Configure(Method("none"), w, h, raster::TargetFormat::kRgba16f, raster::ResolveKind::kShader);
+    r.RenderFrame();
+    const Edges edges = ProjectEdges(l->raster, w, h);
+    const GltfCells cells(l->raster, w, h, SnapDistance(r));
+    const FrameDiff d = Compare(ref, r.ReadRgb8(), edges, SnapDistance(r), w, h, &cells);
+    std::printf(
+        "%s 1x: %d pixel(s) identical, %d 1 code apart, %d >1 code apart near an edge, %d at an alpha-test or shadow "
+        "decision (max %d)\n",
+        name.c_str(), w * h - d.one_code - d.near_edge_flips - d.texture_flips - d.unexplained, d.one_code,
+        d.near_edge_flips, d.texture_flips, d.max_any);
+    EXPECT_EQ(d.unexplained, 0) << name << ": pixels differ by up to " << d.max_off_edge;
+    EXPECT_LE(d.near_edge_flips + d.texture_flips, w * h / 1000) << name;
+    // Without the scene's distinguishing feature the GPU's frame is far from aalab's.
+    RasterScene planted = l->raster;
+    if (name == "real-glossy") planted.normal_map = false;
+    if (name == "real-fence") planted.alpha_test = false;
+    if (name == "real-foliage") planted.shadows = false;
+    RasterRenderer u(planted);
+    u.Configure(Method("none"), w, h, raster::TargetFormat::kRgba16f, raster::ResolveKind::kShader);
+    u.RenderFrame();
+    const FrameDiff p = Compare(ref, u.ReadRgb8(), edges, SnapDistance(r), w, h);
+    std::printf("%s without its feature: %d pixel(s) over 1 code apart away from edges\n", name.c_str(), p.unexplained);
+    EXPECT_GT(p.unexplained, w * h / 100) << name;
   }
 }
 
