@@ -1,6 +1,7 @@
 // The raster path's scene file: writer and reader of the format core/raster_geometry.h states.
 #include "core/raster_geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -10,7 +11,11 @@ namespace aalab {
 
 namespace {
 
-constexpr char kMagic[8] = {'A', 'A', 'L', 'A', 'B', 'R', 'G', '2'};
+constexpr char kMagic[8] = {'A', 'A', 'L', 'A', 'B', 'R', 'G', '3'};
+constexpr int kVersion = 3;
+constexpr int kOldestVersion = 2;
+/// Largest image edge the file holds (scenes/texture_image.h kMaxTextureSize).
+constexpr uint32_t kMaxImageEdge = 16384;
 
 class Writer {
  public:
@@ -21,6 +26,9 @@ class Writer {
     for (float f : v) F32(f);
   }
   void F2(const std::array<float, 2>& v) {
+    for (float f : v) F32(f);
+  }
+  void F4(const std::array<float, 4>& v) {
     for (float f : v) F32(f);
   }
   void Raw(const void* p, size_t n) {
@@ -60,6 +68,7 @@ class Reader {
   }
   std::array<float, 3> F3(const char* what) { return {F32(what), F32(what), F32(what)}; }
   std::array<float, 2> F2(const char* what) { return {F32(what), F32(what)}; }
+  std::array<float, 4> F4(const char* what) { return {F32(what), F32(what), F32(what), F32(what)}; }
   int Choice(const char* what, int lo, int hi) {
     const int32_t v = I32(what);
     if (v < lo || v > hi) {
@@ -113,6 +122,7 @@ std::string RasterSceneBytes(const RasterScene& s) {
   w.F3(s.ambient);
   w.I32(s.lambert ? 1 : 0);
   w.I32(s.shadows ? 1 : 0);
+  w.I32((s.textures ? 1 : 0) | (s.normal_map ? 2 : 0) | (s.alpha_test ? 4 : 0));
   w.U32(static_cast<uint32_t>(s.lights.size()));
   for (const auto& l : s.lights) {
     w.I32(l.type);
@@ -138,6 +148,34 @@ std::string RasterSceneBytes(const RasterScene& s) {
     w.U32(t.seed);
     w.F3(t.color_a);
     w.F3(t.color_b);
+    w.I32(m.gltf ? 1 : 0);
+    if (!m.gltf) continue;
+    const RasterGltf& g = m.pbr;
+    w.I32(g.unlit ? 1 : 0);
+    w.F4(g.base_factor);
+    w.F32(g.metallic);
+    w.F32(g.roughness);
+    w.F32(g.normal_scale);
+    w.F32(g.alpha_cutoff);
+    w.I32(g.alpha_mode);
+    w.I32(g.double_sided ? 1 : 0);
+    for (const RasterTextureRef* r : {&g.base, &g.mr, &g.normal}) {
+      w.I32(r->image);
+      w.I32(r->wrap_s);
+      w.I32(r->wrap_t);
+    }
+  }
+  for (float f : s.srgb_table) w.F32(f);
+  for (float f : s.unorm_table) w.F32(f);
+  w.U32(static_cast<uint32_t>(s.images.size()));
+  for (const auto& im : s.images) {
+    w.I32(im.format);
+    w.U32(static_cast<uint32_t>(im.levels.size()));
+    for (const auto& l : im.levels) {
+      w.U32(static_cast<uint32_t>(l.width));
+      w.U32(static_cast<uint32_t>(l.height));
+      w.Raw(l.rgba.data(), l.rgba.size());
+    }
   }
   w.U32(static_cast<uint32_t>(s.triangles.size()));
   for (const auto& t : s.triangles) {
@@ -151,6 +189,7 @@ std::string RasterSceneBytes(const RasterScene& s) {
       w.F3(c.position);
       w.F3(c.normal);
       w.F2(c.uv);
+      w.F4(c.tangent);
     }
   }
   return w.Take();
@@ -159,11 +198,18 @@ std::string RasterSceneBytes(const RasterScene& s) {
 RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin) {
   Reader r(bytes, origin);
   r.Need(8, "the magic");
-  if (std::memcmp(bytes.data(), kMagic, 8) != 0) {
+  if (std::memcmp(bytes.data(), kMagic, 7) != 0) {
     throw UserError("'" + origin +
-                    "' is not a raster scene file (it does not start with AALABRG2; write one with "
+                    "' is not a raster scene file (it does not start with AALABRG; write one with "
                     "aalab export-geometry)");
   }
+  const int version = bytes[7] - '0';
+  if (version < kOldestVersion || version > kVersion) {
+    throw UserError("raster scene file '" + origin + "' is version '" + std::string(1, bytes[7]) + "' (AALABRG" +
+                    std::string(1, bytes[7]) + "); this build reads versions " + std::to_string(kOldestVersion) + ".." +
+                    std::to_string(kVersion) + " (write it again with this build's aalab export-geometry)");
+  }
+  const bool v3 = version >= 3;
   r.Str(8, "the magic");
   RasterScene s;
   s.name = r.Str(r.Count("the name length", 1), "the name");
@@ -179,6 +225,12 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
   s.ambient = r.F3("the ambient");
   s.lambert = r.Choice("the lambert flag", 0, 1) == 1;
   s.shadows = r.Choice("the shadows flag", 0, 1) == 1;
+  if (v3) {
+    const int f = r.Choice("the glTF effect flags", 0, 7);
+    s.textures = (f & 1) != 0;
+    s.normal_map = (f & 2) != 0;
+    s.alpha_test = (f & 4) != 0;
+  }
   s.lights.resize(r.Count("the light count", 60));
   for (auto& l : s.lights) {
     l.type = r.Choice("a light type", 0, 2);
@@ -204,8 +256,55 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
     t.seed = r.U32("a texture seed");
     t.color_a = r.F3("a texture's color_a");
     t.color_b = r.F3("a texture's color_b");
+    if (v3) m.gltf = r.Choice("a material's glTF flag", 0, 1) == 1;
+    if (!m.gltf) continue;
+    RasterGltf& g = m.pbr;
+    g.unlit = r.Choice("a glTF material's unlit flag", 0, 1) == 1;
+    g.base_factor = r.F4("a glTF baseColorFactor");
+    g.metallic = r.F32("a glTF metallicFactor");
+    g.roughness = r.F32("a glTF roughnessFactor");
+    g.normal_scale = r.F32("a glTF normal scale");
+    g.alpha_cutoff = r.F32("a glTF alphaCutoff");
+    g.alpha_mode = r.Choice("a glTF alpha mode (0 OPAQUE, 1 MASK)", 0, 1);
+    g.double_sided = r.Choice("a glTF doubleSided flag", 0, 1) == 1;
+    for (RasterTextureRef* t : {&g.base, &g.mr, &g.normal}) {
+      t->image = r.Choice("a glTF texture's image", -1, 0x7fffffff);
+      t->wrap_s = r.Choice("a glTF texture's wrap_s", 0, 2);
+      t->wrap_t = r.Choice("a glTF texture's wrap_t", 0, 2);
+    }
   }
-  s.triangles.resize(r.Count("the triangle count", 128));
+  if (v3) {
+    for (float& f : s.srgb_table) f = r.F32("the sRGB decode table");
+    for (float& f : s.unorm_table) f = r.F32("the unorm decode table");
+    s.images.resize(r.Count("the image count", 8));
+    for (auto& im : s.images) {
+      im.format = r.Choice("an image format (0 sRGB, 1 linear)", 0, 1);
+      im.levels.resize(r.Choice("an image's level count", 1, 15));
+      for (size_t k = 0; k < im.levels.size(); ++k) {
+        RasterMipLevel& l = im.levels[k];
+        l.width = r.Choice("a mip level's width", 1, static_cast<int>(kMaxImageEdge));
+        l.height = r.Choice("a mip level's height", 1, static_cast<int>(kMaxImageEdge));
+        // Each level is the one above halved, rounded down, at least 1 (BuildMipChain).
+        if (k > 0 && (l.width != std::max(1, im.levels[k - 1].width / 2) ||
+                      l.height != std::max(1, im.levels[k - 1].height / 2))) {
+          r.Fail("mip level " + std::to_string(k) + " is " + std::to_string(l.width) + "x" + std::to_string(l.height) +
+                 ", not half of the level above (rounded down, at least 1)");
+        }
+        const size_t n = static_cast<size_t>(l.width) * static_cast<size_t>(l.height) * 4;
+        const std::string px = r.Str(static_cast<uint32_t>(n), "a mip level's texels");
+        l.rgba.assign(px.begin(), px.end());
+      }
+    }
+  }
+  const int n_img = static_cast<int>(s.images.size());
+  for (const auto& m : s.materials) {
+    for (const RasterTextureRef* t : {&m.pbr.base, &m.pbr.mr, &m.pbr.normal}) {
+      if (t->image >= n_img) {
+        r.Fail("a glTF texture names image " + std::to_string(t->image) + " of " + std::to_string(n_img));
+      }
+    }
+  }
+  s.triangles.resize(r.Count("the triangle count", v3 ? 144 : 128));
   const int n_mat = static_cast<int>(s.materials.size());
   for (auto& t : s.triangles) {
     t.shape = r.Choice("a triangle's shape", 0, 0x7fffffff);
@@ -218,6 +317,7 @@ RasterScene ParseRasterScene(const std::string& bytes, const std::string& origin
       c.position = r.F3("a corner position");
       c.normal = r.F3("a corner normal");
       c.uv = r.F2("a corner uv");
+      if (v3) c.tangent = r.F4("a corner tangent");
     }
   }
   if (r.Pos() != r.Size())

@@ -3,20 +3,32 @@
 # to .devdata/run.sh and run it from the repository root on the device with the carry
 # `.gl` (the GLVND/EGL runtime .debs, and their -dev .debs under .gl/dev), `.devtree` (the
 # merged source tree) and `.devdata` (this script, geometry/, raster-ref.tgz), e.g.
-#   run: bash .devdata/run.sh   carry: .gl .devtree .devdata
+#   run: bash .devdata/run.sh default   carry: .gl .devtree .devdata
+#   run: bash .devdata/run.sh synthetic carry: .gl .devtree .devdata
 # Prepared on the CPU machine with (docs/gpu.md gives the same commands):
 #   aalab export-geometry --suite synthetic --skip-unsupported --out .devdata/geometry
-#   aalab export-geometry --suite default --skip-unsupported --out .devdata/geometry-default
+#   aalab export-geometry --suite default --out .devdata/geometry-default   # all four scenes (AALABRG3)
 #   aalab export-frames --scenes wedges,mesh,checker-plane,detail-texture,circle,hdr-edges,sdf-circles,shadow-stipple \
 #     --sizes 1920x1080,3840x2160 --no-scaled --taa-frames 2 \
 #     --render-methods msaa-2x,msaa-4x,msaa-8x,ssaa-2x2,ssaa-4x4 --out raster-ref
+#   aalab export-frames --scenes real-glossy,real-fence,real-foliage --sizes 1920x1080 --no-scaled \
+#     --out raster-ref-gltf && cp raster-ref-gltf/*.ppm raster-ref/
 #   tar czf .devdata/raster-ref.tgz raster-ref
+#   du -sh .devdata .gl .devtree   # the carry holds 64 MiB in all
+# The glTF scenes' reference is their 1x frame at 1080p only: their textured frames compress
+# poorly, and 4K or MSAA/SSAA references of three textured scenes would not fit the carry;
+# --compare says "no such frame" for the others and goes on.
 # Expected GPU time under the default budget (--budget-ms 1000, --min-repeat 5), worked out
-# from the H100's measured 1080p frame times (4K: 4×): the default suite (only `wedges` is
-# drawn; its glTF scenes are skipped and listed) ≈ 16 s shader + 8 s blit; the synthetic
-# suite's 8 scenes ≈ 162 s shader + 66 s blit (its longest row: shadow-stipple 4K ssaa-4x4,
-# ≈ 2.2 s a frame, 8 frames ≈ 18 s); plus the build, context creation and --compare's reads.
-# The same runs at --budget-ms 0 (200 + 200 frames a row) would take ≈ 36 min of GPU time.
+# from the H100's measured 1080p frame times (4K: 4x): the synthetic suite's 8 scenes
+# ≈ 162 s shader + 66 s blit (its longest row: shadow-stipple 4K ssaa-4x4, ≈ 2.2 s a frame,
+# 8 frames ≈ 18 s). The default suite now draws all four scenes: 4 scenes x 2 sizes x 7
+# methods = 56 rows of at least 1.5 s each ≈ 84 s, plus the rows whose 8 frames exceed it:
+# real-foliage's shadow loop (142 triangles a lit fragment against shadow-stipple's 217,
+# which took 34 ms a 1080p frame) ≈ 22 ms at 1080p, so its 4K ssaa-4x4 ≈ 1.4 s a frame,
+# 8 frames ≈ 11 s; in all ≈ 2–3 min shader + 1–2 min blit (an estimate, not measured: the
+# glTF shading has not run on the H100 yet); plus the build, contexts and --compare's reads.
+# The same runs at --budget-ms 0 (200 + 200 frames a row) would take far longer (the
+# synthetic suite alone ≈ 36 min of GPU time).
 # Exit status 2 from aalab_raster: some rows' timings were refused (stderr names each and
 # why; the JSON lists them under "refused" and holds only the checked rows).
 set -o pipefail
@@ -34,7 +46,10 @@ cmake -S gpu/raster -B build-raster -DCMAKE_BUILD_TYPE=Release >"$OUT/raster-bui
 echo "raster build rc=$?"
 R=build-raster/aalab_raster
 ALL=none,msaa-2x,msaa-4x,msaa-8x,ssaa-2x2,ssaa-4x4,taa
-for suite in default synthetic; do
+# Suites from the arguments (default: both). One command may run 10 minutes: run
+# `bash .devdata/run.sh default` and `bash .devdata/run.sh synthetic` as two calls.
+SUITES="${*:-default synthetic}"
+for suite in $SUITES; do
   G=../.devdata/geometry
   [ $suite = default ] && G=../.devdata/geometry-default
   echo "== $suite: shader resolve"

@@ -18,6 +18,13 @@ namespace aalab::raster {
 
 namespace {
 
+/// `src` with `#define AALAB_GLTF 1` after its #version line when `on`.
+std::string WithGltf(const char* src, bool on) {
+  std::string s = src;
+  if (on) s.insert(s.find('\n') + 1, "#define AALAB_GLTF 1\n");
+  return s;
+}
+
 using V3 = std::array<float, 3>;
 V3 Sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 float Dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -124,6 +131,8 @@ struct Target {
 struct RasterRenderer::Gl {
   RasterScene scene;
   GLuint vao = 0, vbo = 0, materials = 0, occluders = 0, empty_vao = 0;
+  bool gltf = false;  ///< the scene has glTF materials (AALAB_GLTF shaders, the buffers below)
+  GLuint tri_info = 0, images = 0, texel_buf = 0, decode = 0;
   GLuint scene_prog = 0, id_prog = 0, resolve_ms_prog = 0, resolve_grid_prog = 0, encode_prog = 0, unpack_prog = 0;
   GLsizei vertices = 0;
   RasterMethod method;
@@ -166,9 +175,30 @@ struct RasterRenderer::Gl {
     glUniform1i(loc("u_shadows"), s.shadows ? 1 : 0);
     glUniform1i(loc("u_occluders"), static_cast<GLint>(s.triangles.size()));
     glUniform1i(loc("u_samples"), draw.samples);
+    if (gltf) {
+      const V3 right = Normalize(Cross(fwd, s.up));
+      const V3 up = Cross(right, fwd);
+      glUniform3fv(loc("u_right"), 1, right.data());
+      glUniform3fv(loc("u_up"), 1, up.data());
+      // As the tracer computes it (glm::radians' constant), for the footprint's offset rays.
+      glUniform1f(loc("u_half_h"), s.orthographic ? s.height * 0.5f
+                                                  : std::tan(s.fov_y_deg * 0.01745329251994329576923690768489f * 0.5f));
+      glUniform2f(loc("u_fp_size"), static_cast<float>(draw.w), static_cast<float>(draw.h));
+      glUniform1i(loc("u_gltf_flags"), (s.textures ? 1 : 0) | (s.normal_map ? 2 : 0) | (s.alpha_test ? 4 : 0));
+    }
     glUseProgram(id_prog);
     glUniformMatrix4fv(glGetUniformLocation(id_prog, "u_view_proj"), 1, GL_FALSE, view_proj.data());
     glUniform1i(glGetUniformLocation(id_prog, "u_samples"), draw.samples);
+  }
+
+  /// glTF scenes (whose cameras sit among the geometry) draw with reversed float depth:
+  /// glClipControl(GL_ZERO_TO_ONE), depth n / z, cleared to 0, GL_GREATER. The other scenes
+  /// keep the standard mapping, so their frames are unchanged.
+  bool ReversedZ() const { return gltf && !scene.orthographic; }
+
+  /// The tracer's half height of the image plane (Tracer::Impl::half_h).
+  float HalfH() const {
+    return scene.orthographic ? scene.height * 0.5f : std::tan(scene.fov_y_deg * 3.14159265358979f / 180.0f * 0.5f);
   }
 
   /// The matrix that puts every world point where the tracer's camera ray through it
@@ -182,7 +212,7 @@ struct RasterRenderer::Gl {
     const int tw = method.kind == RasterMethod::Kind::kSsaa ? w * method.grid : w;
     const int th = method.kind == RasterMethod::Kind::kSsaa ? h * method.grid : h;
     const float aspect = static_cast<float>(tw) / static_cast<float>(th);
-    const float half_h = s.orthographic ? s.height * 0.5f : std::tan(s.fov_y_deg * 3.14159265358979f / 180.0f * 0.5f);
+    const float half_h = HalfH();
     float zmin = 1e30f, zmax = -1e30f;
     for (const auto& t : s.triangles) {
       for (const auto& c : t.corners) {
@@ -220,6 +250,14 @@ struct RasterRenderer::Gl {
       m[1][3] = sy * uy;
       m[2][3] = (f + n) / (f - n) * fz - 2.0 * f * n / (f - n);
       m[3][3] = fz;
+      if (ReversedZ()) {
+        // Reversed Z (depth = n / z, no far plane): float depth then resolves z to about
+        // 2⁻²⁴·z everywhere, where the standard mapping near 1 resolves only z²/n·2⁻²⁴ (with
+        // n = 10⁻⁵ and z = 10 that is 0.6 scene units: real-foliage's crossing leaves, 0.014
+        // apart, came out in the wrong order).
+        for (int k = 0; k < 3; ++k) m[2][k] = 0.0;
+        m[2][3] = n;
+      }
     }
     // TAA: the sample sits at the centre + (jx, jy) px; moving the geometry by −(jx, jy) px
     // puts it under the rasteriser's centre sample (clip x += −2jx/W · w, y likewise).
@@ -246,7 +284,8 @@ struct RasterRenderer::Gl {
     glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
     glViewport(0, 0, t.w, t.h);
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glClipControl(GL_LOWER_LEFT, ReversedZ() ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+    glDepthFunc(ReversedZ() ? GL_GREATER : GL_LESS);
     if (ids) {
       const GLuint zero[4] = {0, 0, 0, 0};
       glClearBufferuiv(GL_COLOR, 0, zero);
@@ -256,11 +295,18 @@ struct RasterRenderer::Gl {
       for (int c = 0; c < 3; ++c) bg[c] = DisplayCpu(scene.background[static_cast<size_t>(c)]);
       glClearBufferfv(GL_COLOR, 0, bg);
     }
-    const float one = 1.0f;
-    glClearBufferfv(GL_DEPTH, 0, &one);
+    const float far_depth = ReversedZ() ? 0.0f : 1.0f;
+    glClearBufferfv(GL_DEPTH, 0, &far_depth);
     glUseProgram(prog);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, materials);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, occluders);  // SampleShapes borrows binding 1
+    if (gltf) {
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tri_info);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, images);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, texel_buf);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, decode);
+      glProvokingVertex(GL_FIRST_VERTEX_CONVENTION);  // v_tw: the first corner's handedness
+    }
     glBindVertexArray(vao);
     glDrawArrays(GL_TRIANGLES, 0, vertices);
   }
@@ -275,6 +321,50 @@ struct RasterRenderer::Gl {
       v = x > 1e15f ? 2.51f / 2.43f : (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
     }
     return std::clamp(v, 0.0f, 1.0f);
+  }
+
+  /// The glTF shading's buffers: per triangle its corners' uv and material (binding 2), the
+  /// images' and levels' table (3), every level's RGBA8 texels (4), aalab's decode tables (5).
+  void UploadGltf() {
+    auto buffer = [](GLuint* b, const void* data, size_t bytes) {
+      glCreateBuffers(1, b);
+      glNamedBufferStorage(*b, static_cast<GLsizeiptr>(std::max<size_t>(bytes, 16)), data, 0);
+    };
+    std::vector<float> tri;
+    for (const auto& t : scene.triangles) {
+      float mat_bits = 0;
+      std::memcpy(&mat_bits, &t.material, 4);
+      const auto& c = t.corners;
+      tri.insert(tri.end(), {c[0].uv[0], c[0].uv[1], c[1].uv[0], c[1].uv[1], c[2].uv[0], c[2].uv[1], mat_bits, 0});
+    }
+    tri.resize(std::max<size_t>(tri.size(), 8));
+    buffer(&tri_info, tri.data(), tri.size() * 4);
+    std::vector<int32_t> table;
+    std::vector<uint32_t> texels;
+    size_t levels = 0;
+    for (const auto& im : scene.images) levels += im.levels.size();
+    size_t entry = scene.images.size();
+    for (const auto& im : scene.images) {
+      table.insert(table.end(), {static_cast<int32_t>(entry), static_cast<int32_t>(im.levels.size()), im.format, 0});
+      entry += im.levels.size();
+    }
+    for (const auto& im : scene.images) {
+      for (const auto& l : im.levels) {
+        table.insert(table.end(), {static_cast<int32_t>(texels.size()), l.width, l.height, 0});
+        const size_t n = static_cast<size_t>(l.width) * static_cast<size_t>(l.height);
+        const size_t at = texels.size();
+        texels.resize(at + n);
+        std::memcpy(texels.data() + at, l.rgba.data(), n * 4);  // little-endian: r in the low byte
+      }
+    }
+    table.resize(std::max<size_t>(table.size(), 4));
+    texels.resize(std::max<size_t>(texels.size(), 4));
+    buffer(&images, table.data(), table.size() * 4);
+    buffer(&texel_buf, texels.data(), texels.size() * 4);
+    std::vector<float> dec(scene.srgb_table.begin(), scene.srgb_table.end());
+    dec.insert(dec.end(), scene.unorm_table.begin(), scene.unorm_table.end());
+    buffer(&decode, dec.data(), dec.size() * 4);
+    (void)levels;
   }
 
   void StageDraw() { Draw(scene_prog, draw, false); }
@@ -342,7 +432,11 @@ bool ParseRasterMethod(const std::string& spec, RasterMethod* out, std::string* 
 RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<Gl>()) {
   Gl& g = *gl_;
   g.scene = scene;
-  g.scene_prog = Link({{GL_VERTEX_SHADER, kSceneVertex}, {GL_FRAGMENT_SHADER, kSceneFragment}});
+  g.gltf = scene.AnyGltf();
+  // A scene with glTF materials compiles the glTF shading in (AALAB_GLTF); the others get
+  // the shader they always had.
+  const std::string vs = WithGltf(kSceneVertex, g.gltf), fs = WithGltf(kSceneFragment, g.gltf);
+  g.scene_prog = Link({{GL_VERTEX_SHADER, vs.c_str()}, {GL_FRAGMENT_SHADER, fs.c_str()}});
   g.id_prog = Link({{GL_VERTEX_SHADER, kSceneVertex}, {GL_FRAGMENT_SHADER, kIdFragment}});
   g.resolve_ms_prog = Link({{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kResolveMsaaFragment}});
   g.resolve_grid_prog = Link({{GL_VERTEX_SHADER, kFullscreenVertex}, {GL_FRAGMENT_SHADER, kResolveGridFragment}});
@@ -355,6 +449,7 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
     int32_t ids[2];
     float uv[2];
     float disk[4];  // centre, radius; radius −1: not a disk
+    float tan[4];   // glTF tangent, handedness
   };
   std::vector<Vertex> v;
   v.reserve(scene.triangles.size() * 3);
@@ -364,7 +459,8 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
                    {c.normal[0], c.normal[1], c.normal[2]},
                    {t.shape, t.material},
                    {c.uv[0], c.uv[1]},
-                   {t.center[0], t.center[1], t.center[2], t.disk ? t.radius : -1.0f}});
+                   {t.center[0], t.center[1], t.center[2], t.disk ? t.radius : -1.0f},
+                   {c.tangent[0], c.tangent[1], c.tangent[2], c.tangent[3]}});
     }
   }
   g.vertices = static_cast<GLsizei>(v.size());
@@ -378,19 +474,25 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
   glEnableVertexArrayAttrib(g.vao, 2);
   glEnableVertexArrayAttrib(g.vao, 3);
   glEnableVertexArrayAttrib(g.vao, 4);
+  glEnableVertexArrayAttrib(g.vao, 5);
   glVertexArrayAttribFormat(g.vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, p));
   glVertexArrayAttribFormat(g.vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, n));
   glVertexArrayAttribIFormat(g.vao, 2, 2, GL_INT, offsetof(Vertex, ids));
   glVertexArrayAttribFormat(g.vao, 3, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
   glVertexArrayAttribFormat(g.vao, 4, 4, GL_FLOAT, GL_FALSE, offsetof(Vertex, disk));
-  for (GLuint a = 0; a < 5; ++a) glVertexArrayAttribBinding(g.vao, a, 0);
+  glVertexArrayAttribFormat(g.vao, 5, 4, GL_FLOAT, GL_FALSE, offsetof(Vertex, tan));
+  for (GLuint a = 0; a < 6; ++a) glVertexArrayAttribBinding(g.vao, a, 0);
   glCreateVertexArrays(1, &g.empty_vao);
   // The shader's std430 Material: colour + lit, texture scale/cos/sin/duty, pattern + seed
-  // (ints), color_a, color_b; 5 × 16 bytes.
+  // (ints), color_a, color_b; the glTF part: base factor, (metallic, roughness, normal
+  // scale, cutoff), flags (glTF, unlit, MASK, double-sided), 3 texture references; 11 × 16 bytes.
   struct GpuMaterial {
     float color[4], tex[4];
     int32_t kind[4];
     float a[4], b[4];
+    float g_base[4], g_pbr[4];
+    int32_t g_flags[4];
+    int32_t g_tex[3][4];
   };
   std::vector<GpuMaterial> mats;
   for (const auto& m : scene.materials) {
@@ -401,7 +503,13 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
                     {t.scale, t.cos_angle, t.sin_angle, t.duty},
                     {t.pattern, seed, 0, 0},
                     {t.color_a[0], t.color_a[1], t.color_a[2], 0.0f},
-                    {t.color_b[0], t.color_b[1], t.color_b[2], 0.0f}});
+                    {t.color_b[0], t.color_b[1], t.color_b[2], 0.0f},
+                    {m.pbr.base_factor[0], m.pbr.base_factor[1], m.pbr.base_factor[2], m.pbr.base_factor[3]},
+                    {m.pbr.metallic, m.pbr.roughness, m.pbr.normal_scale, m.pbr.alpha_cutoff},
+                    {m.gltf ? 1 : 0, m.pbr.unlit ? 1 : 0, m.pbr.alpha_mode, m.pbr.double_sided ? 1 : 0},
+                    {{m.pbr.base.image, m.pbr.base.wrap_s, m.pbr.base.wrap_t, 0},
+                     {m.pbr.mr.image, m.pbr.mr.wrap_s, m.pbr.mr.wrap_t, 0},
+                     {m.pbr.normal.image, m.pbr.normal.wrap_s, m.pbr.normal.wrap_t, 0}}});
   }
   if (mats.empty()) mats.push_back({});
   glCreateBuffers(1, &g.materials);
@@ -421,6 +529,7 @@ RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<
   glCreateBuffers(1, &g.occluders);
   glNamedBufferStorage(g.occluders, static_cast<GLsizeiptr>(occ.size() * sizeof(float)), occ.data(), 0);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.occluders);
+  if (g.gltf) g.UploadGltf();
   Check("uploading the raster scene");
 }
 
@@ -433,6 +542,9 @@ RasterRenderer::~RasterRenderer() {
   glDeleteBuffers(1, &g.vbo);
   glDeleteBuffers(1, &g.materials);
   glDeleteBuffers(1, &g.occluders);
+  for (GLuint b : {g.tri_info, g.images, g.texel_buf, g.decode}) {
+    if (b) glDeleteBuffers(1, &b);
+  }
   glDeleteVertexArrays(1, &g.vao);
   glDeleteVertexArrays(1, &g.empty_vao);
   for (GLuint p : {g.scene_prog, g.id_prog, g.resolve_ms_prog, g.resolve_grid_prog, g.encode_prog, g.unpack_prog}) {

@@ -1,8 +1,9 @@
 /// The raster path's renderer (docs/gpu.md "The raster path"): draws a RasterScene
 /// (core/raster_geometry.h) with OpenGL 4.5 into a target of a method's size and sample count
 /// and turns it into the 8-bit frame aalab would write, in three timed stages:
-///   draw    clear + one draw call: the forward pass (the tracer's unlit / lambert shading
-///           and the display transform per fragment) into an RGBA16F (or RGBA32F) target of
+///   draw    clear + one draw call: the forward pass (the tracer's unlit / lambert shading,
+///           or its glTF metallic-roughness shading with the tracer's texture footprint and
+///           filter, and the display transform per fragment) into an RGBA16F (or RGBA32F) target of
 ///           1, 2, 4, 8 or 16 samples, or k·W × k·H for SSAA, with a 32-bit float depth buffer
 ///   resolve MSAA: box average of the samples (a shader of texelFetch, or glBlitFramebuffer);
 ///           SSAA: box average of each k × k block; none for 1× and TAA's jittered frame

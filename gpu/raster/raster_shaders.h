@@ -8,6 +8,9 @@ namespace aalab::raster {
 extern const char* const kSceneVertex;
 /// Forward pass: the tracer's unlit / lambert shading (scenes/tracer_shade.cpp) and the
 /// display transform (core/color.h DisplayLinear) per fragment; display-linear RGB out.
+/// With `#define AALAB_GLTF 1` inserted after its #version line (and the vertex shader's),
+/// also glTF materials (scenes/tracer_gltf.cpp ShadeGltf; storage buffers 2–5 hold the
+/// triangles' uv and material, the image table, the texels and aalab's decode tables).
 extern const char* const kSceneFragment;
 /// Coverage pass: the shape index + 1 (0: background) into an R32UI target.
 extern const char* const kIdFragment;

@@ -186,8 +186,9 @@ int ExportGeometry(const GeometryArgs& a) {
   if (drawn.empty()) {
     throw UserError(
         "the raster path can draw none of the scenes given (it draws still triangle scenes with unlit or "
-        "lambert solid colours or procedural textures, disks, lights and shadows; of the synthetic suite: "
-        "wedges, mesh, checker-plane, detail-texture, circle, hdr-edges, sdf-circles, shadow-stipple)");
+        "lambert solid colours or procedural textures, disks, lights and shadows, and glTF metallic-roughness "
+        "materials; of the synthetic suite: wedges, mesh, checker-plane, detail-texture, circle, hdr-edges, "
+        "sdf-circles, shadow-stipple; the whole default suite)");
   }
   std::vector<std::string> inputs = names;
   for (const auto& file : InputFilesRead()) inputs.push_back(file);

@@ -105,6 +105,38 @@ TEST(RasterCli, RasterToolRefusesBadInput) {
   EXPECT_NE(r.output.find("not a raster scene file"), std::string::npos) << r.output;
 }
 
+// The default suite on the user's path: export-geometry writes all four scenes (the three
+// glTF scenes as AALABRG3 files with their mip chains), aalab_raster draws real-glossy (a
+// normal-mapped GGX floor; no cut-outs or silhouettes in view), and its frame is within 1
+// code of export-frames' 1× frame at every pixel (raster_test states the tolerance).
+TEST(RasterCli, DefaultSuiteGltfSceneReachesTheFrame) {
+  const fs::path dir = clitest::TempDir("raster-cli-gltf");
+  const CmdResult g = Aalab("export-geometry --suite default --out " + (dir / "geo").string());
+  ASSERT_EQ(g.code, 0) << g.output;
+  for (const char* name : {"real-foliage", "real-fence", "real-glossy", "wedges"}) {
+    EXPECT_TRUE(fs::exists(dir / "geo" / (std::string(name) + ".geom"))) << name;
+  }
+  EXPECT_EQ(Slurp(dir / "geo" / "real-glossy.geom").substr(0, 8), "AALABRG3");
+  EXPECT_EQ(Slurp(dir / "geo" / "geometry.tsv").find("# skipped"), std::string::npos);
+  const CmdResult r = Raster("--geometry " + (dir / "geo" / "real-glossy.geom").string() +
+                             " --sizes 320x180 --methods none --repeat 0 --frames " + (dir / "fr").string());
+  if (const std::string why = RasterUnavailable(r); !why.empty()) AALAB_SKIP_OR_FAIL_UNDER_CI(why);
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(Aalab("export-frames --scenes real-glossy --sizes 320x180 --no-scaled --out " + (dir / "ef").string()).code,
+            0);
+  int w = 0, h = 0, w2 = 0, h2 = 0;
+  const std::string a = PpmPixels(dir / "ef" / "real-glossy-320x180.ppm", &w, &h);
+  const std::string b = PpmPixels(dir / "fr" / "real-glossy-320x180-none.ppm", &w2, &h2);
+  ASSERT_EQ(w, 320);
+  ASSERT_EQ(w2, 320);
+  ASSERT_EQ(a.size(), b.size());
+  int worst = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    worst = std::max(worst, std::abs(int(static_cast<uint8_t>(a[i])) - int(static_cast<uint8_t>(b[i]))));
+  }
+  EXPECT_LE(worst, 1);
+}
+
 // export-geometry → aalab_raster → the frame, against export-frames' 1× frame of the same
 // scene and size (within 1 code per channel: wedges has no pixel centre near an edge at this
 // size; raster_test.cpp states the tolerance), then run --gpu-timings → report rows.

@@ -303,7 +303,8 @@ inline double SnapDistance(const RasterRenderer& r) {
 /// Whether any of pixel (x, y)'s shading or coverage points (the centre; SSAA's grid × grid
 /// sub-pixel centres; for grid = −n, MSAA's centre and n standard sample positions; plus
 /// TAA's jitter) may see another shape or texture cell than the exact one.
-inline bool AnyNearBoundary(const SurfaceCells& cells, int x, int y, int grid, double jx, double jy, double snap) {
+template <typename Cells>
+bool AnyNearBoundary(const Cells& cells, int x, int y, int grid, double jx, double jy, double snap) {
   if (grid < 0) {
     if (cells.NearBoundary(x + 0.5 + jx, y + 0.5 + jy, snap)) return true;
     for (const auto& o : StandardSamplePositions(-grid)) {
@@ -329,8 +330,9 @@ struct FrameDiff {
   int max_any = 0;   ///< largest channel difference anywhere
 };
 
-inline FrameDiff Compare(const Image8& aalab, const std::vector<uint8_t>& gl, const Edges& edges, double snap, int w,
-                         int h, const SurfaceCells* cells = nullptr, int grid = 1, double jx = 0, double jy = 0) {
+template <typename Cells = SurfaceCells>
+FrameDiff Compare(const Image8& aalab, const std::vector<uint8_t>& gl, const Edges& edges, double snap, int w, int h,
+                  const Cells* cells = nullptr, int grid = 1, double jx = 0, double jy = 0) {
   FrameDiff d;
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
