@@ -127,20 +127,10 @@ struct GltfCells {
   /// The tracer's shadow ray from p on `tri` (raster_rule.h Blocked) with the cut-out test
   /// at each occluder (level 0 bilinear); *near when a cut-out decision lies within the slack.
   bool Blocked(glm::dvec3 p, int tri, glm::dvec3 d, const RasterLight& light, bool* near) const {
-    glm::dvec3 ng = glm::normalize(glm::cross(P(tri, 1) - P(tri, 0), P(tri, 2) - P(tri, 0)));
-    if (glm::dot(ng, d) > 0) ng = -ng;
-    glm::dvec3 L;
-    double tfar = 1e300;
-    if (light.type == 0) {
-      L = -glm::dvec3(light.direction[0], light.direction[1], light.direction[2]);
-    } else {
-      L = glm::dvec3(light.position[0], light.position[1], light.position[2]) - p;
-      tfar = glm::length(L) * (1 - 1e-5);
-      L = glm::normalize(L);
-    }
-    if (glm::dot(ng, L) <= 0) return false;
-    const double eps = 1e-4 + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) * 1e-6;
-    const glm::dvec3 o = p + ng * eps;
+    glm::dvec3 o, L;
+    double tfar = 0;
+    if (!ShadowRayFrom(p, glm::cross(P(tri, 1) - P(tri, 0), P(tri, 2) - P(tri, 0)), d, light, &o, &L, &tfar))
+      return false;
     bool blocked = false;
     for (size_t i = 0; i < s.triangles.size(); ++i) {
       const int k = static_cast<int>(i);

@@ -97,6 +97,29 @@ inline Edges ProjectEdges(const RasterScene& s, int w, int h) {
   return e;
 }
 
+/// The tracer's shadow ray from `p` on a surface of geometric normal `ng` (any length), as
+/// scenes/tracer_shade.cpp ShadowRays builds it: `ng` turned to face the camera ray `d`, the
+/// direction `*L` to the light (directional: the negated direction; point and spot: towards
+/// the position, `*tfar` just short of it), the origin `*o` offset by 1e-4 + max|p|*1e-6
+/// along `ng`. False when the light is behind the surface (no ray).
+inline bool ShadowRayFrom(glm::dvec3 p, glm::dvec3 ng, glm::dvec3 d, const RasterLight& light, glm::dvec3* o,
+                          glm::dvec3* L, double* tfar) {
+  ng = glm::normalize(ng);
+  if (glm::dot(ng, d) > 0) ng = -ng;
+  *tfar = 1e300;
+  if (light.type == 0) {
+    *L = -glm::dvec3(light.direction[0], light.direction[1], light.direction[2]);
+  } else {
+    *L = glm::dvec3(light.position[0], light.position[1], light.position[2]) - p;
+    *tfar = glm::length(*L) * (1 - 1e-5);
+    *L = glm::normalize(*L);
+  }
+  if (glm::dot(ng, *L) <= 0) return false;
+  const double eps = 1e-4 + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) * 1e-6;
+  *o = p + ng * eps;
+  return true;
+}
+
 /// Where a pixel may legitimately come out differently away from triangle edges: near a
 /// procedural texture's cell boundary or a disk's outline. The exact surface point (double
 /// rays against the scene's triangles and disks; barycentric interpolation of the corners'
@@ -190,20 +213,9 @@ struct SurfaceCells {
     glm::dvec3 ng = s.triangles[static_cast<size_t>(tri)].disk
                         ? glm::dvec3(c[0].normal[0], c[0].normal[1], c[0].normal[2])
                         : glm::cross(P(1) - P(0), P(2) - P(0));
-    ng = glm::normalize(ng);
-    if (glm::dot(ng, d) > 0) ng = -ng;
-    glm::dvec3 L;
-    double tfar = 1e300;
-    if (light.type == 0) {
-      L = -glm::dvec3(light.direction[0], light.direction[1], light.direction[2]);
-    } else {
-      L = glm::dvec3(light.position[0], light.position[1], light.position[2]) - p;
-      tfar = glm::length(L) * (1 - 1e-5);
-      L = glm::normalize(L);
-    }
-    if (glm::dot(ng, L) <= 0) return false;
-    const double eps = 1e-4 + std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) * 1e-6;
-    const glm::dvec3 o = p + ng * eps;
+    glm::dvec3 o, L;
+    double tfar = 0;
+    if (!ShadowRayFrom(p, ng, d, light, &o, &L, &tfar)) return false;
     for (const auto& t : s.triangles) {
       const auto& k = t.corners;
       const glm::dvec3 p0(k[0].position[0], k[0].position[1], k[0].position[2]);
