@@ -123,21 +123,6 @@ template <typename P>
 [[gnu::always_inline]] inline float TapLuma(const LumaPlane<P>& pl, const Image8& src, const TapAxis& cx,
                                             const TapAxis& ry, int x, int y, int dx, int dy, Luma luma) {
   const float fx = cx.f[dx + 1], fy = ry.f[dy + 1];
-  if constexpr (std::is_same_v<P, uint8_t>) {
-    // Always the blend, without a branch on the column's and row's pattern (which a branch
-    // predictor misses): with fx = fy = 0 it returns the texel exactly (a + 0·(b − a) = a).
-    BilinearFootprint f;
-    f.x0 = cx.i[dx + 1];
-    f.y0 = ry.i[dy + 1];
-    f.fx = fx;
-    f.fy = fy;
-    (void)src;
-    (void)luma;
-    (void)x;
-    (void)y;
-    return pl.Blend(f);
-  }
-  if (fx == 0.0f && fy == 0.0f) return pl.Texel(cx.i[dx + 1], ry.i[dy + 1]);
   BilinearFootprint f;
   f.x0 = cx.i[dx + 1];
   f.y0 = ry.i[dy + 1];
@@ -145,6 +130,14 @@ template <typename P>
   f.fy = fy;
   (void)x;
   (void)y;
+  if constexpr (std::is_same_v<P, uint8_t>) {
+    // Always the blend, without a branch on the column's and row's pattern (which a branch
+    // predictor misses): with fx = fy = 0 it returns the texel exactly (a + 0·(b − a) = a).
+    (void)src;
+    (void)luma;
+    return pl.Blend(f);
+  }
+  if (fx == 0.0f && fy == 0.0f) return pl.Texel(f.x0, f.y0);
   float rgb[3];  // float plane (rec601-rgb): the luma of the filtered rgb
   BlendRgb(src, f, rgb);
   return Fxaa311TapLuma(Float4{rgb[0], rgb[1], rgb[2], 0.0f}, luma);

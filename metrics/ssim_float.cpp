@@ -293,6 +293,37 @@ std::array<double, 3> Means(const std::array<std::vector<double>, 3>& row_sums, 
 
 size_t TileIndex(int nx, int r0, int x0) { return static_cast<size_t>(r0 / kTileRows) * TilesX(nx) + x0 / kTileCols; }
 
+namespace {
+
+/// One tile of the walk: output rows [r0, r1), columns [x0, x0 + sx), input span sw, and
+/// each channel's centres of the two images (set by the walk's `centres` callback).
+struct Tile {
+  int r0, r1, x0, sx, sw;
+  float cx[3], cy[3];
+};
+
+/// The walk the three passes share: tiles of kTileRows output rows in parallel, across them
+/// tiles of kTileCols columns; per tile `centres(tile)` sets the centres, then every input row
+/// of the tile's padded band goes, channel by channel, to `row(tile, buffers of c, c, yy, r)`
+/// with r = yy − 2·kR the output row whose window that input row completes (r < r0: the
+/// band's first 2·kR rows, which only fill the ring). `planes`: the ring's planes per channel.
+template <typename Centres, typename Row>
+void WalkTiles(int nx, int ny, int planes, const Centres& centres, const Row& row) {
+  ParallelForChunks(ny, kTileRows, [&](int r0, int r1) {
+    std::array<TileBuffers, 3> bufs{TileBuffers(planes), TileBuffers(planes), TileBuffers(planes)};
+    for (int x0 = 0; x0 < nx; x0 += kTileCols) {
+      Tile t{r0, r1, x0, std::min(kTileCols, nx - x0), 0, {}, {}};
+      t.sw = t.sx + 2 * kR;
+      centres(t);
+      for (int yy = r0; yy < r1 + 2 * kR; ++yy) {
+        for (int c = 0; c < 3; ++c) row(t, bufs[c], c, yy, yy - 2 * kR);
+      }
+    }
+  });
+}
+
+}  // namespace
+
 }  // namespace
 
 // Each tile is walked once, its three channels row by row (an input row is read from memory
@@ -304,36 +335,30 @@ std::array<double, 3> Ssim(const ImageF& a, const ImageF& b, const std::array<do
   std::array<std::vector<double>, 3> row_sums;
   for (auto& v : row_sums) v.assign(ny, 0.0);
   const int ca = a.Channels(), cb = b.Channels();
-  ParallelForChunks(ny, kTileRows, [&](int r0, int r1) {
-    std::array<TileBuffers, 3> bufs{TileBuffers(5), TileBuffers(5), TileBuffers(5)};
-    for (int x0 = 0; x0 < nx; x0 += kTileCols) {
-      const int sx = std::min(kTileCols, nx - x0), sw = sx + 2 * kR;
-      float cx[3], cy[3];
-      for (int c = 0; c < 3; ++c) {
-        cx[c] = TileCentre(a, c, x0, r0, sx, r1 - r0);
-        cy[c] = TileCentre(b, c, x0, r0, sx, r1 - r0);
-      }
-      for (int yy = r0; yy < r1 + 2 * kR; ++yy) {
-        const int r = yy - 2 * kR;
+  WalkTiles(
+      nx, ny, 5,
+      [&](Tile& t) {
         for (int c = 0; c < 3; ++c) {
-          TileBuffers& buf = bufs[c];
-          HorizontalRow(a.Row(yy) + static_cast<size_t>(x0) * ca + c, ca, sw, sx, wf.data(), cx[c], buf.da.data(),
-                        buf.daa.data(), buf.Slot(0, yy), buf.Slot(1, yy));
-          HorizontalRow(b.Row(yy) + static_cast<size_t>(x0) * cb + c, cb, sw, sx, wf.data(), cy[c], buf.db.data(),
-                        buf.dab.data(), buf.Slot(3, yy), buf.Slot(4, yy));
-          HorizontalCross(buf.da.data(), buf.db.data(), sw, sx, wf.data(), buf.dab.data(), buf.Slot(2, yy));
-          if (r < r0) continue;
-          const float* p[5][kTaps];
-          for (int plane = 0; plane < 5; ++plane)
-            for (int j = 0; j < kTaps; ++j) p[plane][j] = buf.Slot(plane, r + j);
-          VerticalSums2(p[3], p[4], sx, wf.data(), buf.sum1.data(), buf.sum2.data());
-          row_sums[c][r] += VerticalAndMap(p[0], p[1], p[2], buf.sum1.data(), buf.sum2.data(), sx, wf.data(), cx[c],
-                                           cy[c], buf.map.data());
-          if (map_out && c == map_channel) std::copy_n(buf.map.data(), sx, map_out + static_cast<size_t>(r) * nx + x0);
+          t.cx[c] = TileCentre(a, c, t.x0, t.r0, t.sx, t.r1 - t.r0);
+          t.cy[c] = TileCentre(b, c, t.x0, t.r0, t.sx, t.r1 - t.r0);
         }
-      }
-    }
-  });
+      },
+      [&](const Tile& t, TileBuffers& buf, int c, int yy, int r) {
+        HorizontalRow(a.Row(yy) + static_cast<size_t>(t.x0) * ca + c, ca, t.sw, t.sx, wf.data(), t.cx[c], buf.da.data(),
+                      buf.daa.data(), buf.Slot(0, yy), buf.Slot(1, yy));
+        HorizontalRow(b.Row(yy) + static_cast<size_t>(t.x0) * cb + c, cb, t.sw, t.sx, wf.data(), t.cy[c], buf.db.data(),
+                      buf.dab.data(), buf.Slot(3, yy), buf.Slot(4, yy));
+        HorizontalCross(buf.da.data(), buf.db.data(), t.sw, t.sx, wf.data(), buf.dab.data(), buf.Slot(2, yy));
+        if (r < t.r0) return;
+        const float* p[5][kTaps];
+        for (int plane = 0; plane < 5; ++plane)
+          for (int j = 0; j < kTaps; ++j) p[plane][j] = buf.Slot(plane, r + j);
+        VerticalSums2(p[3], p[4], t.sx, wf.data(), buf.sum1.data(), buf.sum2.data());
+        row_sums[c][r] += VerticalAndMap(p[0], p[1], p[2], buf.sum1.data(), buf.sum2.data(), t.sx, wf.data(), t.cx[c],
+                                         t.cy[c], buf.map.data());
+        if (map_out && c == map_channel)
+          std::copy_n(buf.map.data(), t.sx, map_out + static_cast<size_t>(r) * nx + t.x0);
+      });
   return Means(row_sums, nx, ny);
 }
 
@@ -347,28 +372,22 @@ std::array<ReferencePlanes, 3> Prepare(const ImageF& b, const std::array<double,
     p.centre.resize(static_cast<size_t>(TilesX(nx)) * ((ny + kTileRows - 1) / kTileRows));
   }
   const int cb = b.Channels();
-  ParallelForChunks(ny, kTileRows, [&](int r0, int r1) {
-    std::array<TileBuffers, 3> bufs{TileBuffers(2), TileBuffers(2), TileBuffers(2)};
-    for (int x0 = 0; x0 < nx; x0 += kTileCols) {
-      const int sx = std::min(kTileCols, nx - x0), sw = sx + 2 * kR;
-      float cy[3];
-      for (int c = 0; c < 3; ++c) side[c].centre[TileIndex(nx, r0, x0)] = cy[c] = TileCentre(b, c, x0, r0, sx, r1 - r0);
-      for (int yy = r0; yy < r1 + 2 * kR; ++yy) {
-        const int r = yy - 2 * kR;
-        for (int c = 0; c < 3; ++c) {
-          TileBuffers& buf = bufs[c];
-          HorizontalRow(b.Row(yy) + static_cast<size_t>(x0) * cb + c, cb, sw, sx, wf.data(), cy[c], buf.db.data(),
-                        buf.daa.data(), buf.Slot(0, yy), buf.Slot(1, yy));
-          if (r < r0) continue;
-          const float* pb[kTaps];
-          const float* pbb[kTaps];
-          for (int j = 0; j < kTaps; ++j) pb[j] = buf.Slot(0, r + j), pbb[j] = buf.Slot(1, r + j);
-          const size_t at = static_cast<size_t>(r) * nx + x0;
-          VerticalSums2(pb, pbb, sx, wf.data(), side[c].s1.data() + at, side[c].s2.data() + at);
-        }
-      }
-    }
-  });
+  WalkTiles(
+      nx, ny, 2,
+      [&](Tile& t) {
+        for (int c = 0; c < 3; ++c)
+          side[c].centre[TileIndex(nx, t.r0, t.x0)] = t.cy[c] = TileCentre(b, c, t.x0, t.r0, t.sx, t.r1 - t.r0);
+      },
+      [&](const Tile& t, TileBuffers& buf, int c, int yy, int r) {
+        HorizontalRow(b.Row(yy) + static_cast<size_t>(t.x0) * cb + c, cb, t.sw, t.sx, wf.data(), t.cy[c], buf.db.data(),
+                      buf.daa.data(), buf.Slot(0, yy), buf.Slot(1, yy));
+        if (r < t.r0) return;
+        const float* pb[kTaps];
+        const float* pbb[kTaps];
+        for (int j = 0; j < kTaps; ++j) pb[j] = buf.Slot(0, r + j), pbb[j] = buf.Slot(1, r + j);
+        const size_t at = static_cast<size_t>(r) * nx + t.x0;
+        VerticalSums2(pb, pbb, t.sx, wf.data(), side[c].s1.data() + at, side[c].s2.data() + at);
+      });
   return side;
 }
 
@@ -379,34 +398,27 @@ std::array<double, 3> SsimPrepared(const ImageF& a, const ImageF& b, const std::
   std::array<std::vector<double>, 3> row_sums;
   for (auto& v : row_sums) v.assign(ny, 0.0);
   const int ca = a.Channels(), cb = b.Channels();
-  ParallelForChunks(ny, kTileRows, [&](int r0, int r1) {
-    std::array<TileBuffers, 3> bufs{TileBuffers(3), TileBuffers(3), TileBuffers(3)};
-    for (int x0 = 0; x0 < nx; x0 += kTileCols) {
-      const int sx = std::min(kTileCols, nx - x0), sw = sx + 2 * kR;
-      float cx[3], cy[3];
-      for (int c = 0; c < 3; ++c) {
-        cx[c] = TileCentre(a, c, x0, r0, sx, r1 - r0);
-        cy[c] = side[c].centre[TileIndex(nx, r0, x0)];
-      }
-      for (int yy = r0; yy < r1 + 2 * kR; ++yy) {
-        const int r = yy - 2 * kR;
+  WalkTiles(
+      nx, ny, 3,
+      [&](Tile& t) {
         for (int c = 0; c < 3; ++c) {
-          TileBuffers& buf = bufs[c];
-          HorizontalRow(a.Row(yy) + static_cast<size_t>(x0) * ca + c, ca, sw, sx, wf.data(), cx[c], buf.da.data(),
-                        buf.daa.data(), buf.Slot(0, yy), buf.Slot(1, yy));
-          CentreRow(b.Row(yy) + static_cast<size_t>(x0) * cb + c, cb, sw, cy[c], buf.db.data());
-          HorizontalCross(buf.da.data(), buf.db.data(), sw, sx, wf.data(), buf.dab.data(), buf.Slot(2, yy));
-          if (r < r0) continue;
-          const float* p[3][kTaps];
-          for (int plane = 0; plane < 3; ++plane)
-            for (int j = 0; j < kTaps; ++j) p[plane][j] = buf.Slot(plane, r + j);
-          const size_t at = static_cast<size_t>(r) * nx + x0;
-          row_sums[c][r] += VerticalAndMap(p[0], p[1], p[2], side[c].s1.data() + at, side[c].s2.data() + at, sx,
-                                           wf.data(), cx[c], cy[c], buf.map.data());
+          t.cx[c] = TileCentre(a, c, t.x0, t.r0, t.sx, t.r1 - t.r0);
+          t.cy[c] = side[c].centre[TileIndex(nx, t.r0, t.x0)];
         }
-      }
-    }
-  });
+      },
+      [&](const Tile& t, TileBuffers& buf, int c, int yy, int r) {
+        HorizontalRow(a.Row(yy) + static_cast<size_t>(t.x0) * ca + c, ca, t.sw, t.sx, wf.data(), t.cx[c], buf.da.data(),
+                      buf.daa.data(), buf.Slot(0, yy), buf.Slot(1, yy));
+        CentreRow(b.Row(yy) + static_cast<size_t>(t.x0) * cb + c, cb, t.sw, t.cy[c], buf.db.data());
+        HorizontalCross(buf.da.data(), buf.db.data(), t.sw, t.sx, wf.data(), buf.dab.data(), buf.Slot(2, yy));
+        if (r < t.r0) return;
+        const float* p[3][kTaps];
+        for (int plane = 0; plane < 3; ++plane)
+          for (int j = 0; j < kTaps; ++j) p[plane][j] = buf.Slot(plane, r + j);
+        const size_t at = static_cast<size_t>(r) * nx + t.x0;
+        row_sums[c][r] += VerticalAndMap(p[0], p[1], p[2], side[c].s1.data() + at, side[c].s2.data() + at, t.sx,
+                                         wf.data(), t.cx[c], t.cy[c], buf.map.data());
+      });
   return Means(row_sums, nx, ny);
 }
 
