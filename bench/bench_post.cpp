@@ -245,17 +245,20 @@ void PostTable(const PostBench& post, BenchOutput& out) {
   }
 }
 
+// Issue #41's goal: ≤ 5× the floor (#28 asked for 6×).
+constexpr double kFxaaFloorGoal = 5.0;
+
 void PostFloorGoals(BenchOutput& out) {
   const Stats& s = Figure("fxaa311-p39/real/t1");
   const double r = s.Median() / Figure("floor/real/t1").Median();
-  out.Goal(std::string("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (") + kRealFrameScene +
+  out.Goal(std::string("FXAA 3.11 p39 within 5× of the bandwidth floor, real content (") + kRealFrameScene +
                " frame, 1 thread)",
-           FormatDouble("%.1f×", r), r <= 6.0);
+           FormatDouble("%.1f×", r), r <= kFxaaFloorGoal);
   const Stats& s2 = Figure("fxaa311-p39/real/t2");
   const double r2 = s2.Median() / Figure("floor/real/t2").Median();
-  out.Goal(std::string("FXAA 3.11 p39 within 6× of the bandwidth floor, real content (") + kRealFrameScene +
+  out.Goal(std::string("FXAA 3.11 p39 within 5× of the bandwidth floor, real content (") + kRealFrameScene +
                " frame, 2 threads)",
-           FormatDouble("%.1f×", r2), r2 <= 6.0);
+           FormatDouble("%.1f×", r2), r2 <= kFxaaFloorGoal);
 }
 
 void PostScalingGoal(const PostBench& post, BenchOutput& out) {

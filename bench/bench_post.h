@@ -37,7 +37,7 @@ PostBench RegisterPostFigures(const Settings& cfg, Json& report);
 /// The "## Post filters" section (post filters, rescale, SSAA resolve).
 void PostTable(const PostBench& post, BenchOutput& out);
 
-/// Goals: FXAA 3.11 p39 within 6× of the floor on real content (1 and 2 threads).
+/// Goals: FXAA 3.11 p39 within 5× of the floor on real content (1 and 2 threads).
 void PostFloorGoals(BenchOutput& out);
 
 /// Goal: 2 threads ≥ 1.8× one thread for every post filter and frame.

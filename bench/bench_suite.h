@@ -25,6 +25,10 @@ struct SuiteRun {
 struct DefaultRun {
   bool ok = false;
   double wall_s = 0, cpu_s = 0, max_rss_mb = 0;
+  double folder_mb = 0;           ///< the output folder: sum of its files' sizes (MB, 10^6 bytes)
+  double folder_disk_mb = 0;      ///< the same folder's disk usage in 4 KiB blocks, as `du` counts
+  std::vector<std::string> real;  ///< the default suite's scenes with glTF content (a real asset)
+  int scenes = 0;                 ///< scenes in the default suite
 };
 
 /// What the suite figures measured, for their table and goals.
