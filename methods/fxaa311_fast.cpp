@@ -21,6 +21,7 @@
 #include "methods/fxaa311.h"
 #include "methods/fxaa311_plane.h"
 #include "methods/fxaa311_rows.h"
+#include "methods/fxaa311_search.h"
 #include "methods/row_ops.h"
 
 namespace aalab {
@@ -409,6 +410,29 @@ AALAB_FXAA311_CLONES uint64_t EdgeList(const std::vector<Candidate>& list, const
   return taps;
 }
 
+// EdgeList on the 8-bit plane with EdgePixelsX8: the edge pixels go through the shader eight
+// at a time (methods/fxaa311_search.cpp; same bits, same taps). Near ties are decided first,
+// one by one, as above.
+uint64_t EdgeListX8(const std::vector<Candidate>& list, const LumaPlane<uint8_t>& plane, const TapGrid& grid,
+                    const Image8& in, const Fxaa311Params& params, float rcpX, float rcpY, Image8& out,
+                    uint64_t* edges) {
+  uint64_t taps = 0;
+  int xs[8], ys[8], n = 0;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const Candidate& c = list[i];
+    if (c.mark == kTie && !EdgeByTaps(plane, in, grid, c.x, c.y, params)) continue;
+    ++*edges;
+    xs[n] = c.x;
+    ys[n] = c.y;
+    if (++n == 8) {
+      taps += EdgePixelsX8(plane, grid, in, xs, ys, n, params, rcpX, rcpY, out);
+      n = 0;
+    }
+  }
+  if (n > 0) taps += EdgePixelsX8(plane, grid, in, xs, ys, n, params, rcpX, rcpY, out);
+  return taps;
+}
+
 template <typename P>
 Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* stats) {
   const int w = in.Width();
@@ -423,7 +447,14 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
   LumaPlane<P> plane;
   plane.w = w;
   plane.h = h;
-  plane.v.reset(new P[static_cast<size_t>(w) * h]);  // every row written by pass 1
+  // Every row written by pass 1; the 8-bit plane's kPlanePad bytes after the end (read, not
+  // used, by EdgePixelsX8's gathers) are zeroed.
+  plane.v.reset(new P[static_cast<size_t>(w) * h + kPlanePad]);
+  std::fill_n(plane.v.get() + static_cast<size_t>(w) * h, kPlanePad, P{0});
+  bool x8 = false;
+  if constexpr (std::is_same_v<P, uint8_t>) {
+    x8 = EdgePixelsX8Available() && static_cast<size_t>(w) * h + kPlanePad < (size_t{1} << 31);
+  }
   ExitTable exit_table;
   if constexpr (std::is_same_v<P, uint8_t>) {
     exit_table = MakeExitTable(params.edge_threshold, params.edge_threshold_min, margin);
@@ -473,8 +504,16 @@ Image8 Fxaa311Fast(const Image8& in, const Fxaa311Params& params, PostStats* sta
   ParallelForChunks(h, kGrain, [&](int y0, int y1) {
     BilinearSampler tex(in);  // rgb taps: the prepared frame's rgb is the input's rgb
     uint64_t chunk_taps = 0, edges = 0;
-    chunk_taps +=
-        EdgeList(candidates[static_cast<size_t>(y0 / kGrain)], plane, grid, tex, in, params, rcpX, rcpY, out, &edges);
+    const std::vector<Candidate>& list = candidates[static_cast<size_t>(y0 / kGrain)];
+    if constexpr (std::is_same_v<P, uint8_t>) {
+      if (x8) {
+        chunk_taps += EdgeListX8(list, plane, grid, in, params, rcpX, rcpY, out, &edges);
+      } else {
+        chunk_taps += EdgeList(list, plane, grid, tex, in, params, rcpX, rcpY, out, &edges);
+      }
+    } else {
+      chunk_taps += EdgeList(list, plane, grid, tex, in, params, rcpX, rcpY, out, &edges);
+    }
     chunk_taps += 5 * (static_cast<uint64_t>(y1 - y0) * static_cast<uint64_t>(w) - edges);
     taps[static_cast<size_t>(y0 / kGrain)] = chunk_taps;
   });
