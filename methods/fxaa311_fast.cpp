@@ -206,13 +206,28 @@ void ContrastRowBytes(RowTriple<uint8_t> r, int w, const TapGrid& g, int y, cons
 // long after pass 1 streamed them: they are fetched kPrefetch candidates ahead.
 constexpr size_t kPrefetch = 8;
 template <typename P>
-inline void Prefetch(const Image8& in, const LumaPlane<P>& pl, const Candidate& c) {
+[[gnu::always_inline]] inline void Prefetch(const Image8& in, const LumaPlane<P>& pl, const Candidate& c) {
   const int ya = std::max(c.y - 1, 0), yb = std::min(c.y + 1, in.Height() - 1);
   __builtin_prefetch(in.Row(ya) + 4 * c.x);
   __builtin_prefetch(in.Row(c.y) + 4 * c.x);
   __builtin_prefetch(in.Row(yb) + 4 * c.x);
   __builtin_prefetch(pl.Row(ya) + c.x);
   __builtin_prefetch(pl.Row(yb) + c.x);
+}
+
+// The input texels around (x, y) that the final tap reads (rows y − 1 .. y + 1) and the
+// output pixel it writes (pass 1 wrote it long before). EdgeListX8
+// fetches them kPrefetchX8 candidates ahead: three batches, since a batch's final taps come
+// after its whole search.
+// Forced inline: GCC 12 finds a function whose only statements are prefetches `const` and
+// drops calls to it (no prefetch instruction was left in this file before).
+constexpr size_t kPrefetchX8 = 24;
+[[gnu::always_inline]] inline void PrefetchInput(const Image8& in, Image8& out, int x, int y) {
+  const int ya = std::max(y - 1, 0), yb = std::min(y + 1, in.Height() - 1);
+  __builtin_prefetch(in.Row(ya) + 4 * x);
+  __builtin_prefetch(in.Row(y) + 4 * x);
+  __builtin_prefetch(in.Row(yb) + 4 * x);
+  __builtin_prefetch(out.Row(y) + 4 * x, 1);  // the pixel's output, for writing
 }
 
 // ShadePixel for a pixel that passed the early exit with range > 0, lumas from the plane.
@@ -420,16 +435,17 @@ uint64_t EdgeListX8(const std::vector<Candidate>& list, const LumaPlane<uint8_t>
   int xs[8], ys[8], n = 0;
   for (size_t i = 0; i < list.size(); ++i) {
     const Candidate& c = list[i];
+    if (i + kPrefetchX8 < list.size()) PrefetchInput(in, out, list[i + kPrefetchX8].x, list[i + kPrefetchX8].y);
     if (c.mark == kTie && !EdgeByTaps(plane, in, grid, c.x, c.y, params)) continue;
     ++*edges;
     xs[n] = c.x;
     ys[n] = c.y;
     if (++n == 8) {
-      taps += EdgePixelsX8(plane, grid, in, xs, ys, n, params, rcpX, rcpY, out);
+      taps += EdgePixelsX8(plane, in, xs, ys, n, params, rcpX, rcpY, out);
       n = 0;
     }
   }
-  if (n > 0) taps += EdgePixelsX8(plane, grid, in, xs, ys, n, params, rcpX, rcpY, out);
+  if (n > 0) taps += EdgePixelsX8(plane, in, xs, ys, n, params, rcpX, rcpY, out);
   return taps;
 }
 

@@ -6,9 +6,10 @@
 // the edge, then a final tap at an address computed from the whole search (issue #41: ~200 ns
 // per edge pixel, two thirds of the filter, one dependent chain at a time). Here eight edge
 // pixels run side by side, one per AVX2 lane, so eight chains overlap:
-//   - texel reads are gathers from the 8-bit luma plane (4 bytes read at the texel's
-//     address, the first kept: the plane has kPlanePad bytes after its end), the grid's
-//     footprints are gathers from TapGrid;
+//   - texel reads are gathers from the 8-bit luma plane, one per row of a bilinear tap: 4
+//     bytes read at the row's first texel, its two texels taken from them (the plane has
+//     kPlanePad bytes after its end); the 3x3 taps' footprints are computed as MakeAxis
+//     computes TapGrid's;
 //   - every statement of EdgePixel (methods/fxaa311_fast.cpp) is the same IEEE float32
 //     operation per lane, in the same order: add, sub, mul, div, floor (roundps towards −∞),
 //     truncation to int, compares; the build neither contracts nor reassociates
@@ -29,6 +30,7 @@
 // holds the production path to the reference on every preset and luma mode.
 #include "methods/fxaa311_search.h"
 
+#include <algorithm>
 #include <atomic>
 #include <bit>
 #include <cstddef>
@@ -81,24 +83,31 @@ AALAB_AVX2 I Clamp(I v, I lo, I hi) { return _mm256_max_epi32(lo, _mm256_min_epi
 struct PlaneX8 {
   const int* base;  // the plane's bytes
   I w, wm1, hm1;
+  I wm2;  // max(w − 2, 0): the last column a texel pair's 4-byte read may start at
   V fw, fh;
 };
 
-// UnormToFloat of the plane bytes at byte offsets idx, in the lanes of `mask` (others 0).
-AALAB_AVX2 V Texels(const PlaneX8& p, I idx, I mask) {
-  I g = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), p.base, idx, mask, 1);
-  g = _mm256_and_si256(g, _mm256_set1_epi32(0xFF));
-  return _mm256_cvtepi32_ps(g) * Splat(1.0f / 255.0f);
+// UnormToFloat of the byte at bit `shift` of the 32-bit words g.
+AALAB_AVX2 V Unorm(I g, I shift) {
+  const I k = _mm256_and_si256(_mm256_srlv_epi32(g, shift), _mm256_set1_epi32(0xFF));
+  return _mm256_cvtepi32_ps(k) * Splat(1.0f / 255.0f);
 }
 
-// LumaPlane::Blend: the four clamped texels of footprint (x0, y0, fx, fy), BilinearBlend.
+// LumaPlane::Blend: the four clamped texels of footprint (x0, y0, fx, fy), BilinearBlend, in
+// the lanes of `mask` (others 0). Each row's two texels (columns xa, xb: adjacent, or equal
+// where clamped) come from one 4-byte gather at column xl = min(xa, w − 2), the bytes at
+// xa − xl and xb − xl.
 AALAB_AVX2 V Blend(const PlaneX8& p, I x0, I y0, V fx, V fy, I mask) {
   const I zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1);
   const I xa = Clamp(x0, zero, p.wm1), xb = Clamp(_mm256_add_epi32(x0, one), zero, p.wm1);
+  const I xl = _mm256_min_epi32(xa, p.wm2);
+  const I sa = _mm256_slli_epi32(_mm256_sub_epi32(xa, xl), 3), sb = _mm256_slli_epi32(_mm256_sub_epi32(xb, xl), 3);
   const I ra = _mm256_mullo_epi32(Clamp(y0, zero, p.hm1), p.w);
   const I rb = _mm256_mullo_epi32(Clamp(_mm256_add_epi32(y0, one), zero, p.hm1), p.w);
-  const V a = Texels(p, _mm256_add_epi32(ra, xa), mask), b = Texels(p, _mm256_add_epi32(ra, xb), mask);
-  const V c = Texels(p, _mm256_add_epi32(rb, xa), mask), d = Texels(p, _mm256_add_epi32(rb, xb), mask);
+  const I z = _mm256_setzero_si256();
+  const I gt = _mm256_mask_i32gather_epi32(z, p.base, _mm256_add_epi32(ra, xl), mask, 1);
+  const I gb = _mm256_mask_i32gather_epi32(z, p.base, _mm256_add_epi32(rb, xl), mask, 1);
+  const V a = Unorm(gt, sa), b = Unorm(gt, sb), c = Unorm(gb, sa), d = Unorm(gb, sb);
   const V top = a + fx * (b - a);  // FilterLerp(a, b, fx)
   const V bot = c + fx * (d - c);
   return top + fy * (bot - top);
@@ -127,16 +136,17 @@ struct AxisX8 {
   V f[3];
 };
 
-AALAB_AVX2 AxisX8 GatherAxis(const std::vector<TapAxis>& axes, I at) {
-  static_assert(sizeof(TapAxis) % 4 == 0 && offsetof(TapAxis, i) % 4 == 0 && offsetof(TapAxis, f) % 4 == 0);
-  const I base = _mm256_mullo_epi32(at, _mm256_set1_epi32(static_cast<int>(sizeof(TapAxis) / 4)));
-  const int* ints = reinterpret_cast<const int*>(axes.data());
-  const float* floats = reinterpret_cast<const float*>(axes.data());
+// The footprints of the 3x3 taps along one axis for the lanes' pixel positions `at` on an
+// axis of n texels: MakeAxis (methods/fxaa311_plane.h) operation for operation, so the lanes
+// hold exactly the TapGrid entries (computing them costs less than gathering them).
+AALAB_AVX2 AxisX8 AxisFootprints(I at, int n, bool glsl) {
+  const V fn = Splat(static_cast<float>(n));
+  const V pos = (_mm256_cvtepi32_ps(at) + Splat(0.5f)) / fn;  // posM
+  const float rcp = 1.0f / static_cast<float>(n);
   AxisX8 a;
-  for (int k = 0; k < 3; ++k) {
-    const int oi = static_cast<int>(offsetof(TapAxis, i) / 4) + k, of = static_cast<int>(offsetof(TapAxis, f) / 4) + k;
-    a.i[k] = _mm256_i32gather_epi32(ints, _mm256_add_epi32(base, _mm256_set1_epi32(oi)), 4);
-    a.f[k] = _mm256_i32gather_ps(floats, _mm256_add_epi32(base, _mm256_set1_epi32(of)), 4);
+  for (int d = -1; d <= 1; ++d) {
+    const V u = glsl ? pos * fn + Splat(static_cast<float>(d)) : (pos + Splat(static_cast<float>(d) * rcp)) * fn;
+    Axis(u, fn, &a.i[d + 1], &a.f[d + 1]);
   }
   return a;
 }
@@ -148,32 +158,34 @@ AALAB_AVX2 V Tap3x3(const PlaneX8& p, const AxisX8& cx, const AxisX8& ry, int dx
 
 }  // namespace
 
-__attribute__((target("avx2"))) uint64_t EdgePixelsX8(const LumaPlane<uint8_t>& pl, const TapGrid& grid,
-                                                      const Image8& src, const int* xs, const int* ys, int n,
-                                                      const Fxaa311Params& prm, float rcpX, float rcpY, Image8& out) {
+__attribute__((target("avx2"))) uint64_t EdgePixelsX8(const LumaPlane<uint8_t>& pl, const Image8& src, const int* xs,
+                                                      const int* ys, int n, const Fxaa311Params& prm, float rcpX,
+                                                      float rcpY, Image8& out) {
   const bool glsl = prm.order == Fxaa311Params::Order::kSeed003Glsl;
   const std::vector<float>& P_ = prm.steps;
-  alignas(32) int lx[8], ly[8];
+  int lx[8], ly[8];
   for (int i = 0; i < 8; ++i) {
     lx[i] = xs[i < n ? i : 0];
     ly[i] = ys[i < n ? i : 0];
   }
   const unsigned valid = (1u << n) - 1u;
-  const I xi = _mm256_load_si256(reinterpret_cast<const __m256i*>(lx));
-  const I yi = _mm256_load_si256(reinterpret_cast<const __m256i*>(ly));
+  // Element by element (a 32-byte load of eight just-stored ints would stall on forwarding).
+  const I xi = _mm256_setr_epi32(lx[0], lx[1], lx[2], lx[3], lx[4], lx[5], lx[6], lx[7]);
+  const I yi = _mm256_setr_epi32(ly[0], ly[1], ly[2], ly[3], ly[4], ly[5], ly[6], ly[7]);
   const I all = _mm256_set1_epi32(-1);
   PlaneX8 p;
   p.base = reinterpret_cast<const int*>(pl.v.get());
   p.w = _mm256_set1_epi32(pl.w);
   p.wm1 = _mm256_set1_epi32(pl.w - 1);
   p.hm1 = _mm256_set1_epi32(pl.h - 1);
+  p.wm2 = _mm256_set1_epi32(std::max(pl.w - 2, 0));
   p.fw = Splat(static_cast<float>(pl.w));
   p.fh = Splat(static_cast<float>(pl.h));
   uint64_t taps = 12u * static_cast<uint64_t>(n);  // 9 + the first pair + the final tap
 
   V posMx = (_mm256_cvtepi32_ps(xi) + Splat(0.5f)) / p.fw;
   V posMy = (_mm256_cvtepi32_ps(yi) + Splat(0.5f)) / p.fh;
-  const AxisX8 cx = GatherAxis(grid.cols, xi), ry = GatherAxis(grid.rows, yi);
+  const AxisX8 cx = AxisFootprints(xi, pl.w, glsl), ry = AxisFootprints(yi, pl.h, glsl);
   const V lumaM = Tap3x3(p, cx, ry, 0, 0);
   V lumaS = Tap3x3(p, cx, ry, 0, 1);
   V lumaE = Tap3x3(p, cx, ry, 1, 0);
@@ -333,8 +345,8 @@ __attribute__((target("avx2"))) uint64_t EdgePixelsX8(const LumaPlane<uint8_t>& 
 
 #else
 
-uint64_t EdgePixelsX8(const LumaPlane<uint8_t>&, const TapGrid&, const Image8&, const int*, const int*, int,
-                      const Fxaa311Params&, float, float, Image8&) {
+uint64_t EdgePixelsX8(const LumaPlane<uint8_t>&, const Image8&, const int*, const int*, int, const Fxaa311Params&,
+                      float, float, Image8&) {
   return 0;  // never called: EdgePixelsX8Available() is false without the kernel
 }
 

@@ -28,7 +28,7 @@ void SetEdgePixelsX8Enabled(bool enabled);
 /// operations in the same order per lane, writing the pixel's rgb and alpha 255 into `out`.
 /// Returns the taps the n pixels took (9 + 2 + search taps + 1 each). Requires
 /// EdgePixelsX8Available(), params.luma an 8-bit mode and w·h + kPlanePad < 2^31.
-uint64_t EdgePixelsX8(const LumaPlane<uint8_t>& pl, const TapGrid& grid, const Image8& src, const int* xs,
-                      const int* ys, int n, const Fxaa311Params& params, float rcpX, float rcpY, Image8& out);
+uint64_t EdgePixelsX8(const LumaPlane<uint8_t>& pl, const Image8& src, const int* xs, const int* ys, int n,
+                      const Fxaa311Params& params, float rcpX, float rcpY, Image8& out);
 
 }  // namespace aalab::fxaa311_internal
