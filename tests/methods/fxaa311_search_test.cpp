@@ -67,12 +67,19 @@ struct Setting {
   Fxaa311Params p;
 };
 
+// prefix + the decimal n (built by appending: GCC 12 warns, wrongly, on "literal" + string).
+std::string Name(const char* prefix, int n) {
+  std::string s(prefix);
+  s += std::to_string(n);
+  return s;
+}
+
 std::vector<Setting> Settings() {
   std::vector<Setting> out;
   for (int preset : {10, 12, 29, 39}) {
     Fxaa311Params p;
     p.steps = Fxaa311PresetSteps(preset);
-    out.push_back({"p" + std::to_string(preset), p});
+    out.push_back({Name("p", preset), p});
   }
   for (Luma luma : {Luma::kRec601, Luma::kGreen, Luma::kSqrtLuminance}) {
     for (Order order : {Order::kFxaa311, Order::kSeed003Glsl}) {
@@ -83,8 +90,7 @@ std::vector<Setting> Settings() {
       p.subpix = 1.0f;
       p.edge_threshold = 0.063f;
       p.edge_threshold_min = 0.0312f;
-      out.push_back(
-          {"luma" + std::to_string(static_cast<int>(luma)) + "-order" + std::to_string(static_cast<int>(order)), p});
+      out.push_back({Name("luma", static_cast<int>(luma)) + Name("-order", static_cast<int>(order)), p});
     }
   }
   Fxaa311Params tutorial = FxaaTutorialHighParams();
@@ -102,7 +108,7 @@ struct Result {
   uint64_t taps = 0;
 };
 
-Result Run(const Image8& in, const Fxaa311Params& p, bool x8) {
+Result RunFilter(const Image8& in, const Fxaa311Params& p, bool x8) {
   SetEdgePixelsX8Enabled(x8);
   PostStats s;
   Result r{Fxaa311(in, p, &s), 0};
@@ -127,9 +133,9 @@ TEST(Fxaa311Search, EightAtATimeEqualsScalarAndReference) {
   for (auto [w, h] : sizes) {
     const Image8 in = TestFrame(w, h, seed++);
     for (const Setting& s : Settings()) {
-      const std::string what = s.name + " " + std::to_string(w) + "x" + std::to_string(h);
-      const Result x8 = Run(in, s.p, true);
-      const Result scalar = Run(in, s.p, false);
+      const std::string what = s.name + Name(" ", w) + Name("x", h);
+      const Result x8 = RunFilter(in, s.p, true);
+      const Result scalar = RunFilter(in, s.p, false);
       PostStats rs;
       const Image8 ref = Fxaa311Reference(in, s.p, &rs);
       EXPECT_EQ(DifferingPixels(x8.img, scalar.img), 0) << what;
@@ -152,11 +158,11 @@ TEST(Fxaa311Search, SameBitsAtOneAndTwoThreads) {
   Fxaa311Params p;
   p.steps = Fxaa311PresetSteps(39);
   SetThreadCount(1);
-  const Result one = Run(in, p, true);
+  const Result one = RunFilter(in, p, true);
   SetThreadCount(2);
-  const Result two = Run(in, p, true);
+  const Result two = RunFilter(in, p, true);
   SetThreadCount(0);
-  const Result scalar = Run(in, p, false);
+  const Result scalar = RunFilter(in, p, false);
   EXPECT_EQ(DifferingPixels(one.img, two.img), 0);
   EXPECT_EQ(DifferingPixels(one.img, scalar.img), 0);
   EXPECT_EQ(one.taps, two.taps);
