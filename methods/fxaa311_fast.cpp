@@ -48,7 +48,10 @@ using Order = Fxaa311Params::Order;
 //      copy, so only edge pixels are touched again.
 //   3. Only the listed pixels run the rest of the shader (EdgePixel below: ShadePixel's
 //      statements from the corner fetches on, with the same luma values), in a function
-//      built for AVX2 and the baseline (EdgeList; the same IEEE operations, no FMA).
+//      built for AVX2 and the baseline (EdgeList; the same IEEE operations, no FMA). On the
+//      8-bit plane with AVX2 they go eight at a time, one per lane (EdgeListX8,
+//      methods/fxaa311_search.cpp: the same operations per lane, so the same bits and taps),
+//      the input texels of their final taps and their output pixels prefetched ahead.
 // The 3x3 taps are fetched where the shader fetches them, a hair off the texel centres in
 // many columns and rows (methods/fxaa311_plane.h, TapGrid): step 2 decides those pixels from
 // texel lumas unless the test is within the taps' deviation of a tie, and then with the real
