@@ -4,22 +4,25 @@
 // The plane holds, per pixel, the luma the shader reads (the pre-pass's stored alpha, or the
 // green byte, or the float dot for rec601-rgb). PlaneRow8 computes it in SSE2, four pixels
 // per vector (eight with AVX2 where the CPU has it, chosen at run time: rec601 and
-// sqrt-luminance, whose tables are then read by gathers), with the scalar expressions' IEEE
+// sqrt-luminance, whose tables are then read by gathers; rec601 sixteen with AVX-512F), with
+// the scalar expressions' IEEE
 // float32 operations in the same order:
 //   rec601:         u = k·fl(1/255) per channel; s = u_r·0.299 + (u_g·0.587 + u_b·0.114)
 //   sqrt-luminance: s = sqrt((d_r·0.2126729 + d_g·0.7151522) + d_b·0.0721750), d = SrgbDecode8
 //                   (a table per channel, read lane by lane: SSE2 has no gather)
 //   stored:         StoreUnorm8(s) = clamp(nearbyint(s·255), 0, 255), nearbyint as
 //                   (w + 2^23) − 2^23 in the default rounding mode.
-// SSE2/AVX2 add, mul, sqrt and int↔float conversions are IEEE-correctly rounded like their scalar
+// SSE2/AVX2/AVX-512 add, mul, sqrt and int↔float conversions are IEEE-correctly rounded like their scalar
 // forms, and the build neither contracts nor reassociates (-ffp-contract=off, no fast-math),
 // so every lane equals the scalar result; tests/methods/fxaa311_rows_test.cpp checks all
 // 2^24 colours against the pre-pass (Fxaa311LumaFrame), with row lengths that reach the
-// AVX2 blocks (32 pixels), the SSE2 blocks (16) and the scalar tail. The clamp's max/min equal
+// AVX2 blocks (32 pixels), the SSE2 and AVX-512 blocks (16) and the scalar tail, for each
+// instruction set the CPU has (SetPlaneRow8IsaCap). The clamp's max/min equal
 // StoreUnorm8's two guards for every s the dots produce (s is never NaN; s ≤ 0 gives 0,
 // s ≥ 1 gives w ≥ 255).
 #include "methods/fxaa311_rows.h"
 
+#include <atomic>
 #include <cmath>
 
 #include "core/color.h"
@@ -183,8 +186,54 @@ bool HasAvx2() {
   static const bool has = __builtin_cpu_supports("avx2");
   return has;
 }
+
+// rec601 sixteen pixels at a time, for CPUs with AVX-512F (chosen at run time, PlaneRow8): the
+// same lane operations as Rec601x8; the lumas, clamped to [0, 255], narrow to bytes exactly
+// (vpmovusdb).
+// (GCC 12's AVX-512 intrinsics start some results from _mm512_undefined_*, which
+// -Wmaybe-uninitialized reports once inlined; the lanes are all written.)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#define AALAB_AVX512 __attribute__((target("avx512f")))
+AALAB_AVX512 inline __m128i Rec601x16(const uint8_t* p) {
+  const __m512i px = _mm512_loadu_si512(p);
+  const __m512i m = _mm512_set1_epi32(0xff);
+  const __m512 k = _mm512_set1_ps(1.0f / 255.0f);
+  const __m512 r = _mm512_mul_ps(_mm512_cvtepi32_ps(_mm512_and_si512(px, m)), k);
+  const __m512 g = _mm512_mul_ps(_mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(px, 8), m)), k);
+  const __m512 b = _mm512_mul_ps(_mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(px, 16), m)), k);
+  const __m512 s =
+      _mm512_add_ps(_mm512_mul_ps(r, _mm512_set1_ps(0.299f)),
+                    _mm512_add_ps(_mm512_mul_ps(g, _mm512_set1_ps(0.587f)), _mm512_mul_ps(b, _mm512_set1_ps(0.114f))));
+  const __m512 big = _mm512_set1_ps(8388608.0f);
+  __m512 w = _mm512_mul_ps(s, _mm512_set1_ps(255.0f));
+  w = _mm512_sub_ps(_mm512_add_ps(w, big), big);
+  w = _mm512_min_ps(_mm512_max_ps(w, _mm512_setzero_ps()), _mm512_set1_ps(255.0f));
+  return _mm512_cvtusepi32_epi8(_mm512_cvttps_epi32(w));
+}
+
+// The vector part of PlaneRow8 for rec601 with AVX-512F: returns the pixels done (a multiple
+// of 16).
+AALAB_AVX512 int PlaneRow8Rec601Avx512(const uint8_t* p, int w, uint8_t* o) {
+  int x = 0;
+  for (; x + 16 <= w; x += 16) _mm_storeu_si128(reinterpret_cast<__m128i*>(o + x), Rec601x16(p + 4 * x));
+  return x;
+}
+
+#pragma GCC diagnostic pop
+
+bool HasAvx512() {
+  static const bool has = __builtin_cpu_supports("avx512f");
+  return has;
+}
 #endif
 }  // namespace
+
+namespace {
+std::atomic<PlaneIsa> g_isa_cap{PlaneIsa::kAvx512};
+}  // namespace
+
+void SetPlaneRow8IsaCap(PlaneIsa cap) { g_isa_cap.store(cap, std::memory_order_relaxed); }
 
 void PlaneRow8Scalar(const uint8_t* p, int w, Luma luma, uint8_t* o) {
   if (luma == Luma::kGreen) {
@@ -206,7 +255,12 @@ void PlaneRow8Scalar(const uint8_t* p, int w, Luma luma, uint8_t* o) {
 void PlaneRow8(const uint8_t* p, int w, Luma luma, uint8_t* o) {
   int x = 0;
 #if defined(AALAB_FXAA311_AVX2)
-  if (HasAvx2()) x = PlaneRow8Avx2(p, w, luma, o);
+  const PlaneIsa cap = g_isa_cap.load(std::memory_order_relaxed);
+  if (luma == Luma::kRec601 && cap >= PlaneIsa::kAvx512 && HasAvx512()) {
+    x = PlaneRow8Rec601Avx512(p, w, o);
+  } else if (cap >= PlaneIsa::kAvx2 && HasAvx2()) {
+    x = PlaneRow8Avx2(p, w, luma, o);
+  }
 #endif
 #if defined(__SSE2__)
   if (luma == Luma::kRec601) {

@@ -12,8 +12,13 @@ namespace aalab::fxaa311_internal {
 /// (the stored alpha), kSqrtLuminance (the stored alpha) or kGreen (the green byte).
 /// Bit-identical to the scalar expressions of Fxaa311LumaFrame: the same IEEE float32
 /// operations in the same order, four pixels at a time (SSE2, the x86-64 baseline), eight
-/// with AVX2 where the CPU has it.
+/// with AVX2 where the CPU has it, sixteen for rec601 with AVX-512F.
 void PlaneRow8(const uint8_t* p, int w, Fxaa311Params::Luma luma, uint8_t* o);
+
+/// The widest vector code PlaneRow8 may use (it also needs the CPU to have it).
+enum class PlaneIsa { kSse2, kAvx2, kAvx512 };
+/// Tests only: caps PlaneRow8's instruction set (default kAvx512: the best the CPU has).
+void SetPlaneRow8IsaCap(PlaneIsa cap);
 
 /// The scalar form of PlaneRow8 (per-channel product tables), kept as its reference.
 void PlaneRow8Scalar(const uint8_t* p, int w, Fxaa311Params::Luma luma, uint8_t* o);

@@ -9,6 +9,7 @@ set(AALAB_METHOD_SOURCES
   fxaa311.cpp
   fxaa311_fast.cpp
   fxaa311_rows.cpp
+  fxaa311_search.cpp
   smaa.cpp
   smaa_fast.cpp
   smaa_textures.cpp

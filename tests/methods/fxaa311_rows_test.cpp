@@ -43,13 +43,28 @@ long CountDifferences(Luma luma) {
   return diff;
 }
 
-TEST(Fxaa311Rows, Rec601PlaneEqualsThePrePassForEveryColour) { EXPECT_EQ(CountDifferences(Luma::kRec601), 0); }
-
-TEST(Fxaa311Rows, SqrtLuminancePlaneEqualsThePrePassForEveryColour) {
-  EXPECT_EQ(CountDifferences(Luma::kSqrtLuminance), 0);
+// CountDifferences with PlaneRow8 capped at each instruction set in turn (each one the CPU
+// lacks runs the next narrower one again).
+long CountDifferencesEveryIsa(Luma luma) {
+  using fxaa311_internal::PlaneIsa;
+  long diff = 0;
+  for (PlaneIsa cap : {PlaneIsa::kSse2, PlaneIsa::kAvx2, PlaneIsa::kAvx512}) {
+    fxaa311_internal::SetPlaneRow8IsaCap(cap);
+    const long d = CountDifferences(luma);
+    EXPECT_EQ(d, 0) << "instruction set cap " << static_cast<int>(cap);
+    diff += d;
+  }
+  fxaa311_internal::SetPlaneRow8IsaCap(PlaneIsa::kAvx512);
+  return diff;
 }
 
-TEST(Fxaa311Rows, GreenPlaneIsTheGreenByte) { EXPECT_EQ(CountDifferences(Luma::kGreen), 0); }
+TEST(Fxaa311Rows, Rec601PlaneEqualsThePrePassForEveryColour) { EXPECT_EQ(CountDifferencesEveryIsa(Luma::kRec601), 0); }
+
+TEST(Fxaa311Rows, SqrtLuminancePlaneEqualsThePrePassForEveryColour) {
+  EXPECT_EQ(CountDifferencesEveryIsa(Luma::kSqrtLuminance), 0);
+}
+
+TEST(Fxaa311Rows, GreenPlaneIsTheGreenByte) { EXPECT_EQ(CountDifferencesEveryIsa(Luma::kGreen), 0); }
 
 // Known values by hand: rec601 of (255, 0, 0) = 0.299·255 = 76.245 → 76; of (0, 255, 0) =
 // 149.685 → 150; of (0, 0, 255) = 29.07 → 29; white → 255, black → 0. sqrt-luminance of
