@@ -28,6 +28,7 @@ set(AALAB_METHOD_SOURCES
   fsr2_methods.cpp
   aaa.cpp
   taa.cpp
+  taa_avx2.cpp
   taa_production.cpp
   taau.cpp
   specular_aa.cpp

@@ -54,6 +54,7 @@
 #include "core/parallel.h"
 #include "methods/families.h"
 #include "methods/taa.h"
+#include "methods/taa_avx2.h"
 #include "methods/taa_common.h"
 #include "methods/taa_sse2.h"
 
@@ -110,6 +111,20 @@ class Encode8 {
       const auto code = std::upper_bound(start_.begin(), start_.begin() + 255, last) - start_.begin();
       AALAB_CHECK(code - guess_[b] <= kSteps, "Encode8: a bucket needs more than kSteps steps");
     }
+    // The same lookup in one 64-bit entry per bucket for the AVX2 kernels: the guess g and
+    // where start_[g] and start_[g + 1] lie inside the bucket, as the low 16 bits of their
+    // patterns (non-negative floats are ordered like their bit patterns, so v ≥ start_[k]
+    // exactly when v's low 16 bits reach them); 65536 where the threshold lies in a later
+    // bucket (never reached; start_[g] is never the bucket's first float, whose code is g).
+    for (uint32_t b = 0; b < kBuckets; ++b) {
+      const unsigned g = guess_[b];
+      auto inside = [&](float t) -> uint64_t {
+        uint32_t tb;
+        std::memcpy(&tb, &t, sizeof tb);
+        return (tb >> kShift) == b ? (tb & 0xffffu) : 0x10000u;
+      };
+      packed_[b] = g | (inside(start_[g]) << 8) | (inside(start_[g + 1]) << 32);
+    }
   }
   /// v in [0, 1] (NaN excluded; -0 reads as 0); step up from the guess to the exact code.
   uint8_t operator()(float v) const {
@@ -122,10 +137,11 @@ class Encode8 {
     return static_cast<uint8_t>(g + (v >= start_[g] ? 1u : 0u) + (v >= start_[g + 1] ? 1u : 0u));
   }
   /// w pixels of planar linear RGB (each in [0, 1]) to RGBA8 (alpha 255): operator() per
-  /// value; with SSE2 four pixels at a time (the bucket, the comparisons and the packing in
-  /// vectors, the three table reads per value scalar: SSE2 has no gather).
+  /// value; with AVX2 eight pixels at a time (taa_avx2.cpp, gathers for the table reads);
+  /// with SSE2 four at a time (the bucket, the comparisons and the packing in vectors, the
+  /// three table reads per value scalar: SSE2 has no gather).
   void Rgba(const float* r, const float* g, const float* b, int w, uint8_t* out) const {
-    int x = 0;
+    int x = EncodeRgbaAvx2(Tables(), r, g, b, w, out);
 #if defined(__SSE2__)
     const __m128i abs = _mm_set1_epi32(0x7fffffff), last = _mm_set1_epi32(static_cast<int>(kBuckets - 1));
     auto codes = [&](const float* p) {
@@ -159,6 +175,8 @@ class Encode8 {
     }
   }
   static int Direct(float v) { return QuantizeUnorm8(SrgbEncode(v)); }
+  /// The tables, for the AVX2 kernels' gathers.
+  EncodeTables Tables() const { return {packed_.data()}; }
 
  private:
   static float FromBits(uint32_t b) {
@@ -166,12 +184,15 @@ class Encode8 {
     std::memcpy(&f, &b, sizeof f);
     return f;
   }
-  static constexpr uint32_t kShift = 16;
-  static constexpr uint32_t kBuckets = (0x3f800000u >> kShift) + 1;  // up to 1.0f
-  static constexpr int kSteps = 2;  ///< thresholds a bucket may span (operator() compares with two)
+  static constexpr uint32_t kShift = kEncodeShift;
+  static constexpr uint32_t kBuckets = kEncodeBuckets;  // up to 1.0f
+  static constexpr int kSteps = 2;                      ///< thresholds a bucket may span (operator() compares with two)
   /// start_[k − 1]: the smallest float whose code is ≥ k; start_[255], start_[256] = +inf
   std::array<float, 257> start_{};
   std::array<uint8_t, kBuckets> guess_{};
+  /// Per bucket: guess_ (bits 0..7), start_[g]'s and start_[g + 1]'s low 16 bits inside the
+  /// bucket (bits 8..24 and 32..48; 65536: not inside)
+  std::array<uint64_t, kBuckets> packed_{};
 };
 
 const Encode8& Encoder() {
@@ -416,13 +437,15 @@ class TaaState : public TemporalState {
         float* pco = py + prow * pw;
         float* pcg = pco + prow * pw;
         const uint8_t* src = f.Row(ya + static_cast<int>(r));
-        // Linear RGB first (table reads), then YCoCg in place (a vectorised loop).
-        for (int x = 0; x < W; ++x) {
+        // With AVX2 eight pixels at a time (gathers); the rest linear RGB first (table
+        // reads), then YCoCg in place (a vectorised loop).
+        const int d = YccPlaneRowAvx2(src, W, decode_.data(), py + 1, pco + 1, pcg + 1);
+        for (int x = d; x < W; ++x) {
           py[x + 1] = decode_[src[4 * x]];
           pco[x + 1] = decode_[src[4 * x + 1]];
           pcg[x + 1] = decode_[src[4 * x + 2]];
         }
-        HistoryYccRow(W, py + 1, pco + 1, pcg + 1);
+        HistoryYccRow(W - d, py + 1 + d, pco + 1 + d, pcg + 1 + d);
         for (float* p : {py, pco, pcg}) {
           p[0] = p[1];
           p[W + 1] = p[W];
@@ -461,7 +484,6 @@ class TaaState : public TemporalState {
           continue;
         }
         const float* prev = &(*in.previous)[2 * static_cast<size_t>(y) * W];
-        FootprintRow(prev, W, W, H, tx, ty, off.get());
         const size_t rm = static_cast<size_t>(std::max(y - 1, 0) - ya) * pw, rc = static_cast<size_t>(y - ya) * pw,
                      rp = static_cast<size_t>(std::min(y + 1, H - 1) - ya) * pw;
         if (clip) {
@@ -475,7 +497,24 @@ class TaaState : public TemporalState {
           }
         }
         const float fw = static_cast<float>(W), fh = static_cast<float>(H);
-        int done = 0;  // pixels [0, done) finished by the SSE2 kernel
+        // Pixels [0, avx) finished by the AVX2 kernel (footprint, fetch, clip, blend, history
+        // and encoded output), [avx, done) by the SSE2 kernel, the rest by the scalar rows.
+        const Avx2RowIn ai{history_.data(),
+                           prev,
+                           W,
+                           H,
+                           {lo[0], lo[1], lo[2]},
+                           {hi[0], hi[1], hi[2]},
+                           plane[0] + rc,
+                           plane[1] + rc,
+                           plane[2] + rc,
+                           src,
+                           decode_.data(),
+                           encode.Tables()};
+        const int avx = HistoryBlendRow8Avx2(ai, W, clip, p_.alpha, next, row);
+        int done = avx;
+        if (avx == W) continue;
+        FootprintRow(prev + 2 * avx, W - avx, W, H, tx + avx, ty + avx, off.get() + 4 * static_cast<size_t>(avx));
 #if defined(__SSE2__)
         done = W - W % 4;
         const Sse2RowIn si{history_.data(),
@@ -493,9 +532,9 @@ class TaaState : public TemporalState {
                            src,
                            decode_.data()};
         if (clip) {
-          HistoryBlendRow4<true>(si, 0, done, p_.alpha, next, outc[0], outc[1], outc[2]);
+          HistoryBlendRow4<true>(si, avx, done, p_.alpha, next, outc[0], outc[1], outc[2]);
         } else {
-          HistoryBlendRow4<false>(si, 0, done, p_.alpha, next, outc[0], outc[1], outc[2]);
+          HistoryBlendRow4<false>(si, avx, done, p_.alpha, next, outc[0], outc[1], outc[2]);
         }
 #endif
         if (done < W) {
@@ -526,7 +565,7 @@ class TaaState : public TemporalState {
             BlendRow<false>(ri, rest, p_.alpha, nd, outc[0] + d, outc[1] + d, outc[2] + d);
           }
         }
-        encode.Rgba(outc[0], outc[1], outc[2], W, row);
+        encode.Rgba(outc[0] + avx, outc[1] + avx, outc[2] + avx, W - avx, row + 4 * static_cast<size_t>(avx));
       }
     });
     history_.swap(next_);

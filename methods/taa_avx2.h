@@ -1,0 +1,50 @@
+/// The AVX2 row kernels of TAA's production step (methods/taa.cpp, StepFast), chosen at run
+/// time where the CPU has AVX2 (methods/taa_avx2.cpp; elsewhere every function does nothing
+/// and returns 0, and the SSE2 and scalar rows do the work). Same float operations in the
+/// same order as StepReference, eight pixels at a time, so the same bits.
+#pragma once
+#include <cstdint>
+
+namespace aalab::taa_detail {
+
+/// The sRGB encode's table (taa.cpp's Encode8) per bucket of float bit patterns (bits >>
+/// kEncodeShift): the first guess g of the 8-bit code (bits 0..7), and the low 16 bits of the
+/// two next code thresholds' patterns where they lie inside the bucket (bits 8..24 and
+/// 32..48; 65536 where not): code = g + (lo ≥ t1) + (lo ≥ t2), lo = the value's low 16 bits.
+inline constexpr uint32_t kEncodeShift = 16;
+inline constexpr uint32_t kEncodeBuckets = (0x3f800000u >> kEncodeShift) + 1;  ///< up to 1.0f
+struct EncodeTables {
+  const uint64_t* packed;  ///< kEncodeBuckets entries
+};
+
+/// True where the AVX2 kernels run (the CPU has AVX2 and the build is GCC on x86-64).
+bool TaaHasAvx2();
+
+/// One row's inputs for HistoryBlendRow8Avx2 (arrays indexed by the pixel x of the row).
+struct Avx2RowIn {
+  const float* hist;            ///< the history, 3 floats per pixel, readable 1 float past its end
+  const float* prev;            ///< previous positions, x and y per pixel
+  int hw, hh;                   ///< the frame's (and history's) size
+  const float *lo[3], *hi[3];   ///< the box per YCoCg channel (read only when clipping)
+  const float *cy, *cco, *ccg;  ///< current YCoCg planes, padded: texel x at x + 1
+  const uint8_t* src;           ///< the current frame's row, RGBA8
+  const float* decode;          ///< linear value of each 8-bit code
+  EncodeTables enc;             ///< the output encode
+};
+
+/// The whole step of pixels [0, n) of a row, n = w rounded down to a multiple of 8: the
+/// history's footprint (FootprintRow), the bilinear fetch (four unaligned 4-float loads per
+/// pixel), ToYCoCg, the clip (when `clip`), the blend, FromYCoCg, the clamp, the current
+/// colour where there is no history, the new history (3 floats per pixel into `next`) and
+/// the sRGB-encoded RGBA8 output (`rgba`). Returns n (0 without AVX2).
+int HistoryBlendRow8Avx2(const Avx2RowIn& in, int w, bool clip, float alpha, float* next, uint8_t* rgba);
+
+/// Encode8::Rgba of pixels [0, n), n = w rounded down to a multiple of 8 (gathers for the
+/// three table reads per value). Returns n (0 without AVX2).
+int EncodeRgbaAvx2(const EncodeTables& t, const float* r, const float* g, const float* b, int w, uint8_t* rgba);
+
+/// The current frame's YCoCg planes for pixels [0, n) of a row, n = w rounded down to a
+/// multiple of 8: decode (table, by gathers) then ToYCoCg. Returns n (0 without AVX2).
+int YccPlaneRowAvx2(const uint8_t* src, int w, const float* decode, float* y, float* co, float* cg);
+
+}  // namespace aalab::taa_detail
