@@ -29,6 +29,7 @@ set(AALAB_METHOD_SOURCES
   aaa.cpp
   taa.cpp
   taa_avx2.cpp
+  taa_avx512.cpp
   taa_production.cpp
   taau.cpp
   specular_aa.cpp

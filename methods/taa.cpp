@@ -111,19 +111,22 @@ class Encode8 {
       const auto code = std::upper_bound(start_.begin(), start_.begin() + 255, last) - start_.begin();
       AALAB_CHECK(code - guess_[b] <= kSteps, "Encode8: a bucket needs more than kSteps steps");
     }
-    // The same lookup in one 64-bit entry per bucket for the AVX2 kernels: the guess g and
-    // where start_[g] and start_[g + 1] lie inside the bucket, as the low 16 bits of their
-    // patterns (non-negative floats are ordered like their bit patterns, so v ≥ start_[k]
-    // exactly when v's low 16 bits reach them); 65536 where the threshold lies in a later
-    // bucket (never reached; start_[g] is never the bucket's first float, whose code is g).
+    // The same lookup in one 32-bit entry per bucket for the AVX2 and AVX-512 kernels: the
+    // guess g and where start_[g] lies inside the bucket, as the low 16 bits of its pattern
+    // (non-negative floats are ordered like their bit patterns, so v ≥ start_[g] exactly when
+    // v's low 16 bits reach them); 65536 where it lies in a later bucket (never reached;
+    // start_[g] is never the bucket's first float, whose code is g). One threshold per
+    // bucket is enough: start_[g + 1] never lies inside (checked; above 1/64 a bucket spans
+    // under one code step, below it far less).
     for (uint32_t b = 0; b < kBuckets; ++b) {
       const unsigned g = guess_[b];
-      auto inside = [&](float t) -> uint64_t {
+      auto inside = [&](float t) -> uint32_t {
         uint32_t tb;
         std::memcpy(&tb, &t, sizeof tb);
         return (tb >> kShift) == b ? (tb & 0xffffu) : 0x10000u;
       };
-      packed_[b] = g | (inside(start_[g]) << 8) | (inside(start_[g + 1]) << 32);
+      AALAB_CHECK(inside(start_[g + 1]) == 0x10000u, "Encode8: a bucket holds two code thresholds");
+      packed_[b] = g | (inside(start_[g]) << 8);
     }
   }
   /// v in [0, 1] (NaN excluded; -0 reads as 0); step up from the guess to the exact code.
@@ -190,9 +193,9 @@ class Encode8 {
   /// start_[k − 1]: the smallest float whose code is ≥ k; start_[255], start_[256] = +inf
   std::array<float, 257> start_{};
   std::array<uint8_t, kBuckets> guess_{};
-  /// Per bucket: guess_ (bits 0..7), start_[g]'s and start_[g + 1]'s low 16 bits inside the
-  /// bucket (bits 8..24 and 32..48; 65536: not inside)
-  std::array<uint64_t, kBuckets> packed_{};
+  /// Per bucket: guess_ (bits 0..7), start_[g]'s low 16 bits inside the bucket (bits 8..24;
+  /// 65536: not inside)
+  std::array<uint32_t, kBuckets> packed_{};
 };
 
 const Encode8& Encoder() {

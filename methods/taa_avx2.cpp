@@ -49,30 +49,17 @@ AALAB_TAA_AVX2 inline __m256i Channel8(__m256i px, int c) {
   return _mm256_and_si256(_mm256_srli_epi32(px, 8 * c), _mm256_set1_epi32(0xff));
 }
 
-/// Lanes 0..7 from the low (kHigh false) or high 32 bits of the 64-bit lanes of a (0..3)
-/// and b (4..7).
-template <bool kHigh>
-AALAB_TAA_AVX2 inline __m256i Halves8(__m256i a, __m256i b) {
-  constexpr int kSel = kHigh ? _MM_SHUFFLE(3, 1, 3, 1) : _MM_SHUFFLE(2, 0, 2, 0);
-  // a0 a1 b0 b1 | a2 a3 b2 b3, then the 64-bit pairs in order.
-  const __m256 s = _mm256_shuffle_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), kSel);
-  return _mm256_permute4x64_epi64(_mm256_castps_si256(s), _MM_SHUFFLE(3, 1, 2, 0));
-}
-
-/// Encode8::operator() per lane (same codes): the bucket's entry (one 64-bit gather element
-/// per value), then one step per threshold the value's low bits reach.
+/// Encode8::operator() per lane (same codes): the bucket's entry (one 32-bit gather element
+/// per value), then one step where the value's low bits reach the threshold inside the bucket.
 AALAB_TAA_AVX2 inline __m256i Codes8(const EncodeTables& t, __m256 v) {
   const __m256i bits = _mm256_and_si256(_mm256_castps_si256(v), _mm256_set1_epi32(0x7fffffff));  // −0 → +0
   const __m256i i = _mm256_min_epi32(_mm256_srli_epi32(bits, static_cast<int>(kEncodeShift)),
                                      _mm256_set1_epi32(static_cast<int>(kEncodeBuckets - 1)));
-  const auto* base = reinterpret_cast<const long long*>(t.packed);
-  const __m256i e0 = _mm256_i32gather_epi64(base, _mm256_castsi256_si128(i), 8);
-  const __m256i e1 = _mm256_i32gather_epi64(base, _mm256_extracti128_si256(i, 1), 8);
-  const __m256i lo = Halves8<false>(e0, e1), hi = Halves8<true>(e0, e1);
-  const __m256i g = _mm256_and_si256(lo, _mm256_set1_epi32(0xff)), t1 = _mm256_srli_epi32(lo, 8);
-  // lo16 ≥ t ⟺ lo16 + 1 > t; a true comparison is −1 as an integer: subtracting adds one step.
+  const __m256i e = _mm256_i32gather_epi32(reinterpret_cast<const int*>(t.packed), i, 4);
+  const __m256i g = _mm256_and_si256(e, _mm256_set1_epi32(0xff)), t1 = _mm256_srli_epi32(e, 8);
+  // lo16 ≥ t1 ⟺ lo16 + 1 > t1; a true comparison is −1 as an integer: subtracting adds one.
   const __m256i l1 = _mm256_add_epi32(_mm256_and_si256(bits, _mm256_set1_epi32(0xffff)), _mm256_set1_epi32(1));
-  return _mm256_sub_epi32(_mm256_sub_epi32(g, _mm256_cmpgt_epi32(l1, t1)), _mm256_cmpgt_epi32(l1, hi));
+  return _mm256_sub_epi32(g, _mm256_cmpgt_epi32(l1, t1));
 }
 
 /// Eight pixels' planar linear RGB (each in [0, 1]) to RGBA8 (alpha 255) at out.
@@ -187,7 +174,7 @@ AALAB_TAA_AVX2 int HistoryBlendRow8(const Avx2RowIn& in, int w, float alpha, flo
                fh = _mm256_set1_ps(static_cast<float>(in.hh));
   const int n = w - w % 8;
   Footprint8 fp;
-  for (int x = 0; x < n; x += 8) {
+  for (int x = HistoryBlendRow16Avx512(in, w, kClip, alpha, next, rgba); x < n; x += 8) {
     // The previous positions, deinterleaved: x0 y0 x1 y1 ... into qx = x0..x7, qy = y0..y7.
     const __m256 p0 = _mm256_loadu_ps(in.prev + 2 * x), p1 = _mm256_loadu_ps(in.prev + 2 * x + 8);
     const __m256 sx = _mm256_shuffle_ps(p0, p1, _MM_SHUFFLE(2, 0, 2, 0)),
@@ -258,7 +245,7 @@ AALAB_TAA_AVX2 int EncodeRgbaAvx2(const EncodeTables& t, const float* r, const f
                                   uint8_t* rgba) {
   if (!TaaHasAvx2()) return 0;
   const int n = w - w % 8;
-  for (int x = 0; x < n; x += 8) {
+  for (int x = EncodeRgbaAvx512(t, r, g, b, w, rgba); x < n; x += 8) {
     StoreRgba8(t, _mm256_loadu_ps(r + x), _mm256_loadu_ps(g + x), _mm256_loadu_ps(b + x), rgba + 4 * x);
   }
   return n;
@@ -267,7 +254,7 @@ AALAB_TAA_AVX2 int EncodeRgbaAvx2(const EncodeTables& t, const float* r, const f
 AALAB_TAA_AVX2 int YccPlaneRowAvx2(const uint8_t* src, int w, const float* decode, float* y, float* co, float* cg) {
   if (!TaaHasAvx2()) return 0;
   const int n = w - w % 8;
-  for (int x = 0; x < n; x += 8) {
+  for (int x = YccPlaneRowAvx512(src, w, decode, y, co, cg); x < n; x += 8) {
     const __m256i s = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + 4 * x));
     __m256 vy, vco, vcg;
     ToYcc8(_mm256_i32gather_ps(decode, Channel8(s, 0), 4), _mm256_i32gather_ps(decode, Channel8(s, 1), 4),
