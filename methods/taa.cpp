@@ -389,6 +389,12 @@ class TaaState : public TemporalState {
   /// Makes Step run StepReference (the simple implementation) instead of StepFast.
   void UseReference() { reference_ = true; }
 
+  /// The history's 3 floats per pixel (without StepFast's padding).
+  std::vector<float> History() const {
+    if (history_.empty()) return {};
+    return {history_.begin(), history_.begin() + 3 * static_cast<ptrdiff_t>(hist_w_) * hist_h_};
+  }
+
   Image8 Step(const TemporalInput& in, PostStats* stats) override {
     AALAB_CHECK(in.frame != nullptr, "TAA needs a frame");
     return reference_ ? StepReference(in, stats) : StepFast(in, stats);
@@ -489,13 +495,15 @@ class TaaState : public TemporalState {
         const float* prev = &(*in.previous)[2 * static_cast<size_t>(y) * W];
         const size_t rm = static_cast<size_t>(std::max(y - 1, 0) - ya) * pw, rc = static_cast<size_t>(y - ya) * pw,
                      rp = static_cast<size_t>(std::min(y + 1, H - 1) - ya) * pw;
-        if (clip) {
+        // The boxes of pixels [wide, W): the AVX-512 kernel forms those of [0, wide) itself.
+        const int wide = TaaHasAvx512() ? W - W % 16 : 0;
+        if (clip && wide < W) {
           for (int c = 0; c < 3; ++c) {
-            const float* pl = plane[c];
+            const float* pl = plane[c] + wide;
             if (p_.clip == Clip::kVariance) {
-              BoxRow<true>(pl + rm, pl + rc, pl + rp, W, p_.gamma, cmn, cmx, lo[c], hi[c]);
+              BoxRow<true>(pl + rm, pl + rc, pl + rp, W - wide, p_.gamma, cmn, cmx, lo[c] + wide, hi[c] + wide);
             } else {
-              BoxRow<false>(pl + rm, pl + rc, pl + rp, W, p_.gamma, cmn, cmx, lo[c], hi[c]);
+              BoxRow<false>(pl + rm, pl + rc, pl + rp, W - wide, p_.gamma, cmn, cmx, lo[c] + wide, hi[c] + wide);
             }
           }
         }
@@ -513,7 +521,12 @@ class TaaState : public TemporalState {
                            plane[2] + rc,
                            src,
                            decode_.data(),
-                           encode.Tables()};
+                           encode.Tables(),
+                           {{plane[0] + rm, plane[0] + rc, plane[0] + rp},
+                            {plane[1] + rm, plane[1] + rc, plane[1] + rp},
+                            {plane[2] + rm, plane[2] + rc, plane[2] + rp}},
+                           p_.clip == Clip::kVariance,
+                           p_.gamma};
         const int avx = HistoryBlendRow8Avx2(ai, W, clip, p_.alpha, next, row);
         int done = avx;
         if (avx == W) continue;
@@ -693,6 +706,12 @@ std::unique_ptr<TemporalState> TaaReferenceCopy(const TemporalState& taa_state) 
   auto copy = std::make_unique<TaaState>(*t);
   copy->UseReference();
   return copy;
+}
+
+std::vector<float> TaaHistory(const TemporalState& taa_state) {
+  const auto* t = dynamic_cast<const TaaState*>(&taa_state);
+  AALAB_CHECK(t != nullptr, "TaaHistory needs a TAA state");
+  return t->History();
 }
 
 std::vector<MethodEntry> TaaMethods() {

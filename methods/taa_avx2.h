@@ -34,6 +34,12 @@ struct Avx2RowIn {
   const uint8_t* src;           ///< the current frame's row, RGBA8
   const float* decode;          ///< linear value of each 8-bit code
   EncodeTables enc;             ///< the output encode
+  /// The AVX-512 kernel forms the box itself (taa.cpp BoxRow's values), from the current
+  /// YCoCg plane rows above, at and below per channel (padded: texel x at x + 1); lo and hi
+  /// are read from x = w − w mod 16 on only (BoxRow need not fill them before).
+  const float* box[3][3];
+  bool variance;  ///< clip=variance (else minmax)
+  float gamma;
 };
 
 /// The whole step of pixels [0, n) of a row, n = w rounded down to a multiple of 8: the

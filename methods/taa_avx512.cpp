@@ -71,6 +71,36 @@ AALAB_TAA_AVX512 inline void ToYcc16(__m512 r, __m512 g, __m512 b, __m512* y, __
   *cg = _mm512_sub_ps(_mm512_add_ps(_mm512_mul_ps(mquarter, r), _mm512_mul_ps(half, g)), _mm512_mul_ps(quarter, b));
 }
 
+/// Rectify's box for one channel of sixteen pixels at x, as taa.cpp BoxRow forms it: rows
+/// are the padded plane rows above, at and below (texel x at x + 1). The min/max in any
+/// order (the planes hold no NaN and no −0: BoxRow's reasoning), the sums in BoxRow's order
+/// (rows top to bottom, columns left to right, from 0), then μ ± γσ with Max / Min in the
+/// scalar operand order.
+template <bool kVariance>
+AALAB_TAA_AVX512 inline void Box16(const float* const* rows, int x, float gamma, __m512* lo, __m512* hi) {
+  __m512 mn = _mm512_set1_ps(1e30f), mx = _mm512_set1_ps(-1e30f), m1 = _mm512_setzero_ps(), m2 = m1;
+  for (int k = 0; k < 3; ++k) {
+    for (int d = 0; d < 3; ++d) {
+      const __m512 v = _mm512_loadu_ps(rows[k] + x + d);
+      mn = _mm512_min_ps(mn, v);
+      mx = _mm512_max_ps(mx, v);
+      if constexpr (kVariance) {
+        m1 = _mm512_add_ps(m1, v);
+        m2 = _mm512_add_ps(m2, _mm512_mul_ps(v, v));
+      }
+    }
+  }
+  if constexpr (kVariance) {
+    const __m512 nine = _mm512_set1_ps(9.0f), g = _mm512_set1_ps(gamma);
+    const __m512 mu = _mm512_div_ps(m1, nine);
+    const __m512 sigma = _mm512_sqrt_ps(Abs16(_mm512_sub_ps(_mm512_div_ps(m2, nine), _mm512_mul_ps(mu, mu))));
+    mn = _mm512_max_ps(_mm512_sub_ps(mu, _mm512_mul_ps(g, sigma)), mn);  // Max(mn, t) = mn < t ? t : mn
+    mx = _mm512_min_ps(_mm512_add_ps(mu, _mm512_mul_ps(g, sigma)), mx);  // Min(mx, t) = t < mx ? t : mx
+  }
+  *lo = mn;
+  *hi = mx;
+}
+
 /// The footprint of sixteen pixels (taa.cpp FootprintRow, the same operations).
 struct Footprint16 {
   __m512 tx, ty;
@@ -156,7 +186,7 @@ AALAB_TAA_AVX512 inline void StoreRgb16(__m512 r, __m512 g, __m512 b, float* dst
   }
 }
 
-template <bool kClip>
+template <bool kClip, bool kVariance>
 AALAB_TAA_AVX512 int HistoryBlendRow16(const Avx2RowIn& in, int w, float alpha, float* __restrict next,
                                        uint8_t* __restrict rgba) {
   const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f), half = _mm512_set1_ps(0.5f),
@@ -178,7 +208,8 @@ AALAB_TAA_AVX512 int HistoryBlendRow16(const Avx2RowIn& in, int w, float alpha, 
       __m512 centre[3], v[3], ext[3];
       __mmask16 near = 0xffff;
       for (int c = 0; c < 3; ++c) {
-        const __m512 hi = _mm512_loadu_ps(in.hi[c] + x), lo = _mm512_loadu_ps(in.lo[c] + x);
+        __m512 lo, hi;
+        Box16<kVariance>(in.box[c], x, in.gamma, &lo, &hi);
         centre[c] = _mm512_mul_ps(half, _mm512_add_ps(hi, lo));
         ext[c] = _mm512_add_ps(_mm512_mul_ps(half, _mm512_sub_ps(hi, lo)), eps);
         v[c] = _mm512_sub_ps(h[c], centre[c]);
@@ -224,7 +255,9 @@ bool TaaHasAvx512() {
 
 int HistoryBlendRow16Avx512(const Avx2RowIn& in, int w, bool clip, float alpha, float* next, uint8_t* rgba) {
   if (!TaaHasAvx512()) return 0;
-  return clip ? HistoryBlendRow16<true>(in, w, alpha, next, rgba) : HistoryBlendRow16<false>(in, w, alpha, next, rgba);
+  if (!clip) return HistoryBlendRow16<false, false>(in, w, alpha, next, rgba);
+  return in.variance ? HistoryBlendRow16<true, true>(in, w, alpha, next, rgba)
+                     : HistoryBlendRow16<true, false>(in, w, alpha, next, rgba);
 }
 
 AALAB_TAA_AVX512 int EncodeRgbaAvx512(const EncodeTables& t, const float* r, const float* g, const float* b, int w,
