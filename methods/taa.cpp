@@ -279,11 +279,13 @@ class TaaState : public TemporalState {
   /// The production step: the same values as StepReference, bit for bit, organised for a
   /// CPU. Per chunk of kChunkRows rows, the current frame's YCoCg goes into three padded
   /// planes (one replicated texel on each side, so the clamped 3×3 neighbourhood is plain
-  /// reads); each row then computes the boxes of all its pixels (BoxRow), the history's
-  /// footprints (FootprintRow), and with SSE2 fetches, clips, blends and converts four
-  /// pixels at a time (taa_sse2.h; elsewhere and for the row's last W mod 4 pixels LerpRow,
-  /// HistoryYccRow and BlendRow), then encodes (Encode8::Rgba). tests/motion/taa_test.cpp
-  /// compares the two.
+  /// reads). Each row then runs, where the CPU has them, the AVX-512 kernel on 16-pixel
+  /// blocks (box, footprint, fetch, clip, blend, history and encoded output in registers)
+  /// and the AVX2 kernel on 8-pixel blocks (the same, with the boxes from BoxRow):
+  /// taa_avx2.h. The rest of the row: the boxes (BoxRow), the footprints (FootprintRow),
+  /// the SSE2 kernel on 4-pixel blocks (taa_sse2.h), the scalar LerpRow, HistoryYccRow and
+  /// BlendRow for the last W mod 4 pixels (all of the row without SSE2), then the encode
+  /// (Encode8::Rgba). tests/motion/taa_test.cpp compares the two, output and history.
   static constexpr int kChunkRows = 16;
   Image8 StepFast(const TemporalInput& in, PostStats* stats) {
     const Image8& f = *in.frame;
