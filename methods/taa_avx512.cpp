@@ -249,7 +249,9 @@ AALAB_TAA_AVX512 int HistoryBlendRow16(const Avx2RowIn& in, int w, float alpha, 
 }  // namespace
 
 bool TaaHasAvx512() {
-  static const bool has = __builtin_cpu_supports("avx512f");
+  // With AVX2 too: the AVX2 entry points run this kernel, and StepFast leaves the boxes of
+  // [0, w − w mod 16) to it only when it runs.
+  static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx2");
   return has;
 }
 
