@@ -21,7 +21,7 @@ struct EncodeTables {
 
 /// True where the AVX2 kernels run (the CPU has AVX2 and the build is GCC on x86-64).
 bool TaaHasAvx2();
-/// True where the AVX-512 kernels run (methods/taa_avx512.cpp: the CPU has AVX-512F).
+/// True where the AVX-512 kernels run (methods/taa_avx512.cpp: the CPU has AVX-512F and AVX2).
 bool TaaHasAvx512();
 
 /// One row's inputs for HistoryBlendRow8Avx2 (arrays indexed by the pixel x of the row).
