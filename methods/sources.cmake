@@ -29,6 +29,8 @@ set(AALAB_METHOD_SOURCES
   fsr2_methods.cpp
   aaa.cpp
   taa.cpp
+  taa_avx2.cpp
+  taa_avx512.cpp
   taa_production.cpp
   taau.cpp
   specular_aa.cpp

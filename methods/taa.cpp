@@ -54,7 +54,9 @@
 #include "core/parallel.h"
 #include "methods/families.h"
 #include "methods/taa.h"
+#include "methods/taa_avx2.h"
 #include "methods/taa_common.h"
+#include "methods/taa_encode.h"
 #include "methods/taa_sse2.h"
 
 namespace aalab {
@@ -69,115 +71,7 @@ struct TaaParams {
   Clip clip = Clip::kVariance;
 };
 
-using namespace taa_detail;  // Ycc, ToYCoCg, FromYCoCg, AddToBox, NarrowToVariance, ClipToBox
-
-/// QuantizeUnorm8(SrgbEncode(v)) for v in [0, 1], bit for bit, without a pow per channel:
-/// the function is non-decreasing in v, so code k starts at the smallest float where it is
-/// reached; those 255 thresholds are found by bisection over the float bit patterns of
-/// [0, 1] (ordered like the values). A lookup takes a first guess from the value's high 16
-/// bits (exponent and 8 mantissa bits: the code of the smallest float with those bits, a
-/// lower bound) and adds the number of the next two thresholds the value reaches (no branch;
-/// the constructor checks that no bucket spans more than two). tests/motion/taa_test.cpp
-/// checks it against the direct formula on a dense grid.
-class Encode8 {
- public:
-  Encode8() {
-    for (int k = 1; k < 256; ++k) {
-      uint32_t lo = 0, hi = 0x3f800000u;  // bit patterns of 0.0f and 1.0f
-      while (lo < hi) {
-        const uint32_t mid = lo + (hi - lo) / 2;
-        if (Direct(FromBits(mid)) >= k) {
-          hi = mid;
-        } else {
-          lo = mid + 1;
-        }
-      }
-      start_[static_cast<size_t>(k - 1)] = FromBits(lo);
-    }
-    // A first guess per bucket of float bit patterns (the high 16 bits): the code of the
-    // bucket's smallest float (a lower bound for every value in it, the function being
-    // non-decreasing). Buckets hold at most 2^16 ulps: under one code step above 1/64 and
-    // far less below (the linear segment's 12.92·255 codes per unit meets ulps of 1e-10).
-    for (uint32_t b = 0; b < kBuckets; ++b) {
-      const float v = FromBits(b << kShift);
-      guess_[b] = static_cast<uint8_t>(std::upper_bound(start_.begin(), start_.begin() + 255, v) - start_.begin());
-    }
-    // The lookup's fixed number of steps (no data-dependent branch): enough for every bucket,
-    // checked here over each bucket's largest float (the code is non-decreasing in v).
-    start_[255] = start_[256] = std::numeric_limits<float>::infinity();  // code 255 never steps further
-    for (uint32_t b = 0; b < kBuckets; ++b) {
-      const float last = FromBits(std::min((b << kShift) | ((1u << kShift) - 1), 0x3f800000u));
-      const auto code = std::upper_bound(start_.begin(), start_.begin() + 255, last) - start_.begin();
-      AALAB_CHECK(code - guess_[b] <= kSteps, "Encode8: a bucket needs more than kSteps steps");
-    }
-  }
-  /// v in [0, 1] (NaN excluded; -0 reads as 0); step up from the guess to the exact code.
-  uint8_t operator()(float v) const {
-    uint32_t bits;
-    std::memcpy(&bits, &v, sizeof bits);
-    bits &= 0x7fffffffu;  // -0 → +0 (every other input is non-negative)
-    const unsigned g = guess_[std::min(bits >> kShift, kBuckets - 1)];
-    // start_ increases, so reaching start_[g + 1] implies reaching start_[g]: the two loads
-    // do not wait for each other's comparison.
-    return static_cast<uint8_t>(g + (v >= start_[g] ? 1u : 0u) + (v >= start_[g + 1] ? 1u : 0u));
-  }
-  /// w pixels of planar linear RGB (each in [0, 1]) to RGBA8 (alpha 255): operator() per
-  /// value; with SSE2 four pixels at a time (the bucket, the comparisons and the packing in
-  /// vectors, the three table reads per value scalar: SSE2 has no gather).
-  void Rgba(const float* r, const float* g, const float* b, int w, uint8_t* out) const {
-    int x = 0;
-#if defined(__SSE2__)
-    const __m128i abs = _mm_set1_epi32(0x7fffffff), last = _mm_set1_epi32(static_cast<int>(kBuckets - 1));
-    auto codes = [&](const float* p) {
-      const __m128 v = _mm_loadu_ps(p);
-      __m128i i = _mm_srli_epi32(_mm_and_si128(_mm_castps_si128(v), abs), kShift);
-      const __m128i over = _mm_cmpgt_epi32(i, last);
-      i = _mm_or_si128(_mm_and_si128(over, last), _mm_andnot_si128(over, i));  // min(i, kBuckets − 1)
-      const unsigned g0 = guess_[static_cast<unsigned>(_mm_cvtsi128_si32(i))],
-                     g1 = guess_[static_cast<unsigned>(_mm_extract_epi16(i, 2))],
-                     g2 = guess_[static_cast<unsigned>(_mm_extract_epi16(i, 4))],
-                     g3 = guess_[static_cast<unsigned>(_mm_extract_epi16(i, 6))];
-      const __m128 t1 = _mm_setr_ps(start_[g0], start_[g1], start_[g2], start_[g3]);
-      const __m128 t2 = _mm_setr_ps(start_[g0 + 1], start_[g1 + 1], start_[g2 + 1], start_[g3 + 1]);
-      const __m128i gv =
-          _mm_setr_epi32(static_cast<int>(g0), static_cast<int>(g1), static_cast<int>(g2), static_cast<int>(g3));
-      // A true comparison is −1 as an integer: subtracting adds one step.
-      return _mm_sub_epi32(_mm_sub_epi32(gv, _mm_castps_si128(_mm_cmpge_ps(v, t1))),
-                           _mm_castps_si128(_mm_cmpge_ps(v, t2)));
-    };
-    const __m128i alpha = _mm_set1_epi32(static_cast<int>(0xff000000u));
-    for (; x + 4 <= w; x += 4) {
-      // Little-endian x86: byte k of each 32-bit lane is channel k.
-      const __m128i px = _mm_or_si128(_mm_or_si128(codes(r + x), _mm_slli_epi32(codes(g + x), 8)),
-                                      _mm_or_si128(_mm_slli_epi32(codes(b + x), 16), alpha));
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4 * x), px);
-    }
-#endif
-    for (; x < w; ++x) {
-      const uint8_t px[4] = {(*this)(r[x]), (*this)(g[x]), (*this)(b[x]), 255};
-      std::memcpy(out + 4 * x, px, 4);
-    }
-  }
-  static int Direct(float v) { return QuantizeUnorm8(SrgbEncode(v)); }
-
- private:
-  static float FromBits(uint32_t b) {
-    float f;
-    std::memcpy(&f, &b, sizeof f);
-    return f;
-  }
-  static constexpr uint32_t kShift = 16;
-  static constexpr uint32_t kBuckets = (0x3f800000u >> kShift) + 1;  // up to 1.0f
-  static constexpr int kSteps = 2;  ///< thresholds a bucket may span (operator() compares with two)
-  /// start_[k − 1]: the smallest float whose code is ≥ k; start_[255], start_[256] = +inf
-  std::array<float, 257> start_{};
-  std::array<uint8_t, kBuckets> guess_{};
-};
-
-const Encode8& Encoder() {
-  static const Encode8 e;
-  return e;
-}
+using namespace taa_detail;  // Ycc, ToYCoCg, ..., ClipToBox (taa_common.h), Encode8 (taa_encode.h)
 
 }  // namespace
 
@@ -365,6 +259,12 @@ class TaaState : public TemporalState {
   /// Makes Step run StepReference (the simple implementation) instead of StepFast.
   void UseReference() { reference_ = true; }
 
+  /// The history's 3 floats per pixel (without StepFast's padding).
+  std::vector<float> History() const {
+    if (history_.empty()) return {};
+    return {history_.begin(), history_.begin() + 3 * static_cast<ptrdiff_t>(hist_w_) * hist_h_};
+  }
+
   Image8 Step(const TemporalInput& in, PostStats* stats) override {
     AALAB_CHECK(in.frame != nullptr, "TAA needs a frame");
     return reference_ ? StepReference(in, stats) : StepFast(in, stats);
@@ -379,11 +279,13 @@ class TaaState : public TemporalState {
   /// The production step: the same values as StepReference, bit for bit, organised for a
   /// CPU. Per chunk of kChunkRows rows, the current frame's YCoCg goes into three padded
   /// planes (one replicated texel on each side, so the clamped 3×3 neighbourhood is plain
-  /// reads); each row then computes the boxes of all its pixels (BoxRow), the history's
-  /// footprints (FootprintRow), and with SSE2 fetches, clips, blends and converts four
-  /// pixels at a time (taa_sse2.h; elsewhere and for the row's last W mod 4 pixels LerpRow,
-  /// HistoryYccRow and BlendRow), then encodes (Encode8::Rgba). tests/motion/taa_test.cpp
-  /// compares the two.
+  /// reads). Each row then runs, where the CPU has them, the AVX-512 kernel on 16-pixel
+  /// blocks (box, footprint, fetch, clip, blend, history and encoded output in registers)
+  /// and the AVX2 kernel on 8-pixel blocks (the same, with the boxes from BoxRow):
+  /// taa_avx2.h. The rest of the row: the boxes (BoxRow), the footprints (FootprintRow),
+  /// the SSE2 kernel on 4-pixel blocks (taa_sse2.h), the scalar LerpRow, HistoryYccRow and
+  /// BlendRow for the last W mod 4 pixels (all of the row without SSE2), then the encode
+  /// (Encode8::Rgba). tests/motion/taa_test.cpp compares the two, output and history.
   static constexpr int kChunkRows = 16;
   Image8 StepFast(const TemporalInput& in, PostStats* stats) {
     const Image8& f = *in.frame;
@@ -416,13 +318,15 @@ class TaaState : public TemporalState {
         float* pco = py + prow * pw;
         float* pcg = pco + prow * pw;
         const uint8_t* src = f.Row(ya + static_cast<int>(r));
-        // Linear RGB first (table reads), then YCoCg in place (a vectorised loop).
-        for (int x = 0; x < W; ++x) {
+        // With AVX2 eight pixels at a time (gathers); the rest linear RGB first (table
+        // reads), then YCoCg in place (a vectorised loop).
+        const int d = YccPlaneRowAvx2(src, W, decode_.data(), py + 1, pco + 1, pcg + 1);
+        for (int x = d; x < W; ++x) {
           py[x + 1] = decode_[src[4 * x]];
           pco[x + 1] = decode_[src[4 * x + 1]];
           pcg[x + 1] = decode_[src[4 * x + 2]];
         }
-        HistoryYccRow(W, py + 1, pco + 1, pcg + 1);
+        HistoryYccRow(W - d, py + 1 + d, pco + 1 + d, pcg + 1 + d);
         for (float* p : {py, pco, pcg}) {
           p[0] = p[1];
           p[W + 1] = p[W];
@@ -461,21 +365,44 @@ class TaaState : public TemporalState {
           continue;
         }
         const float* prev = &(*in.previous)[2 * static_cast<size_t>(y) * W];
-        FootprintRow(prev, W, W, H, tx, ty, off.get());
         const size_t rm = static_cast<size_t>(std::max(y - 1, 0) - ya) * pw, rc = static_cast<size_t>(y - ya) * pw,
                      rp = static_cast<size_t>(std::min(y + 1, H - 1) - ya) * pw;
-        if (clip) {
+        // The boxes of pixels [wide, W): the AVX-512 kernel forms those of [0, wide) itself.
+        const int wide = TaaHasAvx512() ? W - W % 16 : 0;
+        if (clip && wide < W) {
           for (int c = 0; c < 3; ++c) {
-            const float* pl = plane[c];
+            const float* pl = plane[c] + wide;
             if (p_.clip == Clip::kVariance) {
-              BoxRow<true>(pl + rm, pl + rc, pl + rp, W, p_.gamma, cmn, cmx, lo[c], hi[c]);
+              BoxRow<true>(pl + rm, pl + rc, pl + rp, W - wide, p_.gamma, cmn, cmx, lo[c] + wide, hi[c] + wide);
             } else {
-              BoxRow<false>(pl + rm, pl + rc, pl + rp, W, p_.gamma, cmn, cmx, lo[c], hi[c]);
+              BoxRow<false>(pl + rm, pl + rc, pl + rp, W - wide, p_.gamma, cmn, cmx, lo[c] + wide, hi[c] + wide);
             }
           }
         }
         const float fw = static_cast<float>(W), fh = static_cast<float>(H);
-        int done = 0;  // pixels [0, done) finished by the SSE2 kernel
+        // Pixels [0, avx) finished by the AVX2 kernel (footprint, fetch, clip, blend, history
+        // and encoded output), [avx, done) by the SSE2 kernel, the rest by the scalar rows.
+        const Avx2RowIn ai{history_.data(),
+                           prev,
+                           W,
+                           H,
+                           {lo[0], lo[1], lo[2]},
+                           {hi[0], hi[1], hi[2]},
+                           plane[0] + rc,
+                           plane[1] + rc,
+                           plane[2] + rc,
+                           src,
+                           decode_.data(),
+                           encode.Tables(),
+                           {{plane[0] + rm, plane[0] + rc, plane[0] + rp},
+                            {plane[1] + rm, plane[1] + rc, plane[1] + rp},
+                            {plane[2] + rm, plane[2] + rc, plane[2] + rp}},
+                           p_.clip == Clip::kVariance,
+                           p_.gamma};
+        const int avx = HistoryBlendRow8Avx2(ai, W, clip, p_.alpha, next, row);
+        int done = avx;
+        if (avx == W) continue;
+        FootprintRow(prev + 2 * avx, W - avx, W, H, tx + avx, ty + avx, off.get() + 4 * static_cast<size_t>(avx));
 #if defined(__SSE2__)
         done = W - W % 4;
         const Sse2RowIn si{history_.data(),
@@ -493,9 +420,9 @@ class TaaState : public TemporalState {
                            src,
                            decode_.data()};
         if (clip) {
-          HistoryBlendRow4<true>(si, 0, done, p_.alpha, next, outc[0], outc[1], outc[2]);
+          HistoryBlendRow4<true>(si, avx, done, p_.alpha, next, outc[0], outc[1], outc[2]);
         } else {
-          HistoryBlendRow4<false>(si, 0, done, p_.alpha, next, outc[0], outc[1], outc[2]);
+          HistoryBlendRow4<false>(si, avx, done, p_.alpha, next, outc[0], outc[1], outc[2]);
         }
 #endif
         if (done < W) {
@@ -526,7 +453,7 @@ class TaaState : public TemporalState {
             BlendRow<false>(ri, rest, p_.alpha, nd, outc[0] + d, outc[1] + d, outc[2] + d);
           }
         }
-        encode.Rgba(outc[0], outc[1], outc[2], W, row);
+        encode.Rgba(outc[0] + avx, outc[1] + avx, outc[2] + avx, W - avx, row + 4 * static_cast<size_t>(avx));
       }
     });
     history_.swap(next_);
@@ -651,6 +578,12 @@ std::unique_ptr<TemporalState> TaaReferenceCopy(const TemporalState& taa_state) 
   auto copy = std::make_unique<TaaState>(*t);
   copy->UseReference();
   return copy;
+}
+
+std::vector<float> TaaHistory(const TemporalState& taa_state) {
+  const auto* t = dynamic_cast<const TaaState*>(&taa_state);
+  AALAB_CHECK(t != nullptr, "TaaHistory needs a TAA state");
+  return t->History();
 }
 
 std::vector<MethodEntry> TaaMethods() {

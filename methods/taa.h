@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "methods/method.h"
 
@@ -20,5 +21,10 @@ void EncodeSrgb8Rgba(const float* r, const float* g, const float* b, int w, uint
 /// the production path: the reference tests/motion/taa_test.cpp compares the two with, bit
 /// for bit. InternalError for any other state.
 std::unique_ptr<TemporalState> TaaReferenceCopy(const TemporalState& taa_state);
+
+/// The history a TAA state holds after its last step (linear display RGB, 3 floats per pixel,
+/// row-major; empty before the first step), for tests that compare the production step's
+/// with the reference step's bit for bit. InternalError for any other state.
+std::vector<float> TaaHistory(const TemporalState& taa_state);
 
 }  // namespace aalab

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 
 #include "core/color.h"
@@ -236,9 +237,11 @@ TEST(Taa, FastEncodeIsTheDirectEncodeBitForBit) {
   }
 }
 
-// The row encode (SSE2, four pixels at a time, and its scalar tail) against the direct
-// formula: around every code boundary and on a dense grid, each value in each channel
-// position, with -0, 0 and 1, in rows whose width is not a multiple of 4.
+// The row encode (where the CPU has them AVX-512 sixteen pixels at a time and AVX2 eight; SSE2
+// four; the scalar tail) against the direct formula: around every code boundary and on a
+// dense grid, each value in each channel position, with -0, 0 and 1, in rows whose width is
+// not a multiple of 4 (31: one block of each width and a scalar tail; 13 and 15 without the
+// AVX-512 block).
 TEST(Taa, RowEncodeIsTheDirectEncodeBitForBit) {
   std::vector<float> values = {-0.0f, 0.0f, 1.0f, std::nextafter(1.0f, 0.0f), 1e-30f, 1e-7f};
   for (int i = 0; i <= (1 << 18); ++i) values.push_back(static_cast<float>(i) / (1 << 18));
@@ -249,7 +252,7 @@ TEST(Taa, RowEncodeIsTheDirectEncodeBitForBit) {
   }
   const int n = static_cast<int>(values.size());
   for (int shift = 0; shift < 3; ++shift) {  // each value in R, G and B
-    for (int w : {n, n - 1, 7, 3}) {
+    for (int w : {n, n - 1, 31, 15, 13, 7, 3}) {
       std::vector<float> ch[3];
       for (int c = 0; c < 3; ++c) {
         for (int x = 0; x < w; ++x) ch[c].push_back(values[static_cast<size_t>((x + 5 * c + shift * 11) % n)]);
@@ -270,7 +273,10 @@ TEST(Taa, RowEncodeIsTheDirectEncodeBitForBit) {
 // The production temporal step against the simple one (TaaReferenceCopy), bit for bit: every
 // output byte, the taps and (through the later frames) the history, over sequences of random
 // frames with random previous positions (inside, on the border, outside, NaN, exact texel
-// centres), for every clip mode, odd sizes from 1x1, at 1 and 2 threads.
+// centres), for every clip mode, odd sizes from 1x1, at 1 and 2 threads. Widths 29 and 47
+// reach, in every row, the AVX-512 kernel (where the CPU has it: 16 pixels), the AVX2 kernel
+// (where the CPU has it: 8), the SSE2 kernel (4) and the scalar tail; 13 the last three; 64
+// the AVX-512 kernel only.
 uint64_t Next(uint64_t& s) {
   s ^= s << 13;
   s ^= s >> 7;
@@ -282,7 +288,8 @@ TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
   for (int threads : {1, 2}) {
     SetThreadCount(threads);
     for (const char* spec : {"taa", "taa:clip=minmax", "taa:clip=none", "taa:gamma=0.25,alpha=0.5", "taa:alpha=1"}) {
-      for (auto [W, H] : std::vector<std::pair<int, int>>{{1, 1}, {2, 3}, {7, 5}, {33, 17}, {64, 48}}) {
+      for (auto [W, H] :
+           std::vector<std::pair<int, int>>{{1, 1}, {2, 3}, {7, 5}, {13, 6}, {29, 9}, {33, 17}, {47, 35}, {64, 48}}) {
         const MethodPlan plan = MakeMethod(spec);
         auto fast = plan.make_state();
         auto ref = TaaReferenceCopy(*fast);
@@ -317,6 +324,12 @@ TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
                                    std::to_string(k) + " threads " + std::to_string(threads);
           ASSERT_TRUE(a == b) << what;
           EXPECT_EQ(sf.taps, sr.taps) << what;
+          // The float history too, bit for bit: a change below the 8-bit output's resolution
+          // (one ulp of the box, say) shows here first.
+          const std::vector<float> hf = TaaHistory(*fast), hr = TaaHistory(*ref);
+          ASSERT_EQ(hf.size(), 3 * static_cast<size_t>(W) * H) << what;
+          ASSERT_EQ(hr.size(), hf.size()) << what;
+          ASSERT_EQ(std::memcmp(hf.data(), hr.data(), hf.size() * sizeof(float)), 0) << what;
         }
       }
     }
