@@ -18,6 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using clitest::Aalab;
+using clitest::RunCommand;
 using clitest::TempDir;
 
 std::string ReadText(const fs::path& p) {
@@ -237,6 +238,23 @@ TEST(MergeGpu, SeveralFilesFromOneRunPutEveryPartOnThePage) {
   EXPECT_DOUBLE_EQ(scale.at("gpu").at("sizes").at("33x17").at("median_ms").get<double>(), 0.0625);
   EXPECT_EQ(scale.at("gpu").at("device"), "CUDA H100");
   EXPECT_FALSE(rows.at("none").contains("gpu"));
+  // The page (headless Chromium, as the browser tests load it): scale43-fxaa-high's GPU raster
+  // cell is render + FXAA/rescale = total (core.js fmtMs: 3 decimals below 1 ms; 0.0625 and
+  // 0.9375 are ties that toFixed rounds up), the tooltip naming the render target and both devices.
+  const fs::path dom = dir / "dom.html";
+  const auto b = RunCommand(
+      "timeout 180 /usr/bin/chromium --headless --no-sandbox --disable-gpu "
+      "--disable-dev-shm-usage --no-first-run --user-data-dir='" +
+      (dir / "profile").string() + "' --virtual-time-budget=10000 --dump-dom 'file://" +
+      fs::absolute(dir / "r" / "index.html").string() + "' > '" + dom.string() + "' 2>/dev/null");
+  ASSERT_EQ(b.code, 0) << b.output;
+  const std::string page = ReadText(dom);
+  const size_t at = page.find("<tr data-spec=\"scale43-fxaa-high\"");
+  ASSERT_NE(at, std::string::npos) << dom;
+  const std::string tr = page.substr(at, page.find("</tr>", at) - at);
+  EXPECT_NE(tr.find(">0.875 + 0.063 = 0.938</td>"), std::string::npos) << tr;
+  EXPECT_NE(tr.find("the render 0.875 ms (44x23 target) drawn by the raster path on GL H100"), std::string::npos) << tr;
+  EXPECT_NE(tr.find("by the CUDA twin on CUDA H100"), std::string::npos) << tr;
   // A later merge with a file that matches no row leaves the report as it was, even when an
   // earlier file in the same list matched.
   const std::string before = ReadText(dir / "r" / "report.json");
