@@ -2,6 +2,7 @@
 // the row block's JSON.
 #include "reports/raster_timings.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -58,6 +59,10 @@ RasterTimingsFile ReadRasterTimingsFile(const std::string& path) {
       r.scene = j.at("scene").get<std::string>();
       r.size = std::to_string(j.at("width").get<int>()) + "x" + std::to_string(j.at("height").get<int>());
       r.method = j.at("method").get<std::string>();
+      if (j.contains("render_width")) {
+        r.render_size =
+            std::to_string(j.at("render_width").get<int>()) + "x" + std::to_string(j.at("render_height").get<int>());
+      }
       r.samples = j.at("samples").get<int>();
       r.median_ms = j.at("total").at("median_ms").get<double>();
       r.min_ms = j.at("total").at("min_ms").get<double>();
@@ -78,6 +83,12 @@ RasterTimingsFile ReadRasterTimingsFile(const std::string& path) {
   return g;
 }
 
+std::vector<std::string> RasterSpecsOf(const std::string& raster_method, bool* render_only) {
+  *render_only = raster_method == "scale43";
+  if (*render_only) return {"scale43", "scale43-fxaa-high"};
+  return {raster_method};
+}
+
 int MergeRasterTimings(Report& report, const RasterTimingsFile& file) {
   auto one_x = [&file](const std::string& scene, const std::string& size) {
     for (const auto& r : file.results) {
@@ -94,11 +105,14 @@ int MergeRasterTimings(Report& report, const RasterTimingsFile& file) {
     t.target_format = file.target_format;
     t.msaa_resolve = file.msaa_resolve;
     for (const auto& r : file.results) {
-      if (r.scene != row.scene || r.method != row.spec) continue;
+      bool render_only = false;
+      const std::vector<std::string> specs = RasterSpecsOf(r.method, &render_only);
+      if (r.scene != row.scene || std::find(specs.begin(), specs.end(), row.spec) == specs.end()) continue;
       t.samples = r.samples;
+      t.part = render_only ? "render" : "";
       const double base = one_x(r.scene, r.size);
       t.sizes.push_back({r.size, r.median_ms, r.min_ms, r.max_ms, r.draw_ms, r.resolve_ms, r.encode_ms,
-                         base > 0 ? r.median_ms / base : 0.0});
+                         base > 0 ? r.median_ms / base : 0.0, r.render_size});
     }
     if (t.sizes.empty()) continue;
     row.gpu_raster = t;
@@ -119,11 +133,13 @@ nlohmann::ordered_json RasterTimingJson(const RasterTiming& t) {
   j["target_format"] = t.target_format;
   j["msaa_resolve"] = t.msaa_resolve;
   j["samples"] = t.samples;
+  if (!t.part.empty()) j["part"] = t.part;
   nlohmann::ordered_json sizes = nlohmann::ordered_json::object();
   for (const auto& s : t.sizes) {
     sizes[s.size] = {{"median_ms", s.median_ms},    {"min_ms", s.min_ms},         {"max_ms", s.max_ms},
                      {"draw_ms", s.draw_ms},        {"resolve_ms", s.resolve_ms}, {"encode_ms", s.encode_ms},
                      {"ratio_to_1x", s.ratio_to_1x}};
+    if (!s.render_size.empty()) sizes[s.size]["render_size"] = s.render_size;
   }
   j["sizes"] = sizes;
   return j;
@@ -137,11 +153,13 @@ RasterTiming RasterTimingFrom(const nlohmann::ordered_json& j) {
   t.target_format = j.at("target_format").get<std::string>();
   t.msaa_resolve = j.at("msaa_resolve").get<std::string>();
   t.samples = j.at("samples").get<int>();
+  t.part = j.value("part", std::string());
   for (auto it = j.at("sizes").begin(); it != j.at("sizes").end(); ++it) {
     const auto& v = it.value();
     t.sizes.push_back({it.key(), v.at("median_ms").get<double>(), v.at("min_ms").get<double>(),
                        v.at("max_ms").get<double>(), v.at("draw_ms").get<double>(), v.at("resolve_ms").get<double>(),
-                       v.at("encode_ms").get<double>(), v.at("ratio_to_1x").get<double>()});
+                       v.at("encode_ms").get<double>(), v.at("ratio_to_1x").get<double>(),
+                       v.value("render_size", std::string())});
   }
   return t;
 }

@@ -13,6 +13,7 @@ namespace aalab {
 /// One row of the raster file: a method on one scene at one size.
 struct RasterResult {
   std::string scene, size, method;
+  std::string render_size;  ///< render_width x render_height when the row has them (scale43), else ""
   int samples = 1;
   double median_ms = 0, min_ms = 0, max_ms = 0, draw_ms = 0, resolve_ms = 0, encode_ms = 0;
 };
@@ -28,9 +29,16 @@ bool IsRasterTimingsFile(const std::string& path);
 /// path for a missing file, invalid JSON, another schema or version, a missing field or
 /// timings that are not 0 < min ≤ median ≤ max.
 RasterTimingsFile ReadRasterTimingsFile(const std::string& path);
-/// Sets `row.gpu_raster` for every row whose scene and spec have results (one
-/// RasterTimingAt per size; ratio_to_1x against the file's `none` on the same scene and size)
-/// and records the device in report.context["gpu_raster_timings"]. Returns the rows matched.
+/// The report specs a raster method's rows time, and whether the raster row is only their
+/// render: a method times its own spec (whole), except `scale43`, the render at 4/3, which is
+/// the render part of both `scale43` and `scale43-fxaa-high` (their rescale and FXAA are
+/// the CUDA twins'). Pure.
+std::vector<std::string> RasterSpecsOf(const std::string& raster_method, bool* render_only);
+
+/// Sets `row.gpu_raster` for every row whose scene and spec have results (RasterSpecsOf; one
+/// RasterTimingAt per size; ratio_to_1x against the file's `none` on the same scene and size;
+/// part "render" for a render-only row) and records the device in
+/// report.context["gpu_raster_timings"]. Returns the rows matched.
 int MergeRasterTimings(Report& report, const RasterTimingsFile& file);
 
 /// The block as report.json holds it, and back.

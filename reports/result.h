@@ -50,12 +50,17 @@ struct RasterTimingAt {
   std::string size;  ///< "1920x1080"
   double median_ms = 0, min_ms = 0, max_ms = 0;
   double draw_ms = 0, resolve_ms = 0, encode_ms = 0;
-  double ratio_to_1x = 0;  ///< median_ms / the same scene's `none` frame at this size (0: none not timed)
+  double ratio_to_1x = 0;   ///< median_ms / the same scene's `none` frame at this size (0: none not timed)
+  std::string render_size;  ///< the frame drawn when it is not `size` (scale43's render: "2560x1440"), else ""
 };
 
 /// The raster block of a row (reports/raster_timings.h): the GL device and settings.
 struct RasterTiming {
   std::string device, gl_version, egl_platform, target_format, msaa_resolve;
+  /// "" when the block times the whole method; "render" when it times only the method's
+  /// render (scale43 and scale43-fxaa-high: the 4/3 target), its rescale and post filter
+  /// being the row's `gpu` block (the CUDA twin), so the method's GPU time is the two summed.
+  std::string part;
   int samples = 1;  ///< samples per pixel the GL allocated
   std::vector<RasterTimingAt> sizes;
 };

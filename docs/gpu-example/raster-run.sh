@@ -5,6 +5,11 @@
 # merged source tree) and `.devdata` (this script, geometry/, raster-ref.tgz), e.g.
 #   run: bash .devdata/run.sh default   carry: .gl .devtree .devdata
 #   run: bash .devdata/run.sh synthetic carry: .gl .devtree .devdata
+# METHODS (default: none,msaa-2x,msaa-4x,msaa-8x,ssaa-2x2,ssaa-4x4,taa) chooses the shader-
+# resolve run's methods, TAG is added to its JSON's name, BLIT=0 skips the blit-resolve run;
+# the default suite's 9 raster rows in one file (docs/gpu.md, 2026-11-27 s7):
+#   run: METHODS=none,aaa,msaa-2x,msaa-4x,msaa-8x,ssaa-2x2,ssaa-4x4,scale43,taa TAG=-all BLIT=0 \
+#        bash .devdata/run.sh default
 # Prepared on the CPU machine with (docs/gpu.md gives the same commands):
 #   aalab export-geometry --suite synthetic --skip-unsupported --out .devdata/geometry
 #   aalab export-geometry --suite default --out .devdata/geometry-default   # all four scenes (AALABRG3)
@@ -13,6 +18,8 @@
 #     --render-methods msaa-2x,msaa-4x,msaa-8x,ssaa-2x2,ssaa-4x4 --out raster-ref
 #   aalab export-frames --scenes real-glossy,real-fence,real-foliage --sizes 1920x1080 --no-scaled \
 #     --out raster-ref-gltf && cp raster-ref-gltf/*.ppm raster-ref/
+# (scale43's references are export-frames' -scaled.ppm frames: leave out --no-scaled for them;
+# the s7 run carried only the 1x and -scaled frames: wedges at both sizes, the glTF scenes at 1080p)
 #   tar czf .devdata/raster-ref.tgz raster-ref
 #   du -sh .devdata .gl .devtree   # the carry holds 64 MiB in all
 # The glTF scenes' reference is their 1x frame at 1080p only: their textured frames compress
@@ -45,7 +52,7 @@ cmake -S gpu/raster -B build-raster -DCMAKE_BUILD_TYPE=Release >"$OUT/raster-bui
   cmake --build build-raster -j16 >>"$OUT/raster-build.log" 2>&1
 echo "raster build rc=$?"
 R=build-raster/aalab_raster
-ALL=none,msaa-2x,msaa-4x,msaa-8x,ssaa-2x2,ssaa-4x4,taa
+ALL="${METHODS:-none,msaa-2x,msaa-4x,msaa-8x,ssaa-2x2,ssaa-4x4,taa}"
 # Suites from the arguments (default: both). One command may run 10 minutes: run
 # `bash .devdata/run.sh default` and `bash .devdata/run.sh synthetic` as two calls.
 SUITES="${*:-default synthetic}"
@@ -55,9 +62,10 @@ for suite in $SUITES; do
   echo "== $suite: shader resolve"
   date
   $R --geometry $G --egl device --sizes 1920x1080,3840x2160 --methods $ALL --warmup 200 --repeat 200 \
-    --json "$OUT/raster-h100-$suite.json" --compare /tmp/raster-ref >"$OUT/raster-$suite.log" 2>&1
+    --json "$OUT/raster-h100-$suite${TAG:-}.json" --compare /tmp/raster-ref >"$OUT/raster-$suite${TAG:-}.log" 2>&1
   echo "rc=$?"
-  tail -30 "$OUT/raster-$suite.log"
+  tail -30 "$OUT/raster-$suite${TAG:-}.log"
+  [ "${BLIT:-1}" = 0 ] && continue
   echo "== $suite: blit resolve"
   date
   $R --geometry $G --egl device --sizes 1920x1080,3840x2160 --methods msaa-2x,msaa-4x,msaa-8x --resolve blit \

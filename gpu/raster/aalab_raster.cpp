@@ -2,7 +2,11 @@
 // `aalab export-geometry` wrote with OpenGL 4.5 through EGL without a display, for each
 // render-time method and size, writes the 8-bit frames (PPM) and times each stage with
 // GL_TIME_ELAPSED queries (warm-up, then repeats; median, min, max), into a JSON that
-// `aalab run --gpu-timings` and `aalab merge-gpu` read.
+// `aalab run --gpu-timings` and `aalab merge-gpu` read. `aaa` is drawn as the 1x frame on
+// scenes without disks (aalab renders triangles under aaa as under none) and skipped, with
+// the reason under "not_drawn", on scenes with disks; `scale43` is the render of a
+// render-scale method alone (its 4/3 target; rows keep the output size W x H and add
+// render_width / render_height), whose rescale and FXAA the CUDA twins time.
 //
 //   aalab_raster --geometry DIR [--sizes 1920x1080,3840x2160] [--methods none,msaa-4x,...]
 //                [--warmup 50] [--repeat 100] [--budget-ms 1000] [--min-repeat 5]
@@ -73,8 +77,9 @@ const char* kUsage =
     "usage: aalab_raster --geometry DIR|FILE.geom [options]\n"
     "  --geometry P     a folder written by `aalab export-geometry` (every .geom in it) or one .geom file\n"
     "  --sizes L        output sizes WxH, comma-separated (default 1920x1080,3840x2160)\n"
-    "  --methods L      none, msaa-2x, msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4, taa, taa@N\n"
-    "                   (default none,msaa-2x,msaa-4x,msaa-8x,ssaa-2x2,ssaa-4x4,taa)\n"
+    "  --methods L      none, aaa, msaa-2x, msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4, scale43, taa, taa@N\n"
+    "                   (default none,msaa-2x,msaa-4x,msaa-8x,ssaa-2x2,ssaa-4x4,taa); aaa: the 1x frame, only on\n"
+    "                   scenes without disks; scale43: its render, round(4/3 W) x round(4/3 H), no rescale\n"
     "  --warmup N       untimed frames before timing each method (default 50)\n"
     "  --repeat N       timed frames (default 100); 0: draw one frame, time nothing\n"
     "  --budget-ms B    GPU time for each scene, size and method's timed frames (default 1000): one probe\n"
@@ -84,7 +89,8 @@ const char* kUsage =
     "  --json FILE      write the timings (docs/gpu.md \"The raster path\")\n"
     "  --frames DIR     write each frame as DIR/<scene>-<W>x<H>-<method>.ppm\n"
     "  --compare DIR    compare each frame with aalab's in DIR (aalab export-frames [--render-methods ...]):\n"
-    "                   <scene>-<W>x<H>.ppm (none), -<method>.ppm (MSAA, SSAA), -taa-f<N>.ppm (taa@N)\n"
+    "                   <scene>-<W>x<H>.ppm (none, aaa), -<method>.ppm (MSAA, SSAA), -taa-f<N>.ppm (taa@N),\n"
+    "                   -scaled.ppm (scale43)\n"
     "  --format F       colour target: rgba16f (default) or rgba32f\n"
     "  --resolve R      MSAA resolve: shader (box average, default) or blit (glBlitFramebuffer)\n"
     "  --egl E          auto (default: EGL_EXT_platform_device, then EGL_MESA_platform_surfaceless), device, "
@@ -300,6 +306,16 @@ int Main(int argc, char** argv) {
     for (const auto& [w, h] : o.sizes) {
       if (lost) break;
       for (const auto& m : o.methods) {
+        // A method this scene has no raster form of (aaa on analytic disks) is skipped with
+        // its reason, listed in the JSON like a capability skip.
+        if (const std::string why = RasterMethodRefusal(m, scene); !why.empty()) {
+          std::fprintf(stderr, "aalab_raster: warning: skipped %s on %s at %dx%d: %s\n", m.name.c_str(),
+                       scene.name.c_str(), w, h, why.c_str());
+          not_drawn << (not_drawn.tellp() > 0 ? ", " : "")
+                    << JsonString(scene.name + " " + std::to_string(w) + "x" + std::to_string(h) + " " + m.name + ": " +
+                                  why);
+          continue;
+        }
         // What this GL cannot allocate (more samples than GL_MAX_SAMPLES, a target past
         // GL_MAX_TEXTURE_SIZE) is skipped with a warning and listed in the JSON.
         try {
@@ -318,15 +334,18 @@ int Main(int argc, char** argv) {
           std::fprintf(stderr, "aalab_raster: warning: %s got %d samples per pixel from this GL, not %d\n",
                        m.name.c_str(), r.Samples(), want);
         }
+        int fw = 0, fh = 0;  // the frame drawn (scale43: its render size)
+        RasterFrameSize(m, w, h, &fw, &fh);
         std::string fidelity;
         if (!o.compare.empty()) {
           const std::string base = scene.name + "-" + std::to_string(w) + "x" + std::to_string(h);
-          const std::string ref = m.kind == RasterMethod::Kind::kOne ? base + ".ppm"
+          const std::string ref = m.kind == RasterMethod::Kind::kOne     ? base + ".ppm"
+                                  : m.kind == RasterMethod::Kind::kScale ? base + "-scaled.ppm"
                                   : m.kind == RasterMethod::Kind::kTaa
                                       ? base + "-taa-f" + std::to_string(m.taa_frame) + ".ppm"
                                       : base + "-" + m.name + ".ppm";
           std::string line;
-          fidelity = FidelityJson(fs::path(o.compare) / ref, r.ReadRgb8(), w, h, &line);
+          fidelity = FidelityJson(fs::path(o.compare) / ref, r.ReadRgb8(), fw, fh, &line);
           std::fprintf(stderr, "%s %dx%d %-9s against %s: %s\n", scene.name.c_str(), w, h, m.name.c_str(), ref.c_str(),
                        fidelity.empty() ? "no such frame" : line.c_str());
         }
@@ -334,7 +353,7 @@ int Main(int argc, char** argv) {
           const std::string file =
               scene.name + "-" + std::to_string(w) + "x" + std::to_string(h) + "-" +
               (m.kind == RasterMethod::Kind::kTaa ? "taa-f" + std::to_string(m.taa_frame) : m.name) + ".ppm";
-          WritePpm(fs::path(o.frames) / file, w, h, r.ReadRgb8());
+          WritePpm(fs::path(o.frames) / file, fw, fh, r.ReadRgb8());
         }
         if (o.repeat == 0) {
           if (!fidelity.empty()) {
@@ -379,6 +398,9 @@ int Main(int argc, char** argv) {
                      Stats(encode).median, timed.warmup, static_cast<int>(t.size()));
         rows << (first ? "" : ",\n") << "    {\"scene\": " << JsonString(scene.name) << ", \"width\": " << w
              << ", \"height\": " << h << ", \"method\": " << JsonString(m.name) << ", \"samples\": " << r.Samples()
+             << (m.kind == RasterMethod::Kind::kScale
+                     ? ", \"render_width\": " + std::to_string(fw) + ", \"render_height\": " + std::to_string(fh)
+                     : "")
              << ", \"triangles\": " << scene.triangles.size() << ", \"warmup\": " << timed.warmup
              << ", \"repeat\": " << t.size() << ", \"probe_ms\": " << timed.probe_ms
              << ",\n     \"total\": " << StatJson(tot) << ",\n     \"draw\": " << StatJson(Stats(draw))

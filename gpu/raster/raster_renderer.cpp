@@ -399,6 +399,12 @@ bool ParseRasterMethod(const std::string& spec, RasterMethod* out, std::string* 
   m.name = spec;
   if (spec == "none") {
     m.kind = RasterMethod::Kind::kOne;
+  } else if (spec == "aaa") {
+    m.kind = RasterMethod::Kind::kOne;
+    m.analytic = true;
+  } else if (spec == "scale43") {
+    m.kind = RasterMethod::Kind::kScale;
+    m.scale = 4.0 / 3.0;  // scale43's default (methods/render_scale.cpp ScaleParams)
   } else if (spec == "msaa-2x" || spec == "msaa-4x" || spec == "msaa-8x" || spec == "msaa-16x") {
     m.kind = RasterMethod::Kind::kMsaa;
     m.samples = std::stoi(spec.substr(5));
@@ -422,11 +428,34 @@ bool ParseRasterMethod(const std::string& spec, RasterMethod* out, std::string* 
     m.jy = static_cast<float>(RadicalInverse(3, index) - 0.5);
   } else {
     *why = "unknown raster method '" + spec +
-           "' (the raster path draws: none, msaa-2x, msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4, taa, taa@N)";
+           "' (the raster path draws: none, aaa, msaa-2x, msaa-4x, msaa-8x, msaa-16x, ssaa-2x2, ssaa-4x4, scale43, "
+           "taa, taa@N)";
     return false;
   }
   *out = m;
   return true;
+}
+
+std::string RasterMethodRefusal(const RasterMethod& method, const RasterScene& scene) {
+  if (!method.analytic) return "";
+  for (const auto& t : scene.triangles) {
+    if (t.disk) {
+      return "aaa computes an analytic disk's edge coverage from its distance; the raster path has no form of "
+             "it (it draws disks with a hard edge): aaa is drawn only on scenes of triangles, where aalab renders "
+             "it as none";
+    }
+  }
+  return "";
+}
+
+void RasterFrameSize(const RasterMethod& method, int w, int h, int* fw, int* fh) {
+  *fw = w;
+  *fh = h;
+  if (method.kind == RasterMethod::Kind::kScale) {
+    // As harness/run renders a render-scale method: lround of the double product.
+    *fw = std::max(1, static_cast<int>(std::lround(method.scale * w)));
+    *fh = std::max(1, static_cast<int>(std::lround(method.scale * h)));
+  }
 }
 
 RasterRenderer::RasterRenderer(const RasterScene& scene) : gl_(std::make_unique<Gl>()) {
@@ -552,8 +581,11 @@ RasterRenderer::~RasterRenderer() {
   }
 }
 
-void RasterRenderer::Configure(const RasterMethod& method, int w, int h, TargetFormat format, ResolveKind resolve) {
+void RasterRenderer::Configure(const RasterMethod& method, int out_w, int out_h, TargetFormat format,
+                               ResolveKind resolve) {
   Gl& g = *gl_;
+  int w = 0, h = 0;  // the frame drawn: the output size, or a render-scale method's render size
+  RasterFrameSize(method, out_w, out_h, &w, &h);
   g.draw.Free();
   g.resolved.Free();
   g.encoded.Free();

@@ -26,19 +26,35 @@ struct CapabilityError : std::runtime_error {
 };
 
 /// A render-time method as the raster path draws it; `name` is aalab's method spec.
+///   kOne    one sample at each pixel centre (`none`; also `aaa`, whose triangles aalab
+///           renders as `none` does: methods/aaa.cpp)
+///   kScale  the render of a render-scale method: one sample at each pixel centre of a
+///           round(scale·W) × round(scale·H) target (`scale43`: aalab's render_scale size;
+///           its rescale and any post filter are not drawn here)
 struct RasterMethod {
-  enum class Kind { kOne, kMsaa, kSsaa, kTaa };
+  enum class Kind { kOne, kMsaa, kSsaa, kTaa, kScale };
   std::string name;
   Kind kind = Kind::kOne;
-  int samples = 1;       ///< MSAA: samples per pixel
-  int grid = 1;          ///< SSAA: k of the k × k ordered grid
-  int taa_frame = 1;     ///< TAA: which frame's jitter (taa's Halton(2,3) over 16 points)
-  float jx = 0, jy = 0;  ///< TAA: the sample's offset from the pixel centre, px, y down
+  bool analytic = false;  ///< `aaa`: drawn as kOne only where the scene has no analytic shape
+  double scale = 1.0;     ///< kScale: the render scale (scale43: 4/3, methods/render_scale.cpp)
+  int samples = 1;        ///< MSAA: samples per pixel
+  int grid = 1;           ///< SSAA: k of the k × k ordered grid
+  int taa_frame = 1;      ///< TAA: which frame's jitter (taa's Halton(2,3) over 16 points)
+  float jx = 0, jy = 0;   ///< TAA: the sample's offset from the pixel centre, px, y down
 };
 
-/// none, msaa-2x/4x/8x/16x, ssaa-2x2/4x4, taa (frame 1's jitter) or taa@N (frame N's);
-/// false with *why naming what is allowed.
+/// none, aaa, msaa-2x/4x/8x/16x, ssaa-2x2/4x4, scale43, taa (frame 1's jitter) or taa@N
+/// (frame N's); false with *why naming what is allowed.
 bool ParseRasterMethod(const std::string& spec, RasterMethod* out, std::string* why);
+
+/// Why `method` cannot be drawn on `scene` ("" when it can): `aaa` on a scene with analytic
+/// disks, whose edge coverage aalab computes from the disk's distance (scenes/analytic.cpp),
+/// which the raster path has no form of (it draws the disk's impostor with a hard edge).
+std::string RasterMethodRefusal(const RasterMethod& method, const RasterScene& scene);
+
+/// The size of the frame `method` draws for an output of w × h: w × h, except kScale's
+/// max(1, lround(scale·w)) × max(1, lround(scale·h)) (harness/run's render size).
+void RasterFrameSize(const RasterMethod& method, int w, int h, int* fw, int* fh);
 
 /// The colour target's format: half floats (what a forward renderer typically uses) or floats.
 enum class TargetFormat { kRgba16f, kRgba32f };
@@ -110,7 +126,7 @@ class RasterRenderer {
   /// flight: a frame's results are read, checked (CheckedStageTimes, glGetGraphicsResetStatus,
   /// glGetError) and its queries reused only after that. Throws TimingError.
   TimedFrames TimeFrames(const TimingPlan& plan);
-  /// The encoded frame, w·h·3 bytes, top row first (after RenderFrame).
+  /// The encoded frame, fw·fh·3 bytes (RasterFrameSize), top row first (after RenderFrame).
   std::vector<uint8_t> ReadRgb8() const;
   /// MSAA coverage, sample for sample: draws the scene's shape indices into an R32UI target
   /// of the method's sample count (same depth test) and returns w·h·samples values, pixel

@@ -211,10 +211,11 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
   run->add_flag("--references-only", rs->references_only,
                 "only render this shard's share of the references into --ref-cache (scenes, and frames of moving "
                 "scenes); write no report");
-  auto run_gpu = std::make_shared<std::string>();
+  auto run_gpu = std::make_shared<std::vector<std::string>>();
   run->add_option("--gpu-timings", *run_gpu,
-                  "after the run, attach GPU timings (aalab_raster's or aalab_gpu's JSON) to the rows, as merge-gpu "
-                  "does (docs/gpu.md)");
+                  "after the run, attach GPU timings (aalab_raster's, aalab_gpu's or aalab_vk's JSON) to the rows, as "
+                  "merge-gpu does: FILE[,FILE...] or the option repeated, merged in that order (docs/gpu.md)")
+      ->delimiter(',');
   run->callback([&commands, rs, run_scenes, run_methods, run_size, run_shard, run_sampler, run_gpu] {
     commands.action = [rs, run_scenes, run_methods, run_size, run_shard, run_sampler, run_gpu] {
       ParseSize(*run_size, &rs->width, &rs->height);
@@ -228,7 +229,7 @@ void RegisterCommands(CLI::App& app, Commands& commands) {
               "--gpu-timings needs a whole run (not --shard or --references-only); attach the timings to "
               "the merged report with aalab merge-gpu");
         }
-        CheckGpuTimingsFile(*run_gpu);  // before any work
+        for (const auto& file : *run_gpu) CheckGpuTimingsFile(file);  // before any work
       }
       if (rs->references_only) {
         int cached = 0;

@@ -37,10 +37,11 @@ void RegisterGpuCommands(CLI::App& app, Commands& commands);
 /// Checks a GPU timings file (aalab_gpu's or aalab_raster's JSON) before any work; throws
 /// UserError naming what is wrong.
 void CheckGpuTimingsFile(const std::string& path);
-/// Merges a GPU timings file into the report in `dir` (report.json and index.html rewritten):
-/// aalab_gpu's into the rows' `gpu` blocks, aalab_raster's into `gpu_raster`. Returns the
-/// line to print; UserError when no row matches.
-std::string AttachGpuTimings(const std::string& dir, const std::string& gpu_json);
+/// Merges GPU timings files, in order, into the report in `dir` (report.json and index.html
+/// rewritten once): aalab_gpu's and aalab_vk's into the rows' `gpu` blocks, aalab_raster's
+/// into `gpu_raster`. Returns one line per file to print; UserError (report unchanged) when a
+/// file matches no row.
+std::string AttachGpuTimings(const std::string& dir, const std::vector<std::string>& gpu_jsons);
 
 /// Adds `merge` and `same-results` (cluster_commands.cpp; docs/cluster.md). `same-results`
 /// exits 0 same, 1 different, 2 could not compare.

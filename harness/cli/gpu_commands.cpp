@@ -2,7 +2,8 @@
 // timings (docs/gpu.md). export-frames renders the frames the post filters see, for the
 // stand-alone GPU tool (gpu/aalab_gpu), which needs no Embree; export-geometry writes the
 // triangle scenes for the raster tool (gpu/raster/aalab_raster); merge-gpu (and run
-// --gpu-timings) attaches either tool's JSON to a report.
+// --gpu-timings) attaches one or more of the GPU tools' JSON files (aalab_gpu's and aalab_vk's
+// schema aalab-gpu-timings, aalab_raster's aalab-raster-timings) to a report.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -207,8 +208,8 @@ int ExportGeometry(const GeometryArgs& a) {
   return ToInt(ExitCode::kOk);
 }
 
-int MergeGpu(const std::string& dir, const std::string& gpu_json) {
-  std::printf("%s\n", AttachGpuTimings(dir, gpu_json).c_str());
+int MergeGpu(const std::string& dir, const std::vector<std::string>& gpu_jsons) {
+  std::printf("%s\n", AttachGpuTimings(dir, gpu_jsons).c_str());
   return ToInt(ExitCode::kOk);
 }
 
@@ -223,36 +224,44 @@ void CheckGpuTimingsFile(const std::string& path) {
   }
 }
 
-std::string AttachGpuTimings(const std::string& dir, const std::string& gpu_json) {
+std::string AttachGpuTimings(const std::string& dir, const std::vector<std::string>& gpu_jsons) {
   const fs::path report_path = fs::path(dir) / "report.json";
   Report report = ReadReportFile(report_path.string());
-  CheckGpuTimingsFile(gpu_json);
-  std::string what;
-  int matched = 0;
-  std::vector<std::string> scenes;
-  if (IsRasterTimingsFile(gpu_json)) {
-    const RasterTimingsFile raster = ReadRasterTimingsFile(gpu_json);
-    matched = MergeRasterTimings(report, raster);
-    for (const auto& r : raster.results) {
-      if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+  for (const auto& gpu_json : gpu_jsons) CheckGpuTimingsFile(gpu_json);
+  // Every file is merged into the report in memory, in the order given (a later file's block
+  // replaces an earlier one's on the rows both time); the report is written once, after all
+  // of them matched, so a file that matches nothing leaves the report as it was.
+  std::string lines;
+  for (const auto& gpu_json : gpu_jsons) {
+    std::string what;
+    int matched = 0;
+    std::vector<std::string> scenes;
+    if (IsRasterTimingsFile(gpu_json)) {
+      const RasterTimingsFile raster = ReadRasterTimingsFile(gpu_json);
+      matched = MergeRasterTimings(report, raster);
+      for (const auto& r : raster.results) {
+        if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+      }
+      what = "GPU raster timings (" + raster.device + ", " + raster.gl_version + ")";
+    } else {
+      const GpuTimingsFile gpu = ReadGpuTimingsFile(gpu_json);
+      matched = MergeGpuTimings(report, gpu);
+      scenes = gpu.Scenes();
+      what = "GPU timings (" + gpu.device + ", driver " + gpu.driver + ")";
     }
-    what = "GPU raster timings (" + raster.device + ", " + raster.gl_version + ")";
-  } else {
-    const GpuTimingsFile gpu = ReadGpuTimingsFile(gpu_json);
-    matched = MergeGpuTimings(report, gpu);
-    scenes = gpu.Scenes();
-    what = "GPU timings (" + gpu.device + ", driver " + gpu.driver + ")";
-  }
-  if (matched == 0) {
-    throw UserError("'" + gpu_json +
-                    "' has timings for none of the report's rows (rows are matched by scene and "
-                    "method spec; the GPU file covers scenes " +
-                    JoinNames(scenes) + ")");
+    if (matched == 0) {
+      throw UserError("'" + gpu_json +
+                      "' has timings for none of the report's rows (rows are matched by scene and "
+                      "method spec; the GPU file covers scenes " +
+                      JoinNames(scenes) + "); the report was left unchanged");
+    }
+    lines += (lines.empty() ? "" : "\n") +
+             ("merged " + what + " from " + gpu_json + " into " + std::to_string(matched) + " of " +
+              std::to_string(report.rows.size()) + " rows of " + report_path.string());
   }
   WriteTextFile(report_path.string(), ReportToJson(report).dump(2) + "\n");
   WriteTextFile((fs::path(dir) / "index.html").string(), RenderHtmlReport(report));
-  return "merged " + what + " into " + std::to_string(matched) + " of " + std::to_string(report.rows.size()) +
-         " rows of " + report_path.string();
+  return lines;
 }
 
 void RegisterGpuCommands(CLI::App& app, Commands& commands) {
@@ -286,12 +295,17 @@ void RegisterGpuCommands(CLI::App& app, Commands& commands) {
   eg->callback([&commands, ga] { commands.action = [ga] { return ExportGeometry(*ga); }; });
 
   auto* mg =
-      app.add_subcommand("merge-gpu", "attach aalab_gpu's timings (JSON) to a report's rows and redraw its page");
+      app.add_subcommand("merge-gpu",
+                         "attach GPU timings (aalab_gpu's, aalab_raster's or aalab_vk's JSON) to a report's rows and "
+                         "redraw its page");
   auto dir = std::make_shared<std::string>();
-  auto file = std::make_shared<std::string>();
+  auto files = std::make_shared<std::vector<std::string>>();
   mg->add_option("report_dir", *dir, "report folder (holds report.json)")->required();
-  mg->add_option("gpu_json", *file, "JSON written by aalab_gpu --json or aalab_raster --json")->required();
-  mg->callback([&commands, dir, file] { commands.action = [dir, file] { return MergeGpu(*dir, *file); }; });
+  mg->add_option("gpu_json", *files,
+                 "one or more JSON files written by aalab_gpu --json, aalab_raster --json or aalab_vk --json, "
+                 "merged in the order given")
+      ->required();
+  mg->callback([&commands, dir, files] { commands.action = [dir, files] { return MergeGpu(*dir, *files); }; });
 }
 
 }  // namespace aalab

@@ -290,15 +290,24 @@
     const rasterSizes = hasRaster ? [...new Set(A.DATA.rows.filter(r => r.gpu_raster).flatMap(r => Object.keys(r.gpu_raster.sizes)))] : [];
     const rasterCell = (p) => {
       const timed = (p.rows || []).filter(r => r.gpu_raster);
-      if (!timed.length) return dash('no raster timing for this method (the raster path draws none, MSAA, SSAA and TAA\'s jittered frame of triangle scenes)');
-      const mean = size => { const v = timed.map(r => r.gpu_raster.sizes[size]).filter(Boolean).map(t => t.median_ms);
-                             return v.length ? v.reduce((a, b) => a + b, 0) / v.length : null; };
-      const ms = rasterSizes.map(mean);
+      if (!timed.length) return dash('no raster timing for this method (the raster path draws none, aaa on triangle scenes, MSAA, SSAA, scale43\'s render and TAA\'s jittered frame of triangle scenes)');
+      const meanOf = (rows, pick) => { const v = rows.map(pick).filter(Boolean).map(t => t.median_ms);
+                                       return v.length ? v.reduce((a, b) => a + b, 0) / v.length : null; };
+      const ms = rasterSizes.map(size => meanOf(timed, r => r.gpu_raster.sizes[size]));
       const g = timed[0].gpu_raster;
-      return num(ms[0] === null ? -1 : ms[0], ms.map(v => v === null ? '—' : A.fmtMs(v)).join(' / '),
-        g.device + ' (' + g.gl_version + '), ' + g.target_format + ' target, ' + g.samples + ' sample(s), MSAA resolve by ' +
+      const what = g.device + ' (' + g.gl_version + '), ' + g.target_format + ' target, ' + g.samples + ' sample(s), MSAA resolve by ' +
         g.msaa_resolve + ': median GPU ms per frame (draw + resolve + encode) at ' + rasterSizes.join(' / ') +
-        (scope === 'suite' ? ' (mean over the scenes it ran on)' : '') + ', GL timer queries; a forward renderer of this shading model, not CPU time');
+        (scope === 'suite' ? ' (mean over the scenes it ran on)' : '') + ', GL timer queries; a forward renderer of this shading model, not CPU time';
+      if (g.part !== 'render') return num(ms[0] === null ? -1 : ms[0], ms.map(v => v === null ? '—' : A.fmtMs(v)).join(' / '), what);
+      // The render part of a render-scale method (its 4/3 target): the method's GPU time is this
+      // render + its rescale and post filter, the row's CUDA-twin block (GPU ms), shown as a sum.
+      const post = rasterSizes.map(size => meanOf(timed.filter(r => r.gpu), r => r.gpu.sizes[size]));
+      const text = ms.map((v, i) => v === null ? '—' : A.fmtMs(v) + (post[i] === null ? '' : ' + ' + A.fmtMs(post[i]) + ' = ' + A.fmtMs(v + post[i]))).join(' / ');
+      const render = ms.map((v, i) => v === null ? '—' : A.fmtMs(v) + ' ms' + (g.sizes[rasterSizes[i]] && g.sizes[rasterSizes[i]].render_size ? ' (' + g.sizes[rasterSizes[i]].render_size + ' target)' : '')).join(' / ');
+      return num(ms[0] === null ? -1 : ms[0] + (post[0] || 0), text,
+        'render + rescale and post filter: the render ' + render + ' drawn by the raster path on ' + what +
+        (post.some(v => v !== null) ? '; plus the rescale and post filter ' + post.map(v => v === null ? '—' : A.fmtMs(v) + ' ms').join(' / ') +
+                                       ' by the CUDA twin on ' + timed.find(r => r.gpu).gpu.device + ' (the GPU ms column)' : '; the rescale and post filter are not timed here (merge the CUDA twins\' file for them)'));
     };
     const table = el('table', { class: 'cost sortable' },
       el('caption', {}, 'Cost of accuracy' + (scope === 'suite' ? ' (suite means over ' + (A.scenes.length - data.left.length) + ' of ' + A.scenes.length + ' scenes)' : '') + ': what each method gains over ',

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -17,6 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using clitest::Aalab;
+using clitest::RunCommand;
 using clitest::TempDir;
 
 std::string ReadText(const fs::path& p) {
@@ -164,6 +166,107 @@ TEST(MergeGpu, FileMatchingNoRowIsAnErrorAndChangesNothing) {
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("none of the report's rows"), std::string::npos) << r.output;
   EXPECT_EQ(ReadText(dir / "report.json"), before);
+}
+
+// The default run's GPU recipe in miniature, on the user's path: one `aalab run` takes an
+// aalab_raster file and an aalab_gpu file as a comma list and an aalab_vk file (aalab-gpu-
+// timings schema, tool aalab_vk) by repeating the option, merged in that order. The raster
+// file's aaa row (the 1x frame) gives aaa its block; its scale43 row (the render at 44x23 for
+// 33x17: 4/3 of 17 = 22.67 rounds to 23) is the render part of scale43-fxaa-high, whose
+// FXAA + rescale block comes from the CUDA file; cmaa2-high's block from the Vulkan file. The
+// files and their numbers are written here, so every expected value follows from them.
+TEST(MergeGpu, SeveralFilesFromOneRunPutEveryPartOnThePage) {
+  const fs::path dir = TempDir("gpu-merge-many");
+  const std::string raster_row = R"({"scene": "wedges", "width": 33, "height": 17, "method": "M", "samples": 1,X
+     "total": {"median_ms": T, "min_ms": 0.1, "max_ms": 9}, "draw": {"median_ms": 0.1, "min_ms": 0, "max_ms": 0},
+     "resolve": {"median_ms": 0, "min_ms": 0, "max_ms": 0}, "encode": {"median_ms": 0.1, "min_ms": 0, "max_ms": 0}})";
+  auto row = [&](const std::string& m, const std::string& t, const std::string& extra) {
+    std::string r = raster_row;
+    r.replace(r.find("\"M\""), 3, "\"" + m + "\"");
+    r.replace(r.find("X\n"), 1, extra);
+    r.replace(r.find("T,"), 1, t);
+    return r;
+  };
+  std::ofstream(dir / "raster.json") << R"({"schema": "aalab-raster-timings", "schema_version": 1,
+    "device": "GL H100", "gl_version": "4.5", "egl_platform": "device", "target_format": "rgba16f",
+    "msaa_resolve": "shader", "rows": [)"
+                                     << row("none", "0.5", "") << ",\n"
+                                     << row("aaa", "0.625", "") << ",\n"
+                                     << row("scale43", "0.875", R"( "render_width": 44, "render_height": 23,)") << "]}";
+  std::ofstream(dir / "cuda.json") << R"({"schema": "aalab-gpu-timings", "schema_version": 1, "generated_utc": "x",
+    "device": {"name": "CUDA H100"}, "driver": "1", "cuda_runtime": "13.0", "results": [
+    {"scene": "wedges", "size": "33x17", "method": "copy", "kernels": "copy", "median_ms": 0.01, "min_ms": 0.01,
+     "max_ms": 0.01, "ratio_to_copy": 1},
+    {"scene": "wedges", "size": "33x17", "method": "scale43-fxaa-high", "kernels": "fxaa + rescale",
+     "median_ms": 0.0625, "min_ms": 0.06, "max_ms": 0.07, "ratio_to_copy": 6.25}]})";
+  std::ofstream(dir / "vk.json") << R"J({"schema": "aalab-gpu-timings", "schema_version": 1, "tool": "aalab_vk",
+    "generated_utc": "x", "device": {"name": "VK H100"}, "driver": "NVIDIA 1", "cuda_runtime": "none (Vulkan 1.4)",
+    "results": [
+    {"scene": "wedges", "size": "33x17", "method": "copy", "kernels": "copy", "median_ms": 0.01, "min_ms": 0.01,
+     "max_ms": 0.01, "ratio_to_copy": 1},
+    {"scene": "wedges", "size": "33x17", "method": "cmaa2-high", "kernels": "EdgesColor2x2CS + ...",
+     "median_ms": 0.0375, "min_ms": 0.03, "max_ms": 0.04, "ratio_to_copy": 3.75}]})J";
+  // A missing file in the list is refused before the run writes anything.
+  const std::string run =
+      "run --scenes wedges --methods none,aaa,cmaa2-high,scale43-fxaa-high --size 33x17 "
+      "--ref-spp 4 --repeat 1 --quiet --out ";
+  auto r = Aalab(run + (dir / "r0").string() + " --gpu-timings " + (dir / "raster.json").string() + "," +
+                 (dir / "nothere.json").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("nothere.json"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "r0"));
+  r = Aalab(run + (dir / "r").string() + " --gpu-timings " + (dir / "raster.json").string() + "," +
+            (dir / "cuda.json").string() + " --gpu-timings " + (dir / "vk.json").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("raster.json into 3 of 4 rows"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cuda.json into 1 of 4 rows"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("vk.json into 1 of 4 rows"), std::string::npos) << r.output;
+  const auto report = nlohmann::json::parse(ReadText(dir / "r" / "report.json"));
+  std::map<std::string, nlohmann::json> rows;
+  for (const auto& j : report.at("rows")) rows[j.at("spec").get<std::string>()] = j;
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_DOUBLE_EQ(rows.at("aaa").at("gpu_raster").at("sizes").at("33x17").at("ratio_to_1x").get<double>(), 1.25);
+  EXPECT_FALSE(rows.at("aaa").contains("gpu"));
+  EXPECT_DOUBLE_EQ(rows.at("cmaa2-high").at("gpu").at("sizes").at("33x17").at("median_ms").get<double>(), 0.0375);
+  EXPECT_EQ(rows.at("cmaa2-high").at("gpu").at("device"), "VK H100");
+  EXPECT_FALSE(rows.at("cmaa2-high").contains("gpu_raster"));
+  const auto& scale = rows.at("scale43-fxaa-high");
+  EXPECT_EQ(scale.at("render_size"), nlohmann::json::array({44, 23}));  // the run's own render agrees with the file
+  EXPECT_EQ(scale.at("gpu_raster").at("part"), "render");
+  EXPECT_EQ(scale.at("gpu_raster").at("sizes").at("33x17").at("render_size"), "44x23");
+  EXPECT_DOUBLE_EQ(scale.at("gpu_raster").at("sizes").at("33x17").at("median_ms").get<double>(), 0.875);
+  EXPECT_DOUBLE_EQ(scale.at("gpu").at("sizes").at("33x17").at("median_ms").get<double>(), 0.0625);
+  EXPECT_EQ(scale.at("gpu").at("device"), "CUDA H100");
+  EXPECT_FALSE(rows.at("none").contains("gpu"));
+  // The page (headless Chromium, as the browser tests load it): scale43-fxaa-high's GPU raster
+  // cell is render + FXAA/rescale = total (core.js fmtMs: 3 decimals below 1 ms; 0.0625 and
+  // 0.9375 are ties that toFixed rounds up), the tooltip naming the render target and both devices.
+  const fs::path dom = dir / "dom.html";
+  const auto b = RunCommand(
+      "timeout 180 /usr/bin/chromium --headless --no-sandbox --disable-gpu "
+      "--disable-dev-shm-usage --no-first-run --user-data-dir='" +
+      (dir / "profile").string() + "' --virtual-time-budget=10000 --dump-dom 'file://" +
+      fs::absolute(dir / "r" / "index.html").string() + "' > '" + dom.string() + "' 2>/dev/null");
+  ASSERT_EQ(b.code, 0) << b.output;
+  const std::string page = ReadText(dom);
+  const size_t at = page.find("<tr data-spec=\"scale43-fxaa-high\"");
+  ASSERT_NE(at, std::string::npos) << dom;
+  const std::string tr = page.substr(at, page.find("</tr>", at) - at);
+  EXPECT_NE(tr.find(">0.875 + 0.063 = 0.938</td>"), std::string::npos) << tr;
+  EXPECT_NE(tr.find("the render 0.875 ms (44x23 target) drawn by the raster path on GL H100"), std::string::npos) << tr;
+  EXPECT_NE(tr.find("by the CUDA twin on CUDA H100"), std::string::npos) << tr;
+  // A later merge with a file that matches no row leaves the report as it was, even when an
+  // earlier file in the same list matched.
+  const std::string before = ReadText(dir / "r" / "report.json");
+  std::ofstream(dir / "other.json") << R"({"schema": "aalab-gpu-timings", "schema_version": 1, "generated_utc": "x",
+    "device": {"name": "G"}, "driver": "1", "cuda_runtime": "13.0", "results": [
+    {"scene": "circle", "size": "8x8", "method": "fxaa1-p3", "kernels": "fxaa1",
+     "median_ms": 1, "min_ms": 1, "max_ms": 1, "ratio_to_copy": 1}]})";
+  r = Aalab("merge-gpu " + (dir / "r").string() + " " + (dir / "vk.json").string() + " " +
+            (dir / "other.json").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("other.json' has timings for none of the report's rows"), std::string::npos) << r.output;
+  EXPECT_EQ(ReadText(dir / "r" / "report.json"), before);
 }
 
 TEST(SamplerOption, GpuTextureIsRecordedAndChangesOnlyTheFilters) {

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -292,6 +293,59 @@ TEST(RasterCli, TexturedDiskAndShadowScenesMatchExportedFrames) {
       EXPECT_GE(f.at("identical_share").get<double>(), 0.999) << row;
     }
   }
+}
+
+// `aaa` and `scale43` on the user's path. aaa: aalab renders triangles under aaa exactly as
+// under none (methods/aaa.cpp; the run's output hashes say so), so the raster path draws
+// aaa's row as the 1× frame on a triangle scene (wedges: identical to export-frames' 1×
+// frame, as none is) and refuses it, with the reason under "not_drawn", on a scene with an
+// analytic disk (circle), where aalab's coverage comes from the disk's distance. scale43: its
+// render at round(4/3·W) × round(4/3·H) (320×180 → 427×240: 426.67 rounds up, 240 exact),
+// compared with export-frames' -scaled.ppm (wedges: identical at this size; circle: within
+// 1 code, as its 1× frame), the row keeping the output size and naming the render size.
+TEST(RasterCli, AaaOnTrianglesAndScale43Render) {
+  const fs::path dir = clitest::TempDir("raster-cli-aaa");
+  const CmdResult run =
+      Aalab("run --scenes wedges --methods none,aaa --size 160x90 --quiet --out " + (dir / "run").string());
+  ASSERT_EQ(run.code, 0) << run.output;
+  const nlohmann::json rep = nlohmann::json::parse(Slurp(dir / "run" / "report.json"));
+  ASSERT_EQ(rep.at("rows").size(), 2u);
+  EXPECT_EQ(rep.at("rows")[0].at("output_hash"), rep.at("rows")[1].at("output_hash"));
+  ASSERT_EQ(Aalab("export-geometry --scenes wedges,circle --out " + (dir / "geo").string()).code, 0);
+  ASSERT_EQ(Aalab("export-frames --scenes wedges,circle --sizes 320x180 --out " + (dir / "ef").string()).code, 0);
+  const CmdResult r =
+      Raster("--geometry " + (dir / "geo").string() +
+             " --sizes 320x180 --methods none,aaa,scale43 --warmup 1 --repeat 2 --compare " + (dir / "ef").string() +
+             " --frames " + (dir / "fr").string() + " --json " + (dir / "t.json").string());
+  if (const std::string why = RasterUnavailable(r); !why.empty()) AALAB_SKIP_OR_FAIL_UNDER_CI(why);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json t = nlohmann::json::parse(Slurp(dir / "t.json"));
+  ASSERT_EQ(t.at("not_drawn").size(), 1u);
+  const std::string skipped = t.at("not_drawn")[0];
+  EXPECT_EQ(skipped.rfind("circle 320x180 aaa: ", 0), 0u) << skipped;
+  EXPECT_NE(skipped.find("analytic disk"), std::string::npos) << skipped;
+  EXPECT_NE(r.output.find("skipped aaa on circle at 320x180"), std::string::npos) << r.output;
+  std::map<std::string, nlohmann::json> rows;
+  for (const auto& row : t.at("rows"))
+    rows[row.at("scene").get<std::string>() + " " + row.at("method").get<std::string>()] = row;
+  ASSERT_EQ(rows.size(), 5u);  // circle: none, scale43; wedges: none, aaa, scale43
+  EXPECT_EQ(rows.count("circle aaa"), 0u);
+  EXPECT_EQ(rows.at("wedges aaa").at("fidelity").at("max_diff"), 0);
+  EXPECT_EQ(Slurp(dir / "fr" / "wedges-320x180-aaa.ppm"), Slurp(dir / "fr" / "wedges-320x180-none.ppm"));
+  for (const char* scene : {"wedges", "circle"}) {
+    const auto& s = rows.at(std::string(scene) + " scale43");
+    EXPECT_EQ(s.at("width"), 320);
+    EXPECT_EQ(s.at("height"), 180);
+    EXPECT_EQ(s.at("render_width"), 427);
+    EXPECT_EQ(s.at("render_height"), 240);
+    EXPECT_GT(s.at("draw").at("min_ms").get<double>(), 0.0);
+    EXPECT_LE(s.at("fidelity").at("max_diff").get<int>(), std::string(scene) == "wedges" ? 0 : 1) << s;
+    int w = 0, h = 0;
+    PpmPixels(dir / "fr" / (std::string(scene) + "-320x180-scale43.ppm"), &w, &h);
+    EXPECT_EQ(w, 427);
+    EXPECT_EQ(h, 240);
+  }
+  EXPECT_FALSE(rows.at("wedges none").contains("render_width"));
 }
 
 }  // namespace

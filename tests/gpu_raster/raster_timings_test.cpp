@@ -93,5 +93,44 @@ TEST(RasterTimings, BadFilesAreRefusedWithTheirPath) {
   EXPECT_THROW(ReadRasterTimingsFile(WriteTmp("junk.json", "{").string()), UserError);
 }
 
+// scale43's raster row is the render part of scale43 and scale43-fxaa-high: both rows get
+// the block with part "render" and the render size; other methods time their own spec
+// (aaa included), whole.
+TEST(RasterTimings, Scale43IsTheRenderPartOfBothScaleRows) {
+  bool render_only = true;
+  EXPECT_EQ(RasterSpecsOf("aaa", &render_only), std::vector<std::string>{"aaa"});
+  EXPECT_FALSE(render_only);
+  EXPECT_EQ(RasterSpecsOf("scale43", &render_only), (std::vector<std::string>{"scale43", "scale43-fxaa-high"}));
+  EXPECT_TRUE(render_only);
+  std::string s = kFile;
+  const std::string scale_row =
+      R"({"scene": "wedges", "width": 1920, "height": 1080, "method": "scale43", "samples": 1, "render_width": 2560,
+     "render_height": 1440, "triangles": 18, "total": {"median_ms": 0.875, "min_ms": 0.75, "max_ms": 1},
+     "draw": {"median_ms": 0.5, "min_ms": 0, "max_ms": 0}, "resolve": {"median_ms": 0, "min_ms": 0, "max_ms": 0},
+     "encode": {"median_ms": 0.375, "min_ms": 0, "max_ms": 0}},
+    )";
+  s.insert(s.find("{\"scene\": \"wedges\", \"width\": 1920, \"height\": 1080, \"method\": \"msaa-4x\""), scale_row);
+  const RasterTimingsFile f = ReadRasterTimingsFile(WriteTmp("scale.json", s).string());
+  Report r;
+  r.rows = {Row("wedges", "none"), Row("wedges", "scale43-fxaa-high"), Row("wedges", "scale43"),
+            Row("wedges", "scale43-easu"), Row("wedges", "msaa-4x")};
+  EXPECT_EQ(MergeRasterTimings(r, f), 4);
+  EXPECT_FALSE(r.rows[3].gpu_raster.has_value());  // EASU renders at 3/4: not this target
+  for (int i : {1, 2}) {
+    ASSERT_TRUE(r.rows[i].gpu_raster.has_value()) << i;
+    const RasterTiming& t = *r.rows[i].gpu_raster;
+    EXPECT_EQ(t.part, "render");
+    ASSERT_EQ(t.sizes.size(), 1u);
+    EXPECT_EQ(t.sizes[0].render_size, "2560x1440");
+    EXPECT_DOUBLE_EQ(t.sizes[0].ratio_to_1x, 1.75);  // 0.875 / 0.5
+    const RasterTiming back = RasterTimingFrom(RasterTimingJson(t));
+    EXPECT_EQ(back.part, "render");
+    EXPECT_EQ(back.sizes[0].render_size, "2560x1440");
+  }
+  EXPECT_EQ(r.rows[4].gpu_raster->part, "");
+  EXPECT_FALSE(RasterTimingJson(*r.rows[4].gpu_raster).contains("part"));
+  EXPECT_FALSE(RasterTimingJson(*r.rows[4].gpu_raster)["sizes"]["1920x1080"].contains("render_size"));
+}
+
 }  // namespace
 }  // namespace aalab
