@@ -266,6 +266,25 @@ namespace {
 #define AALAB_SIMD_CLONES
 #endif
 
+/// The x and y of m ≤ 16 sample positions into separate arrays; lanes past m repeat the
+/// last position (their rays are computed, never stored). Branch-free loads of a whole block
+/// (scalar stores under a per-lane condition, read back as one vector, stalled on store
+/// forwarding).
+inline __attribute__((always_inline)) void LoadBlock(const SamplePos* pos, int m, float* px, float* py) {
+  if (m == 16) {
+    for (int k = 0; k < 16; ++k) {
+      px[k] = pos[k].x;
+      py[k] = pos[k].y;
+    }
+    return;
+  }
+  for (int k = 0; k < 16; ++k) {
+    const int i = std::min(k, m - 1);
+    px[k] = pos[i].x;
+    py[k] = pos[i].y;
+  }
+}
+
 /// Perspective camera rays, written out component by component so the loop vectorises:
 /// exactly glm's `normalize(forward + right·(nx·half_h·aspect) + up·(ny·half_h))` —
 /// normalize(v) = v · (1 / sqrt((x·x + y·y) + z·z)) — with the same roundings (IEEE
@@ -279,10 +298,7 @@ void PerspectiveRays(const SamplePos* pos, int count, float width, float height,
   for (int base = 0; base < count; base += kBlock) {
     const int m = std::min(kBlock, count - base);
     float px[kBlock], py[kBlock], dx[kBlock], dy[kBlock], dz[kBlock];
-    for (int k = 0; k < kBlock; ++k) {
-      px[k] = k < m ? pos[base + k].x : 0.0f;
-      py[k] = k < m ? pos[base + k].y : 0.0f;
-    }
+    LoadBlock(pos + base, m, px, py);
     for (int k = 0; k < kBlock; ++k) {
       const float nx = 2.0f * px[k] / width - 1.0f;
       const float ny = 1.0f - 2.0f * py[k] / height;
@@ -304,18 +320,29 @@ void PerspectiveRays(const SamplePos* pos, int count, float width, float height,
 }
 
 /// Orthographic camera rays, written out so the loop vectorises: exactly glm's
-/// `origin + (right·(nx·half_h·aspect) + up·(ny·half_h))`, direction `forward`.
+/// `origin + (right·(nx·half_h·aspect) + up·(ny·half_h))`, direction `forward`. Blocks of
+/// 16 as PerspectiveRays (the one-loop form with vec3 stores stayed scalar).
 AALAB_SIMD_CLONES
 void OrthographicRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
                       glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
-  for (int i = 0; i < count; ++i) {
-    const float nx = 2.0f * pos[i].x / width - 1.0f;
-    const float ny = 1.0f - 2.0f * pos[i].y / height;
-    const float a = nx * half_h * aspect;
-    const float b = ny * half_h;
-    org[i] = glm::vec3(origin.x + (right.x * a + up.x * b), origin.y + (right.y * a + up.y * b),
-                       origin.z + (right.z * a + up.z * b));
-    dir[i] = fwd;
+  constexpr int kBlock = 16;
+  for (int base = 0; base < count; base += kBlock) {
+    const int m = std::min(kBlock, count - base);
+    float px[kBlock], py[kBlock], ox[kBlock], oy[kBlock], oz[kBlock];
+    LoadBlock(pos + base, m, px, py);
+    for (int k = 0; k < kBlock; ++k) {
+      const float nx = 2.0f * px[k] / width - 1.0f;
+      const float ny = 1.0f - 2.0f * py[k] / height;
+      const float a = nx * half_h * aspect;
+      const float b = ny * half_h;
+      ox[k] = origin.x + (right.x * a + up.x * b);
+      oy[k] = origin.y + (right.y * a + up.y * b);
+      oz[k] = origin.z + (right.z * a + up.z * b);
+    }
+    for (int k = 0; k < m; ++k) {
+      org[base + k] = glm::vec3(ox[k], oy[k], oz[k]);
+      dir[base + k] = fwd;
+    }
   }
 }
 
