@@ -206,6 +206,10 @@ void CompositeBlended(const Tracer::Impl& im, const Scene& sc, bool alpha, const
 Surface SurfaceAt(const Scene& scene, const Hit& h, const glm::vec3& org, const glm::vec3& dir, bool uv = true,
                   bool normals = true);
 
+/// EvaluatePattern(tex, uv[k]) into t[k] for n points (the same values), vectorised for the
+/// checker and the noise.
+void EvaluatePatternBatch(const Texture& tex, const glm::vec2* uv, int n, float* t);
+
 /// Working memory of ShadeHits, reused from call to call.
 struct ShadeScratch {
   std::vector<Surface> surf;
@@ -220,6 +224,8 @@ struct ShadeScratch {
   std::vector<int> job_hit;
   std::vector<glm::vec2> job_uv;
   std::vector<glm::vec4> job_out;
+  std::vector<const Texture*> pattern_tex;  // the unlit path's textured hits (ShadeUnlit)
+  std::vector<float> pattern_t;
 };
 
 /// The level-0 texture fetches ShadeGltf would make for n hits of a reference render
