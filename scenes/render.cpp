@@ -42,23 +42,66 @@ struct PixelHash {
 #define AALAB_SIMD_CLONES
 #endif
 
+/// Eight 64-bit lanes (GCC vector: one AVX-512 register, 2 AVX2 or 4 SSE2 ones in the
+/// clones; the lane-wise multiply is the exact low 64 bits of the product in each).
+typedef uint64_t U64x8 __attribute__((vector_size(64)));
+typedef int32_t I32x8 __attribute__((vector_size(32)));
+typedef float F32x8 __attribute__((vector_size(32)));
+
+/// MixBits in every lane of v (in place: no vector passed by value across a call).
+inline __attribute__((always_inline)) void MixBitsLanes(U64x8& v) {
+  v ^= v >> 30;
+  v *= 0xbf58476d1ce4e5b9ULL;
+  v ^= v >> 27;
+  v *= 0x94d049bb133111ebULL;
+  v ^= v >> 31;
+}
+
+/// HashToUnitFloat(MixBits(v)) in every lane. MixBits' last step, v ^= v >> 31, leaves bits
+/// 40..63 as they are (it XORs them with bits 71..94, which a 64-bit value does not have),
+/// and HashToUnitFloat reads only those bits, so it is left out; the top 24 bits convert to
+/// float exactly (through int32: < 2^24).
+inline __attribute__((always_inline)) void UnitFloatOfMixLanes(U64x8 v, F32x8& out) {
+  v ^= v >> 30;
+  v *= 0xbf58476d1ce4e5b9ULL;
+  v ^= v >> 27;
+  v *= 0x94d049bb133111ebULL;
+  const I32x8 top = __builtin_convertvector(v >> 40, I32x8);
+  out = __builtin_convertvector(top, F32x8) * (1.0f / 16777216.0f);
+}
+
 /// The reference's stratified positions of one pixel, s = j·grid + i: the PixelHash::Jitter2
-/// arithmetic laid out over all samples at once so it vectorises (64-bit multiplies and the
-/// divisions are exact operations, identical in every clone and lane).
+/// arithmetic over 8 samples at a time in vector lanes (64-bit multiplies, IEEE float adds
+/// and divisions: exact operations, identical in every clone and lane).
 AALAB_SIMD_CLONES
 void PlaceStratifiedPixel(uint64_t pixel_hash, int grid, uint64_t seed, float fx, float fy, SamplePos* out) {
+  const int spp = grid * grid;
   const float g = static_cast<float>(grid);
-  for (int j = 0; j < grid; ++j) {
-    for (int i = 0; i < grid; ++i) {
-      const int s = j * grid + i;
-      uint64_t h = MixBits(pixel_hash ^ (static_cast<uint64_t>(static_cast<uint32_t>(s)) + 0x85157af5a2a6b5f1ULL));
-      h = MixBits(h ^ (seed + 0xd6e8feb86659fd93ULL));
-      const float j0 = HashToUnitFloat(MixBits(h ^ (0ULL + 0xa0761d6478bd642fULL)));
-      const float j1 = HashToUnitFloat(MixBits(h ^ (1ULL + 0xa0761d6478bd642fULL)));
-      const float ox = (static_cast<float>(i) + j0) / g;
-      const float oy = (static_cast<float>(j) + j1) / g;
-      out[s].x = fx + ox;
-      out[s].y = fy + oy;
+  int i = 0, j = 0;  // stratum of sample s0 + k (no division a lane)
+  for (int s0 = 0; s0 < spp; s0 += 8) {
+    U64x8 h;
+    F32x8 fi, fj;
+    for (int k = 0; k < 8; ++k) {
+      h[k] = static_cast<uint64_t>(static_cast<uint32_t>(s0 + k));
+      fi[k] = static_cast<float>(i);
+      fj[k] = static_cast<float>(j);
+      const bool wrap = ++i == grid;
+      i = wrap ? 0 : i;
+      j += wrap;
+    }
+    h = pixel_hash ^ (h + 0x85157af5a2a6b5f1ULL);
+    MixBitsLanes(h);
+    h ^= seed + 0xd6e8feb86659fd93ULL;
+    MixBitsLanes(h);
+    F32x8 j0, j1;
+    UnitFloatOfMixLanes(h ^ (0ULL + 0xa0761d6478bd642fULL), j0);
+    UnitFloatOfMixLanes(h ^ (1ULL + 0xa0761d6478bd642fULL), j1);
+    const F32x8 x = fx + (fi + j0) / g;
+    const F32x8 y = fy + (fj + j1) / g;
+    const int m = std::min(8, spp - s0);
+    for (int k = 0; k < m; ++k) {
+      out[s0 + k].x = x[k];
+      out[s0 + k].y = y[k];
     }
   }
 }
