@@ -393,6 +393,99 @@ void OrthographicRays(const SamplePos* pos, int count, float width, float height
   }
 }
 
+/// Camera rays of `count` positions traced in 16-wide packets filled straight from the
+/// positions: each block of 16 computed into the packet's lanes with PerspectiveRays' or
+/// OrthographicRays' arithmetic (the same bits), traced (rtcIntersect16, coherent) and read
+/// out as IntersectRays does; org/dir receive the same rays for the shading. The packets are
+/// the ones CameraRays + IntersectRays build (a partial last packet's idle lanes hold its
+/// first ray with tnear = tfar = 0), without the vec3 arrays read back and repacked.
+AALAB_SIMD_CLONES
+void CameraPackets(RTCScene scene, bool persp, const SamplePos* pos, int count, float width, float height, float half_h,
+                   float aspect, glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org,
+                   glm::vec3* dir, Hit* hits) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[kPacket];
+  for (int k = 0; k < kPacket; ++k) {  // inputs Embree never writes: set once per batch
+    rh.ray.time[k] = 0.0f;
+    rh.ray.mask[k] = 0xFFFFFFFFu;
+    rh.ray.id[k] = static_cast<unsigned>(k);
+    rh.ray.flags[k] = 0;
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int base = 0; base < count; base += kPacket) {
+    const int m = std::min(kPacket, count - base);
+    float px[kPacket], py[kPacket];
+    LoadBlock(pos + base, m, px, py);
+    if (persp) {
+      for (int k = 0; k < kPacket; ++k) {
+        const float nx = 2.0f * px[k] / width - 1.0f;
+        const float ny = 1.0f - 2.0f * py[k] / height;
+        const float a = nx * half_h * aspect;
+        const float b = ny * half_h;
+        const float vx = fwd.x + (right.x * a + up.x * b);
+        const float vy = fwd.y + (right.y * a + up.y * b);
+        const float vz = fwd.z + (right.z * a + up.z * b);
+        const float inv = 1.0f / std::sqrt((vx * vx + vy * vy) + vz * vz);
+        rh.ray.org_x[k] = origin.x;
+        rh.ray.org_y[k] = origin.y;
+        rh.ray.org_z[k] = origin.z;
+        rh.ray.dir_x[k] = vx * inv;
+        rh.ray.dir_y[k] = vy * inv;
+        rh.ray.dir_z[k] = vz * inv;
+      }
+    } else {
+      for (int k = 0; k < kPacket; ++k) {
+        const float nx = 2.0f * px[k] / width - 1.0f;
+        const float ny = 1.0f - 2.0f * py[k] / height;
+        const float a = nx * half_h * aspect;
+        const float b = ny * half_h;
+        rh.ray.org_x[k] = origin.x + (right.x * a + up.x * b);
+        rh.ray.org_y[k] = origin.y + (right.y * a + up.y * b);
+        rh.ray.org_z[k] = origin.z + (right.z * a + up.z * b);
+        rh.ray.dir_x[k] = fwd.x;
+        rh.ray.dir_y[k] = fwd.y;
+        rh.ray.dir_z[k] = fwd.z;
+      }
+    }
+    for (int k = 0; k < kPacket; ++k) {
+      valid[k] = -1;
+      rh.ray.tnear[k] = 0.0f;
+      rh.ray.tfar[k] = inf;
+      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    for (int k = m; k < kPacket; ++k) {  // a partial packet's idle lanes: its first ray, empty
+      valid[k] = 0;
+      rh.ray.org_x[k] = rh.ray.org_x[0];
+      rh.ray.org_y[k] = rh.ray.org_y[0];
+      rh.ray.org_z[k] = rh.ray.org_z[0];
+      rh.ray.dir_x[k] = rh.ray.dir_x[0];
+      rh.ray.dir_y[k] = rh.ray.dir_y[0];
+      rh.ray.dir_z[k] = rh.ray.dir_z[0];
+      rh.ray.tfar[k] = 0.0f;
+    }
+    for (int k = 0; k < m; ++k) {
+      org[base + k] = glm::vec3(rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]);
+      dir[base + k] = glm::vec3(rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]);
+    }
+    rtcIntersect16(valid, scene, &ctx, &rh);
+    for (int k = 0; k < m; ++k) {
+      const bool hit = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+      Hit& h = hits[base + k];
+      h.t = hit ? rh.ray.tfar[k] : inf;
+      h.shape = hit ? static_cast<int>(rh.hit.geomID[k]) : -1;
+      h.prim = hit ? rh.hit.primID[k] : 0u;
+      h.u = hit ? rh.hit.u[k] : 0.0f;
+      h.v = hit ? rh.hit.v[k] : 0.0f;
+      h.ng = hit ? glm::vec3(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]) : glm::vec3(0.0f);
+    }
+  }
+}
+
 }  // namespace
 
 void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width,
@@ -409,6 +502,15 @@ void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const 
   }
 }
 
+void tracer_detail::TraceCameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count,
+                                    int width, int height, glm::vec3* org, glm::vec3* dir, Hit* hits) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const float half_h =
+      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  CameraPackets(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
+                static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, org, dir, hits);
+}
+
 void tracer_detail::ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org,
                                        const glm::vec3* dir, int count, float* tnear, float* tfar, Hit* hits,
                                        LayerScratch& ls, TraceCounters& local, const Footprint& fp, KeptTexel* kept) {
@@ -416,6 +518,12 @@ void tracer_detail::ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, 
   IntersectRays(im.scene, org, dir, tnear, tfar, nullptr, count, hits, true);
   local.primary_rays += static_cast<uint64_t>(count);
   local.coverage_rays += static_cast<uint64_t>(count);
+  ContinueVisibleHits(im, sc, alpha, org, dir, count, tnear, tfar, hits, ls, local, fp, kept);
+}
+
+void tracer_detail::ContinueVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org,
+                                        const glm::vec3* dir, int count, float* tnear, float* tfar, Hit* hits,
+                                        LayerScratch& ls, TraceCounters& local, const Footprint& fp, KeptTexel* kept) {
   if (!alpha && !im.any_cull) return;
   if (kept) std::fill(kept, kept + count, KeptTexel{});
   std::vector<int>& active = ls.active;
@@ -488,22 +596,27 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
   TraceScratch& S = scratch;
   const size_t n_all = static_cast<size_t>(count);
 
-  // 1. Camera rays.
+  // 1. Camera rays, traced in packets filled straight from the positions.
   glm::vec3* org = Sized(S.org, n_all);
   glm::vec3* dir = Sized(S.dir, n_all);
-  float* tnear = Sized(S.tnear, n_all);
-  float* tfar = Sized(S.tfar, n_all);
-  CameraRays(im, sc.camera, pos, count, width, height, org, dir);
-  std::fill(tnear, tnear + count, 0.0f);
-  std::fill(tfar, tfar + count, std::numeric_limits<float>::infinity());
-
-  // 2. Closest hits, continuing through alpha cut-outs (only with `alpha_test`).
   Hit* hits = Sized(S.hits, n_all);
+  TraceCameraRays(im, sc.camera, pos, count, width, height, org, dir, hits);
+  local.primary_rays += static_cast<uint64_t>(count);
+  local.coverage_rays += static_cast<uint64_t>(count);
+
+  // 2. Closest hits, continuing through alpha cut-outs (only with `alpha_test`) and past
+  // culled back faces: ClosestVisibleHits after its first round.
   const bool alpha = sc.Has(Effect::kAlphaTest) && im.any_alpha;
   const Footprint fp{width, height, footprint};
   // With glTF cut-outs, the alpha test's base texel and footprint go on to the shading.
   KeptTexel* kept = alpha && im.any_gltf ? Sized(S.kept, n_all) : nullptr;
-  ClosestVisibleHits(im, sc, alpha, org, dir, count, tnear, tfar, hits, S.layers, local, fp, kept);
+  if (alpha || im.any_cull) {
+    float* tnear = Sized(S.tnear, n_all);
+    float* tfar = Sized(S.tfar, n_all);
+    std::fill(tnear, tnear + count, 0.0f);
+    std::fill(tfar, tfar + count, std::numeric_limits<float>::infinity());
+    ContinueVisibleHits(im, sc, alpha, org, dir, count, tnear, tfar, hits, S.layers, local, fp, kept);
+  }
 
   // 3. One shading per sample.
   ShadeHits(im, sc, alpha, hits, org, dir, count, S.shade, out, local, fp, kept);

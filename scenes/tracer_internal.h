@@ -94,6 +94,13 @@ void OccludedRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, co
 void CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width, int height,
                 glm::vec3* org, glm::vec3* dir);
 
+/// Closest hits of `count` camera rays through continuous pixel positions (tnear 0, tfar ∞,
+/// no alpha test): the same rays as CameraRays into org/dir and the same hits as
+/// IntersectRays of those rays (the same packets), each packet filled straight from the
+/// positions. Counts nothing.
+void TraceCameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width, int height,
+                     glm::vec3* org, glm::vec3* dir, Hit* hits);
+
 /// What the alpha test of a kept glTF cut-out fetched at a camera ray's final hit: the base
 /// texel and the UV derivatives of its coordinate set. The shading of the same hit fetches
 /// exactly these (the same hit, ray and footprint), so it reuses them instead.
@@ -120,6 +127,13 @@ struct LayerScratch {
 void ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org, const glm::vec3* dir,
                         int count, float* tnear, float* tfar, Hit* hits, LayerScratch& ls, TraceCounters& counters,
                         const Footprint& fp, KeptTexel* kept = nullptr);
+
+/// ClosestVisibleHits after its first round: `hits` holds the first hits of the count rays
+/// (tnear 0, tfar ∞ in tnear/tfar); cut-out and culled hits continue from there. Nothing
+/// happens without `alpha` in a scene without culled materials.
+void ContinueVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org,
+                         const glm::vec3* dir, int count, float* tnear, float* tfar, Hit* hits, LayerScratch& ls,
+                         TraceCounters& counters, const Footprint& fp, KeptTexel* kept = nullptr);
 
 /// True when the cut-out material `m` keeps the hit h (procedural pattern t >= cutoff, or glTF
 /// MASK alpha >= alphaCutoff, the alpha filtered with the ray's footprint). Reads srf.uv only.
