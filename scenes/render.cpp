@@ -526,7 +526,8 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
           n += static_cast<size_t>(spp);
         }
       }
-      tracer.Trace(pos, static_cast<int>(n), width, height, res, &per_tile[t], footprint);
+      // The resolve reads rgb, surface and shadowed only: no hit distances or points.
+      tracer.Trace(pos, static_cast<int>(n), width, height, res, &per_tile[t], footprint, SampleFields::kShading);
       // One tile row at a time: its pixels' samples transposed into lanes, through the
       // display transform, summed pixel-parallel, encoded.
       const int row = x1 - x0;

@@ -583,7 +583,7 @@ struct TraceScratch {
 }  // namespace
 
 void Tracer::Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out, TraceCounters* counters,
-                   TextureFootprint footprint) const {
+                   TextureFootprint footprint, SampleFields fields) const {
   const Impl& im = *impl_;
   const Scene& sc = scene_;
   TraceCounters local;
@@ -607,7 +607,7 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
   // 2. Closest hits, continuing through alpha cut-outs (only with `alpha_test`) and past
   // culled back faces: ClosestVisibleHits after its first round.
   const bool alpha = sc.Has(Effect::kAlphaTest) && im.any_alpha;
-  const Footprint fp{width, height, footprint};
+  const Footprint fp{width, height, footprint, fields == SampleFields::kAll};
   // With glTF cut-outs, the alpha test's base texel and footprint go on to the shading.
   KeptTexel* kept = alpha && im.any_gltf ? Sized(S.kept, n_all) : nullptr;
   if (alpha || im.any_cull) {

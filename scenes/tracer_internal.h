@@ -63,7 +63,8 @@ struct Surface {
 /// The texture footprint of a batch of camera rays on a width × height image plane.
 struct Footprint {
   int width = 1, height = 1;
-  TextureFootprint tex;  ///< tex.px == 0: level 0 bilinear (also used for shadow rays)
+  TextureFootprint tex;    ///< tex.px == 0: level 0 bilinear (also used for shadow rays)
+  bool hit_points = true;  ///< ShadeHits writes SampleResult::t and position (SampleFields::kAll)
 };
 
 /// Where a ray continues after rejecting a hit at distance t (just past it).

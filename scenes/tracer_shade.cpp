@@ -190,7 +190,7 @@ namespace {
 /// the textured hits evaluated in batches per run of hits that share a texture
 /// (EvaluatePatternBatch) instead of one call a hit.
 void ShadeUnlit(const Scene& sc, bool textures, const Hit* hits, const glm::vec3* org, const glm::vec3* dir, int n,
-                ShadeScratch& S, SampleResult* out, TraceCounters& local) {
+                ShadeScratch& S, SampleResult* out, TraceCounters& local, bool hit_points) {
   const size_t n_all = static_cast<size_t>(n);
   glm::vec2* uv = Sized(S.job_uv, n_all);
   int* who = Sized(S.job_hit, n_all);
@@ -202,9 +202,9 @@ void ShadeUnlit(const Scene& sc, bool textures, const Hit* hits, const glm::vec3
     const Hit& h = hits[i];
     r.surface = h.shape;
     r.shadowed = 0;
-    r.t = h.t;
+    if (hit_points) r.t = h.t;
     if (h.shape < 0) {
-      r.position[0] = r.position[1] = r.position[2] = 0.0f;
+      if (hit_points) r.position[0] = r.position[1] = r.position[2] = 0.0f;
       r.rgb[0] = sc.background.x;
       r.rgb[1] = sc.background.y;
       r.rgb[2] = sc.background.z;
@@ -216,19 +216,23 @@ void ShadeUnlit(const Scene& sc, bool textures, const Hit* hits, const glm::vec3
       ++local.texture_lookups;
       Surface sf;
       FillSurface(sc, h, org[i], dir[i], true, false, sf);  // sf.p = org + dir·t, as below
-      r.position[0] = sf.p.x;
-      r.position[1] = sf.p.y;
-      r.position[2] = sf.p.z;
+      if (hit_points) {
+        r.position[0] = sf.p.x;
+        r.position[1] = sf.p.y;
+        r.position[2] = sf.p.z;
+      }
       uv[m] = sf.uv;
       who[m] = i;
       tex[m] = &*mat.texture;
       ++m;
       continue;
     }
-    const glm::vec3 p = org[i] + dir[i] * h.t;
-    r.position[0] = p.x;
-    r.position[1] = p.y;
-    r.position[2] = p.z;
+    if (hit_points) {
+      const glm::vec3 p = org[i] + dir[i] * h.t;
+      r.position[0] = p.x;
+      r.position[1] = p.y;
+      r.position[2] = p.z;
+    }
     r.rgb[0] = mat.color.x;
     r.rgb[1] = mat.color.y;
     r.rgb[2] = mat.color.z;
@@ -259,7 +263,7 @@ void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* h
   const bool specular = sc.Has(Effect::kSpecular);
   const bool textures = sc.Has(Effect::kTextures);
   if (!lambert && !shadows && !im.any_gltf) {
-    ShadeUnlit(sc, textures, hits, org, dir, n, S, out, local);
+    ShadeUnlit(sc, textures, hits, org, dir, n, S, out, local, fp.hit_points);
     return;
   }
   const size_t n_all = static_cast<size_t>(n);
@@ -291,12 +295,14 @@ void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* h
     SampleResult& r = out[i];
     r.surface = hits[i].shape;
     r.shadowed = blocked[i];
-    r.t = hits[i].t;
-    // The hit point, for exact motion vectors (scenes/motion_render.h); 0 for the background.
-    const glm::vec3 p = hits[i].shape >= 0 ? org[i] + dir[i] * hits[i].t : glm::vec3(0.0f);
-    r.position[0] = p.x;
-    r.position[1] = p.y;
-    r.position[2] = p.z;
+    if (fp.hit_points) {
+      r.t = hits[i].t;
+      // The hit point, for exact motion vectors (scenes/motion_render.h); 0 for the background.
+      const glm::vec3 p = hits[i].shape >= 0 ? org[i] + dir[i] * hits[i].t : glm::vec3(0.0f);
+      r.position[0] = p.x;
+      r.position[1] = p.y;
+      r.position[2] = p.z;
+    }
     glm::vec3 c = sc.background;
     if (hits[i].shape >= 0) {
       ++local.shading_evals;
