@@ -197,6 +197,11 @@ void ShadeUnlit(const Scene& sc, bool textures, const Hit* hits, const glm::vec3
   const Texture** tex = Sized(S.pattern_tex, n_all);
   float* tv = Sized(S.pattern_t, n_all);
   int m = 0;
+  // Consecutive hits mostly see the same shape: its material and texture looked up once a run.
+  int cur_shape = -1;
+  const Shape* shape = nullptr;
+  const Material* mat = nullptr;
+  const Texture* texture = nullptr;
   for (int i = 0; i < n; ++i) {
     SampleResult& r = out[i];
     const Hit& h = hits[i];
@@ -211,31 +216,37 @@ void ShadeUnlit(const Scene& sc, bool textures, const Hit* hits, const glm::vec3
       continue;
     }
     ++local.shading_evals;
-    const Material& mat = sc.materials[sc.shapes[h.shape].material];
-    if (textures && mat.texture) {
-      ++local.texture_lookups;
-      Surface sf;
-      FillSurface(sc, h, org[i], dir[i], true, false, sf);  // sf.p = org + dir·t, as below
-      if (hit_points) {
-        r.position[0] = sf.p.x;
-        r.position[1] = sf.p.y;
-        r.position[2] = sf.p.z;
-      }
-      uv[m] = sf.uv;
-      who[m] = i;
-      tex[m] = &*mat.texture;
-      ++m;
-      continue;
+    if (h.shape != cur_shape) {
+      cur_shape = h.shape;
+      shape = &sc.shapes[h.shape];
+      mat = &sc.materials[shape->material];
+      texture = textures && mat->texture ? &*mat->texture : nullptr;
     }
     if (hit_points) {
-      const glm::vec3 p = org[i] + dir[i] * h.t;
+      const glm::vec3 p = org[i] + dir[i] * h.t;  // FillSurface's point
       r.position[0] = p.x;
       r.position[1] = p.y;
       r.position[2] = p.z;
     }
-    r.rgb[0] = mat.color.x;
-    r.rgb[1] = mat.color.y;
-    r.rgb[2] = mat.color.z;
+    if (texture) {
+      ++local.texture_lookups;
+      if (shape->kind == ShapeKind::kTriangles) {  // FillSurface's uv, operation for operation
+        const glm::uvec3 tri = shape->triangles[h.prim];
+        const float w = 1.0f - h.u - h.v;
+        uv[m] = shape->uvs[tri.x] * w + shape->uvs[tri.y] * h.u + shape->uvs[tri.z] * h.v;
+      } else {
+        Surface sf;
+        FillSurface(sc, h, org[i], dir[i], true, false, sf);
+        uv[m] = sf.uv;
+      }
+      who[m] = i;
+      tex[m] = texture;
+      ++m;
+      continue;
+    }
+    r.rgb[0] = mat->color.x;
+    r.rgb[1] = mat->color.y;
+    r.rgb[2] = mat->color.z;
   }
   for (int k = 0; k < m;) {
     int e = k + 1;
