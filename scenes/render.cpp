@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <cstring>
 #include <vector>
 
 #include "core/color.h"
@@ -41,23 +42,66 @@ struct PixelHash {
 #define AALAB_SIMD_CLONES
 #endif
 
+/// Eight 64-bit lanes (GCC vector: one AVX-512 register, 2 AVX2 or 4 SSE2 ones in the
+/// clones; the lane-wise multiply is the exact low 64 bits of the product in each).
+typedef uint64_t U64x8 __attribute__((vector_size(64)));
+typedef int32_t I32x8 __attribute__((vector_size(32)));
+typedef float F32x8 __attribute__((vector_size(32)));
+
+/// MixBits in every lane of v (in place: no vector passed by value across a call).
+inline __attribute__((always_inline)) void MixBitsLanes(U64x8& v) {
+  v ^= v >> 30;
+  v *= 0xbf58476d1ce4e5b9ULL;
+  v ^= v >> 27;
+  v *= 0x94d049bb133111ebULL;
+  v ^= v >> 31;
+}
+
+/// HashToUnitFloat(MixBits(v)) in every lane. MixBits' last step, v ^= v >> 31, leaves bits
+/// 40..63 as they are (it XORs them with bits 71..94, which a 64-bit value does not have),
+/// and HashToUnitFloat reads only those bits, so it is left out; the top 24 bits convert to
+/// float exactly (through int32: < 2^24).
+inline __attribute__((always_inline)) void UnitFloatOfMixLanes(U64x8 v, F32x8& out) {
+  v ^= v >> 30;
+  v *= 0xbf58476d1ce4e5b9ULL;
+  v ^= v >> 27;
+  v *= 0x94d049bb133111ebULL;
+  const I32x8 top = __builtin_convertvector(v >> 40, I32x8);
+  out = __builtin_convertvector(top, F32x8) * (1.0f / 16777216.0f);
+}
+
 /// The reference's stratified positions of one pixel, s = j·grid + i: the PixelHash::Jitter2
-/// arithmetic laid out over all samples at once so it vectorises (64-bit multiplies and the
-/// divisions are exact operations, identical in every clone and lane).
+/// arithmetic over 8 samples at a time in vector lanes (64-bit multiplies, IEEE float adds
+/// and divisions: exact operations, identical in every clone and lane).
 AALAB_SIMD_CLONES
 void PlaceStratifiedPixel(uint64_t pixel_hash, int grid, uint64_t seed, float fx, float fy, SamplePos* out) {
+  const int spp = grid * grid;
   const float g = static_cast<float>(grid);
-  for (int j = 0; j < grid; ++j) {
-    for (int i = 0; i < grid; ++i) {
-      const int s = j * grid + i;
-      uint64_t h = MixBits(pixel_hash ^ (static_cast<uint64_t>(static_cast<uint32_t>(s)) + 0x85157af5a2a6b5f1ULL));
-      h = MixBits(h ^ (seed + 0xd6e8feb86659fd93ULL));
-      const float j0 = HashToUnitFloat(MixBits(h ^ (0ULL + 0xa0761d6478bd642fULL)));
-      const float j1 = HashToUnitFloat(MixBits(h ^ (1ULL + 0xa0761d6478bd642fULL)));
-      const float ox = (static_cast<float>(i) + j0) / g;
-      const float oy = (static_cast<float>(j) + j1) / g;
-      out[s].x = fx + ox;
-      out[s].y = fy + oy;
+  int i = 0, j = 0;  // stratum of sample s0 + k (no division a lane)
+  for (int s0 = 0; s0 < spp; s0 += 8) {
+    U64x8 h;
+    F32x8 fi, fj;
+    for (int k = 0; k < 8; ++k) {
+      h[k] = static_cast<uint64_t>(static_cast<uint32_t>(s0 + k));
+      fi[k] = static_cast<float>(i);
+      fj[k] = static_cast<float>(j);
+      const bool wrap = ++i == grid;
+      i = wrap ? 0 : i;
+      j += wrap;
+    }
+    h = pixel_hash ^ (h + 0x85157af5a2a6b5f1ULL);
+    MixBitsLanes(h);
+    h ^= seed + 0xd6e8feb86659fd93ULL;
+    MixBitsLanes(h);
+    F32x8 j0, j1;
+    UnitFloatOfMixLanes(h ^ (0ULL + 0xa0761d6478bd642fULL), j0);
+    UnitFloatOfMixLanes(h ^ (1ULL + 0xa0761d6478bd642fULL), j1);
+    const F32x8 x = fx + (fi + j0) / g;
+    const F32x8 y = fy + (fj + j1) / g;
+    const int m = std::min(8, spp - s0);
+    for (int k = 0; k < m; ++k) {
+      out[s0 + k].x = x[k];
+      out[s0 + k].y = y[k];
     }
   }
 }
@@ -92,6 +136,108 @@ struct TileScratch {
   std::vector<SampleResult> res;
   std::vector<float> display;  // 3 per sample: DisplayLinearSamples
 };
+
+/// Per-thread buffers of RenderReference's tiles, reused from tile to tile.
+struct ReferenceScratch {
+  std::vector<SamplePos> pos;
+  std::vector<SampleResult> res;
+  std::vector<float> lanes;  // one tile row: value (s·3 + c)·kTile + p (TransposeRgb)
+};
+
+/// The rgb of `row` ≤ kTile pixels of spp samples each (r[p·spp + s]) laid out pixel-parallel:
+/// lanes[(s·3 + c)·kTile + p]; lanes p ≥ row repeat pixel row − 1 (summed, never read).
+void TransposeRgb(const SampleResult* r, int row, int spp, float* lanes) {
+  const SampleResult* px[kTile];  // lanes past the row repeat its last pixel (never read)
+  for (int p = 0; p < kTile; ++p) px[p] = r + static_cast<size_t>(std::min(p, row - 1)) * spp;
+  for (int s = 0; s < spp; ++s) {
+    float* l = lanes + static_cast<size_t>(s) * 3 * kTile;
+    for (int p = 0; p < kTile; ++p) {
+      const SampleResult& q = px[p][s];
+      l[p] = q.rgb[0];
+      l[kTile + p] = q.rgb[1];
+      l[2 * kTile + p] = q.rgb[2];
+    }
+  }
+}
+
+/// DisplayLinearInline's per-channel transform of n values in place, for one tonemap: the
+/// same operations in the same order as DisplayLinearLoop (the value does not depend on its
+/// channel), over contiguous floats so that it vectorises.
+template <Tonemap kTone>
+inline __attribute__((always_inline)) void DisplayLinearLanesLoop(float exposure, float* v, int n) {
+  for (int k = 0; k < n; ++k) {
+    float x = v[k];
+    x = x > 0.0f ? x : 0.0f;  // negatives and NaN → 0
+    x = ApplyTonemap(kTone, x * exposure);
+    v[k] = x < 0.0f ? 0.0f : (1.0f < x ? 1.0f : x);
+  }
+}
+
+AALAB_SIMD_CLONES
+void DisplayLinearLanes(const Display& display, float* v, int n) {
+  switch (display.tonemap) {
+    case Tonemap::kNone: DisplayLinearLanesLoop<Tonemap::kNone>(display.exposure, v, n); break;
+    case Tonemap::kReinhard: DisplayLinearLanesLoop<Tonemap::kReinhard>(display.exposure, v, n); break;
+    case Tonemap::kAces: DisplayLinearLanesLoop<Tonemap::kAces>(display.exposure, v, n); break;
+  }
+}
+
+/// The reference's three sums (all samples; strata with i + j even, half A; odd, half B),
+/// sums[(kind·3 + c)·kTile + p].
+enum ReferenceSum { kSumAll = 0, kSumA = 3, kSumB = 6, kSums = 9 };
+
+/// The reference resolve's per-pixel double sums of one tile row (lanes: TransposeRgb's
+/// layout, display-linear), kTile pixels side by side in the vector lanes: each pixel's sums
+/// take the same additions in the same order as the per-pixel loop (samples s = j·grid + i in
+/// order; (i + j) even goes to half A), so the same bits. grid is even, so in row j the
+/// strata pair up (i, i + 1) with i even, and the first of a pair is in half A exactly when j
+/// is even. The lanes are a GCC vector of 8 doubles: 4 SSE2 registers in the default clone,
+/// 2 AVX2 or one AVX-512 register in the others (lane-wise IEEE adds, the same in each).
+AALAB_SIMD_CLONES
+void SumReferenceLanes(const float* lanes, int grid, double* sums) {
+  static_assert(kTile == 8, "one vector of 8 lanes per tile row");
+  typedef float F8 __attribute__((vector_size(32)));
+  typedef double D8 __attribute__((vector_size(64)));
+  for (int c = 0; c < 3; ++c) {
+    D8 all = {}, a = {}, b = {};
+    for (int j = 0; j < grid; j += 2) {  // row j even (pair starts in A), row j + 1 odd (in B)
+      for (int i = 0; i < grid; i += 2) {
+        const float* l0 = lanes + (static_cast<size_t>(j * grid + i) * 3 + c) * kTile;
+        F8 f0, f1;
+        std::memcpy(&f0, l0, sizeof f0);
+        std::memcpy(&f1, l0 + 3 * kTile, sizeof f1);
+        const D8 d0 = __builtin_convertvector(f0, D8), d1 = __builtin_convertvector(f1, D8);
+        all += d0;
+        all += d1;
+        a += d0;
+        b += d1;
+      }
+      for (int i = 0; i < grid; i += 2) {
+        const float* l0 = lanes + (static_cast<size_t>((j + 1) * grid + i) * 3 + c) * kTile;
+        F8 f0, f1;
+        std::memcpy(&f0, l0, sizeof f0);
+        std::memcpy(&f1, l0 + 3 * kTile, sizeof f1);
+        const D8 d0 = __builtin_convertvector(f0, D8), d1 = __builtin_convertvector(f1, D8);
+        all += d0;
+        all += d1;
+        b += d0;
+        a += d1;
+      }
+    }
+    std::memcpy(sums + (kSumAll + c) * kTile, &all, sizeof all);
+    std::memcpy(sums + (kSumA + c) * kTile, &a, sizeof a);
+    std::memcpy(sums + (kSumB + c) * kTile, &b, sizeof b);
+  }
+}
+
+/// Whether any of a pixel's samples sees another surface or another set of blocked lights
+/// than its first sample (the reference's raw edge mask).
+bool SamplesDiffer(const SampleResult* r, int spp) {
+  const uint32_t surface = static_cast<uint32_t>(r[0].surface), shadowed = r[0].shadowed;
+  uint32_t diff = 0;  // branch-free: any bit that differs in any sample
+  for (int s = 0; s < spp; ++s) diff |= (static_cast<uint32_t>(r[s].surface) ^ surface) | (r[s].shadowed ^ shadowed);
+  return diff != 0;
+}
 
 /// Calls `resolve(x, y, samples, display, spp)` for every pixel after tracing its samples
 /// (display: the samples' DisplayLinearInline values, 3 floats each); the spp
@@ -342,7 +488,9 @@ int ReferenceGridForSpp(int spp) {
 Reference RenderReference(const Tracer& tracer, int width, int height, int grid, uint64_t seed,
                           TraceCounters* counters) {
   AALAB_CHECK(grid >= 2 && grid % 2 == 0, "reference grid must be even and >= 2");
+  AALAB_CHECK(width > 0 && height > 0, "render size must be positive");
   const int spp = grid * grid;
+  const Display& display = tracer.GetScene().display;
   Reference ref;
   ref.grid = grid;
   ref.image = ImageF(width, height, 3);
@@ -350,37 +498,65 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
   ref.half_b = ImageF(width, height, 3);
   ref.edge_mask_raw = ImageF(width, height, 1);
   const uint64_t rseed = seed ^ kStreamReference;
-  auto place = [&](int x, int y, SamplePos* out_pos) {
-    const PixelHash ph(x, y);
-    PlaceStratifiedPixel(ph.h, grid, rseed, static_cast<float>(x), static_cast<float>(y), out_pos);
-  };
-  auto resolve = [&](int x, int y, const SampleResult* r, const float* disp, int count) {
-    double all[3] = {0, 0, 0}, a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
-    int na = 0, nb = 0;
-    bool edge = false;
-    AALAB_CHECK(count == grid * grid, "reference pixel sample count");
-    int s = 0;
-    for (int j = 0; j < grid; ++j) {  // s = j·grid + i, stratum (i, j)
-      for (int i = 0; i < grid; ++i, ++s) {
-        const float* d = disp + 3 * s;
-        const bool even = (i + j) % 2 == 0;
-        for (int c = 0; c < 3; ++c) {
-          all[c] += d[c];
-          (even ? a : b)[c] += d[c];
+  const int tiles_x = (width + kTile - 1) / kTile;
+  const int tiles_y = (height + kTile - 1) / kTile;
+  const int tiles = tiles_x * tiles_y;
+  std::vector<TraceCounters> per_tile(static_cast<size_t>(tiles));
+  // The truth samples image textures bilinearly on level 0 at every sub-sample (px = 0).
+  const TextureFootprint footprint{0.0f, 1};
+  ParallelForChunks(tiles, 1, [&](int begin, int end) {
+    thread_local ReferenceScratch scratch;
+    const size_t max_samples = static_cast<size_t>(kTile) * kTile * static_cast<size_t>(spp);
+    if (scratch.pos.size() < max_samples) {
+      scratch.pos.resize(max_samples);
+      scratch.res.resize(max_samples);
+      scratch.lanes.resize(3 * static_cast<size_t>(spp) * kTile);
+    }
+    SamplePos* pos = scratch.pos.data();
+    SampleResult* res = scratch.res.data();
+    float* lanes = scratch.lanes.data();
+    for (int t = begin; t < end; ++t) {
+      const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
+      const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
+      size_t n = 0;
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+          const PixelHash ph(x, y);
+          PlaceStratifiedPixel(ph.h, grid, rseed, static_cast<float>(x), static_cast<float>(y), pos + n);
+          n += static_cast<size_t>(spp);
         }
-        (even ? na : nb)++;
-        edge |= r[s].surface != r[0].surface || r[s].shadowed != r[0].shadowed;
+      }
+      // The resolve reads rgb, surface and shadowed only: no hit distances or points.
+      tracer.Trace(pos, static_cast<int>(n), width, height, res, &per_tile[t], footprint, SampleFields::kShading);
+      // One tile row at a time: its pixels' samples transposed into lanes, through the
+      // display transform, summed pixel-parallel, encoded.
+      const int row = x1 - x0;
+      const SampleResult* r = res;
+      for (int y = y0; y < y1; ++y) {
+        TransposeRgb(r, row, spp, lanes);
+        DisplayLinearLanes(display, lanes, 3 * spp * kTile);
+        double sums[kSums * kTile];
+        SumReferenceLanes(lanes, grid, sums);
+        for (int p = 0; p < row; ++p) {
+          const int x = x0 + p;
+          const double* all = sums + kSumAll * kTile;
+          const double* a = sums + kSumA * kTile;
+          const double* b = sums + kSumB * kTile;
+          const int half = spp / 2;  // grid even: as many even strata as odd
+          for (int c = 0; c < 3; ++c) {
+            ref.image.At(x, y, c) = SrgbEncode(static_cast<float>(all[c * kTile + p] / spp));
+            ref.half_a.At(x, y, c) = SrgbEncode(static_cast<float>(a[c * kTile + p] / half));
+            ref.half_b.At(x, y, c) = SrgbEncode(static_cast<float>(b[c * kTile + p] / half));
+          }
+          ref.edge_mask_raw.At(x, y, 0) = SamplesDiffer(r + static_cast<size_t>(p) * spp, spp) ? 1.0f : 0.0f;
+        }
+        r += static_cast<size_t>(row) * spp;
       }
     }
-    for (int c = 0; c < 3; ++c) {
-      ref.image.At(x, y, c) = SrgbEncode(static_cast<float>(all[c] / count));
-      ref.half_a.At(x, y, c) = SrgbEncode(static_cast<float>(a[c] / na));
-      ref.half_b.At(x, y, c) = SrgbEncode(static_cast<float>(b[c] / nb));
-    }
-    ref.edge_mask_raw.At(x, y, 0) = edge ? 1.0f : 0.0f;
-  };
-  // The truth samples image textures bilinearly on level 0 at every sub-sample (px = 0).
-  RenderTiles(tracer, width, height, spp, place, resolve, counters, TextureFootprint{0.0f, 1});
+  });
+  if (counters) {
+    for (const auto& c : per_tile) *counters += c;
+  }
 
   ref.edge_mask = DilateMask(ref.edge_mask_raw);  // 1 px, 3×3 neighbourhood, clamped at the border
   return ref;

@@ -1,4 +1,4 @@
-// Embree tracer: BVH build, camera rays, 16-wide packet traversal and alpha-test
+// Embree tracer: BVH build, 16-wide packet traversal (camera rays: tracer_camera.cpp) and alpha-test
 // continuation; Tracer::Trace shades every camera sample (tracer_shade.cpp shades, and
 // tracer_msaa.cpp holds MSAA's coverage/shading split).
 //
@@ -53,6 +53,53 @@ float EvaluatePattern(const Texture& tex, glm::vec2 uv) {
     }
   }
   return 0.0f;
+}
+
+namespace {
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_PATTERN_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
+#else
+#define AALAB_PATTERN_CLONES
+#endif
+
+/// EvaluatePattern's noise over n points, written so that it vectorises (64-bit lanes):
+/// the same operations per point. float → int64 conversion of a value out of range (or NaN)
+/// gives INT64_MIN in the scalar (cvttss2si) and the vector (vcvttps2qq) instruction alike.
+AALAB_PATTERN_CLONES
+void NoiseBatch(float scale, uint64_t seed_hi, const glm::vec2* uv, int n, float* t) {
+  for (int k = 0; k < n; ++k) {
+    const auto cx = static_cast<int64_t>(std::floor(uv[k].x * scale));
+    const auto cy = static_cast<int64_t>(std::floor(uv[k].y * scale));
+    uint64_t h = static_cast<uint64_t>(cx) * 0x9e3779b97f4a7c15ULL ^
+                 (static_cast<uint64_t>(cy) + 0x632be59bd9b4e019ULL) * 0xbf58476d1ce4e5b9ULL ^ seed_hi;
+    h ^= h >> 31;
+    h *= 0x94d049bb133111ebULL;
+    h ^= h >> 29;
+    t[k] = static_cast<float>(h >> 40) * (1.0f / 16777216.0f);
+  }
+}
+
+/// EvaluatePattern's checker over n points, branch-free: the same test (|a| < 2^24 and odd).
+AALAB_PATTERN_CLONES
+void CheckerBatch(float scale, const glm::vec2* uv, int n, float* t) {
+  for (int k = 0; k < n; ++k) {
+    const float a = std::fabs(std::floor(uv[k].x * scale) + std::floor(uv[k].y * scale));
+    const bool small = a < 16777216.0f;
+    const int32_t ai = static_cast<int32_t>(small ? a : 0.0f);
+    t[k] = small && (ai & 1) ? 1.0f : 0.0f;
+  }
+}
+
+}  // namespace
+
+void tracer_detail::EvaluatePatternBatch(const Texture& tex, const glm::vec2* uv, int n, float* t) {
+  switch (tex.pattern) {
+    case TexturePattern::kChecker: CheckerBatch(tex.scale, uv, n, t); return;
+    case TexturePattern::kNoise: NoiseBatch(tex.scale, static_cast<uint64_t>(tex.seed) << 32, uv, n, t); return;
+    case TexturePattern::kStripes: break;
+  }
+  for (int k = 0; k < n; ++k) t[k] = EvaluatePattern(tex, uv[k]);
 }
 
 Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()) {
@@ -258,83 +305,6 @@ void tracer_detail::OccludedRays(RTCScene scene, const glm::vec3* org, const glm
   }
 }
 
-namespace {
-
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define AALAB_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define AALAB_SIMD_CLONES
-#endif
-
-/// Perspective camera rays, written out component by component so the loop vectorises:
-/// exactly glm's `normalize(forward + right·(nx·half_h·aspect) + up·(ny·half_h))` —
-/// normalize(v) = v · (1 / sqrt((x·x + y·y) + z·z)) — with the same roundings (IEEE
-/// divide and sqrt, no contraction), so the same bits as the scalar glm code.
-AALAB_SIMD_CLONES
-void PerspectiveRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
-                     glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
-  // Blocks of 16: the arithmetic runs on separate x, y, z lanes (vectorised), the vec3
-  // stores after it (a vec3 array's 12-byte stride kept the one-loop form scalar).
-  constexpr int kBlock = 16;
-  for (int base = 0; base < count; base += kBlock) {
-    const int m = std::min(kBlock, count - base);
-    float px[kBlock], py[kBlock], dx[kBlock], dy[kBlock], dz[kBlock];
-    for (int k = 0; k < kBlock; ++k) {
-      px[k] = k < m ? pos[base + k].x : 0.0f;
-      py[k] = k < m ? pos[base + k].y : 0.0f;
-    }
-    for (int k = 0; k < kBlock; ++k) {
-      const float nx = 2.0f * px[k] / width - 1.0f;
-      const float ny = 1.0f - 2.0f * py[k] / height;
-      const float a = nx * half_h * aspect;
-      const float b = ny * half_h;
-      const float vx = fwd.x + (right.x * a + up.x * b);
-      const float vy = fwd.y + (right.y * a + up.y * b);
-      const float vz = fwd.z + (right.z * a + up.z * b);
-      const float inv = 1.0f / std::sqrt((vx * vx + vy * vy) + vz * vz);
-      dx[k] = vx * inv;
-      dy[k] = vy * inv;
-      dz[k] = vz * inv;
-    }
-    for (int k = 0; k < m; ++k) {
-      org[base + k] = origin;
-      dir[base + k] = glm::vec3(dx[k], dy[k], dz[k]);
-    }
-  }
-}
-
-/// Orthographic camera rays, written out so the loop vectorises: exactly glm's
-/// `origin + (right·(nx·half_h·aspect) + up·(ny·half_h))`, direction `forward`.
-AALAB_SIMD_CLONES
-void OrthographicRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
-                      glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
-  for (int i = 0; i < count; ++i) {
-    const float nx = 2.0f * pos[i].x / width - 1.0f;
-    const float ny = 1.0f - 2.0f * pos[i].y / height;
-    const float a = nx * half_h * aspect;
-    const float b = ny * half_h;
-    org[i] = glm::vec3(origin.x + (right.x * a + up.x * b), origin.y + (right.y * a + up.y * b),
-                       origin.z + (right.z * a + up.z * b));
-    dir[i] = fwd;
-  }
-}
-
-}  // namespace
-
-void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width,
-                               int height, glm::vec3* org, glm::vec3* dir) {
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h =
-      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
-  if (cam.type == CameraType::kPerspective) {
-    PerspectiveRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
-                    im.forward, im.right, im.up, org, dir);
-  } else {
-    OrthographicRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
-                     im.forward, im.right, im.up, org, dir);
-  }
-}
-
 void tracer_detail::ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org,
                                        const glm::vec3* dir, int count, float* tnear, float* tfar, Hit* hits,
                                        LayerScratch& ls, TraceCounters& local, const Footprint& fp, KeptTexel* kept) {
@@ -342,6 +312,12 @@ void tracer_detail::ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, 
   IntersectRays(im.scene, org, dir, tnear, tfar, nullptr, count, hits, true);
   local.primary_rays += static_cast<uint64_t>(count);
   local.coverage_rays += static_cast<uint64_t>(count);
+  ContinueVisibleHits(im, sc, alpha, org, dir, count, tnear, tfar, hits, ls, local, fp, kept);
+}
+
+void tracer_detail::ContinueVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org,
+                                        const glm::vec3* dir, int count, float* tnear, float* tfar, Hit* hits,
+                                        LayerScratch& ls, TraceCounters& local, const Footprint& fp, KeptTexel* kept) {
   if (!alpha && !im.any_cull) return;
   if (kept) std::fill(kept, kept + count, KeptTexel{});
   std::vector<int>& active = ls.active;
@@ -401,7 +377,7 @@ struct TraceScratch {
 }  // namespace
 
 void Tracer::Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out, TraceCounters* counters,
-                   TextureFootprint footprint) const {
+                   TextureFootprint footprint, SampleFields fields) const {
   const Impl& im = *impl_;
   const Scene& sc = scene_;
   TraceCounters local;
@@ -414,22 +390,27 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
   TraceScratch& S = scratch;
   const size_t n_all = static_cast<size_t>(count);
 
-  // 1. Camera rays.
+  // 1. Camera rays, traced in packets filled straight from the positions.
   glm::vec3* org = Sized(S.org, n_all);
   glm::vec3* dir = Sized(S.dir, n_all);
-  float* tnear = Sized(S.tnear, n_all);
-  float* tfar = Sized(S.tfar, n_all);
-  CameraRays(im, sc.camera, pos, count, width, height, org, dir);
-  std::fill(tnear, tnear + count, 0.0f);
-  std::fill(tfar, tfar + count, std::numeric_limits<float>::infinity());
-
-  // 2. Closest hits, continuing through alpha cut-outs (only with `alpha_test`).
   Hit* hits = Sized(S.hits, n_all);
+  TraceCameraRays(im, sc.camera, pos, count, width, height, org, dir, hits);
+  local.primary_rays += static_cast<uint64_t>(count);
+  local.coverage_rays += static_cast<uint64_t>(count);
+
+  // 2. Closest hits, continuing through alpha cut-outs (only with `alpha_test`) and past
+  // culled back faces: ClosestVisibleHits after its first round.
   const bool alpha = sc.Has(Effect::kAlphaTest) && im.any_alpha;
-  const Footprint fp{width, height, footprint};
+  const Footprint fp{width, height, footprint, fields == SampleFields::kAll};
   // With glTF cut-outs, the alpha test's base texel and footprint go on to the shading.
   KeptTexel* kept = alpha && im.any_gltf ? Sized(S.kept, n_all) : nullptr;
-  ClosestVisibleHits(im, sc, alpha, org, dir, count, tnear, tfar, hits, S.layers, local, fp, kept);
+  if (alpha || im.any_cull) {
+    float* tnear = Sized(S.tnear, n_all);
+    float* tfar = Sized(S.tfar, n_all);
+    std::fill(tnear, tnear + count, 0.0f);
+    std::fill(tfar, tfar + count, std::numeric_limits<float>::infinity());
+    ContinueVisibleHits(im, sc, alpha, org, dir, count, tnear, tfar, hits, S.layers, local, fp, kept);
+  }
 
   // 3. One shading per sample.
   ShadeHits(im, sc, alpha, hits, org, dir, count, S.shade, out, local, fp, kept);

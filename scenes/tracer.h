@@ -71,6 +71,11 @@ struct TextureFootprint {
 /// ⌊α·N + d⌋ sample indices, d = (Bayer4[py mod 4][px mod 4] + 0.5) / 16 (methods/msaa.cpp).
 uint32_t AlphaToCoverageMask(float alpha, int samples, int px, int py);
 
+/// Which fields of SampleResult Tracer::Trace writes: all of them, or only rgb, surface and
+/// shadowed (t and position are left as they were: for callers that never read them, such as
+/// the reference's resolve).
+enum class SampleFields { kAll, kShading };
+
 class Tracer {
  public:
   /// Builds the Embree scene (BVH) for `scene`. The Scene must outlive the Tracer.
@@ -82,7 +87,7 @@ class Tracer {
   /// Traces and shades `count` samples on a width × height image plane. Thread-safe (call
   /// from many threads at once); results depend only on the inputs.
   void Trace(const SamplePos* pos, int count, int width, int height, SampleResult* out, TraceCounters* counters,
-             TextureFootprint footprint = {}) const;
+             TextureFootprint footprint = {}, SampleFields fields = SampleFields::kAll) const;
 
   /// MSAA (docs/msaa.md): traces `pixels` pixels of `msaa.samples` = N coverage samples each
   /// (sample_pos[p·N + s], sample index order) with one visibility ray per sample, then

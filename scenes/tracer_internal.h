@@ -1,7 +1,8 @@
 // Internals shared by the tracer's files; not part of the public interface (only the scenes
 // library includes it, the one place that knows Embree):
-//   tracer.cpp        BVH build, camera rays, visibility (closest hits through cut-outs),
+//   tracer.cpp        BVH build, packets, visibility (closest hits through cut-outs),
 //                     Tracer::Trace (one shading per sample), BareTrace
+//   tracer_camera.cpp camera rays, and camera rays traced in packets filled in place
 //   tracer_shade.cpp  surface attributes, shadow rays and shading of a list of hits
 //   tracer_msaa.cpp   Tracer::TraceMsaa: coverage samples, one shading per primitive
 //   tracer_gltf.cpp   image textures (footprints, mip-mapped fetches), glTF alpha and the
@@ -63,7 +64,8 @@ struct Surface {
 /// The texture footprint of a batch of camera rays on a width × height image plane.
 struct Footprint {
   int width = 1, height = 1;
-  TextureFootprint tex;  ///< tex.px == 0: level 0 bilinear (also used for shadow rays)
+  TextureFootprint tex;    ///< tex.px == 0: level 0 bilinear (also used for shadow rays)
+  bool hit_points = true;  ///< ShadeHits writes SampleResult::t and position (SampleFields::kAll)
 };
 
 /// Where a ray continues after rejecting a hit at distance t (just past it).
@@ -94,6 +96,13 @@ void OccludedRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, co
 void CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width, int height,
                 glm::vec3* org, glm::vec3* dir);
 
+/// Closest hits of `count` camera rays through continuous pixel positions (tnear 0, tfar ∞,
+/// no alpha test): the same rays as CameraRays into org/dir and the same hits as
+/// IntersectRays of those rays (the same packets), each packet filled straight from the
+/// positions. Counts nothing.
+void TraceCameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width, int height,
+                     glm::vec3* org, glm::vec3* dir, Hit* hits);
+
 /// What the alpha test of a kept glTF cut-out fetched at a camera ray's final hit: the base
 /// texel and the UV derivatives of its coordinate set. The shading of the same hit fetches
 /// exactly these (the same hit, ray and footprint), so it reuses them instead.
@@ -120,6 +129,13 @@ struct LayerScratch {
 void ClosestVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org, const glm::vec3* dir,
                         int count, float* tnear, float* tfar, Hit* hits, LayerScratch& ls, TraceCounters& counters,
                         const Footprint& fp, KeptTexel* kept = nullptr);
+
+/// ClosestVisibleHits after its first round: `hits` holds the first hits of the count rays
+/// (tnear 0, tfar ∞ in tnear/tfar); cut-out and culled hits continue from there. Nothing
+/// happens without `alpha` in a scene without culled materials.
+void ContinueVisibleHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const glm::vec3* org,
+                         const glm::vec3* dir, int count, float* tnear, float* tfar, Hit* hits, LayerScratch& ls,
+                         TraceCounters& counters, const Footprint& fp, KeptTexel* kept = nullptr);
 
 /// True when the cut-out material `m` keeps the hit h (procedural pattern t >= cutoff, or glTF
 /// MASK alpha >= alphaCutoff, the alpha filtered with the ray's footprint). Reads srf.uv only.
@@ -206,6 +222,10 @@ void CompositeBlended(const Tracer::Impl& im, const Scene& sc, bool alpha, const
 Surface SurfaceAt(const Scene& scene, const Hit& h, const glm::vec3& org, const glm::vec3& dir, bool uv = true,
                   bool normals = true);
 
+/// EvaluatePattern(tex, uv[k]) into t[k] for n points (the same values), vectorised for the
+/// checker and the noise.
+void EvaluatePatternBatch(const Texture& tex, const glm::vec2* uv, int n, float* t);
+
 /// Working memory of ShadeHits, reused from call to call.
 struct ShadeScratch {
   std::vector<Surface> surf;
@@ -220,6 +240,8 @@ struct ShadeScratch {
   std::vector<int> job_hit;
   std::vector<glm::vec2> job_uv;
   std::vector<glm::vec4> job_out;
+  std::vector<const Texture*> pattern_tex;  // the unlit path's textured hits (ShadeUnlit)
+  std::vector<float> pattern_t;
 };
 
 /// The level-0 texture fetches ShadeGltf would make for n hits of a reference render

@@ -1,0 +1,219 @@
+// Camera rays: the perspective and orthographic rays of continuous pixel positions
+// (CameraRays, vectorised in blocks of 16 with the scalar glm arithmetic's roundings), and the
+// camera rays traced in 16-wide packets filled straight from the positions (TraceCameraRays,
+// what Tracer::Trace uses: no vec3 arrays read back and repacked).
+#include <cmath>
+
+#include "scenes/tracer_internal.h"
+
+namespace aalab {
+
+using namespace tracer_detail;
+
+namespace {
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define AALAB_SIMD_CLONES
+#endif
+
+/// The x and y of m ≤ 16 sample positions into separate arrays; lanes past m repeat the
+/// last position (their rays are computed, never stored). Branch-free loads of a whole block
+/// (scalar stores under a per-lane condition, read back as one vector, stalled on store
+/// forwarding).
+inline __attribute__((always_inline)) void LoadBlock(const SamplePos* pos, int m, float* px, float* py) {
+  if (m == 16) {
+    for (int k = 0; k < 16; ++k) {
+      px[k] = pos[k].x;
+      py[k] = pos[k].y;
+    }
+    return;
+  }
+  for (int k = 0; k < 16; ++k) {
+    const int i = std::min(k, m - 1);
+    px[k] = pos[i].x;
+    py[k] = pos[i].y;
+  }
+}
+
+/// Perspective camera rays, written out component by component so the loop vectorises:
+/// exactly glm's `normalize(forward + right·(nx·half_h·aspect) + up·(ny·half_h))` —
+/// normalize(v) = v · (1 / sqrt((x·x + y·y) + z·z)) — with the same roundings (IEEE
+/// divide and sqrt, no contraction), so the same bits as the scalar glm code.
+AALAB_SIMD_CLONES
+void PerspectiveRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
+                     glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
+  // Blocks of 16: the arithmetic runs on separate x, y, z lanes (vectorised), the vec3
+  // stores after it (a vec3 array's 12-byte stride kept the one-loop form scalar).
+  constexpr int kBlock = 16;
+  for (int base = 0; base < count; base += kBlock) {
+    const int m = std::min(kBlock, count - base);
+    float px[kBlock], py[kBlock], dx[kBlock], dy[kBlock], dz[kBlock];
+    LoadBlock(pos + base, m, px, py);
+    for (int k = 0; k < kBlock; ++k) {
+      const float nx = 2.0f * px[k] / width - 1.0f;
+      const float ny = 1.0f - 2.0f * py[k] / height;
+      const float a = nx * half_h * aspect;
+      const float b = ny * half_h;
+      const float vx = fwd.x + (right.x * a + up.x * b);
+      const float vy = fwd.y + (right.y * a + up.y * b);
+      const float vz = fwd.z + (right.z * a + up.z * b);
+      const float inv = 1.0f / std::sqrt((vx * vx + vy * vy) + vz * vz);
+      dx[k] = vx * inv;
+      dy[k] = vy * inv;
+      dz[k] = vz * inv;
+    }
+    for (int k = 0; k < m; ++k) {
+      org[base + k] = origin;
+      dir[base + k] = glm::vec3(dx[k], dy[k], dz[k]);
+    }
+  }
+}
+
+/// Orthographic camera rays, written out so the loop vectorises: exactly glm's
+/// `origin + (right·(nx·half_h·aspect) + up·(ny·half_h))`, direction `forward`. Blocks of
+/// 16 as PerspectiveRays (the one-loop form with vec3 stores stayed scalar).
+AALAB_SIMD_CLONES
+void OrthographicRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
+                      glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
+  constexpr int kBlock = 16;
+  for (int base = 0; base < count; base += kBlock) {
+    const int m = std::min(kBlock, count - base);
+    float px[kBlock], py[kBlock], ox[kBlock], oy[kBlock], oz[kBlock];
+    LoadBlock(pos + base, m, px, py);
+    for (int k = 0; k < kBlock; ++k) {
+      const float nx = 2.0f * px[k] / width - 1.0f;
+      const float ny = 1.0f - 2.0f * py[k] / height;
+      const float a = nx * half_h * aspect;
+      const float b = ny * half_h;
+      ox[k] = origin.x + (right.x * a + up.x * b);
+      oy[k] = origin.y + (right.y * a + up.y * b);
+      oz[k] = origin.z + (right.z * a + up.z * b);
+    }
+    for (int k = 0; k < m; ++k) {
+      org[base + k] = glm::vec3(ox[k], oy[k], oz[k]);
+      dir[base + k] = fwd;
+    }
+  }
+}
+
+/// Camera rays of `count` positions traced in 16-wide packets filled straight from the
+/// positions: each block of 16 computed into the packet's lanes with PerspectiveRays' or
+/// OrthographicRays' arithmetic (the same bits), traced (rtcIntersect16, coherent) and read
+/// out as IntersectRays does; org/dir receive the same rays for the shading. The packets are
+/// the ones CameraRays + IntersectRays build (a partial last packet's idle lanes hold its
+/// first ray with tnear = tfar = 0), without the vec3 arrays read back and repacked.
+AALAB_SIMD_CLONES
+void CameraPackets(RTCScene scene, bool persp, const SamplePos* pos, int count, float width, float height, float half_h,
+                   float aspect, glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org,
+                   glm::vec3* dir, Hit* hits) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[kPacket];
+  for (int k = 0; k < kPacket; ++k) {  // inputs Embree never writes: set once per batch
+    rh.ray.time[k] = 0.0f;
+    rh.ray.mask[k] = 0xFFFFFFFFu;
+    rh.ray.id[k] = static_cast<unsigned>(k);
+    rh.ray.flags[k] = 0;
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int base = 0; base < count; base += kPacket) {
+    const int m = std::min(kPacket, count - base);
+    float px[kPacket], py[kPacket];
+    LoadBlock(pos + base, m, px, py);
+    if (persp) {
+      for (int k = 0; k < kPacket; ++k) {
+        const float nx = 2.0f * px[k] / width - 1.0f;
+        const float ny = 1.0f - 2.0f * py[k] / height;
+        const float a = nx * half_h * aspect;
+        const float b = ny * half_h;
+        const float vx = fwd.x + (right.x * a + up.x * b);
+        const float vy = fwd.y + (right.y * a + up.y * b);
+        const float vz = fwd.z + (right.z * a + up.z * b);
+        const float inv = 1.0f / std::sqrt((vx * vx + vy * vy) + vz * vz);
+        rh.ray.org_x[k] = origin.x;
+        rh.ray.org_y[k] = origin.y;
+        rh.ray.org_z[k] = origin.z;
+        rh.ray.dir_x[k] = vx * inv;
+        rh.ray.dir_y[k] = vy * inv;
+        rh.ray.dir_z[k] = vz * inv;
+      }
+    } else {
+      for (int k = 0; k < kPacket; ++k) {
+        const float nx = 2.0f * px[k] / width - 1.0f;
+        const float ny = 1.0f - 2.0f * py[k] / height;
+        const float a = nx * half_h * aspect;
+        const float b = ny * half_h;
+        rh.ray.org_x[k] = origin.x + (right.x * a + up.x * b);
+        rh.ray.org_y[k] = origin.y + (right.y * a + up.y * b);
+        rh.ray.org_z[k] = origin.z + (right.z * a + up.z * b);
+        rh.ray.dir_x[k] = fwd.x;
+        rh.ray.dir_y[k] = fwd.y;
+        rh.ray.dir_z[k] = fwd.z;
+      }
+    }
+    for (int k = 0; k < kPacket; ++k) {
+      valid[k] = -1;
+      rh.ray.tnear[k] = 0.0f;
+      rh.ray.tfar[k] = inf;
+      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    for (int k = m; k < kPacket; ++k) {  // a partial packet's idle lanes: its first ray, empty
+      valid[k] = 0;
+      rh.ray.org_x[k] = rh.ray.org_x[0];
+      rh.ray.org_y[k] = rh.ray.org_y[0];
+      rh.ray.org_z[k] = rh.ray.org_z[0];
+      rh.ray.dir_x[k] = rh.ray.dir_x[0];
+      rh.ray.dir_y[k] = rh.ray.dir_y[0];
+      rh.ray.dir_z[k] = rh.ray.dir_z[0];
+      rh.ray.tfar[k] = 0.0f;
+    }
+    for (int k = 0; k < m; ++k) {
+      org[base + k] = glm::vec3(rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]);
+      dir[base + k] = glm::vec3(rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]);
+    }
+    rtcIntersect16(valid, scene, &ctx, &rh);
+    for (int k = 0; k < m; ++k) {
+      const bool hit = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+      Hit& h = hits[base + k];
+      h.t = hit ? rh.ray.tfar[k] : inf;
+      h.shape = hit ? static_cast<int>(rh.hit.geomID[k]) : -1;
+      h.prim = hit ? rh.hit.primID[k] : 0u;
+      h.u = hit ? rh.hit.u[k] : 0.0f;
+      h.v = hit ? rh.hit.v[k] : 0.0f;
+      h.ng = hit ? glm::vec3(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]) : glm::vec3(0.0f);
+    }
+  }
+}
+
+}  // namespace
+
+void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width,
+                               int height, glm::vec3* org, glm::vec3* dir) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const float half_h =
+      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  if (cam.type == CameraType::kPerspective) {
+    PerspectiveRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
+                    im.forward, im.right, im.up, org, dir);
+  } else {
+    OrthographicRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
+                     im.forward, im.right, im.up, org, dir);
+  }
+}
+
+void tracer_detail::TraceCameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count,
+                                    int width, int height, glm::vec3* org, glm::vec3* dir, Hit* hits) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const float half_h =
+      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  CameraPackets(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
+                static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, org, dir, hits);
+}
+
+}  // namespace aalab
