@@ -40,7 +40,7 @@ NvidiaFlipRun RunNvidiaFlip(const Image8& reference, const Image8& test, int rep
   WriteImage8(ref_png, reference);
   WriteImage8(test_png, test);
   const ImageF ref_f = ToFloat(reference, 3), test_f = ToFloat(test, 3);
-  const std::vector<double> v = flip::ErrorValues(ref_f, test_f, kFlipDefaultPpd);
+  const FlipValues v = flip::ErrorValues(ref_f, test_f, kFlipDefaultPpd);
   r.aalab_mean = PoolFlip(v).mean;
   for (int threads : {1, 2}) {
     std::string cmd = "cd " + tmp_dir + " && " + PeerEnvPrefix() + "OMP_NUM_THREADS=" + std::to_string(threads) + " " +

@@ -70,6 +70,7 @@
 #include <cstring>
 #include <memory>
 #include <numbers>
+#include <span>
 #include <string>
 
 #include "core/error.h"
@@ -495,7 +496,7 @@ std::vector<double> ErrorValuesUncached(const ImageF& reference, const ImageF& t
 }  // namespace flip
 
 ImageF FlipErrorMap(const ImageF& reference, const ImageF& test, double ppd) {
-  const std::vector<double> v = flip::ErrorValues(reference, test, ppd);
+  const FlipValues v = flip::ErrorValues(reference, test, ppd);
   ImageF map(reference.Width(), reference.Height(), 1, 0.0f);
   for (size_t i = 0; i < v.size(); ++i) map.Data()[i] = static_cast<float>(v[i]);
   return map;
@@ -510,12 +511,20 @@ namespace {
 // scatters its keys to offsets fixed by the histograms of the chunks before it (a stable
 // pass). The sorted sequence is unique (equal values are indistinguishable), so the result is
 // the same at any thread count and equals a std::sort of the values. Any other input (a value
-// < 0, NaN, or one that is not a float) takes std::sort.
+// < 0, NaN, or one that is not a float) takes std::sort. What stays serial, for 2-thread
+// scaling: the mean's sum in the given order (one pass, run as a task beside the sort so a
+// second thread hides it), the 2048-digit prefix of each pass and the weighted median's sum
+// in sorted order (one pass, its running sum kept in a register); buffers the loops write
+// whole are not zero-filled first (DefaultInitAllocator).
 constexpr int kSortGrain = 1 << 15;  // keys per chunk (fixed: chunks never depend on threads)
 constexpr int kDigits = 2048;        // 11-bit digits
 
+// Storage for sort keys whose every value is written before it is read: no zero-fill pass
+// (a serial memset of 8 MB at 1080p, before the parallel loops that write them anyway).
+using KeyVector = std::vector<uint32_t, DefaultInitAllocator<uint32_t>>;
+
 // The values' float bit patterns, or nothing when some value is not a float >= 0.
-bool FloatKeys(const std::vector<double>& values, std::vector<uint32_t>* keys) {
+bool FloatKeys(std::span<const double> values, KeyVector* keys) {
   const int n = static_cast<int>(values.size());
   keys->resize(values.size());
   std::vector<uint8_t> bad(static_cast<size_t>((n + kSortGrain - 1) / kSortGrain), 0);
@@ -530,35 +539,58 @@ bool FloatKeys(const std::vector<double>& values, std::vector<uint32_t>* keys) {
   return std::find(bad.begin(), bad.end(), 1) == bad.end();
 }
 
+// Turns per-chunk digit counts (hist, chunk-major: chunk c's count of digit d at
+// c · kDigits + d) into each chunk's first slot per digit (digit-major, then chunk order).
+// Integer sums, so the same offsets whatever the split; the digit totals and the column walk
+// run in parallel over ranges of digits (each range walks the chunks with contiguous rows),
+// only the 2048-digit prefix is serial. Returns true when one digit holds every key.
+bool DigitOffsets(std::vector<uint32_t>* hist, int chunks, uint32_t n) {
+  constexpr int kDigitGrain = 256;
+  std::vector<uint32_t> start(kDigits, 0);  // digit totals, then each digit's first slot
+  ParallelForChunks(kDigits, kDigitGrain, [&](int d0, int d1) {
+    for (int c = 0; c < chunks; ++c) {
+      const uint32_t* h = hist->data() + static_cast<size_t>(c) * kDigits;
+      for (int d = d0; d < d1; ++d) start[static_cast<size_t>(d)] += h[d];
+    }
+  });
+  bool one_digit = false;
+  uint32_t next = 0;
+  for (uint32_t& s : start) {
+    const uint32_t total = s;
+    if (total == n) one_digit = true;
+    s = next;
+    next += total;
+  }
+  if (one_digit) return true;
+  ParallelForChunks(kDigits, kDigitGrain, [&](int d0, int d1) {
+    for (int c = 0; c < chunks; ++c) {
+      uint32_t* h = hist->data() + static_cast<size_t>(c) * kDigits;
+      for (int d = d0; d < d1; ++d) {
+        const uint32_t count = h[d];
+        h[d] = start[static_cast<size_t>(d)];
+        start[static_cast<size_t>(d)] += count;
+      }
+    }
+  });
+  return false;
+}
+
 // Sorts `keys` ascending in place (parallel stable LSD radix, see above).
-void RadixSortKeys(std::vector<uint32_t>* keys) {
+void RadixSortKeys(KeyVector* keys) {
   const int n = static_cast<int>(keys->size());
   const int chunks = (n + kSortGrain - 1) / kSortGrain;
-  std::vector<uint32_t> tmp(keys->size());
+  KeyVector tmp(keys->size());
   std::vector<uint32_t> hist(static_cast<size_t>(chunks) * kDigits);
   for (int shift = 0; shift < 32; shift += 11) {
     const uint32_t* src = keys->data();
     uint32_t* dst = tmp.data();
-    std::fill(hist.begin(), hist.end(), 0u);
     ParallelForChunks(n, kSortGrain, [&](int b, int e) {
       uint32_t* h = &hist[static_cast<size_t>(b / kSortGrain) * kDigits];
+      std::fill(h, h + kDigits, 0u);
       for (int i = b; i < e; ++i) ++h[(src[i] >> shift) & (kDigits - 1)];
     });
-    // Offsets: digit-major, then chunk order (hist becomes each chunk's first slot per digit).
-    uint32_t next = 0;
-    bool one_digit = false;
-    for (int d = 0; d < kDigits; ++d) {
-      uint32_t digit_total = 0;
-      for (int c = 0; c < chunks; ++c) {
-        uint32_t& h = hist[static_cast<size_t>(c) * kDigits + static_cast<size_t>(d)];
-        const uint32_t count = h;
-        h = next;
-        next += count;
-        digit_total += count;
-      }
-      if (digit_total == static_cast<uint32_t>(n)) one_digit = true;
-    }
-    if (one_digit) continue;  // every key has this digit: the pass would not move anything
+    // every key has this digit: the pass would not move anything
+    if (DigitOffsets(&hist, chunks, static_cast<uint32_t>(n))) continue;
     ParallelForChunks(n, kSortGrain, [&](int b, int e) {
       uint32_t* h = &hist[static_cast<size_t>(b / kSortGrain) * kDigits];
       for (int i = b; i < e; ++i) dst[h[(src[i] >> shift) & (kDigits - 1)]++] = src[i];
@@ -579,12 +611,14 @@ double KeyValue(uint32_t key) {
 template <typename Sorted>
 double WeightedMedianOfSorted(size_t n, const Sorted& at) {
   constexpr size_t kBlock = 4096;
-  std::vector<double> block_start;  // running sum before element b · kBlock
-  block_start.reserve(n / kBlock + 1);
+  std::vector<double> block_start((n + kBlock - 1) / kBlock);  // running sum before element b · kBlock
   double total = 0.0;
-  for (size_t i = 0; i < n; ++i) {
-    if (i % kBlock == 0) block_start.push_back(total);
-    total += at(i);
+  for (size_t b = 0; b < block_start.size(); ++b) {
+    block_start[b] = total;
+    // The running sum stays in a register (no reference to it escapes): the chain costs one
+    // add's latency per value; a push_back(total) made GCC keep it in memory (~2× slower).
+    const size_t e = std::min(n, (b + 1) * kBlock);
+    for (size_t i = b * kBlock; i < e; ++i) total += at(i);
   }
   if (!(total > 0.0)) return 0.0;
   const double half = 0.5 * total;
@@ -602,22 +636,32 @@ double WeightedMedianOfSorted(size_t n, const Sorted& at) {
 
 }  // namespace
 
-FlipPooled PoolFlip(const std::vector<double>& values) {
+FlipPooled PoolFlip(std::span<const double> values) {
   AALAB_CHECK(!values.empty(), "PoolFlip of no values");
   FlipPooled p;
-  double sum = 0.0;
-  p.max = values[0];
-  for (double v : values) {
-    sum += v;
-    p.max = std::max(p.max, v);
-  }
-  p.mean = sum / static_cast<double>(values.size());
-  std::vector<uint32_t> keys;
-  if (FloatKeys(values, &keys)) {
-    RadixSortKeys(&keys);
+  // The mean's sum is one serial chain in the given order; it runs as a task beside the
+  // sort (whose loops are parallel), so a second thread hides it. Same additions, same bits.
+  KeyVector keys;
+  bool float_keys = false;
+  ParallelFor(2, [&](int task) {
+    if (task == 0) {
+      double sum = 0.0;
+      double max = values[0];
+      for (double v : values) {
+        sum += v;
+        max = std::max(max, v);
+      }
+      p.mean = sum / static_cast<double>(values.size());
+      p.max = max;
+    } else {
+      float_keys = FloatKeys(values, &keys);
+      if (float_keys) RadixSortKeys(&keys);
+    }
+  });
+  if (float_keys) {
     p.weighted_median = WeightedMedianOfSorted(keys.size(), [&](size_t i) { return KeyValue(keys[i]); });
   } else {
-    std::vector<double> sorted = values;
+    std::vector<double> sorted(values.begin(), values.end());
     std::sort(sorted.begin(), sorted.end());
     p.weighted_median = WeightedMedianOfSorted(sorted.size(), [&](size_t i) { return sorted[i]; });
   }

@@ -5,9 +5,11 @@
 #pragma once
 #include <array>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/image.h"
+#include "metrics/metric.h"
 
 namespace aalab {
 
@@ -35,8 +37,11 @@ struct FlipPooled {
 /// e(1) + ... + e(k) > 0.5 · (e(1) + ... + e(N)) (sums in double, in sorted order), i.e. the
 /// median of the distribution in which each pixel weighs its own error: the "Weighted
 /// median" of NVIDIA's FLIP tool v1.4 (`pooling::getPercentile(0.5, weighted = true)`);
-/// 0 when every value is 0.
-FlipPooled PoolFlip(const std::vector<double>& values);
+/// 0 when every value is 0. The same values at any thread count: the mean's sum is one serial
+/// pass in the given order (run beside the sort), the sort's loops are parallel.
+FlipPooled PoolFlip(std::span<const double> values);
+/// PoolFlip of a std::vector (also of a braced list of values).
+inline FlipPooled PoolFlip(const std::vector<double>& values) { return PoolFlip(std::span<const double>(values)); }
 
 /// Building blocks of LDR-FLIP, exposed for tests and cross-checks. Colours are triples of
 /// double; "Lab" is CIELAB with the D65 white of NVIDIA's code.
@@ -123,7 +128,7 @@ std::vector<double> FeatureErrorValues(const ImageF& reference, const ImageF& te
 /// ErrorValues(*PrepareReference(reference, ppd), test) bit for bit. Against the double
 /// path (ErrorValuesUncached): mean within ~1e-7, pixels within ~1e-5 (up to 2e-4 where
 /// ΔEc ≈ 0 and ΔEf > 0); METRICS.md gives the measurements, also against NVIDIA's tool.
-std::vector<double> ErrorValues(const ImageF& reference, const ImageF& test, double ppd);
+FlipValues ErrorValues(const ImageF& reference, const ImageF& test, double ppd);
 /// The reference's half of LDR-FLIP (its filtered Hunt-adjusted Lab colours and feature
 /// magnitudes, float32: 20 bytes a pixel), which depends on the reference and ppd alone: a
 /// run scores every method against one reference, so the runner prepares it once per scene
@@ -134,7 +139,7 @@ std::shared_ptr<const ReferenceSide> PrepareReference(const ImageF& reference, d
 /// ErrorValues against a prepared reference: the same values as ErrorValues(reference,
 /// test, ppd), bit for bit. UserError when `test`'s size differs from the reference's or it
 /// has fewer than 3 channels.
-std::vector<double> ErrorValues(const ReferenceSide& reference, const ImageF& test);
+FlipValues ErrorValues(const ReferenceSide& reference, const ImageF& test);
 /// The double-precision implementation of the definition (flip.cpp; the outside-oracle
 /// cross-checks run on it at 1e-12); the tests bound the production path against it.
 std::vector<double> ErrorValuesUncached(const ImageF& reference, const ImageF& test, double ppd);

@@ -11,6 +11,11 @@ namespace aalab {
 
 struct SsimReferenceSide;  // metrics/ssim.h
 
+/// Per-pixel FLIP values, row-major (flip::ErrorValues): a std::vector<double> whose storage
+/// is not zero-filled when it is sized (DefaultInitAllocator), since the producer writes every
+/// value; copies and comparisons are std::vector's.
+using FlipValues = std::vector<double, DefaultInitAllocator<double>>;
+
 /// One isolated flat disk for the signed coverage (area bias) metric: a window that holds the
 /// whole disk and, outside it, one uniform colour; the disk's colour and that colour in
 /// display-linear light; its exact area and radius in pixels. Built from the scene
@@ -30,7 +35,7 @@ struct MetricInput {
   const ImageF* none_image = nullptr;  ///< the `none` frame, for relative metrics (optional)
   /// Optional: flip::ErrorValues(*reference, *image, flip_ppd), already computed by
   /// the caller (the runner also needs it for the FLIP heatmap). Same values either way.
-  const std::vector<double>* flip_values = nullptr;
+  const FlipValues* flip_values = nullptr;
   /// Pixels per degree of the viewing condition (metrics/viewing.h) FLIP uses; 67 (FLIP's
   /// default, kFlipDefaultPpd) unless the run names another.
   double flip_ppd = 67.0;

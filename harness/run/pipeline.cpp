@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/params.h"
+#include "core/parallel.h"
 #include "core/timer.h"
 #include "metrics/crops.h"
 #include "metrics/metric.h"
@@ -393,7 +394,7 @@ void ScoreOutput(const PreparedScene& p, Image8 frame, MethodOutput* out, StageC
 PreparedScene::Scored ScoreFrame(const PreparedScene& p, const Image8& frame) {
   PreparedScene::Scored scored;
   const ImageF out_f = ToFloat(frame, 3);
-  const std::vector<double> flip_values = flip::ErrorValues(*p.flip_reference, out_f);
+  const FlipValues flip_values = flip::ErrorValues(*p.flip_reference, out_f);
   MetricInput in;
   in.image = &out_f;
   in.reference = &p.ref.image;
@@ -405,10 +406,14 @@ PreparedScene::Scored ScoreFrame(const PreparedScene& p, const Image8& frame) {
   in.ssim_reference = p.ssim_reference.get();
   for (const auto& v : ComputeAllMetrics(in)) scored.metrics.push_back({v.name, v.value, v.null_reason});
   // The FLIP map for the page, 8 bits: round(255 · v), v in [0, 1].
+  // Per pixel, so rows in parallel give the same bytes.
   scored.flip_grey.resize(flip_values.size());
-  for (size_t i = 0; i < flip_values.size(); ++i) {
-    scored.flip_grey[i] = static_cast<uint8_t>(std::lround(std::clamp(flip_values[i], 0.0, 1.0) * 255.0));
-  }
+  const int w = std::max(1, frame.Width());
+  ParallelForChunks(static_cast<int>(flip_values.size() / static_cast<size_t>(w)), 64, [&](int y0, int y1) {
+    for (size_t i = static_cast<size_t>(y0) * w; i < static_cast<size_t>(y1) * w; ++i) {
+      scored.flip_grey[i] = static_cast<uint8_t>(std::lround(std::clamp(flip_values[i], 0.0, 1.0) * 255.0));
+    }
+  });
   return scored;
 }
 

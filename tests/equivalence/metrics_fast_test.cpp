@@ -111,7 +111,7 @@ TEST(FastPath, FlipFloatPathAgainstDouble) {
   for (double ppd : {67.0, 30.0}) {
     for (size_t i = 0; i + 1 < frames.size(); ++i) {
       const ImageF a = ToFloat(frames[i].img), b = ToFloat(frames[i + 1].img);
-      const std::vector<double> fast = flip::ErrorValues(a, b, ppd);
+      const FlipValues fast = flip::ErrorValues(a, b, ppd);
       const std::vector<double> ref = flip::ErrorValuesUncached(a, b, ppd);
       ASSERT_EQ(fast.size(), ref.size());
       double worst = 0.0, sum_fast = 0.0, sum_ref = 0.0;
@@ -140,13 +140,13 @@ TEST(FastPath, FlipPreparedReferenceEqualsDirectAtOneAndTwoThreads) {
     for (size_t i = 1; i < frames.size(); ++i) {
       const ImageF test = ToFloat(frames[i].img);
       SetThreadCount(1);
-      const std::vector<double> direct1 = flip::ErrorValues(ref, test, ppd);
-      const std::vector<double> prepared1 = flip::ErrorValues(*side, test);
+      const FlipValues direct1 = flip::ErrorValues(ref, test, ppd);
+      const FlipValues prepared1 = flip::ErrorValues(*side, test);
       SetThreadCount(2);
-      const std::vector<double> direct2 = flip::ErrorValues(ref, test, ppd);
-      const std::vector<double> prepared2 = flip::ErrorValues(*side, test);
+      const FlipValues direct2 = flip::ErrorValues(ref, test, ppd);
+      const FlipValues prepared2 = flip::ErrorValues(*side, test);
       const auto side2 = flip::PrepareReference(ref, ppd);
-      const std::vector<double> prepared2b = flip::ErrorValues(*side2, test);
+      const FlipValues prepared2b = flip::ErrorValues(*side2, test);
       for (const auto* v : {&prepared1, &direct2, &prepared2, &prepared2b}) {
         ASSERT_EQ(v->size(), direct1.size());
         EXPECT_EQ(std::memcmp(v->data(), direct1.data(), direct1.size() * sizeof(double)), 0)
@@ -167,7 +167,7 @@ TEST(FastPath, FlipOddSizes) {
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)
         for (int c = 0; c < 3; ++c) b3.At(x, y, c) = b.At(x, y, c);
-    const std::vector<double> fast = flip::ErrorValues(*flip::PrepareReference(a, 67.0), b);
+    const FlipValues fast = flip::ErrorValues(*flip::PrepareReference(a, 67.0), b);
     const std::vector<double> ref = flip::ErrorValuesUncached(a, b3, 67.0);
     ASSERT_EQ(fast.size(), ref.size());
     for (size_t k = 0; k < fast.size(); ++k) EXPECT_NEAR(fast[k], ref[k], 1e-3) << w << "x" << h << " pixel " << k;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <numeric>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
@@ -298,15 +299,44 @@ TEST(Flip, WeightedMedianEqualsTheSortBasedOneOnRandomAndAdversarialInputs) {
   cases.emplace_back("one value", std::vector<double>{0.7});
   for (const auto& [name, v] : cases) {
     const double expected = SortedWeightedMedian(v);
+    // The mean and max as the doc block defines them: one plain pass in the given order.
+    double sum = 0.0, max = v[0];
+    for (double x : v) sum += x, max = std::max(max, x);
+    const double mean = sum / static_cast<double>(v.size());
     for (int threads : {1, 2, 3}) {
       SetThreadCount(threads);
-      EXPECT_EQ(PoolFlip(v).weighted_median, expected) << name << ", " << threads << " threads";
+      const FlipPooled p = PoolFlip(v);
+      EXPECT_EQ(p.weighted_median, expected) << name << ", " << threads << " threads";
+      EXPECT_EQ(p.mean, mean) << name << ", " << threads << " threads";
+      EXPECT_EQ(p.max, max) << name << ", " << threads << " threads";
     }
   }
   SetThreadCount(0);
   // Hand-worked: the two-levels case's total is 4096·0.25 + 4096·0.5 = 3072, half 1536; the
   // 0.25s sum to 1024, so the crossing is among the 0.5s.
   EXPECT_EQ(SortedWeightedMedian(cases[7].second), 0.5);
+}
+
+// ErrorValues' output is not zero-filled before the chunks write it: with the test poison on
+// (every such buffer filled with 0xFF bytes, a NaN, or 0x00 first), the values must be the
+// same bits as without it, at 1 and 2 threads, on a size of several 48-row chunks with a
+// short last one (130x101: 3 chunks), so a pixel some chunk forgot would show.
+TEST(Flip, ErrorValuesWriteEveryValue) {
+  const auto [a, b] = testimg::MakePair(130, 101, 21);
+  const auto side = flip::PrepareReference(a, 67.0);
+  const FlipValues plain = flip::ErrorValues(*side, b);
+  for (int threads : {1, 2}) {
+    SetThreadCount(threads);
+    for (int poison : {0xFF, 0x00}) {
+      SetUninitializedPoison(poison);
+      const FlipValues v = flip::ErrorValues(*side, b);
+      SetUninitializedPoison(-1);
+      ASSERT_EQ(v.size(), plain.size());
+      EXPECT_EQ(std::memcmp(v.data(), plain.data(), v.size() * sizeof(double)), 0)
+          << "poison " << poison << ", " << threads << " threads";
+    }
+  }
+  SetThreadCount(0);
 }
 
 TEST(Flip, BadInputsAreUserErrors) {
