@@ -43,6 +43,7 @@
 #include "core/parallel.h"
 #include "methods/smaa.h"
 #include "methods/row_ops.h"
+#include "methods/smaa_rows.h"
 #include "methods/smaa_shader.h"
 
 namespace aalab {
@@ -66,10 +67,20 @@ constexpr uint8_t kTop = 2;
 // The edge texture as one byte per pixel (bit 0 = r, bit 1 = g), plus one flag per row
 // (any edge in the row). The bytes are allocated uninitialised: the parallel pass that
 // fills a row clears it first (no serial zero-fill of the whole plane).
+// With `lists`, each row's edge pixels are also listed (columns ascending, in xs at offset
+// y·w, count in n[y]): the fused weight and blend pass visits only those.
 struct EdgePlane {
   int w = 0, h = 0;
   std::unique_ptr<uint8_t[]> e;
   std::vector<uint8_t> row_any;
+  std::unique_ptr<uint16_t[]> xs;  // uninitialised; only each row's first n[y] entries are written
+  std::vector<int> n;
+  void ListRow(int y, bool any) {
+    if (!xs) return;
+    n[static_cast<size_t>(y)] = any ? smaa_internal::ListNonZero(Row(y), w, List(y)) : 0;
+  }
+  uint16_t* List(int y) { return xs.get() + static_cast<size_t>(y) * w; }
+  const uint16_t* List(int y) const { return xs.get() + static_cast<size_t>(y) * w; }
   const uint8_t* Row(int y) const { return e.get() + static_cast<size_t>(y) * w; }
   uint8_t* Row(int y) { return e.get() + static_cast<size_t>(y) * w; }
 };
@@ -134,56 +145,6 @@ void CandidateRow(const uint8_t* __restrict row, const uint8_t* __restrict top, 
   for (int x = 0; x < w; ++x) cand[x] = (tmp[4 * x] | tmp[4 * x + 1] | tmp[4 * x + 2]) != 0 || safe < 0;
 }
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define AALAB_SMAA_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define AALAB_SMAA_CLONES
-#endif
-
-// std::max of floats as a select the compiler vectorises (std::max(a, b) is a < b ? b : a).
-inline float MaxF(float a, float b) { return a < b ? b : a; }
-
-// Luma detection, pass 1 in whole rows. The lumas of one row, every pixel at once, as
-// Lumas()' tables give them ((r + g) + b of UnormToFloat(k)·weight), padded for the clamped
-// neighbours: l[0] = l[1] = L(0) (x − 2 and x − 1 of column 0), l[x + 2] = L(x),
-// l[w + 2] = L(w − 1).
-AALAB_SMAA_CLONES void LumaRow(const uint8_t* __restrict src, int w, float* __restrict l) {
-  float* __restrict o = l + 2;
-  for (int x = 0; x < w; ++x) {
-    const float r = static_cast<float>(src[4 * x]) * (1.0f / 255.0f) * 0.2126f;
-    const float g = static_cast<float>(src[4 * x + 1]) * (1.0f / 255.0f) * 0.7152f;
-    const float b = static_cast<float>(src[4 * x + 2]) * (1.0f / 255.0f) * 0.0722f;
-    o[x] = (r + g) + b;
-  }
-  l[0] = l[1] = o[0];
-  l[w + 2] = o[w - 1];
-}
-
-// EdgePixel's luma deltas and EdgeBits for every pixel of a row (padded luma rows of LumaRow:
-// centre, top, top-top, bottom), in a loop the compiler vectorises; a pixel the shader
-// discards gets 0, as the prefilter's settled pixels do. Returns the number of pixels the
-// shader does not discard (dx or dy ≥ threshold) and ORs the edge bytes into *any.
-AALAB_SMAA_CLONES int EdgeRowLuma(const float* __restrict lc, const float* __restrict lt, const float* __restrict ltt,
-                                  const float* __restrict lb, int w, float thr, float lcf, uint8_t* __restrict out,
-                                  uint8_t* any) {
-  int kept = 0;
-  uint8_t seen = 0;
-  for (int x = 0; x < w; ++x) {
-    const float c = lc[x + 2], l = lc[x + 1], t = lt[x + 2];
-    const float dx = std::fabs(c - l), dy = std::fabs(c - t), dr = std::fabs(c - lc[x + 3]);
-    const float db = std::fabs(c - lb[x + 2]), dll = std::fabs(l - lc[x]), dtt = std::fabs(t - ltt[x + 2]);
-    const int ex = dx >= thr, ey = dy >= thr;
-    const float final_delta = MaxF(MaxF(MaxF(dx, dr), dll), MaxF(MaxF(dy, db), dtt));
-    const int bx = ex & (lcf * dx >= final_delta), by = ey & (lcf * dy >= final_delta);
-    const uint8_t bits = static_cast<uint8_t>(bx * kLeft | by * kTop);
-    out[x] = bits;
-    seen |= bits;
-    kept += ex | ey;
-  }
-  *any = seen;
-  return kept;
-}
-
 // Pass 1, luma detection: each chunk of kLumaRows rows computes the luma rows it reads (its
 // rows, two above, one below: 35 per 32) once, then every pixel's edge bits. Same bits and
 // taps as the prefilter path.
@@ -195,16 +156,19 @@ void EdgesLumaRows(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint
   ParallelForChunks(h, kLumaRows, [&](int y0, int y1) {
     const int base = std::max(y0 - 2, 0), last = std::min(y1, h - 1);
     std::vector<float> buf(static_cast<size_t>(last - base + 1) * stride);
-    for (int y = base; y <= last; ++y) LumaRow(in.Row(y), w, buf.data() + static_cast<size_t>(y - base) * stride);
+    for (int y = base; y <= last; ++y) {
+      smaa_internal::LumaRow(in.Row(y), w, buf.data() + static_cast<size_t>(y - base) * stride);
+    }
     auto row = [&](int y) { return buf.data() + static_cast<size_t>(y - base) * stride; };
     uint64_t n = 0;
     for (int y = y0; y < y1; ++y) {
       uint8_t any = 0;
-      const int kept =
-          EdgeRowLuma(row(y), row(std::max(y - 1, 0)), row(std::max(y - 2, 0)), row(std::min(y + 1, h - 1)), w,
-                      p.threshold, p.local_contrast_factor, plane->Row(y), &any);
+      const int kept = smaa_internal::EdgeRowLuma(row(y), row(std::max(y - 1, 0)), row(std::max(y - 2, 0)),
+                                                  row(std::min(y + 1, h - 1)), w, p.threshold, p.local_contrast_factor,
+                                                  plane->Row(y), &any);
       n += 3 * static_cast<uint64_t>(w) + 4 * static_cast<uint64_t>(kept);
       plane->row_any[static_cast<size_t>(y)] = any != 0;
+      plane->ListRow(y, any != 0);
     }
     t[static_cast<size_t>(y0 / kLumaRows)] = n;
   });
@@ -270,6 +234,7 @@ void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t
       }
       n += 3 * static_cast<uint64_t>(w) + 4 * kept;
       plane->row_any[static_cast<size_t>(y)] = any != 0;
+      plane->ListRow(y, any != 0);
     }
     t[static_cast<size_t>(y0 / kGrain)] = n;
   });
@@ -522,6 +487,117 @@ Image8 BlendFast(const Image8& in, const BlendTex& blend, const SmaaParams& p, u
   return out;
 }
 
+// Passes 2 and 3 fused, for 8-bit sub-texel fetches on frames up to kMaxShortcutSize (where
+// a pixel's weights can be non-zero only if it has an edge bit, and a pixel blends only if
+// own.r, own.b, right.a or bottom.g is non-zero: WeightsFast and BlendFlags). A band of
+// kBand rows computes the weights of its rows' listed edge pixels (and of the row below it,
+// again, untallied: the next band's first row) into two scratch rows, row by row; once the
+// weights of rows y and y + 1 are final, row y of the output is the input row (alpha 255)
+// with only the pixels that blend run through BlendColor. No full-frame blend texture, no
+// zero-fill, no walk over pixels without edges. Taps as the two passes count them: pass 2
+// one fetch per pixel without an edge, pass 3 four per pixel that does not blend and three
+// plus its colour fetches per pixel that does.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_SMAA_BAND __attribute__((target_clones("avx2", "default"), flatten))
+#else
+#define AALAB_SMAA_BAND
+#endif
+constexpr int kBand = 32;
+
+struct FusedJob {
+  const Image8* in;
+  Image8* out;
+  const EdgePlane* edges;
+  const SmaaParams* p;
+};
+
+// The weights of row y's edge pixels into wr (4 bytes per pixel; the other bytes stay 0).
+template <class Shader>
+[[gnu::always_inline]] inline void WeightsRow(Shader& shader, const EdgePlane& edges, int y, uint8_t* wr) {
+  const uint16_t* xs = edges.List(y);
+  const int n = edges.n[static_cast<size_t>(y)];
+  for (int i = 0; i < n; ++i) {
+    const int x = xs[i];
+    const Float4 wt = shader.Run(x, y);
+    uint8_t* o = wr + 4 * x;
+    o[0] = QuantizeUnorm8(wt.r);
+    o[1] = QuantizeUnorm8(wt.g);
+    o[2] = QuantizeUnorm8(wt.b);
+    o[3] = QuantizeUnorm8(wt.a);
+  }
+}
+
+AALAB_SMAA_BAND void FusedBand(const FusedJob& job, int y0, int y1, uint64_t* taps) {
+  const Image8& in = *job.in;
+  const EdgePlane& edges = *job.edges;
+  const int w = in.Width(), h = in.Height();
+  const Frame f(w, h);
+  PlaneEdges reader(edges, job.p->subtexel);
+  InlineSampler as(Tex8(SmaaAreaTexture()), job.p->subtexel), ss(Tex8(SmaaSearchTexture()), job.p->subtexel);
+  InlineSampler cs(Tex8(in), job.p->subtexel);
+  smaa_detail::WeightsShader<PlaneEdges, InlineSampler> shader(reader, as, ss, *job.p, f);
+  std::vector<uint8_t> rows(8 * static_cast<size_t>(w), 0), mark(static_cast<size_t>(w), 0);
+  std::vector<uint16_t> cand(static_cast<size_t>(w));
+  uint8_t* cur = rows.data();
+  uint8_t* nxt = cur + 4 * static_cast<size_t>(w);
+  uint64_t n = 0;
+  WeightsRow(shader, edges, y0, cur);
+  for (int y = y0; y < y1; ++y) {
+    const uint64_t before = reader.Taps() + as.Taps() + ss.Taps();
+    if (y + 1 < h) WeightsRow(shader, edges, y + 1, nxt);
+    if (y + 1 < h && y + 1 < y1) n += reader.Taps() + as.Taps() + ss.Taps() - before;  // row y + 1's own taps
+    if (y == y0) n += before;  // row y0's (computed before the loop)
+    const uint8_t* below = y + 1 < h ? nxt : cur;
+    const int ny = edges.n[static_cast<size_t>(y)], nb = edges.n[static_cast<size_t>(std::min(y + 1, h - 1))];
+    n += static_cast<uint64_t>(w - ny);  // pass 2: one fetch per pixel without an edge
+    // Pass 3's candidates: own.r or own.b (x), right.a (x − 1; x itself at the clamped last
+    // column), bottom.g (x).
+    int nc = 0;
+    auto add = [&](int x) {
+      if (!mark[static_cast<size_t>(x)])
+        mark[static_cast<size_t>(x)] = 1, cand[static_cast<size_t>(nc++)] = static_cast<uint16_t>(x);
+    };
+    const uint16_t* xs = edges.List(y);
+    for (int i = 0; i < ny; ++i) {
+      const int x = xs[i];
+      const uint8_t* o = cur + 4 * x;
+      if (o[3] && x > 0) add(x - 1);
+      if (o[0] | o[2] | (o[3] && x == w - 1)) add(x);
+    }
+    const uint16_t* xb = edges.List(std::min(y + 1, h - 1));
+    for (int i = 0; i < nb; ++i) {
+      if (below[4 * xb[i] + 1]) add(xb[i]);
+    }
+    const uint8_t* src = in.Row(y);
+    uint8_t* dst = job.out->Row(y);
+    CopyRowOpaque(src, dst, w);
+    const uint64_t colour_before = cs.Taps();
+    for (int i = 0; i < nc; ++i) {
+      const int x = cand[static_cast<size_t>(i)];
+      mark[static_cast<size_t>(x)] = 0;
+      const int xr = std::min(x + 1, w - 1);
+      const float a[4] = {UnormToFloat(cur[4 * xr + 3]), UnormToFloat(below[4 * x + 1]), UnormToFloat(cur[4 * x + 2]),
+                          UnormToFloat(cur[4 * x])};
+      smaa_detail::BlendWithWeights(a, cs, f, x, y, dst + 4 * x);
+    }
+    n += 4 * static_cast<uint64_t>(w) - static_cast<uint64_t>(nc) + (cs.Taps() - colour_before);
+    for (int i = 0; i < ny; ++i) std::memset(cur + 4 * xs[i], 0, 4);  // row y's weights are done
+    std::swap(cur, nxt);
+  }
+  *taps = n;
+}
+
+// Passes 2 and 3 through FusedBand, bands in parallel.
+Image8 WeightsAndBlendFused(const Image8& in, const EdgePlane& edges, const SmaaParams& p, uint64_t* taps) {
+  const int h = in.Height();
+  Image8 out(in.Width(), h, 4, kUninitialized);  // every row written by its band
+  const FusedJob job{&in, &out, &edges, &p};
+  std::vector<uint64_t> t(static_cast<size_t>((h + kBand - 1) / kBand), 0);
+  ParallelForChunks(h, kBand, [&](int y0, int y1) { FusedBand(job, y0, y1, &t[static_cast<size_t>(y0 / kBand)]); });
+  for (uint64_t v : t) *taps += v;
+  return out;
+}
+
 }  // namespace
 
 Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug_view, PostStats* stats) {
@@ -536,15 +612,25 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
   edges.h = in.Height();
   edges.e.reset(new uint8_t[in.PixelCount()]);  // rows cleared by EdgesFast
   edges.row_any.resize(static_cast<size_t>(in.Height()));
+  const bool precise =
+      params.subtexel == SubTexel::kFixed8 && in.Width() <= kMaxShortcutSize && in.Height() <= kMaxShortcutSize;
+  const bool fused = precise && view == 0;
+  if (fused) {
+    edges.xs.reset(new uint16_t[in.PixelCount()]);  // rows listed by EdgesFast
+    edges.n.assign(static_cast<size_t>(in.Height()), 0);
+  }
   EdgesFast(in, params, &edges, &taps);
+  if (fused) {
+    Image8 out = WeightsAndBlendFused(in, edges, params, &taps);
+    if (stats) stats->taps += taps;
+    return out;
+  }
   if (view == 1 && stats) stats->taps += taps;  // a debug view counts the passes it ran
   if (view == 1) return smaa_detail::EdgesView(EdgeTextureOf(edges));
   BlendTex blend;
   blend.w = in.Width();
   blend.h = in.Height();
-  blend.px.reset(new uint8_t[4 * in.PixelCount()]);  // rows cleared by WeightsFast
-  const bool precise =
-      params.subtexel == SubTexel::kFixed8 && in.Width() <= kMaxShortcutSize && in.Height() <= kMaxShortcutSize;
+  blend.px.reset(new uint8_t[4 * in.PixelCount()]);            // rows cleared by WeightsFast
   if (!precise) blend.nz.reset(new uint8_t[in.PixelCount()]);  // only the footprint test of BlendFlags reads it
   blend.row_any.assign(static_cast<size_t>(in.Height()), 0);
   WeightsFast(edges, params, &blend, &taps);

@@ -11,6 +11,7 @@ set(AALAB_METHOD_SOURCES
   fxaa311_rows.cpp
   smaa.cpp
   smaa_fast.cpp
+  smaa_rows.cpp
   smaa_textures.cpp
   cmaa2.cpp
   rescale.cpp
