@@ -46,6 +46,10 @@
 #include "methods/smaa_rows.h"
 #include "methods/smaa_shader.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace aalab {
 
 namespace smaa_detail {
@@ -146,23 +150,25 @@ void CandidateRow(const uint8_t* __restrict row, const uint8_t* __restrict top, 
 }
 
 // Pass 1, luma detection: each chunk of kLumaRows rows computes the luma rows it reads (its
-// rows, two above, one below: 35 per 32) once, then every pixel's edge bits. Same bits and
-// taps as the prefilter path.
+// rows, two above, one below: 35 per 32) once, into a ring of four rows (rows y − 2 .. y + 1,
+// slot = row mod 4; every float of a slot is written before it is read, so no fill), then
+// every pixel's edge bits and the row's edge list. Same bits and taps as the prefilter path.
 constexpr int kLumaRows = 32;
 void EdgesLumaRows(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t* taps) {
   const int w = in.Width(), h = in.Height();
   const size_t stride = static_cast<size_t>(w) + 3;
   std::vector<uint64_t> t(static_cast<size_t>((h + kLumaRows - 1) / kLumaRows), 0);
   ParallelForChunks(h, kLumaRows, [&](int y0, int y1) {
-    const int base = std::max(y0 - 2, 0), last = std::min(y1, h - 1);
-    std::vector<float> buf(static_cast<size_t>(last - base + 1) * stride);
-    for (int y = base; y <= last; ++y) {
-      smaa_internal::LumaRow(in.Row(y), w, buf.data() + static_cast<size_t>(y - base) * stride);
-    }
-    auto row = [&](int y) { return buf.data() + static_cast<size_t>(y - base) * stride; };
+    std::unique_ptr<float[]> buf(new float[4 * stride]);
+    auto row = [&](int y) { return buf.get() + static_cast<size_t>(y & 3) * stride; };
+    int next = std::max(y0 - 2, 0);  // the first row not yet in the ring
+    auto ensure = [&](int last) {
+      for (; next <= last; ++next) smaa_internal::LumaRow(in.Row(next), w, row(next));
+    };
     uint64_t n = 0;
     for (int y = y0; y < y1; ++y) {
       uint8_t any = 0;
+      ensure(std::min(y + 1, h - 1));
       const int kept = smaa_internal::EdgeRowLuma(row(y), row(std::max(y - 1, 0)), row(std::max(y - 2, 0)),
                                                   row(std::min(y + 1, h - 1)), w, p.threshold, p.local_contrast_factor,
                                                   plane->Row(y), &any);
@@ -278,16 +284,38 @@ class InlineSampler {
     const uint8_t* c = img_.Pixel(xa, yb);
     const uint8_t* d = img_.Pixel(xb, yb);
     Float4 r;
+#if defined(__SSE2__)
+    // The four channels' BilinearBlend in the lanes of one vector: per lane the same
+    // operations (k·fl(1/255), then FilterLerp's a + w·(b − a) three times), so the same bits.
+    const __m128 fx = _mm_set1_ps(f.fx), fy = _mm_set1_ps(f.fy);
+    const __m128 ta = U4(a), tb = U4(b), tc = U4(c), td = U4(d);
+    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
+    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
+    float v[4];
+    _mm_storeu_ps(v, _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top))));
+    r = {v[0], v[1], v[2], v[3]};
+#else
     r.r = BilinearBlend(U(a[0]), U(b[0]), U(c[0]), U(d[0]), f);
     r.g = BilinearBlend(U(a[1]), U(b[1]), U(c[1]), U(d[1]), f);
     r.b = BilinearBlend(U(a[2]), U(b[2]), U(c[2]), U(d[2]), f);
     r.a = BilinearBlend(U(a[3]), U(b[3]), U(c[3]), U(d[3]), f);
+#endif
     return r;
   }
   uint64_t Taps() const { return taps_; }
 
  private:
   static float U(uint8_t k) { return UnormToFloat(k); }  // BilinearSampler::Fetch
+#if defined(__SSE2__)
+  // U of the four bytes at p, in the lanes of a vector (byte → int32 → float, × fl(1/255)).
+  [[gnu::always_inline]] static __m128 U4(const uint8_t* p) {
+    uint32_t v;
+    std::memcpy(&v, p, 4);
+    const __m128i z = _mm_setzero_si128();
+    const __m128i x = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(static_cast<int>(v)), z), z);
+    return _mm_mul_ps(_mm_cvtepi32_ps(x), _mm_set1_ps(1.0f / 255.0f));
+  }
+#endif
   Tex8 img_;
   int w_, h_;
   SubTexel mode_;
@@ -301,14 +329,27 @@ class PlaneEdges {
   PlaneEdges(const EdgePlane& pl, SubTexel mode) : pl_(pl), mode_(mode) {}
   F2 Sample(float u, float v) {
     ++taps_;
-    static constexpr float kBit[2] = {0.0f, 1.0f};
     const int w = pl_.w, h = pl_.h;
     const BilinearFootprint f = BilinearAt(u, v, w, h, mode_);
     const int xa = std::clamp(f.x0, 0, w - 1), xb = std::clamp(f.x0 + 1, 0, w - 1);
     const int ya = std::clamp(f.y0, 0, h - 1), yb = std::clamp(f.y0 + 1, 0, h - 1);
     const uint8_t a = pl_.Row(ya)[xa], b = pl_.Row(ya)[xb], c = pl_.Row(yb)[xa], d = pl_.Row(yb)[xb];
+#if defined(__SSE2__)
+    // r and g in two lanes: the texels' (bit 0, bit 1) as floats from a table, then the same
+    // three FilterLerps per lane as BilinearBlend.
+    alignas(16) static constexpr float kPair[4][4] = {{0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {1, 1, 0, 0}};
+    const __m128 fx = _mm_set1_ps(f.fx), fy = _mm_set1_ps(f.fy);
+    const __m128 ta = _mm_load_ps(kPair[a]), tb = _mm_load_ps(kPair[b]);
+    const __m128 tc = _mm_load_ps(kPair[c]), td = _mm_load_ps(kPair[d]);
+    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
+    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
+    const __m128 rg = _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top)));
+    return {_mm_cvtss_f32(rg), _mm_cvtss_f32(_mm_shuffle_ps(rg, rg, 1))};
+#else
+    static constexpr float kBit[2] = {0.0f, 1.0f};
     return {BilinearBlend(kBit[a & 1], kBit[b & 1], kBit[c & 1], kBit[d & 1], f),
             BilinearBlend(kBit[a >> 1], kBit[b >> 1], kBit[c >> 1], kBit[d >> 1], f)};
+#endif
   }
   uint64_t Taps() const { return taps_; }
 
