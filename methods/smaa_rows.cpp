@@ -8,11 +8,17 @@
 // scalar forms and the build neither contracts nor reassociates (-ffp-contract=off, no
 // fast-math), so every lane is the scalar value; tests/methods/smaa_rows_test.cpp checks all
 // 2^24 colours and row lengths that reach each block and the tail.
-// EdgeRowLuma: a loop the compiler vectorises (AVX2 and baseline clones; no FMA in either).
+// EdgeRowLuma: SSE2 four columns a step, AVX2 eight: |c − l| and |c − t| against the
+// threshold first, and where no lane reaches it (most of a frame) the bytes are 0 at once;
+// otherwise the scalar form's deltas (sub, then the sign bit cleared, = std::fabs), their
+// max (max_ps equals the scalar select on non-negative, non-NaN values) and the two compares,
+// per lane. tests/methods/smaa_rows_test.cpp compares it with EdgeRowLumaScalar on rows near
+// the threshold and the contrast limit, ties included.
 // ListNonZero: a 16-byte compare and movemask per step, set bits listed in order.
 #include "methods/smaa_rows.h"
 
 #include <cmath>
+#include <cstring>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -20,9 +26,6 @@
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #include <immintrin.h>
 #define AALAB_SMAA_ROWS_AVX2 1
-#define AALAB_SMAA_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define AALAB_SMAA_CLONES
 #endif
 
 namespace aalab::smaa_internal {
@@ -105,16 +108,15 @@ void LumaRow(const uint8_t* src, int w, float* l) {
 }
 
 namespace {
-// std::max of floats as a select the compiler vectorises (std::max(a, b) is a < b ? b : a).
+// std::max of floats as a select (std::max(a, b) is a < b ? b : a).
 inline float MaxF(float a, float b) { return a < b ? b : a; }
-}  // namespace
 
-AALAB_SMAA_CLONES int EdgeRowLuma(const float* __restrict lc, const float* __restrict lt, const float* __restrict ltt,
-                                  const float* __restrict lb, int w, float thr, float lcf, uint8_t* __restrict out,
-                                  uint8_t* any) {
+// The scalar form of EdgeRowLuma for columns [x0, w): returns the kept count, ORs into *any.
+int EdgeRowLumaFrom(const float* lc, const float* lt, const float* ltt, const float* lb, int x0, int w, float thr,
+                    float lcf, uint8_t* out, uint8_t* any) {
   int kept = 0;
   uint8_t seen = 0;
-  for (int x = 0; x < w; ++x) {
+  for (int x = x0; x < w; ++x) {
     const float c = lc[x + 2], l = lc[x + 1], t = lt[x + 2];
     const float dx = std::fabs(c - l), dy = std::fabs(c - t), dr = std::fabs(c - lc[x + 3]);
     const float db = std::fabs(c - lb[x + 2]), dll = std::fabs(l - lc[x]), dtt = std::fabs(t - ltt[x + 2]);
@@ -126,8 +128,111 @@ AALAB_SMAA_CLONES int EdgeRowLuma(const float* __restrict lc, const float* __res
     seen |= bits;
     kept += ex | ey;
   }
-  *any = seen;
+  *any |= seen;
   return kept;
+}
+
+// kSpread[m]: byte i = bit i of m (eight lanes' compare mask as bytes).
+struct Spread {
+  uint64_t v[256];
+};
+const Spread& Spreads() {
+  static const Spread s = [] {
+    Spread t{};
+    for (int m = 0; m < 256; ++m) {
+      for (int i = 0; i < 8; ++i) t.v[m] |= static_cast<uint64_t>((m >> i) & 1) << (8 * i);
+    }
+    return t;
+  }();
+  return s;
+}
+
+#if defined(__SSE2__)
+// Columns [x, x + 4) of EdgeRowLuma: dx and dy first; when no lane reaches the threshold (most
+// of a frame) the four bytes are 0, else the other four deltas and the decision per lane.
+// |v| clears the sign bit (std::fabs); max_ps = MaxF on these non-negative, non-NaN deltas.
+// Returns the kept count of the four and ORs the bits into *seen.
+inline int Edge4(const float* lc, const float* lt, const float* ltt, const float* lb, int x, __m128 thr, __m128 lcf,
+                 uint8_t* out, uint8_t* seen) {
+  const __m128 abs = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128 c = _mm_loadu_ps(lc + x + 2), l = _mm_loadu_ps(lc + x + 1), t = _mm_loadu_ps(lt + x + 2);
+  const __m128 dx = _mm_and_ps(_mm_sub_ps(c, l), abs), dy = _mm_and_ps(_mm_sub_ps(c, t), abs);
+  const __m128 ex = _mm_cmpge_ps(dx, thr), ey = _mm_cmpge_ps(dy, thr);
+  const int m = _mm_movemask_ps(_mm_or_ps(ex, ey));
+  uint32_t bytes = 0;
+  if (m != 0) {
+    const __m128 dr = _mm_and_ps(_mm_sub_ps(c, _mm_loadu_ps(lc + x + 3)), abs);
+    const __m128 db = _mm_and_ps(_mm_sub_ps(c, _mm_loadu_ps(lb + x + 2)), abs);
+    const __m128 dll = _mm_and_ps(_mm_sub_ps(l, _mm_loadu_ps(lc + x)), abs);
+    const __m128 dtt = _mm_and_ps(_mm_sub_ps(t, _mm_loadu_ps(ltt + x + 2)), abs);
+    const __m128 fin = _mm_max_ps(_mm_max_ps(_mm_max_ps(dx, dr), dll), _mm_max_ps(_mm_max_ps(dy, db), dtt));
+    const int bx = _mm_movemask_ps(_mm_and_ps(ex, _mm_cmpge_ps(_mm_mul_ps(lcf, dx), fin)));
+    const int by = _mm_movemask_ps(_mm_and_ps(ey, _mm_cmpge_ps(_mm_mul_ps(lcf, dy), fin)));
+    const Spread& s = Spreads();
+    bytes = static_cast<uint32_t>(s.v[bx] | s.v[by] << 1);
+    *seen |= static_cast<uint8_t>(bx | by);
+  }
+  std::memcpy(out + x, &bytes, 4);
+  return __builtin_popcount(static_cast<unsigned>(m));
+}
+#endif
+
+#if defined(AALAB_SMAA_ROWS_AVX2)
+// Columns [x, x + 8) of EdgeRowLuma with AVX2: Edge4's operations on eight lanes.
+AALAB_AVX2 inline int Edge8(const float* lc, const float* lt, const float* ltt, const float* lb, int x, __m256 thr,
+                            __m256 lcf, uint8_t* out, uint8_t* seen) {
+  const __m256 abs = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+  const __m256 c = _mm256_loadu_ps(lc + x + 2), l = _mm256_loadu_ps(lc + x + 1), t = _mm256_loadu_ps(lt + x + 2);
+  const __m256 dx = _mm256_and_ps(_mm256_sub_ps(c, l), abs), dy = _mm256_and_ps(_mm256_sub_ps(c, t), abs);
+  const __m256 ex = _mm256_cmp_ps(dx, thr, _CMP_GE_OQ), ey = _mm256_cmp_ps(dy, thr, _CMP_GE_OQ);
+  const int m = _mm256_movemask_ps(_mm256_or_ps(ex, ey));
+  uint64_t bytes = 0;
+  if (m != 0) {
+    const __m256 dr = _mm256_and_ps(_mm256_sub_ps(c, _mm256_loadu_ps(lc + x + 3)), abs);
+    const __m256 db = _mm256_and_ps(_mm256_sub_ps(c, _mm256_loadu_ps(lb + x + 2)), abs);
+    const __m256 dll = _mm256_and_ps(_mm256_sub_ps(l, _mm256_loadu_ps(lc + x)), abs);
+    const __m256 dtt = _mm256_and_ps(_mm256_sub_ps(t, _mm256_loadu_ps(ltt + x + 2)), abs);
+    const __m256 fin =
+        _mm256_max_ps(_mm256_max_ps(_mm256_max_ps(dx, dr), dll), _mm256_max_ps(_mm256_max_ps(dy, db), dtt));
+    const int bx = _mm256_movemask_ps(_mm256_and_ps(ex, _mm256_cmp_ps(_mm256_mul_ps(lcf, dx), fin, _CMP_GE_OQ)));
+    const int by = _mm256_movemask_ps(_mm256_and_ps(ey, _mm256_cmp_ps(_mm256_mul_ps(lcf, dy), fin, _CMP_GE_OQ)));
+    const Spread& s = Spreads();
+    bytes = s.v[bx] | s.v[by] << 1;
+    *seen |= static_cast<uint8_t>(bx | by);
+  }
+  std::memcpy(out + x, &bytes, 8);
+  return __builtin_popcount(static_cast<unsigned>(m));
+}
+
+AALAB_AVX2 int EdgeRowLumaAvx2(const float* lc, const float* lt, const float* ltt, const float* lb, int w, float thr,
+                               float lcf, uint8_t* out, uint8_t* seen, int* kept) {
+  const __m256 vt = _mm256_set1_ps(thr), vl = _mm256_set1_ps(lcf);
+  int x = 0;
+  for (; x + 8 <= w; x += 8) *kept += Edge8(lc, lt, ltt, lb, x, vt, vl, out, seen);
+  return x;
+}
+#endif
+}  // namespace
+
+int EdgeRowLuma(const float* lc, const float* lt, const float* ltt, const float* lb, int w, float thr, float lcf,
+                uint8_t* out, uint8_t* any) {
+  int kept = 0, x = 0;
+  uint8_t seen = 0;
+#if defined(AALAB_SMAA_ROWS_AVX2)
+  if (HasAvx2()) x = EdgeRowLumaAvx2(lc, lt, ltt, lb, w, thr, lcf, out, &seen, &kept);
+#endif
+#if defined(__SSE2__)
+  const __m128 vt = _mm_set1_ps(thr), vl = _mm_set1_ps(lcf);
+  for (; x + 4 <= w; x += 4) kept += Edge4(lc, lt, ltt, lb, x, vt, vl, out, &seen);
+#endif
+  *any = seen;
+  return kept + EdgeRowLumaFrom(lc, lt, ltt, lb, x, w, thr, lcf, out, any);
+}
+
+int EdgeRowLumaScalar(const float* lc, const float* lt, const float* ltt, const float* lb, int w, float thr, float lcf,
+                      uint8_t* out, uint8_t* any) {
+  *any = 0;
+  return EdgeRowLumaFrom(lc, lt, ltt, lb, 0, w, thr, lcf, out, any);
 }
 
 int ListNonZero(const uint8_t* row, int w, uint16_t* xs) {

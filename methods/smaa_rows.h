@@ -19,9 +19,14 @@ void LumaRowScalar(const uint8_t* src, int w, float* l);
 /// EdgePixel's luma deltas and decision for every pixel of a row, from the padded luma rows
 /// of the pixel's row (lc), the rows above (lt), two above (ltt) and below (lb): out[x] gets
 /// bit 0 (left edge) and bit 1 (top edge); 0 for a pixel the shader discards. Returns the
-/// number of pixels the shader does not discard (dx or dy ≥ thr); *any = OR of the bytes.
+/// number of pixels the shader does not discard (dx or dy ≥ thr); *any is non-zero iff some
+/// byte is. SSE2 four columns a step (AVX2 eight where the CPU has it); the rows need no alignment.
 int EdgeRowLuma(const float* lc, const float* lt, const float* ltt, const float* lb, int w, float thr, float lcf,
                 uint8_t* out, uint8_t* any);
+
+/// The scalar form of EdgeRowLuma, kept as its reference.
+int EdgeRowLumaScalar(const float* lc, const float* lt, const float* ltt, const float* lb, int w, float thr, float lcf,
+                      uint8_t* out, uint8_t* any);
 
 /// The columns x in [0, w) with row[x] != 0, ascending, into xs (room for w entries);
 /// returns their number. SSE2, sixteen bytes a compare.

@@ -2,8 +2,8 @@
 // LumaRow for every one of the 2^24 rgb colours against SMAA.hlsl's dot (rgb of the UNORM
 // texels, float32, in dot's order), with row lengths and starts that reach the AVX2 blocks (8
 // pixels), the SSE2 blocks (4) and the scalar tail, and the padding of the clamped
-// neighbours; ListNonZero against a plain scan on rows with set bytes at both ends, in every
-// 16-byte lane and in the tail.
+// neighbours; EdgeRowLuma against its scalar form; ListNonZero against a plain scan on rows with set bytes at both
+// ends, in every 16-byte lane and in the tail.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -63,15 +63,63 @@ TEST(SmaaRows, LumaRowShortRowsMatchTheScalarForm) {
   }
 }
 
+// EdgeRowLuma (SSE2/AVX2 blocks and the early exit) against its scalar form, on luma rows drawn
+// from a few values whose differences hit the threshold and the local-contrast limit exactly
+// (binary fractions: k/16 with threshold 1/8; and decimal ones near 0.1), sparse and dense,
+// with widths that leave tails after the 8- and 4-column blocks.
+TEST(SmaaRows, EdgeRowLumaMatchesTheScalarForm) {
+  uint32_t s = 777;
+  auto next = [&] { return (s = s * 1664525u + 1013904223u) >> 8; };
+  struct Case {
+    float thr, lcf;
+    std::vector<float> values;
+  };
+  const std::vector<Case> cases = {{0.125f, 2.0f, {0.0f, 0.0625f, 0.125f, 0.25f, 0.375f, 0.5f, 1.0f}},
+                                   {0.1f, 2.0f, {0.05f, 0.1f, 0.15f, 0.2f, 0.3f, 0.7f}},
+                                   {0.0f, 0.0f, {0.0f, 0.5f}},
+                                   {0.05f, 1.5f, {0.2f, 0.25f, 0.3f, 0.45f}}};
+  long diff = 0, kept_diff = 0, any_diff = 0, rows = 0;
+  for (const Case& c : cases) {
+    for (int w : {1, 3, 4, 7, 8, 9, 13, 37, 1925}) {
+      for (int dense : {2, 10, 100}) {  // percent of columns that change value
+        std::vector<std::vector<float>> l(4, std::vector<float>(w + 3));
+        for (auto& row : l) {
+          float v = c.values[next() % c.values.size()];
+          for (int x = 0; x < w; ++x) {
+            if (static_cast<int>(next() % 100) < dense) v = c.values[next() % c.values.size()];
+            row[x + 2] = v;
+          }
+          row[0] = row[1] = row[2];
+          row[w + 2] = row[w + 1];
+        }
+        std::vector<uint8_t> a(w, 0xAA), b(w, 0x55);
+        uint8_t any_a = 7, any_b = 9;
+        const int ka = smaa_internal::EdgeRowLuma(l[0].data(), l[1].data(), l[2].data(), l[3].data(), w, c.thr, c.lcf,
+                                                  a.data(), &any_a);
+        const int kb = smaa_internal::EdgeRowLumaScalar(l[0].data(), l[1].data(), l[2].data(), l[3].data(), w, c.thr,
+                                                        c.lcf, b.data(), &any_b);
+        diff += a != b;
+        kept_diff += ka != kb;
+        any_diff += (any_a != 0) != (any_b != 0);
+        ++rows;
+      }
+    }
+  }
+  EXPECT_EQ(diff, 0) << "of " << rows << " rows";
+  EXPECT_EQ(kept_diff, 0);
+  EXPECT_EQ(any_diff, 0);
+}
+
 TEST(SmaaRows, ListNonZeroListsEverySetByteInOrder) {
   uint32_t s = 12345;
   auto next = [&] { return s = s * 1664525u + 1013904223u; };
   for (int w : {1, 2, 15, 16, 17, 31, 33, 100, 1920}) {
-    for (int fill : {0, 1, 5, 50, 100}) {  // percent of set bytes
-      std::vector<uint8_t> row(w);
+    for (int fill : {0, 1, 5, 50, 100}) {                       // percent of set bytes
+      std::vector<uint8_t> row(static_cast<size_t>(w) + 1, 0);  // one spare byte: never listed
       for (int x = 0; x < w; ++x)
         row[x] = (next() >> 8) % 100 < static_cast<uint32_t>(fill) ? (next() >> 8) % 3 + 1 : 0;
-      row[w - 1] = 2;                        // the last column (in the tail for most widths)
+      row[static_cast<size_t>(w) - 1] = 2;   // the last column (in the tail for most widths)
+      row[static_cast<size_t>(w)] = 1;       // past the end: must not be read as a column
       if (w > 16) row[15] = 1, row[16] = 3;  // a lane's last byte and the next lane's first
       std::vector<uint16_t> expected, got(w, 0xFFFF);
       for (int x = 0; x < w; ++x) {
