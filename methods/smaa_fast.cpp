@@ -561,10 +561,10 @@ template <class Shader>
     const int x = xs[i];
     const Float4 wt = shader.Run(x, y);
     uint8_t* o = wr + 4 * x;
-    o[0] = QuantizeUnorm8(wt.r);
-    o[1] = QuantizeUnorm8(wt.g);
-    o[2] = QuantizeUnorm8(wt.b);
-    o[3] = QuantizeUnorm8(wt.a);
+    o[0] = smaa_internal::Quantize8(wt.r);
+    o[1] = smaa_internal::Quantize8(wt.g);
+    o[2] = smaa_internal::Quantize8(wt.b);
+    o[3] = smaa_internal::Quantize8(wt.a);
   }
 }
 
@@ -619,7 +619,12 @@ AALAB_SMAA_BAND void FusedBand(const FusedJob& job, int y0, int y1, uint64_t* ta
       const int xr = std::min(x + 1, w - 1);
       const float a[4] = {UnormToFloat(cur[4 * xr + 3]), UnormToFloat(below[4 * x + 1]), UnormToFloat(cur[4 * x + 2]),
                           UnormToFloat(cur[4 * x])};
-      smaa_detail::BlendWithWeights(a, cs, f, x, y, dst + 4 * x);
+      const Float4 c = smaa_detail::BlendColor(a, cs, f, x, y);  // StoreBlended, inline
+      uint8_t* o = dst + 4 * x;
+      o[0] = smaa_internal::Quantize8(c.r);
+      o[1] = smaa_internal::Quantize8(c.g);
+      o[2] = smaa_internal::Quantize8(c.b);
+      o[3] = 255;
     }
     n += 4 * static_cast<uint64_t>(w) - static_cast<uint64_t>(nc) + (cs.Taps() - colour_before);
     for (int i = 0; i < ny; ++i) std::memset(cur + 4 * xs[i], 0, 4);  // row y's weights are done

@@ -5,6 +5,17 @@
 
 namespace aalab::smaa_internal {
 
+/// QuantizeUnorm8 (core/color.h: clamp to [0, 1], lround(v·255)) inline, without the libm
+/// call: for v in (0, 1), w = v·255 in (0, 255), i = trunc(w) and w − i (exact: a multiple of
+/// w's ulp below 1) ≥ 0.5 rounds half away from zero as lround does.
+[[gnu::always_inline]] inline uint8_t Quantize8(float v) {
+  if (!(v > 0.0f)) return 0;
+  if (v >= 1.0f) return 255;
+  const float w = v * 255.0f;
+  const int i = static_cast<int>(w);
+  return static_cast<uint8_t>(i + (w - static_cast<float>(i) >= 0.5f ? 1 : 0));
+}
+
 /// One padded luma row of luma edge detection: l[x + 2] = (r + g) + b of the input pixel
 /// src[4x..4x+3], each channel k·fl(1/255)·weight (weights 0.2126, 0.7152, 0.0722; the
 /// reference's Luma of UnormToFloat texels), and the clamped neighbours l[0] = l[1] = L(0),

@@ -2,13 +2,16 @@
 // LumaRow for every one of the 2^24 rgb colours against SMAA.hlsl's dot (rgb of the UNORM
 // texels, float32, in dot's order), with row lengths and starts that reach the AVX2 blocks (8
 // pixels), the SSE2 blocks (4) and the scalar tail, and the padding of the clamped
-// neighbours; EdgeRowLuma against its scalar form; ListNonZero against a plain scan on rows with set bytes at both
-// ends, in every 16-byte lane and in the tail.
+// neighbours; EdgeRowLuma against its scalar form; Quantize8 against QuantizeUnorm8; ListNonZero against a plain scan
+// on rows with set bytes at both ends, in every 16-byte lane and in the tail.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <vector>
 
+#include "core/color.h"
 #include "core/image.h"
 #include "core/sampler.h"
 #include "methods/smaa_rows.h"
@@ -108,6 +111,32 @@ TEST(SmaaRows, EdgeRowLumaMatchesTheScalarForm) {
   EXPECT_EQ(diff, 0) << "of " << rows << " rows";
   EXPECT_EQ(kept_diff, 0);
   EXPECT_EQ(any_diff, 0);
+}
+
+// Quantize8 against QuantizeUnorm8: every float in [0, 1] whose v·255 lies within 64 ulps of a
+// half-integer k + 0.5 (the rounding boundaries), a stride through all floats in [0, 1], and
+// negative, zero, one, above one, NaN and infinity.
+TEST(SmaaRows, Quantize8IsQuantizeUnorm8) {
+  long diff = 0, n = 0;
+  auto check = [&](float v) {
+    diff += smaa_internal::Quantize8(v) != QuantizeUnorm8(v);
+    ++n;
+  };
+  for (int k = 0; k < 255; ++k) {
+    float v = (static_cast<float>(k) + 0.5f) / 255.0f;
+    for (int i = 0; i < 64; ++i) v = std::nextafter(v, 0.0f);
+    for (int i = 0; i < 129; ++i, v = std::nextafter(v, 2.0f)) check(v);
+  }
+  for (uint32_t bits = 0; bits <= 0x3f800000u; bits += 997) {
+    float v;
+    std::memcpy(&v, &bits, 4);
+    check(v);
+  }
+  for (float v : {-1.0f, -0.0f, 0.0f, 1.0f, 1.5f, 1e30f, std::nanf(""), std::numeric_limits<float>::infinity(),
+                  -std::numeric_limits<float>::infinity(), 1e-45f, 0.99999994f}) {
+    check(v);
+  }
+  EXPECT_EQ(diff, 0) << "of " << n;
 }
 
 TEST(SmaaRows, ListNonZeroListsEverySetByteInOrder) {
