@@ -3,11 +3,13 @@
 // Same shader as SmaaReference in methods/smaa.cpp — same float operations in the same
 // order, same fetches, same 8-bit textures — organised for a CPU. Parameters, sources and
 // deviations are documented at the top of methods/smaa.cpp.
-//   Pass 1, luma detection (the presets): whole rows in loops the compiler vectorises
-//     (AVX2 and baseline clones): a padded luma row per input row (the tables' values,
-//     computed: UnormToFloat(k)·weight, summed (r + g) + b), then every pixel's six deltas
-//     and EdgeBits; a pixel the shader discards gets 0. The edge texture is one byte per pixel
-//     (bit 0 = r, bit 1 = g) plus a flag per row.
+//   Pass 1, luma detection (the presets): whole rows in SSE2/AVX2 (methods/smaa_rows.cpp):
+//     a padded luma row per input row in a four-row ring (the tables' values, computed:
+//     UnormToFloat(k)·weight, summed (r + g) + b), then every pixel's six deltas and
+//     EdgeBits, with an early exit for vectors where no pixel's left or top delta reaches the
+//     threshold; a pixel the shader discards gets 0. The edge texture is one byte per pixel
+//     (bit 0 = r, bit 1 = g) plus a flag per row and, for the fused pass, a list per row of
+//     the columns with an edge byte.
 //   Pass 1, colour detection: a vectorised byte prefilter settles most pixels: when every
 //     rgb byte differs from the left and top neighbour by at most m, with m/255 + 1e-5 <
 //     threshold, both deltas are below the threshold (colour deltas are within 2e-6 of the
@@ -29,7 +31,20 @@
 //     centre, which rounds back to its input bytes (its weights put at most ~1e-7 on
 //     another texel, far below the 0.5/255 that would change the 8-bit result); above 8192
 //     px every pixel runs BlendPixel.
-//   InlineSampler is BilinearSampler::SampleNormalized operation for operation, inline.
+//   Passes 2 and 3 fused (8-bit fetches, frames up to 8192 px, no debug view: every preset
+//     in a run): by the two candidate rules above, only listed edge pixels can have non-zero
+//     weights and only pixels with own.r, own.b, right.a or bottom.g non-zero blend. Per band
+//     of 32 rows: the weights of the listed pixels of row y + 1 into a scratch row (the band's
+//     first row before; the row below the band is computed again, untallied), then output row
+//     y = the input row (alpha 255) with only the pixels that blend run through BlendColor
+//     (their a[] read from the scratch rows of y and y + 1), then row y's scratch entries
+//     cleared. No blend texture, no zero-fill, no walk over pixels without an edge. Taps are
+//     tallied as passes 2 and 3 count them (one fetch per pixel without an edge; four per
+//     pixel that does not blend, three plus its colour fetches per pixel that does). The
+//     8-bit stores use smaa_rows.h's Quantize8 (QuantizeUnorm8's value, inline).
+//   InlineSampler is BilinearSampler::SampleNormalized operation for operation, inline, its
+//     four channels in the lanes of one SSE2 vector (same operations per lane); PlaneEdges
+//     blends the r and g bits likewise.
 // Tap counts equal the reference's. tests/equivalence/smaa_fast_test.cpp compares this path with
 // SmaaReference bit for bit, taps and debug views included, at 1 and 2 threads.
 #include <algorithm>
@@ -43,12 +58,9 @@
 #include "core/parallel.h"
 #include "methods/smaa.h"
 #include "methods/row_ops.h"
+#include "methods/smaa_fast.h"
 #include "methods/smaa_rows.h"
 #include "methods/smaa_shader.h"
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace aalab {
 
@@ -64,30 +76,13 @@ using smaa_detail::F2;
 using smaa_detail::Frame;
 
 constexpr int kGrain = 8;
-constexpr int kMaxShortcutSize = 8192;
-constexpr uint8_t kLeft = 1;  // edge-plane bits: r (left edge) and g (top edge)
-constexpr uint8_t kTop = 2;
-
-// The edge texture as one byte per pixel (bit 0 = r, bit 1 = g), plus one flag per row
-// (any edge in the row). The bytes are allocated uninitialised: the parallel pass that
-// fills a row clears it first (no serial zero-fill of the whole plane).
-// With `lists`, each row's edge pixels are also listed (columns ascending, in xs at offset
-// y·w, count in n[y]): the fused weight and blend pass visits only those.
-struct EdgePlane {
-  int w = 0, h = 0;
-  std::unique_ptr<uint8_t[]> e;
-  std::vector<uint8_t> row_any;
-  std::unique_ptr<uint16_t[]> xs;  // uninitialised; only each row's first n[y] entries are written
-  std::vector<int> n;
-  void ListRow(int y, bool any) {
-    if (!xs) return;
-    n[static_cast<size_t>(y)] = any ? smaa_internal::ListNonZero(Row(y), w, List(y)) : 0;
-  }
-  uint16_t* List(int y) { return xs.get() + static_cast<size_t>(y) * w; }
-  const uint16_t* List(int y) const { return xs.get() + static_cast<size_t>(y) * w; }
-  const uint8_t* Row(int y) const { return e.get() + static_cast<size_t>(y) * w; }
-  uint8_t* Row(int y) { return e.get() + static_cast<size_t>(y) * w; }
-};
+using smaa_internal::EdgePlane;
+using smaa_internal::InlineSampler;
+using smaa_internal::kLeft;
+using smaa_internal::kMaxShortcutSize;
+using smaa_internal::kTop;
+using smaa_internal::PlaneEdges;
+using smaa_internal::Tex8;
 
 // EdgePixel's decision from the six deltas it computes; returns the two edge bits.
 struct EdgeInputs {
@@ -256,108 +251,6 @@ Image8 EdgeTextureOf(const EdgePlane& pl) {
   }
   return t;
 }
-
-// BilinearSampler::SampleNormalized, operation for operation (BilinearAt, clamped reads,
-// UnormToFloat, BilinearBlend), inline and with its own tap counter.
-// An RGBA8 texture: the fast path's own buffers and Image8 alike.
-struct Tex8 {
-  const uint8_t* data = nullptr;
-  int w = 0, h = 0;
-  explicit Tex8(const Image8& img) : data(img.Data().data()), w(img.Width()), h(img.Height()) {
-    AALAB_CHECK(img.Channels() == 4, "SMAA textures are RGBA8");
-  }
-  Tex8(const uint8_t* d, int width, int height) : data(d), w(width), h(height) {}
-  const uint8_t* Pixel(int x, int y) const { return data + 4 * (static_cast<size_t>(y) * w + x); }
-  const uint8_t* Row(int y) const { return Pixel(0, y); }
-};
-
-class InlineSampler {
- public:
-  InlineSampler(Tex8 img, SubTexel mode) : img_(img), w_(img.w), h_(img.h), mode_(mode) {}
-  [[gnu::always_inline]] Float4 SampleNormalized(float s, float t) {
-    ++taps_;
-    const BilinearFootprint f = BilinearAt(s * static_cast<float>(w_), t * static_cast<float>(h_), w_, h_, mode_);
-    const int xa = std::clamp(f.x0, 0, w_ - 1), xb = std::clamp(f.x0 + 1, 0, w_ - 1);
-    const int ya = std::clamp(f.y0, 0, h_ - 1), yb = std::clamp(f.y0 + 1, 0, h_ - 1);
-    const uint8_t* a = img_.Pixel(xa, ya);
-    const uint8_t* b = img_.Pixel(xb, ya);
-    const uint8_t* c = img_.Pixel(xa, yb);
-    const uint8_t* d = img_.Pixel(xb, yb);
-    Float4 r;
-#if defined(__SSE2__)
-    // The four channels' BilinearBlend in the lanes of one vector: per lane the same
-    // operations (k·fl(1/255), then FilterLerp's a + w·(b − a) three times), so the same bits.
-    const __m128 fx = _mm_set1_ps(f.fx), fy = _mm_set1_ps(f.fy);
-    const __m128 ta = U4(a), tb = U4(b), tc = U4(c), td = U4(d);
-    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
-    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
-    float v[4];
-    _mm_storeu_ps(v, _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top))));
-    r = {v[0], v[1], v[2], v[3]};
-#else
-    r.r = BilinearBlend(U(a[0]), U(b[0]), U(c[0]), U(d[0]), f);
-    r.g = BilinearBlend(U(a[1]), U(b[1]), U(c[1]), U(d[1]), f);
-    r.b = BilinearBlend(U(a[2]), U(b[2]), U(c[2]), U(d[2]), f);
-    r.a = BilinearBlend(U(a[3]), U(b[3]), U(c[3]), U(d[3]), f);
-#endif
-    return r;
-  }
-  uint64_t Taps() const { return taps_; }
-
- private:
-  static float U(uint8_t k) { return UnormToFloat(k); }  // BilinearSampler::Fetch
-#if defined(__SSE2__)
-  // U of the four bytes at p, in the lanes of a vector (byte → int32 → float, × fl(1/255)).
-  [[gnu::always_inline]] static __m128 U4(const uint8_t* p) {
-    uint32_t v;
-    std::memcpy(&v, p, 4);
-    const __m128i z = _mm_setzero_si128();
-    const __m128i x = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(static_cast<int>(v)), z), z);
-    return _mm_mul_ps(_mm_cvtepi32_ps(x), _mm_set1_ps(1.0f / 255.0f));
-  }
-#endif
-  Tex8 img_;
-  int w_, h_;
-  SubTexel mode_;
-  uint64_t taps_ = 0;
-};
-
-// The edge-texture reader of the production path: BilinearSampler::Sample's footprint and
-// clamp, texel values 0 or 1 (= UnormToFloat(255)) per bit, BilinearBlend as Sample.
-class PlaneEdges {
- public:
-  PlaneEdges(const EdgePlane& pl, SubTexel mode) : pl_(pl), mode_(mode) {}
-  F2 Sample(float u, float v) {
-    ++taps_;
-    const int w = pl_.w, h = pl_.h;
-    const BilinearFootprint f = BilinearAt(u, v, w, h, mode_);
-    const int xa = std::clamp(f.x0, 0, w - 1), xb = std::clamp(f.x0 + 1, 0, w - 1);
-    const int ya = std::clamp(f.y0, 0, h - 1), yb = std::clamp(f.y0 + 1, 0, h - 1);
-    const uint8_t a = pl_.Row(ya)[xa], b = pl_.Row(ya)[xb], c = pl_.Row(yb)[xa], d = pl_.Row(yb)[xb];
-#if defined(__SSE2__)
-    // r and g in two lanes: the texels' (bit 0, bit 1) as floats from a table, then the same
-    // three FilterLerps per lane as BilinearBlend.
-    alignas(16) static constexpr float kPair[4][4] = {{0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {1, 1, 0, 0}};
-    const __m128 fx = _mm_set1_ps(f.fx), fy = _mm_set1_ps(f.fy);
-    const __m128 ta = _mm_load_ps(kPair[a]), tb = _mm_load_ps(kPair[b]);
-    const __m128 tc = _mm_load_ps(kPair[c]), td = _mm_load_ps(kPair[d]);
-    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
-    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
-    const __m128 rg = _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top)));
-    return {_mm_cvtss_f32(rg), _mm_cvtss_f32(_mm_shuffle_ps(rg, rg, 1))};
-#else
-    static constexpr float kBit[2] = {0.0f, 1.0f};
-    return {BilinearBlend(kBit[a & 1], kBit[b & 1], kBit[c & 1], kBit[d & 1], f),
-            BilinearBlend(kBit[a >> 1], kBit[b >> 1], kBit[c >> 1], kBit[d >> 1], f)};
-#endif
-  }
-  uint64_t Taps() const { return taps_; }
-
- private:
-  const EdgePlane& pl_;
-  SubTexel mode_;
-  uint64_t taps_ = 0;
-};
 
 // flags[x] = OR of plane bytes over rows y+r0 .. y+r1 and columns x+c0 .. x+c1 (clamped),
 // with c0 <= 0 <= c1.
@@ -528,122 +421,6 @@ Image8 BlendFast(const Image8& in, const BlendTex& blend, const SmaaParams& p, u
   return out;
 }
 
-// Passes 2 and 3 fused, for 8-bit sub-texel fetches on frames up to kMaxShortcutSize (where
-// a pixel's weights can be non-zero only if it has an edge bit, and a pixel blends only if
-// own.r, own.b, right.a or bottom.g is non-zero: WeightsFast and BlendFlags). A band of
-// kBand rows computes the weights of its rows' listed edge pixels (and of the row below it,
-// again, untallied: the next band's first row) into two scratch rows, row by row; once the
-// weights of rows y and y + 1 are final, row y of the output is the input row (alpha 255)
-// with only the pixels that blend run through BlendColor. No full-frame blend texture, no
-// zero-fill, no walk over pixels without edges. Taps as the two passes count them: pass 2
-// one fetch per pixel without an edge, pass 3 four per pixel that does not blend and three
-// plus its colour fetches per pixel that does.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define AALAB_SMAA_BAND __attribute__((target_clones("avx2", "default"), flatten))
-#else
-#define AALAB_SMAA_BAND
-#endif
-constexpr int kBand = 32;
-
-struct FusedJob {
-  const Image8* in;
-  Image8* out;
-  const EdgePlane* edges;
-  const SmaaParams* p;
-};
-
-// The weights of row y's edge pixels into wr (4 bytes per pixel; the other bytes stay 0).
-template <class Shader>
-[[gnu::always_inline]] inline void WeightsRow(Shader& shader, const EdgePlane& edges, int y, uint8_t* wr) {
-  const uint16_t* xs = edges.List(y);
-  const int n = edges.n[static_cast<size_t>(y)];
-  for (int i = 0; i < n; ++i) {
-    const int x = xs[i];
-    const Float4 wt = shader.Run(x, y);
-    uint8_t* o = wr + 4 * x;
-    o[0] = smaa_internal::Quantize8(wt.r);
-    o[1] = smaa_internal::Quantize8(wt.g);
-    o[2] = smaa_internal::Quantize8(wt.b);
-    o[3] = smaa_internal::Quantize8(wt.a);
-  }
-}
-
-AALAB_SMAA_BAND void FusedBand(const FusedJob& job, int y0, int y1, uint64_t* taps) {
-  const Image8& in = *job.in;
-  const EdgePlane& edges = *job.edges;
-  const int w = in.Width(), h = in.Height();
-  const Frame f(w, h);
-  PlaneEdges reader(edges, job.p->subtexel);
-  InlineSampler as(Tex8(SmaaAreaTexture()), job.p->subtexel), ss(Tex8(SmaaSearchTexture()), job.p->subtexel);
-  InlineSampler cs(Tex8(in), job.p->subtexel);
-  smaa_detail::WeightsShader<PlaneEdges, InlineSampler> shader(reader, as, ss, *job.p, f);
-  std::vector<uint8_t> rows(8 * static_cast<size_t>(w), 0), mark(static_cast<size_t>(w), 0);
-  std::vector<uint16_t> cand(static_cast<size_t>(w));
-  uint8_t* cur = rows.data();
-  uint8_t* nxt = cur + 4 * static_cast<size_t>(w);
-  uint64_t n = 0;
-  WeightsRow(shader, edges, y0, cur);
-  for (int y = y0; y < y1; ++y) {
-    const uint64_t before = reader.Taps() + as.Taps() + ss.Taps();
-    if (y + 1 < h) WeightsRow(shader, edges, y + 1, nxt);
-    if (y + 1 < h && y + 1 < y1) n += reader.Taps() + as.Taps() + ss.Taps() - before;  // row y + 1's own taps
-    if (y == y0) n += before;  // row y0's (computed before the loop)
-    const uint8_t* below = y + 1 < h ? nxt : cur;
-    const int ny = edges.n[static_cast<size_t>(y)], nb = edges.n[static_cast<size_t>(std::min(y + 1, h - 1))];
-    n += static_cast<uint64_t>(w - ny);  // pass 2: one fetch per pixel without an edge
-    // Pass 3's candidates: own.r or own.b (x), right.a (x − 1; x itself at the clamped last
-    // column), bottom.g (x).
-    int nc = 0;
-    auto add = [&](int x) {
-      if (!mark[static_cast<size_t>(x)])
-        mark[static_cast<size_t>(x)] = 1, cand[static_cast<size_t>(nc++)] = static_cast<uint16_t>(x);
-    };
-    const uint16_t* xs = edges.List(y);
-    for (int i = 0; i < ny; ++i) {
-      const int x = xs[i];
-      const uint8_t* o = cur + 4 * x;
-      if (o[3] && x > 0) add(x - 1);
-      if (o[0] | o[2] | (o[3] && x == w - 1)) add(x);
-    }
-    const uint16_t* xb = edges.List(std::min(y + 1, h - 1));
-    for (int i = 0; i < nb; ++i) {
-      if (below[4 * xb[i] + 1]) add(xb[i]);
-    }
-    const uint8_t* src = in.Row(y);
-    uint8_t* dst = job.out->Row(y);
-    CopyRowOpaque(src, dst, w);
-    const uint64_t colour_before = cs.Taps();
-    for (int i = 0; i < nc; ++i) {
-      const int x = cand[static_cast<size_t>(i)];
-      mark[static_cast<size_t>(x)] = 0;
-      const int xr = std::min(x + 1, w - 1);
-      const float a[4] = {UnormToFloat(cur[4 * xr + 3]), UnormToFloat(below[4 * x + 1]), UnormToFloat(cur[4 * x + 2]),
-                          UnormToFloat(cur[4 * x])};
-      const Float4 c = smaa_detail::BlendColor(a, cs, f, x, y);  // StoreBlended, inline
-      uint8_t* o = dst + 4 * x;
-      o[0] = smaa_internal::Quantize8(c.r);
-      o[1] = smaa_internal::Quantize8(c.g);
-      o[2] = smaa_internal::Quantize8(c.b);
-      o[3] = 255;
-    }
-    n += 4 * static_cast<uint64_t>(w) - static_cast<uint64_t>(nc) + (cs.Taps() - colour_before);
-    for (int i = 0; i < ny; ++i) std::memset(cur + 4 * xs[i], 0, 4);  // row y's weights are done
-    std::swap(cur, nxt);
-  }
-  *taps = n;
-}
-
-// Passes 2 and 3 through FusedBand, bands in parallel.
-Image8 WeightsAndBlendFused(const Image8& in, const EdgePlane& edges, const SmaaParams& p, uint64_t* taps) {
-  const int h = in.Height();
-  Image8 out(in.Width(), h, 4, kUninitialized);  // every row written by its band
-  const FusedJob job{&in, &out, &edges, &p};
-  std::vector<uint64_t> t(static_cast<size_t>((h + kBand - 1) / kBand), 0);
-  ParallelForChunks(h, kBand, [&](int y0, int y1) { FusedBand(job, y0, y1, &t[static_cast<size_t>(y0 / kBand)]); });
-  for (uint64_t v : t) *taps += v;
-  return out;
-}
-
 }  // namespace
 
 Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug_view, PostStats* stats) {
@@ -667,7 +444,7 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
   }
   EdgesFast(in, params, &edges, &taps);
   if (fused) {
-    Image8 out = WeightsAndBlendFused(in, edges, params, &taps);
+    Image8 out = smaa_internal::WeightsAndBlendFused(in, edges, params, &taps);
     if (stats) stats->taps += taps;
     return out;
   }

@@ -12,6 +12,7 @@ set(AALAB_METHOD_SOURCES
   smaa.cpp
   smaa_fast.cpp
   smaa_rows.cpp
+  smaa_fused.cpp
   smaa_textures.cpp
   cmaa2.cpp
   rescale.cpp
