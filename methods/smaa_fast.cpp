@@ -36,12 +36,12 @@
 //     weights and only pixels with own.r, own.b, right.a or bottom.g non-zero blend. Per band
 //     of 32 rows: the weights of the listed pixels of row y + 1 into a scratch row (the band's
 //     first row before; the row below the band is computed again, untallied), then output row
-//     y = the input row (alpha 255) with only the pixels that blend run through BlendColor
-//     (their a[] read from the scratch rows of y and y + 1), then row y's scratch entries
-//     cleared. No blend texture, no zero-fill, no walk over pixels without an edge. Taps are
-//     tallied as passes 2 and 3 count them (one fetch per pixel without an edge; four per
-//     pixel that does not blend, three plus its colour fetches per pixel that does). The
-//     8-bit stores use smaa_rows.h's Quantize8 (QuantizeUnorm8's value, inline).
+//     y = the input row (alpha 255, copied by pass 1 while the row is in cache) with only the
+//     pixels that blend run through BlendColor (their a[] read from the scratch rows of y
+//     and y + 1), then row y's scratch entries cleared. No blend texture, no zero-fill, no walk over pixels without an
+//     edge. Taps are tallied as passes 2 and 3 count them (one fetch per pixel without an edge; four per pixel that
+//     does not blend, three plus its colour fetches per pixel that does). The 8-bit stores use smaa_rows.h's Quantize8
+//     (QuantizeUnorm8's value, inline).
 //   InlineSampler is BilinearSampler::SampleNormalized operation for operation, inline, its
 //     four channels in the lanes of one SSE2 vector (same operations per lane); PlaneEdges
 //     blends the r and g bits likewise.
@@ -149,7 +149,7 @@ void CandidateRow(const uint8_t* __restrict row, const uint8_t* __restrict top, 
 // slot = row mod 4; every float of a slot is written before it is read, so no fill), then
 // every pixel's edge bits and the row's edge list. Same bits and taps as the prefilter path.
 constexpr int kLumaRows = 32;
-void EdgesLumaRows(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t* taps) {
+void EdgesLumaRows(const Image8& in, const SmaaParams& p, EdgePlane* plane, Image8* copy, uint64_t* taps) {
   const int w = in.Width(), h = in.Height();
   const size_t stride = static_cast<size_t>(w) + 3;
   std::vector<uint64_t> t(static_cast<size_t>((h + kLumaRows - 1) / kLumaRows), 0);
@@ -164,6 +164,7 @@ void EdgesLumaRows(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint
     for (int y = y0; y < y1; ++y) {
       uint8_t any = 0;
       ensure(std::min(y + 1, h - 1));
+      if (copy) CopyRowOpaque(in.Row(y), copy->Row(y), w);  // while the row is in cache
       const int kept = smaa_internal::EdgeRowLuma(row(y), row(std::max(y - 1, 0)), row(std::max(y - 2, 0)),
                                                   row(std::min(y + 1, h - 1)), w, p.threshold, p.local_contrast_factor,
                                                   plane->Row(y), &any);
@@ -179,8 +180,8 @@ void EdgesLumaRows(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint
 // Pass 1 (both detections): the prefilter settles most pixels (3 fetches, no edge); the
 // others run EdgePixel's expressions with values from the tables. Taps: 3 per pixel, 4 more
 // where the shader does not discard.
-void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t* taps) {
-  if (p.detection == SmaaParams::Detection::kLuma) return EdgesLumaRows(in, p, plane, taps);
+void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, Image8* copy, uint64_t* taps) {
+  if (p.detection == SmaaParams::Detection::kLuma) return EdgesLumaRows(in, p, plane, copy, taps);
   const int w = in.Width(), h = in.Height();
   std::vector<uint64_t> t(static_cast<size_t>((h + kGrain - 1) / kGrain), 0);
   const float thr = p.threshold, lcf = p.local_contrast_factor;
@@ -236,6 +237,7 @@ void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t
       n += 3 * static_cast<uint64_t>(w) + 4 * kept;
       plane->row_any[static_cast<size_t>(y)] = any != 0;
       plane->ListRow(y, any != 0);
+      if (copy) CopyRowOpaque(r0, copy->Row(y), w);
     }
     t[static_cast<size_t>(y0 / kGrain)] = n;
   });
@@ -442,9 +444,13 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
     edges.xs.reset(new uint16_t[in.PixelCount()]);  // rows listed by EdgesFast
     edges.n.assign(static_cast<size_t>(in.Height()), 0);
   }
-  EdgesFast(in, params, &edges, &taps);
+  // The fused pass's output: every row the input row, alpha 255, written by pass 1 (the
+  // pixels that blend are overwritten by the fused pass).
+  Image8 out;
+  if (fused) out = Image8(in.Width(), in.Height(), 4, kUninitialized);
+  EdgesFast(in, params, &edges, fused ? &out : nullptr, &taps);
   if (fused) {
-    Image8 out = smaa_internal::WeightsAndBlendFused(in, edges, params, &taps);
+    smaa_internal::WeightsAndBlendFused(in, edges, params, &out, &taps);
     if (stats) stats->taps += taps;
     return out;
   }
@@ -463,9 +469,9 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
     std::memcpy(tex.Data().data(), blend.px.get(), tex.Data().size());
     return smaa_detail::WeightsView(tex);
   }
-  Image8 out = BlendFast(in, blend, params, &taps);
+  Image8 blended = BlendFast(in, blend, params, &taps);
   if (stats) stats->taps += taps;
-  return out;
+  return blended;
 }
 
 }  // namespace aalab

@@ -152,8 +152,9 @@ class PlaneEdges {
   uint64_t taps_ = 0;
 };
 
-/// Passes 2 and 3 fused (8-bit fetches, frames up to kMaxShortcutSize, edges listed): the
-/// output frame; adds the two passes' taps to *taps. methods/smaa_fused.cpp.
-Image8 WeightsAndBlendFused(const Image8& in, const EdgePlane& edges, const SmaaParams& p, uint64_t* taps);
+/// Passes 2 and 3 fused (8-bit fetches, frames up to kMaxShortcutSize, edges listed): blends
+/// into *out, which holds the input with alpha 255 (pass 1 copies each row), the pixels whose
+/// weights are non-zero; adds the two passes' taps to *taps. methods/smaa_fused.cpp.
+void WeightsAndBlendFused(const Image8& in, const EdgePlane& edges, const SmaaParams& p, Image8* out, uint64_t* taps);
 
 }  // namespace aalab::smaa_internal

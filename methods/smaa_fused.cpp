@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "core/parallel.h"
-#include "methods/row_ops.h"
 #include "methods/smaa_fast.h"
 
 namespace aalab::smaa_internal {
@@ -96,9 +95,7 @@ AALAB_SMAA_BAND void FusedBand(const FusedJob& job, int y0, int y1, uint64_t* ta
     for (int i = 0; i < nb; ++i) {
       if (below[4 * xb[i] + 1]) add(xb[i]);
     }
-    const uint8_t* src = in.Row(y);
-    uint8_t* dst = job.out->Row(y);
-    CopyRowOpaque(src, dst, w);
+    uint8_t* dst = job.out->Row(y);  // the input row, alpha 255 (pass 1)
     const uint64_t colour_before = cs.Taps();
     for (int i = 0; i < nc; ++i) {
       const int x = cand[static_cast<size_t>(i)];
@@ -123,14 +120,12 @@ AALAB_SMAA_BAND void FusedBand(const FusedJob& job, int y0, int y1, uint64_t* ta
 }  // namespace
 
 // Passes 2 and 3 through FusedBand, bands in parallel.
-Image8 WeightsAndBlendFused(const Image8& in, const EdgePlane& edges, const SmaaParams& p, uint64_t* taps) {
+void WeightsAndBlendFused(const Image8& in, const EdgePlane& edges, const SmaaParams& p, Image8* out, uint64_t* taps) {
   const int h = in.Height();
-  Image8 out(in.Width(), h, 4, kUninitialized);  // every row written by its band
-  const FusedJob job{&in, &out, &edges, &p};
+  const FusedJob job{&in, out, &edges, &p};
   std::vector<uint64_t> t(static_cast<size_t>((h + kBand - 1) / kBand), 0);
   ParallelForChunks(h, kBand, [&](int y0, int y1) { FusedBand(job, y0, y1, &t[static_cast<size_t>(y0 / kBand)]); });
   for (uint64_t v : t) *taps += v;
-  return out;
 }
 
 }  // namespace aalab::smaa_internal
