@@ -3,11 +3,13 @@
 // Same shader as SmaaReference in methods/smaa.cpp — same float operations in the same
 // order, same fetches, same 8-bit textures — organised for a CPU. Parameters, sources and
 // deviations are documented at the top of methods/smaa.cpp.
-//   Pass 1, luma detection (the presets): whole rows in loops the compiler vectorises
-//     (AVX2 and baseline clones): a padded luma row per input row (the tables' values,
-//     computed: UnormToFloat(k)·weight, summed (r + g) + b), then every pixel's six deltas
-//     and EdgeBits; a pixel the shader discards gets 0. The edge texture is one byte per pixel
-//     (bit 0 = r, bit 1 = g) plus a flag per row.
+//   Pass 1, luma detection (the presets): whole rows in SSE2/AVX2 (methods/smaa_rows.cpp):
+//     a padded luma row per input row in a four-row ring (the tables' values, computed:
+//     UnormToFloat(k)·weight, summed (r + g) + b), then every pixel's six deltas and
+//     EdgeBits, with an early exit for vectors where no pixel's left or top delta reaches the
+//     threshold; a pixel the shader discards gets 0. The edge texture is one byte per pixel
+//     (bit 0 = r, bit 1 = g) plus a flag per row and, for the fused pass, a list per row of
+//     the columns with an edge byte.
 //   Pass 1, colour detection: a vectorised byte prefilter settles most pixels: when every
 //     rgb byte differs from the left and top neighbour by at most m, with m/255 + 1e-5 <
 //     threshold, both deltas are below the threshold (colour deltas are within 2e-6 of the
@@ -29,7 +31,20 @@
 //     centre, which rounds back to its input bytes (its weights put at most ~1e-7 on
 //     another texel, far below the 0.5/255 that would change the 8-bit result); above 8192
 //     px every pixel runs BlendPixel.
-//   InlineSampler is BilinearSampler::SampleNormalized operation for operation, inline.
+//   Passes 2 and 3 fused (8-bit fetches, frames up to 8192 px, no debug view: every preset
+//     in a run): by the two candidate rules above, only listed edge pixels can have non-zero
+//     weights and only pixels with own.r, own.b, right.a or bottom.g non-zero blend. Per band
+//     of 32 rows: the weights of the listed pixels of row y + 1 into a scratch row (the band's
+//     first row before; the row below the band is computed again, untallied), then output row
+//     y = the input row (alpha 255, copied by pass 1 while the row is in cache) with only the
+//     pixels that blend run through BlendColor (their a[] read from the scratch rows of y
+//     and y + 1), then row y's scratch entries cleared. No blend texture, no zero-fill, no walk over pixels without an
+//     edge. Taps are tallied as passes 2 and 3 count them (one fetch per pixel without an edge; four per pixel that
+//     does not blend, three plus its colour fetches per pixel that does). The 8-bit stores use smaa_rows.h's Quantize8
+//     (QuantizeUnorm8's value, inline).
+//   InlineSampler is BilinearSampler::SampleNormalized operation for operation, inline, its
+//     four channels in the lanes of one SSE2 vector (same operations per lane); PlaneEdges
+//     blends the r and g bits likewise.
 // Tap counts equal the reference's. tests/equivalence/smaa_fast_test.cpp compares this path with
 // SmaaReference bit for bit, taps and debug views included, at 1 and 2 threads.
 #include <algorithm>
@@ -43,6 +58,8 @@
 #include "core/parallel.h"
 #include "methods/smaa.h"
 #include "methods/row_ops.h"
+#include "methods/smaa_fast.h"
+#include "methods/smaa_rows.h"
 #include "methods/smaa_shader.h"
 
 namespace aalab {
@@ -59,20 +76,13 @@ using smaa_detail::F2;
 using smaa_detail::Frame;
 
 constexpr int kGrain = 8;
-constexpr int kMaxShortcutSize = 8192;
-constexpr uint8_t kLeft = 1;  // edge-plane bits: r (left edge) and g (top edge)
-constexpr uint8_t kTop = 2;
-
-// The edge texture as one byte per pixel (bit 0 = r, bit 1 = g), plus one flag per row
-// (any edge in the row). The bytes are allocated uninitialised: the parallel pass that
-// fills a row clears it first (no serial zero-fill of the whole plane).
-struct EdgePlane {
-  int w = 0, h = 0;
-  std::unique_ptr<uint8_t[]> e;
-  std::vector<uint8_t> row_any;
-  const uint8_t* Row(int y) const { return e.get() + static_cast<size_t>(y) * w; }
-  uint8_t* Row(int y) { return e.get() + static_cast<size_t>(y) * w; }
-};
+using smaa_internal::EdgePlane;
+using smaa_internal::InlineSampler;
+using smaa_internal::kLeft;
+using smaa_internal::kMaxShortcutSize;
+using smaa_internal::kTop;
+using smaa_internal::PlaneEdges;
+using smaa_internal::Tex8;
 
 // EdgePixel's decision from the six deltas it computes; returns the two edge bits.
 struct EdgeInputs {
@@ -134,77 +144,33 @@ void CandidateRow(const uint8_t* __restrict row, const uint8_t* __restrict top, 
   for (int x = 0; x < w; ++x) cand[x] = (tmp[4 * x] | tmp[4 * x + 1] | tmp[4 * x + 2]) != 0 || safe < 0;
 }
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define AALAB_SMAA_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define AALAB_SMAA_CLONES
-#endif
-
-// std::max of floats as a select the compiler vectorises (std::max(a, b) is a < b ? b : a).
-inline float MaxF(float a, float b) { return a < b ? b : a; }
-
-// Luma detection, pass 1 in whole rows. The lumas of one row, every pixel at once, as
-// Lumas()' tables give them ((r + g) + b of UnormToFloat(k)·weight), padded for the clamped
-// neighbours: l[0] = l[1] = L(0) (x − 2 and x − 1 of column 0), l[x + 2] = L(x),
-// l[w + 2] = L(w − 1).
-AALAB_SMAA_CLONES void LumaRow(const uint8_t* __restrict src, int w, float* __restrict l) {
-  float* __restrict o = l + 2;
-  for (int x = 0; x < w; ++x) {
-    const float r = static_cast<float>(src[4 * x]) * (1.0f / 255.0f) * 0.2126f;
-    const float g = static_cast<float>(src[4 * x + 1]) * (1.0f / 255.0f) * 0.7152f;
-    const float b = static_cast<float>(src[4 * x + 2]) * (1.0f / 255.0f) * 0.0722f;
-    o[x] = (r + g) + b;
-  }
-  l[0] = l[1] = o[0];
-  l[w + 2] = o[w - 1];
-}
-
-// EdgePixel's luma deltas and EdgeBits for every pixel of a row (padded luma rows of LumaRow:
-// centre, top, top-top, bottom), in a loop the compiler vectorises; a pixel the shader
-// discards gets 0, as the prefilter's settled pixels do. Returns the number of pixels the
-// shader does not discard (dx or dy ≥ threshold) and ORs the edge bytes into *any.
-AALAB_SMAA_CLONES int EdgeRowLuma(const float* __restrict lc, const float* __restrict lt, const float* __restrict ltt,
-                                  const float* __restrict lb, int w, float thr, float lcf, uint8_t* __restrict out,
-                                  uint8_t* any) {
-  int kept = 0;
-  uint8_t seen = 0;
-  for (int x = 0; x < w; ++x) {
-    const float c = lc[x + 2], l = lc[x + 1], t = lt[x + 2];
-    const float dx = std::fabs(c - l), dy = std::fabs(c - t), dr = std::fabs(c - lc[x + 3]);
-    const float db = std::fabs(c - lb[x + 2]), dll = std::fabs(l - lc[x]), dtt = std::fabs(t - ltt[x + 2]);
-    const int ex = dx >= thr, ey = dy >= thr;
-    const float final_delta = MaxF(MaxF(MaxF(dx, dr), dll), MaxF(MaxF(dy, db), dtt));
-    const int bx = ex & (lcf * dx >= final_delta), by = ey & (lcf * dy >= final_delta);
-    const uint8_t bits = static_cast<uint8_t>(bx * kLeft | by * kTop);
-    out[x] = bits;
-    seen |= bits;
-    kept += ex | ey;
-  }
-  *any = seen;
-  return kept;
-}
-
 // Pass 1, luma detection: each chunk of kLumaRows rows computes the luma rows it reads (its
-// rows, two above, one below: 35 per 32) once, then every pixel's edge bits. Same bits and
-// taps as the prefilter path.
+// rows, two above, one below: 35 per 32) once, into a ring of four rows (rows y − 2 .. y + 1,
+// slot = row mod 4; every float of a slot is written before it is read, so no fill), then
+// every pixel's edge bits and the row's edge list. Same bits and taps as the prefilter path.
 constexpr int kLumaRows = 32;
-void EdgesLumaRows(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t* taps) {
+void EdgesLumaRows(const Image8& in, const SmaaParams& p, EdgePlane* plane, Image8* copy, uint64_t* taps) {
   const int w = in.Width(), h = in.Height();
   const size_t stride = static_cast<size_t>(w) + 3;
   std::vector<uint64_t> t(static_cast<size_t>((h + kLumaRows - 1) / kLumaRows), 0);
   ParallelForChunks(h, kLumaRows, [&](int y0, int y1) {
-    const int base = std::max(y0 - 2, 0), last = std::min(y1, h - 1);
-    std::vector<float> buf(static_cast<size_t>(last - base + 1) * stride);
-    for (int y = base; y <= last; ++y) LumaRow(in.Row(y), w, buf.data() + static_cast<size_t>(y - base) * stride);
-    auto row = [&](int y) { return buf.data() + static_cast<size_t>(y - base) * stride; };
+    std::unique_ptr<float[]> buf(new float[4 * stride]);
+    auto row = [&](int y) { return buf.get() + static_cast<size_t>(y & 3) * stride; };
+    int next = std::max(y0 - 2, 0);  // the first row not yet in the ring
+    auto ensure = [&](int last) {
+      for (; next <= last; ++next) smaa_internal::LumaRow(in.Row(next), w, row(next));
+    };
     uint64_t n = 0;
     for (int y = y0; y < y1; ++y) {
       uint8_t any = 0;
-      const int kept =
-          EdgeRowLuma(row(y), row(std::max(y - 1, 0)), row(std::max(y - 2, 0)), row(std::min(y + 1, h - 1)), w,
-                      p.threshold, p.local_contrast_factor, plane->Row(y), &any);
+      ensure(std::min(y + 1, h - 1));
+      if (copy) CopyRowOpaque(in.Row(y), copy->Row(y), w);  // while the row is in cache
+      const int kept = smaa_internal::EdgeRowLuma(row(y), row(std::max(y - 1, 0)), row(std::max(y - 2, 0)),
+                                                  row(std::min(y + 1, h - 1)), w, p.threshold, p.local_contrast_factor,
+                                                  plane->Row(y), &any);
       n += 3 * static_cast<uint64_t>(w) + 4 * static_cast<uint64_t>(kept);
       plane->row_any[static_cast<size_t>(y)] = any != 0;
+      plane->ListRow(y, any != 0);
     }
     t[static_cast<size_t>(y0 / kLumaRows)] = n;
   });
@@ -214,8 +180,8 @@ void EdgesLumaRows(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint
 // Pass 1 (both detections): the prefilter settles most pixels (3 fetches, no edge); the
 // others run EdgePixel's expressions with values from the tables. Taps: 3 per pixel, 4 more
 // where the shader does not discard.
-void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t* taps) {
-  if (p.detection == SmaaParams::Detection::kLuma) return EdgesLumaRows(in, p, plane, taps);
+void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, Image8* copy, uint64_t* taps) {
+  if (p.detection == SmaaParams::Detection::kLuma) return EdgesLumaRows(in, p, plane, copy, taps);
   const int w = in.Width(), h = in.Height();
   std::vector<uint64_t> t(static_cast<size_t>((h + kGrain - 1) / kGrain), 0);
   const float thr = p.threshold, lcf = p.local_contrast_factor;
@@ -270,6 +236,8 @@ void EdgesFast(const Image8& in, const SmaaParams& p, EdgePlane* plane, uint64_t
       }
       n += 3 * static_cast<uint64_t>(w) + 4 * kept;
       plane->row_any[static_cast<size_t>(y)] = any != 0;
+      plane->ListRow(y, any != 0);
+      if (copy) CopyRowOpaque(r0, copy->Row(y), w);
     }
     t[static_cast<size_t>(y0 / kGrain)] = n;
   });
@@ -285,73 +253,6 @@ Image8 EdgeTextureOf(const EdgePlane& pl) {
   }
   return t;
 }
-
-// BilinearSampler::SampleNormalized, operation for operation (BilinearAt, clamped reads,
-// UnormToFloat, BilinearBlend), inline and with its own tap counter.
-// An RGBA8 texture: the fast path's own buffers and Image8 alike.
-struct Tex8 {
-  const uint8_t* data = nullptr;
-  int w = 0, h = 0;
-  explicit Tex8(const Image8& img) : data(img.Data().data()), w(img.Width()), h(img.Height()) {
-    AALAB_CHECK(img.Channels() == 4, "SMAA textures are RGBA8");
-  }
-  Tex8(const uint8_t* d, int width, int height) : data(d), w(width), h(height) {}
-  const uint8_t* Pixel(int x, int y) const { return data + 4 * (static_cast<size_t>(y) * w + x); }
-  const uint8_t* Row(int y) const { return Pixel(0, y); }
-};
-
-class InlineSampler {
- public:
-  InlineSampler(Tex8 img, SubTexel mode) : img_(img), w_(img.w), h_(img.h), mode_(mode) {}
-  [[gnu::always_inline]] Float4 SampleNormalized(float s, float t) {
-    ++taps_;
-    const BilinearFootprint f = BilinearAt(s * static_cast<float>(w_), t * static_cast<float>(h_), w_, h_, mode_);
-    const int xa = std::clamp(f.x0, 0, w_ - 1), xb = std::clamp(f.x0 + 1, 0, w_ - 1);
-    const int ya = std::clamp(f.y0, 0, h_ - 1), yb = std::clamp(f.y0 + 1, 0, h_ - 1);
-    const uint8_t* a = img_.Pixel(xa, ya);
-    const uint8_t* b = img_.Pixel(xb, ya);
-    const uint8_t* c = img_.Pixel(xa, yb);
-    const uint8_t* d = img_.Pixel(xb, yb);
-    Float4 r;
-    r.r = BilinearBlend(U(a[0]), U(b[0]), U(c[0]), U(d[0]), f);
-    r.g = BilinearBlend(U(a[1]), U(b[1]), U(c[1]), U(d[1]), f);
-    r.b = BilinearBlend(U(a[2]), U(b[2]), U(c[2]), U(d[2]), f);
-    r.a = BilinearBlend(U(a[3]), U(b[3]), U(c[3]), U(d[3]), f);
-    return r;
-  }
-  uint64_t Taps() const { return taps_; }
-
- private:
-  static float U(uint8_t k) { return UnormToFloat(k); }  // BilinearSampler::Fetch
-  Tex8 img_;
-  int w_, h_;
-  SubTexel mode_;
-  uint64_t taps_ = 0;
-};
-
-// The edge-texture reader of the production path: BilinearSampler::Sample's footprint and
-// clamp, texel values 0 or 1 (= UnormToFloat(255)) per bit, BilinearBlend as Sample.
-class PlaneEdges {
- public:
-  PlaneEdges(const EdgePlane& pl, SubTexel mode) : pl_(pl), mode_(mode) {}
-  F2 Sample(float u, float v) {
-    ++taps_;
-    static constexpr float kBit[2] = {0.0f, 1.0f};
-    const int w = pl_.w, h = pl_.h;
-    const BilinearFootprint f = BilinearAt(u, v, w, h, mode_);
-    const int xa = std::clamp(f.x0, 0, w - 1), xb = std::clamp(f.x0 + 1, 0, w - 1);
-    const int ya = std::clamp(f.y0, 0, h - 1), yb = std::clamp(f.y0 + 1, 0, h - 1);
-    const uint8_t a = pl_.Row(ya)[xa], b = pl_.Row(ya)[xb], c = pl_.Row(yb)[xa], d = pl_.Row(yb)[xb];
-    return {BilinearBlend(kBit[a & 1], kBit[b & 1], kBit[c & 1], kBit[d & 1], f),
-            BilinearBlend(kBit[a >> 1], kBit[b >> 1], kBit[c >> 1], kBit[d >> 1], f)};
-  }
-  uint64_t Taps() const { return taps_; }
-
- private:
-  const EdgePlane& pl_;
-  SubTexel mode_;
-  uint64_t taps_ = 0;
-};
 
 // flags[x] = OR of plane bytes over rows y+r0 .. y+r1 and columns x+c0 .. x+c1 (clamped),
 // with c0 <= 0 <= c1.
@@ -536,15 +437,29 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
   edges.h = in.Height();
   edges.e.reset(new uint8_t[in.PixelCount()]);  // rows cleared by EdgesFast
   edges.row_any.resize(static_cast<size_t>(in.Height()));
-  EdgesFast(in, params, &edges, &taps);
+  const bool precise =
+      params.subtexel == SubTexel::kFixed8 && in.Width() <= kMaxShortcutSize && in.Height() <= kMaxShortcutSize;
+  const bool fused = precise && view == 0;
+  if (fused) {
+    edges.xs.reset(new uint16_t[in.PixelCount()]);  // rows listed by EdgesFast
+    edges.n.assign(static_cast<size_t>(in.Height()), 0);
+  }
+  // The fused pass's output: every row the input row, alpha 255, written by pass 1 (the
+  // pixels that blend are overwritten by the fused pass).
+  Image8 out;
+  if (fused) out = Image8(in.Width(), in.Height(), 4, kUninitialized);
+  EdgesFast(in, params, &edges, fused ? &out : nullptr, &taps);
+  if (fused) {
+    smaa_internal::WeightsAndBlendFused(in, edges, params, &out, &taps);
+    if (stats) stats->taps += taps;
+    return out;
+  }
   if (view == 1 && stats) stats->taps += taps;  // a debug view counts the passes it ran
   if (view == 1) return smaa_detail::EdgesView(EdgeTextureOf(edges));
   BlendTex blend;
   blend.w = in.Width();
   blend.h = in.Height();
-  blend.px.reset(new uint8_t[4 * in.PixelCount()]);  // rows cleared by WeightsFast
-  const bool precise =
-      params.subtexel == SubTexel::kFixed8 && in.Width() <= kMaxShortcutSize && in.Height() <= kMaxShortcutSize;
+  blend.px.reset(new uint8_t[4 * in.PixelCount()]);            // rows cleared by WeightsFast
   if (!precise) blend.nz.reset(new uint8_t[in.PixelCount()]);  // only the footprint test of BlendFlags reads it
   blend.row_any.assign(static_cast<size_t>(in.Height()), 0);
   WeightsFast(edges, params, &blend, &taps);
@@ -554,9 +469,9 @@ Image8 Smaa(const Image8& in, const SmaaParams& params, const std::string& debug
     std::memcpy(tex.Data().data(), blend.px.get(), tex.Data().size());
     return smaa_detail::WeightsView(tex);
   }
-  Image8 out = BlendFast(in, blend, params, &taps);
+  Image8 blended = BlendFast(in, blend, params, &taps);
   if (stats) stats->taps += taps;
-  return out;
+  return blended;
 }
 
 }  // namespace aalab

@@ -12,6 +12,8 @@ set(AALAB_METHOD_SOURCES
   fxaa311_search.cpp
   smaa.cpp
   smaa_fast.cpp
+  smaa_rows.cpp
+  smaa_fused.cpp
   smaa_textures.cpp
   cmaa2.cpp
   rescale.cpp

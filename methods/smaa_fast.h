@@ -1,0 +1,160 @@
+// SMAA 1x production path internals shared by methods/smaa_fast.cpp (pass 1, the unfused
+// passes 2 and 3, debug views) and methods/smaa_fused.cpp (passes 2 and 3 fused): the edge
+// plane and the inline samplers. Not part of the methods API; see the block at the top of
+// methods/smaa_fast.cpp.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "core/sampler.h"
+#include "methods/smaa.h"
+#include "methods/smaa_rows.h"
+#include "methods/smaa_shader.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace aalab::smaa_internal {
+
+using smaa_detail::F2;
+
+/// Frames up to this size a side take the shortcuts of 8-bit sub-texel fetches.
+constexpr int kMaxShortcutSize = 8192;
+constexpr uint8_t kLeft = 1;  ///< edge-plane bits: r (left edge) and g (top edge)
+constexpr uint8_t kTop = 2;
+
+// The edge texture as one byte per pixel (bit 0 = r, bit 1 = g), plus one flag per row
+// (any edge in the row). The bytes are allocated uninitialised: the parallel pass that
+// fills a row clears it first (no serial zero-fill of the whole plane).
+// With `xs`, each row's edge pixels are also listed (columns ascending, in xs at offset
+// y·w, count in n[y]): the fused weight and blend pass visits only those.
+struct EdgePlane {
+  int w = 0, h = 0;
+  std::unique_ptr<uint8_t[]> e;
+  std::vector<uint8_t> row_any;
+  std::unique_ptr<uint16_t[]> xs;  // uninitialised; only each row's first n[y] entries are written
+  std::vector<int> n;
+  void ListRow(int y, bool any) {
+    if (!xs) return;
+    n[static_cast<size_t>(y)] = any ? smaa_internal::ListNonZero(Row(y), w, List(y)) : 0;
+  }
+  uint16_t* List(int y) { return xs.get() + static_cast<size_t>(y) * w; }
+  const uint16_t* List(int y) const { return xs.get() + static_cast<size_t>(y) * w; }
+  const uint8_t* Row(int y) const { return e.get() + static_cast<size_t>(y) * w; }
+  uint8_t* Row(int y) { return e.get() + static_cast<size_t>(y) * w; }
+};
+
+// BilinearSampler::SampleNormalized, operation for operation (BilinearAt, clamped reads,
+// UnormToFloat, BilinearBlend), inline and with its own tap counter.
+// An RGBA8 texture: the fast path's own buffers and Image8 alike.
+struct Tex8 {
+  const uint8_t* data = nullptr;
+  int w = 0, h = 0;
+  explicit Tex8(const Image8& img) : data(img.Data().data()), w(img.Width()), h(img.Height()) {
+    AALAB_CHECK(img.Channels() == 4, "SMAA textures are RGBA8");
+  }
+  Tex8(const uint8_t* d, int width, int height) : data(d), w(width), h(height) {}
+  const uint8_t* Pixel(int x, int y) const { return data + 4 * (static_cast<size_t>(y) * w + x); }
+  const uint8_t* Row(int y) const { return Pixel(0, y); }
+};
+
+class InlineSampler {
+ public:
+  InlineSampler(Tex8 img, SubTexel mode) : img_(img), w_(img.w), h_(img.h), mode_(mode) {}
+  [[gnu::always_inline]] Float4 SampleNormalized(float s, float t) {
+    ++taps_;
+    const BilinearFootprint f = BilinearAt(s * static_cast<float>(w_), t * static_cast<float>(h_), w_, h_, mode_);
+    const int xa = std::clamp(f.x0, 0, w_ - 1), xb = std::clamp(f.x0 + 1, 0, w_ - 1);
+    const int ya = std::clamp(f.y0, 0, h_ - 1), yb = std::clamp(f.y0 + 1, 0, h_ - 1);
+    const uint8_t* a = img_.Pixel(xa, ya);
+    const uint8_t* b = img_.Pixel(xb, ya);
+    const uint8_t* c = img_.Pixel(xa, yb);
+    const uint8_t* d = img_.Pixel(xb, yb);
+    Float4 r;
+#if defined(__SSE2__)
+    // The four channels' BilinearBlend in the lanes of one vector: per lane the same
+    // operations (k·fl(1/255), then FilterLerp's a + w·(b − a) three times), so the same bits.
+    const __m128 fx = _mm_set1_ps(f.fx), fy = _mm_set1_ps(f.fy);
+    const __m128 ta = U4(a), tb = U4(b), tc = U4(c), td = U4(d);
+    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
+    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
+    float v[4];
+    _mm_storeu_ps(v, _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top))));
+    r = {v[0], v[1], v[2], v[3]};
+#else
+    r.r = BilinearBlend(U(a[0]), U(b[0]), U(c[0]), U(d[0]), f);
+    r.g = BilinearBlend(U(a[1]), U(b[1]), U(c[1]), U(d[1]), f);
+    r.b = BilinearBlend(U(a[2]), U(b[2]), U(c[2]), U(d[2]), f);
+    r.a = BilinearBlend(U(a[3]), U(b[3]), U(c[3]), U(d[3]), f);
+#endif
+    return r;
+  }
+  uint64_t Taps() const { return taps_; }
+
+ private:
+  static float U(uint8_t k) { return UnormToFloat(k); }  // BilinearSampler::Fetch
+#if defined(__SSE2__)
+  // U of the four bytes at p, in the lanes of a vector (byte → int32 → float, × fl(1/255)).
+  [[gnu::always_inline]] static __m128 U4(const uint8_t* p) {
+    uint32_t v;
+    std::memcpy(&v, p, 4);
+    const __m128i z = _mm_setzero_si128();
+    const __m128i x = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(static_cast<int>(v)), z), z);
+    return _mm_mul_ps(_mm_cvtepi32_ps(x), _mm_set1_ps(1.0f / 255.0f));
+  }
+#endif
+  Tex8 img_;
+  int w_, h_;
+  SubTexel mode_;
+  uint64_t taps_ = 0;
+};
+
+// The edge-texture reader of the production path: BilinearSampler::Sample's footprint and
+// clamp, texel values 0 or 1 (= UnormToFloat(255)) per bit, BilinearBlend as Sample.
+class PlaneEdges {
+ public:
+  PlaneEdges(const EdgePlane& pl, SubTexel mode) : pl_(pl), mode_(mode) {}
+  F2 Sample(float u, float v) {
+    ++taps_;
+    const int w = pl_.w, h = pl_.h;
+    const BilinearFootprint f = BilinearAt(u, v, w, h, mode_);
+    const int xa = std::clamp(f.x0, 0, w - 1), xb = std::clamp(f.x0 + 1, 0, w - 1);
+    const int ya = std::clamp(f.y0, 0, h - 1), yb = std::clamp(f.y0 + 1, 0, h - 1);
+    const uint8_t a = pl_.Row(ya)[xa], b = pl_.Row(ya)[xb], c = pl_.Row(yb)[xa], d = pl_.Row(yb)[xb];
+#if defined(__SSE2__)
+    // r and g in two lanes: the texels' (bit 0, bit 1) as floats from a table, then the same
+    // three FilterLerps per lane as BilinearBlend.
+    alignas(16) static constexpr float kPair[4][4] = {{0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {1, 1, 0, 0}};
+    const __m128 fx = _mm_set1_ps(f.fx), fy = _mm_set1_ps(f.fy);
+    const __m128 ta = _mm_load_ps(kPair[a]), tb = _mm_load_ps(kPair[b]);
+    const __m128 tc = _mm_load_ps(kPair[c]), td = _mm_load_ps(kPair[d]);
+    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
+    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
+    const __m128 rg = _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top)));
+    return {_mm_cvtss_f32(rg), _mm_cvtss_f32(_mm_shuffle_ps(rg, rg, 1))};
+#else
+    static constexpr float kBit[2] = {0.0f, 1.0f};
+    return {BilinearBlend(kBit[a & 1], kBit[b & 1], kBit[c & 1], kBit[d & 1], f),
+            BilinearBlend(kBit[a >> 1], kBit[b >> 1], kBit[c >> 1], kBit[d >> 1], f)};
+#endif
+  }
+  uint64_t Taps() const { return taps_; }
+
+ private:
+  const EdgePlane& pl_;
+  SubTexel mode_;
+  uint64_t taps_ = 0;
+};
+
+/// Passes 2 and 3 fused (8-bit fetches, frames up to kMaxShortcutSize, edges listed): blends
+/// into *out, which holds the input with alpha 255 (pass 1 copies each row), the pixels whose
+/// weights are non-zero; adds the two passes' taps to *taps. methods/smaa_fused.cpp.
+void WeightsAndBlendFused(const Image8& in, const EdgePlane& edges, const SmaaParams& p, Image8* out, uint64_t* taps);
+
+}  // namespace aalab::smaa_internal
