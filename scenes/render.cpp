@@ -16,6 +16,22 @@ namespace aalab {
 namespace {
 
 constexpr int kTile = 8;  // tiles of 8×8 pixels; the work split never depends on threads
+
+/// The renderers' split of a width × height frame into kTile × kTile tiles, row-major; the
+/// last column and row of tiles are clipped to the frame.
+struct TileGrid {
+  int width, height, tiles_x, tiles;
+  TileGrid(int w, int h)
+      : width(w), height(h), tiles_x((w + kTile - 1) / kTile), tiles(tiles_x * ((h + kTile - 1) / kTile)) {}
+  /// Tile t's pixels: x in [x0, x1), y in [y0, y1).
+  struct Rect {
+    int x0, y0, x1, y1;
+  };
+  Rect At(int t) const {
+    const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
+    return {x0, y0, std::min(x0 + kTile, width), std::min(y0 + kTile, height)};
+  }
+};
 constexpr uint64_t kStreamReference = 0x5265665374726174ULL;  // "RefStrat"
 constexpr uint64_t kStreamJitter = 0x4a69747465725373ULL;     // "JitterSs"
 
@@ -249,9 +265,8 @@ void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Pla
                  TraceCounters* counters, TextureFootprint footprint) {
   const Display& display = tracer.GetScene().display;
   AALAB_CHECK(width > 0 && height > 0 && spp > 0, "render size and spp must be positive");
-  const int tiles_x = (width + kTile - 1) / kTile;
-  const int tiles_y = (height + kTile - 1) / kTile;
-  const int tiles = tiles_x * tiles_y;
+  const TileGrid grid_of_tiles(width, height);
+  const int tiles = grid_of_tiles.tiles;
   std::vector<TraceCounters> per_tile(static_cast<size_t>(tiles));
   ParallelForChunks(tiles, 1, [&](int begin, int end) {
     thread_local TileScratch scratch;
@@ -265,8 +280,7 @@ void RenderTiles(const Tracer& tracer, int width, int height, int spp, const Pla
     SampleResult* res = scratch.res.data();
     float* disp = scratch.display.data();
     for (int t = begin; t < end; ++t) {
-      const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
-      const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
+      const auto [x0, y0, x1, y1] = grid_of_tiles.At(t);
       size_t n = 0;
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
@@ -310,9 +324,8 @@ void TraceMsaaTiles(const Tracer& tracer, int width, int height, const MsaaSpec&
     offsets.emplace_back(static_cast<float>(8 + o.x) / 16.0f, static_cast<float>(8 + o.y) / 16.0f);
   }
   if (stats) stats->shading_evals = ImageF(width, height, 1);
-  const int tiles_x = (width + kTile - 1) / kTile;
-  const int tiles_y = (height + kTile - 1) / kTile;
-  const int tiles = tiles_x * tiles_y;
+  const TileGrid grid_of_tiles(width, height);
+  const int tiles = grid_of_tiles.tiles;
   std::vector<TraceCounters> per_tile(static_cast<size_t>(tiles));
   ParallelForChunks(tiles, 1, [&](int begin, int end) {
     thread_local MsaaTileScratch scratch;
@@ -326,8 +339,7 @@ void TraceMsaaTiles(const Tracer& tracer, int width, int height, const MsaaSpec&
       scratch.evals.resize(max_px);
     }
     for (int t = begin; t < end; ++t) {
-      const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
-      const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
+      const auto [x0, y0, x1, y1] = grid_of_tiles.At(t);
       int n = 0;
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x, ++n) {
@@ -498,9 +510,8 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
   ref.half_b = ImageF(width, height, 3);
   ref.edge_mask_raw = ImageF(width, height, 1);
   const uint64_t rseed = seed ^ kStreamReference;
-  const int tiles_x = (width + kTile - 1) / kTile;
-  const int tiles_y = (height + kTile - 1) / kTile;
-  const int tiles = tiles_x * tiles_y;
+  const TileGrid grid_of_tiles(width, height);
+  const int tiles = grid_of_tiles.tiles;
   std::vector<TraceCounters> per_tile(static_cast<size_t>(tiles));
   // The truth samples image textures bilinearly on level 0 at every sub-sample (px = 0).
   const TextureFootprint footprint{0.0f, 1};
@@ -516,8 +527,7 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
     SampleResult* res = scratch.res.data();
     float* lanes = scratch.lanes.data();
     for (int t = begin; t < end; ++t) {
-      const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
-      const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
+      const auto [x0, y0, x1, y1] = grid_of_tiles.At(t);
       size_t n = 0;
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
