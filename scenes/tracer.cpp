@@ -204,12 +204,7 @@ void tracer_detail::IntersectRays(RTCScene scene, const glm::vec3* org, const gl
   if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[kPacket];
-  for (int k = 0; k < kPacket; ++k) {  // inputs Embree never writes: set once per batch
-    rh.ray.time[k] = 0.0f;
-    rh.ray.mask[k] = 0xFFFFFFFFu;
-    rh.ray.id[k] = static_cast<unsigned>(k);
-    rh.ray.flags[k] = 0;
-  }
+  InitPacketConstants(rh);
   for (int base = 0; base < n; base += kPacket) {
     // A full packet of consecutive rays, all with tnear < tfar (camera rays): the same lanes
     // as the general loop below, filled without its per-lane selects.
@@ -435,12 +430,7 @@ uint64_t Tracer::BareTrace(int width, int height, int grid) const {
     ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[kPacket];
-    for (int k = 0; k < kPacket; ++k) {
-      rh.ray.time[k] = 0.0f;
-      rh.ray.mask[k] = 0xFFFFFFFFu;
-      rh.ray.id[k] = static_cast<unsigned>(k);
-      rh.ray.flags[k] = 0;
-    }
+    InitPacketConstants(rh);
     for (int t = begin; t < end; ++t) {
       const int x0 = (t % tiles_x) * kTileSize, y0 = (t / tiles_x) * kTileSize;
       const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);

@@ -113,12 +113,7 @@ void CameraPackets(RTCScene scene, bool persp, const SamplePos* pos, int count, 
   ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[kPacket];
-  for (int k = 0; k < kPacket; ++k) {  // inputs Embree never writes: set once per batch
-    rh.ray.time[k] = 0.0f;
-    rh.ray.mask[k] = 0xFFFFFFFFu;
-    rh.ray.id[k] = static_cast<unsigned>(k);
-    rh.ray.flags[k] = 0;
-  }
+  InitPacketConstants(rh);
   const float inf = std::numeric_limits<float>::infinity();
   for (int base = 0; base < count; base += kPacket) {
     const int m = std::min(kPacket, count - base);

@@ -44,6 +44,17 @@ namespace tracer_detail {
 constexpr int kPacket = 16;
 constexpr int kMaxAlphaLayers = 256;  // continuation rounds through cut-outs before giving up
 
+/// The packet's inputs Embree never writes (time 0, every mask bit, id = lane, no flags):
+/// set once per batch of packets.
+inline void InitPacketConstants(RTCRayHit16& rh) {
+  for (int k = 0; k < kPacket; ++k) {
+    rh.ray.time[k] = 0.0f;
+    rh.ray.mask[k] = 0xFFFFFFFFu;
+    rh.ray.id[k] = static_cast<unsigned>(k);
+    rh.ray.flags[k] = 0;
+  }
+}
+
 /// A ray's closest hit (shape == -1: nothing).
 struct Hit {
   float t = std::numeric_limits<float>::infinity();
