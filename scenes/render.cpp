@@ -216,7 +216,10 @@ void SumReferenceLanes(const float* lanes, int grid, double* sums) {
   typedef double D8 __attribute__((vector_size(64)));
   for (int c = 0; c < 3; ++c) {
     D8 all = {}, a = {}, b = {};
-    for (int j = 0; j < grid; j += 2) {  // row j even (pair starts in A), row j + 1 odd (in B)
+    for (int j = 0; j < grid; ++j) {
+      // Row j's pairs start in half A when j is even, in half B when it is odd.
+      D8& first = j % 2 == 0 ? a : b;
+      D8& second = j % 2 == 0 ? b : a;
       for (int i = 0; i < grid; i += 2) {
         const float* l0 = lanes + (static_cast<size_t>(j * grid + i) * 3 + c) * kTile;
         F8 f0, f1;
@@ -225,19 +228,8 @@ void SumReferenceLanes(const float* lanes, int grid, double* sums) {
         const D8 d0 = __builtin_convertvector(f0, D8), d1 = __builtin_convertvector(f1, D8);
         all += d0;
         all += d1;
-        a += d0;
-        b += d1;
-      }
-      for (int i = 0; i < grid; i += 2) {
-        const float* l0 = lanes + (static_cast<size_t>((j + 1) * grid + i) * 3 + c) * kTile;
-        F8 f0, f1;
-        std::memcpy(&f0, l0, sizeof f0);
-        std::memcpy(&f1, l0 + 3 * kTile, sizeof f1);
-        const D8 d0 = __builtin_convertvector(f0, D8), d1 = __builtin_convertvector(f1, D8);
-        all += d0;
-        all += d1;
-        b += d0;
-        a += d1;
+        first += d0;
+        second += d1;
       }
     }
     std::memcpy(sums + (kSumAll + c) * kTile, &all, sizeof all);
