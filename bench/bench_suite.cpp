@@ -139,9 +139,14 @@ bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
            {"960x540", 960, 540, 1, {}, {}, {}}};
   if (cfg.quick) suite = {{"480x270", 480, 270, 2, {}, {}, {}}, {"960x540", 960, 540, 2, {}, {}, {}}};
   const fs::path suite_out = fs::temp_directory_path() / ("aalab_bench_suite_" + std::to_string(getpid()));
-  for (auto& s : suite) {
-    const int reps = s.w >= 1920 ? 1 : cfg.suite_reps;  // 1080p: one run (keeps make bench under 10 min)
-    for (int r = 0; r < reps; ++r) {
+  // Round-robin over the configurations (repetition r of each, then r + 1) so that the ratios
+  // between them (2 threads over 1, per Mpix against 1080p's) compare runs made minutes apart,
+  // not the start of the bench against its end.
+  const auto reps_of = [&cfg](const SuiteRun& s) { return s.w >= 1920 ? 1 : cfg.suite_reps; };  // 1080p: one run
+  for (int r = 0; r < std::max(cfg.suite_reps, 1); ++r) {
+    for (auto& s : suite) {
+      const int reps = reps_of(s);
+      if (r >= reps) continue;
       fs::remove_all(suite_out);
       const std::string cmd = cfg.aalab_bin + " run --suite " + kSuiteName + " --methods " + kSuiteMethods +
                               " --size " + s.size + " --ref-spp " + std::to_string(kSuiteSpp) +
