@@ -1,5 +1,6 @@
 #include "reports/gpu_timings.h"
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -74,6 +75,44 @@ GpuTimingsFile ReadGpuTimingsFile(const std::string& path) {
   return g;
 }
 
+namespace {
+
+/// True when two blocks were measured on the same setup: the same device, driver, CUDA runtime
+/// and kernels, so their sizes can stand side by side in one block.
+bool SameSetup(const GpuTiming& a, const GpuTiming& b) {
+  return a.device == b.device && a.driver == b.driver && a.cuda_runtime == b.cuda_runtime && a.kernels == b.kernels;
+}
+
+/// `list` with `item` appended after "; " unless it is already one of its entries.
+std::string AppendOnce(const std::string& list, const std::string& item) {
+  if (list.empty()) return item;
+  size_t start = 0;
+  while (start <= list.size()) {
+    const size_t end = std::min(list.find("; ", start), list.size());
+    if (list.compare(start, end - start, item) == 0) return list;
+    start = end + 2;
+  }
+  return list + "; " + item;
+}
+
+/// Folds `add` into `into` (same setup): a size both have takes `add`'s timing, a new size is
+/// appended; the block's `measured_utc` lists the times of the files its sizes now come from.
+void FoldSizes(GpuTiming& into, const GpuTiming& add) {
+  for (const GpuTimingAt& at : add.sizes) {
+    auto same =
+        std::find_if(into.sizes.begin(), into.sizes.end(), [&at](const GpuTimingAt& x) { return x.size == at.size; });
+    if (same != into.sizes.end()) {
+      *same = at;
+    } else {
+      into.sizes.push_back(at);
+    }
+  }
+  into.measured_utc.clear();
+  for (const GpuTimingAt& at : into.sizes) into.measured_utc = AppendOnce(into.measured_utc, at.measured_utc);
+}
+
+}  // namespace
+
 int MergeGpuTimings(Report& report, const GpuTimingsFile& gpu) {
   auto copy_ms = [&gpu](const std::string& scene, const std::string& size) {
     for (const auto& r : gpu.results) {
@@ -98,6 +137,7 @@ int MergeGpuTimings(Report& report, const GpuTimingsFile& gpu) {
       at.max_ms = r.max_ms;
       at.copy_ms = copy_ms(r.scene, r.size);
       at.ratio_to_copy = r.ratio_to_copy;
+      at.measured_utc = gpu.generated_utc;
       if (r.has_fidelity) {
         at.identical_share = r.identical_share;
         at.max_diff = r.max_diff;
@@ -105,12 +145,18 @@ int MergeGpuTimings(Report& report, const GpuTimingsFile& gpu) {
       t.sizes.push_back(at);
     }
     if (t.sizes.empty()) continue;
-    row.gpu = t;
+    if (row.gpu && SameSetup(*row.gpu, t)) {
+      FoldSizes(*row.gpu, t);
+    } else {
+      row.gpu = t;
+    }
     ++matched;
   }
   if (matched > 0) {
-    report.context["gpu_timings"] =
+    const std::string source =
         gpu.device + ", driver " + gpu.driver + ", CUDA " + gpu.cuda_runtime + ", measured " + gpu.generated_utc;
+    const auto old = report.context.find("gpu_timings");
+    report.context["gpu_timings"] = old == report.context.end() ? source : AppendOnce(old->second, source);
   }
   return matched;
 }

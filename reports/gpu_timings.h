@@ -34,7 +34,13 @@ GpuTimingsFile ReadGpuTimingsFile(const std::string& path);
 /// Sets `row.gpu` for every row whose scene and spec have timed results in `gpu` (one
 /// GpuTimingAt per size, in file order; copy_ms from the file's "copy" result for that scene
 /// and size) and records the source in report.context["gpu_timings"]. Rows without results
-/// are left as they are. Returns the number of rows that got a block.
+/// are left as they are. A row that already has a block from the same setup (device, driver,
+/// CUDA runtime, kernels) keeps it and gains this file's sizes, a size in both taking this
+/// file's timing (so a 1080p file and a 4K file merged one after the other put both sizes on
+/// the row, each size with its own `measured_utc` and the block's listing the times of the
+/// files its sizes come from, "; "-separated); a block from another
+/// setup is replaced. report.context["gpu_timings"] lists every merged file's source once.
+/// Returns the number of rows that got or extended a block.
 int MergeGpuTimings(Report& report, const GpuTimingsFile& gpu);
 
 }  // namespace aalab

@@ -78,7 +78,8 @@ Json GpuJson(const GpuTiming& g) {
                      {"copy_ms", Num(s.copy_ms)},
                      {"ratio_to_copy", Num(s.ratio_to_copy)},
                      {"identical_share", Opt(s.identical_share)},
-                     {"max_diff", s.max_diff ? Json(*s.max_diff) : Json(nullptr)}};
+                     {"max_diff", s.max_diff ? Json(*s.max_diff) : Json(nullptr)},
+                     {"measured_utc", s.measured_utc}};
   }
   j["sizes"] = sizes;
   return j;
@@ -102,6 +103,8 @@ GpuTiming GpuFrom(const nlohmann::ordered_json& j) {
     s.ratio_to_copy = v.at("ratio_to_copy").get<double>();
     s.identical_share = OptFrom(v.at("identical_share"));
     if (!v.at("max_diff").is_null()) s.max_diff = v.at("max_diff").get<int>();
+    // Reports written before sizes carried their own time: the block's.
+    s.measured_utc = v.contains("measured_utc") ? v.at("measured_utc").get<std::string>() : g.measured_utc;
     g.sizes.push_back(s);
   }
   return g;

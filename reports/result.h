@@ -34,6 +34,7 @@ struct GpuTimingAt {
   double ratio_to_copy = 0;               ///< median_ms / copy_ms
   std::optional<double> identical_share;  ///< share of pixels equal to the CPU output
   std::optional<int> max_diff;            ///< largest rgb difference to the CPU output, 8-bit levels
+  std::string measured_utc;               ///< when the file that gave this size was written
 };
 
 /// The GPU block of a row: where and when it was measured, and the timings per size.

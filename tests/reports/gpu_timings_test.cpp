@@ -116,5 +116,52 @@ TEST(GpuTimings, BadFilesAreUserErrors) {
   EXPECT_THROW(ReadGpuTimingsFile("/nonexistent/gpu.json"), UserError);
 }
 
+// One aalab_gpu file per size (1080p first, 4K later, as two H100 runs write them), merged one
+// after the other: the row carries both sizes, each with its own time; a later file of the same
+// setup replaces only the size it re-measures; another kernel list replaces the block.
+TEST(GpuTimings, FilesOfOneSetupAddTheirSizesToTheRow) {
+  const auto file = [](const std::string& when, const std::string& size, double ms, const std::string& kernels) {
+    return std::string(R"({"schema": "aalab-gpu-timings", "schema_version": 1, "generated_utc": ")") + when +
+           R"(", "device": {"name": "Test GPU"}, "driver": "580.1", "cuda_runtime": "13.0", "results": [
+             {"scene": "wedges", "size": ")" +
+           size + R"(", "method": "fxaa1-p3", "kernels": ")" + kernels + R"(", "median_ms": )" + std::to_string(ms) +
+           R"(, "min_ms": 0.01, "max_ms": 9, "ratio_to_copy": 2}]})";
+  };
+  Report r;
+  r.rows = {Row("wedges", "fxaa1-p3")};
+  EXPECT_EQ(MergeGpuTimings(r, ReadGpuTimingsFile(WriteTmp("a.json", file("T1", "1920x1080", 0.05, "fxaa1")).string())),
+            1);
+  EXPECT_EQ(MergeGpuTimings(r, ReadGpuTimingsFile(WriteTmp("b.json", file("T2", "3840x2160", 0.2, "fxaa1")).string())),
+            1);
+  ASSERT_TRUE(r.rows[0].gpu.has_value());
+  ASSERT_EQ(r.rows[0].gpu->sizes.size(), 2u);
+  EXPECT_EQ(r.rows[0].gpu->sizes[0].size, "1920x1080");
+  EXPECT_DOUBLE_EQ(r.rows[0].gpu->sizes[0].median_ms, 0.05);
+  EXPECT_EQ(r.rows[0].gpu->sizes[0].measured_utc, "T1");
+  EXPECT_EQ(r.rows[0].gpu->sizes[1].size, "3840x2160");
+  EXPECT_DOUBLE_EQ(r.rows[0].gpu->sizes[1].median_ms, 0.2);
+  EXPECT_EQ(r.rows[0].gpu->sizes[1].measured_utc, "T2");
+  EXPECT_EQ(r.rows[0].gpu->measured_utc, "T1; T2");
+  EXPECT_NE(r.context.at("gpu_timings").find("measured T1; "), std::string::npos);
+  EXPECT_NE(r.context.at("gpu_timings").find("measured T2"), std::string::npos);
+  // The per-size times survive report.json.
+  const Report back = ReportFromJson(ReportToJson(r), "test");
+  EXPECT_EQ(back.rows[0].gpu->sizes[1].measured_utc, "T2");
+
+  // 1080p measured again: it replaces the 1080p entry; 4K stays; T1 no longer on the row.
+  MergeGpuTimings(r, ReadGpuTimingsFile(WriteTmp("c.json", file("T3", "1920x1080", 0.07, "fxaa1")).string()));
+  ASSERT_EQ(r.rows[0].gpu->sizes.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.rows[0].gpu->sizes[0].median_ms, 0.07);
+  EXPECT_DOUBLE_EQ(r.rows[0].gpu->sizes[1].median_ms, 0.2);
+  EXPECT_EQ(r.rows[0].gpu->measured_utc, "T3; T2");
+
+  // Another kernel list is another setup: its block replaces the row's.
+  MergeGpuTimings(r, ReadGpuTimingsFile(WriteTmp("d.json", file("T4", "3840x2160", 0.3, "fxaa1_v2")).string()));
+  ASSERT_EQ(r.rows[0].gpu->sizes.size(), 1u);
+  EXPECT_EQ(r.rows[0].gpu->kernels, "fxaa1_v2");
+  EXPECT_DOUBLE_EQ(r.rows[0].gpu->sizes[0].median_ms, 0.3);
+  EXPECT_EQ(r.rows[0].gpu->measured_utc, "T4");
+}
+
 }  // namespace
 }  // namespace aalab
