@@ -228,8 +228,9 @@ std::string AttachGpuTimings(const std::string& dir, const std::vector<std::stri
   const fs::path report_path = fs::path(dir) / "report.json";
   Report report = ReadReportFile(report_path.string());
   for (const auto& gpu_json : gpu_jsons) CheckGpuTimingsFile(gpu_json);
-  // Every file is merged into the report in memory, in the order given (a later file's block
-  // replaces an earlier one's on the rows both time); the report is written once, after all
+  // Every file is merged into the report in memory, in the order given (a later CUDA file of
+  // the same setup adds its sizes to a row's block, one of another setup or a later raster
+  // file replaces it); the report is written once, after all
   // of them matched, so a file that matches nothing leaves the report as it was.
   std::string lines;
   for (const auto& gpu_json : gpu_jsons) {
