@@ -51,8 +51,11 @@ struct Avx2RowIn {
 int HistoryBlendRow8Avx2(const Avx2RowIn& in, int w, bool clip, float alpha, float* next, uint8_t* rgba);
 
 /// The same with AVX-512 for pixels [0, n), n = w rounded down to a multiple of 16 (0
-/// without AVX-512); HistoryBlendRow8Avx2 runs it first and continues from n. Likewise
-/// EncodeRgbaAvx512 and YccPlaneRowAvx512 below for the two functions after this one.
+/// without AVX-512); HistoryBlendRow8Avx2 runs it first and continues from n. Where the 16
+/// pixels' footprint is contiguous (pixel i's texels are pixel 0's + i) it fetches the two
+/// history rows by vector loads and permutes instead. Likewise EncodeRgbaAvx512 and
+/// YccPlaneRowAvx512 below for the two functions after this one (YccPlaneRowAvx512 decodes
+/// from the table held in registers, no gathers).
 int HistoryBlendRow16Avx512(const Avx2RowIn& in, int w, bool clip, float alpha, float* next, uint8_t* rgba);
 int EncodeRgbaAvx512(const EncodeTables& t, const float* r, const float* g, const float* b, int w, uint8_t* rgba);
 int YccPlaneRowAvx512(const uint8_t* src, int w, const float* decode, float* y, float* co, float* cg);

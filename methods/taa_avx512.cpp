@@ -8,9 +8,13 @@
 // scalar operand order: _mm512_max_ps / _mm512_min_ps return their second operand on NaN
 // like their AVX forms). What differs is only data movement: the previous positions are
 // deinterleaved and the new history interleaved by two-source permutes (exactly 48 floats
-// stored per 16 pixels), comparisons give mask registers. tests/motion/taa_test.cpp's
-// bit-for-bit tests use widths that reach this kernel, the AVX2 and SSE2 kernels and the
-// scalar tail.
+// stored per 16 pixels), comparisons give mask registers, and where the sixteen pixels'
+// footprint is contiguous (Contiguous16) the history texels are fetched by four vector
+// loads and nine permutes per row instead of 32 4-float loads (FetchContiguous16); the
+// current frame's planes decode from the 256-entry table held in 16 registers (DecodeRegs16:
+// permutes and blends, measured faster than three 16-lane gathers per 16 pixels).
+// tests/motion/taa_test.cpp's bit-for-bit tests use widths that reach this kernel, the AVX2
+// and SSE2 kernels and the scalar tail, and smooth motion that takes the contiguous fetch.
 #include "methods/taa_avx2.h"
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
@@ -101,10 +105,12 @@ AALAB_TAA_AVX512 inline void Box16(const float* const* rows, int x, float gamma,
   *hi = mx;
 }
 
-/// The footprint of sixteen pixels (taa.cpp FootprintRow, the same operations).
+/// The footprint of sixteen pixels (taa.cpp FootprintRow, the same operations): the
+/// fractions and the four corners' float offsets into the history, a (x0, y0), b (x1, y0),
+/// c (x0, y1), d (x1, y1).
 struct Footprint16 {
   __m512 tx, ty;
-  alignas(64) int32_t off[4][16];  // corners a (x0, y0), b (x1, y0), c (x0, y1), d (x1, y1)
+  __m512i off[4];
 };
 
 AALAB_TAA_AVX512 inline void MakeFootprint16(__m512 qx, __m512 qy, int hw, int hh, Footprint16* fp) {
@@ -126,10 +132,75 @@ AALAB_TAA_AVX512 inline void MakeFootprint16(__m512 qx, __m512 qy, int hw, int h
   const __m512i ra = _mm512_mullo_epi32(_mm512_min_epi32(_mm512_max_epi32(y0, zero), hm), w);
   const __m512i rb = _mm512_mullo_epi32(_mm512_min_epi32(_mm512_max_epi32(_mm512_add_epi32(y0, one), zero), hm), w);
   const __m512i three = _mm512_set1_epi32(3);
-  _mm512_store_si512(fp->off[0], _mm512_mullo_epi32(_mm512_add_epi32(ra, xa), three));
-  _mm512_store_si512(fp->off[1], _mm512_mullo_epi32(_mm512_add_epi32(ra, xb), three));
-  _mm512_store_si512(fp->off[2], _mm512_mullo_epi32(_mm512_add_epi32(rb, xa), three));
-  _mm512_store_si512(fp->off[3], _mm512_mullo_epi32(_mm512_add_epi32(rb, xb), three));
+  fp->off[0] = _mm512_mullo_epi32(_mm512_add_epi32(ra, xa), three);
+  fp->off[1] = _mm512_mullo_epi32(_mm512_add_epi32(ra, xb), three);
+  fp->off[2] = _mm512_mullo_epi32(_mm512_add_epi32(rb, xa), three);
+  fp->off[3] = _mm512_mullo_epi32(_mm512_add_epi32(rb, xb), three);
+}
+
+/// True when the footprint is contiguous: corner a of pixel i is pixel 0's + i texels (3i
+/// floats) and corner b the texel after a, likewise c and d, so the sixteen a/b texels are
+/// the 17 consecutive texels from a's of pixel 0 (c/d: from c's). The common case (a still
+/// or panning camera, any motion that varies by less than a pixel between neighbours);
+/// false where the clamp at the left or right border made b = a. d − c = b − a (the same
+/// xa, xb), so d needs no check of its own.
+AALAB_TAA_AVX512 inline bool Contiguous16(const Footprint16& fp) {
+  const __m512i step = _mm512_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 33, 36, 39, 42, 45);
+  const __m512i three = _mm512_set1_epi32(3);
+  const __m512i a0 = _mm512_broadcastd_epi32(_mm512_castsi512_si128(fp.off[0]));
+  const __m512i c0 = _mm512_broadcastd_epi32(_mm512_castsi512_si128(fp.off[2]));
+  __mmask16 m = _mm512_cmpeq_epi32_mask(fp.off[0], _mm512_add_epi32(a0, step));
+  m = _mm512_mask_cmpeq_epi32_mask(m, fp.off[1], _mm512_add_epi32(fp.off[0], three));
+  m = _mm512_mask_cmpeq_epi32_mask(m, fp.off[2], _mm512_add_epi32(c0, step));
+  return m == 0xffff;
+}
+
+/// The deinterleave of 17 consecutive texels (51 floats, the last at most 1 float before the
+/// history's end: it holds one float of padding) into planar R, G, B of texels 0..15 (a or
+/// c) and of texels 1..16 (b or d) by two-source permutes: 4 loads and 9 permutes in place
+/// of 32 unaligned 4-float loads and 24 inserts. The indices are those of the float order.
+struct DeinterleaveIndex {
+  alignas(64) int32_t first[3][16];   ///< channel c of texel i from floats 0..31 (3i + c < 32)
+  alignas(64) int32_t second[3][16];  ///< kept (i) or from floats 32..47 (16 + 3i + c − 32)
+  alignas(64) int32_t shift[3][16];   ///< texel i + 1: lane i + 1, lane 15 from floats 48..50
+};
+constexpr DeinterleaveIndex MakeDeinterleaveIndex() {
+  DeinterleaveIndex t{};
+  for (int c = 0; c < 3; ++c) {
+    for (int i = 0; i < 16; ++i) {
+      const int f = 3 * i + c;
+      t.first[c][i] = f < 32 ? f : 0;
+      t.second[c][i] = f < 32 ? i : 16 + f - 32;
+      t.shift[c][i] = i < 15 ? i + 1 : 16 + c;
+    }
+  }
+  return t;
+}
+constexpr DeinterleaveIndex kDeinterleave = MakeDeinterleaveIndex();
+
+/// Planar R, G, B of texels 0..15 (lo) and 1..16 (hi) of the 17 texels at p.
+AALAB_TAA_AVX512 inline void Texels17(const float* p, __m512 lo[3], __m512 hi[3]) {
+  const __m512 v0 = _mm512_loadu_ps(p), v1 = _mm512_loadu_ps(p + 16), v2 = _mm512_loadu_ps(p + 32);
+  const __m512 v3 = _mm512_castps128_ps512(_mm_loadu_ps(p + 48));  // floats 48..51: 51 is padding at most
+  for (int c = 0; c < 3; ++c) {
+    const __m512 t = _mm512_permutex2var_ps(v0, _mm512_load_si512(kDeinterleave.first[c]), v1);
+    lo[c] = _mm512_permutex2var_ps(t, _mm512_load_si512(kDeinterleave.second[c]), v2);
+    hi[c] = _mm512_permutex2var_ps(lo[c], _mm512_load_si512(kDeinterleave.shift[c]), v3);
+  }
+}
+
+/// Fetch16 for a contiguous footprint (Contiguous16): the same lerps per value in the same
+/// order (a + tx (b − a), c + tx (d − c), then top + ty (bot − top)), on planar vectors.
+AALAB_TAA_AVX512 inline void FetchContiguous16(const float* hist, const Footprint16& fp, __m512* r, __m512* g,
+                                               __m512* b) {
+  __m512 a[3], bb[3], c[3], d[3];
+  Texels17(hist + _mm_cvtsi128_si32(_mm512_castsi512_si128(fp.off[0])), a, bb);
+  Texels17(hist + _mm_cvtsi128_si32(_mm512_castsi512_si128(fp.off[2])), c, d);
+  __m512 out[3];
+  for (int k = 0; k < 3; ++k) out[k] = Lerp16(Lerp16(a[k], bb[k], fp.tx), Lerp16(c[k], d[k], fp.tx), fp.ty);
+  *r = out[0];
+  *g = out[1];
+  *b = out[2];
 }
 
 /// Four 4-float unaligned loads into one vector (128-bit lanes 0..3).
@@ -140,16 +211,19 @@ AALAB_TAA_AVX512 inline __m512 Load4x4(const float* hist, const int32_t* o, int 
       _mm_loadu_ps(hist + o[j + 12]), 3);
 }
 
-/// The bilinear fetch of sixteen pixels: pixels j, j + 4, j + 8, j + 12 share a vector, then
-/// a 4×4 transpose per 128-bit lane puts pixel order back (planar R, G, B out).
+/// The bilinear fetch of sixteen pixels (any footprint): pixels j, j + 4, j + 8, j + 12
+/// share a vector, then a 4×4 transpose per 128-bit lane puts pixel order back (planar R, G,
+/// B out).
 AALAB_TAA_AVX512 inline void Fetch16(const float* hist, const Footprint16& fp, __m512* r, __m512* g, __m512* b) {
+  alignas(64) int32_t off[4][16];
+  for (int k = 0; k < 4; ++k) _mm512_store_si512(off[k], fp.off[k]);
   __m512 p[4];
   for (int j = 0; j < 4; ++j) {
     const __m512i sel = _mm512_setr_epi32(j, j, j, j, j + 4, j + 4, j + 4, j + 4, j + 8, j + 8, j + 8, j + 8, j + 12,
                                           j + 12, j + 12, j + 12);
     const __m512 tx = _mm512_permutexvar_ps(sel, fp.tx), ty = _mm512_permutexvar_ps(sel, fp.ty);
-    const __m512 a = Load4x4(hist, fp.off[0], j), bb = Load4x4(hist, fp.off[1], j);
-    const __m512 c = Load4x4(hist, fp.off[2], j), d = Load4x4(hist, fp.off[3], j);
+    const __m512 a = Load4x4(hist, off[0], j), bb = Load4x4(hist, off[1], j);
+    const __m512 c = Load4x4(hist, off[2], j), d = Load4x4(hist, off[3], j);
     p[j] = Lerp16(Lerp16(a, bb, tx), Lerp16(c, d, tx), ty);
   }
   const __m512 t0 = _mm512_unpacklo_ps(p[0], p[1]), t1 = _mm512_unpacklo_ps(p[2], p[3]);
@@ -201,7 +275,11 @@ AALAB_TAA_AVX512 int HistoryBlendRow16(const Avx2RowIn& in, int w, float alpha, 
     const __m512 qx = _mm512_permutex2var_ps(p0, even, p1), qy = _mm512_permutex2var_ps(p0, odd, p1);
     MakeFootprint16(qx, qy, in.hw, in.hh, &fp);
     __m512 r, g, b;
-    Fetch16(in.hist, fp, &r, &g, &b);
+    if (Contiguous16(fp)) {
+      FetchContiguous16(in.hist, fp, &r, &g, &b);
+    } else {
+      Fetch16(in.hist, fp, &r, &g, &b);
+    }
     __m512 h[3];
     ToYcc16(r, g, b, &h[0], &h[1], &h[2]);
     if constexpr (kClip) {
@@ -272,14 +350,30 @@ AALAB_TAA_AVX512 int EncodeRgbaAvx512(const EncodeTables& t, const float* r, con
   return n;
 }
 
+/// decode[v] per lane (v in 0..255) from the table held in 16 registers (t[k]: entries
+/// 16k..16k + 15): per 32 entries one two-source permute on v's low 5 bits, then v's bits
+/// 5, 6, 7 select among the eight by blends. The same values as a gather of the table.
+AALAB_TAA_AVX512 inline __m512 DecodeRegs16(const __m512* t, __m512i v) {
+  __m512 u[8];
+  for (int j = 0; j < 8; ++j) u[j] = _mm512_permutex2var_ps(t[2 * j], v, t[2 * j + 1]);
+  const __mmask16 b5 = _mm512_test_epi32_mask(v, _mm512_set1_epi32(32));
+  const __mmask16 b6 = _mm512_test_epi32_mask(v, _mm512_set1_epi32(64));
+  const __mmask16 b7 = _mm512_test_epi32_mask(v, _mm512_set1_epi32(128));
+  for (int j = 0; j < 4; ++j) u[j] = _mm512_mask_blend_ps(b5, u[2 * j], u[2 * j + 1]);
+  for (int j = 0; j < 2; ++j) u[j] = _mm512_mask_blend_ps(b6, u[2 * j], u[2 * j + 1]);
+  return _mm512_mask_blend_ps(b7, u[0], u[1]);
+}
+
 AALAB_TAA_AVX512 int YccPlaneRowAvx512(const uint8_t* src, int w, const float* decode, float* y, float* co, float* cg) {
   if (!TaaHasAvx512()) return 0;
   const int n = w - w % 16;
+  __m512 t[16];
+  for (int k = 0; k < 16; ++k) t[k] = _mm512_loadu_ps(decode + 16 * k);
   for (int x = 0; x < n; x += 16) {
     const __m512i s = _mm512_loadu_si512(src + 4 * x);
     __m512 vy, vco, vcg;
-    ToYcc16(_mm512_i32gather_ps(Channel16(s, 0), decode, 4), _mm512_i32gather_ps(Channel16(s, 1), decode, 4),
-            _mm512_i32gather_ps(Channel16(s, 2), decode, 4), &vy, &vco, &vcg);
+    ToYcc16(DecodeRegs16(t, Channel16(s, 0)), DecodeRegs16(t, Channel16(s, 1)), DecodeRegs16(t, Channel16(s, 2)), &vy,
+            &vco, &vcg);
     _mm512_storeu_ps(y + x, vy);
     _mm512_storeu_ps(co + x, vco);
     _mm512_storeu_ps(cg + x, vcg);

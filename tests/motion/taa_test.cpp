@@ -337,5 +337,65 @@ TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
   SetThreadCount(0);
 }
 
+// The motion the fast history fetch is for (taa_avx512.cpp FetchContiguous16): previous
+// positions x + 0.5 + dx, y + 0.5 + dy with dx, dy varying slowly over the frame (an
+// affine field: pan, slide, slight zoom and shear), so most 16-pixel groups have the
+// footprint of the pixel before + 1 texel, and some do not (the integer part of dx changes
+// inside the group, dy crosses a row inside it, the left or right border clamps, a NaN or
+// an off-screen lane); the step against StepReference bit for bit, output and history.
+TEST(Taa, FastStepUnderSmoothMotionIsTheReferenceStepBitForBit) {
+  for (int threads : {1, 2}) {
+    SetThreadCount(threads);
+    for (const char* spec : {"taa", "taa:clip=minmax", "taa:clip=none"}) {
+      for (auto [W, H] : std::vector<std::pair<int, int>>{{77, 9}, {64, 48}, {130, 7}}) {
+        const MethodPlan plan = MakeMethod(spec);
+        auto fast = plan.make_state();
+        auto ref = TaaReferenceCopy(*fast);
+        uint64_t seed = 0x2545f4914f6cdd1dull ^ (static_cast<uint64_t>(W) << 16) ^ static_cast<uint64_t>(H);
+        // Per step: offset x, offset y, d(dx)/dx, d(dx)/dy, d(dy)/dx, d(dy)/dy.
+        // A shift of +0.3 puts the last pixel's x0 on the last texel (the clamp makes b = a).
+        const float motion[6][6] = {{0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f},
+                                    {0.3f, 0.7f, 0.0f, 0.0f, 0.0f, 0.0f},
+                                    {-0.3f, -0.6f, 0.0f, 0.0f, 0.0f, 0.0f},
+                                    {2.6f, -1.2f, -0.013f, 0.02f, 0.004f, -0.01f},
+                                    {-3.4f, 0.25f, 0.021f, -0.03f, -0.007f, 0.015f},
+                                    {0.5f, 0.5f, 0.0f, 0.0f, 0.0f, 0.0f}};  // integer footprints
+        for (int k = 0; k < 6; ++k) {
+          Image8 frame(W, H, 4);
+          for (size_t i = 0; i < frame.Data().size(); ++i) {
+            const uint64_t r = Next(seed);
+            frame.Data()[i] = static_cast<uint8_t>((r & 3) == 0 ? r >> 56 : 100 + ((r >> 60) & 7));
+          }
+          std::vector<float> prev(2 * static_cast<size_t>(W) * H);
+          const float* m = motion[k];
+          for (int y = 0; y < H; ++y) {
+            for (int x = 0; x < W; ++x) {
+              float* p = &prev[2 * (static_cast<size_t>(y) * W + x)];
+              p[0] = static_cast<float>(x) + 0.5f + m[0] + m[2] * static_cast<float>(x) + m[3] * static_cast<float>(y);
+              p[1] = static_cast<float>(y) + 0.5f + m[1] + m[4] * static_cast<float>(x) + m[5] * static_cast<float>(y);
+              const uint64_t r = Next(seed);
+              if (k == 4 && (r & 255) == 0) p[r & 256 ? 0 : 1] = std::nanf("");
+            }
+          }
+          TemporalInput in;
+          in.frame = &frame;
+          in.previous = k > 0 ? &prev : nullptr;
+          in.frame_index = k;
+          const Image8 a = fast->Step(in, nullptr);
+          const Image8 b = ref->Step(in, nullptr);
+          const std::string what = std::string(spec) + " " + std::to_string(W) + "x" + std::to_string(H) + " frame " +
+                                   std::to_string(k) + " threads " + std::to_string(threads);
+          ASSERT_TRUE(a == b) << what;
+          const std::vector<float> hf = TaaHistory(*fast), hr = TaaHistory(*ref);
+          ASSERT_EQ(hf.size(), 3 * static_cast<size_t>(W) * H) << what;
+          ASSERT_EQ(hr.size(), hf.size()) << what;
+          ASSERT_EQ(std::memcmp(hf.data(), hr.data(), hf.size() * sizeof(float)), 0) << what;
+        }
+      }
+    }
+  }
+  SetThreadCount(0);
+}
+
 }  // namespace
 }  // namespace aalab
