@@ -87,6 +87,57 @@ struct Planes {
   std::vector<float, DefaultInitAllocator<float>> y, cx, cz;
 };
 
+// XYZ / white of linear R, G, B: row i holds the i-th of X/Xn, Y/Yn, Z/Zn.
+const std::array<Color, 3>& XyzOverWhiteRows() {
+  static const std::array<Color, 3> rows = [] {
+    std::array<Color, 3> r{};
+    for (int c = 0; c < 3; ++c) {
+      Color e{};
+      e[c] = 1.0;
+      const Color xyz = LinearRgbToXyz(e);
+      for (int i = 0; i < 3; ++i) r[i][c] = xyz[i] / kWhite[i];
+    }
+    return r;
+  }();
+  return rows;
+}
+
+// One pixel's YCxCz from its linear r, g, b (double, in this order of operations).
+struct YcxczRows {
+  double m[9];
+};
+
+// One row, every value an exact 8-bit code k/255 (what a run scores): the codes, checked
+// (float(k)/255 == v, the table's own test), then the linear values by table and the same
+// double arithmetic as the scalar row, so the compiler runs it in vector lanes (gathers).
+// Returns false, writing nothing, when some value is not such a code (the row then takes
+// the scalar path). Same bits as the scalar row on every clone.
+AALAB_FLIP_CLONES
+bool PlanesRowCodes(const float* __restrict src, int w, const double* __restrict linear, const YcxczRows& m,
+                    int32_t* __restrict codes, float* __restrict oy, float* __restrict ocx, float* __restrict ocz) {
+  const int n = 3 * w;
+  int bad = 0;
+  for (int i = 0; i < n; ++i) {
+    const float v = src[i];
+    float c = v > 0.0f ? v : 0.0f;  // NaN → 0, then found not equal to its code
+    c = c < 1.0f ? c : 1.0f;
+    const int k = static_cast<int>(c * 255.0f + 0.5f);
+    bad |= static_cast<float>(k) / 255.0f != v;
+    codes[i] = k;
+  }
+  if (bad) return false;
+  for (int x = 0; x < w; ++x) {
+    const double r = linear[codes[3 * x]], g = linear[codes[3 * x + 1]], b = linear[codes[3 * x + 2]];
+    const double xn = m.m[0] * r + m.m[1] * g + m.m[2] * b;  // X / Xn
+    const double yn = m.m[3] * r + m.m[4] * g + m.m[5] * b;  // Y / Yn = Ŷ
+    const double zn = m.m[6] * r + m.m[7] * g + m.m[8] * b;  // Z / Zn
+    oy[x] = static_cast<float>(yn);
+    ocx[x] = static_cast<float>(500.0 * (xn - yn));
+    ocz[x] = static_cast<float>(200.0 * (yn - zn));
+  }
+  return true;
+}
+
 Planes ToPlanes(const ImageF& img) {
   static const SrgbTable table;
   Planes p;
@@ -97,26 +148,26 @@ Planes ToPlanes(const ImageF& img) {
   p.cx.resize(n);
   p.cz.resize(n);
   const int ch = img.Channels();
-  static const std::array<Color, 3> rows = [] {  // XYZ / white of linear R, G, B
-    std::array<Color, 3> r{};
-    for (int c = 0; c < 3; ++c) {
-      Color e{};
-      e[c] = 1.0;
-      const Color xyz = LinearRgbToXyz(e);
-      for (int i = 0; i < 3; ++i) r[i][c] = xyz[i] / kWhite[i];
-    }
-    return r;
-  }();
+  const std::array<Color, 3>& rows = XyzOverWhiteRows();
+  YcxczRows m;
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c) m.m[3 * i + c] = rows[i][c];
   ParallelForChunks(p.h, kChunkRows, [&](int y0, int y1) {
+    std::vector<int32_t> codes(ch == 3 ? static_cast<size_t>(3) * p.w : 0);
     for (int y = y0; y < y1; ++y) {
       const float* src = img.Row(y);
+      const size_t row = static_cast<size_t>(y) * p.w;
+      if (ch == 3 && PlanesRowCodes(src, p.w, table.linear.data(), m, codes.data(), p.y.data() + row, p.cx.data() + row,
+                                    p.cz.data() + row)) {
+        continue;
+      }
       for (int x = 0; x < p.w; ++x) {
         const float* px = src + static_cast<size_t>(x) * ch;
         const double r = DecodeSrgb(px[0], table), g = DecodeSrgb(px[1], table), b = DecodeSrgb(px[2], table);
         const double xn = rows[0][0] * r + rows[0][1] * g + rows[0][2] * b;  // X / Xn
         const double yn = rows[1][0] * r + rows[1][1] * g + rows[1][2] * b;  // Y / Yn = Ŷ
         const double zn = rows[2][0] * r + rows[2][1] * g + rows[2][2] * b;  // Z / Zn
-        const size_t i = static_cast<size_t>(y) * p.w + x;
+        const size_t i = row + x;
         p.y[i] = static_cast<float>(yn);  // Ŷ = (Y + 16) / 116, without the offset's cancellation
         p.cx[i] = static_cast<float>(500.0 * (xn - yn));
         p.cz[i] = static_cast<float>(200.0 * (yn - zn));
@@ -405,6 +456,13 @@ void HuntLabRow(const float* __restrict sy, const float* __restrict scx, const f
   }
 }
 
+// The row padded by r on each side, the edge values replicated (w + 2r values).
+void PadRow(const float* src, int w, int r, float* dst) {
+  std::fill(dst, dst + r, src[0]);
+  std::memcpy(dst + r, src, sizeof(float) * w);
+  std::fill(dst + r + w, dst + 2 * r + w, src[w - 1]);
+}
+
 // ---- one chunk of rows of one image, streamed through the rings. colour(y, L, A, B) and
 // feature(y, edge, point) receive each finished row (w values).
 
@@ -425,12 +483,9 @@ void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSi
     };
     for (int yy = y0 - r; yy < y1 + r; ++yy) {
       const size_t row = static_cast<size_t>(ClampI(yy, 0, h - 1)) * w;
-      for (int i = 0; i < pw; ++i) {
-        const size_t s = row + ClampI(i - r, 0, w - 1);
-        pad[i] = p.y[s];
-        pad[pw + i] = p.cx[s];
-        pad[2 * pw + i] = p.cz[s];
-      }
+      PadRow(p.y.data() + row, w, r, pad.data());
+      PadRow(p.cx.data() + row, w, r, pad.data() + pw);
+      PadRow(p.cz.data() + row, w, r, pad.data() + 2 * pw);
       HorizontalCsf(pad.data(), pad.data() + pw, pad.data() + 2 * pw, w, r, k.y.data(), k.cx.data(), k.cz1.data(),
                     k.cz2.data(), slot(0, yy), slot(1, yy), slot(2, yy), slot(3, yy));
       const int y = yy - r;  // output row complete once its last input row is in
@@ -458,7 +513,7 @@ void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSi
     };
     for (int yy = y0 - r; yy < y1 + r; ++yy) {
       const size_t row = static_cast<size_t>(ClampI(yy, 0, h - 1)) * w;
-      for (int i = 0; i < pw; ++i) pad[i] = p.y[row + ClampI(i - r, 0, w - 1)];
+      PadRow(p.y.data() + row, w, r, pad.data());
       HorizontalFeatures(pad.data(), w, r, k.g.data(), k.dg.data(), k.ddg.data(), slot(0, yy), slot(1, yy),
                          slot(2, yy));
       const int y = yy - r;
@@ -473,6 +528,22 @@ void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSi
       feature(y, out.data(), out.data() + w);
     }
   }
+}
+
+// std::pow(x, y) for x >= 0 and y > 0, with the call skipped where its result is known
+// exactly: pow(+0, y > 0) is +0 (C17 F.10.4.4).
+inline float PowOrZero(float x, float y) { return x == 0.0f ? 0.0f : std::pow(x, y); }
+
+// std::pow(x, 1 − ef) with the call skipped where ef = 0 and 0 <= x <= 1: pow(x, 1) is x
+// there. C specifies pow(+0, 1) = +0; for x > 0, pow(x, 1) = x exactly and x is a float, so
+// a pow whose result is the exact value rounded with an error below half an ulp of it
+// returns x (glibc's powf, the one linked here, documents a worst total error of 0.82 ulp:
+// the exact value with a relative error of at most 0.32 · 2^-24 before rounding).
+// tests/metrics/flip_test.cpp checks std::pow(x, 1.0f) == x for every float in [0, 1]
+// against the library in use (Flip.PowOfOneIsTheValueOnEveryFloatInTheUnitInterval).
+inline float PowOrSelf(float x, float ef) {
+  const bool exact = ef == 0.0f && x >= 0.0f && x <= 1.0f;
+  return exact ? x : std::pow(x, 1.0f - ef);
 }
 
 void CheckPpdValue(double ppd) {
@@ -560,7 +631,7 @@ FlipValues ErrorValues(const ReferenceSide& ref, const ImageF& test) {
           for (int x = 0; x < w; ++x) {
             const float da = ra[x] - A[x], db = rb[x] - B[x];
             const float hyab = std::abs(rl[x] - L[x]) + std::sqrt(da * da + db * db);
-            const float v = std::pow(hyab, qc);
+            const float v = PowOrZero(hyab, qc);
             e[x] = v < pccmax ? v * below : pt + (v - pccmax) * above;
           }
         },
@@ -572,7 +643,7 @@ FlipValues ErrorValues(const ReferenceSide& ref, const ImageF& test) {
           for (int x = 0; x < w; ++x) {
             const float d = std::max(std::abs(re[x] - edge[x]), std::abs(rp[x] - point[x]));
             const float ef = std::sqrt(inv_sqrt2 * d);  // (d/√2)^qf, qf = 1/2
-            o[x] = static_cast<double>(std::pow(e[x], 1.0f - ef));
+            o[x] = static_cast<double>(PowOrSelf(e[x], ef));
           }
         });
   });
