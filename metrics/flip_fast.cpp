@@ -4,9 +4,10 @@
 // tests compare this path with.
 //
 // Layout:
-//  - The image goes to YCxCz planes (float; the achromatic plane as Ŷ = (Y + 16)/116). The sRGB decode is a table
-//  lookup when a value
-//    is exactly k/255 (every 8-bit frame a run scores), the double formula otherwise.
+//  - The image goes to YCxCz planes (float; the achromatic plane as Ŷ = (Y + 16)/116). A row
+//    whose every value is exactly k/255 (every 8-bit frame a run scores) is decoded in vector
+//    lanes (codes checked, linear values gathered from a table, the same double arithmetic);
+//    any other row per pixel, by the table where a value is a code and the formula otherwise.
 //  - The image is cut into fixed chunks of kChunkRows rows (in parallel). A chunk streams its
 //    rows through two rings: the horizontal CSF sums (Y, Cx, and the two Cz Gaussians) of the
 //    last 2R+1 rows, and the horizontal feature sums (Gaussian, first and second derivative)
@@ -21,6 +22,10 @@
 //  - The reference's half (Hunt-adjusted Lab after the CSF, edge and point magnitudes: 20
 //    bytes a pixel) depends on the reference and ppd alone; PrepareReference forms it once
 //    per scene and ErrorValues(side, test) computes only the test's half and the error.
+//  - The error of a finished row: the arithmetic before and after each library pow in vector
+//    lanes, the pow per pixel, skipped where its result is exact (pow(+0, y > 0) = +0, and
+//    pow(x, 1) = x for x in [0, 1], which the tests check on every such float). The chunks'
+//    rings and row buffers are written before they are read: no zero-fill.
 //
 // Precision: float32 as NVIDIA's implementations; against the double path per-pixel
 // |Δ| ≲ 1e-5 and the mean ≲ 1e-7 (tests/equivalence/metrics_fast_test.cpp, METRICS.md).
