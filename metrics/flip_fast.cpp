@@ -4,9 +4,10 @@
 // tests compare this path with.
 //
 // Layout:
-//  - The image goes to YCxCz planes (float; the achromatic plane as Ŷ = (Y + 16)/116). The sRGB decode is a table
-//  lookup when a value
-//    is exactly k/255 (every 8-bit frame a run scores), the double formula otherwise.
+//  - The image goes to YCxCz planes (float; the achromatic plane as Ŷ = (Y + 16)/116). A row
+//    whose every value is exactly k/255 (every 8-bit frame a run scores) is decoded in vector
+//    lanes (codes checked, linear values gathered from a table, the same double arithmetic);
+//    any other row per pixel, by the table where a value is a code and the formula otherwise.
 //  - The image is cut into fixed chunks of kChunkRows rows (in parallel). A chunk streams its
 //    rows through two rings: the horizontal CSF sums (Y, Cx, and the two Cz Gaussians) of the
 //    last 2R+1 rows, and the horizontal feature sums (Gaussian, first and second derivative)
@@ -21,6 +22,10 @@
 //  - The reference's half (Hunt-adjusted Lab after the CSF, edge and point magnitudes: 20
 //    bytes a pixel) depends on the reference and ppd alone; PrepareReference forms it once
 //    per scene and ErrorValues(side, test) computes only the test's half and the error.
+//  - The error of a finished row: the arithmetic before and after each library pow in vector
+//    lanes, the pow per pixel, skipped where its result is exact (pow(+0, y > 0) = +0, and
+//    pow(x, 1) = x for x in [0, 1], which the tests check on every such float). The chunks'
+//    rings and row buffers are written before they are read: no zero-fill.
 //
 // Precision: float32 as NVIDIA's implementations; against the double path per-pixel
 // |Δ| ≲ 1e-5 and the mean ≲ 1e-7 (tests/equivalence/metrics_fast_test.cpp, METRICS.md).
@@ -87,6 +92,57 @@ struct Planes {
   std::vector<float, DefaultInitAllocator<float>> y, cx, cz;
 };
 
+// XYZ / white of linear R, G, B: row i holds the i-th of X/Xn, Y/Yn, Z/Zn.
+const std::array<Color, 3>& XyzOverWhiteRows() {
+  static const std::array<Color, 3> rows = [] {
+    std::array<Color, 3> r{};
+    for (int c = 0; c < 3; ++c) {
+      Color e{};
+      e[c] = 1.0;
+      const Color xyz = LinearRgbToXyz(e);
+      for (int i = 0; i < 3; ++i) r[i][c] = xyz[i] / kWhite[i];
+    }
+    return r;
+  }();
+  return rows;
+}
+
+// One pixel's YCxCz from its linear r, g, b (double, in this order of operations).
+struct YcxczRows {
+  double m[9];
+};
+
+// One row, every value an exact 8-bit code k/255 (what a run scores): the codes, checked
+// (float(k)/255 == v, the table's own test), then the linear values by table and the same
+// double arithmetic as the scalar row, so the compiler runs it in vector lanes (gathers).
+// Returns false, writing nothing, when some value is not such a code (the row then takes
+// the scalar path). Same bits as the scalar row on every clone.
+AALAB_FLIP_CLONES
+bool PlanesRowCodes(const float* __restrict src, int w, const double* __restrict linear, const YcxczRows& m,
+                    int32_t* __restrict codes, float* __restrict oy, float* __restrict ocx, float* __restrict ocz) {
+  const int n = 3 * w;
+  int bad = 0;
+  for (int i = 0; i < n; ++i) {
+    const float v = src[i];
+    float c = v > 0.0f ? v : 0.0f;  // NaN → 0, then found not equal to its code
+    c = c < 1.0f ? c : 1.0f;
+    const int k = static_cast<int>(c * 255.0f + 0.5f);
+    bad |= static_cast<float>(k) / 255.0f != v;
+    codes[i] = k;
+  }
+  if (bad) return false;
+  for (int x = 0; x < w; ++x) {
+    const double r = linear[codes[3 * x]], g = linear[codes[3 * x + 1]], b = linear[codes[3 * x + 2]];
+    const double xn = m.m[0] * r + m.m[1] * g + m.m[2] * b;  // X / Xn
+    const double yn = m.m[3] * r + m.m[4] * g + m.m[5] * b;  // Y / Yn = Ŷ
+    const double zn = m.m[6] * r + m.m[7] * g + m.m[8] * b;  // Z / Zn
+    oy[x] = static_cast<float>(yn);
+    ocx[x] = static_cast<float>(500.0 * (xn - yn));
+    ocz[x] = static_cast<float>(200.0 * (yn - zn));
+  }
+  return true;
+}
+
 Planes ToPlanes(const ImageF& img) {
   static const SrgbTable table;
   Planes p;
@@ -97,26 +153,26 @@ Planes ToPlanes(const ImageF& img) {
   p.cx.resize(n);
   p.cz.resize(n);
   const int ch = img.Channels();
-  static const std::array<Color, 3> rows = [] {  // XYZ / white of linear R, G, B
-    std::array<Color, 3> r{};
-    for (int c = 0; c < 3; ++c) {
-      Color e{};
-      e[c] = 1.0;
-      const Color xyz = LinearRgbToXyz(e);
-      for (int i = 0; i < 3; ++i) r[i][c] = xyz[i] / kWhite[i];
-    }
-    return r;
-  }();
+  const std::array<Color, 3>& rows = XyzOverWhiteRows();
+  YcxczRows m;
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c) m.m[3 * i + c] = rows[i][c];
   ParallelForChunks(p.h, kChunkRows, [&](int y0, int y1) {
+    std::vector<int32_t> codes(ch == 3 ? static_cast<size_t>(3) * p.w : 0);
     for (int y = y0; y < y1; ++y) {
       const float* src = img.Row(y);
+      const size_t row = static_cast<size_t>(y) * p.w;
+      if (ch == 3 && PlanesRowCodes(src, p.w, table.linear.data(), m, codes.data(), p.y.data() + row, p.cx.data() + row,
+                                    p.cz.data() + row)) {
+        continue;
+      }
       for (int x = 0; x < p.w; ++x) {
         const float* px = src + static_cast<size_t>(x) * ch;
         const double r = DecodeSrgb(px[0], table), g = DecodeSrgb(px[1], table), b = DecodeSrgb(px[2], table);
         const double xn = rows[0][0] * r + rows[0][1] * g + rows[0][2] * b;  // X / Xn
         const double yn = rows[1][0] * r + rows[1][1] * g + rows[1][2] * b;  // Y / Yn = Ŷ
         const double zn = rows[2][0] * r + rows[2][1] * g + rows[2][2] * b;  // Z / Zn
-        const size_t i = static_cast<size_t>(y) * p.w + x;
+        const size_t i = row + x;
         p.y[i] = static_cast<float>(yn);  // Ŷ = (Y + 16) / 116, without the offset's cancellation
         p.cx[i] = static_cast<float>(500.0 * (xn - yn));
         p.cz[i] = static_cast<float>(200.0 * (yn - zn));
@@ -405,6 +461,25 @@ void HuntLabRow(const float* __restrict sy, const float* __restrict scx, const f
   }
 }
 
+// The row padded by r on each side, the edge values replicated (w + 2r values).
+void PadRow(const float* src, int w, int r, float* dst) {
+  std::fill(dst, dst + r, src[0]);
+  std::memcpy(dst + r, src, sizeof(float) * w);
+  std::fill(dst + r + w, dst + 2 * r + w, src[w - 1]);
+}
+
+// A chunk's rings and row buffers: every value is written before it is read, so no zero-fill
+// (25 MB of memset a 1080p call otherwise). Under the tests' poison (SetUninitializedPoison)
+// they are filled with it, so a value read before it is written changes the result.
+using Scratch = std::vector<float, DefaultInitAllocator<float>>;
+
+Scratch MakeScratch(size_t n) {
+  Scratch v(n);
+  if (const int poison = UninitializedPoison(); poison >= 0)
+    std::memset(static_cast<void*>(v.data()), poison, n * sizeof(float));
+  return v;
+}
+
 // ---- one chunk of rows of one image, streamed through the rings. colour(y, L, A, B) and
 // feature(y, edge, point) receive each finished row (w values).
 
@@ -416,21 +491,18 @@ void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSi
   // Colour: ring of 2·rc + 1 rows × 4 planes.
   {
     const int r = k.rc, taps = 2 * r + 1, pw = w + 2 * r;
-    std::vector<float> ring(static_cast<size_t>(4) * taps * w);
-    std::vector<float> pad(static_cast<size_t>(3) * pw);
-    std::vector<float> acc(static_cast<size_t>(3) * w), lab(static_cast<size_t>(3) * w);
+    Scratch ring = MakeScratch(static_cast<size_t>(4) * taps * w);
+    Scratch pad = MakeScratch(static_cast<size_t>(3) * pw);
+    Scratch acc = MakeScratch(static_cast<size_t>(3) * w), lab = MakeScratch(static_cast<size_t>(3) * w);
     std::vector<const float*> ry(taps), rcx(taps), rcz1(taps), rcz2(taps);
     auto slot = [&](int plane, int yy) {
       return ring.data() + (static_cast<size_t>(plane) * taps + (yy + taps * 4) % taps) * w;
     };
     for (int yy = y0 - r; yy < y1 + r; ++yy) {
       const size_t row = static_cast<size_t>(ClampI(yy, 0, h - 1)) * w;
-      for (int i = 0; i < pw; ++i) {
-        const size_t s = row + ClampI(i - r, 0, w - 1);
-        pad[i] = p.y[s];
-        pad[pw + i] = p.cx[s];
-        pad[2 * pw + i] = p.cz[s];
-      }
+      PadRow(p.y.data() + row, w, r, pad.data());
+      PadRow(p.cx.data() + row, w, r, pad.data() + pw);
+      PadRow(p.cz.data() + row, w, r, pad.data() + 2 * pw);
       HorizontalCsf(pad.data(), pad.data() + pw, pad.data() + 2 * pw, w, r, k.y.data(), k.cx.data(), k.cz1.data(),
                     k.cz2.data(), slot(0, yy), slot(1, yy), slot(2, yy), slot(3, yy));
       const int y = yy - r;  // output row complete once its last input row is in
@@ -450,15 +522,15 @@ void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSi
   // Features: ring of 2·rf + 1 rows × 3 planes, on Ŷ = (Y + 16) / 116.
   {
     const int r = k.rf, taps = 2 * r + 1, pw = w + 2 * r;
-    std::vector<float> ring(static_cast<size_t>(3) * taps * w);
-    std::vector<float> pad(pw), out(static_cast<size_t>(2) * w);
+    Scratch ring = MakeScratch(static_cast<size_t>(3) * taps * w);
+    Scratch pad = MakeScratch(pw), out = MakeScratch(static_cast<size_t>(2) * w);
     std::vector<const float*> rg(taps), rdg(taps), rddg(taps);
     auto slot = [&](int plane, int yy) {
       return ring.data() + (static_cast<size_t>(plane) * taps + (yy + taps * 4) % taps) * w;
     };
     for (int yy = y0 - r; yy < y1 + r; ++yy) {
       const size_t row = static_cast<size_t>(ClampI(yy, 0, h - 1)) * w;
-      for (int i = 0; i < pw; ++i) pad[i] = p.y[row + ClampI(i - r, 0, w - 1)];
+      PadRow(p.y.data() + row, w, r, pad.data());
       HorizontalFeatures(pad.data(), w, r, k.g.data(), k.dg.data(), k.ddg.data(), slot(0, yy), slot(1, yy),
                          slot(2, yy));
       const int y = yy - r;
@@ -473,6 +545,61 @@ void ChunkRows(const Planes& p, const Kernels& k, int y0, int y1, const ColourSi
       feature(y, out.data(), out.data() + w);
     }
   }
+}
+
+// ---- the error of a finished row, in three steps each: the arithmetic before the library
+// pow in vector lanes, the pow one pixel at a time, the arithmetic after it in lanes (the same
+// operations per pixel as one loop: only split where the pow call is).
+
+// HyAB distance of the reference's and the test's Hunt-adjusted Lab: |ΔL| + √(Δa² + Δb²).
+AALAB_FLIP_CLONES
+void HyAbRow(const float* __restrict rl, const float* __restrict ra, const float* __restrict rb,
+             const float* __restrict L, const float* __restrict A, const float* __restrict B, int w,
+             float* __restrict hy) {
+  for (int x = 0; x < w; ++x) {
+    const float da = ra[x] - A[x], db = rb[x] - B[x];
+    hy[x] = std::abs(rl[x] - L[x]) + std::sqrt(da * da + db * db);
+  }
+}
+
+// The remap of v = HyAB^qc to the colour error in [0, 1] (in place).
+AALAB_FLIP_CLONES
+void RemapColourRow(float* __restrict e, int w, float pccmax, float below, float pt, float above) {
+  for (int x = 0; x < w; ++x) {
+    const float v = e[x];
+    e[x] = v < pccmax ? v * below : pt + (v - pccmax) * above;
+  }
+}
+
+// The feature exponent ef = (max(|Δedge|, |Δpoint|) / √2)^qf, qf = 1/2.
+AALAB_FLIP_CLONES
+void FeatureExponentRow(const float* __restrict re, const float* __restrict rp, const float* __restrict edge,
+                        const float* __restrict point, int w, float inv_sqrt2, float* __restrict ef) {
+  for (int x = 0; x < w; ++x) {
+    const float d = std::max(std::abs(re[x] - edge[x]), std::abs(rp[x] - point[x]));
+    ef[x] = std::sqrt(inv_sqrt2 * d);
+  }
+}
+
+AALAB_FLIP_CLONES
+void WidenRow(const float* __restrict v, int w, double* __restrict o) {
+  for (int x = 0; x < w; ++x) o[x] = static_cast<double>(v[x]);
+}
+
+// std::pow(x, y) for x >= 0 and y > 0, with the call skipped where its result is known
+// exactly: pow(+0, y > 0) is +0 (C17 F.10.4.4).
+inline float PowOrZero(float x, float y) { return x == 0.0f ? 0.0f : std::pow(x, y); }
+
+// std::pow(x, 1 − ef) with the call skipped where ef = 0 and 0 <= x <= 1: pow(x, 1) is x
+// there. C specifies pow(+0, 1) = +0; for x > 0, pow(x, 1) = x exactly and x is a float, so
+// a pow whose result is the exact value rounded with an error below half an ulp of it
+// returns x (glibc's powf, the one linked here, documents a worst total error of 0.82 ulp:
+// the exact value with a relative error of at most 0.32 · 2^-24 before rounding).
+// tests/metrics/flip_test.cpp checks std::pow(x, 1.0f) == x for every float in [0, 1]
+// against the library in use (Flip.PowOfOneIsTheValueOnEveryFloatInTheUnitInterval).
+inline float PowOrSelf(float x, float ef) {
+  const bool exact = ef == 0.0f && x >= 0.0f && x <= 1.0f;
+  return exact ? x : std::pow(x, 1.0f - ef);
 }
 
 void CheckPpdValue(double ppd) {
@@ -549,31 +676,23 @@ FlipValues ErrorValues(const ReferenceSide& ref, const ImageF& test) {
   const float pt = static_cast<float>(kPt), qc = static_cast<float>(kQc);
   const float inv_sqrt2 = static_cast<float>(1.0 / std::sqrt(2.0));
   ParallelForChunks(ref.h, kChunkRows, [&](int y0, int y1) {
-    std::vector<float> ec(static_cast<size_t>(y1 - y0) * w);  // ΔEc of the chunk's rows
+    Scratch ec = MakeScratch(static_cast<size_t>(y1 - y0) * w);  // ΔEc of the chunk's rows
+    Scratch row = MakeScratch(w);                                // the feature exponent, then the error
     ChunkRows(
         b, ref.kernels, y0, y1,
         [&](int y, const float* L, const float* A, const float* B) {
           const float* rl = ref.lab.data() + static_cast<size_t>(3) * w * y;
-          const float* ra = rl + w;
-          const float* rb = rl + 2 * w;
           float* e = ec.data() + static_cast<size_t>(y - y0) * w;
-          for (int x = 0; x < w; ++x) {
-            const float da = ra[x] - A[x], db = rb[x] - B[x];
-            const float hyab = std::abs(rl[x] - L[x]) + std::sqrt(da * da + db * db);
-            const float v = std::pow(hyab, qc);
-            e[x] = v < pccmax ? v * below : pt + (v - pccmax) * above;
-          }
+          HyAbRow(rl, rl + w, rl + 2 * w, L, A, B, w, e);
+          for (int x = 0; x < w; ++x) e[x] = PowOrZero(e[x], qc);  // library calls: one pixel at a time
+          RemapColourRow(e, w, pccmax, below, pt, above);
         },
         [&](int y, const float* edge, const float* point) {
           const float* re = ref.feats.data() + static_cast<size_t>(2) * w * y;
-          const float* rp = re + w;
           const float* e = ec.data() + static_cast<size_t>(y - y0) * w;
-          double* o = out.data() + static_cast<size_t>(y) * w;
-          for (int x = 0; x < w; ++x) {
-            const float d = std::max(std::abs(re[x] - edge[x]), std::abs(rp[x] - point[x]));
-            const float ef = std::sqrt(inv_sqrt2 * d);  // (d/√2)^qf, qf = 1/2
-            o[x] = static_cast<double>(std::pow(e[x], 1.0f - ef));
-          }
+          FeatureExponentRow(re, re + w, edge, point, w, inv_sqrt2, row.data());
+          for (int x = 0; x < w; ++x) row[x] = PowOrSelf(e[x], row[x]);
+          WidenRow(row.data(), w, out.data() + static_cast<size_t>(y) * w);
         });
   });
   return out;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <bit>
 #include <cstdio>
 #include <numeric>
 #include <cstdint>
@@ -337,6 +338,65 @@ TEST(Flip, ErrorValuesWriteEveryValue) {
     }
   }
   SetThreadCount(0);
+}
+
+// flip_fast.cpp decodes a row whose every value is an exact 8-bit code (float(k) / 255) in
+// vector lanes, and any other row per pixel. A 4-channel copy of the same image takes the
+// per-pixel decode on every row: the two must give the same bits. The images are exact
+// codes except three rows of the test image (a non-code value, one above 1, one below 0),
+// and the reference's last row (a non-code value), so both paths run inside one image.
+TEST(Flip, EightBitRowsInLanesEqualThePerPixelDecode) {
+  const int w = 75, h = 58;  // a 16-lane block and a tail per row; two chunks (48 rows)
+  ImageF a3(w, h, 3), b3(w, h, 3), a4(w, h, 4), b4(w, h, 4);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const int ka = (x * 7 + y * 3 + c * 50 + (x > 40 && y > 20 ? 90 : 0)) % 256;
+        const int kb = std::clamp(ka + static_cast<int>((x * 13 + y * 5 + c) % 11) - 5, 0, 255);
+        a3.At(x, y, c) = a4.At(x, y, c) = static_cast<float>(ka) / 255.0f;
+        b3.At(x, y, c) = b4.At(x, y, c) = static_cast<float>(kb) / 255.0f;
+      }
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) a4.At(x, y, 3) = b4.At(x, y, 3) = 1.0f;
+  b3.At(10, 5, 1) = b4.At(10, 5, 1) = 0.3f;     // not k/255 for any k
+  b3.At(70, 30, 0) = b4.At(70, 30, 0) = 1.25f;  // above 1
+  b3.At(3, 49, 2) = b4.At(3, 49, 2) = -0.1f;    // below 0
+  a3.At(w - 1, h - 1, 0) = a4.At(w - 1, h - 1, 0) = 0.5f;
+  for (int threads : {1, 2}) {
+    SetThreadCount(threads);
+    const FlipValues lanes = flip::ErrorValues(a3, b3, 67.0);
+    const FlipValues per_pixel = flip::ErrorValues(a4, b4, 67.0);
+    ASSERT_EQ(lanes.size(), per_pixel.size());
+    EXPECT_EQ(std::memcmp(lanes.data(), per_pixel.data(), lanes.size() * sizeof(double)), 0) << threads << " threads";
+    // and the image is not trivial: errors well above zero, and zero where nothing differs
+    EXPECT_GT(*std::max_element(lanes.begin(), lanes.end()), 0.05);
+  }
+  SetThreadCount(0);
+}
+
+// flip_fast.cpp skips std::pow(e, 1 - ef) where ef = 0 and 0 <= e <= 1, returning e: this
+// holds for the pow linked here on every float in [0, 1] (every value the skip takes).
+TEST(Flip, PowOfOneIsTheValueOnEveryFloatInTheUnitInterval) {
+  const uint32_t last = std::bit_cast<uint32_t>(1.0f);
+  volatile float one_v = 1.0f;  // a run-time exponent, as in flip_fast.cpp (no constant folding)
+  const float one = one_v;
+  constexpr int kBlocks = 256;  // in parallel over blocks of bit patterns (ParallelFor)
+  std::vector<uint32_t> wrong_in(kBlocks, 0), first_in(kBlocks, 0);
+  ParallelFor(kBlocks, [&](int blk) {
+    const uint64_t b0 = (uint64_t{last} + 1) * blk / kBlocks, b1 = (uint64_t{last} + 1) * (blk + 1) / kBlocks;
+    for (uint64_t b = b0; b < b1; ++b) {
+      const uint32_t bits = static_cast<uint32_t>(b);
+      if (std::bit_cast<uint32_t>(std::pow(std::bit_cast<float>(bits), one)) != bits && wrong_in[blk]++ == 0) {
+        first_in[blk] = bits;
+      }
+    }
+  });
+  uint32_t wrong = 0, first_wrong = 0;
+  for (int blk = kBlocks - 1; blk >= 0; --blk) {
+    wrong += wrong_in[blk];
+    if (wrong_in[blk] > 0) first_wrong = first_in[blk];
+  }
+  EXPECT_EQ(wrong, 0u) << "first at bits 0x" << std::hex << first_wrong;
 }
 
 TEST(Flip, BadInputsAreUserErrors) {
