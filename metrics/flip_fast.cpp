@@ -4,10 +4,8 @@
 // tests compare this path with.
 //
 // Layout:
-//  - The image goes to YCxCz planes (float; the achromatic plane as Ŷ = (Y + 16)/116). A row
-//    whose every value is exactly k/255 (every 8-bit frame a run scores) is decoded in vector
-//    lanes (codes checked, linear values gathered from a table, the same double arithmetic);
-//    any other row per pixel, by the table where a value is a code and the formula otherwise.
+//  - The image goes to YCxCz planes (float; the achromatic plane as Ŷ = (Y + 16)/116):
+//    metrics/flip_planes.cpp (its header block tells how; declared in flip_fast_internal.h).
 //  - The image is cut into fixed chunks of kChunkRows rows (in parallel). A chunk streams its
 //    rows through two rings: the horizontal CSF sums (Y, Cx, and the two Cz Gaussians) of the
 //    last 2R+1 rows, and the horizontal feature sums (Gaussian, first and second derivative)
@@ -30,7 +28,6 @@
 // Precision: float32 as NVIDIA's implementations; against the double path per-pixel
 // |Δ| ≲ 1e-5 and the mean ≲ 1e-7 (tests/equivalence/metrics_fast_test.cpp, METRICS.md).
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -42,145 +39,21 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "metrics/flip.h"
+#include "metrics/flip_fast_internal.h"
 #include "metrics/metric.h"
 
 namespace aalab {
 namespace flip {
 namespace {
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define AALAB_FLIP_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define AALAB_FLIP_CLONES
-#endif
+using fast_detail::kChunkRows;
+using fast_detail::Planes;
+using fast_detail::ToPlanes;
 
-constexpr int kChunkRows = 48;  // rows per parallel chunk (fixed: results never depend on it)
-constexpr int kLanes = 16;      // outputs kept in registers per block of a horizontal sum
-constexpr int kVLanes = 16;     // the same for a vertical sum
+constexpr int kLanes = 16;   // outputs kept in registers per block of a horizontal sum
+constexpr int kVLanes = 16;  // the same for a vertical sum
 
 int ClampI(int v, int lo, int hi) { return v < lo ? lo : (v > hi ? hi : v); }
-
-// Linear value of the 8-bit code k, indexed by k; a value is looked up when it equals
-// float(k) / 255 exactly (ToFloat's conversion).
-struct SrgbTable {
-  std::array<float, 256> code{};
-  std::array<double, 256> linear{};
-  SrgbTable() {
-    for (int k = 0; k < 256; ++k) {
-      code[k] = static_cast<float>(k) / 255.0f;
-      linear[k] = SrgbToLinear(code[k]);
-    }
-  }
-};
-
-double DecodeSrgb(float v, const SrgbTable& t) {
-  if (v >= 0.0f && v <= 1.0f) {
-    const int k = static_cast<int>(v * 255.0f + 0.5f);
-    if (t.code[k] == v) return t.linear[k];
-  }
-  return SrgbToLinear(v);
-}
-
-// YCxCz planes of an image (float, row-major). The achromatic plane holds Ŷ = (Y + 16) / 116
-// = Y_xyz / Yn rather than Y: the CSF filter is linear with unit sum, so filtering Ŷ and
-// mapping back is the same in exact arithmetic, and float32 keeps the precision of dark
-// pixels (Y = 116·Ŷ − 16 would cancel to a few digits near black).
-struct Planes {
-  int w = 0, h = 0;
-  // ToPlanes writes every value: storage without a zero-fill (a serial memset of 25 MB at
-  // 1080p ahead of the parallel loop otherwise).
-  std::vector<float, DefaultInitAllocator<float>> y, cx, cz;
-};
-
-// XYZ / white of linear R, G, B: row i holds the i-th of X/Xn, Y/Yn, Z/Zn.
-const std::array<Color, 3>& XyzOverWhiteRows() {
-  static const std::array<Color, 3> rows = [] {
-    std::array<Color, 3> r{};
-    for (int c = 0; c < 3; ++c) {
-      Color e{};
-      e[c] = 1.0;
-      const Color xyz = LinearRgbToXyz(e);
-      for (int i = 0; i < 3; ++i) r[i][c] = xyz[i] / kWhite[i];
-    }
-    return r;
-  }();
-  return rows;
-}
-
-// One pixel's YCxCz from its linear r, g, b (double, in this order of operations).
-struct YcxczRows {
-  double m[9];
-};
-
-// One row, every value an exact 8-bit code k/255 (what a run scores): the codes, checked
-// (float(k)/255 == v, the table's own test), then the linear values by table and the same
-// double arithmetic as the scalar row, so the compiler runs it in vector lanes (gathers).
-// Returns false, writing nothing, when some value is not such a code (the row then takes
-// the scalar path). Same bits as the scalar row on every clone.
-AALAB_FLIP_CLONES
-bool PlanesRowCodes(const float* __restrict src, int w, const double* __restrict linear, const YcxczRows& m,
-                    int32_t* __restrict codes, float* __restrict oy, float* __restrict ocx, float* __restrict ocz) {
-  const int n = 3 * w;
-  int bad = 0;
-  for (int i = 0; i < n; ++i) {
-    const float v = src[i];
-    float c = v > 0.0f ? v : 0.0f;  // NaN → 0, then found not equal to its code
-    c = c < 1.0f ? c : 1.0f;
-    const int k = static_cast<int>(c * 255.0f + 0.5f);
-    bad |= static_cast<float>(k) / 255.0f != v;
-    codes[i] = k;
-  }
-  if (bad) return false;
-  for (int x = 0; x < w; ++x) {
-    const double r = linear[codes[3 * x]], g = linear[codes[3 * x + 1]], b = linear[codes[3 * x + 2]];
-    const double xn = m.m[0] * r + m.m[1] * g + m.m[2] * b;  // X / Xn
-    const double yn = m.m[3] * r + m.m[4] * g + m.m[5] * b;  // Y / Yn = Ŷ
-    const double zn = m.m[6] * r + m.m[7] * g + m.m[8] * b;  // Z / Zn
-    oy[x] = static_cast<float>(yn);
-    ocx[x] = static_cast<float>(500.0 * (xn - yn));
-    ocz[x] = static_cast<float>(200.0 * (yn - zn));
-  }
-  return true;
-}
-
-Planes ToPlanes(const ImageF& img) {
-  static const SrgbTable table;
-  Planes p;
-  p.w = img.Width();
-  p.h = img.Height();
-  const size_t n = img.PixelCount();
-  p.y.resize(n);
-  p.cx.resize(n);
-  p.cz.resize(n);
-  const int ch = img.Channels();
-  const std::array<Color, 3>& rows = XyzOverWhiteRows();
-  YcxczRows m;
-  for (int i = 0; i < 3; ++i)
-    for (int c = 0; c < 3; ++c) m.m[3 * i + c] = rows[i][c];
-  ParallelForChunks(p.h, kChunkRows, [&](int y0, int y1) {
-    std::vector<int32_t> codes(ch == 3 ? static_cast<size_t>(3) * p.w : 0);
-    for (int y = y0; y < y1; ++y) {
-      const float* src = img.Row(y);
-      const size_t row = static_cast<size_t>(y) * p.w;
-      if (ch == 3 && PlanesRowCodes(src, p.w, table.linear.data(), m, codes.data(), p.y.data() + row, p.cx.data() + row,
-                                    p.cz.data() + row)) {
-        continue;
-      }
-      for (int x = 0; x < p.w; ++x) {
-        const float* px = src + static_cast<size_t>(x) * ch;
-        const double r = DecodeSrgb(px[0], table), g = DecodeSrgb(px[1], table), b = DecodeSrgb(px[2], table);
-        const double xn = rows[0][0] * r + rows[0][1] * g + rows[0][2] * b;  // X / Xn
-        const double yn = rows[1][0] * r + rows[1][1] * g + rows[1][2] * b;  // Y / Yn = Ŷ
-        const double zn = rows[2][0] * r + rows[2][1] * g + rows[2][2] * b;  // Z / Zn
-        const size_t i = row + x;
-        p.y[i] = static_cast<float>(yn);  // Ŷ = (Y + 16) / 116, without the offset's cancellation
-        p.cx[i] = static_cast<float>(500.0 * (xn - yn));
-        p.cz[i] = static_cast<float>(200.0 * (yn - zn));
-      }
-    }
-  });
-  return p;
-}
 
 // Kernels as float.
 struct Kernels {

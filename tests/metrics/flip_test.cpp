@@ -340,7 +340,7 @@ TEST(Flip, ErrorValuesWriteEveryValue) {
   SetThreadCount(0);
 }
 
-// flip_fast.cpp decodes a row whose every value is an exact 8-bit code (float(k) / 255) in
+// flip_planes.cpp decodes a row whose every value is an exact 8-bit code (float(k) / 255) in
 // vector lanes, and any other row per pixel. A 4-channel copy of the same image takes the
 // per-pixel decode on every row: the two must give the same bits. The images are exact
 // codes except three rows of the test image (a non-code value, one above 1, one below 0),
