@@ -539,16 +539,19 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
         DisplayLinearLanes(display, lanes, 3 * spp * kTile);
         double sums[kSums * kTile];
         SumReferenceLanes(lanes, grid, sums);
+        // The row's means (all, half A, half B: value (kSum… + c)·kTile + p), encoded at once.
+        float enc[kSums * kTile];
+        const int half = spp / 2;  // grid even: as many even strata as odd
+        for (int v = 0; v < kSums * kTile; ++v) {
+          enc[v] = static_cast<float>(sums[v] / (v < kSumA * kTile ? spp : half));
+        }
+        SrgbEncodeN(enc, enc, kSums * kTile);
         for (int p = 0; p < row; ++p) {
           const int x = x0 + p;
-          const double* all = sums + kSumAll * kTile;
-          const double* a = sums + kSumA * kTile;
-          const double* b = sums + kSumB * kTile;
-          const int half = spp / 2;  // grid even: as many even strata as odd
           for (int c = 0; c < 3; ++c) {
-            ref.image.At(x, y, c) = SrgbEncode(static_cast<float>(all[c * kTile + p] / spp));
-            ref.half_a.At(x, y, c) = SrgbEncode(static_cast<float>(a[c * kTile + p] / half));
-            ref.half_b.At(x, y, c) = SrgbEncode(static_cast<float>(b[c * kTile + p] / half));
+            ref.image.At(x, y, c) = enc[(kSumAll + c) * kTile + p];
+            ref.half_a.At(x, y, c) = enc[(kSumA + c) * kTile + p];
+            ref.half_b.At(x, y, c) = enc[(kSumB + c) * kTile + p];
           }
           ref.edge_mask_raw.At(x, y, 0) = SamplesDiffer(r + static_cast<size_t>(p) * spp, spp) ? 1.0f : 0.0f;
         }
