@@ -204,7 +204,8 @@ void CameraPackets(RTCScene scene, bool persp, const SamplePos* pos, int count, 
 AALAB_SIMD_CLONES
 void CameraPacketsUnlit(RTCScene scene, bool persp, const SamplePos* pos, int count, float width, float height,
                         float half_h, float aspect, glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up,
-                        const Scene& sc, UnlitShading& shading) {
+                        const Scene& sc, ShadeScratch& S, SampleResult* out, TraceCounters& local) {
+  UnlitShading shading(sc, sc.Has(Effect::kTextures), S, count, out, local);  // a local: in registers
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -228,6 +229,7 @@ void CameraPacketsUnlit(RTCScene scene, bool persp, const SamplePos* pos, int co
       });
     }
   }
+  shading.Finish();
 }
 
 }  // namespace
@@ -262,10 +264,9 @@ void tracer_detail::TraceCameraRaysUnlit(const Tracer::Impl& im, const Scene& sc
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   const float half_h =
       cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
-  UnlitShading shading(sc, sc.Has(Effect::kTextures), S, count, out, local);
   CameraPacketsUnlit(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
-                     static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, sc, shading);
-  shading.Finish();
+                     static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, sc, S, out,
+                     local);
 }
 
 }  // namespace aalab

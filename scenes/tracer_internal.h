@@ -282,7 +282,7 @@ class UnlitShading {
     SampleResult& r = out_[i];
     r.surface = shape_id;
     r.shadowed = 0;
-    ++local_.shading_evals;
+    ++evals_;
     if (shape_id != cur_shape_) {  // consecutive hits mostly see the same shape
       cur_shape_ = shape_id;
       shape_ = &sc_.shapes[static_cast<size_t>(shape_id)];
@@ -290,7 +290,7 @@ class UnlitShading {
       texture_ = textures_ && mat_->texture ? &*mat_->texture : nullptr;
     }
     if (texture_) {
-      ++local_.texture_lookups;
+      ++lookups_;
       if (shape_->kind == ShapeKind::kTriangles) {  // FillSurface's uv, operation for operation
         const glm::uvec3 tri = shape_->triangles[prim];
         const float w = 1.0f - u - v;
@@ -308,7 +308,10 @@ class UnlitShading {
     r.rgb[2] = mat_->color.z;
   }
 
-  /// The textured hits' colours (after the last Shade()).
+  /// The textured hits' colours (after the last Shade()); adds the shading evaluations and
+  /// texture lookups to the counters. (Counted here, and the object best kept a local of the
+  /// loop that calls Shade(): its members then stay in registers, not reloaded after every
+  /// store to out.)
   void Finish();
 
  private:
@@ -322,6 +325,7 @@ class UnlitShading {
   float* tv_;
   int m_ = 0;
   int cur_shape_ = -1;
+  uint64_t evals_ = 0, lookups_ = 0;
   const Shape* shape_ = nullptr;
   const Material* mat_ = nullptr;
   const Texture* texture_ = nullptr;

@@ -232,19 +232,22 @@ UnlitShading::UnlitShading(const Scene& sc, bool textures, ShadeScratch& S, int 
 }
 
 void UnlitShading::Finish() {
+  local_.shading_evals += evals_;
+  local_.texture_lookups += lookups_;
   for (int k = 0; k < m_;) {
     int e = k + 1;
     while (e < m_ && tex_[e] == tex_[k]) ++e;
-    EvaluatePatternBatch(*tex_[k], uv_ + k, e - k, tv_ + k);
-    k = e;
-  }
-  for (int k = 0; k < m_; ++k) {
     const Texture& t = *tex_[k];
-    const glm::vec3 base = t.color_a + (t.color_b - t.color_a) * tv_[k];
-    SampleResult& r = out_[who_[k]];
-    r.rgb[0] = base.x;
-    r.rgb[1] = base.y;
-    r.rgb[2] = base.z;
+    EvaluatePatternBatch(t, uv_ + k, e - k, tv_ + k);
+    const glm::vec3 a = t.color_a, ab = t.color_b - t.color_a;  // per run: the same values
+    for (int j = k; j < e; ++j) {
+      const glm::vec3 base = a + ab * tv_[j];
+      SampleResult& r = out_[who_[j]];
+      r.rgb[0] = base.x;
+      r.rgb[1] = base.y;
+      r.rgb[2] = base.z;
+    }
+    k = e;
   }
 }
 
