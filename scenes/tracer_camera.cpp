@@ -1,7 +1,9 @@
 // Camera rays: the perspective and orthographic rays of continuous pixel positions
 // (CameraRays, vectorised in blocks of 16 with the scalar glm arithmetic's roundings), and the
 // camera rays traced in 16-wide packets filled straight from the positions (TraceCameraRays,
-// what Tracer::Trace uses: no vec3 arrays read back and repacked).
+// what Tracer::Trace uses: no vec3 arrays read back and repacked), and for unlit scenes whose
+// caller reads the shading only (the reference) the same packets shaded in place
+// (TraceCameraRaysUnlit: no org/dir/Hit arrays at all).
 #include <cmath>
 
 #include "scenes/tracer_internal.h"

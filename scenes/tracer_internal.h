@@ -2,7 +2,8 @@
 // library includes it, the one place that knows Embree):
 //   tracer.cpp        BVH build, packets, visibility (closest hits through cut-outs),
 //                     Tracer::Trace (one shading per sample), BareTrace
-//   tracer_camera.cpp camera rays, and camera rays traced in packets filled in place
+//   tracer_camera.cpp camera rays, and camera rays traced in packets filled in place (for
+//                     unlit scenes also shaded in place)
 //   tracer_shade.cpp  surface attributes, shadow rays and shading of a list of hits
 //   tracer_msaa.cpp   Tracer::TraceMsaa: coverage samples, one shading per primitive
 //   tracer_gltf.cpp   image textures (footprints, mip-mapped fetches), glTF alpha and the
