@@ -89,6 +89,48 @@ float SrgbEncode(float v) {
   return 1.055f * EncodePow(v) - 0.055f;
 }
 
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define AALAB_ENCODE_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
+#else
+#define AALAB_ENCODE_CLONES
+#endif
+
+// SrgbEncode over n values, written so that the first loop vectorises (table gathers): every
+// lane takes EncodePow's operations in its order (the same doubles, the same two roundings to
+// float, 1.055f · p − 0.055f) and is flagged when SrgbEncode would not return that value (its
+// input outside (0.0031308, 1), NaN included, or d's two roundings differ); the flagged ones
+// (~1.5 % of the pow branch, plus the clamped and linear ones) take SrgbEncode itself.
+AALAB_ENCODE_CLONES
+void SrgbEncodeN(const float* in, float* out, int n) {
+  const EncodePowTables& t = PowTables();
+  constexpr int kBlock = 64;
+  for (int base = 0; base < n; base += kBlock) {
+    const int m = std::min(kBlock, n - base);
+    int32_t slow[kBlock];
+    float v_in[kBlock];  // the block's inputs (in and out may be one array)
+    for (int k = 0; k < m; ++k) {
+      const float v = in[base + k];
+      v_in[k] = v;
+      const uint32_t bits = std::bit_cast<uint32_t>(v);
+      const bool pow_branch = v > 0.0031308f && v < 1.0f;  // false for NaN; then e in [-9, -1]
+      const int e = pow_branch ? static_cast<int>(bits >> 23) - 127 : -1;
+      const int i = static_cast<int>((bits & 0x7FFFFFu) >> 15);
+      const double mant = static_cast<double>(std::bit_cast<float>((bits & 0x7FFFFFu) | 0x3F800000u));
+      const double sv = mant * t.inv_centre[i] - 1.0;
+      const double series =
+          1.0 + sv * (t.c[1] + sv * (t.c[2] + sv * (t.c[3] + sv * (t.c[4] + sv * (t.c[5] + sv * t.c[6])))));
+      const double d = t.scale[e + 9] * t.head[i] * series;
+      const float lo = static_cast<float>(d * (1.0 - kPowMargin));
+      const float hi = static_cast<float>(d * (1.0 + kPowMargin));
+      slow[k] = !pow_branch || lo != hi;
+      out[base + k] = 1.055f * lo - 0.055f;
+    }
+    for (int k = 0; k < m; ++k) {
+      if (slow[k]) out[base + k] = SrgbEncode(v_in[k]);
+    }
+  }
+}
+
 float SrgbEncodeLibm(float v) {
   if (!(v > 0.0f)) return 0.0f;
   if (v >= 1.0f) return 1.0f;

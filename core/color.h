@@ -22,6 +22,10 @@ struct Display {
 
 /// sRGB OETF (IEC 61966-2-1) for x in [0, 1]; input is clamped to [0, 1].
 float SrgbEncode(float linear);
+/// SrgbEncode of n values: out[k] = SrgbEncode(in[k]), the same bits, vectorised (table
+/// gathers; the inputs SrgbEncode sends to powf, or that it clamps, take SrgbEncode itself).
+/// in and out may be the same array.
+void SrgbEncodeN(const float* in, float* out, int n);
 /// SrgbEncode as it is written in the standard, with libm's powf: the same bits as SrgbEncode
 /// for every float (SrgbEncode computes the power without the call; tests prove them equal).
 float SrgbEncodeLibm(float linear);

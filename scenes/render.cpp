@@ -86,34 +86,48 @@ inline __attribute__((always_inline)) void UnitFloatOfMixLanes(U64x8 v, F32x8& o
   out = __builtin_convertvector(top, F32x8) * (1.0f / 16777216.0f);
 }
 
+/// What the reference's stratified positions share across pixels, per sample s = j·grid + i
+/// (spp rounded up to a multiple of 8; the padding repeats valid strata, computed, never
+/// stored): the hash input s + 0x85157af5a2a6b5f1 and the stratum's i and j as floats.
+struct StrataTable {
+  std::vector<U64x8> salt;
+  std::vector<F32x8> fi, fj;
+  explicit StrataTable(int grid) {
+    const int spp = grid * grid;
+    const size_t blocks = static_cast<size_t>((spp + 7) / 8);
+    salt.resize(blocks);
+    fi.resize(blocks);
+    fj.resize(blocks);
+    for (int s = 0; s < static_cast<int>(blocks) * 8; ++s) {
+      const size_t b = static_cast<size_t>(s / 8);
+      const int k = s % 8;
+      salt[b][k] = static_cast<uint64_t>(static_cast<uint32_t>(s)) + 0x85157af5a2a6b5f1ULL;
+      fi[b][k] = static_cast<float>(s % grid);
+      fj[b][k] = static_cast<float>(s / grid);
+    }
+  }
+};
+
 /// The reference's stratified positions of one pixel, s = j·grid + i: the PixelHash::Jitter2
 /// arithmetic over 8 samples at a time in vector lanes (64-bit multiplies, IEEE float adds
-/// and divisions: exact operations, identical in every clone and lane).
+/// and divisions: exact operations, identical in every clone and lane), the per-sample inputs
+/// from the table.
 AALAB_SIMD_CLONES
-void PlaceStratifiedPixel(uint64_t pixel_hash, int grid, uint64_t seed, float fx, float fy, SamplePos* out) {
+void PlaceStratifiedPixel(uint64_t pixel_hash, int grid, uint64_t seed, float fx, float fy, const StrataTable& table,
+                          SamplePos* out) {
   const int spp = grid * grid;
   const float g = static_cast<float>(grid);
-  int i = 0, j = 0;  // stratum of sample s0 + k (no division a lane)
   for (int s0 = 0; s0 < spp; s0 += 8) {
-    U64x8 h;
-    F32x8 fi, fj;
-    for (int k = 0; k < 8; ++k) {
-      h[k] = static_cast<uint64_t>(static_cast<uint32_t>(s0 + k));
-      fi[k] = static_cast<float>(i);
-      fj[k] = static_cast<float>(j);
-      const bool wrap = ++i == grid;
-      i = wrap ? 0 : i;
-      j += wrap;
-    }
-    h = pixel_hash ^ (h + 0x85157af5a2a6b5f1ULL);
+    const size_t b = static_cast<size_t>(s0 / 8);
+    U64x8 h = pixel_hash ^ table.salt[b];
     MixBitsLanes(h);
     h ^= seed + 0xd6e8feb86659fd93ULL;
     MixBitsLanes(h);
     F32x8 j0, j1;
     UnitFloatOfMixLanes(h ^ (0ULL + 0xa0761d6478bd642fULL), j0);
     UnitFloatOfMixLanes(h ^ (1ULL + 0xa0761d6478bd642fULL), j1);
-    const F32x8 x = fx + (fi + j0) / g;
-    const F32x8 y = fy + (fj + j1) / g;
+    const F32x8 x = fx + (table.fi[b] + j0) / g;
+    const F32x8 y = fy + (table.fj[b] + j1) / g;
     const int m = std::min(8, spp - s0);
     for (int k = 0; k < m; ++k) {
       out[s0 + k].x = x[k];
@@ -507,6 +521,7 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
   std::vector<TraceCounters> per_tile(static_cast<size_t>(tiles));
   // The truth samples image textures bilinearly on level 0 at every sub-sample (px = 0).
   const TextureFootprint footprint{0.0f, 1};
+  const StrataTable strata(grid);
   ParallelForChunks(tiles, 1, [&](int begin, int end) {
     thread_local ReferenceScratch scratch;
     const size_t max_samples = static_cast<size_t>(kTile) * kTile * static_cast<size_t>(spp);
@@ -524,7 +539,7 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
           const PixelHash ph(x, y);
-          PlaceStratifiedPixel(ph.h, grid, rseed, static_cast<float>(x), static_cast<float>(y), pos + n);
+          PlaceStratifiedPixel(ph.h, grid, rseed, static_cast<float>(x), static_cast<float>(y), strata, pos + n);
           n += static_cast<size_t>(spp);
         }
       }
@@ -539,16 +554,19 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
         DisplayLinearLanes(display, lanes, 3 * spp * kTile);
         double sums[kSums * kTile];
         SumReferenceLanes(lanes, grid, sums);
+        // The row's means (all, half A, half B: value (kSum… + c)·kTile + p), encoded at once.
+        float enc[kSums * kTile];
+        const int half = spp / 2;  // grid even: as many even strata as odd
+        for (int v = 0; v < kSums * kTile; ++v) {
+          enc[v] = static_cast<float>(sums[v] / (v < kSumA * kTile ? spp : half));
+        }
+        SrgbEncodeN(enc, enc, kSums * kTile);
         for (int p = 0; p < row; ++p) {
           const int x = x0 + p;
-          const double* all = sums + kSumAll * kTile;
-          const double* a = sums + kSumA * kTile;
-          const double* b = sums + kSumB * kTile;
-          const int half = spp / 2;  // grid even: as many even strata as odd
           for (int c = 0; c < 3; ++c) {
-            ref.image.At(x, y, c) = SrgbEncode(static_cast<float>(all[c * kTile + p] / spp));
-            ref.half_a.At(x, y, c) = SrgbEncode(static_cast<float>(a[c * kTile + p] / half));
-            ref.half_b.At(x, y, c) = SrgbEncode(static_cast<float>(b[c * kTile + p] / half));
+            ref.image.At(x, y, c) = enc[(kSumAll + c) * kTile + p];
+            ref.half_a.At(x, y, c) = enc[(kSumA + c) * kTile + p];
+            ref.half_b.At(x, y, c) = enc[(kSumB + c) * kTile + p];
           }
           ref.edge_mask_raw.At(x, y, 0) = SamplesDiffer(r + static_cast<size_t>(p) * spp, spp) ? 1.0f : 0.0f;
         }

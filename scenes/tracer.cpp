@@ -384,6 +384,18 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
   thread_local TraceScratch scratch;
   TraceScratch& S = scratch;
   const size_t n_all = static_cast<size_t>(count);
+  const bool alpha = sc.Has(Effect::kAlphaTest) && im.any_alpha;
+
+  // An unlit scene (ShadeHits' unlit path) without cut-outs to continue through, culled or
+  // blended materials, for a caller that reads the shading only: the packets shaded in place.
+  const bool unlit = !sc.Has(Effect::kLambert) && !sc.Has(Effect::kShadows) && !im.any_gltf;
+  if (unlit && !alpha && !im.any_cull && !im.any_blend && fields == SampleFields::kShading) {
+    TraceCameraRaysUnlit(im, sc, pos, count, width, height, S.shade, out, local);
+    local.primary_rays += static_cast<uint64_t>(count);
+    local.coverage_rays += static_cast<uint64_t>(count);
+    if (counters) *counters += local;
+    return;
+  }
 
   // 1. Camera rays, traced in packets filled straight from the positions.
   glm::vec3* org = Sized(S.org, n_all);
@@ -395,7 +407,6 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
 
   // 2. Closest hits, continuing through alpha cut-outs (only with `alpha_test`) and past
   // culled back faces: ClosestVisibleHits after its first round.
-  const bool alpha = sc.Has(Effect::kAlphaTest) && im.any_alpha;
   const Footprint fp{width, height, footprint, fields == SampleFields::kAll};
   // With glTF cut-outs, the alpha test's base texel and footprint go on to the shading.
   KeptTexel* kept = alpha && im.any_gltf ? Sized(S.kept, n_all) : nullptr;

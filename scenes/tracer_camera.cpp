@@ -1,7 +1,9 @@
 // Camera rays: the perspective and orthographic rays of continuous pixel positions
 // (CameraRays, vectorised in blocks of 16 with the scalar glm arithmetic's roundings), and the
 // camera rays traced in 16-wide packets filled straight from the positions (TraceCameraRays,
-// what Tracer::Trace uses: no vec3 arrays read back and repacked).
+// what Tracer::Trace uses: no vec3 arrays read back and repacked), and for unlit scenes whose
+// caller reads the shading only (the reference) the same packets shaded in place
+// (TraceCameraRaysUnlit: no org/dir/Hit arrays at all).
 #include <cmath>
 
 #include "scenes/tracer_internal.h"
@@ -98,12 +100,84 @@ void OrthographicRays(const SamplePos* pos, int count, float width, float height
   }
 }
 
+/// Fills the packet with the camera rays of m ≤ 16 positions, with PerspectiveRays' or
+/// OrthographicRays' arithmetic (the same bits), tnear 0 and tfar ∞; a partial packet's idle
+/// lanes hold its first ray with tnear = tfar = 0 (the packets CameraRays + IntersectRays build).
+inline __attribute__((always_inline)) void FillCameraPacket(bool persp, const SamplePos* pos, int m, float width,
+                                                            float height, float half_h, float aspect, glm::vec3 origin,
+                                                            glm::vec3 fwd, glm::vec3 right, glm::vec3 up,
+                                                            RTCRayHit16& rh, int* valid) {
+  const float inf = std::numeric_limits<float>::infinity();
+  float px[kPacket], py[kPacket];
+  LoadBlock(pos, m, px, py);
+  if (persp) {
+    for (int k = 0; k < kPacket; ++k) {
+      const float nx = 2.0f * px[k] / width - 1.0f;
+      const float ny = 1.0f - 2.0f * py[k] / height;
+      const float a = nx * half_h * aspect;
+      const float b = ny * half_h;
+      const float vx = fwd.x + (right.x * a + up.x * b);
+      const float vy = fwd.y + (right.y * a + up.y * b);
+      const float vz = fwd.z + (right.z * a + up.z * b);
+      const float inv = 1.0f / std::sqrt((vx * vx + vy * vy) + vz * vz);
+      rh.ray.org_x[k] = origin.x;
+      rh.ray.org_y[k] = origin.y;
+      rh.ray.org_z[k] = origin.z;
+      rh.ray.dir_x[k] = vx * inv;
+      rh.ray.dir_y[k] = vy * inv;
+      rh.ray.dir_z[k] = vz * inv;
+    }
+  } else {
+    for (int k = 0; k < kPacket; ++k) {
+      const float nx = 2.0f * px[k] / width - 1.0f;
+      const float ny = 1.0f - 2.0f * py[k] / height;
+      const float a = nx * half_h * aspect;
+      const float b = ny * half_h;
+      rh.ray.org_x[k] = origin.x + (right.x * a + up.x * b);
+      rh.ray.org_y[k] = origin.y + (right.y * a + up.y * b);
+      rh.ray.org_z[k] = origin.z + (right.z * a + up.z * b);
+      rh.ray.dir_x[k] = fwd.x;
+      rh.ray.dir_y[k] = fwd.y;
+      rh.ray.dir_z[k] = fwd.z;
+    }
+  }
+  for (int k = 0; k < kPacket; ++k) {
+    valid[k] = -1;
+    rh.ray.tnear[k] = 0.0f;
+    rh.ray.tfar[k] = inf;
+    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  for (int k = m; k < kPacket; ++k) {  // a partial packet's idle lanes: its first ray, empty
+    valid[k] = 0;
+    rh.ray.org_x[k] = rh.ray.org_x[0];
+    rh.ray.org_y[k] = rh.ray.org_y[0];
+    rh.ray.org_z[k] = rh.ray.org_z[0];
+    rh.ray.dir_x[k] = rh.ray.dir_x[0];
+    rh.ray.dir_y[k] = rh.ray.dir_y[0];
+    rh.ray.dir_z[k] = rh.ray.dir_z[0];
+    rh.ray.tfar[k] = 0.0f;
+  }
+}
+
+/// Hit k of a traced packet as IntersectRays reads it out (a miss: Hit{}).
+inline Hit PacketHit(const RTCRayHit16& rh, int k) {
+  const bool hit = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+  Hit h;
+  h.t = hit ? rh.ray.tfar[k] : std::numeric_limits<float>::infinity();
+  h.shape = hit ? static_cast<int>(rh.hit.geomID[k]) : -1;
+  h.prim = hit ? rh.hit.primID[k] : 0u;
+  h.u = hit ? rh.hit.u[k] : 0.0f;
+  h.v = hit ? rh.hit.v[k] : 0.0f;
+  h.ng = hit ? glm::vec3(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]) : glm::vec3(0.0f);
+  return h;
+}
+
 /// Camera rays of `count` positions traced in 16-wide packets filled straight from the
-/// positions: each block of 16 computed into the packet's lanes with PerspectiveRays' or
-/// OrthographicRays' arithmetic (the same bits), traced (rtcIntersect16, coherent) and read
-/// out as IntersectRays does; org/dir receive the same rays for the shading. The packets are
-/// the ones CameraRays + IntersectRays build (a partial last packet's idle lanes hold its
-/// first ray with tnear = tfar = 0), without the vec3 arrays read back and repacked.
+/// positions (FillCameraPacket), traced (rtcIntersect16, coherent) and read out as
+/// IntersectRays does; org/dir receive the same rays for the shading. The packets are the
+/// ones CameraRays + IntersectRays build, without the vec3 arrays read back and repacked.
 AALAB_SIMD_CLONES
 void CameraPackets(RTCScene scene, bool persp, const SamplePos* pos, int count, float width, float height, float half_h,
                    float aspect, glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org,
@@ -114,76 +188,50 @@ void CameraPackets(RTCScene scene, bool persp, const SamplePos* pos, int count, 
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[kPacket];
   InitPacketConstants(rh);
-  const float inf = std::numeric_limits<float>::infinity();
   for (int base = 0; base < count; base += kPacket) {
     const int m = std::min(kPacket, count - base);
-    float px[kPacket], py[kPacket];
-    LoadBlock(pos + base, m, px, py);
-    if (persp) {
-      for (int k = 0; k < kPacket; ++k) {
-        const float nx = 2.0f * px[k] / width - 1.0f;
-        const float ny = 1.0f - 2.0f * py[k] / height;
-        const float a = nx * half_h * aspect;
-        const float b = ny * half_h;
-        const float vx = fwd.x + (right.x * a + up.x * b);
-        const float vy = fwd.y + (right.y * a + up.y * b);
-        const float vz = fwd.z + (right.z * a + up.z * b);
-        const float inv = 1.0f / std::sqrt((vx * vx + vy * vy) + vz * vz);
-        rh.ray.org_x[k] = origin.x;
-        rh.ray.org_y[k] = origin.y;
-        rh.ray.org_z[k] = origin.z;
-        rh.ray.dir_x[k] = vx * inv;
-        rh.ray.dir_y[k] = vy * inv;
-        rh.ray.dir_z[k] = vz * inv;
-      }
-    } else {
-      for (int k = 0; k < kPacket; ++k) {
-        const float nx = 2.0f * px[k] / width - 1.0f;
-        const float ny = 1.0f - 2.0f * py[k] / height;
-        const float a = nx * half_h * aspect;
-        const float b = ny * half_h;
-        rh.ray.org_x[k] = origin.x + (right.x * a + up.x * b);
-        rh.ray.org_y[k] = origin.y + (right.y * a + up.y * b);
-        rh.ray.org_z[k] = origin.z + (right.z * a + up.z * b);
-        rh.ray.dir_x[k] = fwd.x;
-        rh.ray.dir_y[k] = fwd.y;
-        rh.ray.dir_z[k] = fwd.z;
-      }
-    }
-    for (int k = 0; k < kPacket; ++k) {
-      valid[k] = -1;
-      rh.ray.tnear[k] = 0.0f;
-      rh.ray.tfar[k] = inf;
-      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-    }
-    for (int k = m; k < kPacket; ++k) {  // a partial packet's idle lanes: its first ray, empty
-      valid[k] = 0;
-      rh.ray.org_x[k] = rh.ray.org_x[0];
-      rh.ray.org_y[k] = rh.ray.org_y[0];
-      rh.ray.org_z[k] = rh.ray.org_z[0];
-      rh.ray.dir_x[k] = rh.ray.dir_x[0];
-      rh.ray.dir_y[k] = rh.ray.dir_y[0];
-      rh.ray.dir_z[k] = rh.ray.dir_z[0];
-      rh.ray.tfar[k] = 0.0f;
-    }
+    FillCameraPacket(persp, pos + base, m, width, height, half_h, aspect, origin, fwd, right, up, rh, valid);
     for (int k = 0; k < m; ++k) {
       org[base + k] = glm::vec3(rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]);
       dir[base + k] = glm::vec3(rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]);
     }
     rtcIntersect16(valid, scene, &ctx, &rh);
+    for (int k = 0; k < m; ++k) hits[base + k] = PacketHit(rh, k);
+  }
+}
+
+/// CameraPackets with each packet's lanes shaded straight from the packet (UnlitShading):
+/// the rays and hits never leave Embree's layout. A curved shape's uv (FillSurface's) takes the
+/// lane's ray and hit as CameraPackets would have stored them.
+AALAB_SIMD_CLONES
+void CameraPacketsUnlit(RTCScene scene, bool persp, const SamplePos* pos, int count, float width, float height,
+                        float half_h, float aspect, glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up,
+                        const Scene& sc, ShadeScratch& S, SampleResult* out, TraceCounters& local) {
+  UnlitShading shading(sc, sc.Has(Effect::kTextures), S, count, out, local);  // a local: in registers
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[kPacket];
+  InitPacketConstants(rh);
+  for (int base = 0; base < count; base += kPacket) {
+    const int m = std::min(kPacket, count - base);
+    FillCameraPacket(persp, pos + base, m, width, height, half_h, aspect, origin, fwd, right, up, rh, valid);
+    rtcIntersect16(valid, scene, &ctx, &rh);
     for (int k = 0; k < m; ++k) {
-      const bool hit = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
-      Hit& h = hits[base + k];
-      h.t = hit ? rh.ray.tfar[k] : inf;
-      h.shape = hit ? static_cast<int>(rh.hit.geomID[k]) : -1;
-      h.prim = hit ? rh.hit.primID[k] : 0u;
-      h.u = hit ? rh.hit.u[k] : 0.0f;
-      h.v = hit ? rh.hit.v[k] : 0.0f;
-      h.ng = hit ? glm::vec3(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]) : glm::vec3(0.0f);
+      const unsigned geom = rh.hit.geomID[k];
+      if (geom == RTC_INVALID_GEOMETRY_ID) {
+        shading.Background(base + k);
+        continue;
+      }
+      shading.Shade(base + k, static_cast<int>(geom), rh.hit.primID[k], rh.hit.u[k], rh.hit.v[k], [&] {
+        const glm::vec3 o(rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]);
+        const glm::vec3 d(rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]);
+        return SurfaceAt(sc, PacketHit(rh, k), o, d, true, false).uv;
+      });
     }
   }
+  shading.Finish();
 }
 
 }  // namespace
@@ -209,6 +257,18 @@ void tracer_detail::TraceCameraRays(const Tracer::Impl& im, const Camera& cam, c
       cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
   CameraPackets(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
                 static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, org, dir, hits);
+}
+
+void tracer_detail::TraceCameraRaysUnlit(const Tracer::Impl& im, const Scene& sc, const SamplePos* pos, int count,
+                                         int width, int height, ShadeScratch& S, SampleResult* out,
+                                         TraceCounters& local) {
+  const Camera& cam = sc.camera;
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const float half_h =
+      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  CameraPacketsUnlit(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
+                     static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, sc, S, out,
+                     local);
 }
 
 }  // namespace aalab

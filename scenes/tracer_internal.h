@@ -2,7 +2,8 @@
 // library includes it, the one place that knows Embree):
 //   tracer.cpp        BVH build, packets, visibility (closest hits through cut-outs),
 //                     Tracer::Trace (one shading per sample), BareTrace
-//   tracer_camera.cpp camera rays, and camera rays traced in packets filled in place
+//   tracer_camera.cpp camera rays, and camera rays traced in packets filled in place (for
+//                     unlit scenes also shaded in place)
 //   tracer_shade.cpp  surface attributes, shadow rays and shading of a list of hits
 //   tracer_msaa.cpp   Tracer::TraceMsaa: coverage samples, one shading per primitive
 //   tracer_gltf.cpp   image textures (footprints, mip-mapped fetches), glTF alpha and the
@@ -254,6 +255,90 @@ struct ShadeScratch {
   std::vector<const Texture*> pattern_tex;  // the unlit path's textured hits (ShadeUnlit)
   std::vector<float> pattern_t;
 };
+
+/// The shading of hits in a scene without lighting, shadows or glTF materials (every hit shows
+/// its material's colour or procedural texture), one sample at a time: what ShadeUnlit does for
+/// a Hit array and the camera packets' fused path (TraceCameraRaysUnlit) for a packet's lanes,
+/// in one place. Background() and Shade() write out[i]'s rgb, surface and shadowed (a textured
+/// hit's rgb after Finish()); Finish() evaluates the queued textured hits' patterns in batches
+/// per run of hits that share a texture (EvaluatePatternBatch) and writes their colours.
+class UnlitShading {
+ public:
+  UnlitShading(const Scene& sc, bool textures, ShadeScratch& S, int n, SampleResult* out, TraceCounters& local);
+
+  /// Sample i saw nothing.
+  void Background(int i) {
+    SampleResult& r = out_[i];
+    r.surface = -1;
+    r.shadowed = 0;
+    r.rgb[0] = sc_.background.x;
+    r.rgb[1] = sc_.background.y;
+    r.rgb[2] = sc_.background.z;
+  }
+
+  /// Sample i hit shape `shape_id` (primitive prim, barycentrics u, v). `curved_uv()` returns
+  /// the hit's uv for shapes that are not triangle meshes (FillSurface's), called only there.
+  template <typename CurvedUv>
+  void Shade(int i, int shape_id, unsigned prim, float u, float v, const CurvedUv& curved_uv) {
+    SampleResult& r = out_[i];
+    r.surface = shape_id;
+    r.shadowed = 0;
+    ++evals_;
+    if (shape_id != cur_shape_) {  // consecutive hits mostly see the same shape
+      cur_shape_ = shape_id;
+      shape_ = &sc_.shapes[static_cast<size_t>(shape_id)];
+      mat_ = &sc_.materials[shape_->material];
+      texture_ = textures_ && mat_->texture ? &*mat_->texture : nullptr;
+    }
+    if (texture_) {
+      ++lookups_;
+      if (shape_->kind == ShapeKind::kTriangles) {  // FillSurface's uv, operation for operation
+        const glm::uvec3 tri = shape_->triangles[prim];
+        const float w = 1.0f - u - v;
+        uv_[m_] = shape_->uvs[tri.x] * w + shape_->uvs[tri.y] * u + shape_->uvs[tri.z] * v;
+      } else {
+        uv_[m_] = curved_uv();
+      }
+      who_[m_] = i;
+      tex_[m_] = texture_;
+      ++m_;
+      return;
+    }
+    r.rgb[0] = mat_->color.x;
+    r.rgb[1] = mat_->color.y;
+    r.rgb[2] = mat_->color.z;
+  }
+
+  /// The textured hits' colours (after the last Shade()); adds the shading evaluations and
+  /// texture lookups to the counters. (Counted here, and the object best kept a local of the
+  /// loop that calls Shade(): its members then stay in registers, not reloaded after every
+  /// store to out.)
+  void Finish();
+
+ private:
+  const Scene& sc_;
+  bool textures_;
+  SampleResult* out_;
+  TraceCounters& local_;
+  glm::vec2* uv_;
+  int* who_;
+  const Texture** tex_;
+  float* tv_;
+  int m_ = 0;
+  int cur_shape_ = -1;
+  uint64_t evals_ = 0, lookups_ = 0;
+  const Shape* shape_ = nullptr;
+  const Material* mat_ = nullptr;
+  const Texture* texture_ = nullptr;
+};
+
+/// TraceCameraRays and ShadeHits' unlit shading fused, for a scene without lighting, shadows,
+/// glTF materials or an active alpha test, when the caller reads rgb, surface and shadowed only
+/// (SampleFields::kShading): the same packets, and each packet's lanes shaded straight from
+/// Embree's layout (no org/dir/Hit arrays). out[i] gets what Trace's general path writes.
+/// Counts the shading and texture lookups (not the rays).
+void TraceCameraRaysUnlit(const Tracer::Impl& im, const Scene& sc, const SamplePos* pos, int count, int width,
+                          int height, ShadeScratch& S, SampleResult* out, TraceCounters& local);
 
 /// The level-0 texture fetches ShadeGltf would make for n hits of a reference render
 /// (fp.tex.px == 0), batched per slot and texture over the packet (SampleBilinearBatch) into

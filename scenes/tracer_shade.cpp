@@ -188,83 +188,68 @@ namespace {
 /// ShadeHits for a scene without lighting, shadows or glTF materials (every hit shows its
 /// material's colour or procedural texture): the same outputs, with the pattern values of
 /// the textured hits evaluated in batches per run of hits that share a texture
-/// (EvaluatePatternBatch) instead of one call a hit.
+/// (UnlitShading) instead of one call a hit.
 void ShadeUnlit(const Scene& sc, bool textures, const Hit* hits, const glm::vec3* org, const glm::vec3* dir, int n,
                 ShadeScratch& S, SampleResult* out, TraceCounters& local, bool hit_points) {
-  const size_t n_all = static_cast<size_t>(n);
-  glm::vec2* uv = Sized(S.job_uv, n_all);
-  int* who = Sized(S.job_hit, n_all);
-  const Texture** tex = Sized(S.pattern_tex, n_all);
-  float* tv = Sized(S.pattern_t, n_all);
-  int m = 0;
-  // Consecutive hits mostly see the same shape: its material and texture looked up once a run.
-  int cur_shape = -1;
-  const Shape* shape = nullptr;
-  const Material* mat = nullptr;
-  const Texture* texture = nullptr;
+  UnlitShading shading(sc, textures, S, n, out, local);
   for (int i = 0; i < n; ++i) {
-    SampleResult& r = out[i];
     const Hit& h = hits[i];
-    r.surface = h.shape;
-    r.shadowed = 0;
-    if (hit_points) r.t = h.t;
-    if (h.shape < 0) {
-      if (hit_points) r.position[0] = r.position[1] = r.position[2] = 0.0f;
-      r.rgb[0] = sc.background.x;
-      r.rgb[1] = sc.background.y;
-      r.rgb[2] = sc.background.z;
-      continue;
-    }
-    ++local.shading_evals;
-    if (h.shape != cur_shape) {
-      cur_shape = h.shape;
-      shape = &sc.shapes[h.shape];
-      mat = &sc.materials[shape->material];
-      texture = textures && mat->texture ? &*mat->texture : nullptr;
-    }
+    SampleResult& r = out[i];
     if (hit_points) {
-      const glm::vec3 p = org[i] + dir[i] * h.t;  // FillSurface's point
-      r.position[0] = p.x;
-      r.position[1] = p.y;
-      r.position[2] = p.z;
-    }
-    if (texture) {
-      ++local.texture_lookups;
-      if (shape->kind == ShapeKind::kTriangles) {  // FillSurface's uv, operation for operation
-        const glm::uvec3 tri = shape->triangles[h.prim];
-        const float w = 1.0f - h.u - h.v;
-        uv[m] = shape->uvs[tri.x] * w + shape->uvs[tri.y] * h.u + shape->uvs[tri.z] * h.v;
+      r.t = h.t;
+      if (h.shape < 0) {
+        r.position[0] = r.position[1] = r.position[2] = 0.0f;
       } else {
-        Surface sf;
-        FillSurface(sc, h, org[i], dir[i], true, false, sf);
-        uv[m] = sf.uv;
+        const glm::vec3 p = org[i] + dir[i] * h.t;  // FillSurface's point
+        r.position[0] = p.x;
+        r.position[1] = p.y;
+        r.position[2] = p.z;
       }
-      who[m] = i;
-      tex[m] = texture;
-      ++m;
+    }
+    if (h.shape < 0) {
+      shading.Background(i);
       continue;
     }
-    r.rgb[0] = mat->color.x;
-    r.rgb[1] = mat->color.y;
-    r.rgb[2] = mat->color.z;
+    shading.Shade(i, h.shape, h.prim, h.u, h.v, [&] {
+      Surface sf;
+      FillSurface(sc, h, org[i], dir[i], true, false, sf);
+      return sf.uv;
+    });
   }
-  for (int k = 0; k < m;) {
-    int e = k + 1;
-    while (e < m && tex[e] == tex[k]) ++e;
-    EvaluatePatternBatch(*tex[k], uv + k, e - k, tv + k);
-    k = e;
-  }
-  for (int k = 0; k < m; ++k) {
-    const Texture& t = *tex[k];
-    const glm::vec3 base = t.color_a + (t.color_b - t.color_a) * tv[k];
-    SampleResult& r = out[who[k]];
-    r.rgb[0] = base.x;
-    r.rgb[1] = base.y;
-    r.rgb[2] = base.z;
-  }
+  shading.Finish();
 }
 
 }  // namespace
+
+UnlitShading::UnlitShading(const Scene& sc, bool textures, ShadeScratch& S, int n, SampleResult* out,
+                           TraceCounters& local)
+    : sc_(sc), textures_(textures), out_(out), local_(local) {
+  const size_t n_all = static_cast<size_t>(n);
+  uv_ = Sized(S.job_uv, n_all);
+  who_ = Sized(S.job_hit, n_all);
+  tex_ = Sized(S.pattern_tex, n_all);
+  tv_ = Sized(S.pattern_t, n_all);
+}
+
+void UnlitShading::Finish() {
+  local_.shading_evals += evals_;
+  local_.texture_lookups += lookups_;
+  for (int k = 0; k < m_;) {
+    int e = k + 1;
+    while (e < m_ && tex_[e] == tex_[k]) ++e;
+    const Texture& t = *tex_[k];
+    EvaluatePatternBatch(t, uv_ + k, e - k, tv_ + k);
+    const glm::vec3 a = t.color_a, ab = t.color_b - t.color_a;  // per run: the same values
+    for (int j = k; j < e; ++j) {
+      const glm::vec3 base = a + ab * tv_[j];
+      SampleResult& r = out_[who_[j]];
+      r.rgb[0] = base.x;
+      r.rgb[1] = base.y;
+      r.rgb[2] = base.z;
+    }
+    k = e;
+  }
+}
 
 void ShadeHits(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* hits, const glm::vec3* org,
                const glm::vec3* dir, int n, ShadeScratch& S, SampleResult* out, TraceCounters& local,

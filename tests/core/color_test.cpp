@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <vector>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -42,6 +43,44 @@ TEST(Color, SrgbEncodeSameBitsAsLibmOnEveryFloatInUnitInterval) {
                   std::numeric_limits<float>::quiet_NaN()}) {
     EXPECT_EQ(std::bit_cast<uint32_t>(SrgbEncode(v)), std::bit_cast<uint32_t>(SrgbEncodeLibm(v))) << v;
   }
+}
+
+// SrgbEncodeN (the reference's vectorised encode) against SrgbEncode, bit for bit: every float
+// of the power branch and its lower boundary (0.003 .. 1, ~76 M values, where the tables and
+// the powf fallback act), every 97th float below it, and the clamped and NaN inputs; in place
+// and out of place, in batches whose lengths are not multiples of the 64-value block.
+TEST(Color, SrgbEncodeNSameBitsAsSrgbEncode) {
+  std::vector<float> in, out;
+  uint64_t differ = 0, checked = 0;
+  float first = 0.0f;
+  auto check = [&](bool in_place) {
+    const int n = static_cast<int>(in.size());
+    out = in;
+    SrgbEncodeN(in_place ? out.data() : in.data(), out.data(), n);
+    for (int k = 0; k < n; ++k) {
+      ++checked;
+      if (std::bit_cast<uint32_t>(out[k]) != std::bit_cast<uint32_t>(SrgbEncode(in[k])) && differ++ == 0) {
+        first = in[k];
+      }
+    }
+    in.clear();
+  };
+  const uint32_t lo = std::bit_cast<uint32_t>(0.003f);
+  for (uint32_t b = 0; b < lo; b += 97) {
+    in.push_back(std::bit_cast<float>(b));
+    if (in.size() == 1001) check(false);
+  }
+  for (uint32_t b = lo; b <= 0x3F800000u; ++b) {
+    in.push_back(std::bit_cast<float>(b));
+    if (in.size() == 4099) check((b & 1) != 0);
+  }
+  for (float v : {-0.0f, -1e-30f, -2.0f, 0.0031308f, 1.0000001f, 3.0f, std::numeric_limits<float>::infinity(),
+                  -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+    in.push_back(v);
+  }
+  check(true);
+  EXPECT_EQ(differ, 0u) << "first differing input: " << first;
+  EXPECT_GT(checked, 76000000u);
 }
 
 TEST(Color, SrgbRoundTrip) {
