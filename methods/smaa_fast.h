@@ -96,6 +96,7 @@ class InlineSampler {
     return r;
   }
   uint64_t Taps() const { return taps_; }
+  void CountTap() { ++taps_; }  // a fetch MemoSampler answered from its table
 
  private:
   static float U(uint8_t k) { return UnormToFloat(k); }  // BilinearSampler::Fetch
@@ -113,6 +114,38 @@ class InlineSampler {
   int w_, h_;
   SubTexel mode_;
   uint64_t taps_ = 0;
+};
+
+// InlineSampler::SampleNormalized through a direct-mapped table of the last results, keyed by
+// the exact bits of (s, t): a pure function of them (the texture and the mode are fixed), so a
+// hit returns the same four floats the fetch would; its tap is counted all the same. For the
+// area and search textures, whose fetch coordinates take few distinct values in a frame
+// (distances, rounded edge values). 2^kBits entries; the all-ones key (a NaN pair, which the
+// shader never passes) bypasses the table.
+template <int kBits>
+class MemoSampler {
+ public:
+  explicit MemoSampler(InlineSampler& s) : s_(s), keys_(size_t{1} << kBits, ~uint64_t{0}), vals_(size_t{1} << kBits) {}
+  [[gnu::always_inline]] Float4 SampleNormalized(float s, float t) {
+    uint32_t a, b;
+    std::memcpy(&a, &s, 4);
+    std::memcpy(&b, &t, 4);
+    const uint64_t key = (static_cast<uint64_t>(a) << 32) | b;
+    const size_t slot = static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - kBits));
+    if (keys_[slot] == key && key != ~uint64_t{0}) {
+      s_.CountTap();
+      return vals_[slot];
+    }
+    const Float4 r = s_.SampleNormalized(s, t);
+    keys_[slot] = key;
+    vals_[slot] = r;
+    return r;
+  }
+
+ private:
+  InlineSampler& s_;
+  std::vector<uint64_t> keys_;
+  std::vector<Float4> vals_;
 };
 
 // The edge-texture reader of the production path: BilinearSampler::Sample's footprint and
