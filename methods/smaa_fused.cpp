@@ -91,7 +91,10 @@ AALAB_SMAA_BAND void FusedBand(const FusedJob& job, int y0, int y1, uint64_t* ta
   PlaneEdges reader(edges, job.p->subtexel);
   InlineSampler as(Tex8(SmaaAreaTexture()), job.p->subtexel), ss(Tex8(SmaaSearchTexture()), job.p->subtexel);
   InlineSampler cs(Tex8(in), job.p->subtexel);
-  MemoSampler<11> am(as), sm(ss);  // the area and search fetches repeat within a band
+  // The area and search fetches repeat within a frame and across frames: one table each per
+  // thread, kept between bands and calls (MemoTable).
+  thread_local MemoTable<11> area_memo, search_memo;
+  MemoSampler<11> am(as, area_memo), sm(ss, search_memo);
   smaa_detail::WeightsShader<PlaneEdges, MemoSampler<11>> shader(reader, am, sm, *job.p, f);
   std::vector<uint8_t> rows(8 * static_cast<size_t>(w), 0), mark(static_cast<size_t>(w), 0);
   std::vector<uint16_t> cand(static_cast<size_t>(w));

@@ -2,8 +2,10 @@
 // and search fetches, against InlineSampler itself: on a small asymmetric RGBA8 texture, a
 // long sequence of fetches drawn from a few coordinate pairs (pairs sharing s or t, texel
 // centres, clamped borders, negative and past-the-end coordinates), through a 4-entry table so
-// that entries collide and are evicted, in both sub-texel modes: every returned Float4 has the
-// bits of the direct fetch and the tap counts agree.
+// that entries collide and are evicted, in both sub-texel modes (one table kept across the
+// modes, as the fused pass keeps one across calls): every returned Float4 has the bits of the
+// direct fetch and the tap counts agree; and a table kept from one texture serves another of
+// the same size at another address with that texture's values.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -34,9 +36,10 @@ TEST(SmaaMemo, MemoSamplerReturnsTheFetchBitForBit) {
                             {1.3f, 0.9f},   {0.93f, 1.1f},  {0.3333f, 0.6667f}, {0.6f, 0.7f},         {0.0f, 0.0f},
                             {0.999f, 0.5f}, {0.5f, 0.999f}, {0.21f, 0.123456f}};
   constexpr int kPairs = sizeof pairs / sizeof pairs[0];
-  for (SubTexel mode : {SubTexel::kFixed8, SubTexel::kExact}) {
+  smaa_internal::MemoTable<2> table;
+  for (SubTexel mode : {SubTexel::kFixed8, SubTexel::kExact, SubTexel::kFixed8}) {
     smaa_internal::InlineSampler direct(smaa_internal::Tex8(tex), mode), inner(smaa_internal::Tex8(tex), mode);
-    smaa_internal::MemoSampler<2> memo(inner);
+    smaa_internal::MemoSampler<2> memo(inner, table);
     uint32_t state = 12345;
     for (int i = 0; i < 2000; ++i) {
       state = state * 1664525u + 1013904223u;
@@ -47,6 +50,19 @@ TEST(SmaaMemo, MemoSamplerReturnsTheFetchBitForBit) {
     }
     EXPECT_EQ(inner.Taps(), direct.Taps());
     EXPECT_EQ(direct.Taps(), 2000u);
+  }
+  // Another texture of the same size: the kept table must not answer with the first one's.
+  Image8 other(7, 5, 4);
+  for (size_t i = 0; i < other.Data().size(); ++i) other.Data()[i] = static_cast<uint8_t>(255 - tex.Data()[i]);
+  smaa_internal::InlineSampler direct(smaa_internal::Tex8(other), SubTexel::kFixed8);
+  smaa_internal::InlineSampler inner(smaa_internal::Tex8(other), SubTexel::kFixed8);
+  smaa_internal::MemoSampler<2> memo(inner, table);
+  for (int k = 0; k < kPairs; ++k) {
+    for (int rep = 0; rep < 2; ++rep) {
+      ASSERT_TRUE(
+          SameBits(direct.SampleNormalized(pairs[k][0], pairs[k][1]), memo.SampleNormalized(pairs[k][0], pairs[k][1])))
+          << "pair " << k << " on the second texture";
+    }
   }
 }
 
