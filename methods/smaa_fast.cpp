@@ -44,7 +44,12 @@
 //     (QuantizeUnorm8's value, inline).
 //   InlineSampler is BilinearSampler::SampleNormalized operation for operation, inline, its
 //     four channels in the lanes of one SSE2 vector (same operations per lane); PlaneEdges
-//     blends the r and g bits likewise.
+//     blends the r and g bits likewise. In the fused pass the area and search fetches go
+//     through MemoSampler, a direct-mapped table of earlier results keyed by the coordinates'
+//     bits (a pure function of them there: fixed textures, 8-bit fractions; one table per
+//     texture per thread, kept across bands and calls, emptied for another texture or
+//     mode), whose hits return the same floats and count the same taps. The fused pass also
+//     prefetches the colour and output lines of a row's edge pixels before their weights.
 // Tap counts equal the reference's. tests/equivalence/smaa_fast_test.cpp compares this path with
 // SmaaReference bit for bit, taps and debug views included, at 1 and 2 threads.
 #include <algorithm>

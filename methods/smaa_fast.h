@@ -96,6 +96,9 @@ class InlineSampler {
     return r;
   }
   uint64_t Taps() const { return taps_; }
+  void CountTap() { ++taps_; }  // a fetch MemoSampler answered from its table
+  const Tex8& Texture() const { return img_; }
+  SubTexel Mode() const { return mode_; }
 
  private:
   static float U(uint8_t k) { return UnormToFloat(k); }  // BilinearSampler::Fetch
@@ -113,6 +116,58 @@ class InlineSampler {
   int w_, h_;
   SubTexel mode_;
   uint64_t taps_ = 0;
+};
+
+// The table of a MemoSampler: 2^kBits (key, value) entries and the texture and mode they
+// were filled for. A table may outlive its samplers (the fused pass keeps one per thread for
+// the area and one for the search texture, so that its entries serve every band and call);
+// a sampler on another texture (its pixels' address and size) or mode empties it first. Only
+// for textures that stay unchanged at one address as long as the table (the static area and
+// search textures).
+template <int kBits>
+struct MemoTable {
+  const uint8_t* data = nullptr;
+  int w = 0, h = 0;
+  SubTexel mode = SubTexel::kExact;
+  std::vector<uint64_t> keys = std::vector<uint64_t>(size_t{1} << kBits, ~uint64_t{0});
+  std::vector<Float4> vals = std::vector<Float4>(size_t{1} << kBits);
+};
+
+// InlineSampler::SampleNormalized through a direct-mapped MemoTable keyed by the exact bits
+// of (s, t): with the texture and the mode fixed the fetch is a pure function of them, so a
+// hit returns the same four floats the fetch would; its tap is counted all the same. For the
+// area and search textures, whose fetch coordinates take few distinct values (distances,
+// rounded edge values). The all-ones key (a NaN pair, which the shader never passes)
+// bypasses the table.
+template <int kBits>
+class MemoSampler {
+ public:
+  MemoSampler(InlineSampler& s, MemoTable<kBits>& t) : s_(s), t_(t) {
+    const Tex8& tex = s.Texture();
+    if (t.data != tex.data || t.w != tex.w || t.h != tex.h || t.mode != s.Mode()) {
+      std::fill(t.keys.begin(), t.keys.end(), ~uint64_t{0});
+      t.data = tex.data, t.w = tex.w, t.h = tex.h, t.mode = s.Mode();
+    }
+  }
+  [[gnu::always_inline]] Float4 SampleNormalized(float s, float t) {
+    uint32_t a, b;
+    std::memcpy(&a, &s, 4);
+    std::memcpy(&b, &t, 4);
+    const uint64_t key = (static_cast<uint64_t>(a) << 32) | b;
+    const size_t slot = static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - kBits));
+    if (t_.keys[slot] == key && key != ~uint64_t{0}) {
+      s_.CountTap();
+      return t_.vals[slot];
+    }
+    const Float4 r = s_.SampleNormalized(s, t);
+    t_.keys[slot] = key;
+    t_.vals[slot] = r;
+    return r;
+  }
+
+ private:
+  InlineSampler& s_;
+  MemoTable<kBits>& t_;
 };
 
 // The edge-texture reader of the production path: BilinearSampler::Sample's footprint and

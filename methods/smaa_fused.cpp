@@ -54,6 +54,35 @@ template <class Shader>
   }
 }
 
+// Pass 1 finished the whole frame before this pass, so the input and output rows a blending
+// pixel reads and writes are long out of cache: for the listed edge pixels of row y (those
+// that can make pixels of rows y − 1 and y blend), one prefetch per 64-byte line of the
+// colour rows y − 1 .. y + 1 and the output rows y − 1 and y, issued before row y's weights
+// are computed, so that the lines arrive while the searches run. Prefetches change no value.
+[[gnu::always_inline]] inline void PrefetchBlendRows(const FusedJob& job, const EdgePlane& edges, int y) {
+  const int n = edges.n[static_cast<size_t>(y)];
+  if (n == 0) return;
+  const int h = edges.h;
+  const uint16_t* xs = edges.List(y);
+  const uint8_t* r0 = job.in->Row(std::max(y - 1, 0));
+  const uint8_t* r1 = job.in->Row(y);
+  const uint8_t* r2 = job.in->Row(std::min(y + 1, h - 1));
+  const uint8_t* o0 = job.out->Row(std::max(y - 1, 0));
+  const uint8_t* o1 = job.out->Row(y);
+  uintptr_t last = 0;
+  for (int i = 0; i < n; ++i) {
+    const size_t off = 4 * static_cast<size_t>(xs[i]);
+    const uintptr_t line = reinterpret_cast<uintptr_t>(r1 + off) >> 6;
+    if (line == last) continue;
+    last = line;
+    __builtin_prefetch(r0 + off);
+    __builtin_prefetch(r1 + off);
+    __builtin_prefetch(r2 + off);
+    __builtin_prefetch(o0 + off, 1);
+    __builtin_prefetch(o1 + off, 1);
+  }
+}
+
 AALAB_SMAA_BAND void FusedBand(const FusedJob& job, int y0, int y1, uint64_t* taps) {
   const Image8& in = *job.in;
   const EdgePlane& edges = *job.edges;
@@ -62,7 +91,11 @@ AALAB_SMAA_BAND void FusedBand(const FusedJob& job, int y0, int y1, uint64_t* ta
   PlaneEdges reader(edges, job.p->subtexel);
   InlineSampler as(Tex8(SmaaAreaTexture()), job.p->subtexel), ss(Tex8(SmaaSearchTexture()), job.p->subtexel);
   InlineSampler cs(Tex8(in), job.p->subtexel);
-  smaa_detail::WeightsShader<PlaneEdges, InlineSampler> shader(reader, as, ss, *job.p, f);
+  // The area and search fetches repeat within a frame and across frames: one table each per
+  // thread, kept between bands and calls (MemoTable).
+  thread_local MemoTable<11> area_memo, search_memo;
+  MemoSampler<11> am(as, area_memo), sm(ss, search_memo);
+  smaa_detail::WeightsShader<PlaneEdges, MemoSampler<11>> shader(reader, am, sm, *job.p, f);
   std::vector<uint8_t> rows(8 * static_cast<size_t>(w), 0), mark(static_cast<size_t>(w), 0);
   std::vector<uint16_t> cand(static_cast<size_t>(w));
   uint8_t* cur = rows.data();
@@ -70,6 +103,7 @@ AALAB_SMAA_BAND void FusedBand(const FusedJob& job, int y0, int y1, uint64_t* ta
   uint64_t n = 0;
   WeightsRow(shader, edges, y0, cur);
   for (int y = y0; y < y1; ++y) {
+    if (y + 1 < h) PrefetchBlendRows(job, edges, y + 1);
     const uint64_t before = reader.Taps() + as.Taps() + ss.Taps();
     if (y + 1 < h) WeightsRow(shader, edges, y + 1, nxt);
     if (y + 1 < h && y + 1 < y1) n += reader.Taps() + as.Taps() + ss.Taps() - before;  // row y + 1's own taps
