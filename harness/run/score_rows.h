@@ -12,7 +12,8 @@
 namespace aalab {
 
 /// Runs plans[m] on the prepared frame for every m in order (RunMethod without scoring: each
-/// timed render and filter has the machine to itself, as before), then scores the outputs:
+/// timed render and filter has the machine to itself, as before), then hashes every output
+/// (the rows in parallel) and scores the outputs:
 /// each distinct output (by hash) not yet scored on this scene is scored once (ScoreFrame),
 /// the distinct outputs concurrently, and the scores are stored in prepared.scored_by_hash.
 /// Every row then equals RunMethod's scored row bit for bit, at any thread count (each score
@@ -20,7 +21,7 @@ namespace aalab {
 /// sequence state (RunMethod); `keep_inputs` false drops each row's `input` (the frame the
 /// post filter saw, needed only for debug views) before scoring. At most one score per thread
 /// is in flight (each is isolated: its waits take no other row's score). With a `clock`, rendering
-/// and filtering are charged to "method_renders_filters" and scoring to "metrics".
+/// and filtering are charged to "method_renders_filters", hashing and scoring to "metrics".
 /// Returns one output per plan, in plan order (a row not applicable to the scene: its row,
 /// no images).
 std::vector<std::shared_ptr<MethodOutput>> RunAndScoreRows(const PreparedScene& prepared,
