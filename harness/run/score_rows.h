@@ -2,6 +2,7 @@
 /// metrics of different rows run concurrently once the frame's last timed render is done.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -22,12 +23,19 @@ namespace aalab {
 /// post filter saw, needed only for debug views) before scoring. At most one score per thread
 /// is in flight (each is isolated: its waits take no other row's score). With a `clock`, rendering
 /// and filtering are charged to "method_renders_filters", hashing and scoring to "metrics".
+/// `beside` (optional) is called once the rows are hashed, before the scores: the untimed
+/// jobs it returns (the scene's image writes that need no score: harness/run/scene_pass.cpp)
+/// run side by side with the scores in one parallel loop, each isolated as the scores are,
+/// so that one job's serial parts overlap another's parallel loops; they are charged to
+/// "metrics" with the scores. A job must not touch the rows' metrics or FLIP maps.
 /// Returns one output per plan, in plan order (a row not applicable to the scene: its row,
 /// no images).
+using BesideJobs =
+    std::function<std::vector<std::function<void()>>(const std::vector<std::shared_ptr<MethodOutput>>& rows)>;
 std::vector<std::shared_ptr<MethodOutput>> RunAndScoreRows(const PreparedScene& prepared,
                                                            const std::vector<MethodPlan>& plans,
                                                            const MethodRunSettings& run,
                                                            std::vector<std::unique_ptr<TemporalState>>* states,
-                                                           bool keep_inputs);
+                                                           bool keep_inputs, const BesideJobs& beside = nullptr);
 
 }  // namespace aalab
