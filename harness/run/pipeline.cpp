@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <iterator>
 
 #include "core/error.h"
 #include "core/hash.h"
@@ -140,11 +142,25 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
     p->counters1x = c;
   });
   if (clock) clock->Enter("references");
-  p->none_f = ToFloat(p->frame1x, 3);
   p->flip_ppd = flip_ppd;
-  p->flip_reference = flip::PrepareReference(p->ref.image, flip_ppd);
-  p->ssim_reference = PrepareSsimReference(p->ref.image);
-  for (const DiskProbe& d : DiskProbes(sc, W, H, p->ref.image)) {
+  // The reference's metric sides, the coverage probes and the crops: four independent, untimed
+  // jobs run side by side (each a pure function of the reference, the scene and the 1x frame,
+  // so the same values at any thread count), so that one job's serial parts (its buffers'
+  // first touch, the crops' pick) overlap another's parallel loops.
+  std::vector<DiskProbe> disks;
+  const std::function<void()> jobs[] = {
+      [&] { p->flip_reference = flip::PrepareReference(p->ref.image, flip_ppd); },
+      [&] { p->ssim_reference = PrepareSsimReference(p->ref.image); },
+      [&] { disks = DiskProbes(sc, W, H, p->ref.image); },
+      [&] {
+        p->none_f = ToFloat(p->frame1x, 3);
+        const int crop_size = std::max(8, std::min(32, std::min(W, H) / 4));
+        for (const auto& c : PickCrops(CropScore(p->none_f, p->ref.image, &p->ref.edge_mask), crop_size, 4)) {
+          sr.crops.push_back({c.x, c.y, c.w, c.h});
+        }
+      }};
+  ParallelFor(static_cast<int>(std::size(jobs)), [&](int i) { jobs[i](); });
+  for (const DiskProbe& d : disks) {
     CoverageProbe c;
     c.x0 = d.x0;
     c.y0 = d.y0;
@@ -157,10 +173,6 @@ std::unique_ptr<PreparedScene> PrepareScene(std::unique_ptr<Scene> scene, int W,
       c.outside[k] = d.outside[static_cast<size_t>(k)];
     }
     p->coverage_probes.push_back(c);
-  }
-  const int crop_size = std::max(8, std::min(32, std::min(W, H) / 4));
-  for (const auto& c : PickCrops(CropScore(p->none_f, p->ref.image, &p->ref.edge_mask), crop_size, 4)) {
-    sr.crops.push_back({c.x, c.y, c.w, c.h});
   }
   return p;
 }
@@ -364,8 +376,7 @@ MethodOutput RunMethod(const PreparedScene& p, const MethodPlan& plan, const Met
   row.coverage_rays_per_px = static_cast<double>(counters.coverage_rays) / px;
   row.shading_evals_per_px = static_cast<double>(counters.shading_evals) / px;
   row.taps_per_px = static_cast<double>(post_stats.taps + rescale_stats.taps) / px;
-  if (!score) {
-    out.row.output_hash = HashBytes(frame.Data().data(), frame.Data().size());
+  if (!score) {  // the caller hashes (RunAndScoreRows: every row's hash in parallel, untimed)
     out.output = std::move(frame);
     return out;
   }

@@ -132,9 +132,10 @@ struct MethodRunSettings {
   StageClock* clock = nullptr;  ///< charges the stages when set
 };
 
-/// `score` false: the row is rendered, filtered and timed but not scored: out.output holds
-/// the frame and row.output_hash its hash, row.metrics and flip_grey stay empty (for
-/// harness/run/score_rows.h, which scores a frame's rows together after its timed renders).
+/// `score` false: the row is rendered, filtered and timed but neither hashed nor scored:
+/// out.output holds the frame; row.output_hash, row.metrics and flip_grey stay empty (for
+/// harness/run/score_rows.h, which hashes and scores a frame's rows together after its timed
+/// renders).
 MethodOutput RunMethod(const PreparedScene& prepared, const MethodPlan& plan, const MethodRunSettings& run,
                        std::unique_ptr<TemporalState>* state = nullptr, bool score = true);
 

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <set>
+#include <utility>
 
 #include "core/color.h"
 #include "core/parallel.h"
@@ -120,19 +122,33 @@ class SceneImages {
     }
   }
 
-  /// The last frame's output and FLIP map, queued (once per distinct output), into row.images.
+  /// The last frame's output PNG (once per distinct output), queued as soon as the row is
+  /// hashed: it needs no score, so it can be written beside the scores (RunAndScoreRows).
+  void QueueOutputPng(const std::string& spec, const std::shared_ptr<MethodOutput>& mo) {
+    const auto [it, fresh] = file_of_hash_.emplace(mo->row.output_hash, rel_dir_ + "/" + SpecFileName(spec));
+    if (!fresh) return;
+    const fs::path tmp = tmp_;
+    const std::string base = it->second;
+    writes_.push_back([tmp, base, mo] { WriteImage8((tmp / (base + ".png")).string(), mo->output); });
+  }
+
+  /// The last frame's output (unless QueueOutputPng queued it) and FLIP map, queued (once per
+  /// distinct output), into row.images.
   void QueueOutput(const std::string& spec, std::shared_ptr<MethodOutput> mo, int fw, int fh, ResultRow* row) {
     const auto [it, fresh] = file_of_hash_.emplace(row->output_hash, rel_dir_ + "/" + SpecFileName(spec));
     const std::string base = it->second;
-    if (fresh) {
-      const fs::path tmp = tmp_;
-      writes_.push_back([tmp, base, mo] { WriteImage8((tmp / (base + ".png")).string(), mo->output); });
+    const fs::path tmp = tmp_;
+    if (fresh) writes_.push_back([tmp, base, mo] { WriteImage8((tmp / (base + ".png")).string(), mo->output); });
+    if (flip_queued_.insert(base).second) {
       writes_.push_back(
           [tmp, base, mo, fw, fh] { WriteGrey8((tmp / (base + ".flip.png")).string(), fw, fh, mo->flip_grey); });
     }
     row->images["output"] = base + ".png";
     row->images["flip_map"] = base + ".flip.png";
   }
+
+  /// The writes queued so far, handed over (to run beside the scores); Flush writes the rest.
+  std::vector<std::function<void()>> TakeWrites() { return std::exchange(writes_, {}); }
 
   void Flush() {
     ParallelFor(static_cast<int>(writes_.size()), [&](int i) { writes_[static_cast<size_t>(i)](); });
@@ -146,6 +162,7 @@ class SceneImages {
   bool frame_exr_;
   std::vector<std::function<void()>> writes_;
   std::map<std::string, std::string> file_of_hash_;
+  std::set<std::string> flip_queued_;
 };
 
 /// The row's name: aalab's method m, or the supplied output after the methods.
@@ -179,8 +196,17 @@ class SceneRun {
     for (int k = 0; k < frames_; ++k) {
       const std::string tag = frames_ > 1 ? ".f" + std::to_string(k) : "";
       PrepareFrame(k, tag);
+      const bool last = k == frames_ - 1;
+      // On the last frame, the images that need no score (the reference's, every distinct
+      // output's PNG) are written beside the scores, once the timed renders are done.
+      const BesideJobs beside = [this](const std::vector<std::shared_ptr<MethodOutput>>& rows) {
+        for (size_t m = 0; m < rows.size(); ++m) {
+          if (rows[m]->row.not_applicable.empty()) images_.QueueOutputPng(RowSpec(pass_.plan, m), rows[m]);
+        }
+        return images_.TakeWrites();
+      };
       std::vector<std::shared_ptr<MethodOutput>> outs =
-          ScoreFrameRows(pass_, *prepared_, &states_, name_ + tag, k == frames_ - 1);
+          ScoreFrameRows(pass_, *prepared_, &states_, name_ + tag, last, last ? beside : nullptr);
       for (size_t m = 0; m < outs.size(); ++m) RecordRow(m, k, tag, std::move(outs[m]), rows);
     }
     return Finish();
@@ -282,13 +308,14 @@ class SceneRun {
 
 std::vector<std::shared_ptr<MethodOutput>> ScoreFrameRows(const ScenePass& pass, const PreparedScene& prepared,
                                                           std::vector<std::unique_ptr<TemporalState>>* states,
-                                                          const std::string& step_prefix, bool last_frame) {
+                                                          const std::string& step_prefix, bool last_frame,
+                                                          const BesideJobs& beside) {
   const RunPlan& plan = pass.plan;
   const RunSettings& s = pass.settings;
   const MethodRunSettings run{s.seed, s.repeat, s.sampler, pass.clock};
   // aalab's methods (run, then scored together), then the user's supplied outputs (scored, not run).
   std::vector<std::shared_ptr<MethodOutput>> outs =
-      RunAndScoreRows(prepared, plan.methods, run, states, last_frame && s.debug_views);
+      RunAndScoreRows(prepared, plan.methods, run, states, last_frame && s.debug_views, beside);
   for (size_t m = plan.methods.size(); m < plan.RowsPerFrame(); ++m) {
     outs.push_back(std::make_shared<MethodOutput>(SuppliedOutputRow(prepared, RowSpec(plan, m), s.repeat, pass.clock)));
   }

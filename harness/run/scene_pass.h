@@ -19,6 +19,7 @@
 #include "harness/run/pipeline.h"
 #include "harness/run/reference_cache.h"
 #include "harness/run/run_plan.h"
+#include "harness/run/score_rows.h"
 #include "harness/run/stage_clock.h"
 #include "reports/result.h"
 
@@ -39,10 +40,12 @@ struct ScenePass {
 /// run and scored against the prepared frame: the methods rendered and timed one after
 /// another, then their outputs scored concurrently (harness/run/score_rows.h). `states`: the
 /// methods' sequence states (one per method, carried from frame to frame); `last_frame`: the
-/// rows keep the post filter's input for --debug-views only there.
+/// rows keep the post filter's input for --debug-views only there. `beside`: untimed jobs
+/// run side by side with the scores (RunAndScoreRows; the scene's image writes).
 std::vector<std::shared_ptr<MethodOutput>> ScoreFrameRows(const ScenePass& pass, const PreparedScene& prepared,
                                                           std::vector<std::unique_ptr<TemporalState>>* states,
-                                                          const std::string& step_prefix, bool last_frame);
+                                                          const std::string& step_prefix, bool last_frame,
+                                                          const BesideJobs& beside = nullptr);
 
 /// Runs one scene (all its frames) and returns what the report says about it; its rows are
 /// appended to `rows`. Consumes source.scene.
