@@ -188,46 +188,6 @@ TEST(ReferenceResolve, UnlitPacketsShadedInPlaceEqualTheGeneralPath) {
   EXPECT_GT(c_all.texture_lookups, 0u);
 }
 
-// The gathered uvs of a uniform packet (TriangleUvs16: AVX-512, AVX2 or scalar, whichever this
-// CPU runs) against the general path's uv (SurfaceAt) for 16 hits on a 6-triangle mesh with
-// distinct, non-affine corner uvs, primitives out of order and repeated, barycentrics all
-// different: the same bits lane by lane.
-TEST(ReferenceResolve, GatheredTriangleUvsEqualSurfaceAt) {
-  Scene sc;
-  sc.materials.emplace_back();
-  Shape s;
-  for (int i = 0; i < 9; ++i) {
-    s.positions.emplace_back(0.3f * i, 0.1f * i * i, -1.0f - 0.05f * i);
-    s.uvs.emplace_back(0.137f * i * i + 0.01f, 1.0f - 0.291f * i + 0.003f * i * i * i);
-  }
-  s.triangles = {{0, 1, 2}, {3, 5, 4}, {8, 6, 7}, {2, 4, 8}, {1, 7, 3}, {6, 0, 5}};
-  sc.shapes.push_back(s);
-  const unsigned prim[16] = {5, 0, 3, 3, 1, 4, 2, 5, 0, 1, 2, 3, 4, 5, 4, 2};
-  float u[16], v[16], ux[16], uy[16];
-  for (int k = 0; k < 16; ++k) {
-    u[k] = 0.03125f + 0.0517f * k;
-    v[k] = 0.9f - u[k] - 0.0131f * (k % 5);
-  }
-  tracer_detail::TriangleUvs16(sc.shapes[0].triangles.data(), sc.shapes[0].uvs.data(), prim, u, v, ux, uy);
-  for (int k = 0; k < 16; ++k) {
-    tracer_detail::Hit h;
-    h.shape = 0;
-    h.prim = prim[k];
-    h.u = u[k];
-    h.v = v[k];
-    h.t = 1.0f;
-    const glm::vec2 want =
-        tracer_detail::SurfaceAt(sc, h, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), true, false).uv;
-    uint32_t a, b, c, d;
-    std::memcpy(&a, &ux[k], 4);
-    std::memcpy(&b, &want.x, 4);
-    std::memcpy(&c, &uy[k], 4);
-    std::memcpy(&d, &want.y, 4);
-    EXPECT_EQ(a, b) << "lane " << k;
-    EXPECT_EQ(c, d) << "lane " << k;
-  }
-}
-
 TEST(ReferenceResolve, PatternBatchEqualsEvaluatePattern) {
   const float inf = std::numeric_limits<float>::infinity();
   std::vector<glm::vec2> uv;
