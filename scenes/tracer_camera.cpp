@@ -6,10 +6,6 @@
 // (TraceCameraRaysUnlit: no org/dir/Hit arrays at all).
 #include <cmath>
 
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
-
 #include "scenes/tracer_internal.h"
 
 namespace aalab {
@@ -240,100 +236,6 @@ void CameraPacketsUnlit(RTCScene scene, bool persp, const SamplePos* pos, int co
 }
 
 }  // namespace
-
-namespace {
-
-void TriangleUvs16Scalar(const glm::uvec3* tris, const glm::vec2* uvs, const unsigned* prim, const float* u,
-                         const float* v, float* ux, float* uy) {
-  for (int k = 0; k < 16; ++k) {
-    const glm::uvec3 tri = tris[prim[k]];
-    const float w = 1.0f - u[k] - v[k];
-    ux[k] = uvs[tri.x].x * w + uvs[tri.y].x * u[k] + uvs[tri.z].x * v[k];
-    uy[k] = uvs[tri.x].y * w + uvs[tri.y].y * u[k] + uvs[tri.z].y * v[k];
-  }
-}
-
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define AALAB_TRI_UV_SIMD 1
-/// (uf[a + off]·w + uf[b + off]·u) + uf[c + off]·v on 8 lanes (gathers; no FMA).
-__attribute__((target("avx2"))) inline __m256 Blend8(const float* uf, __m256i a, __m256i b, __m256i c, __m256 w,
-                                                     __m256 u, __m256 v, __m256i off) {
-  const __m256 pa = _mm256_i32gather_ps(uf, _mm256_add_epi32(a, off), 4);
-  const __m256 pb = _mm256_i32gather_ps(uf, _mm256_add_epi32(b, off), 4);
-  const __m256 pc = _mm256_i32gather_ps(uf, _mm256_add_epi32(c, off), 4);
-  return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(pa, w), _mm256_mul_ps(pb, u)), _mm256_mul_ps(pc, v));
-}
-
-// GCC 12's AVX-512 gather and shift intrinsics start from an undefined vector (-Wuninitialized).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-/// Blend8 on 16 lanes.
-__attribute__((target("avx512f"))) inline __m512 Blend16(const float* uf, __m512i a, __m512i b, __m512i c, __m512 w,
-                                                         __m512 u, __m512 v, __m512i off) {
-  const __m512 pa = _mm512_i32gather_ps(_mm512_add_epi32(a, off), uf, 4);
-  const __m512 pb = _mm512_i32gather_ps(_mm512_add_epi32(b, off), uf, 4);
-  const __m512 pc = _mm512_i32gather_ps(_mm512_add_epi32(c, off), uf, 4);
-  return _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(pa, w), _mm512_mul_ps(pb, u)), _mm512_mul_ps(pc, v));
-}
-
-/// TriangleUvs16Scalar on 8 lanes: the corner indices gathered at 3·prim (+1, +2), their uvs
-/// at 2·index (+1); separate multiplies and adds (no FMA), in the scalar order.
-__attribute__((target("avx2"))) inline void TriangleUvs8Avx2(const glm::uvec3* tris, const glm::vec2* uvs,
-                                                             const unsigned* prim, const float* u, const float* v,
-                                                             float* ux, float* uy) {
-  const int* ti = reinterpret_cast<const int*>(tris);
-  const float* uf = reinterpret_cast<const float*>(uvs);
-  const __m256i p3 =
-      _mm256_mullo_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(prim)), _mm256_set1_epi32(3));
-  const __m256i one = _mm256_set1_epi32(1);
-  const __m256i a = _mm256_slli_epi32(_mm256_i32gather_epi32(ti, p3, 4), 1);
-  const __m256i b = _mm256_slli_epi32(_mm256_i32gather_epi32(ti, _mm256_add_epi32(p3, one), 4), 1);
-  const __m256i c =
-      _mm256_slli_epi32(_mm256_i32gather_epi32(ti, _mm256_add_epi32(p3, _mm256_add_epi32(one, one)), 4), 1);
-  const __m256 uu = _mm256_loadu_ps(u), vv = _mm256_loadu_ps(v);
-  const __m256 w = _mm256_sub_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f), uu), vv);
-  _mm256_storeu_ps(ux, Blend8(uf, a, b, c, w, uu, vv, _mm256_setzero_si256()));
-  _mm256_storeu_ps(uy, Blend8(uf, a, b, c, w, uu, vv, one));
-}
-
-__attribute__((target("avx2"))) void TriangleUvs16Avx2(const glm::uvec3* tris, const glm::vec2* uvs,
-                                                       const unsigned* prim, const float* u, const float* v, float* ux,
-                                                       float* uy) {
-  TriangleUvs8Avx2(tris, uvs, prim, u, v, ux, uy);
-  TriangleUvs8Avx2(tris, uvs, prim + 8, u + 8, v + 8, ux + 8, uy + 8);
-}
-
-/// TriangleUvs8Avx2 on 16 lanes.
-__attribute__((target("avx512f"))) void TriangleUvs16Avx512(const glm::uvec3* tris, const glm::vec2* uvs,
-                                                            const unsigned* prim, const float* u, const float* v,
-                                                            float* ux, float* uy) {
-  const float* uf = reinterpret_cast<const float*>(uvs);
-  const __m512i p3 = _mm512_mullo_epi32(_mm512_loadu_si512(prim), _mm512_set1_epi32(3));
-  const __m512i one = _mm512_set1_epi32(1);
-  const __m512i a = _mm512_slli_epi32(_mm512_i32gather_epi32(p3, tris, 4), 1);
-  const __m512i b = _mm512_slli_epi32(_mm512_i32gather_epi32(_mm512_add_epi32(p3, one), tris, 4), 1);
-  const __m512i c =
-      _mm512_slli_epi32(_mm512_i32gather_epi32(_mm512_add_epi32(p3, _mm512_add_epi32(one, one)), tris, 4), 1);
-  const __m512 uu = _mm512_loadu_ps(u), vv = _mm512_loadu_ps(v);
-  const __m512 w = _mm512_sub_ps(_mm512_sub_ps(_mm512_set1_ps(1.0f), uu), vv);
-  _mm512_storeu_ps(ux, Blend16(uf, a, b, c, w, uu, vv, _mm512_setzero_si512()));
-  _mm512_storeu_ps(uy, Blend16(uf, a, b, c, w, uu, vv, one));
-}
-#pragma GCC diagnostic pop
-#endif
-
-}  // namespace
-
-void tracer_detail::TriangleUvs16(const glm::uvec3* tris, const glm::vec2* uvs, const unsigned* prim, const float* u,
-                                  const float* v, float* ux, float* uy) {
-#ifdef AALAB_TRI_UV_SIMD
-  static const int level = __builtin_cpu_supports("avx512f") ? 2 : __builtin_cpu_supports("avx2") ? 1 : 0;
-  if (level == 2) return TriangleUvs16Avx512(tris, uvs, prim, u, v, ux, uy);
-  if (level == 1) return TriangleUvs16Avx2(tris, uvs, prim, u, v, ux, uy);
-#endif
-  TriangleUvs16Scalar(tris, uvs, prim, u, v, ux, uy);
-}
 
 void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width,
                                int height, glm::vec3* org, glm::vec3* dir) {

@@ -256,14 +256,6 @@ struct ShadeScratch {
   std::vector<float> pattern_t;
 };
 
-/// FillSurface's uv of 16 triangle hits (primitive prim[k], barycentrics u[k], v[k]) into
-/// ux, uy: (uv_a·w + uv_b·u) + uv_c·v with w = (1 − u) − v, the same operations in the same
-/// order as the scalar code (so the same bits), the triangles' corners and uvs fetched with
-/// AVX-512 or AVX2 gathers where the CPU has them (a scalar loop otherwise). Needs
-/// 3·triangles < 2^31 and 2·uvs < 2^31 (32-bit gather offsets).
-void TriangleUvs16(const glm::uvec3* tris, const glm::vec2* uvs, const unsigned* prim, const float* u, const float* v,
-                   float* ux, float* uy);
-
 /// The shading of hits in a scene without lighting, shadows or glTF materials (every hit shows
 /// its material's colour or procedural texture), one sample at a time: what ShadeUnlit does for
 /// a Hit array and the camera packets' fused path (TraceCameraRaysUnlit) for a packet's lanes,
@@ -356,15 +348,11 @@ class UnlitShading {
     const glm::uvec3* tris = shape_->triangles.data();
     const glm::vec2* uvs = shape_->uvs.data();
     float ux[16], uy[16];  // m ≤ 16: one packet
-    if (m == 16 && shape_->triangles.size() < (1u << 29) && shape_->uvs.size() < (1u << 30)) {
-      TriangleUvs16(tris, uvs, prim, u, v, ux, uy);  // 32-bit gather offsets fit
-    } else {
-      for (int k = 0; k < m; ++k) {
-        const glm::uvec3 tri = tris[prim[k]];
-        const float w = 1.0f - u[k] - v[k];
-        ux[k] = uvs[tri.x].x * w + uvs[tri.y].x * u[k] + uvs[tri.z].x * v[k];
-        uy[k] = uvs[tri.x].y * w + uvs[tri.y].y * u[k] + uvs[tri.z].y * v[k];
-      }
+    for (int k = 0; k < m; ++k) {
+      const glm::uvec3 tri = tris[prim[k]];
+      const float w = 1.0f - u[k] - v[k];
+      ux[k] = uvs[tri.x].x * w + uvs[tri.y].x * u[k] + uvs[tri.z].x * v[k];
+      uy[k] = uvs[tri.x].y * w + uvs[tri.y].y * u[k] + uvs[tri.z].y * v[k];
     }
     glm::vec2* q = uv_ + m_;
     int* who = who_ + m_;
