@@ -218,6 +218,7 @@ void CameraPacketsUnlit(RTCScene scene, bool persp, const SamplePos* pos, int co
     const int m = std::min(kPacket, count - base);
     FillCameraPacket(persp, pos + base, m, width, height, half_h, aspect, origin, fwd, right, up, rh, valid);
     rtcIntersect16(valid, scene, &ctx, &rh);
+    if (shading.ShadeUniformPacket(base, m, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v)) continue;
     for (int k = 0; k < m; ++k) {
       const unsigned geom = rh.hit.geomID[k];
       if (geom == RTC_INVALID_GEOMETRY_ID) {

@@ -309,6 +309,63 @@ class UnlitShading {
     r.rgb[2] = mat_->color.z;
   }
 
+  /// Shade(base + k, …) for the m lanes of a camera packet (Embree's geomID, primID, u, v
+  /// arrays) when every lane hit the same shape and that shape is an untextured one or a
+  /// textured triangle mesh: the same outputs and queued uvs, in loops over the lanes that
+  /// vectorise (the triangles' uvs gathered) instead of a branch and a dependent load a lane.
+  /// Returns false, having written nothing, for any other packet (then call Shade per lane).
+  inline __attribute__((always_inline)) bool ShadeUniformPacket(int base, int m, const unsigned* geom,
+                                                                const unsigned* prim, const float* u, const float* v) {
+    const unsigned g = geom[0];
+    unsigned diff = 0;
+    for (int k = 1; k < m; ++k) diff |= geom[k] ^ g;
+    if (diff != 0 || g == RTC_INVALID_GEOMETRY_ID) return false;
+    const int shape_id = static_cast<int>(g);
+    if (shape_id != cur_shape_) {  // as Shade
+      cur_shape_ = shape_id;
+      shape_ = &sc_.shapes[static_cast<size_t>(shape_id)];
+      mat_ = &sc_.materials[shape_->material];
+      texture_ = textures_ && mat_->texture ? &*mat_->texture : nullptr;
+    }
+    if (texture_ && shape_->kind != ShapeKind::kTriangles) return false;
+    SampleResult* r = out_ + base;
+    for (int k = 0; k < m; ++k) {
+      r[k].surface = shape_id;
+      r[k].shadowed = 0;
+    }
+    evals_ += static_cast<uint64_t>(m);
+    if (!texture_) {
+      const glm::vec3 c = mat_->color;
+      for (int k = 0; k < m; ++k) {
+        r[k].rgb[0] = c.x;
+        r[k].rgb[1] = c.y;
+        r[k].rgb[2] = c.z;
+      }
+      return true;
+    }
+    lookups_ += static_cast<uint64_t>(m);
+    // FillSurface's uv, operation for operation: (uv_a·w + uv_b·u) + uv_c·v, w = (1 − u) − v.
+    const glm::uvec3* tris = shape_->triangles.data();
+    const glm::vec2* uvs = shape_->uvs.data();
+    float ux[16], uy[16];  // m ≤ 16: one packet
+    for (int k = 0; k < m; ++k) {
+      const glm::uvec3 tri = tris[prim[k]];
+      const float w = 1.0f - u[k] - v[k];
+      ux[k] = uvs[tri.x].x * w + uvs[tri.y].x * u[k] + uvs[tri.z].x * v[k];
+      uy[k] = uvs[tri.x].y * w + uvs[tri.y].y * u[k] + uvs[tri.z].y * v[k];
+    }
+    glm::vec2* q = uv_ + m_;
+    int* who = who_ + m_;
+    const Texture** tex = tex_ + m_;
+    for (int k = 0; k < m; ++k) {
+      q[k] = glm::vec2(ux[k], uy[k]);
+      who[k] = base + k;
+      tex[k] = texture_;
+    }
+    m_ += m;
+    return true;
+  }
+
   /// The textured hits' colours (after the last Shade()); adds the shading evaluations and
   /// texture lookups to the counters. (Counted here, and the object best kept a local of the
   /// loop that calls Shade(): its members then stay in registers, not reloaded after every
