@@ -311,8 +311,10 @@ class UnlitShading {
 
   /// Shade(base + k, …) for the m lanes of a camera packet (Embree's geomID, primID, u, v
   /// arrays) when every lane hit the same shape and that shape is an untextured one or a
-  /// textured triangle mesh: the same outputs and queued uvs, in loops over the lanes that
-  /// vectorise (the triangles' uvs gathered) instead of a branch and a dependent load a lane.
+  /// textured triangle mesh: the same outputs and queued uvs, in loops over the lanes without
+  /// the per-lane branch on the shape (the triangles' corner uvs are still loaded one lane at a
+  /// time: explicit AVX-512/AVX2 gathers were measured slower here, s8-trace2 in
+  /// docs/performance.md).
   /// Returns false, having written nothing, for any other packet (then call Shade per lane).
   inline __attribute__((always_inline)) bool ShadeUniformPacket(int base, int m, const unsigned* geom,
                                                                 const unsigned* prim, const float* u, const float* v) {
