@@ -248,17 +248,7 @@ void tracer_detail::IntersectRays(RTCScene scene, const glm::vec3* org, const gl
     }
     rtcIntersect16(valid, scene, &ctx, &rh);
     const int lanes = std::min(kPacket, n - base);
-    for (int k = 0; k < lanes; ++k) {
-      // Branch-free: a miss (or an invalid lane) is Hit{}: t = inf, shape = -1, the rest 0.
-      const bool hit = valid[k] && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
-      Hit& h = hits[base + k];
-      h.t = hit ? rh.ray.tfar[k] : std::numeric_limits<float>::infinity();
-      h.shape = hit ? static_cast<int>(rh.hit.geomID[k]) : -1;
-      h.prim = hit ? rh.hit.primID[k] : 0u;
-      h.u = hit ? rh.hit.u[k] : 0.0f;
-      h.v = hit ? rh.hit.v[k] : 0.0f;
-      h.ng = hit ? glm::vec3(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]) : glm::vec3(0.0f);
-    }
+    for (int k = 0; k < lanes; ++k) hits[base + k] = PacketHit(rh, k, valid[k] != 0);
   }
 }
 

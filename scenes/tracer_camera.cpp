@@ -39,65 +39,81 @@ inline __attribute__((always_inline)) void LoadBlock(const SamplePos* pos, int m
   }
 }
 
-/// Perspective camera rays, written out component by component so the loop vectorises:
-/// exactly glm's `normalize(forward + right·(nx·half_h·aspect) + up·(ny·half_h))` —
-/// normalize(v) = v · (1 / sqrt((x·x + y·y) + z·z)) — with the same roundings (IEEE
-/// divide and sqrt, no contraction), so the same bits as the scalar glm code.
-AALAB_SIMD_CLONES
-void PerspectiveRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
-                     glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
-  // Blocks of 16: the arithmetic runs on separate x, y, z lanes (vectorised), the vec3
-  // stores after it (a vec3 array's 12-byte stride kept the one-loop form scalar).
-  constexpr int kBlock = 16;
-  for (int base = 0; base < count; base += kBlock) {
-    const int m = std::min(kBlock, count - base);
-    float px[kBlock], py[kBlock], dx[kBlock], dy[kBlock], dz[kBlock];
-    LoadBlock(pos + base, m, px, py);
-    for (int k = 0; k < kBlock; ++k) {
-      const float nx = 2.0f * px[k] / width - 1.0f;
-      const float ny = 1.0f - 2.0f * py[k] / height;
-      const float a = nx * half_h * aspect;
-      const float b = ny * half_h;
+/// Where the rays of a block of 16 go: six component arrays (a packet's, or a block's before
+/// its vec3 stores).
+struct RayLanes {
+  float *ox, *oy, *oz, *dx, *dy, *dz;
+};
+
+/// The camera rays of 16 positions (px, py) component by component, so the loop vectorises:
+/// perspective, exactly glm's `normalize(forward + right·(nx·half_h·aspect) + up·(ny·half_h))`
+/// — normalize(v) = v · (1 / sqrt((x·x + y·y) + z·z)) — from `origin`; orthographic, from
+/// `origin + (right·(nx·half_h·aspect) + up·(ny·half_h))` along `forward`. The same roundings
+/// as the scalar glm code (IEEE divide and sqrt, no contraction), so the same bits.
+template <bool persp>
+inline __attribute__((always_inline)) void CameraBlock(const float* px, const float* py, float width, float height,
+                                                       float half_h, float aspect, glm::vec3 origin, glm::vec3 fwd,
+                                                       glm::vec3 right, glm::vec3 up, RayLanes o) {
+  for (int k = 0; k < 16; ++k) {
+    const float nx = 2.0f * px[k] / width - 1.0f;
+    const float ny = 1.0f - 2.0f * py[k] / height;
+    const float a = nx * half_h * aspect;
+    const float b = ny * half_h;
+    if constexpr (persp) {
       const float vx = fwd.x + (right.x * a + up.x * b);
       const float vy = fwd.y + (right.y * a + up.y * b);
       const float vz = fwd.z + (right.z * a + up.z * b);
       const float inv = 1.0f / std::sqrt((vx * vx + vy * vy) + vz * vz);
-      dx[k] = vx * inv;
-      dy[k] = vy * inv;
-      dz[k] = vz * inv;
+      o.ox[k] = origin.x;
+      o.oy[k] = origin.y;
+      o.oz[k] = origin.z;
+      o.dx[k] = vx * inv;
+      o.dy[k] = vy * inv;
+      o.dz[k] = vz * inv;
+    } else {
+      o.ox[k] = origin.x + (right.x * a + up.x * b);
+      o.oy[k] = origin.y + (right.y * a + up.y * b);
+      o.oz[k] = origin.z + (right.z * a + up.z * b);
+      o.dx[k] = fwd.x;
+      o.dy[k] = fwd.y;
+      o.dz[k] = fwd.z;
     }
+  }
+}
+
+/// CameraBlock over `count` positions into vec3 arrays, in blocks of 16 (the arithmetic on
+/// separate x, y, z lanes, vectorised; the vec3 stores after it: a vec3 array's 12-byte stride
+/// kept the one-loop form scalar).
+template <bool persp>
+inline __attribute__((always_inline)) void CameraRayArrays(const SamplePos* pos, int count, float width, float height,
+                                                           float half_h, float aspect, glm::vec3 origin, glm::vec3 fwd,
+                                                           glm::vec3 right, glm::vec3 up, glm::vec3* org,
+                                                           glm::vec3* dir) {
+  constexpr int kBlock = 16;
+  for (int base = 0; base < count; base += kBlock) {
+    const int m = std::min(kBlock, count - base);
+    float px[kBlock], py[kBlock], ox[kBlock], oy[kBlock], oz[kBlock], dx[kBlock], dy[kBlock], dz[kBlock];
+    LoadBlock(pos + base, m, px, py);
+    CameraBlock<persp>(px, py, width, height, half_h, aspect, origin, fwd, right, up, {ox, oy, oz, dx, dy, dz});
     for (int k = 0; k < m; ++k) {
-      org[base + k] = origin;
+      org[base + k] = glm::vec3(ox[k], oy[k], oz[k]);
       dir[base + k] = glm::vec3(dx[k], dy[k], dz[k]);
     }
   }
 }
 
-/// Orthographic camera rays, written out so the loop vectorises: exactly glm's
-/// `origin + (right·(nx·half_h·aspect) + up·(ny·half_h))`, direction `forward`. Blocks of
-/// 16 as PerspectiveRays (the one-loop form with vec3 stores stayed scalar).
+/// Perspective camera rays (CameraBlock<true>: the same bits as the scalar glm code).
+AALAB_SIMD_CLONES
+void PerspectiveRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
+                     glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
+  CameraRayArrays<true>(pos, count, width, height, half_h, aspect, origin, fwd, right, up, org, dir);
+}
+
+/// Orthographic camera rays (CameraBlock<false>: the same bits as the scalar glm code).
 AALAB_SIMD_CLONES
 void OrthographicRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
                       glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
-  constexpr int kBlock = 16;
-  for (int base = 0; base < count; base += kBlock) {
-    const int m = std::min(kBlock, count - base);
-    float px[kBlock], py[kBlock], ox[kBlock], oy[kBlock], oz[kBlock];
-    LoadBlock(pos + base, m, px, py);
-    for (int k = 0; k < kBlock; ++k) {
-      const float nx = 2.0f * px[k] / width - 1.0f;
-      const float ny = 1.0f - 2.0f * py[k] / height;
-      const float a = nx * half_h * aspect;
-      const float b = ny * half_h;
-      ox[k] = origin.x + (right.x * a + up.x * b);
-      oy[k] = origin.y + (right.y * a + up.y * b);
-      oz[k] = origin.z + (right.z * a + up.z * b);
-    }
-    for (int k = 0; k < m; ++k) {
-      org[base + k] = glm::vec3(ox[k], oy[k], oz[k]);
-      dir[base + k] = fwd;
-    }
-  }
+  CameraRayArrays<false>(pos, count, width, height, half_h, aspect, origin, fwd, right, up, org, dir);
 }
 
 /// Fills the packet with the camera rays of m ≤ 16 positions, with PerspectiveRays' or
@@ -110,36 +126,11 @@ inline __attribute__((always_inline)) void FillCameraPacket(bool persp, const Sa
   const float inf = std::numeric_limits<float>::infinity();
   float px[kPacket], py[kPacket];
   LoadBlock(pos, m, px, py);
+  const RayLanes lanes{rh.ray.org_x, rh.ray.org_y, rh.ray.org_z, rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z};
   if (persp) {
-    for (int k = 0; k < kPacket; ++k) {
-      const float nx = 2.0f * px[k] / width - 1.0f;
-      const float ny = 1.0f - 2.0f * py[k] / height;
-      const float a = nx * half_h * aspect;
-      const float b = ny * half_h;
-      const float vx = fwd.x + (right.x * a + up.x * b);
-      const float vy = fwd.y + (right.y * a + up.y * b);
-      const float vz = fwd.z + (right.z * a + up.z * b);
-      const float inv = 1.0f / std::sqrt((vx * vx + vy * vy) + vz * vz);
-      rh.ray.org_x[k] = origin.x;
-      rh.ray.org_y[k] = origin.y;
-      rh.ray.org_z[k] = origin.z;
-      rh.ray.dir_x[k] = vx * inv;
-      rh.ray.dir_y[k] = vy * inv;
-      rh.ray.dir_z[k] = vz * inv;
-    }
+    CameraBlock<true>(px, py, width, height, half_h, aspect, origin, fwd, right, up, lanes);
   } else {
-    for (int k = 0; k < kPacket; ++k) {
-      const float nx = 2.0f * px[k] / width - 1.0f;
-      const float ny = 1.0f - 2.0f * py[k] / height;
-      const float a = nx * half_h * aspect;
-      const float b = ny * half_h;
-      rh.ray.org_x[k] = origin.x + (right.x * a + up.x * b);
-      rh.ray.org_y[k] = origin.y + (right.y * a + up.y * b);
-      rh.ray.org_z[k] = origin.z + (right.z * a + up.z * b);
-      rh.ray.dir_x[k] = fwd.x;
-      rh.ray.dir_y[k] = fwd.y;
-      rh.ray.dir_z[k] = fwd.z;
-    }
+    CameraBlock<false>(px, py, width, height, half_h, aspect, origin, fwd, right, up, lanes);
   }
   for (int k = 0; k < kPacket; ++k) {
     valid[k] = -1;
@@ -159,19 +150,6 @@ inline __attribute__((always_inline)) void FillCameraPacket(bool persp, const Sa
     rh.ray.dir_z[k] = rh.ray.dir_z[0];
     rh.ray.tfar[k] = 0.0f;
   }
-}
-
-/// Hit k of a traced packet as IntersectRays reads it out (a miss: Hit{}).
-inline Hit PacketHit(const RTCRayHit16& rh, int k) {
-  const bool hit = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
-  Hit h;
-  h.t = hit ? rh.ray.tfar[k] : std::numeric_limits<float>::infinity();
-  h.shape = hit ? static_cast<int>(rh.hit.geomID[k]) : -1;
-  h.prim = hit ? rh.hit.primID[k] : 0u;
-  h.u = hit ? rh.hit.u[k] : 0.0f;
-  h.v = hit ? rh.hit.v[k] : 0.0f;
-  h.ng = hit ? glm::vec3(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]) : glm::vec3(0.0f);
-  return h;
 }
 
 /// Camera rays of `count` positions traced in 16-wide packets filled straight from the

@@ -65,6 +65,21 @@ struct Hit {
   glm::vec3 ng{0.0f};
 };
 
+/// Hit k of a traced 16-ray packet, branch-free: a miss or an invalid lane (`valid` false) is
+/// Hit{} (t = inf, shape = -1, the rest 0). The one read-out of IntersectRays and the camera
+/// packets.
+inline Hit PacketHit(const RTCRayHit16& rh, int k, bool valid = true) {
+  const bool hit = valid && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+  Hit h;
+  h.t = hit ? rh.ray.tfar[k] : std::numeric_limits<float>::infinity();
+  h.shape = hit ? static_cast<int>(rh.hit.geomID[k]) : -1;
+  h.prim = hit ? rh.hit.primID[k] : 0u;
+  h.u = hit ? rh.hit.u[k] : 0.0f;
+  h.v = hit ? rh.hit.v[k] : 0.0f;
+  h.ng = hit ? glm::vec3(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]) : glm::vec3(0.0f);
+  return h;
+}
+
 /// Surface attributes at a hit.
 struct Surface {
   glm::vec3 p{0.0f};
