@@ -74,16 +74,11 @@ void Register(const std::string& name, int threads, int reps, double min_time, s
 }
 
 void RunRegistered() {
-  // The repetitions of every figure run in one shuffled order (Google Benchmark's random
-  // interleaving) rather than figure after figure: a ratio of two figures (2 threads over 1,
-  // a filter over the floor, the reference over the bare Embree loop) then compares samples
-  // spread over the same minutes, not two stretches of a machine whose speed drifts.
-  std::fprintf(stderr, "running %s figures (Google Benchmark %s)...\n", "registered",
-               "repetitions, randomly interleaved");
-  std::string prog = "aalab_bench", flag = "--benchmark_enable_random_interleaving=true";
-  std::vector<char*> args = {prog.data(), flag.data(), nullptr};
-  int argc = 2;
-  benchmark::Initialize(&argc, args.data());
+  // Figures run in registration order, each figure's repetitions back to back; the figures a
+  // goal compares (a scene's reference and bare loop at 1 and 2 threads, a filter at 1 and 2
+  // threads, the filters of one frame) are registered next to each other, so a ratio compares
+  // samples taken seconds apart, not minutes (see docs/performance.md, "What it measures").
+  std::fprintf(stderr, "running %s figures (Google Benchmark %s)...\n", "registered", "repetitions");
   CollectingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   SetThreadCount(0);

@@ -42,47 +42,47 @@ MetricsBench RegisterMetricFigures(const Settings& cfg, const Image8& real_frame
     *pair_none = ToFloat(real_frame, 3);
   }
   mb.ref = pair_ref, mb.img = pair_img, mb.none = pair_none;
-  for (int threads : {1, 2}) {
-    const std::string t = "/t" + std::to_string(threads);
-    Register("metric-psnr" + t, threads, cfg.reps, cfg.min_time,
-             [pair_ref, pair_img] { benchmark::DoNotOptimize(MeanSquaredError(*pair_img, pair_ref->image).mse); });
-    Register("metric-ssim" + t, threads, cfg.reps, cfg.min_time,
-             [pair_ref, pair_img] { benchmark::DoNotOptimize(ComputeSsim(*pair_img, pair_ref->image).ssim); });
-    // SSIM as a run computes it per method: the reference's half prepared once per scene.
-    Register("metric-ssim-run" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
-      static const std::shared_ptr<const SsimReferenceSide> side = PrepareSsimReference(pair_ref->image);
-      benchmark::DoNotOptimize(ComputeSsim(*pair_img, *side).ssim);
-    });
-    // FLIP as a run computes it per method (the reference's half reused after the first
-    // method of a scene), and from scratch (the first method of a scene, or `aalab metrics`).
-    Register("metric-flip" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
-      static const std::shared_ptr<const flip::ReferenceSide> side =
-          flip::PrepareReference(pair_ref->image, kFlipDefaultPpd);
-      benchmark::DoNotOptimize(PoolFlip(flip::ErrorValues(*side, *pair_img)).mean);
-    });
-    Register("metric-flip-uncached" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img] {
-      benchmark::DoNotOptimize(PoolFlip(flip::ErrorValues(pair_ref->image, *pair_img, kFlipDefaultPpd)).mean);
-    });
-    Register("metric-edge" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img, pair_none] {
-      for (const auto& e : MetricRegistry()) {
-        if (e.name != "edge") continue;
-        MetricInput in;
-        in.image = pair_img.get();
-        in.reference = &pair_ref->image;
-        in.edge_mask = &pair_ref->edge_mask;
-        in.none_image = pair_none.get();
-        benchmark::DoNotOptimize(e.compute(in).size());
-      }
-    });
-    Register("metric-all" + t, threads, cfg.reps, cfg.min_time, [pair_ref, pair_img, pair_none] {
+  // Each metric at 1 and 2 threads back to back.
+  const auto both = [&cfg](const std::string& name, const std::function<void()>& body) {
+    for (int threads : {1, 2}) Register(name + "/t" + std::to_string(threads), threads, cfg.reps, cfg.min_time, body);
+  };
+  both("metric-psnr",
+       [pair_ref, pair_img] { benchmark::DoNotOptimize(MeanSquaredError(*pair_img, pair_ref->image).mse); });
+  both("metric-ssim", [pair_ref, pair_img] { benchmark::DoNotOptimize(ComputeSsim(*pair_img, pair_ref->image).ssim); });
+  // SSIM as a run computes it per method: the reference's half prepared once per scene.
+  both("metric-ssim-run", [pair_ref, pair_img] {
+    static const std::shared_ptr<const SsimReferenceSide> side = PrepareSsimReference(pair_ref->image);
+    benchmark::DoNotOptimize(ComputeSsim(*pair_img, *side).ssim);
+  });
+  // FLIP as a run computes it per method (the reference's half reused after the first
+  // method of a scene), and from scratch (the first method of a scene, or `aalab metrics`).
+  both("metric-flip", [pair_ref, pair_img] {
+    static const std::shared_ptr<const flip::ReferenceSide> side =
+        flip::PrepareReference(pair_ref->image, kFlipDefaultPpd);
+    benchmark::DoNotOptimize(PoolFlip(flip::ErrorValues(*side, *pair_img)).mean);
+  });
+  both("metric-flip-uncached", [pair_ref, pair_img] {
+    benchmark::DoNotOptimize(PoolFlip(flip::ErrorValues(pair_ref->image, *pair_img, kFlipDefaultPpd)).mean);
+  });
+  both("metric-edge", [pair_ref, pair_img, pair_none] {
+    for (const auto& e : MetricRegistry()) {
+      if (e.name != "edge") continue;
       MetricInput in;
       in.image = pair_img.get();
       in.reference = &pair_ref->image;
       in.edge_mask = &pair_ref->edge_mask;
       in.none_image = pair_none.get();
-      benchmark::DoNotOptimize(ComputeAllMetrics(in).size());
-    });
-  }
+      benchmark::DoNotOptimize(e.compute(in).size());
+    }
+  });
+  both("metric-all", [pair_ref, pair_img, pair_none] {
+    MetricInput in;
+    in.image = pair_img.get();
+    in.reference = &pair_ref->image;
+    in.edge_mask = &pair_ref->edge_mask;
+    in.none_image = pair_none.get();
+    benchmark::DoNotOptimize(ComputeAllMetrics(in).size());
+  });
   return mb;
 }
 

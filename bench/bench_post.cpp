@@ -132,31 +132,39 @@ PostBench RegisterPostFigures(const Settings& cfg, Json& report) {
 
   auto frames = std::make_shared<std::vector<PostFrame>>(pb.frames);  // the figures' own copies, alive until they run
   auto out_frame = std::make_shared<Image8>(kFrameW, kFrameH, 4);
-  for (int threads : {1, 2}) {
-    for (const auto& f : *frames) {
-      const Image8* in = &f.img;
-      const std::string suffix = "/" + f.key + "/t" + std::to_string(threads);
-      Register("floor" + suffix, threads, cfg.reps, cfg.min_time,
+  // A frame's figures together, each at 1 and 2 threads back to back (the floor first).
+  for (const auto& f : *frames) {
+    const Image8* in = &f.img;
+    for (int threads : {1, 2}) {
+      Register("floor/" + f.key + "/t" + std::to_string(threads), threads, cfg.reps, cfg.min_time,
                [frames, in, out_frame] { PlainPass(*in, *out_frame); });
-      for (const auto& p : posts) {
+    }
+    for (const auto& p : posts) {
+      for (int threads : {1, 2}) {
         auto fn = p.fast;
-        Register(p.name + suffix, threads, cfg.reps, cfg.min_time, [frames, in, fn] {
-          Image8 o = fn(*in, nullptr);
-          benchmark::DoNotOptimize(o.Data().data());
-        });
+        Register(p.name + "/" + f.key + "/t" + std::to_string(threads), threads, cfg.reps, cfg.min_time,
+                 [frames, in, fn] {
+                   Image8 o = fn(*in, nullptr);
+                   benchmark::DoNotOptimize(o.Data().data());
+                 });
       }
     }
-    // Rescale 2560x1440 -> 1920x1080 (Mpix/s of output pixels); floor: read the scaled frame
-    // and write the output (a plain pass over each).
-    auto big_out = std::make_shared<Image8>(2560, 1440, 4);
-    const std::string t = "/t" + std::to_string(threads);
-    Register("floor-rescale" + t, threads, cfg.reps, cfg.min_time, [scaled, big_out] { PlainPass(*scaled, *big_out); });
-    for (auto [name, kind] :
-         {std::pair{"rescale-bilinear", Rescale::kBilinear}, std::pair{"rescale-bicubic", Rescale::kBicubic}}) {
-      Register(std::string(name) + t, threads, cfg.reps, cfg.min_time, [scaled, kind = kind] {
-        Image8 o = RescaleFrame(*scaled, 1920, 1080, kind, nullptr);
-        benchmark::DoNotOptimize(o.Data().data());
-      });
+  }
+  // Rescale 2560x1440 -> 1920x1080 (Mpix/s of output pixels); floor: read the scaled frame
+  // and write the output (a plain pass over each).
+  auto big_out = std::make_shared<Image8>(2560, 1440, 4);
+  for (int threads : {1, 2}) {
+    Register("floor-rescale/t" + std::to_string(threads), threads, cfg.reps, cfg.min_time,
+             [scaled, big_out] { PlainPass(*scaled, *big_out); });
+  }
+  for (auto [name, kind] :
+       {std::pair{"rescale-bilinear", Rescale::kBilinear}, std::pair{"rescale-bicubic", Rescale::kBicubic}}) {
+    for (int threads : {1, 2}) {
+      Register(std::string(name) + "/t" + std::to_string(threads), threads, cfg.reps, cfg.min_time,
+               [scaled, kind = kind] {
+                 Image8 o = RescaleFrame(*scaled, 1920, 1080, kind, nullptr);
+                 benchmark::DoNotOptimize(o.Data().data());
+               });
     }
   }
   RegisterResolveFigures(cfg, out_frame);

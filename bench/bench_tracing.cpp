@@ -33,8 +33,8 @@ TracingBench RegisterTracingFigures(const Settings& cfg) {
     tb.rays[name] = c.primary_rays + c.shadow_rays;
     (*traced)[name] = std::move(t);
   }
-  for (int threads : {1, 2}) {
-    for (const auto& name : tb.scenes) {
+  for (const auto& name : tb.scenes) {  // a scene's four figures next to each other
+    for (int threads : {1, 2}) {
       const Tracer* tr = (*traced)[name].tracer.get();
       const std::string t = "/t" + std::to_string(threads);
       const int w = cfg.trace_w, h = cfg.trace_h, g = cfg.trace_grid;
