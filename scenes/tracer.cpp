@@ -199,9 +199,7 @@ Tracer::~Tracer() = default;
 
 void tracer_detail::IntersectRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear,
                                   const float* tfar, const int* idx, int n, Hit* hits, bool coherent) {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RTCIntersectContext ctx = PacketContext(coherent);
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[kPacket];
   InitPacketConstants(rh);
@@ -254,11 +252,9 @@ void tracer_detail::IntersectRays(RTCScene scene, const glm::vec3* org, const gl
 
 void tracer_detail::OccludedRays(RTCScene scene, const glm::vec3* org, const glm::vec3* dir, const float* tnear,
                                  const float* tfar, int n, uint8_t* occluded) {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
   // Shadow rays of neighbouring samples start close together toward the same light: coherent
   // (a traversal hint only; a yes/no answer cannot depend on it).
-  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RTCIntersectContext ctx = PacketContext(true);
   alignas(64) RTCRay16 ray;
   alignas(64) int valid[kPacket];
   for (int k = 0; k < kPacket; ++k) {
@@ -426,9 +422,7 @@ uint64_t Tracer::BareTrace(int width, int height, int grid) const {
   const int tiles_y = (height + kTileSize - 1) / kTileSize;
   std::vector<uint64_t> hits(static_cast<size_t>(tiles_x) * tiles_y, 0);
   ParallelForChunks(tiles_x * tiles_y, 1, [&](int begin, int end) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    RTCIntersectContext ctx = PacketContext(true);
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[kPacket];
     InitPacketConstants(rh);

@@ -160,9 +160,7 @@ AALAB_SIMD_CLONES
 void CameraPackets(RTCScene scene, bool persp, const SamplePos* pos, int count, float width, float height, float half_h,
                    float aspect, glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org,
                    glm::vec3* dir, Hit* hits) {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RTCIntersectContext ctx = PacketContext(true);
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[kPacket];
   InitPacketConstants(rh);
@@ -186,9 +184,7 @@ void CameraPacketsUnlit(RTCScene scene, bool persp, const SamplePos* pos, int co
                         float half_h, float aspect, glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up,
                         const Scene& sc, ShadeScratch& S, SampleResult* out, TraceCounters& local) {
   UnlitShading shading(sc, sc.Has(Effect::kTextures), S, count, out, local);  // a local: in registers
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RTCIntersectContext ctx = PacketContext(true);
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[kPacket];
   InitPacketConstants(rh);

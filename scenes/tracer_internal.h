@@ -56,6 +56,15 @@ inline void InitPacketConstants(RTCRayHit16& rh) {
   }
 }
 
+/// An intersect context for Embree's packet calls, flagged coherent when the packet's rays
+/// start close together in similar directions (camera rays, a light's shadow rays).
+inline RTCIntersectContext PacketContext(bool coherent) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  return ctx;
+}
+
 /// A ray's closest hit (shape == -1: nothing).
 struct Hit {
   float t = std::numeric_limits<float>::infinity();
