@@ -3,7 +3,10 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <memory>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -73,11 +76,61 @@ void Register(const std::string& name, int threads, int reps, double min_time, s
   b->UseRealTime()->Repetitions(reps)->MinTime(min_time);
 }
 
+void RegisterRounds(const std::vector<RoundFigure>& figs, int reps, double min_time) {
+  // Each figure's calls per repetition, fixed by its warm-up (before its first round) so that
+  // every round runs the same count (≥ min_time s) with no calibration runs of its own.
+  std::vector<std::shared_ptr<int>> counts;
+  for (size_t i = 0; i < figs.size(); ++i) counts.push_back(std::make_shared<int>(1));
+  for (int r = 0; r < reps; ++r) {
+    for (size_t fi = 0; fi < figs.size(); ++fi) {
+      const RoundFigure& f = figs[fi];
+      const std::shared_ptr<int> calls = counts[fi];
+      const std::string name = f.name;
+      const int threads = f.threads;
+      const std::function<void()> body = f.body;
+      auto* b = benchmark::RegisterBenchmark(name.c_str(), [name, threads, body, calls, r,
+                                                            min_time](benchmark::State& st) {
+        SetThreadCount(threads);
+        if (r == 0) {  // warm-up (also first touch of any buffer), which also sets the call count
+          const auto t0 = std::chrono::steady_clock::now();
+          body();
+          const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          *calls = t > 0 ? std::max(1, static_cast<int>(std::ceil(min_time / t))) : 1;
+        }
+        const double cpu0 = ProcessCpuSeconds();
+        const auto w0 = std::chrono::steady_clock::now();
+        for (auto _ : st) {
+          const auto i0 = std::chrono::steady_clock::now();
+          for (int i = 0; i < *calls; ++i) body();
+          st.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - i0).count() / *calls);
+        }
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+        if (wall > 0) CoresByFigure()[name].push_back((ProcessCpuSeconds() - cpu0) / wall);
+      });
+      b->UseManualTime()->Iterations(1)->Repetitions(1);
+    }
+  }
+}
+
+double PairedRatio(const std::string& a, const std::string& b) {
+  const Stats& x = Figure(a);
+  const Stats& y = Figure(b);
+  if (x.samples.size() != y.samples.size()) {
+    std::fprintf(stderr, "figures %s and %s have %zu and %zu samples: not one group of rounds\n", a.c_str(), b.c_str(),
+                 x.samples.size(), y.samples.size());
+    std::exit(3);
+  }
+  Stats r;
+  for (size_t k = 0; k < x.samples.size(); ++k) r.samples.push_back(x.samples[k] / y.samples[k]);
+  return r.Median();
+}
+
 void RunRegistered() {
-  // Figures run in registration order, each figure's repetitions back to back; the figures a
-  // goal compares (a scene's reference and bare loop at 1 and 2 threads, a filter at 1 and 2
-  // threads, the filters of one frame) are registered next to each other, so a ratio compares
-  // samples taken seconds apart, not minutes (see docs/performance.md, "What it measures").
+  // Figures run in registration order. The figures a goal compares (a scene's reference and
+  // bare loop at 1 and 2 threads, a frame's filters and floor at 1 and 2 threads, a metric at 1
+  // and 2 threads) are one RegisterRounds group: one repetition of each per round, so each
+  // ratio is taken per round from samples seconds apart (PairedRatio; docs/performance.md,
+  // "What it measures").
   std::fprintf(stderr, "running %s figures (Google Benchmark %s)...\n", "registered", "repetitions");
   CollectingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);

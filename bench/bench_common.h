@@ -41,6 +41,24 @@ inline constexpr int kFrameW = 1920, kFrameH = 1080;
 /// repetitions of at least `min_time` seconds each (wall clock), recording the cores used.
 void Register(const std::string& name, int threads, int reps, double min_time, std::function<void()> body);
 
+/// One figure of a group that RegisterRounds measures in rounds.
+struct RoundFigure {
+  std::string name;
+  int threads = 1;
+  std::function<void()> body;
+};
+
+/// Registers a group of figures that goals compare with each other, measured in `reps` rounds:
+/// round r runs one repetition (≥ `min_time` s) of every figure in `figs`' order, so the r-th
+/// samples of two figures were taken seconds apart and pair up (PairedRatio); each figure gets
+/// one untimed warm-up call before its first round. On a machine whose speed drifts from one
+/// minute to the next, the drift then cancels in each pair instead of biasing one figure.
+void RegisterRounds(const std::vector<RoundFigure>& figs, int reps, double min_time);
+
+/// The median over rounds of figure a's r-th sample / figure b's r-th sample (both registered by
+/// one RegisterRounds group); exits 3 when either is missing or their counts differ.
+double PairedRatio(const std::string& a, const std::string& b);
+
 /// Runs every registered figure (Google Benchmark), collecting seconds per operation.
 void RunRegistered();
 

@@ -174,7 +174,7 @@ int Main(int argc, char** argv) {
   TracingScalingGoal(tracing, out);
   PostScalingGoal(post, out);
   SmaaGoals(
-      [](const std::string& k) { return Figure(k).Median(); },
+      [](const std::string& a, const std::string& b) { return PairedRatio(a, b); },
       [&out](const std::string& g, const std::string& m, bool met) { out.Goal(g, m, met); });  // bench/bench_smaa.cpp
   SuiteGoals(suite, out);
   DefaultRunGoal(suite, out);

@@ -42,9 +42,9 @@ MetricsBench RegisterMetricFigures(const Settings& cfg, const Image8& real_frame
     *pair_none = ToFloat(real_frame, 3);
   }
   mb.ref = pair_ref, mb.img = pair_img, mb.none = pair_none;
-  // Each metric at 1 and 2 threads back to back.
+  // Each metric at 1 and 2 threads: one group, measured in rounds.
   const auto both = [&cfg](const std::string& name, const std::function<void()>& body) {
-    for (int threads : {1, 2}) Register(name + "/t" + std::to_string(threads), threads, cfg.reps, cfg.min_time, body);
+    RegisterRounds({{name + "/t1", 1, body}, {name + "/t2", 2, body}}, cfg.reps, cfg.min_time);
   };
   both("metric-psnr",
        [pair_ref, pair_img] { benchmark::DoNotOptimize(MeanSquaredError(*pair_img, pair_ref->image).mse); });
@@ -208,7 +208,7 @@ void MetricsGoals(const MetricsBench& mb, BenchOutput& out) {
   for (const auto& g : mb.nvidia_flip_goals) out.Goal(g.goal, g.measured, g.met);
   out.Goal("SSIM as in a run ≥ 15× faster than scikit-image's Gaussian SSIM (1 thread)",
            mb.ssim_speedup > 0 ? FormatDouble("%.1f×", mb.ssim_speedup) : "skimage missing", mb.ssim_speedup >= 15.0);
-  const double sp = Figure("metric-ssim-run/t1").Median() / Figure("metric-ssim-run/t2").Median();
+  const double sp = PairedRatio("metric-ssim-run/t1", "metric-ssim-run/t2");
   out.Goal("SSIM as in a run: 2 threads ≥ 1.8× one thread",
            FormatDouble("%.2f×", sp) + "; the 2-thread runs got " +
                FormatDouble("%.2f", CoresUsed("metric-ssim-run/t2")) + " cores",

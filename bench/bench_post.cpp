@@ -132,23 +132,25 @@ PostBench RegisterPostFigures(const Settings& cfg, Json& report) {
 
   auto frames = std::make_shared<std::vector<PostFrame>>(pb.frames);  // the figures' own copies, alive until they run
   auto out_frame = std::make_shared<Image8>(kFrameW, kFrameH, 4);
-  // A frame's figures together, each at 1 and 2 threads back to back (the floor first).
+  // A frame's figures (the floor first, each at 1 and 2 threads) are one group measured in
+  // rounds, so that every ratio a goal takes (to the floor, 2 threads to 1, SMAA to FXAA) pairs
+  // samples of one round.
   for (const auto& f : *frames) {
     const Image8* in = &f.img;
-    for (int threads : {1, 2}) {
-      Register("floor/" + f.key + "/t" + std::to_string(threads), threads, cfg.reps, cfg.min_time,
-               [frames, in, out_frame] { PlainPass(*in, *out_frame); });
-    }
+    std::vector<RoundFigure> group;
+    for (int threads : {1, 2})
+      group.push_back({"floor/" + f.key + "/t" + std::to_string(threads), threads,
+                       [frames, in, out_frame] { PlainPass(*in, *out_frame); }});
     for (const auto& p : posts) {
       for (int threads : {1, 2}) {
         auto fn = p.fast;
-        Register(p.name + "/" + f.key + "/t" + std::to_string(threads), threads, cfg.reps, cfg.min_time,
-                 [frames, in, fn] {
-                   Image8 o = fn(*in, nullptr);
-                   benchmark::DoNotOptimize(o.Data().data());
-                 });
+        group.push_back({p.name + "/" + f.key + "/t" + std::to_string(threads), threads, [frames, in, fn] {
+                           Image8 o = fn(*in, nullptr);
+                           benchmark::DoNotOptimize(o.Data().data());
+                         }});
       }
     }
+    RegisterRounds(group, cfg.reps, cfg.min_time);
   }
   // Rescale 2560x1440 -> 1920x1080 (Mpix/s of output pixels); floor: read the scaled frame
   // and write the output (a plain pass over each).
@@ -194,7 +196,7 @@ void PostTable(const PostBench& post, BenchOutput& out) {
                              {"ms", StatsJson(floor.samples, 1e3)}});
       for (const auto& name : post.filters) {
         const Stats& s = Figure(name + suffix);
-        const double ratio = s.Median() / floor.Median();
+        const double ratio = PairedRatio(name + suffix, "floor" + suffix);
         out.Line("| " + name + " | " + f.key + " | " + std::to_string(threads) + " | " +
                  Range(Mpix(s, fpx), 1, "%.1f") + " | " + FormatDouble("%.1f", ratio) + " | " +
                  FormatDouble("%.2f", CoresUsed(name + suffix)) + " |");
@@ -257,13 +259,11 @@ void PostTable(const PostBench& post, BenchOutput& out) {
 constexpr double kFxaaFloorGoal = 5.0;
 
 void PostFloorGoals(BenchOutput& out) {
-  const Stats& s = Figure("fxaa311-p39/real/t1");
-  const double r = s.Median() / Figure("floor/real/t1").Median();
+  const double r = PairedRatio("fxaa311-p39/real/t1", "floor/real/t1");
   out.Goal(std::string("FXAA 3.11 p39 within 5× of the bandwidth floor, real content (") + kRealFrameScene +
                " frame, 1 thread)",
            FormatDouble("%.1f×", r), r <= kFxaaFloorGoal);
-  const Stats& s2 = Figure("fxaa311-p39/real/t2");
-  const double r2 = s2.Median() / Figure("floor/real/t2").Median();
+  const double r2 = PairedRatio("fxaa311-p39/real/t2", "floor/real/t2");
   out.Goal(std::string("FXAA 3.11 p39 within 5× of the bandwidth floor, real content (") + kRealFrameScene +
                " frame, 2 threads)",
            FormatDouble("%.1f×", r2), r2 <= kFxaaFloorGoal);
@@ -274,7 +274,7 @@ void PostScalingGoal(const PostBench& post, BenchOutput& out) {
   std::string pn;
   for (const auto& name : post.filters) {
     for (const auto& f : post.frames) {
-      const double sp = Figure(name + "/" + f.key + "/t1").Median() / Figure(name + "/" + f.key + "/t2").Median();
+      const double sp = PairedRatio(name + "/" + f.key + "/t1", name + "/" + f.key + "/t2");
       if (sp < pw) pw = sp, pn = name + " on " + f.key;
     }
   }

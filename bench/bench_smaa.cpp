@@ -8,16 +8,15 @@
 
 namespace aalab::bench {
 
-void SmaaGoals(const std::function<double(const std::string&)>& median,
+void SmaaGoals(const std::function<double(const std::string&, const std::string&)>& ratio,
                const std::function<void(const std::string&, const std::string&, bool)>& goal) {
   for (int threads : {1, 2}) {
     double worst = 0.0;
     std::string worst_name, all;
     for (const char* frame : {"real", "dense"}) {
       const std::string suffix = std::string("/") + frame + "/t" + std::to_string(threads);
-      const double fxaa = median("fxaa311-p39" + suffix);
       for (const char* preset : {"low", "medium", "high", "ultra"}) {
-        const double r = median(std::string("smaa-") + preset + suffix) / fxaa;
+        const double r = ratio(std::string("smaa-") + preset + suffix, "fxaa311-p39" + suffix);
         char buf[64];
         std::snprintf(buf, sizeof buf, "%s%s %s %.2f×", all.empty() ? "" : ", ", preset, frame, r);
         all += buf;

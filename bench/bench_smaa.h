@@ -12,9 +12,9 @@
 namespace aalab::bench {
 
 /// Adds the goal "each SMAA preset within 2× of fxaa311-p39 on the same 1080p frames, 1 and
-/// 2 threads" through `goal`, reading median seconds of figure `key` from `median`
-/// ("<filter>/<frame>/t<threads>", frames "real" and "dense").
-void SmaaGoals(const std::function<double(const std::string&)>& median,
+/// 2 threads" through `goal`, reading the time ratio of figure a to figure b from `ratio(a, b)`
+/// (keys "<filter>/<frame>/t<threads>", frames "real" and "dense").
+void SmaaGoals(const std::function<double(const std::string&, const std::string&)>& ratio,
                const std::function<void(const std::string&, const std::string&, bool)>& goal);
 
 }  // namespace aalab::bench

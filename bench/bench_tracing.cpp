@@ -33,18 +33,20 @@ TracingBench RegisterTracingFigures(const Settings& cfg) {
     tb.rays[name] = c.primary_rays + c.shadow_rays;
     (*traced)[name] = std::move(t);
   }
-  for (const auto& name : tb.scenes) {  // a scene's four figures next to each other
+  for (const auto& name : tb.scenes) {  // a scene's four figures: one group, measured in rounds
+    std::vector<RoundFigure> group;
     for (int threads : {1, 2}) {
       const Tracer* tr = (*traced)[name].tracer.get();
       const std::string t = "/t" + std::to_string(threads);
       const int w = cfg.trace_w, h = cfg.trace_h, g = cfg.trace_grid;
-      Register("reference/" + name + t, threads, cfg.trace_reps, cfg.min_time, [traced, tr, w, h, g] {
-        Reference r = RenderReference(*tr, w, h, g, 1, nullptr);
-        benchmark::DoNotOptimize(r.image.Data().data());
-      });
-      Register("bare-embree/" + name + t, threads, cfg.trace_reps, cfg.min_time,
-               [traced, tr, w, h, g] { benchmark::DoNotOptimize(tr->BareTrace(w, h, g)); });
+      group.push_back({"reference/" + name + t, threads, [traced, tr, w, h, g] {
+                         Reference r = RenderReference(*tr, w, h, g, 1, nullptr);
+                         benchmark::DoNotOptimize(r.image.Data().data());
+                       }});
+      group.push_back({"bare-embree/" + name + t, threads,
+                       [traced, tr, w, h, g] { benchmark::DoNotOptimize(tr->BareTrace(w, h, g)); }});
     }
+    RegisterRounds(group, cfg.trace_reps, cfg.min_time);
   }
   return tb;
 }
@@ -65,11 +67,12 @@ void TracingTable(const Settings& cfg, TracingBench& tb, BenchOutput& out) {
       const double ref_mr = static_cast<double>(tb.rays[name]) / 1e6;
       const double bare_mr = static_cast<double>(cfg.trace_w) * cfg.trace_h * cfg.trace_grid * cfg.trace_grid / 1e6;
       const Stats rr = Mpix(rs, ref_mr), br = Mpix(bs, bare_mr);
-      const double ratio = rr.Median() / br.Median();
+      // Rays per second, reference over bare: per round (bare s / reference s) × rays ratio.
+      const double ratio = PairedRatio("bare-embree/" + name + t, "reference/" + name + t) * ref_mr / bare_mr;
       if (threads == 1)
         tb.ratio_t1[name] = ratio;
       else
-        tb.scaling[name] = Figure("reference/" + name + "/t1").Median() / rs.Median();
+        tb.scaling[name] = PairedRatio("reference/" + name + "/t1", "reference/" + name + t);
       out.Line("| " + name + " | " + std::to_string(threads) + " | " + Range(rr, 1, "%.1f") + " | " +
                Range(br, 1, "%.1f") + " | " + FormatDouble("%.0f%%", 100 * ratio) + " | " +
                FormatDouble("%.2f", CoresUsed("reference/" + name + t)) + " |");
