@@ -50,6 +50,11 @@
 //     texture per thread, kept across bands and calls, emptied for another texture or
 //     mode), whose hits return the same floats and count the same taps. The fused pass also
 //     prefetches the colour and output lines of a row's edge pixels before their weights.
+//   With 8-bit fractions the samplers take the footprint from BilinearAt8 (one rounding per
+//     axis; the same texels and weights as BilinearAt). In the fused pass, a pixel with a top
+//     edge whose diagonal search DiagSurelyZero settles from the edge bytes (the first step
+//     of every diagonal search stops, so the search returns (0, 0)) runs the shader with the
+//     diagonal search off, and that search's fetches are counted.
 // Tap counts equal the reference's. tests/equivalence/smaa_fast_test.cpp compares this path with
 // SmaaReference bit for bit, taps and debug views included, at 1 and 2 threads.
 #include <algorithm>

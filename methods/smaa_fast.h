@@ -50,6 +50,41 @@ struct EdgePlane {
   uint8_t* Row(int y) { return e.get() + static_cast<size_t>(y) * w; }
 };
 
+#if defined(__SSE2__)
+/// BilinearAt(u, v, w, h, SubTexel::kFixed8) from one rounding per axis: with
+/// x = fl(u − 0.5), x·256 is exact and, where BilinearAt's frac = x − floor(x) is exact,
+/// nearbyint(x·256) = floor(x)·256 + nearbyint(frac·256) (adding a multiple of 256, an even
+/// integer, commutes with the rounding), so its bits above the low 8 are BilinearAt's x0
+/// after the wrap of a fraction that rounds to 1 and its low 8 bits the numerator of the
+/// 8-bit fraction. frac is exact except for x in (−1, 0) (1 − |x| rounds): there both read
+/// column 0 alone, each with x0 = −1 (both columns clamp to 0; a lerp between equal values
+/// returns them, whatever fx) or, after a wrap, x0 = 0 and fx = 0 (a + 0·(b − a) = a). So
+/// the footprints read the same texels with the same weights
+/// (tests/methods/smaa_fetch_test.cpp): the same fetched values.
+/// cvtps2dq rounds in the current mode, as nearbyint does. For |u|, |v| < 2^22 (SMAA's
+/// coordinates stay within a few hundred texels of a frame or texture).
+[[gnu::always_inline]] inline BilinearFootprint BilinearAt8(float u, float v, int w, int h) {
+  const __m128 x = _mm_sub_ps(_mm_setr_ps(u, v, 0.0f, 0.0f), _mm_set1_ps(0.5f));
+  const __m128i t = _mm_cvtps_epi32(_mm_mul_ps(x, _mm_set1_ps(256.0f)));
+  const __m128 fr = _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(t, _mm_set1_epi32(255))), _mm_set1_ps(1.0f / 256.0f));
+  const __m128i i0 = _mm_srai_epi32(t, 8);
+  BilinearFootprint f;
+  f.fx = _mm_cvtss_f32(fr);
+  f.fy = _mm_cvtss_f32(_mm_shuffle_ps(fr, fr, 1));
+  f.x0 = std::clamp(_mm_cvtsi128_si32(i0), -1, w);
+  f.y0 = std::clamp(_mm_cvtsi128_si32(_mm_shuffle_epi32(i0, 1)), -1, h);
+  return f;
+}
+#endif
+
+/// BilinearAt for the samplers below: BilinearAt8 for 8-bit fractions (same fetched values).
+[[gnu::always_inline]] inline BilinearFootprint FootprintAt(float u, float v, int w, int h, SubTexel mode) {
+#if defined(__SSE2__)
+  if (mode == SubTexel::kFixed8) return BilinearAt8(u, v, w, h);
+#endif
+  return BilinearAt(u, v, w, h, mode);
+}
+
 // BilinearSampler::SampleNormalized, operation for operation (BilinearAt, clamped reads,
 // UnormToFloat, BilinearBlend), inline and with its own tap counter.
 // An RGBA8 texture: the fast path's own buffers and Image8 alike.
@@ -69,7 +104,7 @@ class InlineSampler {
   InlineSampler(Tex8 img, SubTexel mode) : img_(img), w_(img.w), h_(img.h), mode_(mode) {}
   [[gnu::always_inline]] Float4 SampleNormalized(float s, float t) {
     ++taps_;
-    const BilinearFootprint f = BilinearAt(s * static_cast<float>(w_), t * static_cast<float>(h_), w_, h_, mode_);
+    const BilinearFootprint f = FootprintAt(s * static_cast<float>(w_), t * static_cast<float>(h_), w_, h_, mode_);
     const int xa = std::clamp(f.x0, 0, w_ - 1), xb = std::clamp(f.x0 + 1, 0, w_ - 1);
     const int ya = std::clamp(f.y0, 0, h_ - 1), yb = std::clamp(f.y0 + 1, 0, h_ - 1);
     const uint8_t* a = img_.Pixel(xa, ya);
@@ -178,7 +213,7 @@ class PlaneEdges {
   F2 Sample(float u, float v) {
     ++taps_;
     const int w = pl_.w, h = pl_.h;
-    const BilinearFootprint f = BilinearAt(u, v, w, h, mode_);
+    const BilinearFootprint f = FootprintAt(u, v, w, h, mode_);
     const int xa = std::clamp(f.x0, 0, w - 1), xb = std::clamp(f.x0 + 1, 0, w - 1);
     const int ya = std::clamp(f.y0, 0, h - 1), yb = std::clamp(f.y0 + 1, 0, h - 1);
     const uint8_t a = pl_.Row(ya)[xa], b = pl_.Row(ya)[xb], c = pl_.Row(yb)[xa], d = pl_.Row(yb)[xb];
@@ -200,12 +235,47 @@ class PlaneEdges {
 #endif
   }
   uint64_t Taps() const { return taps_; }
+  void CountTaps(int n) { taps_ += static_cast<uint64_t>(n); }  // fetches settled from the bytes (DiagSurelyZero)
 
  private:
   const EdgePlane& pl_;
   SubTexel mode_;
   uint64_t taps_ = 0;
 };
+
+/// Whether SMAACalculateDiagWeights (smaa_shader.h's DiagWeights) returns (0, 0) for pixel
+/// (x, y), whose own edge byte has the top bit, decided from the edge bytes alone; then *taps
+/// is the number of fetches it makes. For 8-bit sub-texel fetches on frames up to
+/// kMaxShortcutSize and max_search_steps_diag >= 1; false (undecided: run the shader's
+/// diagonal search) for pixels within two columns or one row of the border and wherever a
+/// search's first step continues. Its fetches land on the footprints of the texel centres
+/// (x − 1, y + 1), (x + 1, y − 1), (x + 1, y) and of (x − 0.75, y − 1), (x + 1.25, y + 1)
+/// (SearchDiag2's x + 0.25): the coordinates carry at most four float roundings, < 0.001
+/// texel on frames up to 8192 px, under the 1/512 at which the 8-bit fraction would round
+/// elsewhere. A centre fetch returns the texel's (r, g) bits; SearchDiag2's, decoded,
+/// returns (r of the right texel, g of the left one). A search whose first fetch has
+/// cw <= 0.9 stops with cz = 0, so d.x + d.y <= 1 in both pairs and no area fetch adds to
+/// the weights.
+inline bool DiagSurelyZero(const EdgePlane& pl, int x, int y, int* taps) {
+  if (x < 1 || x > pl.w - 3 || y < 1 || y > pl.h - 2) return false;
+  const uint8_t* r0 = pl.Row(y - 1);
+  const uint8_t* r1 = pl.Row(y);
+  const uint8_t* r2 = pl.Row(y + 1);
+  constexpr uint8_t kBoth = kLeft | kTop;
+  int n = 3;            // SearchDiag1 (1, −1), SearchDiag2 (−1, −1), the right texel's r
+  if (r1[x] & kLeft) {  // SearchDiag1 (−1, 1) runs
+    if (r2[x - 1] == kBoth) return false;
+    ++n;
+  }
+  if (r0[x + 1] == kBoth) return false;
+  if ((r0[x] & kLeft) && (r0[x - 1] & kTop)) return false;
+  if (r1[x + 1] & kLeft) {  // SearchDiag2 (1, 1) runs
+    if ((r2[x + 2] & kLeft) && (r2[x + 1] & kTop)) return false;
+    ++n;
+  }
+  *taps = n;
+  return true;
+}
 
 /// Passes 2 and 3 fused (8-bit fetches, frames up to kMaxShortcutSize, edges listed): blends
 /// into *out, which holds the input with alpha 255 (pass 1 copies each row), the pixels whose

@@ -39,13 +39,22 @@ struct FusedJob {
 };
 
 // The weights of row y's edge pixels into wr (4 bytes per pixel; the other bytes stay 0).
+// `plain` is the shader with the diagonal search off: it runs the pixels without a top edge
+// (which never reach the diagonal search) and those for which DiagSurelyZero settles the
+// search as (0, 0) (then the shader takes the orthogonal branch, as `plain` does; the
+// search's fetches are counted); `full` runs the others.
 template <class Shader>
-[[gnu::always_inline]] inline void WeightsRow(Shader& shader, const EdgePlane& edges, int y, uint8_t* wr) {
+[[gnu::always_inline]] inline void WeightsRow(Shader& full, Shader& plain, PlaneEdges& reader, bool diag,
+                                              const EdgePlane& edges, int y, uint8_t* wr) {
   const uint16_t* xs = edges.List(y);
+  const uint8_t* er = edges.Row(y);
   const int n = edges.n[static_cast<size_t>(y)];
   for (int i = 0; i < n; ++i) {
     const int x = xs[i];
-    const Float4 wt = shader.Run(x, y);
+    int dt = 0;
+    const bool settled = !diag || !(er[x] & kTop) || DiagSurelyZero(edges, x, y, &dt);
+    reader.CountTaps(dt);
+    const Float4 wt = settled ? plain.Run(x, y) : full.Run(x, y);
     uint8_t* o = wr + 4 * x;
     o[0] = smaa_internal::Quantize8(wt.r);
     o[1] = smaa_internal::Quantize8(wt.g);
@@ -96,16 +105,23 @@ AALAB_SMAA_BAND void FusedBand(const FusedJob& job, int y0, int y1, uint64_t* ta
   thread_local MemoTable<11> area_memo, search_memo;
   MemoSampler<11> am(as, area_memo), sm(ss, search_memo);
   smaa_detail::WeightsShader<PlaneEdges, MemoSampler<11>> shader(reader, am, sm, *job.p, f);
+  // The same shader with the diagonal search off; diag = whether the preset has it and
+  // DiagSurelyZero applies (max_search_steps_diag >= 1).
+  SmaaParams plain_params = *job.p;
+  plain_params.diag = false;
+  const bool diag = job.p->diag && job.p->max_search_steps_diag >= 1;
+  if (job.p->diag && !diag) plain_params.diag = true;  // no shortcut: both run the full shader
+  smaa_detail::WeightsShader<PlaneEdges, MemoSampler<11>> plain(reader, am, sm, plain_params, f);
   std::vector<uint8_t> rows(8 * static_cast<size_t>(w), 0), mark(static_cast<size_t>(w), 0);
   std::vector<uint16_t> cand(static_cast<size_t>(w));
   uint8_t* cur = rows.data();
   uint8_t* nxt = cur + 4 * static_cast<size_t>(w);
   uint64_t n = 0;
-  WeightsRow(shader, edges, y0, cur);
+  WeightsRow(shader, plain, reader, diag, edges, y0, cur);
   for (int y = y0; y < y1; ++y) {
     if (y + 1 < h) PrefetchBlendRows(job, edges, y + 1);
     const uint64_t before = reader.Taps() + as.Taps() + ss.Taps();
-    if (y + 1 < h) WeightsRow(shader, edges, y + 1, nxt);
+    if (y + 1 < h) WeightsRow(shader, plain, reader, diag, edges, y + 1, nxt);
     if (y + 1 < h && y + 1 < y1) n += reader.Taps() + as.Taps() + ss.Taps() - before;  // row y + 1's own taps
     if (y == y0) n += before;  // row y0's (computed before the loop)
     const uint8_t* below = y + 1 < h ? nxt : cur;
