@@ -43,6 +43,10 @@ struct SuiteBench {
   double t1 = 0, t2 = 0;                              ///< 960x540 wall s at 1 and 2 threads
 };
 
+/// Repetitions of a suite configuration `width` pixels wide, `suite_reps` given: 1080p (~30 s
+/// a run) once, 480x270 (~2 s) 2 × suite_reps, the others suite_reps.
+int SuiteReps(int width, int suite_reps);
+
 /// Runs the suite configurations and the default run; false (with a message) when a run failed.
 bool RunSuiteFigures(const Settings& cfg, SuiteBench& suite);
 

@@ -493,7 +493,9 @@ void ContextSection(std::string& h, const Report& r) {
 
 }  // namespace
 
-std::string RenderHtmlReport(const Report& r) {
+std::string RenderHtmlReport(const Report& r) { return RenderHtmlReport(r, ReportToJson(r)); }
+
+std::string RenderHtmlReport(const Report& r, const nlohmann::ordered_json& report_json) {
   std::string h;
   h.reserve(64 * 1024 + r.rows.size() * 2048);
   h += "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
@@ -528,8 +530,7 @@ std::string RenderHtmlReport(const Report& r) {
   h += "</main>\n";
   ContextSection(h, r);
   h += "<div id=\"tooltip\" role=\"tooltip\" hidden></div>\n";
-  h +=
-      "<script type=\"application/json\" id=\"aalab-data\">" + JsonForScriptTag(ReportToJson(r).dump()) + "</script>\n";
+  h += "<script type=\"application/json\" id=\"aalab-data\">" + JsonForScriptTag(report_json.dump()) + "</script>\n";
   h += "<script type=\"application/json\" id=\"aalab-meta\">" + JsonForScriptTag(MetaJson(r).dump()) +
        "</script>\n<script>\n";
   h += html::PageScript();

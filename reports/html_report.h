@@ -7,6 +7,8 @@
 #pragma once
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "reports/result.h"
 
 namespace aalab {
@@ -15,5 +17,9 @@ namespace aalab {
 /// same bytes. Shows whichever metrics and images the rows hold. Image paths in the report
 /// must be relative to the report folder (they are linked as they are, percent-encoded).
 std::string RenderHtmlReport(const Report& report);
+
+/// The same page, with `report_json` = ReportToJson(report) built by the caller (who also
+/// writes it as report.json): the same bytes as RenderHtmlReport(report), one build fewer.
+std::string RenderHtmlReport(const Report& report, const nlohmann::ordered_json& report_json);
 
 }  // namespace aalab

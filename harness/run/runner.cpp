@@ -1,6 +1,8 @@
 #include "harness/run/runner.h"
 
 #include <filesystem>
+#include <functional>
+#include <iterator>
 #include <optional>
 
 #include "core/error.h"
@@ -56,13 +58,21 @@ namespace {
 /// writes the page of the whole run. The page shows the time breakdown too, so it is built
 /// once inside the clock (what the html stage measures) and, once the breakdown is complete,
 /// built again with it and written after the clock has stopped, like report.json (one more
-/// build: ~0.1% of a default run).
+/// build: ~0.1% of a default run). After the clock: report.json's document is built once for
+/// both files, and the page and report.json are rendered and written side by side (each a
+/// pure function of the finished report: the same bytes at any thread count).
 void WriteRunReport(const fs::path& tmp, StageClock* clock, Report* report) {
   clock->Enter("html");
   if (!report->scenes.empty()) (void)RenderHtmlReport(*report);
   report->time_breakdown = clock->Finish();
-  if (!report->scenes.empty()) WriteTextFile((tmp / "index.html").string(), RenderHtmlReport(*report));
-  WriteTextFile((tmp / "report.json").string(), ReportToJson(*report).dump(2) + "\n");
+  const nlohmann::ordered_json doc = ReportToJson(*report);
+  const std::function<void()> files[] = {[&] {
+                                           if (!report->scenes.empty())
+                                             WriteTextFile((tmp / "index.html").string(),
+                                                           RenderHtmlReport(*report, doc));
+                                         },
+                                         [&] { WriteTextFile((tmp / "report.json").string(), doc.dump(2) + "\n"); }};
+  ParallelFor(static_cast<int>(std::size(files)), [&](int i) { files[i](); });
 }
 
 }  // namespace
