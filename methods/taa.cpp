@@ -306,17 +306,22 @@ class TaaState : public TemporalState {
       // box (3 + 3), the output colour (3), the current colour (3), the footprint.
       const size_t w = static_cast<size_t>(W);
       // The current frame's YCoCg for the chunk's rows and the one above and below it (when
-      // inside the frame): three padded planes, local row r = frame row ya + r. Made here
-      // rather than for the whole frame first, so that they are read back from the cache,
-      // not from memory (2 rows in kChunkRows made twice).
-      const int ya = std::max(y0 - 1, 0), yb = std::min(y1, H - 1);
-      const size_t prow = have_history ? static_cast<size_t>(yb - ya + 1) : 0;
-      const auto pbuf = std::make_unique_for_overwrite<float[]>(3 * prow * pw);
-      const float* plane[3] = {pbuf.get(), pbuf.get() + prow * pw, pbuf.get() + 2 * prow * pw};
-      for (size_t r = 0; r < prow; ++r) {
-        float* py = pbuf.get() + r * pw;
-        float* pco = py + prow * pw;
-        float* pcg = pco + prow * pw;
+      // inside the frame): three padded planes, local row r = frame row ya + r, held in a
+      // ring of three rows (slot r mod 3). Each row is made just before the first frame row
+      // that reads it, so that the planes are read back from the cache, not from memory (2
+      // rows in kChunkRows made twice).
+      const int ya = std::max(y0 - 1, 0);
+      constexpr size_t kRing = 3;  // rows y − 1, y and y + 1
+      const size_t prow = have_history ? kRing : 0;
+      const size_t pn = prow * pw;  // one plane
+      const auto pbuf = std::make_unique_for_overwrite<float[]>(3 * pn);
+      const float* plane[3] = {pbuf.get(), pbuf.get() + pn, pbuf.get() + 2 * pn};
+      size_t made = 0;  // plane rows made so far
+      auto make_plane_row = [&](size_t r) {
+        const size_t slot = (r % kRing) * pw;
+        float* py = pbuf.get() + slot;
+        float* pco = py + pn;
+        float* pcg = pco + pn;
         const uint8_t* src = f.Row(ya + static_cast<int>(r));
         // With AVX2 eight pixels at a time (gathers); the rest linear RGB first (table
         // reads), then YCoCg in place (a vectorised loop).
@@ -331,7 +336,7 @@ class TaaState : public TemporalState {
           p[0] = p[1];
           p[W + 1] = p[W];
         }
-      }
+      };
       const auto buf = std::make_unique_for_overwrite<float[]>(17 * w + 2 * (w + 2));
       const auto off = std::make_unique_for_overwrite<int32_t[]>(4 * w);
       float* hy = buf.get();
@@ -364,9 +369,13 @@ class TaaState : public TemporalState {
           encode.Rgba(cur[0], cur[1], cur[2], W, row);
           continue;
         }
+        for (const size_t last = static_cast<size_t>(std::min(y + 1, H - 1) - ya); made <= last; ++made) {
+          make_plane_row(made);
+        }
         const float* prev = &(*in.previous)[2 * static_cast<size_t>(y) * W];
-        const size_t rm = static_cast<size_t>(std::max(y - 1, 0) - ya) * pw, rc = static_cast<size_t>(y - ya) * pw,
-                     rp = static_cast<size_t>(std::min(y + 1, H - 1) - ya) * pw;
+        const size_t rm = static_cast<size_t>(std::max(y - 1, 0) - ya) % kRing * pw,
+                     rc = static_cast<size_t>(y - ya) % kRing * pw,
+                     rp = static_cast<size_t>(std::min(y + 1, H - 1) - ya) % kRing * pw;
         // The boxes of pixels [wide, W): the AVX-512 kernel forms those of [0, wide) itself.
         const int wide = TaaHasAvx512() ? W - W % 16 : 0;
         if (clip && wide < W) {

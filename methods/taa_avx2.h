@@ -60,6 +60,11 @@ int HistoryBlendRow16Avx512(const Avx2RowIn& in, int w, bool clip, float alpha, 
 int EncodeRgbaAvx512(const EncodeTables& t, const float* r, const float* g, const float* b, int w, uint8_t* rgba);
 int YccPlaneRowAvx512(const uint8_t* src, int w, const float* decode, float* y, float* co, float* cg);
 
+/// x[i] / 9 for i in [0, n), n = w rounded down to a multiple of 16, as the AVX-512 kernel's
+/// box divides its sums (a product and an FMA correction; the same bits as the division for
+/// finite x other than −0). Returns n (0 without AVX-512). For tests.
+int Div9Avx512(const float* x, int w, float* q);
+
 /// Encode8::Rgba of pixels [0, n), n = w rounded down to a multiple of 8 (gathers for the
 /// three table reads per value). Returns n (0 without AVX2).
 int EncodeRgbaAvx2(const EncodeTables& t, const float* r, const float* g, const float* b, int w, uint8_t* rgba);

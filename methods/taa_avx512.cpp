@@ -75,6 +75,18 @@ AALAB_TAA_AVX512 inline void ToYcc16(__m512 r, __m512 g, __m512 b, __m512* y, __
   *cg = _mm512_sub_ps(_mm512_add_ps(_mm512_mul_ps(mquarter, r), _mm512_mul_ps(half, g)), _mm512_mul_ps(quarter, b));
 }
 
+/// x / 9 per lane, the same bits as _mm512_div_ps(x, 9) for every finite x but −0 (which
+/// gives +0): the product with RN(1/9), then one FMA step on the exact remainder
+/// (Markstein's correction), instead of a 16-lane division (10 cycles of the divider on
+/// Skylake-SP, where the box's two divisions per channel held the step back).
+/// tests/motion/taa_test.cpp checks it against the division for every float of magnitude
+/// up to 16 (the box's sums lie within ±9, and are never −0: they start from +0).
+AALAB_TAA_AVX512 inline __m512 Div9x16(__m512 x) {
+  const __m512 ninth = _mm512_set1_ps(1.0f / 9.0f);
+  const __m512 q = _mm512_mul_ps(x, ninth);
+  return _mm512_fmadd_ps(_mm512_fnmadd_ps(q, _mm512_set1_ps(9.0f), x), ninth, q);
+}
+
 /// Rectify's box for one channel of sixteen pixels at x, as taa.cpp BoxRow forms it: rows
 /// are the padded plane rows above, at and below (texel x at x + 1). The min/max in any
 /// order (the planes hold no NaN and no −0: BoxRow's reasoning), the sums in BoxRow's order
@@ -95,9 +107,9 @@ AALAB_TAA_AVX512 inline void Box16(const float* const* rows, int x, float gamma,
     }
   }
   if constexpr (kVariance) {
-    const __m512 nine = _mm512_set1_ps(9.0f), g = _mm512_set1_ps(gamma);
-    const __m512 mu = _mm512_div_ps(m1, nine);
-    const __m512 sigma = _mm512_sqrt_ps(Abs16(_mm512_sub_ps(_mm512_div_ps(m2, nine), _mm512_mul_ps(mu, mu))));
+    const __m512 g = _mm512_set1_ps(gamma);
+    const __m512 mu = Div9x16(m1);  // m1 / 9, m2 / 9: the same bits (Div9x16)
+    const __m512 sigma = _mm512_sqrt_ps(Abs16(_mm512_sub_ps(Div9x16(m2), _mm512_mul_ps(mu, mu))));
     mn = _mm512_max_ps(_mm512_sub_ps(mu, _mm512_mul_ps(g, sigma)), mn);  // Max(mn, t) = mn < t ? t : mn
     mx = _mm512_min_ps(_mm512_add_ps(mu, _mm512_mul_ps(g, sigma)), mx);  // Min(mx, t) = t < mx ? t : mx
   }
@@ -106,31 +118,35 @@ AALAB_TAA_AVX512 inline void Box16(const float* const* rows, int x, float gamma,
 }
 
 /// The footprint of sixteen pixels (taa.cpp FootprintRow, the same operations): the
-/// fractions and the four corners' float offsets into the history, a (x0, y0), b (x1, y0),
-/// c (x0, y1), d (x1, y1).
+/// fractions and the integer texel x0, y0 (before the clamp to the history); Offsets16 adds
+/// the four corners' float offsets into the history, a (x0, y0), b (x1, y0), c (x0, y1),
+/// d (x1, y1), where the fetch needs them per pixel.
 struct Footprint16 {
   __m512 tx, ty;
+  __m512i x0, y0;
   __m512i off[4];
 };
 
-AALAB_TAA_AVX512 inline void MakeFootprint16(__m512 qx, __m512 qy, int hw, int hh, Footprint16* fp) {
+AALAB_TAA_AVX512 inline void MakeFootprint16(__m512 px, __m512 py, Footprint16* fp) {
   const __m512 half = _mm512_set1_ps(0.5f);
-  const __m512 px = _mm512_min_ps(_mm512_max_ps(qx, _mm512_setzero_ps()), _mm512_set1_ps(static_cast<float>(hw)));
-  const __m512 py = _mm512_min_ps(_mm512_max_ps(qy, _mm512_setzero_ps()), _mm512_set1_ps(static_cast<float>(hh)));
   const __m512 fx = _mm512_sub_ps(px, half), fy = _mm512_sub_ps(py, half);
   const __m512i ix = _mm512_cvttps_epi32(fx), iy = _mm512_cvttps_epi32(fy);
   const __m512i one = _mm512_set1_epi32(1);
   // floor: truncation minus one where f < trunc(f).
-  const __m512i x0 = _mm512_mask_sub_epi32(ix, _mm512_cmp_ps_mask(fx, _mm512_cvtepi32_ps(ix), _CMP_LT_OQ), ix, one);
-  const __m512i y0 = _mm512_mask_sub_epi32(iy, _mm512_cmp_ps_mask(fy, _mm512_cvtepi32_ps(iy), _CMP_LT_OQ), iy, one);
-  fp->tx = _mm512_sub_ps(fx, _mm512_cvtepi32_ps(x0));
-  fp->ty = _mm512_sub_ps(fy, _mm512_cvtepi32_ps(y0));
-  const __m512i zero = _mm512_setzero_si512(), wm = _mm512_set1_epi32(hw - 1), hm = _mm512_set1_epi32(hh - 1),
-                w = _mm512_set1_epi32(hw);
-  const __m512i xa = _mm512_min_epi32(_mm512_max_epi32(x0, zero), wm);
-  const __m512i xb = _mm512_min_epi32(_mm512_max_epi32(_mm512_add_epi32(x0, one), zero), wm);
-  const __m512i ra = _mm512_mullo_epi32(_mm512_min_epi32(_mm512_max_epi32(y0, zero), hm), w);
-  const __m512i rb = _mm512_mullo_epi32(_mm512_min_epi32(_mm512_max_epi32(_mm512_add_epi32(y0, one), zero), hm), w);
+  fp->x0 = _mm512_mask_sub_epi32(ix, _mm512_cmp_ps_mask(fx, _mm512_cvtepi32_ps(ix), _CMP_LT_OQ), ix, one);
+  fp->y0 = _mm512_mask_sub_epi32(iy, _mm512_cmp_ps_mask(fy, _mm512_cvtepi32_ps(iy), _CMP_LT_OQ), iy, one);
+  fp->tx = _mm512_sub_ps(fx, _mm512_cvtepi32_ps(fp->x0));
+  fp->ty = _mm512_sub_ps(fy, _mm512_cvtepi32_ps(fp->y0));
+}
+
+/// The corners' offsets: x0, x0 + 1, y0, y0 + 1 clamped to the history, 3 (y w + x).
+AALAB_TAA_AVX512 inline void Offsets16(int hw, int hh, Footprint16* fp) {
+  const __m512i zero = _mm512_setzero_si512(), one = _mm512_set1_epi32(1), wm = _mm512_set1_epi32(hw - 1),
+                hm = _mm512_set1_epi32(hh - 1), w = _mm512_set1_epi32(hw);
+  const __m512i xa = _mm512_min_epi32(_mm512_max_epi32(fp->x0, zero), wm);
+  const __m512i xb = _mm512_min_epi32(_mm512_max_epi32(_mm512_add_epi32(fp->x0, one), zero), wm);
+  const __m512i ra = _mm512_mullo_epi32(_mm512_min_epi32(_mm512_max_epi32(fp->y0, zero), hm), w);
+  const __m512i rb = _mm512_mullo_epi32(_mm512_min_epi32(_mm512_max_epi32(_mm512_add_epi32(fp->y0, one), zero), hm), w);
   const __m512i three = _mm512_set1_epi32(3);
   fp->off[0] = _mm512_mullo_epi32(_mm512_add_epi32(ra, xa), three);
   fp->off[1] = _mm512_mullo_epi32(_mm512_add_epi32(ra, xb), three);
@@ -138,21 +154,26 @@ AALAB_TAA_AVX512 inline void MakeFootprint16(__m512 qx, __m512 qy, int hw, int h
   fp->off[3] = _mm512_mullo_epi32(_mm512_add_epi32(rb, xb), three);
 }
 
-/// True when the footprint is contiguous: corner a of pixel i is pixel 0's + i texels (3i
-/// floats) and corner b the texel after a, likewise c and d, so the sixteen a/b texels are
-/// the 17 consecutive texels from a's of pixel 0 (c/d: from c's). The common case (a still
-/// or panning camera, any motion that varies by less than a pixel between neighbours);
-/// false where the clamp at the left or right border made b = a. d − c = b − a (the same
-/// xa, xb), so d needs no check of its own.
-AALAB_TAA_AVX512 inline bool Contiguous16(const Footprint16& fp) {
-  const __m512i step = _mm512_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 33, 36, 39, 42, 45);
-  const __m512i three = _mm512_set1_epi32(3);
-  const __m512i a0 = _mm512_broadcastd_epi32(_mm512_castsi512_si128(fp.off[0]));
-  const __m512i c0 = _mm512_broadcastd_epi32(_mm512_castsi512_si128(fp.off[2]));
-  __mmask16 m = _mm512_cmpeq_epi32_mask(fp.off[0], _mm512_add_epi32(a0, step));
-  m = _mm512_mask_cmpeq_epi32_mask(m, fp.off[1], _mm512_add_epi32(fp.off[0], three));
-  m = _mm512_mask_cmpeq_epi32_mask(m, fp.off[2], _mm512_add_epi32(c0, step));
-  return m == 0xffff;
+/// Whether the footprint is contiguous, and then the float offsets of corner a and c of
+/// pixel 0 (*a, *c): every pixel's y0 is pixel 0's and its x0 pixel 0's + i, and no x is
+/// clamped (0 ≤ x0 of pixel 0, x0 + 1 of pixel 15 ≤ w − 1). Then corner a of pixel i is
+/// pixel 0's + i texels and corner b the texel after a, likewise c and d, so the sixteen a/b
+/// texels are the 17 consecutive texels from a's of pixel 0 (c/d: from c's); the rows are
+/// clamped as Offsets16 clamps them. The common case (a still or panning camera, any motion
+/// that varies by less than a pixel between neighbours); false where a clamp at the left or
+/// right border would make b = a.
+AALAB_TAA_AVX512 inline bool Contiguous16(const Footprint16& fp, int hw, int hh, int* a, int* c) {
+  const __m512i step = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const int x0 = _mm_cvtsi128_si32(_mm512_castsi512_si128(fp.x0));
+  const int y0 = _mm_cvtsi128_si32(_mm512_castsi512_si128(fp.y0));
+  if (x0 < 0 || x0 + 16 > hw - 1) return false;
+  const __mmask16 m = _mm512_cmpeq_epi32_mask(fp.x0, _mm512_add_epi32(_mm512_set1_epi32(x0), step)) &
+                      _mm512_cmpeq_epi32_mask(fp.y0, _mm512_set1_epi32(y0));
+  if (m != 0xffff) return false;
+  const int ya = y0 < 0 ? 0 : (y0 > hh - 1 ? hh - 1 : y0), yb = y0 + 1 < 0 ? 0 : (y0 + 1 > hh - 1 ? hh - 1 : y0 + 1);
+  *a = 3 * (ya * hw + x0);
+  *c = 3 * (yb * hw + x0);
+  return true;
 }
 
 /// The deinterleave of 17 consecutive texels (51 floats, the last at most 1 float before the
@@ -191,11 +212,11 @@ AALAB_TAA_AVX512 inline void Texels17(const float* p, __m512 lo[3], __m512 hi[3]
 
 /// Fetch16 for a contiguous footprint (Contiguous16): the same lerps per value in the same
 /// order (a + tx (b − a), c + tx (d − c), then top + ty (bot − top)), on planar vectors.
-AALAB_TAA_AVX512 inline void FetchContiguous16(const float* hist, const Footprint16& fp, __m512* r, __m512* g,
-                                               __m512* b) {
+AALAB_TAA_AVX512 inline void FetchContiguous16(const float* hist, const Footprint16& fp, int oa, int oc, __m512* r,
+                                               __m512* g, __m512* b) {
   __m512 a[3], bb[3], c[3], d[3];
-  Texels17(hist + _mm_cvtsi128_si32(_mm512_castsi512_si128(fp.off[0])), a, bb);
-  Texels17(hist + _mm_cvtsi128_si32(_mm512_castsi512_si128(fp.off[2])), c, d);
+  Texels17(hist + oa, a, bb);
+  Texels17(hist + oc, c, d);
   __m512 out[3];
   for (int k = 0; k < 3; ++k) out[k] = Lerp16(Lerp16(a[k], bb[k], fp.tx), Lerp16(c[k], d[k], fp.tx), fp.ty);
   *r = out[0];
@@ -273,11 +294,16 @@ AALAB_TAA_AVX512 int HistoryBlendRow16(const Avx2RowIn& in, int w, float alpha, 
   for (int x = 0; x < n; x += 16) {
     const __m512 p0 = _mm512_loadu_ps(in.prev + 2 * x), p1 = _mm512_loadu_ps(in.prev + 2 * x + 16);
     const __m512 qx = _mm512_permutex2var_ps(p0, even, p1), qy = _mm512_permutex2var_ps(p0, odd, p1);
-    MakeFootprint16(qx, qy, in.hw, in.hh, &fp);
+    // The position clamped into [0, w] × [0, h] (FootprintRow): unchanged exactly where the
+    // pixel has history, so that is where it equals the position (false for NaN; −0 == +0).
+    const __m512 px = _mm512_min_ps(_mm512_max_ps(qx, zero), fw), py = _mm512_min_ps(_mm512_max_ps(qy, zero), fh);
+    MakeFootprint16(px, py, &fp);
     __m512 r, g, b;
-    if (Contiguous16(fp)) {
-      FetchContiguous16(in.hist, fp, &r, &g, &b);
+    int oa, oc;
+    if (Contiguous16(fp, in.hw, in.hh, &oa, &oc)) {
+      FetchContiguous16(in.hist, fp, oa, oc, &r, &g, &b);
     } else {
+      Offsets16(in.hw, in.hh, &fp);
       Fetch16(in.hist, fp, &r, &g, &b);
     }
     __m512 h[3];
@@ -309,9 +335,8 @@ AALAB_TAA_AVX512 int HistoryBlendRow16(const Avx2RowIn& in, int w, float alpha, 
     const __m512 t = _mm512_sub_ps(oy, ocg);
     __m512 o0 = Clamp01x16(_mm512_add_ps(t, oco)), o1 = Clamp01x16(_mm512_add_ps(oy, ocg)),
            o2 = Clamp01x16(_mm512_sub_ps(t, oco));
-    // Has history: 0 ≤ x ≤ W and 0 ≤ y ≤ H (false for NaN).
-    const __mmask16 ok = _mm512_cmp_ps_mask(qx, zero, _CMP_GE_OQ) & _mm512_cmp_ps_mask(qx, fw, _CMP_LE_OQ) &
-                         _mm512_cmp_ps_mask(qy, zero, _CMP_GE_OQ) & _mm512_cmp_ps_mask(qy, fh, _CMP_LE_OQ);
+    // Has history: 0 ≤ x ≤ W and 0 ≤ y ≤ H (false for NaN), i.e. the clamp left it as it was.
+    const __mmask16 ok = _mm512_cmp_ps_mask(px, qx, _CMP_EQ_OQ) & _mm512_cmp_ps_mask(py, qy, _CMP_EQ_OQ);
     if (ok != 0xffff) {  // a pixel without history takes the current colour
       const __m512i s = _mm512_loadu_si512(in.src + 4 * x);
       o0 = _mm512_mask_blend_ps(ok, _mm512_i32gather_ps(Channel16(s, 0), in.decode, 4), o0);
@@ -381,6 +406,13 @@ AALAB_TAA_AVX512 int YccPlaneRowAvx512(const uint8_t* src, int w, const float* d
   return n;
 }
 
+AALAB_TAA_AVX512 int Div9Avx512(const float* x, int w, float* q) {
+  if (!TaaHasAvx512()) return 0;
+  const int n = w - w % 16;
+  for (int i = 0; i < n; i += 16) _mm512_storeu_ps(q + i, Div9x16(_mm512_loadu_ps(x + i)));
+  return n;
+}
+
 }  // namespace aalab::taa_detail
 
 #else  // no AVX-512 kernels
@@ -390,6 +422,7 @@ bool TaaHasAvx512() { return false; }
 int HistoryBlendRow16Avx512(const Avx2RowIn&, int, bool, float, float*, uint8_t*) { return 0; }
 int EncodeRgbaAvx512(const EncodeTables&, const float*, const float*, const float*, int, uint8_t*) { return 0; }
 int YccPlaneRowAvx512(const uint8_t*, int, const float*, float*, float*, float*) { return 0; }
+int Div9Avx512(const float*, int, float*) { return 0; }
 }  // namespace aalab::taa_detail
 
 #endif

@@ -22,6 +22,7 @@
 #include "core/parallel.h"
 #include "methods/registry.h"
 #include "methods/taa.h"
+#include "methods/taa_avx2.h"
 #include "metrics/temporal.h"
 #include "scenes/motion.h"
 #include "scenes/motion_render.h"
@@ -268,6 +269,35 @@ TEST(Taa, RowEncodeIsTheDirectEncodeBitForBit) {
       }
     }
   }
+}
+
+// The AVX-512 box's division by 9 (methods/taa_avx512.cpp Div9x16: a product with RN(1/9)
+// and an FMA correction) against the division, bit for bit, for +0 and every float of
+// magnitude from 2^-100 to 16: the box divides sums of nine YCoCg values of decoded 8-bit
+// colours and their squares, which lie within ±9, are never −0 (they start from +0) and are
+// 0 or far above 2^-100 (the smallest nonzero difference of decoded values is ~2^-37; the
+// subnormal range, slow to divide, is left out). Without AVX-512 there is nothing to check.
+TEST(Taa, BoxDivisionByNineIsTheDivisionBitForBit) {
+  constexpr uint32_t kFirst = 0x0d800000u, kLast = 0x41800000u;  // 2^-100, 16.0f
+  constexpr uint32_t kBlock = 1u << 14;
+  std::vector<float> x(kBlock), q(kBlock), d(kBlock);
+  std::vector<uint32_t> bits(kBlock);
+  if (taa_detail::Div9Avx512(x.data(), 16, q.data()) == 0) GTEST_SKIP() << "no AVX-512";
+  uint64_t checked = 0;
+  for (uint32_t sign : {0u, 0x80000000u}) {
+    for (uint32_t b0 = kFirst; b0 <= kLast; b0 += kBlock) {
+      for (uint32_t i = 0; i < kBlock; ++i) bits[i] = sign | std::min(b0 + i, kLast);
+      if (b0 == kFirst) bits[0] = 0;  // +0
+      std::memcpy(x.data(), bits.data(), kBlock * sizeof(float));
+      ASSERT_EQ(taa_detail::Div9Avx512(x.data(), static_cast<int>(kBlock), q.data()), static_cast<int>(kBlock));
+      for (uint32_t i = 0; i < kBlock; ++i) d[i] = x[i] / 9.0f;
+      if (std::memcmp(d.data(), q.data(), kBlock * sizeof(float)) != 0) {
+        for (uint32_t i = 0; i < kBlock; ++i) ASSERT_EQ(std::memcmp(&d[i], &q[i], sizeof(float)), 0) << x[i];
+      }
+      checked += kBlock;
+    }
+  }
+  EXPECT_GT(checked, 2ull * (kLast - kFirst));
 }
 
 // The production temporal step against the simple one (TaaReferenceCopy), bit for bit: every
