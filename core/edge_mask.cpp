@@ -3,9 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parallel.h"
+
 namespace aalab {
 
 namespace {
+
+/// DilateMask's rows per parallel chunk (a 320x180 mask: 12 chunks).
+constexpr int kDilateRows = 16;
 
 /// Marks both pixels of every 4-neighbour pair (x, y)–(x+1, y) and (x, y)–(x, y+1) for which
 /// `differ(a, b)` holds, where a and b point at the pixels' first channels.
@@ -27,23 +32,26 @@ ImageF MarkPairs(const ImageF& img, Differ differ) {
 
 ImageF DilateMask(const ImageF& raw) {
   const int width = raw.Width(), height = raw.Height();
-  ImageF mask(width, height, 1);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      float v = 0.0f;
-      for (int dy = -1; dy <= 1 && v == 0.0f; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int xx = x + dx, yy = y + dy;
-          if (xx < 0 || yy < 0 || xx >= width || yy >= height) continue;
-          if (raw.At(xx, yy, 0) > 0.5f) {
-            v = 1.0f;
-            break;
+  ImageF mask(width, height, 1, kUninitialized);  // every pixel is written below
+  // Rows in parallel chunks of kDilateRows, fixed by the height alone; a pixel reads raw only.
+  ParallelForChunks(height, kDilateRows, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      for (int x = 0; x < width; ++x) {
+        float v = 0.0f;
+        for (int dy = -1; dy <= 1 && v == 0.0f; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int xx = x + dx, yy = y + dy;
+            if (xx < 0 || yy < 0 || xx >= width || yy >= height) continue;
+            if (raw.At(xx, yy, 0) > 0.5f) {
+              v = 1.0f;
+              break;
+            }
           }
         }
+        mask.At(x, y, 0) = v;
       }
-      mask.At(x, y, 0) = v;
     }
-  }
+  });
   return mask;
 }
 

@@ -511,10 +511,11 @@ Reference RenderReference(const Tracer& tracer, int width, int height, int grid,
   const Display& display = tracer.GetScene().display;
   Reference ref;
   ref.grid = grid;
-  ref.image = ImageF(width, height, 3);
-  ref.half_a = ImageF(width, height, 3);
-  ref.half_b = ImageF(width, height, 3);
-  ref.edge_mask_raw = ImageF(width, height, 1);
+  // Every pixel of the four images is written by the tile loop below: no serial zero-fill.
+  ref.image = ImageF(width, height, 3, kUninitialized);
+  ref.half_a = ImageF(width, height, 3, kUninitialized);
+  ref.half_b = ImageF(width, height, 3, kUninitialized);
+  ref.edge_mask_raw = ImageF(width, height, 1, kUninitialized);
   const uint64_t rseed = seed ^ kStreamReference;
   const TileGrid grid_of_tiles(width, height);
   const int tiles = grid_of_tiles.tiles;

@@ -13,6 +13,7 @@ namespace aalab {
 namespace {
 
 using perf_test::NamedFrame;
+using perf_test::NextRandom;
 
 std::vector<std::pair<std::string, SmaaParams>> Settings() {
   std::vector<std::pair<std::string, SmaaParams>> out;
@@ -62,6 +63,49 @@ TEST(SmaaFast, BitIdenticalToReference) {
   std::vector<NamedFrame> frames = perf_test::SyntheticFrames();
   for (const auto& s : perf_test::SceneFrames()) frames.push_back(s);
   for (int threads : {1, 2}) {
+    SetThreadCount(threads);
+    for (const auto& [name, p] : Settings()) {
+      for (const auto& f : frames) {
+        ExpectSame(f.img, p, "", name + " on " + f.name + " t" + std::to_string(threads));
+      }
+    }
+  }
+  SetThreadCount(0);
+}
+
+// The fused pass cuts a 32-row band that holds many of the frame's edge pixels into column
+// pieces (methods/smaa_fused.cpp, FusedJobs: at most width / 128 of them), which the frames
+// above, narrower than 256 pixels, never are. Frames of 4 to 6 pieces with edges in every
+// column (a fine checker, diagonals, thin features), so that pieces' borders fall on edge
+// pixels, against the reference at 1, 2 and 3 threads.
+TEST(SmaaFast, ColumnPiecesIdenticalToReference) {
+  std::vector<NamedFrame> frames;
+  {
+    const Scene scene = LoadScene("checker-plane");
+    const Tracer tracer(scene);
+    frames.push_back({"checker-plane 700x90", RenderFrame(tracer, 700, 90, RenderSpec{}, 1, nullptr)});
+  }
+  uint64_t seed = 777;
+  for (auto [w, h] : std::vector<std::pair<int, int>>{{513, 41}, {769, 35}, {512, 70}}) {
+    Image8 img(w, h, 4);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        uint8_t* p = img.Pixel(x, y);
+        const int m = x % 256;
+        const bool border = m <= 1 || m >= 254;          // thin features on the piece borders
+        const bool diag = (x + 2 * y) % 37 < 2;          // long diagonal and orthogonal searches
+        const bool cell = ((x / 3) + (y / 2)) % 2 == 0;  // a fine checker elsewhere
+        const uint64_t r = NextRandom(seed);
+        const uint8_t v = border ? ((x + y) % 3 == 0 ? 250 : 10) : diag ? 230 : cell ? 40 : 170;
+        p[0] = v;
+        p[1] = static_cast<uint8_t>(v ^ ((r & 1) ? 8 : 0));
+        p[2] = static_cast<uint8_t>(255 - v);
+        p[3] = static_cast<uint8_t>(r >> 8);
+      }
+    }
+    frames.push_back({"borders " + std::to_string(w) + "x" + std::to_string(h), std::move(img)});
+  }
+  for (int threads : {1, 2, 3}) {
     SetThreadCount(threads);
     for (const auto& [name, p] : Settings()) {
       for (const auto& f : frames) {
