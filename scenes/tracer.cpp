@@ -9,6 +9,8 @@
 #include "scenes/tracer.h"
 
 #include <cmath>
+#include <cstring>
+#include <limits>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -63,35 +65,97 @@ namespace {
 #define AALAB_PATTERN_CLONES
 #endif
 
-/// EvaluatePattern's noise over n points, written so that it vectorises (64-bit lanes):
-/// the same operations per point. float → int64 conversion of a value out of range (or NaN)
-/// gives INT64_MIN in the scalar (cvttss2si) and the vector (vcvttps2qq) instruction alike.
+/// EvaluatePattern's noise over n points (NoiseValue: the same operations per point).
 AALAB_PATTERN_CLONES
 void NoiseBatch(float scale, uint64_t seed_hi, const glm::vec2* uv, int n, float* t) {
-  for (int k = 0; k < n; ++k) {
-    const auto cx = static_cast<int64_t>(std::floor(uv[k].x * scale));
-    const auto cy = static_cast<int64_t>(std::floor(uv[k].y * scale));
-    uint64_t h = static_cast<uint64_t>(cx) * 0x9e3779b97f4a7c15ULL ^
-                 (static_cast<uint64_t>(cy) + 0x632be59bd9b4e019ULL) * 0xbf58476d1ce4e5b9ULL ^ seed_hi;
+  for (int k = 0; k < n; ++k) t[k] = NoiseValue(scale, seed_hi, uv[k].x, uv[k].y);
+}
+
+/// EvaluatePattern's checker over n points (CheckerValue: the same test per point).
+AALAB_PATTERN_CLONES
+void CheckerBatch(float scale, const glm::vec2* uv, int n, float* t) {
+  for (int k = 0; k < n; ++k) t[k] = CheckerValue(scale, uv[k].x, uv[k].y);
+}
+
+typedef float F32x8 __attribute__((vector_size(32)));
+typedef int32_t I32x8 __attribute__((vector_size(32)));
+typedef int64_t I64x8 __attribute__((vector_size(64)));
+typedef uint64_t U64x8 __attribute__((vector_size(64)));
+
+/// static_cast<int64_t>(std::floor(v)) in 8 lanes, as cvttss2si gives it: the truncation
+/// (INT64_MIN for NaN, ±inf and |v| ≥ 2^63, where the scalar code gets INT64_MIN too) less one
+/// where v lies below it (an in-range truncation converts back to float exactly).
+inline __attribute__((always_inline)) void FloorToInt64Lanes(const F32x8& v, U64x8& out) {
+  const I64x8 c = __builtin_convertvector(v, I64x8);
+  const I64x8 below = __builtin_convertvector(v < __builtin_convertvector(c, F32x8), I64x8);  // 0 or −1
+  out = reinterpret_cast<U64x8>(c + (below & (c != std::numeric_limits<int64_t>::min())));
+}
+
+/// std::floor(v) in 8 lanes: |v| < 2^23 (NaN excluded) through the int32 truncation less one
+/// where v lies below it (−0 and −0.x give +0 and −1: the checker takes |a| of a sum of these,
+/// so the sign of a zero never shows); any other v is an integer, ±inf or NaN, its own floor.
+inline __attribute__((always_inline)) void FloorLanes(const F32x8& v, F32x8& out) {
+  const I32x8 c = __builtin_convertvector(v, I32x8);
+  const F32x8 fc = __builtin_convertvector(c, F32x8);
+  const F32x8 fl = fc - __builtin_convertvector(-(v < fc), F32x8);
+  const F32x8 mag = v < 0.0f ? -v : v;
+  out = mag < 8388608.0f ? fl : v;
+}
+
+/// NoiseValue over separate x and y arrays, 8 points at a time in vector lanes (the same
+/// integer operations; the floor by FloorToInt64Lanes; h >> 40 < 2^24 converts exactly).
+AALAB_PATTERN_CLONES
+void NoiseLanes(float scale, uint64_t seed_hi, const float* x, const float* y, int n, float* t) {
+  int k = 0;
+  for (; k + 8 <= n; k += 8) {
+    F32x8 fx, fy;
+    std::memcpy(&fx, x + k, sizeof fx);
+    std::memcpy(&fy, y + k, sizeof fy);
+    U64x8 cx, cy;
+    FloorToInt64Lanes(fx * scale, cx);
+    FloorToInt64Lanes(fy * scale, cy);
+    U64x8 h = cx * 0x9e3779b97f4a7c15ULL ^ (cy + 0x632be59bd9b4e019ULL) * 0xbf58476d1ce4e5b9ULL ^ seed_hi;
     h ^= h >> 31;
     h *= 0x94d049bb133111ebULL;
     h ^= h >> 29;
-    t[k] = static_cast<float>(h >> 40) * (1.0f / 16777216.0f);
+    const F32x8 r = __builtin_convertvector(__builtin_convertvector(h >> 40, I32x8), F32x8) * (1.0f / 16777216.0f);
+    std::memcpy(t + k, &r, sizeof r);
   }
+  for (; k < n; ++k) t[k] = NoiseValue(scale, seed_hi, x[k], y[k]);
 }
 
-/// EvaluatePattern's checker over n points, branch-free: the same test (|a| < 2^24 and odd).
+/// CheckerValue over separate x and y arrays, 8 points at a time in vector lanes (the floor by
+/// FloorLanes; then CheckerValue's test).
 AALAB_PATTERN_CLONES
-void CheckerBatch(float scale, const glm::vec2* uv, int n, float* t) {
-  for (int k = 0; k < n; ++k) {
-    const float a = std::fabs(std::floor(uv[k].x * scale) + std::floor(uv[k].y * scale));
-    const bool small = a < 16777216.0f;
-    const int32_t ai = static_cast<int32_t>(small ? a : 0.0f);
-    t[k] = small && (ai & 1) ? 1.0f : 0.0f;
+void CheckerLanes(float scale, const float* x, const float* y, int n, float* t) {
+  int k = 0;
+  for (; k + 8 <= n; k += 8) {
+    F32x8 fx, fy;
+    std::memcpy(&fx, x + k, sizeof fx);
+    std::memcpy(&fy, y + k, sizeof fy);
+    F32x8 gx, gy;
+    FloorLanes(fx * scale, gx);
+    FloorLanes(fy * scale, gy);
+    const F32x8 sum = gx + gy;
+    const F32x8 a = sum < 0.0f ? -sum : sum;
+    const I32x8 small = a < 16777216.0f;
+    const I32x8 ai = __builtin_convertvector(small ? a : F32x8{}, I32x8);
+    const F32x8 r = (small & (ai & 1)) != 0 ? F32x8{} + 1.0f : F32x8{};
+    std::memcpy(t + k, &r, sizeof r);
   }
+  for (; k < n; ++k) t[k] = CheckerValue(scale, x[k], y[k]);
 }
 
 }  // namespace
+
+void tracer_detail::EvaluatePatternLanes(const Texture& tex, const float* x, const float* y, int n, float* t) {
+  switch (tex.pattern) {
+    case TexturePattern::kChecker: CheckerLanes(tex.scale, x, y, n, t); return;
+    case TexturePattern::kNoise: NoiseLanes(tex.scale, static_cast<uint64_t>(tex.seed) << 32, x, y, n, t); return;
+    case TexturePattern::kStripes: break;
+  }
+  for (int k = 0; k < n; ++k) t[k] = EvaluatePattern(tex, glm::vec2(x[k], y[k]));
+}
 
 void tracer_detail::EvaluatePatternBatch(const Texture& tex, const glm::vec2* uv, int n, float* t) {
   switch (tex.pattern) {

@@ -15,7 +15,7 @@ using namespace tracer_detail;
 namespace {
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define AALAB_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#define AALAB_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
 #else
 #define AALAB_SIMD_CLONES
 #endif

@@ -12,6 +12,8 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -258,9 +260,35 @@ void CompositeBlended(const Tracer::Impl& im, const Scene& sc, bool alpha, const
 Surface SurfaceAt(const Scene& scene, const Hit& h, const glm::vec3& org, const glm::vec3& dir, bool uv = true,
                   bool normals = true);
 
+/// EvaluatePattern's checker at uv = (x, y), branch-free so that loops of it vectorise: the
+/// same test (|a| < 2^24 and odd; from 2^24 on every float is even, as are inf and NaN).
+inline __attribute__((always_inline)) float CheckerValue(float scale, float x, float y) {
+  const float a = std::fabs(std::floor(x * scale) + std::floor(y * scale));
+  const bool small = a < 16777216.0f;
+  const int32_t ai = static_cast<int32_t>(small ? a : 0.0f);
+  return small && (ai & 1) ? 1.0f : 0.0f;
+}
+
+/// EvaluatePattern's noise at uv = (x, y), seed_hi = seed << 32: the same operations, written
+/// so that loops of it vectorise (64-bit lanes). float → int64 of a value out of range (or NaN)
+/// gives INT64_MIN in the scalar (cvttss2si) and the vector (vcvttps2qq) instruction alike.
+inline __attribute__((always_inline)) float NoiseValue(float scale, uint64_t seed_hi, float x, float y) {
+  const auto cx = static_cast<int64_t>(std::floor(x * scale));
+  const auto cy = static_cast<int64_t>(std::floor(y * scale));
+  uint64_t h = static_cast<uint64_t>(cx) * 0x9e3779b97f4a7c15ULL ^
+               (static_cast<uint64_t>(cy) + 0x632be59bd9b4e019ULL) * 0xbf58476d1ce4e5b9ULL ^ seed_hi;
+  h ^= h >> 31;
+  h *= 0x94d049bb133111ebULL;
+  h ^= h >> 29;
+  return static_cast<float>(h >> 40) * (1.0f / 16777216.0f);
+}
+
 /// EvaluatePattern(tex, uv[k]) into t[k] for n points (the same values), vectorised for the
 /// checker and the noise.
 void EvaluatePatternBatch(const Texture& tex, const glm::vec2* uv, int n, float* t);
+
+/// EvaluatePatternBatch of the points (x[k], y[k]), from separate arrays (t not aliasing them).
+void EvaluatePatternLanes(const Texture& tex, const float* x, const float* y, int n, float* t);
 
 /// Working memory of ShadeHits, reused from call to call.
 struct ShadeScratch {
@@ -335,10 +363,11 @@ class UnlitShading {
 
   /// Shade(base + k, …) for the m lanes of a camera packet (Embree's geomID, primID, u, v
   /// arrays) when every lane hit the same shape and that shape is an untextured one or a
-  /// textured triangle mesh: the same outputs and queued uvs, in loops over the lanes without
-  /// the per-lane branch on the shape (the triangles' corner uvs are still loaded one lane at a
-  /// time: explicit AVX-512/AVX2 gathers were measured slower here, s8-trace2 in
-  /// docs/performance.md).
+  /// textured triangle mesh: the same outputs, in loops over the lanes without the per-lane
+  /// branch on the shape; a texture's colours are written here, not queued for Finish
+  /// (TexturedTriangleLanes). A packet spread over several triangles still loads their
+  /// corner uvs one lane at a time: explicit AVX-512/AVX2 gathers were measured slower here
+  /// (s8-trace2 in docs/performance.md).
   /// Returns false, having written nothing, for any other packet (then call Shade per lane).
   inline __attribute__((always_inline)) bool ShadeUniformPacket(int base, int m, const unsigned* geom,
                                                                 const unsigned* prim, const float* u, const float* v) {
@@ -370,25 +399,11 @@ class UnlitShading {
       return true;
     }
     lookups_ += static_cast<uint64_t>(m);
-    // FillSurface's uv, operation for operation: (uv_a·w + uv_b·u) + uv_c·v, w = (1 − u) − v.
-    const glm::uvec3* tris = shape_->triangles.data();
-    const glm::vec2* uvs = shape_->uvs.data();
-    float ux[16], uy[16];  // m ≤ 16: one packet
-    for (int k = 0; k < m; ++k) {
-      const glm::uvec3 tri = tris[prim[k]];
-      const float w = 1.0f - u[k] - v[k];
-      ux[k] = uvs[tri.x].x * w + uvs[tri.y].x * u[k] + uvs[tri.z].x * v[k];
-      uy[k] = uvs[tri.x].y * w + uvs[tri.y].y * u[k] + uvs[tri.z].y * v[k];
+    if (m == kPacket) {  // the reference's packets are whole: loops of a constant count
+      TexturedTriangleLanes<kPacket>(base, m, prim, u, v);
+    } else {
+      TexturedTriangleLanes<0>(base, m, prim, u, v);
     }
-    glm::vec2* q = uv_ + m_;
-    int* who = who_ + m_;
-    const Texture** tex = tex_ + m_;
-    for (int k = 0; k < m; ++k) {
-      q[k] = glm::vec2(ux[k], uy[k]);
-      who[k] = base + k;
-      tex[k] = texture_;
-    }
-    m_ += m;
     return true;
   }
 
@@ -399,6 +414,48 @@ class UnlitShading {
   void Finish();
 
  private:
+  /// ShadeUniformPacket's lanes on a textured triangle mesh (m = kCount when kCount > 0): the
+  /// lanes' uvs with FillSurface's operations in its order, (uv_a·w + uv_b·u) + uv_c·v,
+  /// w = (1 − u) − v (a packet on one triangle, the usual case, loads its corners once); then
+  /// the pattern (EvaluatePatternLanes: EvaluatePattern's values) and Finish's colour,
+  /// color_a + (color_b − color_a)·t, written straight to the lanes' samples.
+  template <int kCount>
+  inline __attribute__((always_inline)) void TexturedTriangleLanes(int base, int m_in, const unsigned* prim,
+                                                                   const float* u, const float* v) {
+    const int m = kCount > 0 ? kCount : m_in;
+    const glm::uvec3* tris = shape_->triangles.data();
+    const glm::vec2* uvs = shape_->uvs.data();
+    float ux[16], uy[16];  // m ≤ 16: one packet
+    unsigned other = 0;
+    for (int k = 1; k < m; ++k) other |= prim[k] ^ prim[0];
+    if (other == 0) {
+      const glm::uvec3 tri = tris[prim[0]];
+      const glm::vec2 a = uvs[tri.x], b = uvs[tri.y], c = uvs[tri.z];
+      for (int k = 0; k < m; ++k) {
+        const float w = 1.0f - u[k] - v[k];
+        ux[k] = a.x * w + b.x * u[k] + c.x * v[k];
+        uy[k] = a.y * w + b.y * u[k] + c.y * v[k];
+      }
+    } else {
+      for (int k = 0; k < m; ++k) {
+        const glm::uvec3 tri = tris[prim[k]];
+        const float w = 1.0f - u[k] - v[k];
+        ux[k] = uvs[tri.x].x * w + uvs[tri.y].x * u[k] + uvs[tri.z].x * v[k];
+        uy[k] = uvs[tri.x].y * w + uvs[tri.y].y * u[k] + uvs[tri.z].y * v[k];
+      }
+    }
+    const Texture& tex = *texture_;
+    float t[16];
+    EvaluatePatternLanes(tex, ux, uy, m, t);
+    const glm::vec3 ca = tex.color_a, cab = tex.color_b - tex.color_a;  // Finish's values
+    SampleResult* r = out_ + base;
+    for (int k = 0; k < m; ++k) {
+      r[k].rgb[0] = ca.x + cab.x * t[k];
+      r[k].rgb[1] = ca.y + cab.y * t[k];
+      r[k].rgb[2] = ca.z + cab.z * t[k];
+    }
+  }
+
   const Scene& sc_;
   bool textures_;
   SampleResult* out_;

@@ -188,11 +188,66 @@ TEST(ReferenceResolve, UnlitPacketsShadedInPlaceEqualTheGeneralPath) {
   EXPECT_GT(c_all.texture_lookups, 0u);
 }
 
+// The packets of the reference's tiles (16 samples in one pixel) mostly hit one textured
+// triangle; those lanes get their checker or noise colour in the packet, not queued
+// (UnlitShading::TexturedTriangleLanes). Against the general path, sample for sample: quads of
+// every pattern and a flat one filling a perspective frame (packets on one triangle, on a
+// quad's two triangles, across two shapes, on the background), a partial last packet.
+TEST(ReferenceResolve, UniformTexturedPacketsEqualTheGeneralPath) {
+  const std::string json = R"({"name": "unlit-quads", "effects": ["unlit", "textures"],
+    "camera": {"type": "perspective", "position": [0, 0, 10], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov_y": 40},
+    "background": [0.3, 0.1, 0.2],
+    "materials": {
+      "noise": {"shading": "unlit", "texture": {"pattern": "noise", "scale": 23, "seed": 11,
+                "color_a": [0.1, 0.7, 0.2], "color_b": [0.9, 0.1, 0.4]}},
+      "check": {"shading": "unlit", "texture": {"pattern": "checker", "scale": 7.5,
+                "color_a": [0.2, 0.2, 0.9], "color_b": [1.0, 0.8, 0.1]}},
+      "stripe": {"shading": "unlit", "texture": {"pattern": "stripes", "scale": 4, "angle": 30, "duty": 0.3,
+                 "color_a": [0.5, 0.0, 0.5], "color_b": [0.0, 0.9, 0.9]}},
+      "flat": {"shading": "unlit", "color": [0.6, 0.5, 0.4]}},
+    "objects": [
+      {"shape": "quad", "size": [3.5, 2.5], "material": "noise", "transform": {"translate": [-1.8, 1.3, 0]}},
+      {"shape": "quad", "size": [3.5, 2.5], "material": "check", "transform": {"translate": [1.8, 1.3, 0],
+       "rotate": [20, 10, 0]}},
+      {"shape": "quad", "size": [3.5, 2.5], "material": "stripe", "transform": {"translate": [-1.8, -1.3, 0]}},
+      {"shape": "quad", "size": [3.5, 2.0], "material": "flat", "transform": {"translate": [1.8, -1.3, 0]}}]})";
+  const Scene scene = ParseScene(json, "unlit-quads", ".");
+  const Tracer tracer(scene);
+  const int W = 48, H = 27;
+  std::vector<SamplePos> pos;
+  for (int y = 0; y < H; ++y) {
+    for (int x = 0; x < W; ++x) {
+      for (int s = 0; s < 16; ++s) {  // one packet per pixel: a 4 × 4 grid, jittered
+        pos.push_back({static_cast<float>(x) + (static_cast<float>(s % 4) + 0.31f + 0.02f * (s % 3)) / 4.0f,
+                       static_cast<float>(y) + (static_cast<float>(s / 4) + 0.57f - 0.03f * (s % 5)) / 4.0f});
+      }
+    }
+  }
+  for (int k = 0; k < 7; ++k) pos.push_back({20.3f + 0.01f * k, 6.2f});  // a partial packet in the noise quad
+  std::vector<SampleResult> all(pos.size()), some(pos.size());
+  TraceCounters c_all, c_some;
+  tracer.Trace(pos.data(), static_cast<int>(pos.size()), W, H, all.data(), &c_all);
+  tracer.Trace(pos.data(), static_cast<int>(pos.size()), W, H, some.data(), &c_some, TextureFootprint{0.0f, 1},
+               SampleFields::kShading);
+  int seen[5] = {0, 0, 0, 0, 0};  // background, then shapes 0..3
+  for (size_t k = 0; k < pos.size(); ++k) {
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(std::memcmp(&all[k].rgb[c], &some[k].rgb[c], sizeof(float)), 0) << k;
+    EXPECT_EQ(all[k].surface, some[k].surface) << k;
+    EXPECT_EQ(all[k].shadowed, some[k].shadowed) << k;
+    ++seen[all[k].surface + 1];
+  }
+  for (int s = 0; s < 5; ++s) EXPECT_GT(seen[s], 0) << "no sample sees surface " << s - 1;
+  EXPECT_EQ(c_all.shading_evals, c_some.shading_evals);
+  EXPECT_EQ(c_all.texture_lookups, c_some.texture_lookups);
+  EXPECT_EQ(c_all.primary_rays, c_some.primary_rays);
+}
+
 TEST(ReferenceResolve, PatternBatchEqualsEvaluatePattern) {
   const float inf = std::numeric_limits<float>::infinity();
   std::vector<glm::vec2> uv;
   for (int k = 0; k < 200; ++k) uv.push_back({-3.7f + 0.0731f * k, 5.3f - 0.0457f * k});
-  for (float v : {0.0f, -0.0f, 1e7f, -1e7f, 3e9f, -3e9f, 1e30f, inf, -inf, std::nanf("")}) {
+  for (float v : {0.0f, -0.0f, 1e7f, -1e7f, 3e9f, -3e9f, 1e30f, inf, -inf, std::nanf(""), -0.3f, 8388607.5f,
+                  -8388607.5f, 16777217.0f, -9.223372e18f, 9.223372e18f, -9.3e18f, 9.3e18f, -2.5e9f}) {
     uv.push_back({v, 0.25f});
     uv.push_back({0.25f, v});
     uv.push_back({v, v});
@@ -206,11 +261,17 @@ TEST(ReferenceResolve, PatternBatchEqualsEvaluatePattern) {
     tex.duty = 0.4f;
     std::vector<float> t(uv.size());
     tracer_detail::EvaluatePatternBatch(tex, uv.data(), static_cast<int>(uv.size()), t.data());
+    // EvaluatePatternLanes (the packets' path: 8 lanes at a time, then a tail), from split arrays.
+    std::vector<float> xs, ys, tl(uv.size());
+    for (const glm::vec2& q : uv) xs.push_back(q.x), ys.push_back(q.y);
+    tracer_detail::EvaluatePatternLanes(tex, xs.data(), ys.data(), static_cast<int>(uv.size()), tl.data());
     int zeros = 0, ones = 0;
     for (size_t k = 0; k < uv.size(); ++k) {
       const float want = EvaluatePattern(tex, uv[k]);
       EXPECT_EQ(std::memcmp(&t[k], &want, sizeof want), 0)
           << "pattern " << static_cast<int>(p) << " uv " << uv[k].x << ", " << uv[k].y;
+      EXPECT_EQ(std::memcmp(&tl[k], &want, sizeof want), 0)
+          << "lanes, pattern " << static_cast<int>(p) << " uv " << uv[k].x << ", " << uv[k].y;
       zeros += want == 0.0f;
       ones += want == 1.0f;
     }
