@@ -101,7 +101,7 @@ std::string QualityTimeChartSvg(const std::vector<ExportSource>& sources, const 
   o += "</metadata>\n<desc>" +
        XmlEscape("Mean " + info.label + " against mean time per frame over the chosen scenes (" +
                  std::to_string(sel.scenes.size()) + " asked; the tables' notes name any left out). " +
-                 ConditionsSentence(sources.front().report, sel.metric) +
+                 ConditionsSentence(sources.front().report) +
                  (unplotted.empty() ? ""
                                     : " Not plotted: " +
                                           [&] {

@@ -177,7 +177,7 @@ std::vector<std::string> ProvenanceLines(const std::vector<ExportSource>& source
   return lines;
 }
 
-std::string ConditionsSentence(const Report& r, const std::string& metric, bool timing) {
+std::string ConditionsSentence(const Report& r, bool timing) {
   std::string out;
   bool exact = !r.scenes.empty();
   for (const auto& s : r.scenes) exact = exact && s.ref_exact;

@@ -53,9 +53,10 @@ std::string SettingOf(const Report& report, const std::string& key);
 std::vector<std::string> ProvenanceLines(const std::vector<ExportSource>& sources);
 
 /// What produced the numbers, for captions: reference ("64-spp stratified reference" or
-/// "exact-coverage reference"), size, timing conditions (repeats, warm-up, CPU, threads) and
-/// the viewing condition when the metric depends on one (FLIP at 67 pixels per degree).
+/// "exact-coverage reference"), size, the viewing condition (FLIP and the temporal error: e.g.
+/// 67 pixels per degree), the post filters' sampler and the timing conditions (repeats,
+/// warm-up, CPU, threads).
 /// `timing` false leaves the timing conditions out (a figure of images has no times).
-std::string ConditionsSentence(const Report& report, const std::string& metric, bool timing = true);
+std::string ConditionsSentence(const Report& report, bool timing = true);
 
 }  // namespace aalab

@@ -172,11 +172,11 @@ std::string RunsSentence(const std::vector<ExportSource>& sources) {
   return " Runs: " + Join(parts, ", ") + ".";
 }
 
-std::string Conditions(const std::vector<ExportSource>& sources, const std::string& metric) {
-  std::string out = " " + ConditionsSentence(sources.front().report, metric);
+std::string Conditions(const std::vector<ExportSource>& sources) {
+  std::string out = " " + ConditionsSentence(sources.front().report);
   for (size_t i = 1; i < sources.size(); ++i) {
-    const std::string c = ConditionsSentence(sources[i].report, metric);
-    if (c != ConditionsSentence(sources.front().report, metric)) out += " Run " + sources[i].label + ": " + c;
+    const std::string c = ConditionsSentence(sources[i].report);
+    if (c != ConditionsSentence(sources.front().report)) out += " Run " + sources[i].label + ": " + c;
   }
   return out;
 }
@@ -303,7 +303,7 @@ ExportTable MetricTable(const std::vector<ExportSource>& sources, const ExportSe
   }
   t.caption = MetricWithUnit(sel.metric) + ", " + Direction(info.better) + ", of each method per scene" +
               (mean ? " and the mean over scenes" : "") + "; best per column in bold." + RunsSentence(sources) +
-              Conditions(sources, sel.metric);
+              Conditions(sources);
   for (const auto& n : scope_notes) t.notes.push_back(n);
   if (!floor_notes.empty()) {
     t.notes.push_back(
@@ -379,7 +379,7 @@ ExportTable CostTable(const std::vector<ExportSource>& sources, const ExportSele
       "), time per frame (mean of the per-scene medians), time added over none, gain per ms added, and "
       "whether the method is on the Pareto front of quality against time. Fastest first; best per "
       "column in bold." +
-      RunsSentence(sources) + Conditions(sources, sel.metric);
+      RunsSentence(sources) + Conditions(sources);
   if (any_baseless) t.notes.push_back("No gain or time added without a none row with a value.");
   if (any_nonpositive) {
     t.notes.push_back(

@@ -143,10 +143,10 @@ std::string FigureLatex(const std::vector<ExportSource>& sources, const CropFigu
   }
   // Each report's own conditions (viewing, sampler, reference): the first's, then any other
   // report's that differ, named by its label.
-  const std::string first = ConditionsSentence(sources.front().report, "", false);
+  const std::string first = ConditionsSentence(sources.front().report, false);
   caption += " " + (sources.size() > 1 ? sources.front().label + ": " : std::string()) + first;
   for (size_t i = 1; i < sources.size(); ++i) {
-    const std::string own = ConditionsSentence(sources[i].report, "", false);
+    const std::string own = ConditionsSentence(sources[i].report, false);
     caption += " " + sources[i].label + ": " + (own == first ? std::string("the same conditions.") : own);
   }
   std::string o_tex;
