@@ -8,6 +8,7 @@
 //   tracer_msaa.cpp   Tracer::TraceMsaa: coverage samples, one shading per primitive
 //   tracer_gltf.cpp   image textures (footprints, mip-mapped fetches), glTF alpha and the
 //                     metallic-roughness BRDF
+//   tracer_plane_uv.cpp the footprint's three rays on the hit triangle's plane, in vector lanes
 #pragma once
 #include <embree3/rtcore.h>
 
