@@ -347,7 +347,7 @@ inline glm::vec4 Blend4(const At& at, int i0, int i1, int j0, int j1, float ax, 
 
 }  // namespace
 
-glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t) {
+glm::vec4 SampleBilinearScalar(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t) {
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return level.Fetch(0);
   const double x = FoldCoord(static_cast<double>(uv.x) * level.width - 0.5, level.width, wrap_s);
   const double y = FoldCoord(static_cast<double>(uv.y) * level.height - 0.5, level.height, wrap_t);
@@ -406,45 +406,64 @@ inline __m128 Texel8(const uint8_t* bytes, size_t i, const float* rgb, const flo
   return _mm_setr_ps(rgb[p[0]], rgb[p[1]], rgb[p[2]], alpha[p[3]]);
 }
 
+/// SampleBilinear of an 8-bit level at uv into *out (rgb, alpha: its decode tables), in SSE2
+/// registers; false, having written nothing, where SampleBilinearScalar must answer (a
+/// non-finite uv, a coordinate FoldCoord would fold).
+inline __attribute__((always_inline)) bool Bilinear8(const MipLevel& level, const glm::vec2& uv, WrapMode wrap_s,
+                                                     WrapMode wrap_t, const float* rgb, const float* alpha,
+                                                     float* out) {
+  static_assert(sizeof(glm::vec2) == 8 && sizeof(glm::vec4) == 16, "glm vectors must be packed floats");
+  const __m128d size = _mm_setr_pd(static_cast<double>(level.width), static_cast<double>(level.height));
+  // (x, y) in the two lanes of an SSE2 double register: x = u·W − ½ in double, floor by
+  // truncation (exact: |x| < 1e8 < 2^31) minus one where that rounded up, the fraction
+  // x − ⌊x⌋ (exact in double) rounded to float: SampleBilinearScalar's arithmetic.
+  const __m128d c =
+      _mm_sub_pd(_mm_mul_pd(_mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&uv)))), size),
+                 _mm_set1_pd(0.5));
+  // Non-finite uv (NaN fails the compare) or a coordinate FoldCoord would fold.
+  const __m128d abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
+  if (_mm_movemask_pd(_mm_cmplt_pd(_mm_and_pd(c, abs_mask), _mm_set1_pd(1e8))) != 3) return false;
+  const __m128d t = _mm_cvtepi32_pd(_mm_cvttpd_epi32(c));
+  const __m128d f = _mm_sub_pd(t, _mm_and_pd(_mm_cmpgt_pd(t, c), _mm_set1_pd(1.0)));
+  const __m128i fi = _mm_cvttpd_epi32(f);
+  const __m128 a = _mm_cvtpd_ps(_mm_sub_pd(c, f));
+  const int x0 = _mm_cvtsi128_si32(fi), y0 = _mm_cvtsi128_si32(_mm_shuffle_epi32(fi, 1));
+  int i0, i1, j0, j1;
+  WrapPair(x0, level.width, wrap_s, &i0, &i1);
+  WrapPair(y0, level.height, wrap_t, &j0, &j1);
+  const size_t w = static_cast<size_t>(level.width);
+  const size_t r0 = static_cast<size_t>(j0) * w, r1 = static_cast<size_t>(j1) * w;
+  const uint8_t* bytes = level.bytes.data();
+  const __m128 v = Blend4Sse(
+      Texel8(bytes, r0 + static_cast<size_t>(i0), rgb, alpha), Texel8(bytes, r0 + static_cast<size_t>(i1), rgb, alpha),
+      Texel8(bytes, r1 + static_cast<size_t>(i0), rgb, alpha), Texel8(bytes, r1 + static_cast<size_t>(i1), rgb, alpha),
+      _mm_cvtss_f32(a), _mm_cvtss_f32(_mm_shuffle_ps(a, a, 1)));
+  _mm_storeu_ps(out, v);
+  return true;
+}
+
 }  // namespace
+
+glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t) {
+  if (level.format == TexelFormat::kSrgb8 || level.format == TexelFormat::kUnorm8) {
+    glm::vec4 r;
+    if (Bilinear8(level, uv, wrap_s, wrap_t, level.format == TexelFormat::kSrgb8 ? Srgb8Table() : Unorm8Table(),
+                  Unorm8Table(), &r.x)) {
+      return r;
+    }
+  }
+  return SampleBilinearScalar(level, uv, wrap_s, wrap_t);
+}
 
 void SampleBilinearBatch(const MipLevel& level, const glm::vec2* uv, int n, WrapMode wrap_s, WrapMode wrap_t,
                          glm::vec4* out) {
-  static_assert(sizeof(glm::vec2) == 8 && sizeof(glm::vec4) == 16, "glm vectors must be packed floats");
   const bool is8 = level.format == TexelFormat::kSrgb8 || level.format == TexelFormat::kUnorm8;
   const float* rgb = level.format == TexelFormat::kSrgb8 ? Srgb8Table() : Unorm8Table();
   const float* alpha = Unorm8Table();
-  const uint8_t* bytes = level.bytes.data();
-  const size_t w = static_cast<size_t>(level.width);
-  const __m128d size = _mm_setr_pd(static_cast<double>(level.width), static_cast<double>(level.height));
-  const __m128d half = _mm_set1_pd(0.5), one = _mm_set1_pd(1.0), limit = _mm_set1_pd(1e8);
-  const __m128d abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
   for (int k = 0; k < n; ++k) {
-    // (x, y) of one sample in the two lanes of an SSE2 double register: x = u·W − ½ in
-    // double, floor by truncation (exact: |x| < 1e8 < 2^31) minus one where that rounded up,
-    // the fraction x − ⌊x⌋ (exact in double) rounded to float: SampleBilinear's arithmetic.
-    const __m128d c = _mm_sub_pd(
-        _mm_mul_pd(_mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&uv[k])))), size), half);
-    // Non-finite uv (NaN fails the compare) or a coordinate FoldCoord would fold: the scalar path.
-    if (_mm_movemask_pd(_mm_cmplt_pd(_mm_and_pd(c, abs_mask), limit)) != 3 || !is8) {
-      out[k] = SampleBilinear(level, uv[k], wrap_s, wrap_t);
-      continue;
+    if (!is8 || !Bilinear8(level, uv[k], wrap_s, wrap_t, rgb, alpha, &out[k].x)) {
+      out[k] = SampleBilinearScalar(level, uv[k], wrap_s, wrap_t);
     }
-    const __m128d t = _mm_cvtepi32_pd(_mm_cvttpd_epi32(c));
-    const __m128d f = _mm_sub_pd(t, _mm_and_pd(_mm_cmpgt_pd(t, c), one));
-    const __m128i fi = _mm_cvttpd_epi32(f);
-    alignas(16) float a[4];
-    _mm_store_ps(a, _mm_cvtpd_ps(_mm_sub_pd(c, f)));
-    const int x0 = _mm_cvtsi128_si32(fi), y0 = _mm_cvtsi128_si32(_mm_shuffle_epi32(fi, 1));
-    int i0, i1, j0, j1;
-    WrapPair(x0, level.width, wrap_s, &i0, &i1);
-    WrapPair(y0, level.height, wrap_t, &j0, &j1);
-    const size_t r0 = static_cast<size_t>(j0) * w, r1 = static_cast<size_t>(j1) * w;
-    const __m128 v = Blend4Sse(Texel8(bytes, r0 + static_cast<size_t>(i0), rgb, alpha),
-                               Texel8(bytes, r0 + static_cast<size_t>(i1), rgb, alpha),
-                               Texel8(bytes, r1 + static_cast<size_t>(i0), rgb, alpha),
-                               Texel8(bytes, r1 + static_cast<size_t>(i1), rgb, alpha), a[0], a[1]);
-    _mm_storeu_ps(&out[k].x, v);
   }
 }
 

@@ -137,14 +137,20 @@ float MipLambda(const UvDerivs& d, int width, int height);
 /// Folds the integer texel index i into [0, n) with the wrap mode.
 int WrapIndex(int i, int n, WrapMode mode);
 
-/// Bilinear tap of one level at (u, v): texel centres at ((i + 0.5)/W, (j + 0.5)/H).
+/// Bilinear tap of one level at (u, v): texel centres at ((i + 0.5)/W, (j + 0.5)/H). An
+/// 8-bit level's tap runs in SSE registers (SampleBilinearBatch's arithmetic), every other
+/// one (and a non-finite or far-off uv) as SampleBilinearScalar: the same bits either way.
 glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t);
+
+/// SampleBilinear texel by texel in float and double scalars (FoldCoord, floor, WrapIndex,
+/// glm's vec4 blend): the reference the SSE taps are tested against.
+glm::vec4 SampleBilinearScalar(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t);
 
 /// SampleBilinear of each uv[k] into out[k], k < n, with the same bits: the batch form the
 /// reference's level-0 texture fetches take over a packet of samples: the format and tables
 /// decided once per batch, a sample's texel x and y in the two lanes of an SSE2 double
 /// register, each texel's four channels decoded by table and blended in one SSE register,
-/// with the same operations in the same order as SampleBilinear.
+/// with the same operations in the same order as SampleBilinearScalar.
 void SampleBilinearBatch(const MipLevel& level, const glm::vec2* uv, int n, WrapMode wrap_s, WrapMode wrap_t,
                          glm::vec4* out);
 

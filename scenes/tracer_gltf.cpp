@@ -176,6 +176,17 @@ bool BackFaceCulled(const Scene& sc, const Material& m, const Hit& h, glm::vec3 
   return glm::dot(n, dir) > 0.0f;
 }
 
+PlaneUvs UvOnPlaneScalar(const glm::vec3 p[3], const glm::vec2 t[3], const glm::vec3 o[3], const glm::vec3 d[3]) {
+  Shape s;
+  s.positions = {p[0], p[1], p[2]};
+  s.uvs = {t[0], t[1], t[2]};
+  s.triangles = {glm::uvec3(0, 1, 2)};
+  const TrianglePlane tp = PlaneOf(s, 0);
+  PlaneUvs r;
+  for (int k = 0; k < 3; ++k) r.ok[k] = UvOnPlane(s, 0, tp, {o[k], d[k]}, &r.uv[k]);
+  return r;
+}
+
 UvDerivs HitUvDerivs(const Tracer::Impl& im, const Scene& sc, const Hit& h, glm::vec3 org, glm::vec3 dir,
                      const Footprint& fp, int set) {
   UvDerivs d;
@@ -183,19 +194,26 @@ UvDerivs HitUvDerivs(const Tracer::Impl& im, const Scene& sc, const Hit& h, glm:
   const Shape& s = sc.shapes[h.shape];
   if (s.kind != ShapeKind::kTriangles) return d;
   Ray rx, ry;
-  glm::dvec2 uv, ux, uy;
   constexpr float kHuge = 1e30f;  // an offset ray beyond the plane: the coarsest level
   if (!OffsetRays(im, sc.camera, org, dir, fp, &rx, &ry)) {
     d.dx = d.dy = glm::vec2(kHuge, 0.0f);
     return d;
   }
-  const TrianglePlane tp = PlaneOf(s, h.prim);
-  if (!UvOnPlane(s, h.prim, tp, {org, dir}, &uv, set)) {
+  // The camera ray and its two offset rays on the triangle's plane, in lanes (UvOnPlaneLanes:
+  // UvOnPlane's values and verdicts for each).
+  const glm::uvec3 tri = s.triangles[h.prim];
+  const std::vector<glm::vec2>& uvs = set == 1 ? s.uvs1 : s.uvs;
+  const glm::vec3 p[3] = {s.positions[tri.x], s.positions[tri.y], s.positions[tri.z]};
+  glm::vec2 t[3] = {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)};
+  if (!uvs.empty()) t[0] = uvs[tri.x], t[1] = uvs[tri.y], t[2] = uvs[tri.z];
+  const glm::vec3 o[3] = {org, rx.o, ry.o}, dd[3] = {dir, rx.d, ry.d};
+  const PlaneUvs r = UvOnPlaneLanes(p, t, o, dd);
+  if (!r.ok[0]) {
     d.dx = d.dy = glm::vec2(kHuge, 0.0f);
     return d;
   }
-  d.dx = UvOnPlane(s, h.prim, tp, rx, &ux, set) ? glm::vec2(ux - uv) : glm::vec2(kHuge, 0.0f);
-  d.dy = UvOnPlane(s, h.prim, tp, ry, &uy, set) ? glm::vec2(uy - uv) : glm::vec2(kHuge, 0.0f);
+  d.dx = r.ok[1] ? glm::vec2(r.uv[1] - r.uv[0]) : glm::vec2(kHuge, 0.0f);
+  d.dy = r.ok[2] ? glm::vec2(r.uv[2] - r.uv[0]) : glm::vec2(kHuge, 0.0f);
   return d;
 }
 

@@ -8,6 +8,7 @@
 //   tracer_msaa.cpp   Tracer::TraceMsaa: coverage samples, one shading per primitive
 //   tracer_gltf.cpp   image textures (footprints, mip-mapped fetches), glTF alpha and the
 //                     metallic-roughness BRDF
+//   tracer_plane_uv.cpp the footprint's three rays on the hit triangle's plane, in vector lanes
 #pragma once
 #include <embree3/rtcore.h>
 
@@ -195,6 +196,23 @@ bool BackFaceCulled(const Scene& sc, const Material& m, const Hit& h, glm::vec3 
 /// `set`: the texture coordinate set (0: Shape::uvs, 1: Shape::uvs1).
 UvDerivs HitUvDerivs(const Tracer::Impl& im, const Scene& sc, const Hit& h, glm::vec3 org, glm::vec3 dir,
                      const Footprint& fp, int set = 0);
+
+/// Where three rays (o[k], d[k]) meet the plane of the triangle with corners p and texture
+/// coordinates t, as texture coordinates extrapolated over the plane (in double): ok[k] false
+/// where ray k is (nearly) parallel to the plane, meets it behind its origin, or the triangle
+/// is degenerate or a value is not finite; uv[k] is then unspecified.
+struct PlaneUvs {
+  glm::dvec2 uv[3];
+  bool ok[3];
+};
+
+/// PlaneUvs of the camera ray and its two offset rays, the three evaluated in vector lanes
+/// with the same per-lane operations as UvOnPlaneScalar (the same bits; HitUvDerivs' path).
+PlaneUvs UvOnPlaneLanes(const glm::vec3 p[3], const glm::vec2 t[3], const glm::vec3 o[3], const glm::vec3 d[3]);
+
+/// PlaneUvs ray by ray (the plane's terms once, then a ray's barycentrics and uv in double):
+/// the reference UvOnPlaneLanes is tested against.
+PlaneUvs UvOnPlaneScalar(const glm::vec3 p[3], const glm::vec2 t[3], const glm::vec3 o[3], const glm::vec3 d[3]);
 
 /// A texture fetch of material texture `t` at uv with derivatives d (of t's coordinate set,
 /// before its KHR_texture_transform, which is applied here), with t's sampler filters and
