@@ -150,11 +150,15 @@ inline __attribute__((always_inline)) void FillSurface(const Scene& scene, const
   out.uv = glm::vec2(0.0f);
   glm::vec3 ng = h.ng;
   glm::vec3 n = ng;
+  // Vertex normals interpolated: n differs from ng. Without them n is ng itself, and its
+  // normalisation and flip below are ng's (the same vector, the same operations, ng's
+  // fallback), so they are not done twice.
+  const bool vertex_normals = normals && s.kind == ShapeKind::kTriangles && !s.normals.empty();
   if (s.kind == ShapeKind::kTriangles) {
     const glm::uvec3 tri = s.triangles[h.prim];
     const float w = 1.0f - h.u - h.v;
     if (uv) out.uv = s.uvs[tri.x] * w + s.uvs[tri.y] * h.u + s.uvs[tri.z] * h.v;
-    if (normals && !s.normals.empty()) n = s.normals[tri.x] * w + s.normals[tri.y] * h.u + s.normals[tri.z] * h.v;
+    if (vertex_normals) n = s.normals[tri.x] * w + s.normals[tri.y] * h.u + s.normals[tri.z] * h.v;
   } else if (uv) {
     CurvedSurfaceUv(s, h, out);
   }
@@ -168,10 +172,14 @@ inline __attribute__((always_inline)) void FillSurface(const Scene& scene, const
     return (len > 0.0f && std::isfinite(len)) ? v / len : fallback;
   };
   ng = safe_normalize(ng, -dir);
-  n = safe_normalize(n, ng);
+  if (vertex_normals) n = safe_normalize(n, ng);  // the fallback: ng before its flip
   if (glm::dot(ng, dir) > 0.0f) ng = -ng;
-  if (glm::dot(n, dir) > 0.0f) n = -n;
   out.ng = ng;
+  if (!vertex_normals) {
+    out.n = ng;
+    return;
+  }
+  if (glm::dot(n, dir) > 0.0f) n = -n;
   out.n = n;
 }
 

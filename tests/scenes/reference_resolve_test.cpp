@@ -281,5 +281,84 @@ TEST(ReferenceResolve, PatternBatchEqualsEvaluatePattern) {
   }
 }
 
+// SurfaceAt's normals against their definition (FillSurface before it skipped the second
+// normalisation): ng = h.ng / |h.ng| where 0 < |h.ng| < ∞, else −dir; n = the interpolated
+// vertex normal (or h.ng without vertex normals) normalised the same way with ng as its
+// fallback; each flipped to face the ray. Hits built by hand on every kind of shape, one
+// triangle mesh with vertex normals, with normals that are ordinary, unnormalised, huge
+// (|ng| overflows), tiny (|ng| underflows to 0), zero, infinite and NaN, facing and not.
+glm::vec3 SafeNormalizeDefinition(glm::vec3 v, glm::vec3 fallback) {
+  const float len = std::sqrt((v.x * v.x + v.y * v.y) + v.z * v.z);
+  return (len > 0.0f && std::isfinite(len)) ? glm::vec3(v.x / len, v.y / len, v.z / len) : fallback;
+}
+
+glm::vec3 FacingDefinition(glm::vec3 v, glm::vec3 dir) {
+  return (v.x * dir.x + v.y * dir.y) + v.z * dir.z > 0.0f ? -v : v;
+}
+
+bool SameBits(glm::vec3 a, glm::vec3 b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+TEST(ReferenceResolve, SurfaceNormalsMatchTheirDefinition) {
+  Scene scene = ParseScene(
+      R"({"name": "shapes", "effects": ["lambert"], "camera": {"type": "perspective", "position": [0, 0, 10], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov_y": 50},
+    "materials": {"a": {"shading": "lambert", "color": [0.5, 0.5, 0.5]}},
+    "light_units": "gltf", "lights": [{"type": "directional", "direction": [0, -1, 0]}],
+    "objects": [
+      {"shape": "box", "size": [1, 2, 3], "material": "a"},
+      {"shape": "sphere", "radius": 1.5, "material": "a"},
+      {"shape": "disk", "radius": 1.0, "material": "a", "transform": {"rotate": [20, 30, 0]}},
+      {"shape": "capsule", "from": [0, 0, 0], "to": [1, 1, 0], "radius": 0.2, "material": "a"}]})",
+      "shapes", ".");
+  Shape smooth = scene.shapes[0];  // the box's triangles with vertex normals of their own
+  ASSERT_EQ(smooth.kind, ShapeKind::kTriangles);
+  for (size_t k = 0; k < smooth.positions.size(); ++k) {
+    const glm::vec3 p = smooth.positions[k];
+    smooth.normals.push_back(glm::vec3(p.x + 0.3f * static_cast<float>(k % 3), p.y - 0.1f, p.z * 2.0f));
+  }
+  ASSERT_GE(smooth.normals.size(), 8u);
+  for (int k = 0; k < 4; ++k) smooth.normals[static_cast<size_t>(k)] = glm::vec3(0.0f);  // n vanishes: ng's fallback
+  for (int k = 4; k < 8; ++k)
+    smooth.normals[static_cast<size_t>(k)] = glm::vec3(std::numeric_limits<float>::infinity(), 0, 0);
+  scene.shapes.push_back(smooth);
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  const glm::vec3 ngs[] = {
+      {0, 0, 1},   {0.3f, -0.4f, 0.87f}, {-2, 5, 0.5f},      {3e37f, 2e38f, -1e38f},    {1e-30f, 2e-30f, 0}, {0, 0, 0},
+      {inf, 0, 0}, {nan, 1, 0},          {-0.0f, -0.0f, -1}, {1e-20f, -3e-20f, 1e-20f}, {0.6f, 0, -0.8f}};
+  const glm::vec3 dirs[] = {glm::normalize(glm::vec3(0.1f, -0.2f, -1)), glm::normalize(glm::vec3(-0.3f, 0.5f, 1)),
+                            glm::vec3(1, 0, 0)};
+  int with_vertex_normals = 0;
+  for (int shape = 0; shape < static_cast<int>(scene.shapes.size()); ++shape) {
+    const Shape& s = scene.shapes[static_cast<size_t>(shape)];
+    const unsigned prims = s.kind == ShapeKind::kTriangles ? static_cast<unsigned>(s.triangles.size()) : 1u;
+    for (unsigned prim = 0; prim < prims; ++prim) {
+      for (const glm::vec3 ng : ngs) {
+        for (const glm::vec3 dir : dirs) {
+          tracer_detail::Hit h;
+          h.t = 2.5f;
+          h.shape = shape;
+          h.prim = prim;
+          h.u = 0.25f;
+          h.v = 0.125f + 0.5f * static_cast<float>(prim % 2);
+          h.ng = ng;
+          const glm::vec3 org(0.5f, 1.0f, 6.0f);
+          const tracer_detail::Surface got = tracer_detail::SurfaceAt(scene, h, org, dir, false, true);
+          glm::vec3 n = ng;
+          if (!s.normals.empty()) {
+            const glm::uvec3 tri = s.triangles[prim];
+            const float w = 1.0f - h.u - h.v;
+            n = s.normals[tri.x] * w + s.normals[tri.y] * h.u + s.normals[tri.z] * h.v;
+            ++with_vertex_normals;
+          }
+          const glm::vec3 ng_unit = SafeNormalizeDefinition(ng, -dir);
+          const glm::vec3 n_unit = SafeNormalizeDefinition(n, ng_unit);
+          EXPECT_TRUE(SameBits(got.ng, FacingDefinition(ng_unit, dir))) << shape << " " << prim;
+          EXPECT_TRUE(SameBits(got.n, FacingDefinition(n_unit, dir))) << shape << " " << prim;
+        }
+      }
+    }
+  }
+  EXPECT_GT(with_vertex_normals, 0);
+}
+
 }  // namespace
 }  // namespace aalab
