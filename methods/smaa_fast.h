@@ -212,15 +212,17 @@ class PlaneEdges {
   PlaneEdges(const EdgePlane& pl, SubTexel mode) : pl_(pl), mode_(mode) {}
   F2 Sample(float u, float v) {
     ++taps_;
+#if defined(__SSE2__)
+    if (mode_ == SubTexel::kFixed8) return Sample8(u, v);
+#endif
     const int w = pl_.w, h = pl_.h;
     const BilinearFootprint f = FootprintAt(u, v, w, h, mode_);
     const int xa = std::clamp(f.x0, 0, w - 1), xb = std::clamp(f.x0 + 1, 0, w - 1);
     const int ya = std::clamp(f.y0, 0, h - 1), yb = std::clamp(f.y0 + 1, 0, h - 1);
     const uint8_t a = pl_.Row(ya)[xa], b = pl_.Row(ya)[xb], c = pl_.Row(yb)[xa], d = pl_.Row(yb)[xb];
 #if defined(__SSE2__)
-    // r and g in two lanes: the texels' (bit 0, bit 1) as floats from a table, then the same
+    // r and g in two lanes: the texels' (bit 0, bit 1) as floats from kPair, then the same
     // three FilterLerps per lane as BilinearBlend.
-    alignas(16) static constexpr float kPair[4][4] = {{0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {1, 1, 0, 0}};
     const __m128 fx = _mm_set1_ps(f.fx), fy = _mm_set1_ps(f.fy);
     const __m128 ta = _mm_load_ps(kPair[a]), tb = _mm_load_ps(kPair[b]);
     const __m128 tc = _mm_load_ps(kPair[c]), td = _mm_load_ps(kPair[d]);
@@ -238,6 +240,42 @@ class PlaneEdges {
   void CountTaps(int n) { taps_ += static_cast<uint64_t>(n); }  // fetches settled from the bytes (DiagSurelyZero)
 
  private:
+#if defined(__SSE2__)
+  // Sample for 8-bit fractions, the searches' and corners' hot fetch: BilinearAt8's rounding
+  // (the same x0, y0, fx, fy), then the texels. Clamping x0 to [−1, w] and then x0 and x0 + 1
+  // to [0, w − 1] equals clamping x0 and x0 + 1 to [0, w − 1] directly; where the footprint
+  // lies inside the plane (0 <= x0 < w − 1, 0 <= y0 < h − 1) no clamp moves it, so the four
+  // texels are read from one address. The same four bytes and the same lerps as Sample,
+  // so the same bits (tests/methods/smaa_fetch_test.cpp).
+  [[gnu::always_inline]] F2 Sample8(float u, float v) {
+    const int w = pl_.w, h = pl_.h;
+    const __m128 x = _mm_sub_ps(_mm_setr_ps(u, v, 0.0f, 0.0f), _mm_set1_ps(0.5f));
+    const __m128i t = _mm_cvtps_epi32(_mm_mul_ps(x, _mm_set1_ps(256.0f)));
+    const __m128 fr = _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(t, _mm_set1_epi32(255))), _mm_set1_ps(1.0f / 256.0f));
+    const __m128i i0 = _mm_srai_epi32(t, 8);
+    const int x0 = _mm_cvtsi128_si32(i0), y0 = _mm_cvtsi128_si32(_mm_shuffle_epi32(i0, 1));
+    uint8_t a, b, c, d;
+    if (static_cast<unsigned>(x0) < static_cast<unsigned>(w - 1) &&
+        static_cast<unsigned>(y0) < static_cast<unsigned>(h - 1)) {
+      const uint8_t* p = pl_.e.get() + static_cast<size_t>(y0) * w + x0;
+      a = p[0], b = p[1], c = p[w], d = p[w + 1];
+    } else {
+      const int xa = std::clamp(x0, 0, w - 1), xb = std::clamp(x0 + 1, 0, w - 1);
+      const uint8_t* ra = pl_.Row(std::clamp(y0, 0, h - 1));
+      const uint8_t* rb = pl_.Row(std::clamp(y0 + 1, 0, h - 1));
+      a = ra[xa], b = ra[xb], c = rb[xa], d = rb[xb];
+    }
+    const __m128 fx = _mm_shuffle_ps(fr, fr, 0x00), fy = _mm_shuffle_ps(fr, fr, 0x55);
+    const __m128 ta = _mm_load_ps(kPair[a]), tb = _mm_load_ps(kPair[b]);
+    const __m128 tc = _mm_load_ps(kPair[c]), td = _mm_load_ps(kPair[d]);
+    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
+    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
+    const __m128 rg = _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top)));
+    return {_mm_cvtss_f32(rg), _mm_cvtss_f32(_mm_shuffle_ps(rg, rg, 1))};
+  }
+  // (bit 0, bit 1) of an edge byte as floats.
+  alignas(16) static constexpr float kPair[4][4] = {{0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {1, 1, 0, 0}};
+#endif
   const EdgePlane& pl_;
   SubTexel mode_;
   uint64_t taps_ = 0;

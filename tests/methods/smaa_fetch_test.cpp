@@ -10,6 +10,7 @@
 // shader with it off and makes exactly the fetches it reported more. Frame widths and heights up to 8192 (the
 // coordinates' rounding grows with the size), max_search_steps_diag 1, 8, 16 and 20, with and without corners; and the
 // test must answer true for most pixels (a test that never answers would pass the first part).
+// PlaneEdges::Sample's 8-bit path against BilinearSampler (kFixed8) on the RGBA8 edge texture.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -161,6 +162,58 @@ TEST(SmaaFetch, DiagSurelyZeroMatchesTheDiagonalSearch) {
         }
       }
     }
+  }
+}
+
+// PlaneEdges::Sample with 8-bit fractions (its one-address read inside the plane, its clamps at
+// the border) against the reference path's fetch: BilinearSampler(kFixed8) on the RGBA8 edge
+// texture (r = 255 for bit 0, g = 255 for bit 1), r and g bit for bit. Planes from 1×1 to
+// 67×33 (one-texel rows and columns, where no footprint lies inside); every coordinate on a
+// 1/1024 grid over [−3, size + 3] and a few ulps either side of it, paired with random
+// coordinates on the other axis, then random pairs.
+TEST(SmaaFetch, PlaneEdgesFixed8IsTheSamplerOnTheEdgeTexture) {
+  const int sizes[][2] = {{1, 1}, {1, 6}, {6, 1}, {2, 2}, {7, 5}, {67, 33}};
+  uint32_t seed = 12345;
+  auto rnd = [&seed](float lo, float hi) {
+    seed = seed * 1664525u + 1013904223u;
+    return lo + (hi - lo) * static_cast<float>(seed >> 8) / 16777216.0f;
+  };
+  for (const auto& sz : sizes) {
+    const int w = sz[0], h = sz[1];
+    const EdgePlane pl = RandomPlane(w, h, static_cast<uint32_t>(w * 131 + h), 2);
+    Image8 tex(w, h, 4);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const uint8_t e = pl.Row(y)[x];
+        uint8_t* t = tex.Row(y) + 4 * x;
+        t[0] = e & 1 ? 255 : 0, t[1] = e & 2 ? 255 : 0, t[2] = 0, t[3] = 0;
+      }
+    }
+    BilinearSampler ref(tex, SubTexel::kFixed8);
+    PlaneEdges fast(pl, SubTexel::kFixed8);
+    long n = 0, bad = 0;
+    auto check = [&](float u, float v) {
+      const Float4 r = ref.Sample(u, v);
+      const smaa_detail::F2 f = fast.Sample(u, v);
+      ++n;
+      if (std::memcmp(&r.r, &f.x, 4) != 0 || std::memcmp(&r.g, &f.y, 4) != 0) {
+        if (++bad < 5) ADD_FAILURE() << w << "x" << h << " at (" << u << ", " << v << "): " << f.x << ", " << f.y;
+      }
+    };
+    for (int axis = 0; axis < 2; ++axis) {
+      const int size = axis == 0 ? w : h;
+      for (int k = -3 * 1024; k <= (size + 3) * 1024; ++k) {
+        float c = static_cast<float>(k) / 1024.0f;
+        for (int ulp = 0; ulp < 3; ++ulp, c = std::nextafter(c, -1e9f)) {
+          const float o = axis == 0 ? rnd(-3.0f, h + 3.0f) : rnd(-3.0f, w + 3.0f);
+          if (axis == 0) check(c, o), check(std::nextafter(c, 1e9f), o);
+          if (axis == 1) check(o, c), check(o, std::nextafter(c, 1e9f));
+        }
+      }
+    }
+    for (int i = 0; i < 200000; ++i) check(rnd(-3.0f, w + 3.0f), rnd(-3.0f, h + 3.0f));
+    EXPECT_EQ(bad, 0) << w << "x" << h << ", " << n << " fetches";
+    EXPECT_EQ(fast.Taps(), static_cast<uint64_t>(n));
   }
 }
 
