@@ -68,11 +68,15 @@ AALAB_TAA_AVX512 inline void StoreRgba16(const EncodeTables& t, __m512 r, __m512
   _mm512_storeu_si512(out, px);
 }
 
+/// ToYCoCg per lane. Cg's −0.25 r + 0.5 g is formed as 0.5 g − 0.25 r, reusing Y's 0.25 r:
+/// RN(−0.25 r) = −RN(0.25 r) and a + (−b) is a − b in IEEE arithmetic (signed zeros too), so
+/// the same bits with one multiplication fewer.
 AALAB_TAA_AVX512 inline void ToYcc16(__m512 r, __m512 g, __m512 b, __m512* y, __m512* co, __m512* cg) {
-  const __m512 half = _mm512_set1_ps(0.5f), quarter = _mm512_set1_ps(0.25f), mquarter = _mm512_set1_ps(-0.25f);
-  *y = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(quarter, r), _mm512_mul_ps(half, g)), _mm512_mul_ps(quarter, b));
+  const __m512 half = _mm512_set1_ps(0.5f), quarter = _mm512_set1_ps(0.25f);
+  const __m512 qr = _mm512_mul_ps(quarter, r), hg = _mm512_mul_ps(half, g), qb = _mm512_mul_ps(quarter, b);
+  *y = _mm512_add_ps(_mm512_add_ps(qr, hg), qb);
   *co = _mm512_sub_ps(_mm512_mul_ps(half, r), _mm512_mul_ps(half, b));
-  *cg = _mm512_sub_ps(_mm512_add_ps(_mm512_mul_ps(mquarter, r), _mm512_mul_ps(half, g)), _mm512_mul_ps(quarter, b));
+  *cg = _mm512_sub_ps(_mm512_sub_ps(hg, qr), qb);
 }
 
 /// x / 9 per lane, the same bits as _mm512_div_ps(x, 9) for every finite x but −0 (which
@@ -90,13 +94,16 @@ AALAB_TAA_AVX512 inline __m512 Div9x16(__m512 x) {
 /// Rectify's box for one channel of sixteen pixels at x, as taa.cpp BoxRow forms it: rows
 /// are the padded plane rows above, at and below (texel x at x + 1). The min/max in any
 /// order (the planes hold no NaN and no −0: BoxRow's reasoning), the sums in BoxRow's order
-/// (rows top to bottom, columns left to right, from 0), then μ ± γσ with Max / Min in the
-/// scalar operand order.
+/// (rows top to bottom, columns left to right), then μ ± γσ with Max / Min in the scalar
+/// operand order. Everything starts from the first texel v instead of Rectify's 1e30, −1e30,
+/// 0, 0: min(1e30, v) = max(−1e30, v) = v (the planes lie in [−1, 1]), 0 + v = v (v is not
+/// −0) and 0 + v·v = v·v (a square is ≥ +0), so the same bits with four operations fewer.
 template <bool kVariance>
 AALAB_TAA_AVX512 inline void Box16(const float* const* rows, int x, float gamma, __m512* lo, __m512* hi) {
-  __m512 mn = _mm512_set1_ps(1e30f), mx = _mm512_set1_ps(-1e30f), m1 = _mm512_setzero_ps(), m2 = m1;
+  const __m512 v0 = _mm512_loadu_ps(rows[0] + x);
+  __m512 mn = v0, mx = v0, m1 = v0, m2 = _mm512_mul_ps(v0, v0);
   for (int k = 0; k < 3; ++k) {
-    for (int d = 0; d < 3; ++d) {
+    for (int d = k == 0 ? 1 : 0; d < 3; ++d) {
       const __m512 v = _mm512_loadu_ps(rows[k] + x + d);
       mn = _mm512_min_ps(mn, v);
       mx = _mm512_max_ps(mx, v);

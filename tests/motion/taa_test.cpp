@@ -427,5 +427,57 @@ TEST(Taa, FastStepUnderSmoothMotionIsTheReferenceStepBitForBit) {
   SetThreadCount(0);
 }
 
+// The AVX-512 box starts its min, max and sums from the first texel, and Cg is formed as
+// 0.5 g − 0.25 r (taa_avx512.cpp Box16, ToYcc16): the same bits only because the planes
+// hold no −0 and −0.25·0 + 0.5·0 is +0. Frames of 0, 1, 254 and 255 per channel (black,
+// white, every zero combination of R, G and B, flat and noisy boxes) under a pan (the
+// contiguous fetch) and under random motion: output and history against StepReference.
+TEST(Taa, FastStepOnBlackAndWhiteIsTheReferenceStepBitForBit) {
+  for (int threads : {1, 2}) {
+    SetThreadCount(threads);
+    for (const char* spec : {"taa", "taa:clip=minmax", "taa:gamma=0.25,alpha=0.5"}) {
+      for (auto [W, H] : std::vector<std::pair<int, int>>{{64, 20}, {77, 9}}) {
+        const MethodPlan plan = MakeMethod(spec);
+        auto fast = plan.make_state();
+        auto ref = TaaReferenceCopy(*fast);
+        uint64_t seed = 0x6a09e667f3bcc909ull ^ (static_cast<uint64_t>(W) << 16) ^ static_cast<uint64_t>(H);
+        for (int k = 0; k < 5; ++k) {
+          Image8 frame(W, H, 4);
+          constexpr uint8_t kLevels[4] = {0, 255, 1, 254};
+          for (size_t i = 0; i < frame.Data().size(); ++i) {
+            const uint64_t r = Next(seed);
+            // Mostly 0 and 255, in patches of four pixels (flat boxes) where bit 40 says so.
+            const uint64_t q = (r >> 40) & 1 ? (i / 16) * 0x9e3779b9u >> 7 : r >> 20;
+            frame.Data()[i] = kLevels[(q & 7) == 0 ? 2 + ((q >> 3) & 1) : (q >> 3) & 1];
+          }
+          std::vector<float> prev(2 * static_cast<size_t>(W) * H);
+          for (int y = 0; y < H; ++y) {
+            for (int x = 0; x < W; ++x) {
+              float* p = &prev[2 * (static_cast<size_t>(y) * W + x)];
+              const uint64_t r = Next(seed);
+              const bool pan = k % 2 == 1;
+              p[0] = static_cast<float>(x) + (pan ? 1.3f : static_cast<float>((r >> 8) % 1000) / 250.0f - 1.5f);
+              p[1] = static_cast<float>(y) + (pan ? 0.2f : static_cast<float>((r >> 24) % 1000) / 250.0f - 1.5f);
+            }
+          }
+          TemporalInput in;
+          in.frame = &frame;
+          in.previous = k > 0 ? &prev : nullptr;
+          in.frame_index = k;
+          const Image8 a = fast->Step(in, nullptr);
+          const Image8 b = ref->Step(in, nullptr);
+          const std::string what = std::string(spec) + " " + std::to_string(W) + "x" + std::to_string(H) + " frame " +
+                                   std::to_string(k) + " threads " + std::to_string(threads);
+          ASSERT_TRUE(a == b) << what;
+          const std::vector<float> hf = TaaHistory(*fast), hr = TaaHistory(*ref);
+          ASSERT_EQ(hr.size(), hf.size()) << what;
+          ASSERT_EQ(std::memcmp(hf.data(), hr.data(), hf.size() * sizeof(float)), 0) << what;
+        }
+      }
+    }
+  }
+  SetThreadCount(0);
+}
+
 }  // namespace
 }  // namespace aalab
