@@ -314,6 +314,62 @@ uint64_t Next(uint64_t& s) {
   return s;
 }
 
+// The clip's three quotients by one divisor (taa_avx512.cpp Div3ByOne16: a reciprocal and an
+// FMA correction per channel) against the division, bit for bit: divisors over [1, 2^30] (the
+// clip divides by m > 1, m < 2^29) with every mantissa pattern equally likely, and 1, the
+// next float, 2^40 and the floats beside it (where the fallback starts); numerators of
+// either sign with magnitudes 2^-70..4 (below 2^-60 the fallback), ±0, subnormals.
+TEST(Taa, ClipQuotientsByOneDivisionAreTheDivisionBitForBit) {
+  constexpr int kN = 1 << 16;
+  std::vector<float> a(3 * kN), b(kN), q(3 * kN);
+  if (taa_detail::Div3ByOneAvx512(a.data(), b.data(), 16, q.data()) == 0) GTEST_SKIP() << "no AVX-512";
+  auto from_bits = [](uint32_t u) {
+    float f;
+    std::memcpy(&f, &u, sizeof f);
+    return f;
+  };
+  const float special_b[] = {1.0f,
+                             std::nextafter(1.0f, 2.0f),
+                             0x1p40f,
+                             std::nextafter(0x1p40f, 0.0f),
+                             std::nextafter(0x1p40f, 1e30f),
+                             2.0f - 0x1p-23f,
+                             0x1p29f - 1.0f};
+  // Edge blocks draw from all eight, the others from the last five (±0 take the reciprocal path).
+  const float special_a[] = {0x1p-149f, -0x1p-126f, -std::nextafter(0x1p-60f, 0.0f), 0.0f, -0.0f, 0x1p-60f,
+                             4.0f,      -1.0f};
+  uint64_t seed = 0x243f6a8885a308d3ull, checked = 0;
+  for (int round = 0; round < 64; ++round) {
+    for (int i = 0; i < kN; ++i) {
+      // One block of 16 in 8 may hold edge values (the fallback's, which then divides the
+      // block); the others stay inside the bounds, so the reciprocal path is what they check.
+      const bool edges = (static_cast<uint32_t>(i / 16) * 0x9e3779b9u >> 29) == 0;
+      const uint64_t r = Next(seed);
+      // b: exponent 0..30 (40 in edge blocks now and then), any mantissa; a: exponent
+      // −60..2 (−70..2 in edge blocks), any mantissa.
+      const uint32_t eb = edges && (r & 63) == 0 ? 40u : static_cast<uint32_t>((r >> 6) % 31);
+      b[i] = (r >> 12 & 255) == 0 ? special_b[(r >> 20) % (edges ? 7 : 3)]
+                                  : from_bits(((127 + eb) << 23) | ((r >> 32) & 0x7fffff));
+      for (int c = 0; c < 3; ++c) {
+        const uint64_t t = Next(seed);
+        const uint32_t ea = static_cast<uint32_t>(edges ? 127 - 70 + (t >> 8) % 73 : 127 - 60 + (t >> 8) % 63);
+        a[c * kN + i] = (t & 127) == 0
+                            ? special_a[edges ? (t >> 7) % 8 : 3 + (t >> 7) % 5]
+                            : from_bits(static_cast<uint32_t>(t >> 63) << 31 | ea << 23 | ((t >> 32) & 0x7fffff));
+      }
+    }
+    ASSERT_EQ(taa_detail::Div3ByOneAvx512(a.data(), b.data(), kN, q.data()), kN);
+    for (int c = 0; c < 3; ++c) {
+      for (int i = 0; i < kN; ++i) {
+        const float d = a[c * kN + i] / b[i], got = q[c * kN + i];
+        ASSERT_EQ(std::memcmp(&d, &got, sizeof d), 0) << a[c * kN + i] << " / " << b[i];
+      }
+    }
+    checked += 3 * kN;
+  }
+  EXPECT_EQ(checked, 64ull * 3 * kN);
+}
+
 TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
   for (int threads : {1, 2}) {
     SetThreadCount(threads);
@@ -418,6 +474,58 @@ TEST(Taa, FastStepUnderSmoothMotionIsTheReferenceStepBitForBit) {
           ASSERT_TRUE(a == b) << what;
           const std::vector<float> hf = TaaHistory(*fast), hr = TaaHistory(*ref);
           ASSERT_EQ(hf.size(), 3 * static_cast<size_t>(W) * H) << what;
+          ASSERT_EQ(hr.size(), hf.size()) << what;
+          ASSERT_EQ(std::memcmp(hf.data(), hr.data(), hf.size() * sizeof(float)), 0) << what;
+        }
+      }
+    }
+  }
+  SetThreadCount(0);
+}
+
+// The AVX-512 box starts its min, max and sums from the first texel, and Cg is formed as
+// 0.5 g − 0.25 r (taa_avx512.cpp Box16, ToYcc16): the same bits only because the planes
+// hold no −0 and −0.25·0 + 0.5·0 is +0. Frames of 0, 1, 254 and 255 per channel (black,
+// white, every zero combination of R, G and B, flat and noisy boxes) under a pan (the
+// contiguous fetch) and under random motion: output and history against StepReference.
+TEST(Taa, FastStepOnBlackAndWhiteIsTheReferenceStepBitForBit) {
+  for (int threads : {1, 2}) {
+    SetThreadCount(threads);
+    for (const char* spec : {"taa", "taa:clip=minmax", "taa:gamma=0.25,alpha=0.5"}) {
+      for (auto [W, H] : std::vector<std::pair<int, int>>{{64, 20}, {77, 9}}) {
+        const MethodPlan plan = MakeMethod(spec);
+        auto fast = plan.make_state();
+        auto ref = TaaReferenceCopy(*fast);
+        uint64_t seed = 0x6a09e667f3bcc909ull ^ (static_cast<uint64_t>(W) << 16) ^ static_cast<uint64_t>(H);
+        for (int k = 0; k < 5; ++k) {
+          Image8 frame(W, H, 4);
+          constexpr uint8_t kLevels[4] = {0, 255, 1, 254};
+          for (size_t i = 0; i < frame.Data().size(); ++i) {
+            const uint64_t r = Next(seed);
+            // Mostly 0 and 255, in patches of four pixels (flat boxes) where bit 40 says so.
+            const uint64_t q = (r >> 40) & 1 ? (i / 16) * 0x9e3779b9u >> 7 : r >> 20;
+            frame.Data()[i] = kLevels[(q & 7) == 0 ? 2 + ((q >> 3) & 1) : (q >> 3) & 1];
+          }
+          std::vector<float> prev(2 * static_cast<size_t>(W) * H);
+          for (int y = 0; y < H; ++y) {
+            for (int x = 0; x < W; ++x) {
+              float* p = &prev[2 * (static_cast<size_t>(y) * W + x)];
+              const uint64_t r = Next(seed);
+              const bool pan = k % 2 == 1;
+              p[0] = static_cast<float>(x) + (pan ? 1.3f : static_cast<float>((r >> 8) % 1000) / 250.0f - 1.5f);
+              p[1] = static_cast<float>(y) + (pan ? 0.2f : static_cast<float>((r >> 24) % 1000) / 250.0f - 1.5f);
+            }
+          }
+          TemporalInput in;
+          in.frame = &frame;
+          in.previous = k > 0 ? &prev : nullptr;
+          in.frame_index = k;
+          const Image8 a = fast->Step(in, nullptr);
+          const Image8 b = ref->Step(in, nullptr);
+          const std::string what = std::string(spec) + " " + std::to_string(W) + "x" + std::to_string(H) + " frame " +
+                                   std::to_string(k) + " threads " + std::to_string(threads);
+          ASSERT_TRUE(a == b) << what;
+          const std::vector<float> hf = TaaHistory(*fast), hr = TaaHistory(*ref);
           ASSERT_EQ(hr.size(), hf.size()) << what;
           ASSERT_EQ(std::memcmp(hf.data(), hr.data(), hf.size() * sizeof(float)), 0) << what;
         }
