@@ -65,13 +65,6 @@ int YccPlaneRowAvx512(const uint8_t* src, int w, const float* decode, float* y, 
 /// finite x other than −0). Returns n (0 without AVX-512). For tests.
 int Div9Avx512(const float* x, int w, float* q);
 
-/// a[c w + i] / b[i] into q[c w + i] for c = 0, 1, 2 and i in [0, n), n = w rounded down to a
-/// multiple of 16, as the AVX-512 kernel's clip divides its three offsets by one divisor (one
-/// division for the reciprocal, an FMA correction per channel; the same bits as the division,
-/// falling back to it outside 1 ≤ b ≤ 2^40, 2^-60 ≤ |a|). Returns n (0 without AVX-512). For
-/// tests.
-int Div3ByOneAvx512(const float* a, const float* b, int w, float* q);
-
 /// Encode8::Rgba of pixels [0, n), n = w rounded down to a multiple of 8 (gathers for the
 /// three table reads per value). Returns n (0 without AVX2).
 int EncodeRgbaAvx2(const EncodeTables& t, const float* r, const float* g, const float* b, int w, uint8_t* rgba);

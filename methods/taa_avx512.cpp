@@ -91,37 +91,6 @@ AALAB_TAA_AVX512 inline __m512 Div9x16(__m512 x) {
   return _mm512_fmadd_ps(_mm512_fnmadd_ps(q, _mm512_set1_ps(9.0f), x), ninth, q);
 }
 
-/// a[c] / b per lane for c = 0, 1, 2 by one division: y = RN(1 / b), then per channel the
-/// product q = RN(a y) and one FMA step on the exact remainder, RN(q + (a − q b) y), which is
-/// RN(a / b) when y is the correctly rounded reciprocal (Markstein's theorem) and the
-/// remainder is exact: no underflow, which holds for 1 ≤ b ≤ 2^40 and |a| ≥ 2^-60 (a / b ≥
-/// 2^-100); a = ±0 gives +0, so a's sign is put back (every other quotient has it already).
-/// Lanes outside `lanes` are not looked at (their quotients are not used); where one inside
-/// it falls outside those bounds, the three divisions. The same bits as _mm512_div_ps(a[c],
-/// b) in `lanes` (tests/motion/taa_test.cpp checks it against the division).
-AALAB_TAA_AVX512 inline void Div3ByOne16(const __m512 a[3], __m512 b, __mmask16 lanes, __m512 q[3]) {
-  const __m512 tiny = _mm512_set1_ps(0x1p-60f), zero = _mm512_setzero_ps();
-  __mmask16 bad = _mm512_mask_cmp_ps_mask(lanes, b, _mm512_set1_ps(0x1p40f), _CMP_NLE_UQ) |
-                  _mm512_mask_cmp_ps_mask(lanes, b, _mm512_set1_ps(1.0f), _CMP_NGE_UQ);
-  for (int c = 0; c < 3; ++c) {
-    const __m512 m = Abs16(a[c]);
-    bad |= _mm512_mask_cmp_ps_mask(_mm512_mask_cmp_ps_mask(lanes, m, zero, _CMP_NEQ_UQ), m, tiny, _CMP_NGE_UQ);
-  }
-  if (bad != 0) {
-    for (int c = 0; c < 3; ++c) q[c] = _mm512_div_ps(a[c], b);
-    return;
-  }
-  const __m512 y = _mm512_div_ps(_mm512_set1_ps(1.0f), b);
-  const __m512i sign = _mm512_set1_epi32(static_cast<int>(0x80000000u));
-  for (int c = 0; c < 3; ++c) {
-    const __m512 p = _mm512_mul_ps(a[c], y);
-    const __m512 r = _mm512_fmadd_ps(_mm512_fnmadd_ps(p, b, a[c]), y, p);
-    // r | (a & sign): bit-select 0xF8 = A | (B & C) per bit.
-    q[c] =
-        _mm512_castsi512_ps(_mm512_ternarylogic_epi32(_mm512_castps_si512(r), _mm512_castps_si512(a[c]), sign, 0xF8));
-  }
-}
-
 /// Rectify's box for one channel of sixteen pixels at x, as taa.cpp BoxRow forms it: rows
 /// are the padded plane rows above, at and below (texel x at x + 1). The min/max in any
 /// order (the planes hold no NaN and no −0: BoxRow's reasoning), the sums in BoxRow's order
@@ -362,9 +331,9 @@ AALAB_TAA_AVX512 int HistoryBlendRow16(const Avx2RowIn& in, int w, float alpha, 
         for (int c = 0; c < 3; ++c) m = _mm512_max_ps(Abs16(_mm512_div_ps(v[c], ext[c])), m);  // Max(m, |q|)
         const __mmask16 inside = _mm512_cmp_ps_mask(m, one, _CMP_LE_OQ);
         const __m512 div = _mm512_mask_blend_ps(inside, m, one);
-        __m512 q[3];
-        Div3ByOne16(v, div, static_cast<__mmask16>(~inside), q);  // v[c] / div where not inside
-        for (int c = 0; c < 3; ++c) h[c] = _mm512_mask_blend_ps(inside, _mm512_add_ps(centre[c], q[c]), h[c]);
+        for (int c = 0; c < 3; ++c) {
+          h[c] = _mm512_mask_blend_ps(inside, _mm512_add_ps(centre[c], _mm512_div_ps(v[c], div)), h[c]);
+        }
       }
     }
     const __m512 oy = Lerp16(h[0], _mm512_loadu_ps(in.cy + x + 1), va);
@@ -444,19 +413,6 @@ AALAB_TAA_AVX512 int YccPlaneRowAvx512(const uint8_t* src, int w, const float* d
   return n;
 }
 
-AALAB_TAA_AVX512 int Div3ByOneAvx512(const float* a, const float* b, int w, float* q) {
-  if (!TaaHasAvx512()) return 0;
-  const int n = w - w % 16;
-  for (int i = 0; i < n; i += 16) {
-    const __m512 bv = _mm512_loadu_ps(b + i);
-    const __m512 av[3] = {_mm512_loadu_ps(a + i), _mm512_loadu_ps(a + w + i), _mm512_loadu_ps(a + 2 * w + i)};
-    __m512 qv[3];
-    Div3ByOne16(av, bv, 0xffff, qv);
-    for (int c = 0; c < 3; ++c) _mm512_storeu_ps(q + c * w + i, qv[c]);
-  }
-  return n;
-}
-
 AALAB_TAA_AVX512 int Div9Avx512(const float* x, int w, float* q) {
   if (!TaaHasAvx512()) return 0;
   const int n = w - w % 16;
@@ -474,7 +430,6 @@ int HistoryBlendRow16Avx512(const Avx2RowIn&, int, bool, float, float*, uint8_t*
 int EncodeRgbaAvx512(const EncodeTables&, const float*, const float*, const float*, int, uint8_t*) { return 0; }
 int YccPlaneRowAvx512(const uint8_t*, int, const float*, float*, float*, float*) { return 0; }
 int Div9Avx512(const float*, int, float*) { return 0; }
-int Div3ByOneAvx512(const float*, const float*, int, float*) { return 0; }
 }  // namespace aalab::taa_detail
 
 #endif

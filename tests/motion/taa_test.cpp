@@ -314,62 +314,6 @@ uint64_t Next(uint64_t& s) {
   return s;
 }
 
-// The clip's three quotients by one divisor (taa_avx512.cpp Div3ByOne16: a reciprocal and an
-// FMA correction per channel) against the division, bit for bit: divisors over [1, 2^30] (the
-// clip divides by m > 1, m < 2^29) with every mantissa pattern equally likely, and 1, the
-// next float, 2^40 and the floats beside it (where the fallback starts); numerators of
-// either sign with magnitudes 2^-70..4 (below 2^-60 the fallback), ±0, subnormals.
-TEST(Taa, ClipQuotientsByOneDivisionAreTheDivisionBitForBit) {
-  constexpr int kN = 1 << 16;
-  std::vector<float> a(3 * kN), b(kN), q(3 * kN);
-  if (taa_detail::Div3ByOneAvx512(a.data(), b.data(), 16, q.data()) == 0) GTEST_SKIP() << "no AVX-512";
-  auto from_bits = [](uint32_t u) {
-    float f;
-    std::memcpy(&f, &u, sizeof f);
-    return f;
-  };
-  const float special_b[] = {1.0f,
-                             std::nextafter(1.0f, 2.0f),
-                             0x1p40f,
-                             std::nextafter(0x1p40f, 0.0f),
-                             std::nextafter(0x1p40f, 1e30f),
-                             2.0f - 0x1p-23f,
-                             0x1p29f - 1.0f};
-  // Edge blocks draw from all eight, the others from the last five (±0 take the reciprocal path).
-  const float special_a[] = {0x1p-149f, -0x1p-126f, -std::nextafter(0x1p-60f, 0.0f), 0.0f, -0.0f, 0x1p-60f,
-                             4.0f,      -1.0f};
-  uint64_t seed = 0x243f6a8885a308d3ull, checked = 0;
-  for (int round = 0; round < 64; ++round) {
-    for (int i = 0; i < kN; ++i) {
-      // One block of 16 in 8 may hold edge values (the fallback's, which then divides the
-      // block); the others stay inside the bounds, so the reciprocal path is what they check.
-      const bool edges = (static_cast<uint32_t>(i / 16) * 0x9e3779b9u >> 29) == 0;
-      const uint64_t r = Next(seed);
-      // b: exponent 0..30 (40 in edge blocks now and then), any mantissa; a: exponent
-      // −60..2 (−70..2 in edge blocks), any mantissa.
-      const uint32_t eb = edges && (r & 63) == 0 ? 40u : static_cast<uint32_t>((r >> 6) % 31);
-      b[i] = (r >> 12 & 255) == 0 ? special_b[(r >> 20) % (edges ? 7 : 3)]
-                                  : from_bits(((127 + eb) << 23) | ((r >> 32) & 0x7fffff));
-      for (int c = 0; c < 3; ++c) {
-        const uint64_t t = Next(seed);
-        const uint32_t ea = static_cast<uint32_t>(edges ? 127 - 70 + (t >> 8) % 73 : 127 - 60 + (t >> 8) % 63);
-        a[c * kN + i] = (t & 127) == 0
-                            ? special_a[edges ? (t >> 7) % 8 : 3 + (t >> 7) % 5]
-                            : from_bits(static_cast<uint32_t>(t >> 63) << 31 | ea << 23 | ((t >> 32) & 0x7fffff));
-      }
-    }
-    ASSERT_EQ(taa_detail::Div3ByOneAvx512(a.data(), b.data(), kN, q.data()), kN);
-    for (int c = 0; c < 3; ++c) {
-      for (int i = 0; i < kN; ++i) {
-        const float d = a[c * kN + i] / b[i], got = q[c * kN + i];
-        ASSERT_EQ(std::memcmp(&d, &got, sizeof d), 0) << a[c * kN + i] << " / " << b[i];
-      }
-    }
-    checked += 3 * kN;
-  }
-  EXPECT_EQ(checked, 64ull * 3 * kN);
-}
-
 TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
   for (int threads : {1, 2}) {
     SetThreadCount(threads);
