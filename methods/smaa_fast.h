@@ -104,6 +104,9 @@ class InlineSampler {
   InlineSampler(Tex8 img, SubTexel mode) : img_(img), w_(img.w), h_(img.h), mode_(mode) {}
   [[gnu::always_inline]] Float4 SampleNormalized(float s, float t) {
     ++taps_;
+#if defined(__SSE2__)
+    if (mode_ == SubTexel::kFixed8) return Sample8(s * static_cast<float>(w_), t * static_cast<float>(h_));
+#endif
     const BilinearFootprint f = FootprintAt(s * static_cast<float>(w_), t * static_cast<float>(h_), w_, h_, mode_);
     const int xa = std::clamp(f.x0, 0, w_ - 1), xb = std::clamp(f.x0 + 1, 0, w_ - 1);
     const int ya = std::clamp(f.y0, 0, h_ - 1), yb = std::clamp(f.y0 + 1, 0, h_ - 1);
@@ -138,6 +141,33 @@ class InlineSampler {
  private:
   static float U(uint8_t k) { return UnormToFloat(k); }  // BilinearSampler::Fetch
 #if defined(__SSE2__)
+  // SampleNormalized for 8-bit fractions: BilinearAt8's rounding (the same x0, y0, fx, fy);
+  // inside the texture (0 <= x0 < w − 1, 0 <= y0 < h − 1) no clamp moves the footprint, so
+  // the four texels are read from one address, else clamped as SampleNormalized (clamping x0
+  // to [−1, w] first changes no clamped column). The same texels and lerps: the same bits.
+  [[gnu::always_inline]] Float4 Sample8(float u, float v) {
+    const __m128 x = _mm_sub_ps(_mm_setr_ps(u, v, 0.0f, 0.0f), _mm_set1_ps(0.5f));
+    const __m128i t = _mm_cvtps_epi32(_mm_mul_ps(x, _mm_set1_ps(256.0f)));
+    const __m128 fr = _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(t, _mm_set1_epi32(255))), _mm_set1_ps(1.0f / 256.0f));
+    const __m128i i0 = _mm_srai_epi32(t, 8);
+    const int x0 = _mm_cvtsi128_si32(i0), y0 = _mm_cvtsi128_si32(_mm_shuffle_epi32(i0, 1));
+    const uint8_t *a, *b, *c, *d;
+    if (static_cast<unsigned>(x0) < static_cast<unsigned>(w_ - 1) &&
+        static_cast<unsigned>(y0) < static_cast<unsigned>(h_ - 1)) {
+      a = img_.Pixel(x0, y0), b = a + 4, c = a + 4 * static_cast<size_t>(w_), d = c + 4;
+    } else {
+      const int xa = std::clamp(x0, 0, w_ - 1), xb = std::clamp(x0 + 1, 0, w_ - 1);
+      const int ya = std::clamp(y0, 0, h_ - 1), yb = std::clamp(y0 + 1, 0, h_ - 1);
+      a = img_.Pixel(xa, ya), b = img_.Pixel(xb, ya), c = img_.Pixel(xa, yb), d = img_.Pixel(xb, yb);
+    }
+    const __m128 fx = _mm_shuffle_ps(fr, fr, 0x00), fy = _mm_shuffle_ps(fr, fr, 0x55);
+    const __m128 ta = U4(a), tb = U4(b), tc = U4(c), td = U4(d);
+    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
+    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
+    float r[4];
+    _mm_storeu_ps(r, _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top))));
+    return {r[0], r[1], r[2], r[3]};
+  }
   // U of the four bytes at p, in the lanes of a vector (byte → int32 → float, × fl(1/255)).
   [[gnu::always_inline]] static __m128 U4(const uint8_t* p) {
     uint32_t v;
@@ -209,7 +239,7 @@ class MemoSampler {
 // clamp, texel values 0 or 1 (= UnormToFloat(255)) per bit, BilinearBlend as Sample.
 class PlaneEdges {
  public:
-  PlaneEdges(const EdgePlane& pl, SubTexel mode) : pl_(pl), mode_(mode) {}
+  PlaneEdges(const EdgePlane& pl, SubTexel mode) : pl_(pl), e_(pl.e.get()), w_(pl.w), h_(pl.h), mode_(mode) {}
   F2 Sample(float u, float v) {
     ++taps_;
 #if defined(__SSE2__)
@@ -248,7 +278,7 @@ class PlaneEdges {
   // texels are read from one address. The same four bytes and the same lerps as Sample,
   // so the same bits (tests/methods/smaa_fetch_test.cpp).
   [[gnu::always_inline]] F2 Sample8(float u, float v) {
-    const int w = pl_.w, h = pl_.h;
+    const int w = w_, h = h_;
     const __m128 x = _mm_sub_ps(_mm_setr_ps(u, v, 0.0f, 0.0f), _mm_set1_ps(0.5f));
     const __m128i t = _mm_cvtps_epi32(_mm_mul_ps(x, _mm_set1_ps(256.0f)));
     const __m128 fr = _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(t, _mm_set1_epi32(255))), _mm_set1_ps(1.0f / 256.0f));
@@ -257,12 +287,12 @@ class PlaneEdges {
     uint8_t a, b, c, d;
     if (static_cast<unsigned>(x0) < static_cast<unsigned>(w - 1) &&
         static_cast<unsigned>(y0) < static_cast<unsigned>(h - 1)) {
-      const uint8_t* p = pl_.e.get() + static_cast<size_t>(y0) * w + x0;
+      const uint8_t* p = e_ + static_cast<size_t>(y0) * w + x0;
       a = p[0], b = p[1], c = p[w], d = p[w + 1];
     } else {
       const int xa = std::clamp(x0, 0, w - 1), xb = std::clamp(x0 + 1, 0, w - 1);
-      const uint8_t* ra = pl_.Row(std::clamp(y0, 0, h - 1));
-      const uint8_t* rb = pl_.Row(std::clamp(y0 + 1, 0, h - 1));
+      const uint8_t* ra = e_ + static_cast<size_t>(std::clamp(y0, 0, h - 1)) * w;
+      const uint8_t* rb = e_ + static_cast<size_t>(std::clamp(y0 + 1, 0, h - 1)) * w;
       a = ra[xa], b = ra[xb], c = rb[xa], d = rb[xb];
     }
     const __m128 fx = _mm_shuffle_ps(fr, fr, 0x00), fy = _mm_shuffle_ps(fr, fr, 0x55);
@@ -277,6 +307,8 @@ class PlaneEdges {
   alignas(16) static constexpr float kPair[4][4] = {{0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {1, 1, 0, 0}};
 #endif
   const EdgePlane& pl_;
+  const uint8_t* e_;  // pl_'s bytes and size, read once
+  int w_, h_;
   SubTexel mode_;
   uint64_t taps_ = 0;
 };

@@ -10,7 +10,7 @@
 // shader with it off and makes exactly the fetches it reported more. Frame widths and heights up to 8192 (the
 // coordinates' rounding grows with the size), max_search_steps_diag 1, 8, 16 and 20, with and without corners; and the
 // test must answer true for most pixels (a test that never answers would pass the first part).
-// PlaneEdges::Sample's 8-bit path against BilinearSampler (kFixed8) on the RGBA8 edge texture.
+// PlaneEdges::Sample's and InlineSampler's 8-bit paths against BilinearSampler (kFixed8).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -212,6 +212,39 @@ TEST(SmaaFetch, PlaneEdgesFixed8IsTheSamplerOnTheEdgeTexture) {
       }
     }
     for (int i = 0; i < 200000; ++i) check(rnd(-3.0f, w + 3.0f), rnd(-3.0f, h + 3.0f));
+    EXPECT_EQ(bad, 0) << w << "x" << h << ", " << n << " fetches";
+    EXPECT_EQ(fast.Taps(), static_cast<uint64_t>(n));
+  }
+}
+
+// InlineSampler::SampleNormalized with 8-bit fractions against BilinearSampler(kFixed8)'s, on
+// random RGBA8 textures from 1×1 to 67×33: all four channels bit for bit, at normalised
+// coordinates over [−0.2, 1.2] on a fine grid of each axis and at random.
+TEST(SmaaFetch, InlineSamplerFixed8IsTheBilinearSampler) {
+  const int sizes[][2] = {{1, 1}, {1, 6}, {6, 1}, {2, 2}, {7, 5}, {67, 33}};
+  uint32_t seed = 777;
+  auto next = [&seed] { return seed = seed * 1664525u + 1013904223u; };
+  auto rnd = [&next](float lo, float hi) { return lo + (hi - lo) * static_cast<float>(next() >> 8) / 16777216.0f; };
+  for (const auto& sz : sizes) {
+    const int w = sz[0], h = sz[1];
+    Image8 tex(w, h, 4);
+    for (int y = 0; y < h; ++y) {
+      for (int i = 0; i < 4 * w; ++i) tex.Row(y)[i] = static_cast<uint8_t>(next() >> 24);
+    }
+    BilinearSampler ref(tex, SubTexel::kFixed8);
+    InlineSampler fast(Tex8(tex), SubTexel::kFixed8);
+    long n = 0, bad = 0;
+    auto check = [&](float s, float t) {
+      const Float4 r = ref.SampleNormalized(s, t);
+      const Float4 f = fast.SampleNormalized(s, t);
+      ++n;
+      if (!SameBits(r, f) && ++bad < 5) ADD_FAILURE() << w << "x" << h << " at (" << s << ", " << t << ")";
+    };
+    for (int k = -2048; k <= 12288; ++k) {
+      const float c = static_cast<float>(k) / 10240.0f;
+      check(c, rnd(-0.2f, 1.2f)), check(rnd(-0.2f, 1.2f), c);
+    }
+    for (int i = 0; i < 200000; ++i) check(rnd(-0.2f, 1.2f), rnd(-0.2f, 1.2f));
     EXPECT_EQ(bad, 0) << w << "x" << h << ", " << n << " fetches";
     EXPECT_EQ(fast.Taps(), static_cast<uint64_t>(n));
   }
