@@ -63,17 +63,37 @@ struct EdgePlane {
 /// (tests/methods/smaa_fetch_test.cpp): the same fetched values.
 /// cvtps2dq rounds in the current mode, as nearbyint does. For |u|, |v| < 2^22 (SMAA's
 /// coordinates stay within a few hundred texels of a frame or texture).
-[[gnu::always_inline]] inline BilinearFootprint BilinearAt8(float u, float v, int w, int h) {
+/// BilinearAt8's rounding kept in registers: x0 and y0 before BilinearAt8's clamp to [−1, w]
+/// and [−1, h], the 8-bit fractions fx and fy in every lane (for the fetches that read their
+/// four texels themselves, InlineSampler's and PlaneEdges' Sample8).
+struct Footprint8 {
+  int x0, y0;
+  __m128 fx, fy;
+};
+[[gnu::always_inline]] inline Footprint8 Round8(float u, float v) {
   const __m128 x = _mm_sub_ps(_mm_setr_ps(u, v, 0.0f, 0.0f), _mm_set1_ps(0.5f));
   const __m128i t = _mm_cvtps_epi32(_mm_mul_ps(x, _mm_set1_ps(256.0f)));
   const __m128 fr = _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(t, _mm_set1_epi32(255))), _mm_set1_ps(1.0f / 256.0f));
   const __m128i i0 = _mm_srai_epi32(t, 8);
+  return {_mm_cvtsi128_si32(i0), _mm_cvtsi128_si32(_mm_shuffle_epi32(i0, 1)), _mm_shuffle_ps(fr, fr, 0x00),
+          _mm_shuffle_ps(fr, fr, 0x55)};
+}
+
+[[gnu::always_inline]] inline BilinearFootprint BilinearAt8(float u, float v, int w, int h) {
+  const Footprint8 r = Round8(u, v);
   BilinearFootprint f;
-  f.fx = _mm_cvtss_f32(fr);
-  f.fy = _mm_cvtss_f32(_mm_shuffle_ps(fr, fr, 1));
-  f.x0 = std::clamp(_mm_cvtsi128_si32(i0), -1, w);
-  f.y0 = std::clamp(_mm_cvtsi128_si32(_mm_shuffle_epi32(i0, 1)), -1, h);
+  f.fx = _mm_cvtss_f32(r.fx);
+  f.fy = _mm_cvtss_f32(r.fy);
+  f.x0 = std::clamp(r.x0, -1, w);
+  f.y0 = std::clamp(r.y0, -1, h);
   return f;
+}
+
+/// BilinearBlend in every lane: FilterLerp's a + w·(b − a) along x on both rows, then along y.
+[[gnu::always_inline]] inline __m128 Blend4(__m128 ta, __m128 tb, __m128 tc, __m128 td, __m128 fx, __m128 fy) {
+  const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
+  const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
+  return _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top)));
 }
 #endif
 
@@ -118,12 +138,8 @@ class InlineSampler {
 #if defined(__SSE2__)
     // The four channels' BilinearBlend in the lanes of one vector: per lane the same
     // operations (k·fl(1/255), then FilterLerp's a + w·(b − a) three times), so the same bits.
-    const __m128 fx = _mm_set1_ps(f.fx), fy = _mm_set1_ps(f.fy);
-    const __m128 ta = U4(a), tb = U4(b), tc = U4(c), td = U4(d);
-    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
-    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
     float v[4];
-    _mm_storeu_ps(v, _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top))));
+    _mm_storeu_ps(v, Blend4(U4(a), U4(b), U4(c), U4(d), _mm_set1_ps(f.fx), _mm_set1_ps(f.fy)));
     r = {v[0], v[1], v[2], v[3]};
 #else
     r.r = BilinearBlend(U(a[0]), U(b[0]), U(c[0]), U(d[0]), f);
@@ -146,11 +162,8 @@ class InlineSampler {
   // the four texels are read from one address, else clamped as SampleNormalized (clamping x0
   // to [−1, w] first changes no clamped column). The same texels and lerps: the same bits.
   [[gnu::always_inline]] Float4 Sample8(float u, float v) {
-    const __m128 x = _mm_sub_ps(_mm_setr_ps(u, v, 0.0f, 0.0f), _mm_set1_ps(0.5f));
-    const __m128i t = _mm_cvtps_epi32(_mm_mul_ps(x, _mm_set1_ps(256.0f)));
-    const __m128 fr = _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(t, _mm_set1_epi32(255))), _mm_set1_ps(1.0f / 256.0f));
-    const __m128i i0 = _mm_srai_epi32(t, 8);
-    const int x0 = _mm_cvtsi128_si32(i0), y0 = _mm_cvtsi128_si32(_mm_shuffle_epi32(i0, 1));
+    const Footprint8 f = Round8(u, v);
+    const int x0 = f.x0, y0 = f.y0;
     const uint8_t *a, *b, *c, *d;
     if (static_cast<unsigned>(x0) < static_cast<unsigned>(w_ - 1) &&
         static_cast<unsigned>(y0) < static_cast<unsigned>(h_ - 1)) {
@@ -160,12 +173,8 @@ class InlineSampler {
       const int ya = std::clamp(y0, 0, h_ - 1), yb = std::clamp(y0 + 1, 0, h_ - 1);
       a = img_.Pixel(xa, ya), b = img_.Pixel(xb, ya), c = img_.Pixel(xa, yb), d = img_.Pixel(xb, yb);
     }
-    const __m128 fx = _mm_shuffle_ps(fr, fr, 0x00), fy = _mm_shuffle_ps(fr, fr, 0x55);
-    const __m128 ta = U4(a), tb = U4(b), tc = U4(c), td = U4(d);
-    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
-    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
     float r[4];
-    _mm_storeu_ps(r, _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top))));
+    _mm_storeu_ps(r, Blend4(U4(a), U4(b), U4(c), U4(d), f.fx, f.fy));
     return {r[0], r[1], r[2], r[3]};
   }
   // U of the four bytes at p, in the lanes of a vector (byte → int32 → float, × fl(1/255)).
@@ -253,13 +262,7 @@ class PlaneEdges {
 #if defined(__SSE2__)
     // r and g in two lanes: the texels' (bit 0, bit 1) as floats from kPair, then the same
     // three FilterLerps per lane as BilinearBlend.
-    const __m128 fx = _mm_set1_ps(f.fx), fy = _mm_set1_ps(f.fy);
-    const __m128 ta = _mm_load_ps(kPair[a]), tb = _mm_load_ps(kPair[b]);
-    const __m128 tc = _mm_load_ps(kPair[c]), td = _mm_load_ps(kPair[d]);
-    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
-    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
-    const __m128 rg = _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top)));
-    return {_mm_cvtss_f32(rg), _mm_cvtss_f32(_mm_shuffle_ps(rg, rg, 1))};
+    return Pair(a, b, c, d, _mm_set1_ps(f.fx), _mm_set1_ps(f.fy));
 #else
     static constexpr float kBit[2] = {0.0f, 1.0f};
     return {BilinearBlend(kBit[a & 1], kBit[b & 1], kBit[c & 1], kBit[d & 1], f),
@@ -279,11 +282,8 @@ class PlaneEdges {
   // so the same bits (tests/methods/smaa_fetch_test.cpp).
   [[gnu::always_inline]] F2 Sample8(float u, float v) {
     const int w = w_, h = h_;
-    const __m128 x = _mm_sub_ps(_mm_setr_ps(u, v, 0.0f, 0.0f), _mm_set1_ps(0.5f));
-    const __m128i t = _mm_cvtps_epi32(_mm_mul_ps(x, _mm_set1_ps(256.0f)));
-    const __m128 fr = _mm_mul_ps(_mm_cvtepi32_ps(_mm_and_si128(t, _mm_set1_epi32(255))), _mm_set1_ps(1.0f / 256.0f));
-    const __m128i i0 = _mm_srai_epi32(t, 8);
-    const int x0 = _mm_cvtsi128_si32(i0), y0 = _mm_cvtsi128_si32(_mm_shuffle_epi32(i0, 1));
+    const Footprint8 f = Round8(u, v);
+    const int x0 = f.x0, y0 = f.y0;
     uint8_t a, b, c, d;
     if (static_cast<unsigned>(x0) < static_cast<unsigned>(w - 1) &&
         static_cast<unsigned>(y0) < static_cast<unsigned>(h - 1)) {
@@ -295,12 +295,13 @@ class PlaneEdges {
       const uint8_t* rb = e_ + static_cast<size_t>(std::clamp(y0 + 1, 0, h - 1)) * w;
       a = ra[xa], b = ra[xb], c = rb[xa], d = rb[xb];
     }
-    const __m128 fx = _mm_shuffle_ps(fr, fr, 0x00), fy = _mm_shuffle_ps(fr, fr, 0x55);
-    const __m128 ta = _mm_load_ps(kPair[a]), tb = _mm_load_ps(kPair[b]);
-    const __m128 tc = _mm_load_ps(kPair[c]), td = _mm_load_ps(kPair[d]);
-    const __m128 top = _mm_add_ps(ta, _mm_mul_ps(fx, _mm_sub_ps(tb, ta)));
-    const __m128 bot = _mm_add_ps(tc, _mm_mul_ps(fx, _mm_sub_ps(td, tc)));
-    const __m128 rg = _mm_add_ps(top, _mm_mul_ps(fy, _mm_sub_ps(bot, top)));
+    return Pair(a, b, c, d, f.fx, f.fy);
+  }
+  // r and g of the four edge bytes' footprint in two lanes: the texels' (bit 0, bit 1) as
+  // floats from kPair, then BilinearBlend per lane (Blend4).
+  [[gnu::always_inline]] static F2 Pair(uint8_t a, uint8_t b, uint8_t c, uint8_t d, __m128 fx, __m128 fy) {
+    const __m128 rg =
+        Blend4(_mm_load_ps(kPair[a]), _mm_load_ps(kPair[b]), _mm_load_ps(kPair[c]), _mm_load_ps(kPair[d]), fx, fy);
     return {_mm_cvtss_f32(rg), _mm_cvtss_f32(_mm_shuffle_ps(rg, rg, 1))};
   }
   // (bit 0, bit 1) of an edge byte as floats.
