@@ -314,6 +314,24 @@ uint64_t Next(uint64_t& s) {
   return s;
 }
 
+// Steps the production state and its reference copy on `in`: the same output bytes, the same
+// taps and the same float history (3 floats a pixel), bit for bit. The history shows a change
+// below the 8-bit output's resolution (one ulp of the box, say) first.
+::testing::AssertionResult StepsAgree(TemporalState& fast, TemporalState& ref, const TemporalInput& in) {
+  PostStats sf, sr;
+  const Image8 a = fast.Step(in, &sf);
+  const Image8 b = ref.Step(in, &sr);
+  if (!(a == b)) return ::testing::AssertionFailure() << "outputs differ";
+  if (sf.taps != sr.taps) return ::testing::AssertionFailure() << "taps " << sf.taps << " vs " << sr.taps;
+  const std::vector<float> hf = TaaHistory(fast), hr = TaaHistory(ref);
+  const size_t n = 3 * static_cast<size_t>(in.frame->Width()) * static_cast<size_t>(in.frame->Height());
+  if (hf.size() != n || hr.size() != n)
+    return ::testing::AssertionFailure() << "history sizes " << hf.size() << ", " << hr.size();
+  if (std::memcmp(hf.data(), hr.data(), n * sizeof(float)) != 0)
+    return ::testing::AssertionFailure() << "histories differ";
+  return ::testing::AssertionSuccess();
+}
+
 TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
   for (int threads : {1, 2}) {
     SetThreadCount(threads);
@@ -347,19 +365,8 @@ TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
           in.frame = &frame;
           in.previous = k > 0 ? &prev : nullptr;
           in.frame_index = k;
-          PostStats sf, sr;
-          const Image8 a = fast->Step(in, &sf);
-          const Image8 b = ref->Step(in, &sr);
-          const std::string what = std::string(spec) + " " + std::to_string(W) + "x" + std::to_string(H) + " frame " +
-                                   std::to_string(k) + " threads " + std::to_string(threads);
-          ASSERT_TRUE(a == b) << what;
-          EXPECT_EQ(sf.taps, sr.taps) << what;
-          // The float history too, bit for bit: a change below the 8-bit output's resolution
-          // (one ulp of the box, say) shows here first.
-          const std::vector<float> hf = TaaHistory(*fast), hr = TaaHistory(*ref);
-          ASSERT_EQ(hf.size(), 3 * static_cast<size_t>(W) * H) << what;
-          ASSERT_EQ(hr.size(), hf.size()) << what;
-          ASSERT_EQ(std::memcmp(hf.data(), hr.data(), hf.size() * sizeof(float)), 0) << what;
+          ASSERT_TRUE(StepsAgree(*fast, *ref, in))
+              << spec << " " << W << "x" << H << " frame " << k << " threads " << threads;
         }
       }
     }
@@ -411,15 +418,8 @@ TEST(Taa, FastStepUnderSmoothMotionIsTheReferenceStepBitForBit) {
           in.frame = &frame;
           in.previous = k > 0 ? &prev : nullptr;
           in.frame_index = k;
-          const Image8 a = fast->Step(in, nullptr);
-          const Image8 b = ref->Step(in, nullptr);
-          const std::string what = std::string(spec) + " " + std::to_string(W) + "x" + std::to_string(H) + " frame " +
-                                   std::to_string(k) + " threads " + std::to_string(threads);
-          ASSERT_TRUE(a == b) << what;
-          const std::vector<float> hf = TaaHistory(*fast), hr = TaaHistory(*ref);
-          ASSERT_EQ(hf.size(), 3 * static_cast<size_t>(W) * H) << what;
-          ASSERT_EQ(hr.size(), hf.size()) << what;
-          ASSERT_EQ(std::memcmp(hf.data(), hr.data(), hf.size() * sizeof(float)), 0) << what;
+          ASSERT_TRUE(StepsAgree(*fast, *ref, in))
+              << spec << " " << W << "x" << H << " frame " << k << " threads " << threads;
         }
       }
     }
@@ -464,14 +464,8 @@ TEST(Taa, FastStepOnBlackAndWhiteIsTheReferenceStepBitForBit) {
           in.frame = &frame;
           in.previous = k > 0 ? &prev : nullptr;
           in.frame_index = k;
-          const Image8 a = fast->Step(in, nullptr);
-          const Image8 b = ref->Step(in, nullptr);
-          const std::string what = std::string(spec) + " " + std::to_string(W) + "x" + std::to_string(H) + " frame " +
-                                   std::to_string(k) + " threads " + std::to_string(threads);
-          ASSERT_TRUE(a == b) << what;
-          const std::vector<float> hf = TaaHistory(*fast), hr = TaaHistory(*ref);
-          ASSERT_EQ(hr.size(), hf.size()) << what;
-          ASSERT_EQ(std::memcmp(hf.data(), hr.data(), hf.size() * sizeof(float)), 0) << what;
+          ASSERT_TRUE(StepsAgree(*fast, *ref, in))
+              << spec << " " << W << "x" << H << " frame " << k << " threads " << threads;
         }
       }
     }
