@@ -332,35 +332,24 @@ uint64_t Next(uint64_t& s) {
   return ::testing::AssertionSuccess();
 }
 
-TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
+// StepsAgree over `frames` steps of every spec and size, at 1 and 2 threads: make(W, H, k,
+// seed, frame, prev) fills step k's frame and previous positions from the running seed (step 0
+// has no history), which starts at seed0 ^ (W << shift) ^ H for each spec and size.
+template <class Make>
+void ExpectFastStepIsReference(const std::vector<const char*>& specs, const std::vector<std::pair<int, int>>& sizes,
+                               int frames, uint64_t seed0, int shift, Make make) {
   for (int threads : {1, 2}) {
     SetThreadCount(threads);
-    for (const char* spec : {"taa", "taa:clip=minmax", "taa:clip=none", "taa:gamma=0.25,alpha=0.5", "taa:alpha=1"}) {
-      for (auto [W, H] :
-           std::vector<std::pair<int, int>>{{1, 1}, {2, 3}, {7, 5}, {13, 6}, {29, 9}, {33, 17}, {47, 35}, {64, 48}}) {
+    for (const char* spec : specs) {
+      for (auto [W, H] : sizes) {
         const MethodPlan plan = MakeMethod(spec);
         auto fast = plan.make_state();
         auto ref = TaaReferenceCopy(*fast);
-        uint64_t seed = 0x9e3779b97f4a7c15ull ^ (static_cast<uint64_t>(W) << 20) ^ static_cast<uint64_t>(H);
-        for (int k = 0; k < 5; ++k) {
+        uint64_t seed = seed0 ^ (static_cast<uint64_t>(W) << shift) ^ static_cast<uint64_t>(H);
+        for (int k = 0; k < frames; ++k) {
           Image8 frame(W, H, 4);
-          // Smooth areas (small differences, where the variance box is tight) and jumps.
-          for (size_t i = 0; i < frame.Data().size(); ++i) {
-            const uint64_t r = Next(seed);
-            frame.Data()[i] = static_cast<uint8_t>((r & 3) == 0 ? r >> 56 : 100 + ((r >> 60) & 7));
-          }
           std::vector<float> prev(2 * static_cast<size_t>(W) * H);
-          for (size_t i = 0; i < prev.size(); ++i) {
-            const uint64_t r = Next(seed);
-            const float extent = static_cast<float>(i % 2 == 0 ? W : H);
-            switch (r & 7) {
-              case 0: prev[i] = std::nanf(""); break;
-              case 1: prev[i] = (r & 8) ? -0.25f : extent + 0.25f; break;             // outside
-              case 2: prev[i] = (r & 8) ? ((r & 16) ? -0.0f : 0.0f) : extent; break;  // on the border
-              case 3: prev[i] = std::floor(static_cast<float>((r >> 8) % 1000) / 1000.0f * extent) + 0.5f; break;
-              default: prev[i] = static_cast<float>((r >> 8) % 100000) / 100000.0f * extent; break;
-            }
-          }
+          make(W, H, k, seed, frame, prev);
           TemporalInput in;
           in.frame = &frame;
           in.previous = k > 0 ? &prev : nullptr;
@@ -372,6 +361,34 @@ TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
     }
   }
   SetThreadCount(0);
+}
+
+TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
+  ExpectFastStepIsReference({"taa", "taa:clip=minmax", "taa:clip=none", "taa:gamma=0.25,alpha=0.5", "taa:alpha=1"},
+                            {{1, 1}, {2, 3}, {7, 5}, {13, 6}, {29, 9}, {33, 17}, {47, 35}, {64, 48}}, 5,
+                            0x9e3779b97f4a7c15ull, 20,
+                            [](int W, int H, int, uint64_t& seed, Image8& frame, std::vector<float>& prev) {
+                              // Smooth areas (small differences, where the variance box is tight) and jumps.
+                              for (size_t i = 0; i < frame.Data().size(); ++i) {
+                                const uint64_t r = Next(seed);
+                                frame.Data()[i] = static_cast<uint8_t>((r & 3) == 0 ? r >> 56 : 100 + ((r >> 60) & 7));
+                              }
+                              for (size_t i = 0; i < prev.size(); ++i) {
+                                const uint64_t r = Next(seed);
+                                const float extent = static_cast<float>(i % 2 == 0 ? W : H);
+                                switch (r & 7) {
+                                  case 0: prev[i] = std::nanf(""); break;
+                                  case 1: prev[i] = (r & 8) ? -0.25f : extent + 0.25f; break;  // outside
+                                  case 2:
+                                    prev[i] = (r & 8) ? ((r & 16) ? -0.0f : 0.0f) : extent;
+                                    break;  // on the border
+                                  case 3:
+                                    prev[i] = std::floor(static_cast<float>((r >> 8) % 1000) / 1000.0f * extent) + 0.5f;
+                                    break;
+                                  default: prev[i] = static_cast<float>((r >> 8) % 100000) / 100000.0f * extent; break;
+                                }
+                              }
+                            });
 }
 
 // The motion the fast history fetch is for (taa_avx512.cpp FetchContiguous16): previous
@@ -381,50 +398,32 @@ TEST(Taa, FastStepIsTheReferenceStepBitForBit) {
 // inside the group, dy crosses a row inside it, the left or right border clamps, a NaN or
 // an off-screen lane); the step against StepReference bit for bit, output and history.
 TEST(Taa, FastStepUnderSmoothMotionIsTheReferenceStepBitForBit) {
-  for (int threads : {1, 2}) {
-    SetThreadCount(threads);
-    for (const char* spec : {"taa", "taa:clip=minmax", "taa:clip=none"}) {
-      for (auto [W, H] : std::vector<std::pair<int, int>>{{77, 9}, {64, 48}, {130, 7}}) {
-        const MethodPlan plan = MakeMethod(spec);
-        auto fast = plan.make_state();
-        auto ref = TaaReferenceCopy(*fast);
-        uint64_t seed = 0x2545f4914f6cdd1dull ^ (static_cast<uint64_t>(W) << 16) ^ static_cast<uint64_t>(H);
-        // Per step: offset x, offset y, d(dx)/dx, d(dx)/dy, d(dy)/dx, d(dy)/dy.
-        // A shift of +0.3 puts the last pixel's x0 on the last texel (the clamp makes b = a).
-        const float motion[6][6] = {{0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f},
-                                    {0.3f, 0.7f, 0.0f, 0.0f, 0.0f, 0.0f},
-                                    {-0.3f, -0.6f, 0.0f, 0.0f, 0.0f, 0.0f},
-                                    {2.6f, -1.2f, -0.013f, 0.02f, 0.004f, -0.01f},
-                                    {-3.4f, 0.25f, 0.021f, -0.03f, -0.007f, 0.015f},
-                                    {0.5f, 0.5f, 0.0f, 0.0f, 0.0f, 0.0f}};  // integer footprints
-        for (int k = 0; k < 6; ++k) {
-          Image8 frame(W, H, 4);
-          for (size_t i = 0; i < frame.Data().size(); ++i) {
-            const uint64_t r = Next(seed);
-            frame.Data()[i] = static_cast<uint8_t>((r & 3) == 0 ? r >> 56 : 100 + ((r >> 60) & 7));
-          }
-          std::vector<float> prev(2 * static_cast<size_t>(W) * H);
-          const float* m = motion[k];
-          for (int y = 0; y < H; ++y) {
-            for (int x = 0; x < W; ++x) {
-              float* p = &prev[2 * (static_cast<size_t>(y) * W + x)];
-              p[0] = static_cast<float>(x) + 0.5f + m[0] + m[2] * static_cast<float>(x) + m[3] * static_cast<float>(y);
-              p[1] = static_cast<float>(y) + 0.5f + m[1] + m[4] * static_cast<float>(x) + m[5] * static_cast<float>(y);
-              const uint64_t r = Next(seed);
-              if (k == 4 && (r & 255) == 0) p[r & 256 ? 0 : 1] = std::nanf("");
-            }
-          }
-          TemporalInput in;
-          in.frame = &frame;
-          in.previous = k > 0 ? &prev : nullptr;
-          in.frame_index = k;
-          ASSERT_TRUE(StepsAgree(*fast, *ref, in))
-              << spec << " " << W << "x" << H << " frame " << k << " threads " << threads;
+  // Per step: offset x, offset y, d(dx)/dx, d(dx)/dy, d(dy)/dx, d(dy)/dy.
+  // A shift of +0.3 puts the last pixel's x0 on the last texel (the clamp makes b = a).
+  static constexpr float kMotion[6][6] = {{0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f},
+                                          {0.3f, 0.7f, 0.0f, 0.0f, 0.0f, 0.0f},
+                                          {-0.3f, -0.6f, 0.0f, 0.0f, 0.0f, 0.0f},
+                                          {2.6f, -1.2f, -0.013f, 0.02f, 0.004f, -0.01f},
+                                          {-3.4f, 0.25f, 0.021f, -0.03f, -0.007f, 0.015f},
+                                          {0.5f, 0.5f, 0.0f, 0.0f, 0.0f, 0.0f}};  // integer footprints
+  ExpectFastStepIsReference(
+      {"taa", "taa:clip=minmax", "taa:clip=none"}, {{77, 9}, {64, 48}, {130, 7}}, 6, 0x2545f4914f6cdd1dull, 16,
+      [](int W, int H, int k, uint64_t& seed, Image8& frame, std::vector<float>& prev) {
+        for (size_t i = 0; i < frame.Data().size(); ++i) {
+          const uint64_t r = Next(seed);
+          frame.Data()[i] = static_cast<uint8_t>((r & 3) == 0 ? r >> 56 : 100 + ((r >> 60) & 7));
         }
-      }
-    }
-  }
-  SetThreadCount(0);
+        const float* m = kMotion[k];
+        for (int y = 0; y < H; ++y) {
+          for (int x = 0; x < W; ++x) {
+            float* p = &prev[2 * (static_cast<size_t>(y) * W + x)];
+            p[0] = static_cast<float>(x) + 0.5f + m[0] + m[2] * static_cast<float>(x) + m[3] * static_cast<float>(y);
+            p[1] = static_cast<float>(y) + 0.5f + m[1] + m[4] * static_cast<float>(x) + m[5] * static_cast<float>(y);
+            const uint64_t r = Next(seed);
+            if (k == 4 && (r & 255) == 0) p[r & 256 ? 0 : 1] = std::nanf("");
+          }
+        }
+      });
 }
 
 // The AVX-512 box starts its min, max and sums from the first texel, and Cg is formed as
@@ -433,44 +432,26 @@ TEST(Taa, FastStepUnderSmoothMotionIsTheReferenceStepBitForBit) {
 // white, every zero combination of R, G and B, flat and noisy boxes) under a pan (the
 // contiguous fetch) and under random motion: output and history against StepReference.
 TEST(Taa, FastStepOnBlackAndWhiteIsTheReferenceStepBitForBit) {
-  for (int threads : {1, 2}) {
-    SetThreadCount(threads);
-    for (const char* spec : {"taa", "taa:clip=minmax", "taa:gamma=0.25,alpha=0.5"}) {
-      for (auto [W, H] : std::vector<std::pair<int, int>>{{64, 20}, {77, 9}}) {
-        const MethodPlan plan = MakeMethod(spec);
-        auto fast = plan.make_state();
-        auto ref = TaaReferenceCopy(*fast);
-        uint64_t seed = 0x6a09e667f3bcc909ull ^ (static_cast<uint64_t>(W) << 16) ^ static_cast<uint64_t>(H);
-        for (int k = 0; k < 5; ++k) {
-          Image8 frame(W, H, 4);
-          constexpr uint8_t kLevels[4] = {0, 255, 1, 254};
-          for (size_t i = 0; i < frame.Data().size(); ++i) {
-            const uint64_t r = Next(seed);
-            // Mostly 0 and 255, in patches of four pixels (flat boxes) where bit 40 says so.
-            const uint64_t q = (r >> 40) & 1 ? (i / 16) * 0x9e3779b9u >> 7 : r >> 20;
-            frame.Data()[i] = kLevels[(q & 7) == 0 ? 2 + ((q >> 3) & 1) : (q >> 3) & 1];
-          }
-          std::vector<float> prev(2 * static_cast<size_t>(W) * H);
-          for (int y = 0; y < H; ++y) {
-            for (int x = 0; x < W; ++x) {
-              float* p = &prev[2 * (static_cast<size_t>(y) * W + x)];
-              const uint64_t r = Next(seed);
-              const bool pan = k % 2 == 1;
-              p[0] = static_cast<float>(x) + (pan ? 1.3f : static_cast<float>((r >> 8) % 1000) / 250.0f - 1.5f);
-              p[1] = static_cast<float>(y) + (pan ? 0.2f : static_cast<float>((r >> 24) % 1000) / 250.0f - 1.5f);
-            }
-          }
-          TemporalInput in;
-          in.frame = &frame;
-          in.previous = k > 0 ? &prev : nullptr;
-          in.frame_index = k;
-          ASSERT_TRUE(StepsAgree(*fast, *ref, in))
-              << spec << " " << W << "x" << H << " frame " << k << " threads " << threads;
+  ExpectFastStepIsReference(
+      {"taa", "taa:clip=minmax", "taa:gamma=0.25,alpha=0.5"}, {{64, 20}, {77, 9}}, 5, 0x6a09e667f3bcc909ull, 16,
+      [](int W, int H, int k, uint64_t& seed, Image8& frame, std::vector<float>& prev) {
+        constexpr uint8_t kLevels[4] = {0, 255, 1, 254};
+        for (size_t i = 0; i < frame.Data().size(); ++i) {
+          const uint64_t r = Next(seed);
+          // Mostly 0 and 255, in patches of four pixels (flat boxes) where bit 40 says so.
+          const uint64_t q = (r >> 40) & 1 ? (i / 16) * 0x9e3779b9u >> 7 : r >> 20;
+          frame.Data()[i] = kLevels[(q & 7) == 0 ? 2 + ((q >> 3) & 1) : (q >> 3) & 1];
         }
-      }
-    }
-  }
-  SetThreadCount(0);
+        for (int y = 0; y < H; ++y) {
+          for (int x = 0; x < W; ++x) {
+            float* p = &prev[2 * (static_cast<size_t>(y) * W + x)];
+            const uint64_t r = Next(seed);
+            const bool pan = k % 2 == 1;
+            p[0] = static_cast<float>(x) + (pan ? 1.3f : static_cast<float>((r >> 8) % 1000) / 250.0f - 1.5f);
+            p[1] = static_cast<float>(y) + (pan ? 0.2f : static_cast<float>((r >> 24) % 1000) / 250.0f - 1.5f);
+          }
+        }
+      });
 }
 
 }  // namespace
