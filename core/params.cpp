@@ -10,13 +10,44 @@
 namespace aalab {
 
 std::string FormatNumber(double v) {
+  // The fewest significant digits P that read back as v, printed by "%g" at precision
+  // max(P, 6): the digits are those P (a 6-digit rounding of v is them padded with zeros, which
+  // "%g" drops), and the notation is "%g"'s at its default precision, scientific only below
+  // 1e-4 or from 1e6 on. At precision P itself "%g" chose scientific for every exponent >= P, so
+  // 20 printed "2e+01" and 100 "1e+02".
   char buf[64];
-  for (int prec = 1; prec <= 17; ++prec) {
+  int prec = 1;
+  for (; prec < 17; ++prec) {
     std::snprintf(buf, sizeof buf, "%.*g", prec, v);
-    if (std::strtod(buf, nullptr) == v) return buf;
+    if (std::strtod(buf, nullptr) == v) break;
   }
-  std::snprintf(buf, sizeof buf, "%.17g", v);
+  std::snprintf(buf, sizeof buf, "%.*g", prec < 6 ? 6 : prec, v);
   return buf;
+}
+
+std::string RespellNumber(const std::string& text) {
+  if (text.find_first_of("eE") == std::string::npos) return text;
+  double v = 0;
+  const auto res = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (res.ec != std::errc() || res.ptr != text.data() + text.size() || !std::isfinite(v)) return text;
+  return FormatNumber(v);
+}
+
+std::string RespellSpecNumbers(const std::string& spec) {
+  const size_t colon = spec.find(':');
+  if (colon == std::string::npos) return spec;
+  std::string out = spec.substr(0, colon + 1);
+  size_t start = colon + 1;
+  while (start <= spec.size()) {
+    size_t comma = spec.find(',', start);
+    if (comma == std::string::npos) comma = spec.size();
+    const std::string item = spec.substr(start, comma - start);
+    const size_t eq = item.find('=');
+    out += eq == std::string::npos ? item : item.substr(0, eq + 1) + RespellNumber(item.substr(eq + 1));
+    if (comma < spec.size()) out += ',';
+    start = comma + 1;
+  }
+  return out;
 }
 
 std::vector<std::string> SplitCommaList(const std::string& text, const std::string& what) {

@@ -69,9 +69,20 @@ Spec ParseSpec(const std::string& text);
 ParamValues ResolveParams(const std::string& what, const std::vector<ParamDef>& defs,
                           const std::vector<std::pair<std::string, std::string>>& overrides);
 
-/// Formats a double the shortest way that round-trips ("0.125", "16", "0.16600000000000001"
-/// stays exact).
+/// Formats a double with the fewest significant digits that read back as the same double, in
+/// fixed notation from 1e-4 up to 1e6 and scientific outside ("0.125", "16", "20", "100",
+/// "0.0001", "1e+09", "2.5e-05", "0.3333333333333333"). Method specs and parameter lists are
+/// spelled with it.
 std::string FormatNumber(double v);
+
+/// Reports written before 2026-11-28 spelled some whole numbers in scientific notation
+/// ("2e+01" for 20). Returns `text` printed again by FormatNumber when it holds an 'e' and reads
+/// whole as a finite number; any other text (a choice, a plain number) is returned as it is.
+std::string RespellNumber(const std::string& text);
+
+/// A method spec "name:k=v,k=v" with each value put through RespellNumber, so a spec read from
+/// an older report ("smaa-ultra:corner_rounding=2e+01") matches today's ("...=20").
+std::string RespellSpecNumbers(const std::string& spec);
 
 /// Splits "a,b,c" into items ("" gives none). An empty item or a trailing comma is a UserError naming
 /// `what` and the text.

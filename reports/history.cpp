@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/params.h"
 
 namespace aalab {
 
@@ -63,9 +64,9 @@ HistoryEntry EntryFromJson(const Json& j, const std::string& where) {
       ResultRow row;
       row.scene = jr.at("scene").get<std::string>();
       row.method = jr.at("method").get<std::string>();
-      row.spec = jr.at("spec").get<std::string>();
+      row.spec = RespellSpecNumbers(jr.at("spec").get<std::string>());
       for (auto it = jr.at("params").begin(); it != jr.at("params").end(); ++it) {
-        row.params.emplace_back(it.key(), it.value().get<std::string>());
+        row.params.emplace_back(it.key(), RespellNumber(it.value().get<std::string>()));
       }
       const auto& reasons = jr.at("null_reasons");
       for (auto it = jr.at("metrics").begin(); it != jr.at("metrics").end(); ++it) {

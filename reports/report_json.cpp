@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/params.h"
 
 namespace aalab {
 
@@ -326,9 +327,9 @@ Report ReportFromJson(const nlohmann::ordered_json& doc, const std::string& orig
       ResultRow row;
       row.scene = j.at("scene").get<std::string>();
       row.method = j.at("method").get<std::string>();
-      row.spec = j.at("spec").get<std::string>();
+      row.spec = RespellSpecNumbers(j.at("spec").get<std::string>());
       for (auto it = j.at("params").begin(); it != j.at("params").end(); ++it) {
-        row.params.emplace_back(it.key(), it.value().get<std::string>());
+        row.params.emplace_back(it.key(), RespellNumber(it.value().get<std::string>()));
       }
       row.render_width = j.at("render_size").at(0).get<int>();
       row.render_height = j.at("render_size").at(1).get<int>();

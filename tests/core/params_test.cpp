@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+
 #include "core/error.h"
 
 namespace aalab {
@@ -75,6 +80,59 @@ TEST(Params, FormatNumberShortestRoundTrip) {
   EXPECT_EQ(FormatNumber(16), "16");
   EXPECT_EQ(FormatNumber(0.166), "0.166");
   EXPECT_EQ(FormatNumber(1.0 / 3.0), "0.3333333333333333");  // 16 digits suffice
+}
+
+// Whole numbers whose shortest digits are fewer than their integer digits: printf's "%.1g" read
+// back as 20 and printed "2e+01"; `aalab list methods` showed SMAA's ranges as "[0..2e+01]".
+// The rule (fewest digits that read back; fixed notation from 1e-4 up to 1e6) worked by hand.
+TEST(Params, FormatNumberSpellsWholeNumbersInFull) {
+  EXPECT_EQ(FormatNumber(20), "20");
+  EXPECT_EQ(FormatNumber(100), "100");
+  EXPECT_EQ(FormatNumber(10), "10");
+  EXPECT_EQ(FormatNumber(2), "2");
+  EXPECT_EQ(FormatNumber(0), "0");
+  EXPECT_EQ(FormatNumber(-0.0), "-0");
+  EXPECT_EQ(FormatNumber(-300), "-300");
+  EXPECT_EQ(FormatNumber(1000), "1000");
+  EXPECT_EQ(FormatNumber(250000), "250000");
+  EXPECT_EQ(FormatNumber(999999), "999999");
+  EXPECT_EQ(FormatNumber(1e6), "1e+06");        // from 1e6 on: scientific, as "%g" by default
+  EXPECT_EQ(FormatNumber(1e9), "1e+09");        // scene limits read "<= 1e+09" as before
+  EXPECT_EQ(FormatNumber(1234567), "1234567");  // 7 digits needed: "%.7g" is fixed
+  EXPECT_EQ(FormatNumber(0.001), "0.001");
+  EXPECT_EQ(FormatNumber(0.0001), "0.0001");
+  EXPECT_EQ(FormatNumber(2.5e-5), "2.5e-05");  // below 1e-4: scientific
+}
+
+TEST(Params, FormatNumberReadsBackAsTheSameDouble) {
+  uint64_t x = 0x9E3779B97F4A7C15ull;
+  for (int i = 0; i < 20000; ++i) {
+    x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+    double v = 0;
+    std::memcpy(&v, &x, sizeof v);
+    if (!std::isfinite(v)) continue;
+    const std::string t = FormatNumber(v);
+    EXPECT_EQ(std::strtod(t.c_str(), nullptr), v) << t;
+    EXPECT_EQ(FormatNumber(std::strtod(t.c_str(), nullptr)), t);
+  }
+  for (int k = -40; k <= 40; ++k) {
+    const double v = std::ldexp(1.0, k) * 3;
+    EXPECT_EQ(std::strtod(FormatNumber(v).c_str(), nullptr), v);
+  }
+}
+
+TEST(Params, RespellSpecNumbersMatchesOlderReportsToTodaysSpecs) {
+  EXPECT_EQ(RespellSpecNumbers("smaa-ultra:corner_rounding=2e+01"), "smaa-ultra:corner_rounding=20");
+  EXPECT_EQ(RespellSpecNumbers("smaa-high:diag=on,max_search_steps_diag=2e+01,corner_rounding=1e+02"),
+            "smaa-high:diag=on,max_search_steps_diag=20,corner_rounding=100");
+  EXPECT_EQ(RespellSpecNumbers("none"), "none");
+  EXPECT_EQ(RespellSpecNumbers("fxaa311:edge_threshold=0.125"), "fxaa311:edge_threshold=0.125");
+  EXPECT_EQ(RespellSpecNumbers("x:k=1e+09"), "x:k=1e+09");  // already today's spelling
+  EXPECT_EQ(RespellSpecNumbers("x:mode=edge,k=3E1"), "x:mode=edge,k=30");
+  EXPECT_EQ(RespellSpecNumbers("x:k=one,j=e5,m=1e400"), "x:k=one,j=e5,m=1e400");  // not finite numbers
+  EXPECT_EQ(RespellSpecNumbers("x:"), "x:");
+  EXPECT_EQ(RespellNumber("2e+01"), "20");
+  EXPECT_EQ(RespellNumber("green"), "green");
 }
 
 }  // namespace

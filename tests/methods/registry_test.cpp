@@ -60,5 +60,22 @@ TEST(MethodRegistry, ErrorsNameValidChoices) {
   EXPECT_THROW(MakeMethod("ssaa-jitter:spp=0"), UserError);
 }
 
+// Whole-number overrides and ranges read as the user wrote them: "corner_rounding=20", not the
+// "2e+01" printf's shortest "%.1g" gave, in the canonical spec (report rows, compare keys) and in
+// `aalab list methods` (SMAA's ranges [0..20], [0..100], [0..10] as methods/smaa.cpp documents).
+TEST(MethodRegistry, WholeNumbersSpelledInFull) {
+  EXPECT_EQ(MakeMethod("smaa-ultra:corner_rounding=20").spec, "smaa-ultra:corner_rounding=20");
+  EXPECT_EQ(MakeMethod("smaa-high:max_search_steps_diag=20,corner_rounding=100").spec,
+            "smaa-high:max_search_steps_diag=20,corner_rounding=100");
+  std::string help;
+  for (const auto& e : MethodRegistry()) {
+    for (const auto& p : e.params) help += p.Describe() + "\n";
+  }
+  EXPECT_NE(help.find("max_search_steps_diag=16 [0..20] integer"), std::string::npos);
+  EXPECT_NE(help.find("corner_rounding=25 [0..100] integer"), std::string::npos);
+  EXPECT_NE(help.find("local_contrast=2 [0..10]"), std::string::npos);
+  EXPECT_EQ(help.find("e+0"), std::string::npos) << help;
+}
+
 }  // namespace
 }  // namespace aalab

@@ -73,6 +73,20 @@ TEST(ReportJson, RoundTrips) {
   EXPECT_EQ(ReportToJson(b).dump(), j1.dump());
 }
 
+// A report written before FormatNumber spelled whole numbers in full ("2e+01") reads with
+// today's spec, so compare and history match its rows to today's.
+TEST(ReportJson, OlderScientificSpecsReadAsTodays) {
+  Report a = Sample();
+  a.rows[0].method = "smaa-ultra";
+  a.rows[0].spec = "smaa-ultra:corner_rounding=2e+01";
+  a.rows[0].params = {{"threshold", "0.05"}, {"corner_rounding", "2e+01"}, {"diag", "on"}};
+  const Report b = ReportFromJson(nlohmann::ordered_json::parse(ReportToJson(a).dump()), "test");
+  EXPECT_EQ(b.rows[0].spec, "smaa-ultra:corner_rounding=20");
+  EXPECT_EQ(b.rows[0].params[0].second, "0.05");
+  EXPECT_EQ(b.rows[0].params[1].second, "20");
+  EXPECT_EQ(b.rows[0].params[2].second, "on");
+}
+
 TEST(ReportJson, NonFiniteNeverReachesJson) {
   Report r = Sample();
   r.rows[0].metrics.push_back({"bad", std::numeric_limits<double>::quiet_NaN(), ""});
