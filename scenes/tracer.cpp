@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "scenes/tracer_internal.h"
+#include "scenes/tracer_lit.h"
 
 namespace aalab {
 
@@ -180,6 +181,7 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
     if (scene.materials[s.material].Blended()) im.any_blend = true;
     if (scene.materials[s.material].gltf && !scene.materials[s.material].gltf->double_sided) im.any_cull = true;
     if (scene.materials[s.material].gltf) im.any_gltf = true;
+    if (s.kind == ShapeKind::kTriangles && !s.normals.empty()) im.any_vertex_normals = true;
     RTCGeometry g = nullptr;
     switch (s.kind) {
       case ShapeKind::kTriangles: {
@@ -441,6 +443,16 @@ void Tracer::Trace(const SamplePos* pos, int count, int width, int height, Sampl
   const bool unlit = !sc.Has(Effect::kLambert) && !sc.Has(Effect::kShadows) && !im.any_gltf;
   if (unlit && !alpha && !im.any_cull && !im.any_blend && fields == SampleFields::kShading) {
     TraceCameraRaysUnlit(im, sc, pos, count, width, height, S.shade, out, local);
+    local.primary_rays += static_cast<uint64_t>(count);
+    local.coverage_rays += static_cast<uint64_t>(count);
+    if (counters) *counters += local;
+    return;
+  }
+
+  // A lambert scene without textures, specular, glTF or an environment, for a caller that
+  // reads the shading only: the packets shaded in place, shadow rays packed straight.
+  if (LitPacketsApply(im, sc, alpha, fields)) {
+    TraceCameraRaysLit(im, sc, pos, count, width, height, S.shade, out, local);
     local.primary_rays += static_cast<uint64_t>(count);
     local.coverage_rays += static_cast<uint64_t>(count);
     if (counters) *counters += local;

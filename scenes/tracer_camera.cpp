@@ -3,10 +3,12 @@
 // camera rays traced in 16-wide packets filled straight from the positions (TraceCameraRays,
 // what Tracer::Trace uses: no vec3 arrays read back and repacked), and for unlit scenes whose
 // caller reads the shading only (the reference) the same packets shaded in place
-// (TraceCameraRaysUnlit: no org/dir/Hit arrays at all).
+// (TraceCameraRaysUnlit: no org/dir/Hit arrays at all), and so are plain lambert scenes'
+// (TraceCameraRaysLit: LitShading, tracer_lit.h, with the shadow rays packed straight).
 #include <cmath>
 
 #include "scenes/tracer_internal.h"
+#include "scenes/tracer_lit.h"
 
 namespace aalab {
 
@@ -209,6 +211,37 @@ void CameraPacketsUnlit(RTCScene scene, bool persp, const SamplePos* pos, int co
   shading.Finish();
 }
 
+/// CameraPackets with each packet's lanes shaded straight from the packet (LitShading): the
+/// camera rays and hits never leave Embree's layout, the shadow rays go straight into their
+/// own packets.
+AALAB_SIMD_CLONES
+void CameraPacketsLit(RTCScene scene, bool persp, const SamplePos* pos, int count, float width, float height,
+                      float half_h, float aspect, glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up,
+                      const Scene& sc, ShadeScratch& S, SampleResult* out, TraceCounters& local) {
+  LitShading shading(sc, scene, S, count, out, local);
+  RTCIntersectContext ctx = PacketContext(true);
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[kPacket];
+  InitPacketConstants(rh);
+  for (int base = 0; base < count; base += kPacket) {
+    const int m = std::min(kPacket, count - base);
+    FillCameraPacket(persp, pos + base, m, width, height, half_h, aspect, origin, fwd, right, up, rh, valid);
+    rtcIntersect16(valid, scene, &ctx, &rh);
+    if (shading.ShadeUniformPacket(base, m, rh)) continue;
+    for (int k = 0; k < m; ++k) {
+      const unsigned geom = rh.hit.geomID[k];
+      if (geom == RTC_INVALID_GEOMETRY_ID) {
+        shading.Background(base + k);
+        continue;
+      }
+      shading.Shade(base + k, static_cast<int>(geom), glm::vec3(rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]),
+                    glm::vec3(rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]), rh.ray.tfar[k],
+                    glm::vec3(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]));
+    }
+  }
+  shading.Finish();
+}
+
 }  // namespace
 
 void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width,
@@ -244,6 +277,22 @@ void tracer_detail::TraceCameraRaysUnlit(const Tracer::Impl& im, const Scene& sc
   CameraPacketsUnlit(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
                      static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, sc, S, out,
                      local);
+}
+
+}  // namespace aalab
+
+namespace aalab {
+
+void tracer_detail::TraceCameraRaysLit(const Tracer::Impl& im, const Scene& sc, const SamplePos* pos, int count,
+                                       int width, int height, ShadeScratch& S, SampleResult* out,
+                                       TraceCounters& local) {
+  const Camera& cam = sc.camera;
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const float half_h =
+      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  CameraPacketsLit(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
+                   static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, sc, S, out,
+                   local);
 }
 
 }  // namespace aalab

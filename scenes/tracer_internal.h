@@ -3,7 +3,7 @@
 //   tracer.cpp        BVH build, packets, visibility (closest hits through cut-outs),
 //                     Tracer::Trace (one shading per sample), BareTrace
 //   tracer_camera.cpp camera rays, and camera rays traced in packets filled in place (for
-//                     unlit scenes also shaded in place)
+//                     unlit and plain lambert scenes also shaded in place; tracer_lit.h)
 //   tracer_shade.cpp  surface attributes, shadow rays and shading of a list of hits
 //   tracer_msaa.cpp   Tracer::TraceMsaa: coverage samples, one shading per primitive
 //   tracer_gltf.cpp   image textures (footprints, mip-mapped fetches), glTF alpha and the
@@ -30,9 +30,10 @@ struct Tracer::Impl {
   std::string error;
   bool any_alpha = false;
   bool any_blend = false;
-  bool any_cull = false;  // a single-sided glTF material: camera rays skip its back faces
-  bool any_gltf = false;  // a glTF material (its shading reads every surface attribute)
-  ToksvigChains toksvig;  // unit-normal chains of the normal maps, built when specular AA asks
+  bool any_cull = false;            // a single-sided glTF material: camera rays skip its back faces
+  bool any_gltf = false;            // a glTF material (its shading reads every surface attribute)
+  bool any_vertex_normals = false;  // a triangle mesh with vertex normals (n differs from ng)
+  ToksvigChains toksvig;            // unit-normal chains of the normal maps, built when specular AA asks
   // camera basis
   glm::vec3 origin{0.0f}, forward{0.0f}, right{0.0f}, up{0.0f};
   float half_h = 0.0f;  // tan(fov_y / 2) (perspective) or height / 2 (orthographic)
@@ -324,6 +325,8 @@ struct ShadeScratch {
   std::vector<glm::vec4> job_out;
   std::vector<const Texture*> pattern_tex;  // the unlit path's textured hits (ShadeUnlit)
   std::vector<float> pattern_t;
+  std::vector<glm::vec3> lit_c0, lit_terms;  // the lit packets' colour terms (LitShading)
+  std::vector<uint32_t> lit_mask;
 };
 
 /// The shading of hits in a scene without lighting, shadows or glTF materials (every hit shows

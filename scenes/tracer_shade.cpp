@@ -6,22 +6,16 @@
 #include "scenes/ibl.h"
 #include "scenes/light_eval.h"
 #include "scenes/tracer_internal.h"
+#include "scenes/tracer_lit.h"
 
 namespace aalab::tracer_detail {
 
 namespace {
 
-/// Offset for secondary rays: relative to the magnitude of the position (float spacing).
-float RayEpsilon(glm::vec3 p) {
-  const float m = std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
-  return 1e-4f + m * 1e-6f;
-}
-
 /// Shadow rays from every lambert hit to every shadow-casting light; sets blocked[i] bit l
 /// when light l is blocked at hit i. Any hit that survives the alpha test blocks the light.
 void ShadowRays(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* hits, int n, ShadeScratch& S,
                 TraceCounters& local) {
-  const float inf = std::numeric_limits<float>::infinity();
   const Surface* surf = S.surf.data();
   uint32_t* blocked = S.blocked.data();
   // At most one ray per hit and shadow-casting light: the arrays are sized once and filled
@@ -42,24 +36,8 @@ void ShadowRays(const Tracer::Impl& im, const Scene& sc, bool alpha, const Hit* 
     for (size_t l = 0; l < n_lights; ++l) {
       const Light& light = sc.lights[l];
       if (!light.shadows) continue;
-      glm::vec3 L;
-      float dist;
-      if (light.type == LightType::kDirectional) {
-        L = -light.direction;
-        dist = inf;
-      } else {
-        L = light.position - sf.p;
-        dist = glm::length(L);
-        if (!(dist > 0.0f)) continue;
-        L /= dist;
-      }
-      if (glm::dot(sf.ng, L) <= 0.0f && glm::dot(sf.n, L) <= 0.0f) continue;
-      const float eps = RayEpsilon(sf.p);
-      const glm::vec3 side = glm::dot(sf.ng, L) > 0.0f ? sf.ng : -sf.ng;
-      so[m] = sf.p + side * eps;
-      sd[m] = L;
+      if (!ShadowRayTo(light, sf.p, sf.ng, sf.n, &so[m], &sd[m], &stf[m])) continue;
       stn[m] = 0.0f;
-      stf[m] = light.type == LightType::kDirectional ? inf : dist * (1.0f - 1e-5f);
       who_sample[m] = i;
       who_light[m] = static_cast<int>(l);
       ++m;
@@ -256,6 +234,52 @@ void UnlitShading::Finish() {
       r.rgb[2] = base.z;
     }
     k = e;
+  }
+}
+
+void LitShading::Flush() {
+  if (lanes_ == 0) return;
+  RTCIntersectContext ctx = PacketContext(true);
+  alignas(64) int valid[kPacket];
+  for (int k = 0; k < kPacket; ++k) valid[k] = k < lanes_ && ray_.tnear[k] < ray_.tfar[k] ? -1 : 0;
+  for (int k = 0; k < kPacket; ++k) {
+    if (valid[k]) continue;
+    ray_.org_x[k] = ray_.org_x[0];  // OccludedRays' idle lane: the packet's first ray, empty
+    ray_.org_y[k] = ray_.org_y[0];
+    ray_.org_z[k] = ray_.org_z[0];
+    ray_.dir_x[k] = ray_.dir_x[0];
+    ray_.dir_y[k] = ray_.dir_y[0];
+    ray_.dir_z[k] = ray_.dir_z[0];
+    ray_.tnear[k] = 0.0f;
+    ray_.tfar[k] = 0.0f;
+  }
+  rtcOccluded16(valid, scene_, &ctx, &ray_);
+  for (int k = 0; k < lanes_; ++k) {
+    // Embree sets tfar to -inf on an occluded ray.
+    if (!(valid[k] && ray_.tfar[k] == -std::numeric_limits<float>::infinity())) continue;
+    SampleResult& r = out_[who_sample_[k]];
+    if (r.shadowed == 0) redo_[n_redo_++] = who_sample_[k];
+    r.shadowed |= 1u << who_light_[k];
+  }
+  lanes_ = 0;
+}
+
+void LitShading::Finish() {
+  Flush();
+  local_.shading_evals += evals_;
+  local_.shadow_rays += shadow_rays_;
+  if (!lambert_) return;               // the colour is the material's, shadowed or not
+  for (int j = 0; j < n_redo_; ++j) {  // ShadeHits' sum without the blocked lights
+    const int i = redo_[j];
+    SampleResult& r = out_[i];
+    const glm::vec3* term = terms_ + static_cast<size_t>(i) * n_lights_;
+    glm::vec3 c = c0_[i];
+    for (size_t l = 0; l < n_lights_; ++l) {
+      if (((mask_[i] & ~r.shadowed) >> l) & 1u) c += term[l];
+    }
+    r.rgb[0] = c.x;
+    r.rgb[1] = c.y;
+    r.rgb[2] = c.z;
   }
 }
 
