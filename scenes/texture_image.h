@@ -129,6 +129,11 @@ struct UvDerivs {
   glm::vec2 dx{0.0f}, dy{0.0f};
 };
 
+/// std::hypot(a, b) of two floats, its bits: with glibc 2.35 or later, finite arguments take
+/// that library's own arithmetic inline (the double square root of the squares' double sum,
+/// rounded to float); the rest, and other C libraries, call std::hypot.
+float HypotF(float a, float b);
+
 /// The level of detail λ = log2(ρ), ρ = max(|∂(u·W, v·H)/∂x|, |∂(u·W, v·H)/∂y|) for a
 /// level-0 size W × H (OpenGL 4.6 §8.14.1, equation 8.7 with the "max of the two lengths"
 /// choice, which Vulkan and D3D allow). −inf when both derivatives are zero.

@@ -8,13 +8,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace aalab {
 
+float HypotF(float a, float b) {
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 35))
+  // glibc 2.35's hypotf for finite arguments (sysdeps/ieee754/flt-32/e_hypotf.c): the squares
+  // are exact in double, one rounded sum, IEEE square root, one rounding to float.
+  constexpr float kMax = 3.40282347e38f;  // FLT_MAX; NaN fails both compares
+  if (std::fabs(a) <= kMax && std::fabs(b) <= kMax) {
+    const double x = a, y = b;
+    return static_cast<float>(std::sqrt(x * x + y * y));
+  }
+#endif
+  return std::hypot(a, b);
+}
+
 float MipLambda(const UvDerivs& d, int width, int height) {
   const float w = static_cast<float>(width), h = static_cast<float>(height);
-  const float lx = std::hypot(d.dx.x * w, d.dx.y * h);
-  const float ly = std::hypot(d.dy.x * w, d.dy.y * h);
+  const float lx = HypotF(d.dx.x * w, d.dx.y * h);
+  const float ly = HypotF(d.dy.x * w, d.dy.y * h);
   const float rho = std::max(lx, ly);
   return std::log2(rho);
 }
@@ -116,6 +130,39 @@ glm::vec4 SampleBilinearScalar(const MipLevel& level, glm::vec2 uv, WrapMode wra
 
 namespace {
 
+/// WrapPair with at most one integer division (WrapPair's out-of-range case takes two): the
+/// index of x0 + 1 is the successor of x0's index in the period (n, or 2n mirrored), back to
+/// 0 past its end, then mirrored as WrapIndex mirrors; a power-of-two period folds by a mask
+/// (x & (m − 1) is x mod m in [0, m) for every int x in two's complement).
+inline void WrapPairFast(int x0, int n, WrapMode mode, int* i0, int* i1) {
+  if (x0 >= 0 && x0 < n - 1) {
+    *i0 = x0;
+    *i1 = x0 + 1;
+    return;
+  }
+  if (mode == WrapMode::kClampToEdge) {
+    *i0 = std::clamp(x0, 0, n - 1);
+    *i1 = std::clamp(x0 + 1, 0, n - 1);
+    return;
+  }
+  const int period = mode == WrapMode::kMirroredRepeat ? 2 * n : n;
+  int r = 0;
+  if ((period & (period - 1)) == 0) {
+    r = x0 & (period - 1);
+  } else {
+    r = x0 % period;
+    if (r < 0) r += period;
+  }
+  const int r1 = r + 1 == period ? 0 : r + 1;
+  if (mode != WrapMode::kMirroredRepeat) {
+    *i0 = r;
+    *i1 = r1;
+    return;
+  }
+  *i0 = r < n ? r : period - 1 - r;
+  *i1 = r1 < n ? r1 : period - 1 - r1;
+}
+
 /// Blend4 in one SSE register per texel (lanes = the four channels): per channel the same
 /// products and sums in the same order as glm's vec4 operators, so the same bits.
 inline __m128 Blend4Sse(__m128 t00, __m128 t10, __m128 t01, __m128 t11, float ax, float ay) {
@@ -126,18 +173,40 @@ inline __m128 Blend4Sse(__m128 t00, __m128 t10, __m128 t01, __m128 t11, float ax
   return _mm_add_ps(_mm_mul_ps(top, wy1), _mm_mul_ps(bot, wy));
 }
 
-/// The four channels of texel i of an 8-bit level through its decode tables (rgb, alpha).
-inline __m128 Texel8(const uint8_t* bytes, size_t i, const float* rgb, const float* alpha) {
-  const uint8_t* p = bytes + 4 * i;
-  return _mm_setr_ps(rgb[p[0]], rgb[p[1]], rgb[p[2]], alpha[p[3]]);
+/// The 8-bit decode tables, looked up once (a guarded static, not two calls a tap).
+struct Tables8 {
+  const float* srgb;
+  const float* unorm;
+};
+inline const Tables8& Tables() {
+  static const Tables8 t{Srgb8Table(), Unorm8Table()};
+  return t;
 }
 
-/// SampleBilinear of an 8-bit level at uv into *out (rgb, alpha: its decode tables), in SSE2
-/// registers; false, having written nothing, where SampleBilinearScalar must answer (a
-/// non-finite uv, a coordinate FoldCoord would fold).
+/// Texel i of an 8-bit level as its four linear channels. sRGB: colour through Srgb8Table,
+/// alpha through Unorm8Table. Unorm: the four codes widened to int32 lanes, converted
+/// (exactly) and multiplied by 1/255 in float, which is how Unorm8Table's entries are made
+/// (k · (1.0f / 255.0f), io/image_read.cpp): the same operation, the same floats.
+template <bool kSrgb>
+inline __m128 Texel8(const uint8_t* bytes, size_t i, const Tables8& t) {
+  const uint8_t* p = bytes + 4 * i;
+  if constexpr (kSrgb) {
+    return _mm_setr_ps(t.srgb[p[0]], t.srgb[p[1]], t.srgb[p[2]], t.unorm[p[3]]);
+  } else {
+    int32_t v;
+    std::memcpy(&v, p, sizeof v);
+    const __m128i z = _mm_setzero_si128();
+    const __m128i codes = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(v), z), z);
+    return _mm_mul_ps(_mm_cvtepi32_ps(codes), _mm_set1_ps(1.0f / 255.0f));
+  }
+}
+
+/// SampleBilinear of an 8-bit level (kSrgb: kSrgb8, else kUnorm8; tb: the decode tables) at uv
+/// into *out, in SSE2 registers; false, having written nothing, where SampleBilinearScalar
+/// must answer (a non-finite uv, a coordinate FoldCoord would fold).
+template <bool kSrgb>
 inline __attribute__((always_inline)) bool Bilinear8(const MipLevel& level, const glm::vec2& uv, WrapMode wrap_s,
-                                                     WrapMode wrap_t, const float* rgb, const float* alpha,
-                                                     float* out) {
+                                                     WrapMode wrap_t, const Tables8& tb, __m128* out) {
   static_assert(sizeof(glm::vec2) == 8 && sizeof(glm::vec4) == 16, "glm vectors must be packed floats");
   const __m128d size = _mm_setr_pd(static_cast<double>(level.width), static_cast<double>(level.height));
   // (x, y) in the two lanes of an SSE2 double register: x = u·W − ½ in double, floor by
@@ -155,56 +224,87 @@ inline __attribute__((always_inline)) bool Bilinear8(const MipLevel& level, cons
   const __m128 a = _mm_cvtpd_ps(_mm_sub_pd(c, f));
   const int x0 = _mm_cvtsi128_si32(fi), y0 = _mm_cvtsi128_si32(_mm_shuffle_epi32(fi, 1));
   int i0, i1, j0, j1;
-  WrapPair(x0, level.width, wrap_s, &i0, &i1);
-  WrapPair(y0, level.height, wrap_t, &j0, &j1);
+  WrapPairFast(x0, level.width, wrap_s, &i0, &i1);
+  WrapPairFast(y0, level.height, wrap_t, &j0, &j1);
   const size_t w = static_cast<size_t>(level.width);
   const size_t r0 = static_cast<size_t>(j0) * w, r1 = static_cast<size_t>(j1) * w;
   const uint8_t* bytes = level.bytes.data();
-  const __m128 v = Blend4Sse(
-      Texel8(bytes, r0 + static_cast<size_t>(i0), rgb, alpha), Texel8(bytes, r0 + static_cast<size_t>(i1), rgb, alpha),
-      Texel8(bytes, r1 + static_cast<size_t>(i0), rgb, alpha), Texel8(bytes, r1 + static_cast<size_t>(i1), rgb, alpha),
+  *out = Blend4Sse(
+      Texel8<kSrgb>(bytes, r0 + static_cast<size_t>(i0), tb), Texel8<kSrgb>(bytes, r0 + static_cast<size_t>(i1), tb),
+      Texel8<kSrgb>(bytes, r1 + static_cast<size_t>(i0), tb), Texel8<kSrgb>(bytes, r1 + static_cast<size_t>(i1), tb),
       _mm_cvtss_f32(a), _mm_cvtss_f32(_mm_shuffle_ps(a, a, 1)));
-  _mm_storeu_ps(out, v);
   return true;
 }
 
-}  // namespace
-
-glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t) {
-  if (level.format == TexelFormat::kSrgb8 || level.format == TexelFormat::kUnorm8) {
-    glm::vec4 r;
-    if (Bilinear8(level, uv, wrap_s, wrap_t, level.format == TexelFormat::kSrgb8 ? Srgb8Table() : Unorm8Table(),
-                  Unorm8Table(), &r.x)) {
-      return r;
-    }
+/// SampleBilinear's value in an SSE register (the SSE tap of an 8-bit level, else the scalar).
+inline __m128 Tap(const MipLevel& level, const glm::vec2& uv, WrapMode wrap_s, WrapMode wrap_t) {
+  __m128 r;
+  if (level.format == TexelFormat::kSrgb8) {
+    if (Bilinear8<true>(level, uv, wrap_s, wrap_t, Tables(), &r)) return r;
+  } else if (level.format == TexelFormat::kUnorm8) {
+    if (Bilinear8<false>(level, uv, wrap_s, wrap_t, Tables(), &r)) return r;
   }
-  return SampleBilinearScalar(level, uv, wrap_s, wrap_t);
+  const glm::vec4 v = SampleBilinearScalar(level, uv, wrap_s, wrap_t);
+  return _mm_loadu_ps(&v.x);
 }
 
-void SampleBilinearBatch(const MipLevel& level, const glm::vec2* uv, int n, WrapMode wrap_s, WrapMode wrap_t,
-                         glm::vec4* out) {
-  const bool is8 = level.format == TexelFormat::kSrgb8 || level.format == TexelFormat::kUnorm8;
-  const float* rgb = level.format == TexelFormat::kSrgb8 ? Srgb8Table() : Unorm8Table();
-  const float* alpha = Unorm8Table();
+inline glm::vec4 ToVec4(__m128 v) {
+  glm::vec4 r;
+  _mm_storeu_ps(&r.x, v);
+  return r;
+}
+
+/// SampleBilinearBatch for one 8-bit format.
+template <bool kSrgb>
+void Batch8(const MipLevel& level, const glm::vec2* uv, int n, WrapMode wrap_s, WrapMode wrap_t, glm::vec4* out) {
+  const Tables8& tb = Tables();
   for (int k = 0; k < n; ++k) {
-    if (!is8 || !Bilinear8(level, uv[k], wrap_s, wrap_t, rgb, alpha, &out[k].x)) {
+    __m128 r;
+    if (Bilinear8<kSrgb>(level, uv[k], wrap_s, wrap_t, tb, &r)) {
+      _mm_storeu_ps(&out[k].x, r);
+    } else {
       out[k] = SampleBilinearScalar(level, uv[k], wrap_s, wrap_t);
     }
   }
 }
 
+}  // namespace
+
+glm::vec4 SampleBilinear(const MipLevel& level, glm::vec2 uv, WrapMode wrap_s, WrapMode wrap_t) {
+  return ToVec4(Tap(level, uv, wrap_s, wrap_t));
+}
+
+void SampleBilinearBatch(const MipLevel& level, const glm::vec2* uv, int n, WrapMode wrap_s, WrapMode wrap_t,
+                         glm::vec4* out) {
+  switch (level.format) {
+    case TexelFormat::kSrgb8: Batch8<true>(level, uv, n, wrap_s, wrap_t, out); return;
+    case TexelFormat::kUnorm8: Batch8<false>(level, uv, n, wrap_s, wrap_t, out); return;
+    default:
+      for (int k = 0; k < n; ++k) out[k] = SampleBilinearScalar(level, uv[k], wrap_s, wrap_t);
+  }
+}
+
 namespace {
 
+/// The trilinear tap at λ: level 0 when magnifying (and for NaN), the last level beyond it,
+/// else the two levels around λ blended a · (1 − f) + b · f per channel (glm's vec4
+/// operators' products and sum, in SSE lanes), or level ⌊λ⌋ alone where f is 0.
 glm::vec4 SampleLevelLerp(const MipChain& chain, glm::vec2 uv, float lambda, WrapMode ws, WrapMode wt) {
   const int last = static_cast<int>(chain.levels.size()) - 1;
-  if (!(lambda > 0.0f)) return SampleBilinear(chain.levels[0], uv, ws, wt);  // magnification, NaN
-  if (lambda >= static_cast<float>(last)) return SampleBilinear(chain.levels[last], uv, ws, wt);
-  const int l0 = static_cast<int>(std::floor(lambda));
-  const float f = lambda - static_cast<float>(l0);
-  const glm::vec4 a = SampleBilinear(chain.levels[l0], uv, ws, wt);
-  if (f == 0.0f) return a;
-  const glm::vec4 b = SampleBilinear(chain.levels[l0 + 1], uv, ws, wt);
-  return a * (1.0f - f) + b * f;
+  int l0 = 0;
+  float f = 0.0f;
+  if (!(lambda > 0.0f)) {
+    l0 = 0;
+  } else if (lambda >= static_cast<float>(last)) {
+    l0 = last;
+  } else {
+    l0 = static_cast<int>(std::floor(lambda));
+    f = lambda - static_cast<float>(l0);
+  }
+  const __m128 a = Tap(chain.levels[static_cast<size_t>(l0)], uv, ws, wt);
+  if (f == 0.0f) return ToVec4(a);
+  const __m128 b = Tap(chain.levels[static_cast<size_t>(l0) + 1], uv, ws, wt);
+  return ToVec4(_mm_add_ps(_mm_mul_ps(a, _mm_set1_ps(1.0f - f)), _mm_mul_ps(b, _mm_set1_ps(f))));
 }
 
 }  // namespace
@@ -217,8 +317,8 @@ glm::vec4 SampleTexture(const MipChain& chain, glm::vec2 uv, const UvDerivs& d, 
   // Anisotropic: N probes along the major axis, each with the level of the minor axis
   // stretched so that N probes cover the major one (the EXT_texture_filter_anisotropic rule).
   const float w = static_cast<float>(l0.width), h = static_cast<float>(l0.height);
-  const float lx = std::hypot(d.dx.x * w, d.dx.y * h);
-  const float ly = std::hypot(d.dy.x * w, d.dy.y * h);
+  const float lx = HypotF(d.dx.x * w, d.dx.y * h);
+  const float ly = HypotF(d.dy.x * w, d.dy.y * h);
   const float pmax = std::max(lx, ly), pmin = std::min(lx, ly);
   if (!(pmax > 0.0f) || !std::isfinite(pmax))
     return SampleLevelLerp(chain, uv, MipLambda(d, l0.width, l0.height), wrap_s, wrap_t);
