@@ -129,6 +129,11 @@ struct UvDerivs {
   glm::vec2 dx{0.0f}, dy{0.0f};
 };
 
+/// std::hypot(a, b) of two floats, its bits: with glibc 2.35 or later, finite arguments take
+/// that library's own arithmetic inline (the double square root of the squares' double sum,
+/// rounded to float); the rest, and other C libraries, call std::hypot.
+float HypotF(float a, float b);
+
 /// The level of detail λ = log2(ρ), ρ = max(|∂(u·W, v·H)/∂x|, |∂(u·W, v·H)/∂y|) for a
 /// level-0 size W × H (OpenGL 4.6 §8.14.1, equation 8.7 with the "max of the two lengths"
 /// choice, which Vulkan and D3D allow). −inf when both derivatives are zero.
@@ -149,8 +154,9 @@ glm::vec4 SampleBilinearScalar(const MipLevel& level, glm::vec2 uv, WrapMode wra
 /// SampleBilinear of each uv[k] into out[k], k < n, with the same bits: the batch form the
 /// reference's level-0 texture fetches take over a packet of samples: the format and tables
 /// decided once per batch, a sample's texel x and y in the two lanes of an SSE2 double
-/// register, each texel's four channels decoded by table and blended in one SSE register,
-/// with the same operations in the same order as SampleBilinearScalar.
+/// register, each texel's four channels decoded (sRGB colour by table, unorm codes by
+/// conversion and k · (1/255.0f), Unorm8Table's own operation) and blended in one SSE
+/// register, with the same operations in the same order as SampleBilinearScalar.
 void SampleBilinearBatch(const MipLevel& level, const glm::vec2* uv, int n, WrapMode wrap_s, WrapMode wrap_t,
                          glm::vec4* out);
 
