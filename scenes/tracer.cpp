@@ -258,7 +258,7 @@ Tracer::Tracer(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>
   im.forward = basis.forward;
   im.right = basis.right;
   im.up = basis.up;
-  im.half_h = c.type == CameraType::kPerspective ? std::tan(glm::radians(c.fov_y_deg) * 0.5f) : c.height * 0.5f;
+  im.half_h = CameraHalfHeight(c);
 }
 
 Tracer::~Tracer() = default;
@@ -490,8 +490,7 @@ uint64_t Tracer::BareTrace(int width, int height, int grid) const {
   const Impl& im = *impl_;
   const Camera& cam = scene_.camera;
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h =
-      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  const float half_h = CameraHalfHeight(cam);
   const bool persp = cam.type == CameraType::kPerspective;
   constexpr int kTileSize = 8;
   const int tiles_x = (width + kTileSize - 1) / kTileSize;

@@ -247,8 +247,7 @@ void CameraPacketsLit(RTCScene scene, bool persp, const SamplePos* pos, int coun
 void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width,
                                int height, glm::vec3* org, glm::vec3* dir) {
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h =
-      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  const float half_h = CameraHalfHeight(cam);
   if (cam.type == CameraType::kPerspective) {
     PerspectiveRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
                     im.forward, im.right, im.up, org, dir);
@@ -261,8 +260,7 @@ void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const 
 void tracer_detail::TraceCameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count,
                                     int width, int height, glm::vec3* org, glm::vec3* dir, Hit* hits) {
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h =
-      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  const float half_h = CameraHalfHeight(cam);
   CameraPackets(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
                 static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, org, dir, hits);
 }
@@ -272,24 +270,18 @@ void tracer_detail::TraceCameraRaysUnlit(const Tracer::Impl& im, const Scene& sc
                                          TraceCounters& local) {
   const Camera& cam = sc.camera;
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h =
-      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  const float half_h = CameraHalfHeight(cam);
   CameraPacketsUnlit(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
                      static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, sc, S, out,
                      local);
 }
-
-}  // namespace aalab
-
-namespace aalab {
 
 void tracer_detail::TraceCameraRaysLit(const Tracer::Impl& im, const Scene& sc, const SamplePos* pos, int count,
                                        int width, int height, ShadeScratch& S, SampleResult* out,
                                        TraceCounters& local) {
   const Camera& cam = sc.camera;
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h =
-      cam.type == CameraType::kPerspective ? std::tan(glm::radians(cam.fov_y_deg) * 0.5f) : cam.height * 0.5f;
+  const float half_h = CameraHalfHeight(cam);
   CameraPacketsLit(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
                    static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, sc, S, out,
                    local);

@@ -335,19 +335,27 @@ struct ShadeScratch {
 /// in one place. Background() and Shade() write out[i]'s rgb, surface and shadowed (a textured
 /// hit's rgb after Finish()); Finish() evaluates the queued textured hits' patterns in batches
 /// per run of hits that share a texture (EvaluatePatternBatch) and writes their colours.
+/// tan(fov_y / 2) for a perspective camera, height / 2 for an orthographic one: the image
+/// plane's half height at distance 1, in float, as every camera ray is formed from it.
+inline float CameraHalfHeight(const Camera& c) {
+  return c.type == CameraType::kPerspective ? std::tan(glm::radians(c.fov_y_deg) * 0.5f) : c.height * 0.5f;
+}
+
+/// A sample that saw nothing: no surface, not shadowed, the scene's background colour.
+inline void WriteBackground(const Scene& sc, SampleResult& r) {
+  r.surface = -1;
+  r.shadowed = 0;
+  r.rgb[0] = sc.background.x;
+  r.rgb[1] = sc.background.y;
+  r.rgb[2] = sc.background.z;
+}
+
 class UnlitShading {
  public:
   UnlitShading(const Scene& sc, bool textures, ShadeScratch& S, int n, SampleResult* out, TraceCounters& local);
 
   /// Sample i saw nothing.
-  void Background(int i) {
-    SampleResult& r = out_[i];
-    r.surface = -1;
-    r.shadowed = 0;
-    r.rgb[0] = sc_.background.x;
-    r.rgb[1] = sc_.background.y;
-    r.rgb[2] = sc_.background.z;
-  }
+  void Background(int i) { WriteBackground(sc_, out_[i]); }
 
   /// Sample i hit shape `shape_id` (primitive prim, barycentrics u, v). `curved_uv()` returns
   /// the hit's uv for shapes that are not triangle meshes (FillSurface's), called only there.

@@ -99,14 +99,7 @@ class LitShading {
   }
 
   /// Sample i saw nothing.
-  void Background(int i) {
-    SampleResult& r = out_[i];
-    r.surface = -1;
-    r.shadowed = 0;
-    r.rgb[0] = sc_.background.x;
-    r.rgb[1] = sc_.background.y;
-    r.rgb[2] = sc_.background.z;
-  }
+  void Background(int i) { WriteBackground(sc_, out_[i]); }
 
   /// Sample i's ray (o, d) hit shape `shape_id` at distance t, Embree's geometric normal hng.
   inline __attribute__((always_inline)) void Shade(int i, int shape_id, glm::vec3 o, glm::vec3 d, float t,
