@@ -125,6 +125,8 @@ double PairedRatio(const std::string& a, const std::string& b) {
   return r.Median();
 }
 
+double FastestRatio(const std::string& a, const std::string& b) { return Figure(a).Min() / Figure(b).Min(); }
+
 void RunRegistered() {
   // Figures run in registration order. The figures a goal compares (a scene's reference and
   // bare loop at 1 and 2 threads, a frame's filters and floor at 1 and 2 threads, a metric at 1

@@ -59,6 +59,11 @@ void RegisterRounds(const std::vector<RoundFigure>& figs, int reps, double min_t
 /// one RegisterRounds group); exits 3 when either is missing or their counts differ.
 double PairedRatio(const std::string& a, const std::string& b);
 
+/// Figure a's fastest sample / figure b's fastest sample: the same ratio with the machine's
+/// slow stretches left out (other load and a host that slows a vCPU only add time), shown
+/// beside PairedRatio where a goal reads the machine's 2-core scaling.
+double FastestRatio(const std::string& a, const std::string& b);
+
 /// Runs every registered figure (Google Benchmark), collecting seconds per operation.
 void RunRegistered();
 

@@ -129,6 +129,39 @@ void StageTable(const SuiteBench& sb, BenchOutput& out) {
   }
 }
 
+std::string SuiteCommand(const Settings& cfg, const SuiteRun& s, const fs::path& out) {
+  return cfg.aalab_bin + " run --suite " + kSuiteName + " --methods " + kSuiteMethods + " --size " + s.size +
+         " --ref-spp " + std::to_string(kSuiteSpp) + " --repeat 1 --threads " + std::to_string(s.threads) +
+         " --quiet --out " + out.string() + " >/dev/null";
+}
+
+// Two copies of the 1-thread run `s`, started together by one shell that waits for both (their
+// CPU time reaches RUSAGE_CHILDREN through it): the throughput two independent processes get
+// from this machine's two cores in the same minutes, the ceiling for a 2-thread run's scaling.
+bool RunPair(const Settings& cfg, const SuiteRun& s, const fs::path& base, SuiteBench& sb) {
+  const fs::path a = base.string() + "_pair_a", b = base.string() + "_pair_b";
+  fs::remove_all(a);
+  fs::remove_all(b);
+  const std::string cmd = "( " + SuiteCommand(cfg, s, a) + " ) & pa=$!; ( " + SuiteCommand(cfg, s, b) +
+                          " ) & pb=$!; wait $pa; ra=$?; wait $pb; rb=$?; [ $ra -eq 0 ] && [ $rb -eq 0 ]";
+  std::fprintf(stderr, "  suite %s threads 1, two runs at once...\n", s.size.c_str());
+  rusage c0{}, c1{};
+  getrusage(RUSAGE_CHILDREN, &c0);
+  const auto t0 = std::chrono::steady_clock::now();
+  const int rc = std::system(cmd.c_str());
+  const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  getrusage(RUSAGE_CHILDREN, &c1);
+  fs::remove_all(a);
+  fs::remove_all(b);
+  if (rc != 0) {
+    std::fprintf(stderr, "suite pair run failed (%d): %s\n", rc, cmd.c_str());
+    return false;
+  }
+  sb.pair_secs.push_back(sec);
+  sb.pair_cpu.push_back(ChildCpu(c1) - ChildCpu(c0));
+  return true;
+}
+
 }  // namespace
 
 int SuiteReps(int width, int suite_reps) {
@@ -158,10 +191,7 @@ bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
       const int reps = reps_of(s);
       if (r >= reps) continue;
       fs::remove_all(suite_out);
-      const std::string cmd = cfg.aalab_bin + " run --suite " + kSuiteName + " --methods " + kSuiteMethods +
-                              " --size " + s.size + " --ref-spp " + std::to_string(kSuiteSpp) +
-                              " --repeat 1 --threads " + std::to_string(s.threads) + " --quiet --out " +
-                              suite_out.string() + " >/dev/null";
+      const std::string cmd = SuiteCommand(cfg, s, suite_out);
       std::fprintf(stderr, "  suite %s threads %d (%d/%d)...\n", s.size.c_str(), s.threads, r + 1, reps);
       rusage c0{}, c1{};
       getrusage(RUSAGE_CHILDREN, &c0);
@@ -176,6 +206,7 @@ bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
       }
       s.secs.push_back(sec);
       s.stages = ReadStages(suite_out / "report.json");
+      if (s.w == 960 && s.threads == 1 && !RunPair(cfg, s, suite_out, sb)) return false;
     }
   }
   fs::remove_all(suite_out);
@@ -289,6 +320,22 @@ void SuiteTable(SuiteBench& sb, BenchOutput& out) {
                            {"ref_spp", kSuiteSpp},
                            {"stages_last_repetition", StagesJson(s.stages)}});
   }
+  if (!sb.pair_secs.empty()) {
+    const Stats pw{sb.pair_secs}, pc{sb.pair_cpu};
+    out.Line("| 960x540 | 1, two runs at once | " + std::to_string(sb.pair_secs.size()) + " | " + Range(pw, 1, "%.1f") +
+             " (until both ended) | | " + FormatDouble("%.1f", pc.Median()) + " (both) | | " +
+             FormatDouble("%.2f", pc.Median() / pw.Median()) + " |");
+    out.figures.push_back({{"group", "suite-pair"},
+                           {"size", "960x540"},
+                           {"threads", 1},
+                           {"processes", 2},
+                           {"unit", "s"},
+                           {"value", StatsJson(sb.pair_secs, 1)},
+                           {"cpu_s", StatsJson(sb.pair_cpu, 1)},
+                           {"suite", kSuiteName},
+                           {"methods", kSuiteMethods},
+                           {"ref_spp", kSuiteSpp}});
+  }
   StageTable(sb, out);
   const DefaultRun& d = sb.default_run;
   if (d.ok) {
@@ -324,7 +371,13 @@ void SuiteGoals(const SuiteBench& sb, BenchOutput& out) {
              FormatDouble("worst deviation %.0f%%", 100 * sb.linear_worst_cpu), sb.linear_worst_cpu <= 0.15);
   }
   if (sb.t1 > 0 && sb.t2 > 0) {
-    out.Goal("quick suite at 960x540: 2 threads ≥ 1.85× one thread", FormatDouble("%.2f×", sb.t1 / sb.t2),
+    // Beside it, the machine's own ceiling for the same work in the same rounds: two 1-thread
+    // runs at once did twice the work in the pair's wall time, so 2 × (one alone) / (the pair).
+    std::string ceiling;
+    if (!sb.pair_secs.empty())
+      ceiling = FormatDouble("; two 1-thread runs at once, same rounds: %.2f× one run's throughput",
+                             2.0 * sb.t1 / Stats{sb.pair_secs}.Median());
+    out.Goal("quick suite at 960x540: 2 threads ≥ 1.85× one thread", FormatDouble("%.2f×", sb.t1 / sb.t2) + ceiling,
              sb.t1 / sb.t2 >= 1.85);
   }
 }

@@ -35,6 +35,10 @@ struct DefaultRun {
 struct SuiteBench {
   std::vector<SuiteRun> runs;
   DefaultRun default_run;
+  /// The machine's own two-core throughput for this work: two 1-thread 960x540 runs started
+  /// together (separate output folders), once a round right after the 1-thread run alone.
+  /// Wall s until both ended, and the CPU s of both.
+  std::vector<double> pair_secs, pair_cpu;
   /// `aalab --version`: the process's start and exit alone (dynamic loading), minimum of 3.
   double start_wall_s = 0, start_cpu_s = 0;
   // Filled by SuiteTable:

@@ -11,7 +11,10 @@ namespace aalab {
 struct TaaBench {
   std::vector<std::string> lines;
   nlohmann::ordered_json figures = nlohmann::ordered_json::array();
-  double ratio = 0.0;  ///< median TAA step time / median fxaa311-p39 time
+  double ratio = 0.0;         ///< median TAA step time / median fxaa311-p39 time
+  double minmax_ratio = 0.0;  ///< the same for taa:clip=minmax (min/max box, no sums)
+  double none_ratio = 0.0;    ///< the same for taa:clip=none (no box: fetch, blend, encode)
+  double floor_ratio = 0.0;   ///< TAA's bandwidth floor (its reads and writes alone) / fxaa311-p39
 };
 
 /// Renders frames 0 and 1 of the motion-pan scene at 1920x1080 (jittered, with exact motion
@@ -19,7 +22,9 @@ struct TaaBench {
 /// TAA's temporal step on frame 1 (reprojection, YCoCg variance clip, blend, 8-bit output;
 /// each run on a fresh copy of the state after frame 0, the copy not timed), fxaa311-p39's
 /// post filter on the same scene's 1x frame, and the motion vectors (PreviousPositions).
-/// Goal: TAA ≤ 2× fxaa311-p39.
+/// Also the step of taa:clip=minmax and taa:clip=none (lower bounds on the default step's
+/// time, whatever its variance box costs), and TAA's bandwidth floor: a plain pass reading
+/// its inputs and writing its outputs. Goal: TAA ≤ 2× fxaa311-p39.
 TaaBench RunTaaBench(int reps, int threads);
 
 }  // namespace aalab

@@ -17,8 +17,9 @@ struct TracingBench {
   std::vector<std::string> scenes;
   std::map<std::string, uint64_t> rays;  ///< primary + shadow rays of one reference render, per scene
   // Filled by TracingTable:
-  std::map<std::string, double> ratio_t1;  ///< reference / bare Mrays/s at 1 thread
-  std::map<std::string, double> scaling;   ///< 1-thread time / 2-thread time
+  std::map<std::string, double> ratio_t1;         ///< reference / bare Mrays/s at 1 thread
+  std::map<std::string, double> scaling;          ///< 1-thread time / 2-thread time
+  std::map<std::string, double> scaling_fastest;  ///< the same, fastest samples (FastestRatio)
 };
 
 /// Loads the scenes (the synthetic library; the glTF real-* scenes are measured by their
