@@ -375,10 +375,16 @@ void SuiteGoals(const SuiteBench& sb, BenchOutput& out) {
     // runs at once did twice the work in the pair's wall time, so 2 × (one alone) / (the pair).
     std::string ceiling;
     if (!sb.pair_secs.empty())
-      ceiling = FormatDouble("; two 1-thread runs at once, same rounds: %.2f× one run's throughput",
-                             2.0 * sb.t1 / Stats{sb.pair_secs}.Median());
-    out.Goal("quick suite at 960x540: 2 threads ≥ 1.85× one thread", FormatDouble("%.2f×", sb.t1 / sb.t2) + ceiling,
-             sb.t1 / sb.t2 >= 1.85);
+      ceiling = "; two 1-thread runs at once, same rounds: " +
+                FormatDouble("%.2f×", 2.0 * sb.t1 / Stats{sb.pair_secs}.Median()) + " one run's throughput";
+    double f1 = 0, f2 = 0;  // the fastest 1-thread and 2-thread runs
+    for (const auto& s : sb.runs) {
+      if (s.w == 960 && s.threads == 1) f1 = Stats{s.secs}.Min();
+      if (s.w == 960 && s.threads == 2) f2 = Stats{s.secs}.Min();
+    }
+    const std::string fastest = f2 > 0 ? "; fastest runs " + FormatDouble("%.2f×", f1 / f2) : "";
+    out.Goal("quick suite at 960x540: 2 threads ≥ 1.85× one thread",
+             FormatDouble("%.2f×", sb.t1 / sb.t2) + fastest + ceiling, sb.t1 / sb.t2 >= 1.85);
   }
 }
 

@@ -6,7 +6,7 @@
 namespace aalab {
 
 /// snprintf(fmt, v) as a string; `fmt` holds exactly one double conversion ("%.2f", "%.4g",
-/// "%.1f×"). Output longer than 63 bytes is cut there.
+/// "%.1f×"), whole at any length (before 2026-11-28 it was cut at 63 bytes).
 std::string FormatDouble(const char* fmt, double v);
 
 }  // namespace aalab

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace aalab {
 namespace {
@@ -133,6 +134,18 @@ TEST(Params, RespellSpecNumbersMatchesOlderReportsToTodaysSpecs) {
   EXPECT_EQ(RespellSpecNumbers("x:"), "x:");
   EXPECT_EQ(RespellNumber("2e+01"), "20");
   EXPECT_EQ(RespellNumber("green"), "green");
+}
+
+// FormatDouble (core/format.h): the text snprintf makes, whole. A goal line of make bench lost
+// its last words when the helper cut its output at 63 bytes.
+TEST(Format, FormatDoubleIsWholeAtAnyLength) {
+  EXPECT_EQ(FormatDouble("%.2f", 1.5), "1.50");
+  EXPECT_EQ(FormatDouble("%.1f×", 4.25), "4.2×");  // round half to even: 4.25 is exact
+  const std::string head(62, 'a');
+  EXPECT_EQ(FormatDouble((head + "%.0f").c_str(), 7.0), head + "7");    // 63 bytes: fits the buffer
+  EXPECT_EQ(FormatDouble((head + "%.0f").c_str(), 70.0), head + "70");  // 64 bytes: one past it
+  const std::string tail = "; two 1-thread runs at once, same rounds: %.2f× one run's throughput";
+  EXPECT_EQ(FormatDouble(tail.c_str(), 1.94), "; two 1-thread runs at once, same rounds: 1.94× one run's throughput");
 }
 
 }  // namespace
