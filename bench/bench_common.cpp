@@ -76,38 +76,52 @@ void Register(const std::string& name, int threads, int reps, double min_time, s
   b->UseRealTime()->Repetitions(reps)->MinTime(min_time);
 }
 
+namespace {
+
+// Registers round r of figure f (Google Benchmark runs figures in registration order): on round
+// 0 an untimed warm-up call first, which fixes *calls; then one repetition of *calls calls.
+void RegisterRoundFigure(const RoundFigure& f, const std::shared_ptr<int>& calls, int r, double min_time) {
+  const std::string name = f.name;
+  const int threads = f.threads;
+  const std::function<void()> body = f.body;
+  auto* b = benchmark::RegisterBenchmark(name.c_str(), [name, threads, body, calls, r, min_time](benchmark::State& st) {
+    SetThreadCount(threads);
+    if (r == 0) {  // warm-up (also first touch of any buffer), which also sets the call count
+      const auto t0 = std::chrono::steady_clock::now();
+      body();
+      const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      *calls = t > 0 ? std::max(1, static_cast<int>(std::ceil(min_time / t))) : 1;
+    }
+    const double cpu0 = ProcessCpuSeconds();
+    const auto w0 = std::chrono::steady_clock::now();
+    for (auto _ : st) {
+      const auto i0 = std::chrono::steady_clock::now();
+      for (int i = 0; i < *calls; ++i) body();
+      st.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - i0).count() / *calls);
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+    if (wall > 0) CoresByFigure()[name].push_back((ProcessCpuSeconds() - cpu0) / wall);
+  });
+  b->UseManualTime()->Iterations(1)->Repetitions(1);
+}
+
+}  // namespace
+
 void RegisterRounds(const std::vector<RoundFigure>& figs, int reps, double min_time) {
+  RegisterRoundsInterleaved({figs}, reps, min_time);
+}
+
+void RegisterRoundsInterleaved(const std::vector<std::vector<RoundFigure>>& groups, int reps, double min_time) {
   // Each figure's calls per repetition, fixed by its warm-up (before its first round) so that
   // every round runs the same count (≥ min_time s) with no calibration runs of its own.
-  std::vector<std::shared_ptr<int>> counts;
-  for (size_t i = 0; i < figs.size(); ++i) counts.push_back(std::make_shared<int>(1));
+  std::vector<std::vector<std::shared_ptr<int>>> counts(groups.size());
+  for (size_t g = 0; g < groups.size(); ++g)
+    for (size_t i = 0; i < groups[g].size(); ++i) counts[g].push_back(std::make_shared<int>(1));
   for (int r = 0; r < reps; ++r) {
-    for (size_t fi = 0; fi < figs.size(); ++fi) {
-      const RoundFigure& f = figs[fi];
-      const std::shared_ptr<int> calls = counts[fi];
-      const std::string name = f.name;
-      const int threads = f.threads;
-      const std::function<void()> body = f.body;
-      auto* b = benchmark::RegisterBenchmark(name.c_str(), [name, threads, body, calls, r,
-                                                            min_time](benchmark::State& st) {
-        SetThreadCount(threads);
-        if (r == 0) {  // warm-up (also first touch of any buffer), which also sets the call count
-          const auto t0 = std::chrono::steady_clock::now();
-          body();
-          const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-          *calls = t > 0 ? std::max(1, static_cast<int>(std::ceil(min_time / t))) : 1;
-        }
-        const double cpu0 = ProcessCpuSeconds();
-        const auto w0 = std::chrono::steady_clock::now();
-        for (auto _ : st) {
-          const auto i0 = std::chrono::steady_clock::now();
-          for (int i = 0; i < *calls; ++i) body();
-          st.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - i0).count() / *calls);
-        }
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
-        if (wall > 0) CoresByFigure()[name].push_back((ProcessCpuSeconds() - cpu0) / wall);
-      });
-      b->UseManualTime()->Iterations(1)->Repetitions(1);
+    for (size_t g = 0; g < groups.size(); ++g) {
+      for (size_t fi = 0; fi < groups[g].size(); ++fi) {
+        RegisterRoundFigure(groups[g][fi], counts[g][fi], r, min_time);
+      }
     }
   }
 }

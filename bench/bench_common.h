@@ -55,6 +55,12 @@ struct RoundFigure {
 /// minute to the next, the drift then cancels in each pair instead of biasing one figure.
 void RegisterRounds(const std::vector<RoundFigure>& figs, int reps, double min_time);
 
+/// RegisterRounds for several groups at once, their rounds interleaved: round r of every group,
+/// then round r + 1. A group's samples still pair within a round (seconds apart), and its rounds
+/// now lie minutes apart, so a slow stretch of the machine a few seconds long reaches one round
+/// of a group (which the median over rounds then drops) instead of all of them.
+void RegisterRoundsInterleaved(const std::vector<std::vector<RoundFigure>>& groups, int reps, double min_time);
+
 /// The median over rounds of figure a's r-th sample / figure b's r-th sample (both registered by
 /// one RegisterRounds group); exits 3 when either is missing or their counts differ.
 double PairedRatio(const std::string& a, const std::string& b);

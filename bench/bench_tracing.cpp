@@ -33,7 +33,10 @@ TracingBench RegisterTracingFigures(const Settings& cfg) {
     tb.rays[name] = c.primary_rays + c.shadow_rays;
     (*traced)[name] = std::move(t);
   }
-  for (const auto& name : tb.scenes) {  // a scene's four figures: one group, measured in rounds
+  std::vector<std::vector<RoundFigure>> groups;
+  // A scene's four figures: one group, measured in rounds; the scenes' rounds interleaved (round
+  // r of every scene, then r + 1), so each scene's rounds lie minutes apart.
+  for (const auto& name : tb.scenes) {
     std::vector<RoundFigure> group;
     for (int threads : {1, 2}) {
       const Tracer* tr = (*traced)[name].tracer.get();
@@ -46,8 +49,9 @@ TracingBench RegisterTracingFigures(const Settings& cfg) {
       group.push_back({"bare-embree/" + name + t, threads,
                        [traced, tr, w, h, g] { benchmark::DoNotOptimize(tr->BareTrace(w, h, g)); }});
     }
-    RegisterRounds(group, cfg.trace_reps, cfg.min_time);
+    groups.push_back(std::move(group));
   }
+  RegisterRoundsInterleaved(groups, cfg.trace_reps, cfg.min_time);
   return tb;
 }
 
