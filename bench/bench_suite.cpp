@@ -129,6 +129,22 @@ void StageTable(const SuiteBench& sb, BenchOutput& out) {
   }
 }
 
+// A shell command run to its end: exit status, wall s and the CPU s of everything it ran
+// (RUSAGE_CHILDREN reaches grandchildren once their parent has waited for them).
+struct Timed {
+  int rc;
+  double wall, cpu;
+};
+Timed TimeCommand(const std::string& cmd) {
+  rusage c0{}, c1{};
+  getrusage(RUSAGE_CHILDREN, &c0);
+  const auto t0 = std::chrono::steady_clock::now();
+  const int rc = std::system(cmd.c_str());
+  const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  getrusage(RUSAGE_CHILDREN, &c1);
+  return {rc, sec, ChildCpu(c1) - ChildCpu(c0)};
+}
+
 std::string SuiteCommand(const Settings& cfg, const SuiteRun& s, const fs::path& out) {
   return cfg.aalab_bin + " run --suite " + kSuiteName + " --methods " + kSuiteMethods + " --size " + s.size +
          " --ref-spp " + std::to_string(kSuiteSpp) + " --repeat 1 --threads " + std::to_string(s.threads) +
@@ -145,20 +161,15 @@ bool RunPair(const Settings& cfg, const SuiteRun& s, const fs::path& base, Suite
   const std::string cmd = "( " + SuiteCommand(cfg, s, a) + " ) & pa=$!; ( " + SuiteCommand(cfg, s, b) +
                           " ) & pb=$!; wait $pa; ra=$?; wait $pb; rb=$?; [ $ra -eq 0 ] && [ $rb -eq 0 ]";
   std::fprintf(stderr, "  suite %s threads 1, two runs at once...\n", s.size.c_str());
-  rusage c0{}, c1{};
-  getrusage(RUSAGE_CHILDREN, &c0);
-  const auto t0 = std::chrono::steady_clock::now();
-  const int rc = std::system(cmd.c_str());
-  const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  getrusage(RUSAGE_CHILDREN, &c1);
+  const Timed t = TimeCommand(cmd);
   fs::remove_all(a);
   fs::remove_all(b);
-  if (rc != 0) {
-    std::fprintf(stderr, "suite pair run failed (%d): %s\n", rc, cmd.c_str());
+  if (t.rc != 0) {
+    std::fprintf(stderr, "suite pair run failed (%d): %s\n", t.rc, cmd.c_str());
     return false;
   }
-  sb.pair_secs.push_back(sec);
-  sb.pair_cpu.push_back(ChildCpu(c1) - ChildCpu(c0));
+  sb.pair_secs.push_back(t.wall);
+  sb.pair_cpu.push_back(t.cpu);
   return true;
 }
 
@@ -193,18 +204,13 @@ bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
       fs::remove_all(suite_out);
       const std::string cmd = SuiteCommand(cfg, s, suite_out);
       std::fprintf(stderr, "  suite %s threads %d (%d/%d)...\n", s.size.c_str(), s.threads, r + 1, reps);
-      rusage c0{}, c1{};
-      getrusage(RUSAGE_CHILDREN, &c0);
-      const auto t0 = std::chrono::steady_clock::now();
-      const int rc = std::system(cmd.c_str());
-      const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      getrusage(RUSAGE_CHILDREN, &c1);
-      s.cpu.push_back(ChildCpu(c1) - ChildCpu(c0));
-      if (rc != 0) {
-        std::fprintf(stderr, "suite run failed (%d): %s\n", rc, cmd.c_str());
+      const Timed t = TimeCommand(cmd);
+      s.cpu.push_back(t.cpu);
+      if (t.rc != 0) {
+        std::fprintf(stderr, "suite run failed (%d): %s\n", t.rc, cmd.c_str());
         return false;
       }
-      s.secs.push_back(sec);
+      s.secs.push_back(t.wall);
       s.stages = ReadStages(suite_out / "report.json");
       if (s.w == 960 && s.threads == 1 && !RunPair(cfg, s, suite_out, sb)) return false;
     }
@@ -213,15 +219,10 @@ bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
   {  // the process's fixed cost: start (loading its shared libraries) and exit, nothing else
     double best_wall = 1e300, best_cpu = 1e300;
     for (int r = 0; r < 3; ++r) {
-      rusage c0{}, c1{};
-      getrusage(RUSAGE_CHILDREN, &c0);
-      const auto t0 = std::chrono::steady_clock::now();
-      const int rc = std::system((cfg.aalab_bin + " --version >/dev/null").c_str());
-      const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      getrusage(RUSAGE_CHILDREN, &c1);
-      if (rc != 0) break;
-      best_wall = std::min(best_wall, sec);
-      best_cpu = std::min(best_cpu, ChildCpu(c1) - ChildCpu(c0));
+      const Timed t = TimeCommand(cfg.aalab_bin + " --version >/dev/null");
+      if (t.rc != 0) break;
+      best_wall = std::min(best_wall, t.wall);
+      best_cpu = std::min(best_cpu, t.cpu);
     }
     if (best_wall < 1e300) sb.start_wall_s = best_wall, sb.start_cpu_s = best_cpu;
   }
