@@ -107,11 +107,7 @@ void RegisterRoundFigure(const RoundFigure& f, const std::shared_ptr<int>& calls
 
 }  // namespace
 
-void RegisterRounds(const std::vector<RoundFigure>& figs, int reps, double min_time) {
-  RegisterRoundsInterleaved({figs}, reps, min_time);
-}
-
-void RegisterRoundsInterleaved(const std::vector<std::vector<RoundFigure>>& groups, int reps, double min_time) {
+void RegisterRounds(const std::vector<std::vector<RoundFigure>>& groups, int reps, double min_time) {
   // Each figure's calls per repetition, fixed by its warm-up (before its first round) so that
   // every round runs the same count (≥ min_time s) with no calibration runs of its own.
   std::vector<std::vector<std::shared_ptr<int>>> counts(groups.size());

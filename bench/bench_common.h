@@ -48,18 +48,15 @@ struct RoundFigure {
   std::function<void()> body;
 };
 
-/// Registers a group of figures that goals compare with each other, measured in `reps` rounds:
-/// round r runs one repetition (≥ `min_time` s) of every figure in `figs`' order, so the r-th
-/// samples of two figures were taken seconds apart and pair up (PairedRatio); each figure gets
-/// one untimed warm-up call before its first round. On a machine whose speed drifts from one
-/// minute to the next, the drift then cancels in each pair instead of biasing one figure.
-void RegisterRounds(const std::vector<RoundFigure>& figs, int reps, double min_time);
-
-/// RegisterRounds for several groups at once, their rounds interleaved: round r of every group,
-/// then round r + 1. A group's samples still pair within a round (seconds apart), and its rounds
-/// now lie minutes apart, so a slow stretch of the machine a few seconds long reaches one round
-/// of a group (which the median over rounds then drops) instead of all of them.
-void RegisterRoundsInterleaved(const std::vector<std::vector<RoundFigure>>& groups, int reps, double min_time);
+/// Registers groups of figures that goals compare with each other, measured in `reps` rounds:
+/// round r runs one repetition (≥ `min_time` s) of every figure of every group, each group's
+/// figures in order, so the r-th samples of two figures of a group were taken seconds apart and
+/// pair up (PairedRatio); each figure gets one untimed warm-up call before its first round. On a
+/// machine whose speed drifts from one minute to the next, the drift then cancels in each pair
+/// instead of biasing one figure; and since round r of every group runs before round r + 1, a
+/// group's rounds lie minutes apart, so a slow stretch a few seconds long reaches one round of a
+/// group (which the median over rounds then drops) instead of all of them.
+void RegisterRounds(const std::vector<std::vector<RoundFigure>>& groups, int reps, double min_time);
 
 /// The median over rounds of figure a's r-th sample / figure b's r-th sample (both registered by
 /// one RegisterRounds group); exits 3 when either is missing or their counts differ.

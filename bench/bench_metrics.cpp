@@ -43,7 +43,7 @@ MetricsBench RegisterMetricFigures(const Settings& cfg, const Image8& real_frame
   }
   mb.ref = pair_ref, mb.img = pair_img, mb.none = pair_none;
   // Each metric at 1 and 2 threads: one group, measured in rounds; the metrics' rounds
-  // interleaved (RegisterRoundsInterleaved, below).
+  // interleaved (RegisterRounds, below).
   std::vector<std::vector<RoundFigure>> groups;
   const auto both = [&groups](const std::string& name, const std::function<void()>& body) {
     groups.push_back({{name + "/t1", 1, body}, {name + "/t2", 2, body}});
@@ -85,7 +85,7 @@ MetricsBench RegisterMetricFigures(const Settings& cfg, const Image8& real_frame
     in.none_image = pair_none.get();
     benchmark::DoNotOptimize(ComputeAllMetrics(in).size());
   });
-  RegisterRoundsInterleaved(groups, cfg.reps, cfg.min_time);
+  RegisterRounds(groups, cfg.reps, cfg.min_time);
   return mb;
 }
 

@@ -134,7 +134,7 @@ PostBench RegisterPostFigures(const Settings& cfg, Json& report) {
   auto out_frame = std::make_shared<Image8>(kFrameW, kFrameH, 4);
   // A frame's figures (the floor first, each at 1 and 2 threads) are one group measured in
   // rounds, so that every ratio a goal takes (to the floor, 2 threads to 1, SMAA to FXAA) pairs
-  // samples of one round; the two frames' rounds interleaved (RegisterRoundsInterleaved).
+  // samples of one round; the two frames' rounds interleaved (RegisterRounds).
   std::vector<std::vector<RoundFigure>> groups;
   for (const auto& f : *frames) {
     const Image8* in = &f.img;
@@ -153,7 +153,7 @@ PostBench RegisterPostFigures(const Settings& cfg, Json& report) {
     }
     groups.push_back(std::move(group));
   }
-  RegisterRoundsInterleaved(groups, cfg.reps, cfg.min_time);
+  RegisterRounds(groups, cfg.reps, cfg.min_time);
   // Rescale 2560x1440 -> 1920x1080 (Mpix/s of output pixels); floor: read the scaled frame
   // and write the output (a plain pass over each).
   auto big_out = std::make_shared<Image8>(2560, 1440, 4);

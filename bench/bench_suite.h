@@ -44,7 +44,8 @@ struct SuiteBench {
   // Filled by SuiteTable:
   double per_mpix_1080 = 0.0;                         ///< wall s per Mpix at 1080p, 2 threads
   double linear_worst = 0.0, linear_worst_cpu = 0.0;  ///< worst deviation from per_mpix_1080 (wall, CPU)
-  double t1 = 0, t2 = 0;                              ///< 960x540 wall s at 1 and 2 threads
+  double t1 = 0, t2 = 0;                              ///< 960x540 wall s at 1 and 2 threads (medians)
+  double t1_min = 0, t2_min = 0;                      ///< the same, fastest runs
 };
 
 /// Repetitions of a suite configuration `width` pixels wide, `suite_reps` given: 1080p (~30 s

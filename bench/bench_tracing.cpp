@@ -51,7 +51,7 @@ TracingBench RegisterTracingFigures(const Settings& cfg) {
     }
     groups.push_back(std::move(group));
   }
-  RegisterRoundsInterleaved(groups, cfg.trace_reps, cfg.min_time);
+  RegisterRounds(groups, cfg.trace_reps, cfg.min_time);
   return tb;
 }
 
