@@ -47,15 +47,23 @@ struct RayLanes {
   float *ox, *oy, *oz, *dx, *dy, *dz;
 };
 
+/// What a camera ray of a continuous pixel position needs, formed once a call (CameraViewOf):
+/// the projection, the frame's size, the camera's half height and aspect, and its basis.
+struct CameraView {
+  bool persp;
+  float width, height, half_h, aspect;
+  glm::vec3 origin, fwd, right, up;
+};
+
 /// The camera rays of 16 positions (px, py) component by component, so the loop vectorises:
 /// perspective, exactly glm's `normalize(forward + right·(nx·half_h·aspect) + up·(ny·half_h))`
 /// — normalize(v) = v · (1 / sqrt((x·x + y·y) + z·z)) — from `origin`; orthographic, from
 /// `origin + (right·(nx·half_h·aspect) + up·(ny·half_h))` along `forward`. The same roundings
 /// as the scalar glm code (IEEE divide and sqrt, no contraction), so the same bits.
 template <bool persp>
-inline __attribute__((always_inline)) void CameraBlock(const float* px, const float* py, float width, float height,
-                                                       float half_h, float aspect, glm::vec3 origin, glm::vec3 fwd,
-                                                       glm::vec3 right, glm::vec3 up, RayLanes o) {
+inline __attribute__((always_inline)) void CameraBlock(const float* px, const float* py, CameraView v, RayLanes o) {
+  const float width = v.width, height = v.height, half_h = v.half_h, aspect = v.aspect;
+  const glm::vec3 origin = v.origin, fwd = v.fwd, right = v.right, up = v.up;
   for (int k = 0; k < 16; ++k) {
     const float nx = 2.0f * px[k] / width - 1.0f;
     const float ny = 1.0f - 2.0f * py[k] / height;
@@ -87,16 +95,14 @@ inline __attribute__((always_inline)) void CameraBlock(const float* px, const fl
 /// separate x, y, z lanes, vectorised; the vec3 stores after it: a vec3 array's 12-byte stride
 /// kept the one-loop form scalar).
 template <bool persp>
-inline __attribute__((always_inline)) void CameraRayArrays(const SamplePos* pos, int count, float width, float height,
-                                                           float half_h, float aspect, glm::vec3 origin, glm::vec3 fwd,
-                                                           glm::vec3 right, glm::vec3 up, glm::vec3* org,
-                                                           glm::vec3* dir) {
+inline __attribute__((always_inline)) void CameraRayArrays(const SamplePos* pos, int count, CameraView v,
+                                                           glm::vec3* org, glm::vec3* dir) {
   constexpr int kBlock = 16;
   for (int base = 0; base < count; base += kBlock) {
     const int m = std::min(kBlock, count - base);
     float px[kBlock], py[kBlock], ox[kBlock], oy[kBlock], oz[kBlock], dx[kBlock], dy[kBlock], dz[kBlock];
     LoadBlock(pos + base, m, px, py);
-    CameraBlock<persp>(px, py, width, height, half_h, aspect, origin, fwd, right, up, {ox, oy, oz, dx, dy, dz});
+    CameraBlock<persp>(px, py, v, {ox, oy, oz, dx, dy, dz});
     for (int k = 0; k < m; ++k) {
       org[base + k] = glm::vec3(ox[k], oy[k], oz[k]);
       dir[base + k] = glm::vec3(dx[k], dy[k], dz[k]);
@@ -106,33 +112,29 @@ inline __attribute__((always_inline)) void CameraRayArrays(const SamplePos* pos,
 
 /// Perspective camera rays (CameraBlock<true>: the same bits as the scalar glm code).
 AALAB_SIMD_CLONES
-void PerspectiveRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
-                     glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
-  CameraRayArrays<true>(pos, count, width, height, half_h, aspect, origin, fwd, right, up, org, dir);
+void PerspectiveRays(const SamplePos* pos, int count, CameraView v, glm::vec3* org, glm::vec3* dir) {
+  CameraRayArrays<true>(pos, count, v, org, dir);
 }
 
 /// Orthographic camera rays (CameraBlock<false>: the same bits as the scalar glm code).
 AALAB_SIMD_CLONES
-void OrthographicRays(const SamplePos* pos, int count, float width, float height, float half_h, float aspect,
-                      glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org, glm::vec3* dir) {
-  CameraRayArrays<false>(pos, count, width, height, half_h, aspect, origin, fwd, right, up, org, dir);
+void OrthographicRays(const SamplePos* pos, int count, CameraView v, glm::vec3* org, glm::vec3* dir) {
+  CameraRayArrays<false>(pos, count, v, org, dir);
 }
 
 /// Fills the packet with the camera rays of m ≤ 16 positions, with PerspectiveRays' or
 /// OrthographicRays' arithmetic (the same bits), tnear 0 and tfar ∞; a partial packet's idle
 /// lanes hold its first ray with tnear = tfar = 0 (the packets CameraRays + IntersectRays build).
-inline __attribute__((always_inline)) void FillCameraPacket(bool persp, const SamplePos* pos, int m, float width,
-                                                            float height, float half_h, float aspect, glm::vec3 origin,
-                                                            glm::vec3 fwd, glm::vec3 right, glm::vec3 up,
-                                                            RTCRayHit16& rh, int* valid) {
+inline __attribute__((always_inline)) void FillCameraPacket(CameraView v, const SamplePos* pos, int m, RTCRayHit16& rh,
+                                                            int* valid) {
   const float inf = std::numeric_limits<float>::infinity();
   float px[kPacket], py[kPacket];
   LoadBlock(pos, m, px, py);
   const RayLanes lanes{rh.ray.org_x, rh.ray.org_y, rh.ray.org_z, rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z};
-  if (persp) {
-    CameraBlock<true>(px, py, width, height, half_h, aspect, origin, fwd, right, up, lanes);
+  if (v.persp) {
+    CameraBlock<true>(px, py, v, lanes);
   } else {
-    CameraBlock<false>(px, py, width, height, half_h, aspect, origin, fwd, right, up, lanes);
+    CameraBlock<false>(px, py, v, lanes);
   }
   for (int k = 0; k < kPacket; ++k) {
     valid[k] = -1;
@@ -159,16 +161,15 @@ inline __attribute__((always_inline)) void FillCameraPacket(bool persp, const Sa
 /// IntersectRays does; org/dir receive the same rays for the shading. The packets are the
 /// ones CameraRays + IntersectRays build, without the vec3 arrays read back and repacked.
 AALAB_SIMD_CLONES
-void CameraPackets(RTCScene scene, bool persp, const SamplePos* pos, int count, float width, float height, float half_h,
-                   float aspect, glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up, glm::vec3* org,
-                   glm::vec3* dir, Hit* hits) {
+void CameraPackets(RTCScene scene, CameraView v, const SamplePos* pos, int count, glm::vec3* org, glm::vec3* dir,
+                   Hit* hits) {
   RTCIntersectContext ctx = PacketContext(true);
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[kPacket];
   InitPacketConstants(rh);
   for (int base = 0; base < count; base += kPacket) {
     const int m = std::min(kPacket, count - base);
-    FillCameraPacket(persp, pos + base, m, width, height, half_h, aspect, origin, fwd, right, up, rh, valid);
+    FillCameraPacket(v, pos + base, m, rh, valid);
     for (int k = 0; k < m; ++k) {
       org[base + k] = glm::vec3(rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k]);
       dir[base + k] = glm::vec3(rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]);
@@ -182,9 +183,8 @@ void CameraPackets(RTCScene scene, bool persp, const SamplePos* pos, int count, 
 /// the rays and hits never leave Embree's layout. A curved shape's uv (FillSurface's) takes the
 /// lane's ray and hit as CameraPackets would have stored them.
 AALAB_SIMD_CLONES
-void CameraPacketsUnlit(RTCScene scene, bool persp, const SamplePos* pos, int count, float width, float height,
-                        float half_h, float aspect, glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up,
-                        const Scene& sc, ShadeScratch& S, SampleResult* out, TraceCounters& local) {
+void CameraPacketsUnlit(RTCScene scene, CameraView v, const SamplePos* pos, int count, const Scene& sc, ShadeScratch& S,
+                        SampleResult* out, TraceCounters& local) {
   UnlitShading shading(sc, sc.Has(Effect::kTextures), S, count, out, local);  // a local: in registers
   RTCIntersectContext ctx = PacketContext(true);
   alignas(64) RTCRayHit16 rh;
@@ -192,7 +192,7 @@ void CameraPacketsUnlit(RTCScene scene, bool persp, const SamplePos* pos, int co
   InitPacketConstants(rh);
   for (int base = 0; base < count; base += kPacket) {
     const int m = std::min(kPacket, count - base);
-    FillCameraPacket(persp, pos + base, m, width, height, half_h, aspect, origin, fwd, right, up, rh, valid);
+    FillCameraPacket(v, pos + base, m, rh, valid);
     rtcIntersect16(valid, scene, &ctx, &rh);
     if (shading.ShadeUniformPacket(base, m, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v)) continue;
     for (int k = 0; k < m; ++k) {
@@ -215,9 +215,8 @@ void CameraPacketsUnlit(RTCScene scene, bool persp, const SamplePos* pos, int co
 /// camera rays and hits never leave Embree's layout, the shadow rays go straight into their
 /// own packets.
 AALAB_SIMD_CLONES
-void CameraPacketsLit(RTCScene scene, bool persp, const SamplePos* pos, int count, float width, float height,
-                      float half_h, float aspect, glm::vec3 origin, glm::vec3 fwd, glm::vec3 right, glm::vec3 up,
-                      const Scene& sc, ShadeScratch& S, SampleResult* out, TraceCounters& local) {
+void CameraPacketsLit(RTCScene scene, CameraView v, const SamplePos* pos, int count, const Scene& sc, ShadeScratch& S,
+                      SampleResult* out, TraceCounters& local) {
   LitShading shading(sc, scene, S, count, out, local);
   RTCIntersectContext ctx = PacketContext(true);
   alignas(64) RTCRayHit16 rh;
@@ -225,7 +224,7 @@ void CameraPacketsLit(RTCScene scene, bool persp, const SamplePos* pos, int coun
   InitPacketConstants(rh);
   for (int base = 0; base < count; base += kPacket) {
     const int m = std::min(kPacket, count - base);
-    FillCameraPacket(persp, pos + base, m, width, height, half_h, aspect, origin, fwd, right, up, rh, valid);
+    FillCameraPacket(v, pos + base, m, rh, valid);
     rtcIntersect16(valid, scene, &ctx, &rh);
     if (shading.ShadeUniformPacket(base, m, rh)) continue;
     for (int k = 0; k < m; ++k) {
@@ -242,49 +241,46 @@ void CameraPacketsLit(RTCScene scene, bool persp, const SamplePos* pos, int coun
   shading.Finish();
 }
 
+/// The view of `cam` over a width × height frame.
+CameraView CameraViewOf(const Tracer::Impl& im, const Camera& cam, int width, int height) {
+  return {cam.type == CameraType::kPerspective,
+          static_cast<float>(width),
+          static_cast<float>(height),
+          CameraHalfHeight(cam),
+          static_cast<float>(width) / static_cast<float>(height),
+          im.origin,
+          im.forward,
+          im.right,
+          im.up};
+}
+
 }  // namespace
 
 void tracer_detail::CameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count, int width,
                                int height, glm::vec3* org, glm::vec3* dir) {
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h = CameraHalfHeight(cam);
-  if (cam.type == CameraType::kPerspective) {
-    PerspectiveRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
-                    im.forward, im.right, im.up, org, dir);
+  const CameraView v = CameraViewOf(im, cam, width, height);
+  if (v.persp) {
+    PerspectiveRays(pos, count, v, org, dir);
   } else {
-    OrthographicRays(pos, count, static_cast<float>(width), static_cast<float>(height), half_h, aspect, im.origin,
-                     im.forward, im.right, im.up, org, dir);
+    OrthographicRays(pos, count, v, org, dir);
   }
 }
 
 void tracer_detail::TraceCameraRays(const Tracer::Impl& im, const Camera& cam, const SamplePos* pos, int count,
                                     int width, int height, glm::vec3* org, glm::vec3* dir, Hit* hits) {
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h = CameraHalfHeight(cam);
-  CameraPackets(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
-                static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, org, dir, hits);
+  CameraPackets(im.scene, CameraViewOf(im, cam, width, height), pos, count, org, dir, hits);
 }
 
 void tracer_detail::TraceCameraRaysUnlit(const Tracer::Impl& im, const Scene& sc, const SamplePos* pos, int count,
                                          int width, int height, ShadeScratch& S, SampleResult* out,
                                          TraceCounters& local) {
-  const Camera& cam = sc.camera;
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h = CameraHalfHeight(cam);
-  CameraPacketsUnlit(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
-                     static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, sc, S, out,
-                     local);
+  CameraPacketsUnlit(im.scene, CameraViewOf(im, sc.camera, width, height), pos, count, sc, S, out, local);
 }
 
 void tracer_detail::TraceCameraRaysLit(const Tracer::Impl& im, const Scene& sc, const SamplePos* pos, int count,
                                        int width, int height, ShadeScratch& S, SampleResult* out,
                                        TraceCounters& local) {
-  const Camera& cam = sc.camera;
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float half_h = CameraHalfHeight(cam);
-  CameraPacketsLit(im.scene, cam.type == CameraType::kPerspective, pos, count, static_cast<float>(width),
-                   static_cast<float>(height), half_h, aspect, im.origin, im.forward, im.right, im.up, sc, S, out,
-                   local);
+  CameraPacketsLit(im.scene, CameraViewOf(im, sc.camera, width, height), pos, count, sc, S, out, local);
 }
 
 }  // namespace aalab
