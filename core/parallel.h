@@ -22,4 +22,23 @@ void ParallelForChunks(int count, int grain, const std::function<void(int, int)>
 /// Calls body(i) for every i in [0, count), in parallel.
 void ParallelFor(int count, const std::function<void(int)>& body);
 
+/// Where the parallel loops' time went, counted since EnableLoopStats(true) (diagnostics for
+/// thread scaling: `AALAB_LOOP_STATS`, docs/performance.md). A top-level loop is one called
+/// from outside every loop's chunk; loops nested in a chunk count as that chunk's work.
+struct LoopStats {
+  long long loops = 0;    ///< top-level loops run
+  double in_loops_s = 0;  ///< wall seconds inside top-level loops (outside them: serial work)
+  /// Thread-seconds inside chunk bodies, summed over threads; a chunk a thread runs while
+  /// inside another chunk (a nested loop's) is not counted twice. threads × in_loops_s −
+  /// busy_s is the time threads spent in loops without a chunk to run (waits, imbalance,
+  /// the scheduler's own work).
+  double busy_s = 0;
+};
+
+/// Starts (true) or stops counting LoopStats. Off by default; off, a loop pays one flag read.
+/// Call from the main thread while no loop runs (as SetThreadCount).
+void EnableLoopStats(bool on);
+/// The counts so far (zero until EnableLoopStats(true); kept when counting stops).
+LoopStats LoopStatsNow();
+
 }  // namespace aalab

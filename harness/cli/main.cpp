@@ -26,6 +26,7 @@
 #include "core/cleanup.h"
 #include "core/error.h"
 #include "core/memory_policy.h"
+#include "core/parallel.h"
 
 namespace aalab {
 namespace {
@@ -161,6 +162,34 @@ void ReportClosedStdout() {
   }
 }
 
+/// `AALAB_LOOP_STATS=PATH` (docs/performance.md): where the command's parallel loops spent
+/// their time, written to PATH as one JSON object once the command ended with status 0,
+/// through a temporary file beside it, renamed, so PATH is never half-written. With `probe`,
+/// only that temporary file is made and removed again: the check before the command, so that
+/// a path that cannot be written is refused before any work. Returns false, with one line on
+/// stderr, when it cannot be written.
+bool WriteLoopStats(const std::string& path, bool probe) {
+  const LoopStats s = LoopStatsNow();
+  const std::string tmp = path + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "w");
+  bool ok = f != nullptr;
+  if (f && probe) {
+    ok = std::fclose(f) == 0 && std::remove(tmp.c_str()) == 0;
+  } else if (f) {
+    ok = std::fprintf(f, "{\"threads\": %d, \"loops\": %lld, \"in_loops_s\": %.6f, \"busy_s\": %.6f}\n", ThreadCount(),
+                      s.loops, s.in_loops_s, s.busy_s) > 0;
+    ok = std::fclose(f) == 0 && ok;
+  }
+  if (ok && !probe) ok = std::rename(tmp.c_str(), path.c_str()) == 0;
+  if (!ok) {
+    const int err = errno;
+    std::remove(tmp.c_str());
+    std::fprintf(stderr, "aalab: error: AALAB_LOOP_STATS=%s: cannot write the loop statistics there (%s)\n",
+                 path.c_str(), std::strerror(err));
+  }
+  return ok;
+}
+
 }  // namespace
 }  // namespace aalab
 
@@ -182,6 +211,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "aalab: error: %s\n", DescribeParseError(app, e).c_str());
     return ToInt(OptionErrorCode(app));
   }
+  const char* loop_stats = std::getenv("AALAB_LOOP_STATS");
+  if (loop_stats && *loop_stats) {
+    // Refused before the command runs when its file cannot be written (its folder missing, say).
+    if (!WriteLoopStats(loop_stats, /*probe=*/true)) return ToInt(ExitCode::kFailure);
+    EnableLoopStats(true);
+  }
   int code = ToInt(ExitCode::kFailure);
   try {
     code = commands.Run();
@@ -195,6 +230,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "aalab: error: %s\n", e.what());
     code = ToInt(ExitCode::kFailure);
   }
+  if (loop_stats && *loop_stats && code == 0 && !WriteLoopStats(loop_stats, /*probe=*/false))
+    code = ToInt(ExitCode::kFailure);
   ReportClosedStdout();
   return code;
 }

@@ -109,6 +109,45 @@ TEST(Cli, BadSceneFileNamesFileAndField) {
   EXPECT_FALSE(fs::exists(dir / "r"));
 }
 
+// AALAB_LOOP_STATS=PATH (docs/performance.md): the run's parallel-loop time, one JSON object.
+// A run is mostly parallel loops: with 2 threads its loops hold work, and busy time can never
+// exceed 2 × the time inside loops (two threads, each inside a chunk at most all along).
+TEST(Cli, LoopStatsFileDescribesTheRunsLoops) {
+  const fs::path dir = TempDir("loopstats");
+  const fs::path stats = dir / "loops.json";
+  const CmdResult r =
+      aalab::clitest::RunCommand("AALAB_LOOP_STATS=" + stats.string() + " " + std::string(AALAB_BINARY_DIR) +
+                                 "/aalab run --scenes wedges --methods none,fxaa311-p39 --size 96x54 "
+                                 "--ref-spp 16 --repeat 1 --threads 2 --quiet --out " +
+                                 (dir / "out").string() + " 2>&1");
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(stats));
+  EXPECT_FALSE(fs::exists(stats.string() + ".tmp"));
+  std::ifstream f(stats);
+  const auto doc = nlohmann::json::parse(f);
+  EXPECT_EQ(doc["threads"].get<int>(), 2);
+  EXPECT_GT(doc["loops"].get<long long>(), 0);
+  EXPECT_GT(doc["in_loops_s"].get<double>(), 0.0);
+  EXPECT_GT(doc["busy_s"].get<double>(), 0.0);
+  EXPECT_LE(doc["busy_s"].get<double>(), 2 * doc["in_loops_s"].get<double>() + 1e-5);  // 6 decimals each
+}
+
+// A path that cannot be written is refused before the run does any work.
+TEST(Cli, LoopStatsUnwritablePathIsRefusedFirst) {
+  const fs::path dir = TempDir("loopstats-bad");
+  const fs::path out = dir / "out";
+  const CmdResult r = aalab::clitest::RunCommand("AALAB_LOOP_STATS=" + (dir / "missing" / "loops.json").string() + " " +
+                                                 std::string(AALAB_BINARY_DIR) +
+                                                 "/aalab run --scenes wedges --methods none --size 48x27 --ref-spp 4 "
+                                                 "--repeat 1 --quiet --out " +
+                                                 out.string() + " 2>&1");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("AALAB_LOOP_STATS="), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("No such file or directory"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(dir / "missing"));
+}
+
 TEST(Cli, RunWritesReportCoveringTheMatrix) {
   const fs::path dir = TempDir("run");
   const fs::path out = dir / "report";
