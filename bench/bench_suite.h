@@ -19,6 +19,11 @@ struct SuiteRun {
   /// The last repetition's report.json time_breakdown: stage name, wall s, CPU s (in stage
   /// order; "total" last), so that the table shows which stages do not scale.
   std::vector<std::tuple<std::string, double, double>> stages;
+  /// Per run, its parallel loops (AALAB_LOOP_STATS, docs/performance.md): wall s inside
+  /// top-level loops and thread-s inside chunk bodies, so that a 2-thread run's shortfall splits
+  /// into serial time (the run's wall − in loops), idle time in loops (threads × in loops − busy)
+  /// and work that costs more thread time than at 1 thread (busy against the 1-thread run's).
+  std::vector<double> in_loops_s, busy_s;
 };
 
 /// The default run, as `make run` does it with the binary prebuilt (not in --quick).
@@ -46,6 +51,9 @@ struct SuiteBench {
   double linear_worst = 0.0, linear_worst_cpu = 0.0;  ///< worst deviation from per_mpix_1080 (wall, CPU)
   double t1 = 0, t2 = 0;                              ///< 960x540 wall s at 1 and 2 threads (medians)
   double t1_min = 0, t2_min = 0;                      ///< the same, fastest runs
+  /// 960x540, 2 threads (AALAB_LOOP_STATS medians): busy thread-s / the 1-thread run's, idle
+  /// thread-s inside loops, wall s outside loops (0 when not measured).
+  double busy_ratio = 0, idle2_s = 0, outside2_s = 0;
 };
 
 /// Repetitions of a suite configuration `width` pixels wide, `suite_reps` given: 1080p (~30 s
