@@ -212,17 +212,14 @@ bool RunPair(const Settings& cfg, const SuiteRun& s, const fs::path& base, Suite
   const fs::path a = base.string() + "_pair_a", b = base.string() + "_pair_b";
   fs::remove_all(a);
   fs::remove_all(b);
-  const auto remove_stats = [&] {
-    fs::remove(LoopStatsPath(a));
-    fs::remove(LoopStatsPath(b));
-  };
   const std::string cmd = "( " + SuiteCommand(cfg, s, a) + " ) & pa=$!; ( " + SuiteCommand(cfg, s, b) +
                           " ) & pb=$!; wait $pa; ra=$?; wait $pb; rb=$?; [ $ra -eq 0 ] && [ $rb -eq 0 ]";
   std::fprintf(stderr, "  suite %s threads 1, two runs at once...\n", s.size.c_str());
   const Timed t = TimeCommand(cmd);
   fs::remove_all(a);
   fs::remove_all(b);
-  remove_stats();
+  fs::remove(LoopStatsPath(a));
+  fs::remove(LoopStatsPath(b));
   if (t.rc != 0) {
     std::fprintf(stderr, "suite pair run failed (%d): %s\n", t.rc, cmd.c_str());
     return false;

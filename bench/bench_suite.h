@@ -19,7 +19,7 @@ struct SuiteRun {
   /// The last repetition's report.json time_breakdown: stage name, wall s, CPU s (in stage
   /// order; "total" last), so that the table shows which stages do not scale.
   std::vector<std::tuple<std::string, double, double>> stages;
-  /// Per run, its parallel loops (AALAB_LOOP_STATS, docs/performance.md): wall s inside
+  /// Per run, its parallel loops (AALAB_LOOP_STATS, docs/cli.md): wall s inside
   /// top-level loops and thread-s inside chunk bodies, so that a 2-thread run's shortfall splits
   /// into serial time (the run's wall − in loops), idle time in loops (threads × in loops − busy)
   /// and work that costs more thread time than at 1 thread (busy against the 1-thread run's).

@@ -23,8 +23,11 @@ void ParallelForChunks(int count, int grain, const std::function<void(int, int)>
 void ParallelFor(int count, const std::function<void(int)>& body);
 
 /// Where the parallel loops' time went, counted since EnableLoopStats(true) (diagnostics for
-/// thread scaling: `AALAB_LOOP_STATS`, docs/performance.md). A top-level loop is one called
-/// from outside every loop's chunk; loops nested in a chunk count as that chunk's work.
+/// thread scaling: `AALAB_LOOP_STATS`, docs/cli.md). A top-level loop is one called from
+/// outside every loop's chunk; loops nested in a chunk count as that chunk's work. Loops
+/// started at once from several threads outside any loop would each add their wall time (aalab
+/// starts none). Counted by the TBB build (core/parallel.cpp) only: the stand-alone GPU
+/// tool's std::thread build (gpu/parallel_threads.cpp) neither defines nor calls these.
 struct LoopStats {
   long long loops = 0;    ///< top-level loops run
   double in_loops_s = 0;  ///< wall seconds inside top-level loops (outside them: serial work)

@@ -162,7 +162,7 @@ void ReportClosedStdout() {
   }
 }
 
-/// `AALAB_LOOP_STATS=PATH` (docs/performance.md): where the command's parallel loops spent
+/// `AALAB_LOOP_STATS=PATH` (docs/cli.md): where the command's parallel loops spent
 /// their time, written to PATH as one JSON object once the command ended with status 0,
 /// through a temporary file beside it, renamed, so PATH is never half-written. With `probe`,
 /// only that temporary file is made and removed again: the check before the command, so that
