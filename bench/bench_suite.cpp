@@ -191,17 +191,13 @@ void LoopTable(SuiteBench& sb, BenchOutput& out) {
       outside.push_back(s.secs[i] - s.in_loops_s[i]);
       idle.push_back(s.threads * s.in_loops_s[i] - s.busy_s[i]);
     }
+    const double outside_s = Stats{outside}.Median(), idle_s = Stats{idle}.Median();
     const bool same_size = one && one->w == s.w && one->h == s.h;
     const double ratio = same_size ? busy.Median() / Stats{one->busy_s}.Median() : 0.0;
-    if (same_size && s.threads == 2) {
-      sb.busy_ratio = ratio;
-      sb.idle2_s = Stats{idle}.Median();
-      sb.outside2_s = Stats{outside}.Median();
-    }
+    if (same_size && s.threads == 2) sb.busy_ratio = ratio, sb.idle2_s = idle_s, sb.outside2_s = outside_s;
     out.Line("| " + s.size + " | " + std::to_string(s.threads) + " | " + FormatDouble("%.2f", in.Median()) + " | " +
-             FormatDouble("%.2f", Stats{outside}.Median()) + " | " + FormatDouble("%.2f", busy.Median()) + " | " +
-             FormatDouble("%.2f", Stats{idle}.Median()) + " | " +
-             (same_size ? FormatDouble("%.3f", ratio) : std::string("")) + " |");
+             FormatDouble("%.2f", outside_s) + " | " + FormatDouble("%.2f", busy.Median()) + " | " +
+             FormatDouble("%.2f", idle_s) + " | " + (same_size ? FormatDouble("%.3f", ratio) : std::string("")) + " |");
   }
 }
 
@@ -239,11 +235,14 @@ int SuiteReps(int width, int suite_reps) {
 
 bool RunSuiteFigures(const Settings& cfg, SuiteBench& sb) {
   std::vector<SuiteRun>& suite = sb.runs;
-  suite = {{"480x270", 480, 270, 2, {}, {}, {}, {}, {}},
-           {"960x540", 960, 540, 2, {}, {}, {}, {}, {}},
-           {"1920x1080", 1920, 1080, 2, {}, {}, {}, {}, {}},
-           {"960x540", 960, 540, 1, {}, {}, {}, {}, {}}};
-  if (cfg.quick) suite = {{"480x270", 480, 270, 2, {}, {}, {}, {}, {}}, {"960x540", 960, 540, 2, {}, {}, {}, {}, {}}};
+  const auto config = [](const char* size, int w, int h, int threads) {
+    SuiteRun r;  // the measurements start empty
+    r.size = size, r.w = w, r.h = h, r.threads = threads;
+    return r;
+  };
+  suite = {config("480x270", 480, 270, 2), config("960x540", 960, 540, 2), config("1920x1080", 1920, 1080, 2),
+           config("960x540", 960, 540, 1)};
+  if (cfg.quick) suite = {config("480x270", 480, 270, 2), config("960x540", 960, 540, 2)};
   const fs::path suite_out = fs::temp_directory_path() / ("aalab_bench_suite_" + std::to_string(getpid()));
   // Round-robin over the configurations (repetition r of each, then r + 1) so that the ratios
   // between them (2 threads over 1, per Mpix against 1080p's) compare runs made minutes apart,
